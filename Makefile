@@ -1,0 +1,25 @@
+# Быстрый старт: `make report` (собирает отчёт по варианту по умолчанию), `make test` (все тесты).
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+CASE   ?= cases/ws000_six_bar.toml
+
+.PHONY: report test setup bench clean
+
+report: setup
+	$(BIN)/reportgen build $(CASE)
+
+test: setup
+	$(BIN)/python -m pytest
+
+bench: setup
+	$(BIN)/python bench/bench_build.py
+
+setup: $(VENV)/.installed
+
+$(VENV)/.installed: pyproject.toml scripts/setup.sh
+	PYTHON=$(PYTHON) bash scripts/setup.sh
+	touch $@
+
+clean:
+	rm -rf $(VENV) output .pytest_cache

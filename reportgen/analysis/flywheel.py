@@ -1,0 +1,998 @@
+"""Steady motion of a machine reduced to its crank and the flywheel that keeps it within δ.
+
+Model (Артоболевский «Теория механизмов и машин», гл. «Динамика машин»; Попов–Тимофеев,
+курсовое проектирование по ТММ; worksheet 000 of the project)
+------------------------------------------------------------------------------------------
+The generalised coordinate φ runs over one cycle [φ_a, φ_a + Φ] (Φ = 2π, or 4π for a
+four-stroke engine).  Reduced inertia J_пр(φ) = J_I + J_II(φ): J_I is the constant part (rotors,
+crank, flywheel), J_II(φ) the variable part of the linkage.  Reduced moments:
+M_Σ(φ) = M_дв(φ) + M_пр.с(φ) (all loads except the driving moment are in M_пр.с).
+
+* Equation of motion in energy form:  ½ J_пр(φ) ω(φ)² = T₀ + A_Σ(φ),  A_Σ(φ) = ∫_{φ_a}^{φ} M_Σ;
+  in differential form J_пр ε + ½ J_пр′ ω² = M_Σ (Лагранж; Артоболевский).  For M = M(φ)
+  the energy form is exact, so the periodic steady motion is known in closed form once J_I
+  and T₀ are fixed.
+* Constant driving moment from zero cycle work: M_дв = −A_c/Φ.
+* Coefficient of non-uniformity δ = (ω_max − ω_min)/ω_ср with ω_ср = (ω_max + ω_min)/2, i.e.
+  ω_max = ω_ср(1 + δ/2), ω_min = ω_ср(1 − δ/2).
+
+Three ways to size J_I are computed side by side (numerics.md §4):
+
+* exact periodic solution of the energy integral (root finding on T₀ and J_I);
+* Мерцалов's method as in worksheet 000 (T_II ≈ ½ J_II ω_ср², ΔT_I = A_Σ − T_II,
+  J_I = (ΔT_I,max − ΔT_I,min)/(ω_ср² δ)); it over-sizes J_I by about the mean of J_II at the
+  two extremes of ΔT_I (first order), exactly by J_II when J_II is constant;
+* Виттенбауэр's energy–mass diagram ΔT(J_II): tangents of slopes ω_max²/2 and ω_min²/2 cut
+  K and L on the ΔT axis; from the tangency conditions T₀ + K = ½ω_max² J_I and
+  T₀ + L = ½ω_min² J_I follows J_I = 2·KL/(ω_max² − ω_min²), which for the exact slopes
+  (1 ± δ/2)² is identically KL/(ω_ср² δ) and exact; the textbook slopes ω_ср²(1 ± δ)/2 give
+  the same formula with slightly different K and L (error ∝ δ²).
+
+All integrals are Gauss–Legendre on intervals split at the switching points of the loads
+(``reportgen.core.quadrature``); the extremes of every curve are refined by ``brentq`` on the
+analytic derivative, never read off the grid.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable, Iterable, Sequence
+
+import numpy as np
+from scipy.optimize import brentq
+
+from reportgen.core.quadrature import Antiderivative, merge_nodes
+
+__all__ = [
+    "DynamicModel",
+    "prepare_model",
+    "Works",
+    "works",
+    "MertsalovResult",
+    "mertsalov",
+    "TangentPoint",
+    "WittenbauerResult",
+    "wittenbauer",
+    "ExactMotion",
+    "exact",
+    "RimFlywheel",
+    "DiskFlywheel",
+    "FlywheelDims",
+    "flywheel_dims",
+    "DynamicsResult",
+    "solve_dynamics",
+]
+
+ArrayFunc = Callable[[np.ndarray], np.ndarray]
+_EPS = np.finfo(float).eps
+
+
+# --------------------------------------------------------------------------------------------
+# Model: loads, works and inertia tabulated once per cycle
+# --------------------------------------------------------------------------------------------
+class DynamicModel:
+    """One cycle of the reduced machine, tabulated once and evaluable at any φ.
+
+    Nodes = user grid (wrapped into the cycle) ∪ breaks ∪ cycle ends, subdivided so that no
+    interval exceeds Φ/``min_nodes``.  On the nodes: A_c, A_дв, A_Σ (cumulative
+    Gauss–Legendre, split at the breaks) and J_II.  Everything periodic is evaluated at an
+    arbitrary φ by reduction into the cycle: A(φ + kΦ) = A(φ) + k·A(cycle).
+
+    Parameters are those of :func:`solve_dynamics`; J2/dJ2 may be None when only the works
+    are wanted.
+    """
+
+    def __init__(self, J2: ArrayFunc | None, dJ2: ArrayFunc | None, M: ArrayFunc,
+                 breaks: Iterable[float] | None, cycle_start: float, cycle_length: float,
+                 grid, Mdrive: float | ArrayFunc | None = None, *, min_nodes: int = 720,
+                 order: int = 8, balance_rtol: float = 1e-9):
+        a = float(cycle_start)
+        L = float(cycle_length)
+        if not (L > 0 and math.isfinite(L)):
+            raise ValueError(f"cycle_length must be positive, got {cycle_length}")
+        self.a, self.L = a, L
+        self._J2, self._dJ2, self._M = J2, dJ2, M
+        # breaks reduced into [a, a + L)
+        br = np.asarray(list(breaks) if breaks is not None else [], dtype=float).ravel()
+        br = a + np.mod(br - a, L)
+        br = np.unique(br[(br > a) & (br < a + L)])
+        self.breaks = br
+        # user grid
+        if np.isscalar(grid):
+            n = int(grid)
+            if n < 2:
+                raise ValueError("grid as an int is the number of intervals (≥ 2)")
+            phi = np.linspace(a, a + L, n + 1)
+        else:
+            phi = np.asarray(grid, dtype=float).ravel()
+            if phi.size < 1:
+                raise ValueError("empty grid")
+        self.phi = phi
+        red = self._reduce(phi)[0]
+        base = np.unique(np.concatenate(([a, a + L], red, br)))
+        self.nodes = merge_nodes(base, br, max_step=L / max(int(min_nodes), 2))
+        # works on nodes
+        self._Ac = Antiderivative(M, self.nodes, br, order=order)
+        self.Ac_total = self._Ac.total
+        if Mdrive is None or np.isscalar(Mdrive):
+            self.Md_const = (-self.Ac_total / L) if Mdrive is None else float(Mdrive)
+            self._Ad = None
+            self.Ad_total = self.Md_const * L
+            Ad_n = self.Md_const * (self.nodes - a)
+        else:
+            self.Md_const = None
+            self._Ad = Antiderivative(Mdrive, self.nodes, br, order=order)
+            self.Ad_total = self._Ad.total
+            Ad_n = self._Ad.values
+        self._Mdrive = Mdrive
+        self.Ac_n = self._Ac.values
+        self.Ad_n = Ad_n
+        self.A_n = self.Ac_n + self.Ad_n
+        scale = float(np.max(np.abs(self.Ac_n)) + np.max(np.abs(self.Ad_n)))
+        self.A_total = self.Ac_total + self.Ad_total
+        if abs(self.A_total) > balance_rtol * max(scale, 1e-300):
+            raise ValueError(
+                "the driving moment does not balance the cycle work "
+                f"(A_Σ over the cycle = {self.A_total:.6g} J against a scale of {scale:.6g} J): "
+                "no periodic steady motion exists; pass Mdrive=None for M_дв = −A_c/Φ")
+        self.M_drive_mean = self.Ad_total / L
+        # values on the user grid
+        idx, k = self._node_index(phi)
+        self.Ac_g = self.Ac_n[idx] + k * self.Ac_total
+        self.Ad_g = self.Ad_n[idx] + k * self.Ad_total
+        self.A_g = self.Ac_g + self.Ad_g
+        self.Mc_g = self._call(M, phi)
+        self.Md_g = self._md(phi)
+        self.M_g = self.Mc_g + self.Md_g
+        if J2 is not None:
+            if dJ2 is None:
+                raise ValueError("dJ2 (the exact derivative of J_II) is required with J2")
+            self.J2_n = self._call(J2, self.nodes)
+            self.J2_g = self._call(J2, phi)
+            self.dJ2_g = self._call(dJ2, phi)
+            if np.any(~np.isfinite(self.J2_n)):
+                raise ValueError("J_II(φ) is not finite on the cycle")
+        self._cache: dict = {}
+
+    # -- helpers ---------------------------------------------------------------------------
+    @staticmethod
+    def _call(f: ArrayFunc, x: np.ndarray) -> np.ndarray:
+        y = np.asarray(f(x), dtype=float)
+        return np.broadcast_to(y, np.shape(x)).copy() if y.shape != np.shape(x) else y
+
+    def _md(self, x: np.ndarray) -> np.ndarray:
+        if self.Md_const is not None:
+            return np.full(np.shape(x), self.Md_const)
+        return self._call(self._Mdrive, x)
+
+    def _reduce(self, x) -> tuple[np.ndarray, np.ndarray]:
+        """x = r + k·Φ with r in [a, a + Φ)."""
+        x = np.asarray(x, dtype=float)
+        k = np.floor((x - self.a) / self.L)
+        r = x - k * self.L
+        # guard rounding at the ends
+        hi = r >= self.a + self.L
+        r = np.where(hi, r - self.L, r)
+        k = np.where(hi, k + 1, k)
+        lo = r < self.a
+        r = np.where(lo, r + self.L, r)
+        k = np.where(lo, k - 1, k)
+        return r, k
+
+    def _node_index(self, x):
+        r, k = self._reduce(x)
+        idx = np.searchsorted(self.nodes, r)
+        idx = np.clip(idx, 0, self.nodes.size - 1)
+        if not np.array_equal(self.nodes[idx], r):
+            raise RuntimeError("internal: grid point is not a node")
+        return idx, k
+
+    # -- evaluation at arbitrary φ --------------------------------------------------------------
+    def A(self, x) -> np.ndarray:
+        """A_Σ(φ) = ∫_{φ_a}^{φ} M_Σ at arbitrary φ (periodic continuation)."""
+        r, k = self._reduce(x)
+        out = self._Ac(r) + k * self.Ac_total
+        if self._Ad is None:
+            out = out + self.Md_const * (r - self.a) + k * self.Ad_total
+        else:
+            out = out + self._Ad(r) + k * self.Ad_total
+        return out
+
+    def Ac(self, x) -> np.ndarray:
+        r, k = self._reduce(x)
+        return self._Ac(r) + k * self.Ac_total
+
+    def M_sum(self, x) -> np.ndarray:
+        """M_Σ(φ) = M_пр.с(φ) + M_дв(φ)."""
+        r, _ = self._reduce(x)
+        return self._call(self._M, r) + self._md(r)
+
+    def J2(self, x) -> np.ndarray:
+        r, _ = self._reduce(x)
+        return self._call(self._J2, r)
+
+    def dJ2(self, x) -> np.ndarray:
+        r, _ = self._reduce(x)
+        return self._call(self._dJ2, r)
+
+    def wrap(self, x) -> np.ndarray:
+        """φ reduced into [φ_a, φ_a + Φ)."""
+        return self._reduce(x)[0]
+
+    # -- extremum of a periodic piecewise-smooth function ----------------------------------
+    def extremum(self, gn: np.ndarray, g: Callable, dg: Callable, kind: str,
+                 max_candidates: int = 8) -> tuple[float, float]:
+        """Global max/min over the cycle of g(φ) tabulated as ``gn`` on nodes[:-1].
+
+        Grid scan (discrete local extrema, cyclic) → in the two cells around each candidate,
+        ``brentq`` on the sign change of the derivative ``dg`` (evaluated one-sidedly inside
+        the cell, so a jump of dg at a break is never straddled) → the best of the candidate
+        node and the interior roots is taken by exact evaluation of g.  Extrema at breaks
+        (kinks of g) and at the cycle ends are therefore found as well.
+        """
+        s = 1.0 if kind == "max" else -1.0
+        v = s * np.asarray(gn, dtype=float)
+        n = v.size
+        vl = np.roll(v, 1)
+        vr = np.roll(v, -1)
+        loc = np.nonzero((v >= vl) & (v >= vr))[0]
+        if loc.size == 0:
+            loc = np.array([int(np.argmax(v))])
+        best = v[loc].max()
+        d2 = np.abs(vr - 2 * v + vl)
+        margin = 2.0 * float(d2.max()) + 64 * _EPS * float(np.abs(v).max())
+        loc = loc[v[loc] >= best - margin]
+        if loc.size > max_candidates:
+            loc = loc[np.argsort(-v[loc])[:max_candidates]]
+        x = self.nodes
+        xm = np.where(loc == 0, x[n - 1] - self.L, x[np.maximum(loc - 1, 0)])
+        x0 = x[loc]
+        xp = x[loc + 1]
+        scale = max(1.0, abs(self.a) + self.L)
+        eta_abs = 64 * _EPS * scale
+        lo = np.concatenate((xm, x0))
+        hi = np.concatenate((x0, xp))
+        eta = np.minimum(eta_abs, 0.25 * (hi - lo))
+        ends = np.concatenate((lo + eta, hi - eta))
+        dv = s * np.asarray(dg(ends), dtype=float)
+        m = lo.size
+        dlo, dhi = dv[:m], dv[m:]
+        pts = [x0]
+        roots = []
+        for i in range(m):
+            if hi[i] - lo[i] <= 4 * eta_abs:
+                continue
+            if dlo[i] > 0 and dhi[i] < 0:
+                a_, b_, e_ = lo[i], hi[i], eta[i]
+
+                def fd(t, a_=a_, b_=b_, e_=e_):
+                    t = min(max(t, a_ + e_), b_ - e_)
+                    return float(dg(np.array([t]))[0])
+
+                roots.append(brentq(fd, a_, b_, xtol=1e-15 * scale, rtol=4 * _EPS,
+                                    maxiter=200))
+        if roots:
+            pts.append(np.asarray(roots))
+        cand = np.concatenate(pts)
+        vals = np.asarray(g(cand), dtype=float)
+        j = int(np.argmax(s * vals))
+        return float(self.wrap(cand[j])), float(vals[j])
+
+    def line_extremum(self, slope: float, kind: str) -> tuple[float, float]:
+        """max/min over the cycle of A_Σ(φ) − slope·J_II(φ) (Мерцалов ΔT_I, Виттенбауэр K, L).
+
+        Derivative: M_Σ(φ) − slope·J_II′(φ).
+        """
+        gn = self.A_n[:-1] - slope * self.J2_n[:-1]
+        return self.extremum(gn, lambda x: self.A(x) - slope * self.J2(x),
+                             lambda x: self.M_sum(x) - slope * self.dJ2(x), kind)
+
+    def energy_extrema(self, J: float, T: float):
+        """Extremes of ω²/2 = (T₀ + A_Σ)/(J_I + J_II) for given J_I, T₀.
+
+        d(ω²)/dφ = 0 ⇔ M_Σ(J_I + J_II) − (T₀ + A_Σ)·J_II′ = 0 (i.e. M_Σ = ½ J_II′ ω²).
+        Returns (φ_max, e_max, φ_min, e_min) with e = ω²/2.
+        """
+        gn = (T + self.A_n[:-1]) / (J + self.J2_n[:-1])
+
+        def g(x):
+            return (T + self.A(x)) / (J + self.J2(x))
+
+        def dg(x):
+            return self.M_sum(x) * (J + self.J2(x)) - (T + self.A(x)) * self.dJ2(x)
+
+        p1, e1 = self.extremum(gn, g, dg, "max")
+        p2, e2 = self.extremum(gn, g, dg, "min")
+        return p1, e1, p2, e2
+
+    def A_min(self) -> float:
+        """Exact minimum of A_Σ over the cycle (lower bound of admissible −T₀)."""
+        if "A_min" not in self._cache:
+            self._cache["A_min"] = self.extremum(self.A_n[:-1], self.A, self.M_sum, "min")[1]
+        return self._cache["A_min"]
+
+
+def prepare_model(J2: ArrayFunc | None, dJ2: ArrayFunc | None, M: ArrayFunc,
+                  breaks: Iterable[float] | None, cycle_start: float, cycle_length: float,
+                  grid, Mdrive: float | ArrayFunc | None = None, **kw) -> DynamicModel:
+    """Build the tabulated :class:`DynamicModel` shared by all methods (see its docstring)."""
+    return DynamicModel(J2, dJ2, M, breaks, cycle_start, cycle_length, grid, Mdrive, **kw)
+
+
+# --------------------------------------------------------------------------------------------
+# 1. Works
+# --------------------------------------------------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class Works:
+    """Works of the reduced moments on the grid [J].
+
+    phi        – grid φ [rad];
+    A_c        – A_c(φ) = ∫_{φ_a}^{φ} M_пр.с dφ (work of resistances and other loads);
+    A_d        – A_дв(φ) = ∫ M_дв dφ;
+    A_sum      – A_Σ(φ) = A_дв + A_c = ΔT(φ);
+    M_c, M_d, M_sum – the moments on the grid [N·m];
+    A_c_cycle, A_d_cycle – works over the whole cycle; M_drive – M_дв (mean over the cycle if
+    it was given as a function); cycle_start, cycle_length.
+    """
+
+    phi: np.ndarray
+    A_c: np.ndarray
+    A_d: np.ndarray
+    A_sum: np.ndarray
+    M_c: np.ndarray
+    M_d: np.ndarray
+    M_sum: np.ndarray
+    A_c_cycle: float
+    A_d_cycle: float
+    M_drive: float
+    cycle_start: float
+    cycle_length: float
+
+
+def _works_of(model: DynamicModel) -> Works:
+    return Works(phi=model.phi, A_c=model.Ac_g, A_d=model.Ad_g, A_sum=model.A_g,
+                 M_c=model.Mc_g, M_d=model.Md_g, M_sum=model.M_g,
+                 A_c_cycle=float(model.Ac_total), A_d_cycle=float(model.Ad_total),
+                 M_drive=float(model.M_drive_mean), cycle_start=model.a,
+                 cycle_length=model.L)
+
+
+def works(M: ArrayFunc, Mdrive: float | ArrayFunc | None, grid,
+          breaks: Iterable[float] | None, cycle: Sequence[float]) -> Works:
+    """Works of the loads over one cycle ``cycle = (φ_a, Φ)``.
+
+    A_c(φ) = ∫_{φ_a}^{φ} M_пр.с dφ, A_c = A_c(φ_a + Φ); M_дв = −A_c/Φ (constant driving moment
+    from zero cycle work, Артоболевский) unless given; A_Σ = A_дв + A_c.  Integrals split at the
+    breaks, Gauss–Legendre (8 points per interval, intervals ≤ Φ/720).
+    """
+    model = DynamicModel(None, None, M, breaks, cycle[0], cycle[1], grid, Mdrive)
+    return _works_of(model)
+
+
+# --------------------------------------------------------------------------------------------
+# 4. Exact periodic motion (needed by the other methods for "δ achieved")
+# --------------------------------------------------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class ExactMotion:
+    """Exact periodic steady motion ½(J_I + J_II)ω² = T₀ + A_Σ(φ).
+
+    J_I [kg·m²], T0 [J] (kinetic energy at φ_a is T0 + A_Σ(φ_a) = T0);
+    phi, omega [rad/s], eps [rad/s²] on the grid, ε = (M_Σ − ½J_II′ω²)/(J_I + J_II);
+    omega_max/omega_min and where they occur (phi_omega_max/phi_omega_min, in the cycle);
+    delta_achieved = (ω_max − ω_min)/ω_ср_target, omega_mean_achieved = (ω_max + ω_min)/2;
+    iterations and algorithm of the J_I search ("given" when J_I was prescribed).
+    """
+
+    J_I: float
+    T0: float
+    phi: np.ndarray
+    omega: np.ndarray
+    eps: np.ndarray
+    omega_max: float
+    omega_min: float
+    phi_omega_max: float
+    phi_omega_min: float
+    delta_achieved: float
+    omega_mean_achieved: float
+    iterations: int
+    algorithm: str
+    model: DynamicModel = field(repr=False)
+
+    def omega_at(self, phi) -> np.ndarray:
+        """ω(φ) = √(2(T₀ + A_Σ(φ))/(J_I + J_II(φ))) at arbitrary φ."""
+        m = self.model
+        return np.sqrt(2.0 * (self.T0 + m.A(phi)) / (self.J_I + m.J2(phi)))
+
+    def eps_at(self, phi) -> np.ndarray:
+        """ε(φ) = (M_Σ − ½ J_II′ ω²)/(J_I + J_II) at arbitrary φ."""
+        m = self.model
+        w = self.omega_at(phi)
+        return (m.M_sum(phi) - 0.5 * m.dJ2(phi) * w * w) / (self.J_I + m.J2(phi))
+
+
+def _check_targets(omega_m: float, delta: float):
+    if not (omega_m > 0 and math.isfinite(omega_m)):
+        raise ValueError(f"ω_ср must be positive, got {omega_m}")
+    if not (0 < delta < 2):
+        raise ValueError(f"δ must lie in (0, 2), got {delta}")
+
+
+def _motion(model: DynamicModel, J: float, T: float, omega_m: float, it: int,
+            algorithm: str, ext=None) -> ExactMotion:
+    if ext is None:
+        ext = model.energy_extrema(J, T)
+    p1, e1, p2, e2 = ext
+    wmax, wmin = math.sqrt(2 * e1), math.sqrt(2 * e2)
+    Jt = J + model.J2_g
+    w = np.sqrt(2.0 * (T + model.A_g) / Jt)
+    eps = (model.M_g - 0.5 * model.dJ2_g * w * w) / Jt
+    return ExactMotion(J_I=float(J), T0=float(T), phi=model.phi, omega=w, eps=eps,
+                       omega_max=wmax, omega_min=wmin, phi_omega_max=p1, phi_omega_min=p2,
+                       delta_achieved=(wmax - wmin) / omega_m,
+                       omega_mean_achieved=0.5 * (wmax + wmin), iterations=it,
+                       algorithm=algorithm, model=model)
+
+
+def _solve_T0(model: DynamicModel, J: float, omega_m: float, T_guess: float | None = None,
+              maxiter: int = 60):
+    """T₀ such that (ω_max + ω_min)/2 = ω_ср for a given J_I.
+
+    Newton with the envelope derivative d ω_ext/dT₀ = 1/(ω_ext (J_I + J_II(φ_ext))); the mean
+    is increasing and concave in T₀, so steps below the admissible bound T₀ > −min A_Σ are
+    pulled back halfway.  Bisection/brentq fallback.  Returns (T₀, extrema, iterations).
+    """
+    if J + float(model.J2_n.min()) <= 0:
+        raise ValueError("J_I + J_II(φ) must stay positive")
+    T_low = -model.A_min()
+    Jm = J + float(np.mean(model.J2_n[:-1]))
+    if T_guess is None:
+        T_guess = 0.5 * omega_m ** 2 * Jm - float(np.mean(model.A_n[:-1]))
+    span = max(abs(T_low), 0.5 * omega_m ** 2 * abs(Jm), 1e-300)
+    T = max(T_guess, T_low + 1e-3 * span)
+    tolf = 4 * _EPS * omega_m
+    for it in range(1, maxiter + 1):
+        ext = model.energy_extrema(J, T)
+        p1, e1, p2, e2 = ext
+        w1, w2 = math.sqrt(2 * e1), math.sqrt(max(2 * e2, 0.0))
+        f = 0.5 * (w1 + w2) - omega_m
+        if abs(f) <= tolf:
+            return T, ext, it
+        Jt1 = J + float(model.J2(np.array([p1]))[0])
+        Jt2 = J + float(model.J2(np.array([p2]))[0])
+        if w2 <= 0:
+            T = 0.5 * (T + T_low) if f > 0 else T + 0.5 * span
+            continue
+        fp = 0.5 * (1.0 / (w1 * Jt1) + 1.0 / (w2 * Jt2))
+        Tn = T - f / fp
+        if Tn <= T_low:
+            Tn = 0.5 * (T + T_low)
+        if abs(Tn - T) <= 2 * _EPS * abs(T) + 1e-300:
+            return Tn, model.energy_extrema(J, Tn), it
+        T = Tn
+
+    # fallback: brentq on the monotone mean
+    def f(T):
+        _, e1, _, e2 = model.energy_extrema(J, T)
+        return 0.5 * (math.sqrt(2 * e1) + math.sqrt(max(2 * e2, 0.0))) - omega_m
+
+    lo = T_low + 1e-14 * span
+    hi = max(T, lo) + span
+    while f(hi) < 0:
+        hi += 2 * (hi - lo)
+    T = brentq(f, lo, hi, xtol=1e-15 * span, rtol=4 * _EPS, maxiter=400)
+    return T, model.energy_extrema(J, T), maxiter
+
+
+def _exact_newton(model: DynamicModel, omega_m: float, delta: float, maxiter: int = 60):
+    """2-D Newton on ω_max(J_I, T₀) = ω_ср(1 + δ/2), ω_min(J_I, T₀) = ω_ср(1 − δ/2).
+
+    With the envelope Jacobian (∂(ω²/2)/∂T₀ = 1/J_пр, ∂(ω²/2)/∂J_I = −(ω²/2)/J_пр at the
+    extreme) one Newton step is the solution of the two tangency equations
+    T₀ + A_Σ(φ_k) = ½ω_k²(J_I + J_II(φ_k)) for the current extreme positions φ_k;
+    convergence is quadratic.  Returns (J, T, iterations) or None if it fails.
+    """
+    s1 = 0.5 * (omega_m * (1 + 0.5 * delta)) ** 2
+    s2 = 0.5 * (omega_m * (1 - 0.5 * delta)) ** 2
+    J2min = float(model.J2_n.min())
+    T_low = -model.A_min()
+    An = model.A_n[:-1]
+    # crude start: ignore J_II's variation (J ≈ range A / (δ ω²)), T₀ from ω² ≈ ω_ср²
+    J = float(np.ptp(An)) / (delta * omega_m ** 2) + 1e-12
+    J = max(J, -J2min + 1e-6 * (abs(J2min) + 1))
+    T = 0.5 * omega_m ** 2 * (J + float(np.mean(model.J2_n[:-1]))) - float(np.mean(An))
+    T = max(T, T_low + 1e-6 * abs(T_low) + 1e-12)
+    for it in range(1, maxiter + 1):
+        p1, _, p2, _ = model.energy_extrema(J, T)
+        xs = np.array([p1, p2])
+        Aa = model.A(xs)
+        Jj = model.J2(xs)
+        Jn = ((Aa[0] - s1 * Jj[0]) - (Aa[1] - s2 * Jj[1])) / (s1 - s2)
+        Tn = s1 * (Jn + Jj[0]) - Aa[0]
+        # damping keeps the state admissible (J_I + J_II > 0, T₀ + A_Σ > 0)
+        lam = 1.0
+        while lam > 1e-6 and not (Jn > -J2min and Tn > T_low):
+            lam *= 0.5
+            Jn = J + lam * (Jn - J)
+            Tn = T + lam * (Tn - T)
+        if not (Jn > -J2min and Tn > T_low):
+            return None
+        dJ, dT = abs(Jn - J), abs(Tn - T)
+        J, T = float(Jn), float(Tn)
+        if dJ <= 8 * _EPS * (abs(J) + abs(J2min)) and dT <= 8 * _EPS * (abs(T) + abs(T_low)):
+            return J, T, it
+    return J, T, maxiter
+
+
+def _exact_nested(model: DynamicModel, omega_m: float, delta: float, J_start: float):
+    """Nested root finding: inner T₀(J_I) from the mean condition, outer brentq on
+    δ(J_I) = (ω_max − ω_min)/ω_ср − [δ] (δ decreases with J_I)."""
+    J2min = float(model.J2_n.min())
+    state = {"T": None, "n": 0}
+
+    def f(J):
+        T, ext, _ = _solve_T0(model, J, omega_m, state["T"])
+        state["T"] = T
+        state["n"] += 1
+        return (math.sqrt(2 * ext[1]) - math.sqrt(2 * ext[3])) / omega_m - delta
+
+    J0 = max(J_start, -J2min + 1e-9 * (abs(J2min) + abs(J_start) + 1))
+    f0 = f(J0)
+    lo = hi = J0
+    flo = fhi = f0
+    step = 0.25 * (abs(J0) + abs(J2min) + 1e-12)
+    k = 0
+    while flo < 0 and k < 200:  # δ too small: decrease J_I
+        hi, fhi = lo, flo
+        lo = max(lo - step, -J2min + 0.5 * (lo + J2min))
+        step *= 2
+        flo = f(lo)
+        k += 1
+    while fhi > 0 and k < 400:  # δ too large: increase J_I
+        lo, flo = hi, fhi
+        hi = hi + step
+        step *= 2
+        fhi = f(hi)
+        k += 1
+    if flo == 0:
+        J = lo
+    elif fhi == 0:
+        J = hi
+    else:
+        J = brentq(f, lo, hi, xtol=4 * _EPS * (abs(hi) + abs(J2min)), rtol=4 * _EPS,
+                   maxiter=200)
+    T, ext, _ = _solve_T0(model, J, omega_m, state["T"])
+    return J, T, state["n"], ext
+
+
+def exact(model: DynamicModel, omega_m: float, delta: float, J_I: float | None = None,
+          algorithm: str = "newton") -> ExactMotion:
+    """Exact periodic steady motion of the machine (energy integral).
+
+    ½(J_I + J_II(φ)) ω² = T₀ + A_Σ(φ) (exact for M = M(φ)).  With ``J_I`` given, T₀ is the
+    root of (ω_max + ω_min)/2 = ω_ср; otherwise J_I is found as well so that
+    (ω_max − ω_min)/ω_ср = δ.  ω_max/ω_min are located by root finding of
+    M_Σ = ½ J_II′ ω² (d(ω²)/dφ = 0) with A_Σ at arbitrary φ.
+    ``algorithm``: "newton" (2-D Newton with envelope Jacobian, falls back to "nested" if it
+    does not reach δ to 1e-12) or "nested" (brentq on J_I around Newton on T₀).
+    """
+    _check_targets(omega_m, delta)
+    if J_I is not None:
+        T, ext, it = _solve_T0(model, float(J_I), omega_m)
+        return _motion(model, float(J_I), T, omega_m, it, "given", ext)
+    if algorithm not in ("newton", "nested"):
+        raise ValueError(f"unknown algorithm {algorithm!r}")
+    res = _exact_newton(model, omega_m, delta) if algorithm == "newton" else None
+    if res is not None:
+        J, T, it = res
+        mot = _motion(model, J, T, omega_m, it, "newton")
+        if (abs(mot.delta_achieved - delta) <= 1e-12 and
+                abs(mot.omega_mean_achieved - omega_m) <= 1e-12 * omega_m):
+            return mot
+        J_start = J
+    else:
+        J_start = float(np.ptp(model.A_n)) / (delta * omega_m ** 2)
+    J, T, n, ext = _exact_nested(model, omega_m, delta, J_start)
+    return _motion(model, J, T, omega_m, n, "nested", ext)
+
+
+# --------------------------------------------------------------------------------------------
+# 2. Мерцалов (worksheet 000)
+# --------------------------------------------------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class MertsalovResult:
+    """Мерцалов's method exactly as worksheet 000.
+
+    T_II(φ) = J_II(φ)ω_ср²/2; ΔT_I(φ) = A_Σ(φ) − T_II(φ) (grid arrays T_II, dT_I);
+    dT_I_max/dT_I_min at phi_dT_max/phi_dT_min (refined: M_Σ = ½J_II′ω_ср²);
+    J_I = (ΔT_I,max − ΔT_I,min)/(ω_ср² δ);
+    omega ≈ ω_ср + (ΔT_I − (ΔT_I,max + ΔT_I,min)/2)/(ω_ср J_I) and
+    eps = M_Σ/(J_I + J_II) − ω² J_II′/(2(J_I + J_II)) on the grid (worksheet formulas);
+    omega_max/omega_min of that approximate curve (= ω_ср(1 ± δ/2));
+    delta_achieved – δ of the exact motion with this J_I (T₀ from the mean condition).
+    """
+
+    J_I: float
+    phi: np.ndarray
+    T_II: np.ndarray
+    dT_I: np.ndarray
+    dT_I_max: float
+    dT_I_min: float
+    phi_dT_max: float
+    phi_dT_min: float
+    omega: np.ndarray
+    eps: np.ndarray
+    omega_max: float
+    omega_min: float
+    delta_achieved: float
+    omega_m: float
+    model: DynamicModel = field(repr=False)
+
+    def omega_at(self, phi) -> np.ndarray:
+        m = self.model
+        dT = m.A(phi) - 0.5 * self.omega_m ** 2 * m.J2(phi)
+        mid = 0.5 * (self.dT_I_max + self.dT_I_min)
+        return self.omega_m + (dT - mid) / (self.omega_m * self.J_I)
+
+    def eps_at(self, phi) -> np.ndarray:
+        m = self.model
+        w = self.omega_at(phi)
+        Jt = self.J_I + m.J2(phi)
+        return m.M_sum(phi) / Jt - w * w * m.dJ2(phi) / (2 * Jt)
+
+
+def mertsalov(model: DynamicModel, omega_m: float, delta: float,
+              with_delta_achieved: bool = True) -> MertsalovResult:
+    """Мерцалов's method (Попов–Тимофеев; worksheet 000, «Рассчитаем момент инерции первой
+    группы звеньев»): T_II ≈ J_II ω_ср²/2, ΔT_I = A_Σ − T_II,
+    J_I = (ΔT_I,max − ΔT_I,min)/(ω_ср² δ).
+
+    The extremes of ΔT_I are found on the whole cycle (scan + brentq on
+    d(ΔT_I)/dφ = M_Σ − ½J_II′ω_ср²; kinks at breaks and cycle ends included).
+    """
+    _check_targets(omega_m, delta)
+    s = 0.5 * omega_m ** 2
+    p1, v1 = model.line_extremum(s, "max")
+    p2, v2 = model.line_extremum(s, "min")
+    J = (v1 - v2) / (omega_m ** 2 * delta)
+    T_II = s * model.J2_g
+    dT = model.A_g - T_II
+    mid = 0.5 * (v1 + v2)
+    w = omega_m + (dT - mid) / (omega_m * J)
+    Jt = J + model.J2_g
+    eps = model.M_g / Jt - w * w * model.dJ2_g / (2 * Jt)
+    d_ach = exact(model, omega_m, delta, J_I=J).delta_achieved if with_delta_achieved \
+        else float("nan")
+    return MertsalovResult(J_I=float(J), phi=model.phi, T_II=T_II, dT_I=dT, dT_I_max=v1,
+                           dT_I_min=v2, phi_dT_max=p1, phi_dT_min=p2, omega=w, eps=eps,
+                           omega_max=omega_m + (v1 - mid) / (omega_m * J),
+                           omega_min=omega_m + (v2 - mid) / (omega_m * J),
+                           delta_achieved=float(d_ach), omega_m=omega_m, model=model)
+
+
+# --------------------------------------------------------------------------------------------
+# 3. Виттенбауэр
+# --------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class TangentPoint:
+    """Point of tangency on the energy–mass diagram: φ [rad], J = J_II(φ) [kg·m²],
+    dT = ΔT = A_Σ(φ) [J]."""
+
+    phi: float
+    J: float
+    dT: float
+
+
+@dataclass(frozen=True, eq=False)
+class WittenbauerResult:
+    """Energy–mass (Виттенбауэр) diagram ΔT(J_II) and the flywheel it gives.
+
+    Curve: J_curve = J_II(φ), dT_curve = A_Σ(φ) on the grid (phi).
+    Exact slopes slope_max = ω_max²/2, slope_min = ω_min²/2, ω_max,min = ω_ср(1 ± δ/2).
+    Upper tangent ΔT = K + slope_max·J, lower ΔT = L + slope_min·J;
+    K = max(A_Σ − J_II ω_max²/2), L = min(A_Σ − J_II ω_min²/2) at tangent_max, tangent_min.
+    J_I = 2(K − L)/(ω_max² − ω_min²) (≡ KL/(ω_ср²δ)); T0 = ½ω_max² J_I − K; the tangents meet at
+    origin = (−J_I, −T0), the origin of the absolute (J_пр, T) axes.
+    *_linear: the same with the textbook slopes ω_ср²(1 ± δ)/2 (J_I_linear = KL/(ω_ср²δ)).
+    delta_achieved, delta_achieved_linear – δ of the exact motion with J_I, J_I_linear.
+    """
+
+    J_I: float
+    T0: float
+    K: float
+    L: float
+    KL: float
+    slope_max: float
+    slope_min: float
+    omega_max: float
+    omega_min: float
+    tangent_max: TangentPoint
+    tangent_min: TangentPoint
+    origin: tuple[float, float]
+    J_I_linear: float
+    K_linear: float
+    L_linear: float
+    slope_max_linear: float
+    slope_min_linear: float
+    tangent_max_linear: TangentPoint
+    tangent_min_linear: TangentPoint
+    phi: np.ndarray
+    J_curve: np.ndarray
+    dT_curve: np.ndarray
+    omega: np.ndarray
+    eps: np.ndarray
+    delta_achieved: float
+    delta_achieved_linear: float
+    model: DynamicModel = field(repr=False)
+
+    def omega_at(self, phi) -> np.ndarray:
+        """ω(φ) = √(2(T₀ + A_Σ)/(J_I + J_II)) with T₀ from the upper tangency (Гутьяр form)."""
+        m = self.model
+        return np.sqrt(2.0 * (self.T0 + m.A(phi)) / (self.J_I + m.J2(phi)))
+
+    def eps_at(self, phi) -> np.ndarray:
+        m = self.model
+        w = self.omega_at(phi)
+        return (m.M_sum(phi) - 0.5 * m.dJ2(phi) * w * w) / (self.J_I + m.J2(phi))
+
+    def upper_tangent(self, J) -> np.ndarray:
+        return self.K + self.slope_max * np.asarray(J, dtype=float)
+
+    def lower_tangent(self, J) -> np.ndarray:
+        return self.L + self.slope_min * np.asarray(J, dtype=float)
+
+
+def _tangents(model: DynamicModel, s1: float, s2: float):
+    p1, K = model.line_extremum(s1, "max")
+    p2, L = model.line_extremum(s2, "min")
+    xs = np.array([p1, p2])
+    Jj, Aa = model.J2(xs), model.A(xs)
+    J = (K - L) / (s1 - s2)
+    return (J, K, L, TangentPoint(p1, float(Jj[0]), float(Aa[0])),
+            TangentPoint(p2, float(Jj[1]), float(Aa[1])))
+
+
+def wittenbauer(model: DynamicModel, omega_m: float, delta: float,
+                with_delta_achieved: bool = True) -> WittenbauerResult:
+    """Виттенбауэр's energy–mass diagram (Артоболевский; domain.md §1.5).
+
+    Tangency conditions of ½ω² J_пр = T₀ + ΔT at the extremes:
+    T₀ + K = ½ω_max² J_I and T₀ + L = ½ω_min² J_I ⇒ J_I = 2(K − L)/(ω_max² − ω_min²),
+    which equals KL/(ω_ср² δ) exactly for ω_max,min = ω_ср(1 ± δ/2).  K, L are refined by
+    root finding of M_Σ = ½ J_II′ ω_max,min² at the tangency.  Also returns the linearised
+    variant with slopes ω_ср²(1 ± δ)/2.
+    """
+    _check_targets(omega_m, delta)
+    wmax = omega_m * (1 + 0.5 * delta)
+    wmin = omega_m * (1 - 0.5 * delta)
+    s1, s2 = 0.5 * wmax ** 2, 0.5 * wmin ** 2
+    J, K, L, t1, t2 = _tangents(model, s1, s2)
+    T0 = s1 * J - K
+    l1, l2 = 0.5 * omega_m ** 2 * (1 + delta), 0.5 * omega_m ** 2 * (1 - delta)
+    Jl, Kl, Ll, u1, u2 = _tangents(model, l1, l2)
+    Jt = J + model.J2_g
+    w = np.sqrt(2.0 * (T0 + model.A_g) / Jt)
+    eps = (model.M_g - 0.5 * model.dJ2_g * w * w) / Jt
+    if with_delta_achieved:
+        da = exact(model, omega_m, delta, J_I=J).delta_achieved
+        dl = exact(model, omega_m, delta, J_I=Jl).delta_achieved
+    else:
+        da = dl = float("nan")
+    return WittenbauerResult(
+        J_I=float(J), T0=float(T0), K=float(K), L=float(L), KL=float(K - L),
+        slope_max=s1, slope_min=s2, omega_max=wmax, omega_min=wmin, tangent_max=t1,
+        tangent_min=t2, origin=(-float(J), -float(T0)), J_I_linear=float(Jl),
+        K_linear=float(Kl), L_linear=float(Ll), slope_max_linear=l1, slope_min_linear=l2,
+        tangent_max_linear=u1, tangent_min_linear=u2, phi=model.phi, J_curve=model.J2_g,
+        dT_curve=model.A_g, omega=w, eps=eps, delta_achieved=float(da),
+        delta_achieved_linear=float(dl), model=model)
+
+
+# --------------------------------------------------------------------------------------------
+# 5. Flywheel dimensions
+# --------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class RimFlywheel:
+    """Rim (обод) flywheel: outer D2, inner D1, width b [m], mass m [kg]; v_rim = ω_max·D2/2
+    [m/s] (nan if ω_max unknown); v_exceeds – v_rim above the material limit."""
+
+    D2: float
+    D1: float
+    b: float
+    m: float
+    v_rim: float
+    v_exceeds: bool
+
+
+@dataclass(frozen=True)
+class DiskFlywheel:
+    """Solid disk flywheel: diameter D, width b [m], mass m [kg]; v_rim = ω_max·D/2 [m/s]."""
+
+    D: float
+    b: float
+    m: float
+    v_rim: float
+    v_exceeds: bool
+
+
+@dataclass(frozen=True)
+class FlywheelDims:
+    """Flywheel sized for J_доп = J_I − J_O.пр.
+
+    rim           – worksheet 000 empirical rim with spokes: D2 = 0.437·J^(1/5), D1 = 0.8·D2,
+                    b = 0.2·D2, m = 6123·(D2² − D1²)·b (course-manual constants, configurable);
+    disk          – worksheet 000 empirical disk: D = 0.366·J^(1/5), b = 0.2·D, m = 1230·D³;
+    disk_physical – solid disk from J = mD²/8 = πρbD⁴/32 with ψ_b = b/D:
+                    D = (32J/(πρψ_b))^(1/5), m = πρbD²/4;
+    rim_physical  – thick ring (spokes and hub neglected), J = πρb(D2⁴ − D1⁴)/32 with
+                    D1 = ψ_h D2, b = ψ_b D2: D2 = (32J/(πρψ_b(1 − ψ_h⁴)))^(1/5),
+                    m = πρb(D2² − D1²)/4;
+    needed        – False when J_доп ≤ 0 (the linkage alone keeps δ; all sizes are 0);
+    v_limit [m/s], rho [kg/m³], psi_b, psi_h, omega_max [rad/s] – the inputs;
+    any_exceeds   – some variant exceeds the rim-speed limit.
+    """
+
+    J_required: float
+    needed: bool
+    rim: RimFlywheel
+    disk: DiskFlywheel
+    disk_physical: DiskFlywheel
+    rim_physical: RimFlywheel
+    omega_max: float
+    v_limit: float
+    rho: float
+    psi_b: float
+    psi_h: float
+
+    @property
+    def any_exceeds(self) -> bool:
+        return any(x.v_exceeds for x in (self.rim, self.disk, self.disk_physical,
+                                          self.rim_physical))
+
+
+def flywheel_dims(J_required: float, omega_max: float | None = None, *,
+                  rim_coef: float = 0.437, rim_inner_ratio: float = 0.8,
+                  rim_width_ratio: float = 0.2, rim_mass_coef: float = 6123.0,
+                  disk_coef: float = 0.366, disk_width_ratio: float = 0.2,
+                  disk_mass_coef: float = 1230.0, rho: float = 7800.0, psi_b: float = 0.2,
+                  psi_h: float = 0.8, v_limit: float = 30.0) -> FlywheelDims:
+    """Flywheel dimensions for the required moment of inertia J_доп [kg·m²].
+
+    Empirical rim and disk formulas of the course manual (worksheet 000) and the physically
+    derived disk and ring (J = πρbD⁴/32 and J = πρb(D2⁴ − D1⁴)/32).  The rim speed
+    ω_max·D/2 is compared with ``v_limit`` (≈ 30 m/s for cast iron; steel allows more).
+    """
+    J = float(J_required)
+    w = float("nan") if omega_max is None else float(omega_max)
+
+    def v_of(D):
+        v = w * D / 2
+        return v, bool(v > v_limit) if math.isfinite(v) else False
+
+    if not J > 0:
+        z = RimFlywheel(0.0, 0.0, 0.0, 0.0, 0.0, False)
+        zd = DiskFlywheel(0.0, 0.0, 0.0, 0.0, False)
+        return FlywheelDims(J, False, z, zd, zd, z, w, v_limit, rho, psi_b, psi_h)
+    r5 = J ** 0.2
+    D2 = rim_coef * r5
+    D1 = rim_inner_ratio * D2
+    b = rim_width_ratio * D2
+    m = rim_mass_coef * (D2 ** 2 - D1 ** 2) * b
+    rim = RimFlywheel(D2, D1, b, m, *v_of(D2))
+    D = disk_coef * r5
+    bd = disk_width_ratio * D
+    disk = DiskFlywheel(D, bd, disk_mass_coef * D ** 3, *v_of(D))
+    Dp = (32 * J / (math.pi * rho * psi_b)) ** 0.2
+    bp = psi_b * Dp
+    diskp = DiskFlywheel(Dp, bp, math.pi * rho * bp * Dp ** 2 / 4, *v_of(Dp))
+    D2p = (32 * J / (math.pi * rho * psi_b * (1 - psi_h ** 4))) ** 0.2
+    D1p = psi_h * D2p
+    b2p = psi_b * D2p
+    rimp = RimFlywheel(D2p, D1p, b2p, math.pi * rho * b2p * (D2p ** 2 - D1p ** 2) / 4,
+                       *v_of(D2p))
+    return FlywheelDims(J, True, rim, disk, diskp, rimp, w, v_limit, rho, psi_b, psi_h)
+
+
+# --------------------------------------------------------------------------------------------
+# 6. Everything together
+# --------------------------------------------------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class DynamicsResult:
+    """Dynamics of the machine over one cycle and the flywheel.
+
+    method – the method whose J_I, ω(φ), ε(φ) are reported ("exact" | "mertsalov" |
+    "wittenbauer"); phi, omega, eps – its curves on the grid; J_I – its J_I [kg·m²] (whole
+    first group), J_flywheel = J_I − J1_const (J_доп); delta_achieved – δ of the exact motion
+    with that J_I; omega_max/omega_min at phi_omega_max/phi_omega_min – extremes of its ω(φ).
+    J_I_exact, J_I_mertsalov, J_I_wittenbauer, J_I_wittenbauer_linear and
+    dev_*_pct = 100·(J_I_method/J_I_exact − 1).
+    works, exact, mertsalov, wittenbauer – the full results; flywheel – dimensions for
+    J_flywheel (default constants; rim speed with the method's ω_max).
+    """
+
+    method: str
+    phi: np.ndarray
+    omega: np.ndarray
+    eps: np.ndarray
+    J_I: float
+    J1_const: float
+    J_flywheel: float
+    omega_m: float
+    delta: float
+    delta_achieved: float
+    omega_max: float
+    omega_min: float
+    phi_omega_max: float
+    phi_omega_min: float
+    J_I_exact: float
+    J_I_mertsalov: float
+    J_I_wittenbauer: float
+    J_I_wittenbauer_linear: float
+    dev_mertsalov_pct: float
+    dev_wittenbauer_pct: float
+    dev_wittenbauer_linear_pct: float
+    works: Works
+    exact: ExactMotion
+    mertsalov: MertsalovResult
+    wittenbauer: WittenbauerResult
+    flywheel: FlywheelDims
+    model: DynamicModel = field(repr=False)
+
+    def _chosen(self):
+        return {"exact": self.exact, "mertsalov": self.mertsalov,
+                "wittenbauer": self.wittenbauer}[self.method]
+
+    def omega_at(self, phi) -> np.ndarray:
+        """ω(φ) of the chosen method at arbitrary φ (periodic)."""
+        return self._chosen().omega_at(phi)
+
+    def eps_at(self, phi) -> np.ndarray:
+        """ε(φ) of the chosen method at arbitrary φ (periodic)."""
+        return self._chosen().eps_at(phi)
+
+
+def solve_dynamics(J2: ArrayFunc, dJ2: ArrayFunc, M: ArrayFunc,
+                   breaks: Iterable[float] | None, cycle_start: float, cycle_length: float,
+                   J1_const: float, omega_m: float, delta: float, grid,
+                   method: str = "exact", Mdrive: float | ArrayFunc | None = None,
+                   flywheel_kw: dict | None = None) -> DynamicsResult:
+    """Dynamic analysis and flywheel synthesis over one cycle.
+
+    J2, dJ2 – J_II(φ) and its exact derivative; M – M_пр.с(φ) (all loads except the driving
+    moment); breaks – switching points of M inside the cycle; cycle [cycle_start,
+    cycle_start + cycle_length]; J1_const – J_O.пр; omega_m – ω_ср; delta – δ; grid – array of
+    φ (or number of intervals over the cycle); Mdrive – M_дв (None: −A_c/Φ, a number, or a
+    callable of φ).  Computes the exact motion, Мерцалов and Виттенбауэр (both slopes) and
+    reports ``method``'s J_I, ω(φ), ε(φ) with the deviations of all from the exact J_I.
+    """
+    if method not in ("exact", "mertsalov", "wittenbauer"):
+        raise ValueError(f"unknown method {method!r}")
+    _check_targets(omega_m, delta)
+    model = DynamicModel(J2, dJ2, M, breaks, cycle_start, cycle_length, grid, Mdrive)
+    ex = exact(model, omega_m, delta)
+    me = mertsalov(model, omega_m, delta)
+    wi = wittenbauer(model, omega_m, delta)
+    if method == "exact":
+        ch, J, d_ach = ex, ex.J_I, ex.delta_achieved
+        wmax, wmin, pmax, pmin = ex.omega_max, ex.omega_min, ex.phi_omega_max, ex.phi_omega_min
+    elif method == "mertsalov":
+        ch, J, d_ach = me, me.J_I, me.delta_achieved
+        wmax, wmin, pmax, pmin = me.omega_max, me.omega_min, me.phi_dT_max, me.phi_dT_min
+    else:
+        ch, J, d_ach = wi, wi.J_I, wi.delta_achieved
+        wmax, wmin = wi.omega_max, wi.omega_min
+        pmax, pmin = wi.tangent_max.phi, wi.tangent_min.phi
+
+    def dev(x):
+        return 100.0 * (x / ex.J_I - 1.0)
+
+    J1 = float(J1_const)
+    fw = flywheel_dims(J - J1, wmax, **(flywheel_kw or {}))
+    return DynamicsResult(
+        method=method, phi=model.phi, omega=ch.omega, eps=ch.eps, J_I=float(J), J1_const=J1,
+        J_flywheel=float(J - J1), omega_m=float(omega_m), delta=float(delta),
+        delta_achieved=float(d_ach), omega_max=float(wmax), omega_min=float(wmin),
+        phi_omega_max=float(pmax), phi_omega_min=float(pmin), J_I_exact=ex.J_I,
+        J_I_mertsalov=me.J_I, J_I_wittenbauer=wi.J_I, J_I_wittenbauer_linear=wi.J_I_linear,
+        dev_mertsalov_pct=dev(me.J_I), dev_wittenbauer_pct=dev(wi.J_I),
+        dev_wittenbauer_linear_pct=dev(wi.J_I_linear), works=_works_of(model), exact=ex,
+        mertsalov=me, wittenbauer=wi, flywheel=fw, model=model)

@@ -1,0 +1,328 @@
+"""From a Mechanism to the numba kernel's arrays, and from the kernel's poses to named columns.
+
+Column names are a public contract (see docs/outputs.md): for a point P ``x_P y_P`` with first
+analogs ``vqx_P vqy_P`` and second analogs ``aqx_P aqy_P``; for a link k ``phi_k wq_k eq_k``;
+for a prismatic pair J ``s_J vqs_J aqs_J``; ``mu_<group>`` the transmission angle of a dyad.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..core import kinematics as K
+from ..errors import AssemblyError
+from ..mechanism.model import FRAME, Mechanism
+from ..mechanism.structure import Structure, solver_bodies
+
+SOLVER_KIND = {"LIN": K.G_LIN, "RRR": K.G_RRR, "RRP": K.G_RRP, "RPR": K.G_RPR, "NEWTON": K.G_NEWTON}
+SINGULAR_SIN = 1e-6          # |sin μ| below this: singular (dead-centre) position of a group
+LOW_TRANSMISSION = math.radians(40.0)
+
+
+@dataclass
+class SolverModel:
+    mech: Mechanism
+    structure: Structure
+    bodies: list[str]                       # solver body names, index 0 = frame
+    jt: np.ndarray
+    jb: np.ndarray
+    jf: np.ndarray
+    groups: list                            # structure groups solved by the kernel, in order
+    gkind: np.ndarray
+    gspec: np.ndarray
+    gsigma: np.ndarray
+    gjoint: np.ndarray
+    gnj: np.ndarray
+    gbody: np.ndarray
+    gnb: np.ndarray
+    pose0: np.ndarray
+    size: float
+    point_names: list[str] = field(default_factory=list)
+    pbody: np.ndarray | None = None
+    ploc: np.ndarray | None = None
+    body_group: dict[int, int] = field(default_factory=dict)
+
+    def body(self, link: str) -> int:
+        return self.bodies.index(solver_bodies(self.mech)[link])
+
+    def local_point(self, link: str, p: str) -> tuple[float, float, float, float]:
+        """Local coordinates p0, p1 (p = p0 + q·p1) of point p of a link in its solver body."""
+        x, y = self.mech.link(link).points[p]
+        d = self.mech.driver
+        if d.kind == "actuator" and link == d.rod:
+            return x, y, 1.0, 0.0
+        return x, y, 0.0, 0.0
+
+
+def assemble(mech: Mechanism, st: Structure) -> SolverModel:
+    body_of = solver_bodies(mech)
+    bodies = [FRAME] + [b for b in dict.fromkeys(body_of[l.name] for l in mech.moving)]
+    bidx = {b: i for i, b in enumerate(bodies)}
+    model = SolverModel(mech, st, bodies, *([None] * 12), size=mech.size())
+    rows_t, rows_b, rows_f = [], [], []
+
+    def lp(link, p):
+        return model.local_point(link, p)
+
+    for j in mech.joints:
+        a, b = j.links
+        if j.kind == "R":
+            pa, pb = lp(a, j.point), lp(b, j.point)
+            rows_t.append(K.J_REV)
+            rows_b.append((bidx[body_of[a]], bidx[body_of[b]]))
+            rows_f.append([pa[0], pa[1], pb[0], pb[1], pa[2], pa[3], pb[2], pb[3], 0.0, 0.0])
+        else:
+            s = lp(b, j.point)
+            rows_t.append(K.J_PRI)
+            rows_b.append((bidx[body_of[a]], bidx[body_of[b]]))
+            rows_f.append([j.line_point[0], j.line_point[1], s[0], s[1], j.angle, j.offset, 0, 0, 0, 0])
+    drive_index = None
+    if mech.driver.kind == "crank":
+        drive_index = len(rows_t)
+        rows_t.append(K.J_DRV)
+        rows_b.append((0, bidx[mech.driver.link]))
+        rows_f.append([mech.driver.phi0, float(mech.driver.direction)] + [0.0] * 8)
+    model.jt = np.array(rows_t, dtype=np.int64)
+    model.jb = np.array(rows_b, dtype=np.int64).reshape(-1, 2)
+    model.jf = np.array(rows_f, dtype=np.float64).reshape(-1, 10)
+
+    groups = [g for g in st.groups if g.solver != "NONE"]
+    ng = len(groups)
+    maxb = max(len(g.bodies) for g in groups)
+    maxj = max(len(g.joints) + 1 for g in groups)
+    gkind = np.zeros(ng, np.int64)
+    gspec = -np.ones((ng, 6), np.int64)
+    gjoint = -np.ones((ng, maxj), np.int64)
+    gbody = -np.ones((ng, maxb), np.int64)
+    gnj = np.zeros(ng, np.int64)
+    gnb = np.zeros(ng, np.int64)
+    for gi, g in enumerate(groups):
+        js = list(g.joints) + ([drive_index] if g.klass == 1 and drive_index is not None else [])
+        gkind[gi] = SOLVER_KIND[g.solver]
+        gjoint[gi, :len(js)] = js
+        gnj[gi] = len(js)
+        bs = [bidx[b] for b in g.bodies]
+        gbody[gi, :len(bs)] = bs
+        gnb[gi] = len(bs)
+        for b in bs:
+            model.body_group[b] = gi
+        if g.solver in ("RRR", "RRP", "RPR"):
+            gspec[gi, :5] = _dyad_spec(g, model, bidx)
+    model.groups = groups
+    model.gkind, model.gspec, model.gjoint, model.gbody = gkind, gspec, gjoint, gbody
+    model.gnj, model.gnb = gnj, gnb
+    model.gsigma = np.ones(ng)
+    model.pose0 = _pose_from_sketch(model)
+    _collect_points(model)
+    return model
+
+
+def _dyad_spec(g, model: SolverModel, bidx) -> list[int]:
+    a, b = (bidx[x] for x in g.bodies)
+    jb = model.jb
+    jt = model.jt
+    (jint,) = g.internal
+    ext_a = [k for k in g.external if a in jb[k]]
+    ext_b = [k for k in g.external if b in jb[k]]
+    if g.solver == "RRP":
+        # a must carry the revolute to the known side, b the prismatic one
+        if jt[ext_a[0]] == K.J_PRI:
+            a, b, ext_a, ext_b = b, a, ext_b, ext_a
+    return [a, b, ext_a[0], jint, ext_b[0]]
+
+
+def _pose_from_sketch(model: SolverModel) -> np.ndarray:
+    """Initial body poses from the sketch (used by Newton groups at the first position)."""
+    pose = np.zeros((len(model.bodies), 3))
+    mech = model.mech
+    for link in mech.moving:
+        bi = model.body(link.name)
+        sk = [(p, mech.sketch[p]) for p in link.points if p in mech.sketch]
+        if not sk:
+            continue
+        if len(sk) >= 2:
+            (p1, g1), (p2, g2) = sk[0], sk[1]
+            l1, l2 = link.points[p1], link.points[p2]
+            th = math.atan2(g2[1] - g1[1], g2[0] - g1[0]) - math.atan2(l2[1] - l1[1], l2[0] - l1[0])
+        else:
+            th = pose[bi, 2]
+            p1, g1 = sk[0]
+            l1 = link.points[p1]
+        c, s = math.cos(th), math.sin(th)
+        pose[bi] = (g1[0] - (c * l1[0] - s * l1[1]), g1[1] - (s * l1[0] + c * l1[1]), th)
+    return pose
+
+
+def _collect_points(model: SolverModel) -> None:
+    names, pb, pl = [], [], []
+    seen = set()
+    mech = model.mech
+    for link in mech.links:
+        for p in link.points:
+            if p in seen:
+                continue
+            seen.add(p)
+            names.append(p)
+            pb.append(model.body(link.name))
+            pl.append(model.local_point(link.name, p))
+    model.point_names = names
+    model.pbody = np.array(pb, dtype=np.int64)
+    model.ploc = np.array(pl, dtype=np.float64).reshape(-1, 4)
+
+
+def run_kernel(model: SolverModel, q: np.ndarray, ngroups: int | None = None, sigma=None):
+    """Call the whole-grid kernel (optionally only the first ``ngroups`` groups)."""
+    ng = len(model.groups) if ngroups is None else ngroups
+    sig = model.gsigma if sigma is None else sigma
+    return K.solve_cycle(np.ascontiguousarray(q, dtype=np.float64), model.jt, model.jb, model.jf,
+                         model.gkind[:ng], model.gspec[:ng], sig[:ng], model.gjoint[:ng],
+                         model.gnj[:ng], model.gbody[:ng], model.gnb[:ng], model.pose0, model.size)
+
+
+def describe_position(model: SolverModel, q: float, index: int | None) -> str:
+    if model.mech.driver.rotary:
+        s = f"q = {math.degrees(q):.4g}°".replace(".", ",")
+    else:
+        s = f"q = {q:.5g} м".replace(".", ",")
+    return s + (f" (положение № {index})" if index is not None else "")
+
+
+def check_failure(model: SolverModel, q: np.ndarray, fail: np.ndarray, labels=None) -> None:
+    kind = int(fail[0])
+    if kind == K.F_OK:
+        return
+    i, g, amount = int(fail[1]), int(fail[2]), float(fail[3])
+    grp = model.groups[g]
+    pos = describe_position(model, float(q[i]), labels[i] if labels is not None else None)
+    if kind == K.F_ASSEMBLY:
+        detail = ("звенья группы не дотягиваются друг до друга" if amount > 0 else "")
+        raise AssemblyError(grp.title, pos, amount, detail)
+    if kind == K.F_NEWTON:
+        raise AssemblyError(grp.title, pos, amount, "метод Ньютона не сошёлся (невязка замыкания контура)")
+    raise AssemblyError(grp.title, pos, 0.0, "особое положение: определитель системы группы равен нулю")
+
+
+def choose_branches(model: SolverModel) -> None:
+    """Fix the assembly branch σ = ±1 of each closed-form dyad from the sketch (nearest
+    solution at the sketch position); groups without sketched points keep σ = +1."""
+    mech = model.mech
+    if not mech.sketch:
+        return
+    q0 = np.array([mech.sketch_q if mech.sketch_q is not None else default_q0(mech)])
+    for g, grp in enumerate(model.groups):
+        if model.gkind[g] not in (K.G_RRR, K.G_RRP, K.G_RPR):
+            continue
+        pts = [(p, xy) for l in grp.links for p, xy in
+               ((p, mech.sketch.get(p)) for p in mech.link(l).points) if xy is not None]
+        if not pts:
+            continue
+        best, best_sig = None, 1.0
+        for sig in (1.0, -1.0):
+            trial = model.gsigma.copy()
+            trial[g] = sig
+            pose, d1, d2, qual, fail = run_kernel(model, q0, g + 1, trial)
+            if fail[0] != K.F_OK:
+                continue
+            err = 0.0
+            for p, xy in pts:
+                k = model.point_names.index(p)
+                b = model.pbody[k]
+                x0, y0, x1, y1 = model.ploc[k]
+                th = pose[0, b, 2]
+                px, py = x0 + q0[0] * x1, y0 + q0[0] * y1
+                gx = pose[0, b, 0] + math.cos(th) * px - math.sin(th) * py
+                gy = pose[0, b, 1] + math.sin(th) * px + math.cos(th) * py
+                err += (gx - xy[0]) ** 2 + (gy - xy[1]) ** 2
+            if best is None or err < best:
+                best, best_sig = err, sig
+        model.gsigma[g] = best_sig
+
+
+def default_q0(mech: Mechanism) -> float:
+    return 0.0 if mech.driver.rotary else mech.driver.q_range[0]
+
+
+@dataclass
+class KinematicsResult:
+    q: np.ndarray
+    pose: np.ndarray
+    d1: np.ndarray
+    d2: np.ndarray
+    quality: np.ndarray
+    points: np.ndarray          # (N, npoints, 6)
+
+
+def solve(model: SolverModel, q, labels=None, ngroups: int | None = None) -> KinematicsResult:
+    q = np.atleast_1d(np.asarray(q, dtype=np.float64))
+    pose, d1, d2, qual, fail = run_kernel(model, q, ngroups)
+    check_failure(model, q, fail, labels)
+    pts = K.points_cycle(pose, d1, d2, q, model.pbody, model.ploc)
+    return KinematicsResult(q, pose, d1, d2, qual, pts)
+
+
+def _unwrap(th: np.ndarray, grid: bool) -> np.ndarray:
+    th = np.arctan2(np.sin(th), np.cos(th))
+    return np.unwrap(th) if grid and th.size > 1 else th
+
+
+def columns(model: SolverModel, res: KinematicsResult, grid: bool = True) -> dict[str, np.ndarray]:
+    """Named columns of the kinematic analogs (see module docstring)."""
+    mech = model.mech
+    q = res.q
+    out: dict[str, np.ndarray] = {"q": q}
+    if mech.driver.rotary:
+        out["q_deg"] = np.degrees(q)
+    for k, p in enumerate(model.point_names):
+        P = res.points[:, k, :]
+        for c, pre in enumerate(("x_", "y_", "vqx_", "vqy_", "aqx_", "aqy_")):
+            out[pre + p] = P[:, c].copy()
+    for link in mech.moving:
+        b = model.body(link.name)
+        th = res.pose[:, b, 2]
+        if mech.driver.rotary and link.name == mech.driver.link:
+            phi = mech.driver.phi0 + mech.driver.direction * q
+        else:
+            phi = _unwrap(th, grid)
+        out["phi_" + link.name] = phi
+        out["wq_" + link.name] = res.d1[:, b, 2].copy()
+        out["eq_" + link.name] = res.d2[:, b, 2].copy()
+    for j in mech.prismatic:
+        s, vs, as_ = slider_displacement(model, res, j)
+        out["s_" + j.name], out["vqs_" + j.name], out["aqs_" + j.name] = s, vs, as_
+    if mech.driver.kind == "actuator":
+        d = mech.driver
+        nm = f"{d.rod}{d.link}"
+        out["s_" + nm], out["vqs_" + nm], out["aqs_" + nm] = q.copy(), np.ones_like(q), np.zeros_like(q)
+    for g, grp in enumerate(model.groups[:res.quality.shape[1]]):
+        if grp.kind in ("RRR", "RRP", "RPR"):
+            out["mu_" + grp.name] = np.arcsin(np.minimum(1.0, np.abs(res.quality[:, g])))
+    return out
+
+
+def slider_displacement(model: SolverModel, res: KinematicsResult, j):
+    """s = u·(P − G) along the guide direction u (guide point G, slider point P), with
+    s' = u'·(P−G) + u·(P'−G'), s'' = u''·(P−G) + 2u'·(P'−G') + u·(P''−G''),
+    u' = ⊥u·θ', u'' = ⊥u·θ'' − u·θ'² (θ the guide's angle)."""
+    guide, slider = j.links
+    gb = model.body(guide)
+    lx, ly = j.line_point
+    sx, sy, s1x, s1y = model.local_point(slider, j.point)
+    pts = K.points_cycle(res.pose, res.d1, res.d2, res.q,
+                         np.array([gb, model.body(slider)], np.int64),
+                         np.array([[lx, ly, 0.0, 0.0], [sx, sy, s1x, s1y]]))
+    G, P = pts[:, 0, :], pts[:, 1, :]
+    th = res.pose[:, gb, 2] + j.angle
+    w = res.d1[:, gb, 2]
+    e = res.d2[:, gb, 2]
+    ux, uy = np.cos(th), np.sin(th)
+    px, py = -uy, ux
+    dx, dy = P[:, 0] - G[:, 0], P[:, 1] - G[:, 1]
+    dvx, dvy = P[:, 2] - G[:, 2], P[:, 3] - G[:, 3]
+    dax, day = P[:, 4] - G[:, 4], P[:, 5] - G[:, 5]
+    s = ux * dx + uy * dy
+    vs = w * (px * dx + py * dy) + ux * dvx + uy * dvy
+    as_ = ((px * e - ux * w * w) * dx + (py * e - uy * w * w) * dy
+           + 2 * w * (px * dvx + py * dvy) + ux * dax + uy * day)
+    return s, vs, as_

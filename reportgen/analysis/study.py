@@ -1,0 +1,361 @@
+"""A Study: one case with lazily computed, cached results (pandas DataFrames and scalars).
+
+Asking for ``kinematics`` solves the linkage only; ``dynamics`` and ``forces`` (added by their
+modules) compute what they need first.  ``computed`` records which stages ran, so a report can be
+checked to compute only what its scenes need.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+import pandas as pd
+
+from ..case import units as U
+from ..case.expr import Q, evaluate
+from ..case.load import CaseSpec, load_spec
+from ..case.reader import Node
+from ..errors import CaseError
+from ..mechanism.build import build_mechanism
+from ..mechanism.model import Mechanism
+from ..mechanism.structure import Structure, analyse
+from . import linkage as L
+from .fitting import FitResult, evaluate_condition, solve_fit, split_condition
+
+
+@dataclass
+class Grid:
+    q: np.ndarray             # report positions
+    labels: list[str]         # their labels ("0", "1", …, extra labels)
+    cycle: np.ndarray         # fine grid over one cycle (ends included)
+    start: float
+    length: float             # cycle length (2π for a crank, stroke for an actuator)
+
+
+def column_dims(name: str, qdim: U.Dim) -> U.Dim:
+    pre = name.split("_", 1)[0]
+    L_, A_ = U.LENGTH, U.ANGLE
+    table = {
+        "q": qdim, "x": L_, "y": L_, "s": L_, "phi": A_, "mu": A_,
+        "vqx": U.dim_div(L_, qdim), "vqy": U.dim_div(L_, qdim), "vqs": U.dim_div(L_, qdim),
+        "aqx": U.dim_div(L_, U.dim_pow(qdim, 2)), "aqy": U.dim_div(L_, U.dim_pow(qdim, 2)),
+        "aqs": U.dim_div(L_, U.dim_pow(qdim, 2)),
+        "wq": U.dim_div(A_, qdim), "eq": U.dim_div(A_, U.dim_pow(qdim, 2)),
+        "vx": U.VELOCITY, "vy": U.VELOCITY, "v": U.VELOCITY, "vs": U.VELOCITY,
+        "ax": U.ACCELERATION, "ay": U.ACCELERATION, "a": U.ACCELERATION, "as": U.ACCELERATION,
+        "w": U.ANGULAR_VELOCITY, "e": U.ANGULAR_ACCELERATION,
+    }
+    if name == "q_deg":
+        return U.DIMENSIONLESS
+    return table.get(pre, U.DIMENSIONLESS)
+
+
+class Study:
+    """One case. ``Study(path)`` or ``load_case(path)``."""
+
+    def __init__(self, spec: CaseSpec | str | Path, overrides: Mapping[str, Any] | None = None):
+        if not isinstance(spec, CaseSpec):
+            spec = load_spec(spec, overrides)
+        self.spec = spec
+        self.computed: set[str] = set()
+
+    # ----------------------------------------------------------------- inputs
+    @property
+    def name(self) -> str:
+        return self.spec.name
+
+    @property
+    def root(self) -> Node:
+        return self.spec.root
+
+    @cached_property
+    def meta(self) -> dict:
+        m = self.root.table("meta")
+        return {k: str(v) for k, v in m.data.items()}
+
+    def _build(self, fixed: Mapping[str, float]) -> tuple[dict, Mechanism, Structure, L.SolverModel]:
+        names = self.spec.parameters(fixed)
+        g = self.spec.gravity(names)
+        mech = build_mechanism(self.root, names, g)
+        st = analyse(mech)
+        model = L.assemble(mech, st)
+        L.choose_branches(model)
+        return names, mech, st, model
+
+    @cached_property
+    def _fitted(self) -> tuple[dict, list[FitResult]]:
+        fixed: dict[str, float] = {}
+        results: list[FitResult] = []
+        fits = self.root.tables("fit")
+        if fits:
+            self.computed.add("fit")
+        for node in fits:
+            node.check_keys(["unknown", "condition", "at", "guess"], required=["unknown", "condition", "at"])
+            unknown = node.string("unknown", required=True)
+            names0 = self.spec.parameters(fixed)
+            if unknown not in names0:
+                from ..errors import did_you_mean
+                raise node.error("unknown", f"параметр «{unknown}» не задан в [parameters]",
+                                 expected="имя параметра с начальным значением",
+                                 hint=did_you_mean(unknown, list(names0)))
+            dim = names0[unknown].dim
+            guess = node.quantity("guess", dim, names0) if node.has("guess") else float(names0[unknown].value)
+            lhs, rhs = split_condition(node)
+            at_text = node.raw("at")
+
+            def residual(x: float, unknown=unknown, lhs=lhs, rhs=rhs, at_text=at_text, node=node) -> float:
+                trial = dict(fixed)
+                trial[unknown] = x
+                names, mech, st, model = self._build(trial)
+                qdim = U.ANGLE if mech.driver.rotary else U.LENGTH
+                qa = node.eval_value(at_text, "at", qdim, names)
+                cols = self._columns_at(mech, model, np.array([qa]), needed=lhs)
+                env = dict(names)
+                env.update({k: Q(v, column_dims(k, qdim)) for k, v in cols.items()})
+                return evaluate_condition(lhs, rhs, env, node)
+
+            scale = abs(guess) if guess else 1.0
+            x, res, its = solve_fit(node, unknown, guess, residual, scale)
+            fixed[unknown] = x
+            results.append(FitResult(unknown, x, node.raw("condition"), str(at_text), res, its, dim))
+        return fixed, results
+
+    def _columns_at(self, mech, model, q, needed: str | None = None) -> dict[str, np.ndarray]:
+        """Columns at q, solving only the groups the expression ``needed`` depends on."""
+        ng = None
+        if needed is not None:
+            from ..case.expr import free_names
+            used = free_names(needed)
+            gmax = -1
+            for nm in used:
+                parts = nm.split("_", 1)
+                if len(parts) != 2:
+                    continue
+                key = parts[1]
+                body = None
+                if key in model.point_names:
+                    body = int(model.pbody[model.point_names.index(key)])
+                elif key in [l.name for l in mech.links]:
+                    body = model.body(key)
+                if body is not None and body in model.body_group:
+                    gmax = max(gmax, model.body_group[body])
+            ng = gmax + 1 if gmax >= 0 else None
+        res = L.solve(model, q, ngroups=ng)
+        return L.columns(model, res, grid=False)
+
+    @cached_property
+    def fits(self) -> list[FitResult]:
+        return self._fitted[1]
+
+    @cached_property
+    def _final(self) -> tuple[dict, Mechanism, Structure, L.SolverModel]:
+        fixed, _ = self._fitted
+        names, mech, st, model = self._build(fixed)
+        if mech.deferred:
+            for link, pname, frm, (dx, dy), qat in mech.deferred:
+                res = L.solve(model, np.array([qat]))
+                b = model.body(link)
+                th = res.pose[0, b, 2]
+                k = model.point_names.index(frm)
+                if model.pbody[k] != b:
+                    raise CaseError(f"точка «{frm}» не принадлежит звену «{link}»", file=str(self.spec.path),
+                                    key=f"links.{link}.points.{pname}.from",
+                                    expected="точка того же звена")
+                fx, fy = mech.link(link).points[frm]
+                c, s = math.cos(th), math.sin(th)
+                mech.link(link).points[pname] = (fx + c * dx + s * dy, fy - s * dx + c * dy)
+            model = L.assemble(mech, st)
+            L.choose_branches(model)
+        return names, mech, st, model
+
+    @property
+    def params(self) -> dict:
+        return self._final[0]
+
+    @property
+    def mechanism(self) -> Mechanism:
+        return self._final[1]
+
+    @property
+    def structure(self) -> Structure:
+        self.computed.add("structure")
+        return self._final[2]
+
+    @property
+    def model(self) -> L.SolverModel:
+        return self._final[3]
+
+    @property
+    def qdim(self) -> U.Dim:
+        return U.ANGLE if self.mechanism.driver.rotary else U.LENGTH
+
+    @cached_property
+    def grid(self) -> Grid:
+        node = self.root.table("grid")
+        node.check_keys(["positions", "closed", "extra", "cycle_points", "start"])
+        names = self.params
+        d = self.mechanism.driver
+        n = node.integer("positions", 12, minimum=2)
+        m = node.integer("cycle_points", 3600, minimum=36)
+        closed = node.boolean("closed", False)
+        if d.rotary:
+            start = node.quantity("start", U.ANGLE, names, default=0.0)
+            length = 2 * math.pi
+            q = start + length * np.arange(n + (1 if closed else 0)) / n
+        else:
+            lo, hi = d.q_range
+            start, length = lo, hi - lo
+            q = np.linspace(lo, hi, n)
+        labels = [str(i) for i in range(len(q))]
+        extra = node.raw("extra", [])
+        if not isinstance(extra, list):
+            raise node.error("extra", "ожидался список дополнительных положений", expected="extra = [\"99.1 deg\"]")
+        xs = []
+        for i, e in enumerate(extra):
+            if isinstance(e, Mapping):
+                sub = Node(e, node.key(f"extra[{i}]"), node.file)
+                sub.check_keys(["q", "label"], required=["q"])
+                xs.append(sub.quantity("q", self.qdim, names))
+                labels.append(sub.string("label", f"д{i + 1}"))
+            else:
+                xs.append(node.eval_value(e, f"extra[{i}]", self.qdim, names))
+                labels.append(f"д{i + 1}")
+        q = np.concatenate([q, np.array(xs, dtype=float)])
+        cycle = start + length * np.arange(m + 1) / m
+        return Grid(q, labels, cycle, start, length)
+
+    # ----------------------------------------------------------------- kinematics
+    def motion_law(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+        """dq/dt and d²q/dt² at q: the driver's constant values (dynamics may replace this)."""
+        d = self.mechanism.driver
+        if d.omega is None:
+            return None
+        return np.full_like(q, d.omega), np.full_like(q, d.epsilon)
+
+    def _frame(self, q: np.ndarray, labels=None, grid=True) -> pd.DataFrame:
+        res = L.solve(self.model, q, labels)
+        cols = L.columns(self.model, res, grid=grid)
+        cols.update(self._extra_angles(cols))
+        law = self.motion_law(q)
+        if law is not None:
+            cols.update(true_motion(cols, self.mechanism, *law))
+        cols.update(self._derived(cols))
+        df = pd.DataFrame(cols)
+        if labels is not None:
+            df.insert(0, "pos", labels)
+        return df
+
+    def _extra_angles(self, cols) -> dict[str, np.ndarray]:
+        out = {}
+        node = self.root.table("outputs").table("angles")
+        for name, pair in node.data.items():
+            if not (isinstance(pair, list) and len(pair) == 2 and all(f"x_{p}" in cols for p in pair)):
+                raise node.error(name, "угол линии задаётся двумя точками механизма",
+                                 expected=f"{name} = [\"A\", \"B\"]", got=repr(pair))
+            out.update(line_angle(cols, name, *pair))
+        return out
+
+    def _derived(self, cols) -> dict[str, np.ndarray]:
+        node = self.root.table("outputs").table("derived")
+        out = {}
+        env = dict(self.params)
+        env.update({k: Q(v, column_dims(k, self.qdim)) for k, v in cols.items()})
+        for name, text in node.data.items():
+            try:
+                val = evaluate(text, env)
+            except CaseError as e:
+                raise e.with_context(file=node.file, key_prefix=node.key(name)) from None
+            out[name] = np.broadcast_to(np.asarray(val.value, dtype=float), cols["q"].shape).copy()
+            env[name] = Q(out[name], val.dim)
+        return out
+
+    @cached_property
+    def kinematics(self) -> pd.DataFrame:
+        """Positions, analogs and true velocities/accelerations at the report positions."""
+        self.computed.add("kinematics")
+        g = self.grid
+        return self._frame(g.q, g.labels, grid=False)
+
+    @cached_property
+    def cycle(self) -> pd.DataFrame:
+        """The same columns on the fine grid over one cycle (for curves and integrals)."""
+        self.computed.add("cycle")
+        return self._frame(self.grid.cycle, grid=True)
+
+    def at(self, q) -> pd.DataFrame:
+        """Exact evaluation at the given values of the generalised coordinate (SI)."""
+        q = np.atleast_1d(np.asarray(q, dtype=float))
+        return self._frame(q, [f"q{i}" for i in range(len(q))], grid=False)
+
+    @cached_property
+    def flags(self) -> dict:
+        """Singular positions and low transmission angles over the cycle."""
+        cyc = self.cycle
+        out = {}
+        for c in cyc.columns:
+            if c.startswith("mu_"):
+                mu = cyc[c].to_numpy()
+                out[c] = dict(min=float(mu.min()), q_min=float(cyc["q"].to_numpy()[mu.argmin()]),
+                              singular=bool((np.sin(mu) < L.SINGULAR_SIN).any()),
+                              low=bool((mu < L.LOW_TRANSMISSION).any()))
+        return out
+
+    @cached_property
+    def scalars(self) -> dict[str, float]:
+        st = self.structure
+        out: dict[str, Any] = {"W": st.W, "n": st.n, "p5": st.p5, "p4": st.p4, "mech_class": st.mech_class}
+        for f in self.fits:
+            out[f.name] = f.value
+        for c, v in self.flags.items():
+            out[c + "_min"] = v["min"]
+        return out
+
+
+def true_motion(cols, mech: Mechanism, w: np.ndarray, e: np.ndarray) -> dict[str, np.ndarray]:
+    """v = ω·x′, a = ω²·x″ + ε·x′ for every point, link and slider (ω = dq/dt, ε = d²q/dt²)."""
+    out = {}
+    for k in list(cols):
+        if k.startswith("vqx_"):
+            p = k[4:]
+            vx, vy = w * cols["vqx_" + p], w * cols["vqy_" + p]
+            ax = w * w * cols["aqx_" + p] + e * cols["vqx_" + p]
+            ay = w * w * cols["aqy_" + p] + e * cols["vqy_" + p]
+            out.update({"vx_" + p: vx, "vy_" + p: vy, "v_" + p: np.hypot(vx, vy),
+                        "ax_" + p: ax, "ay_" + p: ay, "a_" + p: np.hypot(ax, ay)})
+        elif k.startswith("wq_"):
+            n = k[3:]
+            out["w_" + n] = w * cols[k]
+            out["e_" + n] = w * w * cols["eq_" + n] + e * cols[k]
+        elif k.startswith("vqs_"):
+            n = k[4:]
+            out["vs_" + n] = w * cols[k]
+            out["as_" + n] = w * w * cols["aqs_" + n] + e * cols[k]
+    return out
+
+
+def line_angle(cols, name: str, p: str, r: str) -> dict[str, np.ndarray]:
+    """Angle of the line p→r with its analogs: θ = atan2(dy, dx), θ' = (dx·dy' − dy·dx')/ρ²,
+    θ'' = (dx·dy'' − dy·dx'')/ρ² − 2(dx·dx' + dy·dy')(dx·dy' − dy·dx')/ρ⁴."""
+    dx = cols["x_" + r] - cols["x_" + p]
+    dy = cols["y_" + r] - cols["y_" + p]
+    d1x = cols["vqx_" + r] - cols["vqx_" + p]
+    d1y = cols["vqy_" + r] - cols["vqy_" + p]
+    d2x = cols["aqx_" + r] - cols["aqx_" + p]
+    d2y = cols["aqy_" + r] - cols["aqy_" + p]
+    r2 = dx * dx + dy * dy
+    cr = dx * d1y - dy * d1x
+    th = np.arctan2(dy, dx)
+    if th.size > 1:
+        th = np.unwrap(th)
+    base = name[4:] if name.startswith("phi_") else name
+    return {("phi_" + base): th, ("wq_" + base): cr / r2,
+            ("eq_" + base): (dx * d2y - dy * d2x) / r2 - 2 * (dx * d1x + dy * d1y) * cr / (r2 * r2)}
+
+
+def load_case(path: str | Path, overrides: Mapping[str, Any] | None = None) -> Study:
+    """Load a case file and return its :class:`Study` (nothing is computed yet)."""
+    return Study(path, overrides)

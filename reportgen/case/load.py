@@ -1,0 +1,97 @@
+"""Read a TOML case file: sections, parameters with units, overrides of a batch variant."""
+from __future__ import annotations
+
+import hashlib
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping
+
+from ..errors import CaseError
+from . import units as U
+from .expr import Q, resolve
+from .reader import Node
+
+TOP_KEYS = ["meta", "parameters", "frame", "links", "joints", "driver", "grid", "sketch", "fit",
+            "outputs", "loads", "dynamics", "forces", "report", "carrier", "actuator"]
+
+
+@dataclass
+class CaseSpec:
+    """A parsed, not yet evaluated case: the raw tables, their source and parameter overrides."""
+
+    path: Path
+    data: dict
+    overrides: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def root(self) -> Node:
+        return Node(self.data, "", str(self.path))
+
+    @property
+    def name(self) -> str:
+        return self.path.stem
+
+    def digest(self) -> str:
+        h = hashlib.sha256(repr((sorted(_flat(self.data)), sorted(self.overrides.items()))).encode())
+        return h.hexdigest()[:16]
+
+    def parameters(self, fixed: Mapping[str, float] | None = None) -> dict[str, Q]:
+        """Evaluate [parameters] (with overrides) to SI; ``fixed`` replaces the named parameters
+        by values (used by fitting) keeping their dimensions."""
+        node = self.root.table("parameters")
+        raw = dict(node.data)
+        raw.update(self.overrides)
+        try:
+            names = resolve(raw)
+        except CaseError as e:
+            raise e.with_context(file=str(self.path), key_prefix="parameters") from None
+        if fixed:
+            base = {k: Q(v, names[k].dim) for k, v in fixed.items()}
+            rest = {k: v for k, v in raw.items() if k not in fixed}
+            try:
+                names = resolve(rest, extra_names=base)
+            except CaseError as e:
+                raise e.with_context(file=str(self.path), key_prefix="parameters") from None
+            names.update(base)
+        return names
+
+    def gravity(self, names) -> float:
+        dyn = self.root.table("loads")
+        return dyn.quantity("g", U.ACCELERATION, names, default="9.81 m/s^2", positive=True) if dyn.has("g") else 9.81
+
+
+def _flat(d, prefix=""):
+    if isinstance(d, Mapping):
+        for k, v in d.items():
+            yield from _flat(v, f"{prefix}.{k}")
+    elif isinstance(d, list):
+        for i, v in enumerate(d):
+            yield from _flat(v, f"{prefix}[{i}]")
+    else:
+        yield (prefix, repr(d))
+
+
+def load_spec(path: str | Path, overrides: Mapping[str, Any] | None = None) -> CaseSpec:
+    path = Path(path)
+    if not path.exists():
+        raise CaseError("файл варианта не найден", file=str(path),
+                        expected="путь к файлу .toml (например, cases/ws000_six_bar.toml)")
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except UnicodeDecodeError:
+        raise CaseError("файл не в кодировке UTF-8", file=str(path), expected="текст TOML в UTF-8") from None
+    except tomllib.TOMLDecodeError as e:
+        raise CaseError(f"синтаксическая ошибка TOML: {e}", file=str(path),
+                        expected="корректный TOML (строки в кавычках, [разделы], key = value)") from None
+    spec = CaseSpec(path, data, dict(overrides or {}))
+    spec.root.check_keys(TOP_KEYS, required=["frame", "links", "joints", "driver"])
+    if overrides:
+        params = spec.root.table("parameters").data
+        for k in overrides:
+            if k not in params:
+                from ..errors import did_you_mean
+                raise CaseError(f"вариант задаёт неизвестный параметр «{k}»", file=str(path), key=f"parameters.{k}",
+                                expected="имя параметра из раздела [parameters] базового варианта",
+                                hint=did_you_mean(k, list(params)))
+    return spec

@@ -1,0 +1,706 @@
+"""Whole-cycle kinematics of a planar linkage solved group by group (numba kernels).
+
+Model (multibody pose coordinates, e.g. Haug, *Computer-Aided Kinematics and Dynamics of
+Mechanical Systems*, ch. 3; Nikravesh, *Planar Multibody Dynamics*, ch. 2-4): every body k has
+a pose (x_k, y_k, θ_k) of its local frame; a local point p maps to r_k + A(θ_k) p.
+Constraints, all written as Φ(x, q) = 0 with q the generalised coordinate:
+
+* revolute joint (bodies i, j, local points p_i, p_j that may depend on q affinely,
+  p = p0 + q p1, which models a linear actuator of length q):
+  ``r_i + A_i p_i − r_j − A_j p_j = 0``;
+* prismatic joint (guide i with line point g and direction α in its local frame, slider j with
+  point s and offset e): ``θ_j − θ_i − α = 0`` and ``n·(r_j + A_j s − r_i − A_i g) − e = 0`` with
+  ``n = A_i (−sin α, cos α)``;
+* driving rotation: ``θ_j − θ_i − (c0 + c1 q) = 0``.
+
+Positions of the Assur groups of class II are solved in closed form (circle–circle,
+circle–line, the rotating-guide equation of the ВПВ group, and a linear solve once every angle
+of the group is known: ПВП, ВПП and the initial link); any other group by Newton with the
+analytic Jacobian and a second-order predictor.  The first and second analogs (d/dq, d²/dq²)
+of every group come from the group's own linear system ``Φ_x x' = −Φ_q`` and
+``Φ_x x'' = −γ`` (exact, no differences).
+
+The kernels take the whole grid of q at once (one call per cycle) and are compiled with
+``cache=True``.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+# joint kinds
+J_REV = 0
+J_PRI = 1
+J_DRV = 2
+# group kinds
+G_LIN = 0      # every angle known from angle constraints, positions by a linear solve
+G_RRR = 1      # ВВВ: circle–circle
+G_RRP = 2      # ВВП: circle–line
+G_RPR = 3      # ВПВ: rotating guide
+G_NEWTON = 4   # anything else (class III and higher)
+
+# failure kinds reported by the kernel
+F_OK = 0
+F_ASSEMBLY = 1
+F_NEWTON = 2
+F_SINGULAR = 3
+
+CLAMP = 2e-9        # relative tolerance for a stretched/folded group (rounding, not failure)
+NEWTON_TOL = 1e-12  # residual tolerance relative to the size of the mechanism
+NEWTON_MAXIT = 30
+
+
+@njit(cache=True)
+def _rot(th, px, py):
+    c = np.cos(th)
+    s = np.sin(th)
+    return c * px - s * py, s * px + c * py
+
+
+@njit(cache=True)
+def _local(jf, j, which, q):
+    """Local point of revolute joint j on its first (which=0) or second (which=1) body at q."""
+    if which == 0:
+        return jf[j, 0] + q * jf[j, 4], jf[j, 1] + q * jf[j, 5]
+    return jf[j, 2] + q * jf[j, 6], jf[j, 3] + q * jf[j, 7]
+
+
+@njit(cache=True)
+def _glob(pose, b, px, py):
+    ux, uy = _rot(pose[b, 2], px, py)
+    return pose[b, 0] + ux, pose[b, 1] + uy
+
+
+@njit(cache=True)
+def _solve_dense(a, b, n):
+    """Gaussian elimination with partial pivoting on the leading n×n block (in place).
+
+    Returns the smallest |pivot| divided by the largest row norm (a conditioning indicator)."""
+    scale = 0.0
+    for i in range(n):
+        s = 0.0
+        for k in range(n):
+            s += a[i, k] * a[i, k]
+        if s > scale:
+            scale = s
+    scale = np.sqrt(scale)
+    if scale == 0.0:
+        scale = 1.0
+    minpiv = 1e300
+    for c in range(n):
+        p = c
+        best = abs(a[c, c])
+        for r in range(c + 1, n):
+            if abs(a[r, c]) > best:
+                best = abs(a[r, c])
+                p = r
+        if best < minpiv:
+            minpiv = best
+        if best == 0.0:
+            return 0.0
+        if p != c:
+            for k in range(n):
+                t = a[c, k]
+                a[c, k] = a[p, k]
+                a[p, k] = t
+            t = b[c]
+            b[c] = b[p]
+            b[p] = t
+        for r in range(c + 1, n):
+            f = a[r, c] / a[c, c]
+            if f != 0.0:
+                for k in range(c, n):
+                    a[r, k] -= f * a[c, k]
+                b[r] -= f * b[c]
+    for c in range(n - 1, -1, -1):
+        s = b[c]
+        for k in range(c + 1, n):
+            s -= a[c, k] * b[k]
+        b[c] = s / a[c, c]
+    return minpiv / scale
+
+
+@njit(cache=True)
+def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma):
+    """Rows of joint j: Jacobian blocks (coef[row, 0:3] body i, coef[row, 3:6] body j),
+    explicit ∂Φ/∂q and the acceleration term γ (second derivative without x'' terms).
+
+    Returns the number of rows (2 for revolute and prismatic, 1 for a drive)."""
+    bi = jb[j, 0]
+    bj = jb[j, 1]
+    ti = pose[bi, 2]
+    tj = pose[bj, 2]
+    wi = vel[bi, 2]
+    wj = vel[bj, 2]
+    for r in range(2):
+        for k in range(6):
+            coef[r, k] = 0.0
+        expl[r] = 0.0
+        gam[r] = 0.0
+    kind = jt[j]
+    if kind == J_REV:
+        pix, piy = _local(jf, j, 0, q)
+        pjx, pjy = _local(jf, j, 1, q)
+        uix, uiy = _rot(ti, pix, piy)
+        ujx, ujy = _rot(tj, pjx, pjy)
+        vix, viy = _rot(ti, jf[j, 4], jf[j, 5])
+        vjx, vjy = _rot(tj, jf[j, 6], jf[j, 7])
+        coef[0, 0] = 1.0
+        coef[0, 2] = -uiy
+        coef[1, 1] = 1.0
+        coef[1, 2] = uix
+        coef[0, 3] = -1.0
+        coef[0, 5] = ujy
+        coef[1, 4] = -1.0
+        coef[1, 5] = -ujx
+        expl[0] = vix - vjx
+        expl[1] = viy - vjy
+        if with_gamma:
+            gam[0] = -uix * wi * wi + 2.0 * (-viy) * wi - (-ujx * wj * wj + 2.0 * (-vjy) * wj)
+            gam[1] = -uiy * wi * wi + 2.0 * vix * wi - (-ujy * wj * wj + 2.0 * vjx * wj)
+        return 2
+    elif kind == J_PRI:
+        gx = jf[j, 0]
+        gy = jf[j, 1]
+        sx = jf[j, 2]
+        sy = jf[j, 3]
+        al = jf[j, 4]
+        nx, ny = _rot(ti, -np.sin(al), np.cos(al))
+        agx, agy = _rot(ti, gx, gy)
+        asx, asy = _rot(tj, sx, sy)
+        dx = pose[bj, 0] + asx - pose[bi, 0] - agx
+        dy = pose[bj, 1] + asy - pose[bi, 1] - agy
+        # row 0: relative angle
+        coef[0, 2] = -1.0
+        coef[0, 5] = 1.0
+        # row 1: offset from the guide line
+        coef[1, 3] = nx
+        coef[1, 4] = ny
+        coef[1, 5] = nx * (-asy) + ny * asx
+        pnx = -ny
+        pny = nx
+        coef[1, 0] = -nx
+        coef[1, 1] = -ny
+        coef[1, 2] = pnx * dx + pny * dy - (nx * (-agy) + ny * agx)
+        if with_gamma:
+            ddx = vel[bj, 0] + (-asy) * wj - vel[bi, 0] - (-agy) * wi
+            ddy = vel[bj, 1] + asx * wj - vel[bi, 1] - agx * wi
+            gam[1] = (-(nx * dx + ny * dy) * wi * wi + 2.0 * (pnx * ddx + pny * ddy) * wi
+                      + nx * (-asx * wj * wj + agx * wi * wi) + ny * (-asy * wj * wj + agy * wi * wi))
+        return 2
+    else:
+        coef[0, 2] = -1.0
+        coef[0, 5] = 1.0
+        expl[0] = -jf[j, 1]
+        return 1
+
+
+@njit(cache=True)
+def _joint_residual(jt, jb, jf, j, q, pose, res):
+    bi = jb[j, 0]
+    bj = jb[j, 1]
+    kind = jt[j]
+    if kind == J_REV:
+        pix, piy = _local(jf, j, 0, q)
+        pjx, pjy = _local(jf, j, 1, q)
+        ax, ay = _glob(pose, bi, pix, piy)
+        bx, by = _glob(pose, bj, pjx, pjy)
+        res[0] = ax - bx
+        res[1] = ay - by
+        return 2
+    elif kind == J_PRI:
+        al = jf[j, 4]
+        ti = pose[bi, 2]
+        nx, ny = _rot(ti, -np.sin(al), np.cos(al))
+        gx, gy = _glob(pose, bi, jf[j, 0], jf[j, 1])
+        sx, sy = _glob(pose, bj, jf[j, 2], jf[j, 3])
+        d = pose[bj, 2] - ti - al
+        res[0] = np.arctan2(np.sin(d), np.cos(d))
+        res[1] = nx * (sx - gx) + ny * (sy - gy) - jf[j, 5]
+        return 2
+    else:
+        d = pose[bj, 2] - pose[bi, 2] - jf[j, 0] - jf[j, 1] * q
+        res[0] = np.arctan2(np.sin(d), np.cos(d))
+        return 1
+
+
+@njit(cache=True)
+def _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d2, level, mat, rhs, col_of):
+    """Assemble the group's linear system at velocity (level=1) or acceleration (level=2)
+    level, or the Newton Jacobian with the residual as right-hand side (level=0).
+
+    col_of[b] is the column block of body b in the group or −1 for a known body."""
+    coef = np.zeros((2, 6))
+    expl = np.zeros(2)
+    gam = np.zeros(2)
+    res = np.zeros(2)
+    n = 3 * nbg
+    for r in range(n):
+        rhs[r] = 0.0
+        for c in range(n):
+            mat[r, c] = 0.0
+    row = 0
+    for k in range(nj):
+        j = gj[k]
+        nr = _joint_rows(jt, jb, jf, j, q, pose, d1, coef, expl, gam, level == 2)
+        if level == 0:
+            _joint_residual(jt, jb, jf, j, q, pose, res)
+        for r in range(nr):
+            s = 0.0
+            for side in range(2):
+                b = jb[j, side]
+                cb = col_of[b]
+                for c in range(3):
+                    a = coef[r, 3 * side + c]
+                    if cb >= 0:
+                        mat[row + r, 3 * cb + c] += a
+                    elif level == 1:
+                        s += a * d1[b, c]
+                    elif level == 2:
+                        s += a * d2[b, c]
+            if level == 0:
+                rhs[row + r] = -res[r]
+            elif level == 1:
+                rhs[row + r] = -(s + expl[r])
+            else:
+                rhs[row + r] = -(s + gam[r])
+        row += nr
+    return row
+
+
+@njit(cache=True)
+def _solve_rrr(jf, jb, spec, sigma, q, pose):
+    """ВВВ group: bodies a, b; joint jA (a–known), jB (a–b), jC (b–known)."""
+    a = spec[0]
+    b = spec[1]
+    jA = spec[2]
+    jB = spec[3]
+    jC = spec[4]
+    # global position of A (on the known side of jA) and local points on a
+    if jb[jA, 0] == a:
+        pax, pay = _local(jf, jA, 0, q)
+        kx, ky = _local(jf, jA, 1, q)
+        Ax, Ay = _glob(pose, jb[jA, 1], kx, ky)
+    else:
+        pax, pay = _local(jf, jA, 1, q)
+        kx, ky = _local(jf, jA, 0, q)
+        Ax, Ay = _glob(pose, jb[jA, 0], kx, ky)
+    if jb[jC, 0] == b:
+        pcx, pcy = _local(jf, jC, 0, q)
+        kx, ky = _local(jf, jC, 1, q)
+        Cx, Cy = _glob(pose, jb[jC, 1], kx, ky)
+    else:
+        pcx, pcy = _local(jf, jC, 1, q)
+        kx, ky = _local(jf, jC, 0, q)
+        Cx, Cy = _glob(pose, jb[jC, 0], kx, ky)
+    if jb[jB, 0] == a:
+        pbax, pbay = _local(jf, jB, 0, q)
+        pbbx, pbby = _local(jf, jB, 1, q)
+    else:
+        pbax, pbay = _local(jf, jB, 1, q)
+        pbbx, pbby = _local(jf, jB, 0, q)
+    La = np.hypot(pbax - pax, pbay - pay)
+    Lb = np.hypot(pbbx - pcx, pbby - pcy)
+    dx = Cx - Ax
+    dy = Cy - Ay
+    D = np.hypot(dx, dy)
+    if D == 0.0:
+        return F_ASSEMBLY, abs(La - Lb), 0.0
+    x = (La * La - Lb * Lb + D * D) / (2.0 * D)
+    h2 = La * La - x * x
+    if h2 < 0.0:
+        if h2 < -CLAMP * La * La:
+            if D > La + Lb:
+                return F_ASSEMBLY, D - (La + Lb), 0.0
+            return F_ASSEMBLY, abs(La - Lb) - D, 0.0
+        h2 = 0.0
+    h = np.sqrt(h2)
+    ex = dx / D
+    ey = dy / D
+    Bx = Ax + x * ex - sigma * h * ey
+    By = Ay + x * ey + sigma * h * ex
+    ta = np.arctan2(By - Ay, Bx - Ax) - np.arctan2(pbay - pay, pbax - pax)
+    tb = np.arctan2(By - Cy, Bx - Cx) - np.arctan2(pbby - pcy, pbbx - pcx)
+    pose[a, 2] = ta
+    ux, uy = _rot(ta, pax, pay)
+    pose[a, 0] = Ax - ux
+    pose[a, 1] = Ay - uy
+    pose[b, 2] = tb
+    ux, uy = _rot(tb, pcx, pcy)
+    pose[b, 0] = Cx - ux
+    pose[b, 1] = Cy - uy
+    # sine of the angle between the two links at the inner joint (transmission quality)
+    sinmu = ((Bx - Ax) * (By - Cy) - (By - Ay) * (Bx - Cx)) / (La * Lb) if La * Lb > 0 else 0.0
+    return F_OK, 0.0, sinmu
+
+
+@njit(cache=True)
+def _line_of_body(jf, jb, jP, b, q, pose):
+    """A body b whose angle is already known and that is tied by prismatic joint jP to a known
+    body can only translate along the guide: r_b = r0 + t·u.  Returns (r0x, r0y, ux, uy)."""
+    gi = jb[jP, 0]
+    sj = jb[jP, 1]
+    al = jf[jP, 4]
+    e = jf[jP, 5]
+    if sj == b:
+        # b is the slider on a known guide gi
+        ti = pose[gi, 2]
+        nx, ny = _rot(ti, -np.sin(al), np.cos(al))
+        ux, uy = _rot(ti, np.cos(al), np.sin(al))
+        Gx, Gy = _glob(pose, gi, jf[jP, 0], jf[jP, 1])
+        sx, sy = _rot(pose[b, 2], jf[jP, 2], jf[jP, 3])
+        return Gx + e * nx - sx, Gy + e * ny - sy, ux, uy
+    # b is the guide, the known body sj carries the slider point
+    tb = pose[b, 2]
+    nx, ny = _rot(tb, -np.sin(al), np.cos(al))
+    ux, uy = _rot(tb, np.cos(al), np.sin(al))
+    Sx, Sy = _glob(pose, sj, jf[jP, 2], jf[jP, 3])
+    gx, gy = _rot(tb, jf[jP, 0], jf[jP, 1])
+    return Sx - gx - e * nx, Sy - gy - e * ny, ux, uy
+
+
+@njit(cache=True)
+def _angle_from_prismatic(jf, jb, jP, b, pose):
+    al = jf[jP, 4]
+    if jb[jP, 1] == b:
+        return pose[jb[jP, 0], 2] + al
+    return pose[jb[jP, 1], 2] - al
+
+
+@njit(cache=True)
+def _solve_rrp(jf, jb, spec, sigma, q, pose):
+    """ВВП group: body a (revolute jA to a known body, revolute jB to b), body b (prismatic jP
+    to a known body).  Circle (centre A, radius |AB| on a) meets the line traced by B."""
+    a = spec[0]
+    b = spec[1]
+    jA = spec[2]
+    jB = spec[3]
+    jP = spec[4]
+    pose[b, 2] = _angle_from_prismatic(jf, jb, jP, b, pose)
+    if jb[jA, 0] == a:
+        pax, pay = _local(jf, jA, 0, q)
+        kx, ky = _local(jf, jA, 1, q)
+        Ax, Ay = _glob(pose, jb[jA, 1], kx, ky)
+    else:
+        pax, pay = _local(jf, jA, 1, q)
+        kx, ky = _local(jf, jA, 0, q)
+        Ax, Ay = _glob(pose, jb[jA, 0], kx, ky)
+    if jb[jB, 0] == a:
+        pbax, pbay = _local(jf, jB, 0, q)
+        pbbx, pbby = _local(jf, jB, 1, q)
+    else:
+        pbax, pbay = _local(jf, jB, 1, q)
+        pbbx, pbby = _local(jf, jB, 0, q)
+    La = np.hypot(pbax - pax, pbay - pay)
+    r0x, r0y, ux, uy = _line_of_body(jf, jb, jP, b, q, pose)
+    bx, by = _rot(pose[b, 2], pbbx, pbby)
+    wx = r0x + bx - Ax
+    wy = r0y + by - Ay
+    wu = wx * ux + wy * uy
+    disc = wu * wu - (wx * wx + wy * wy) + La * La
+    if disc < 0.0:
+        if disc < -CLAMP * La * La:
+            dist = abs(wx * uy - wy * ux)
+            return F_ASSEMBLY, dist - La, 0.0
+        disc = 0.0
+    root = np.sqrt(disc)
+    t = -wu + sigma * root
+    pose[b, 0] = r0x + t * ux
+    pose[b, 1] = r0y + t * uy
+    Bx = pose[b, 0] + bx
+    By = pose[b, 1] + by
+    ta = np.arctan2(By - Ay, Bx - Ax) - np.arctan2(pbay - pay, pbax - pax)
+    pose[a, 2] = ta
+    vx, vy = _rot(ta, pax, pay)
+    pose[a, 0] = Ax - vx
+    pose[a, 1] = Ay - vy
+    sinmu = sigma * root / La if La > 0 else 0.0
+    return F_OK, 0.0, sinmu
+
+
+@njit(cache=True)
+def _solve_rpr(jf, jb, spec, sigma, q, pose):
+    """ВПВ group: bodies a, b each on a revolute to a known body (jA, jC), joined by the
+    prismatic jP.  With G the guide and S the slider body of jP and w = P_S − P_G:
+    |w| cos(θ_G + β − ψ) = K  ⇒  θ_G = ψ − β + σ·acos(K/|w|)."""
+    a = spec[0]
+    b = spec[1]
+    jA = spec[2]
+    jP = spec[3]
+    jC = spec[4]
+    G = jb[jP, 0]
+    S = jb[jP, 1]
+    jG = jA if G == a else jC
+    jS = jC if G == a else jA
+    if jb[jG, 0] == G:
+        pgx, pgy = _local(jf, jG, 0, q)
+        kx, ky = _local(jf, jG, 1, q)
+        PGx, PGy = _glob(pose, jb[jG, 1], kx, ky)
+    else:
+        pgx, pgy = _local(jf, jG, 1, q)
+        kx, ky = _local(jf, jG, 0, q)
+        PGx, PGy = _glob(pose, jb[jG, 0], kx, ky)
+    if jb[jS, 0] == S:
+        psx, psy = _local(jf, jS, 0, q)
+        kx, ky = _local(jf, jS, 1, q)
+        PSx, PSy = _glob(pose, jb[jS, 1], kx, ky)
+    else:
+        psx, psy = _local(jf, jS, 1, q)
+        kx, ky = _local(jf, jS, 0, q)
+        PSx, PSy = _glob(pose, jb[jS, 0], kx, ky)
+    al = jf[jP, 4]
+    e = jf[jP, 5]
+    nlx = -np.sin(al)
+    nly = np.cos(al)
+    # slider point relative to the slider's pivot, expressed in the guide frame
+    rx, ry = _rot(al, jf[jP, 2] - psx, jf[jP, 3] - psy)
+    K = e + nlx * (jf[jP, 0] - pgx) + nly * (jf[jP, 1] - pgy) - (nlx * rx + nly * ry)
+    wx = PSx - PGx
+    wy = PSy - PGy
+    W = np.hypot(wx, wy)
+    if W == 0.0:
+        return F_ASSEMBLY, abs(K), 0.0
+    c = K / W
+    if c > 1.0 or c < -1.0:
+        if abs(c) - 1.0 > CLAMP:
+            return F_ASSEMBLY, abs(K) - W, 0.0
+        c = 1.0 if c > 0 else -1.0
+    beta = al + 0.5 * np.pi
+    psi = np.arctan2(wy, wx)
+    tg = psi - beta + sigma * np.arccos(c)
+    ts = tg + al
+    pose[G, 2] = tg
+    ux, uy = _rot(tg, pgx, pgy)
+    pose[G, 0] = PGx - ux
+    pose[G, 1] = PGy - uy
+    pose[S, 2] = ts
+    ux, uy = _rot(ts, psx, psy)
+    pose[S, 0] = PSx - ux
+    pose[S, 1] = PSy - uy
+    return F_OK, 0.0, sigma * np.sqrt(max(0.0, 1.0 - c * c))
+
+
+@njit(cache=True)
+def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of):
+    """Group whose angles all follow from angle constraints (prismatic joints to known bodies,
+    drives); positions then satisfy linear equations (ПВП, ВПП, the initial link)."""
+    known = np.zeros(nbg, dtype=np.bool_)
+    for it in range(nbg + 1):
+        for k in range(nj):
+            j = gj[k]
+            if jt[j] == J_REV:
+                continue
+            bi = jb[j, 0]
+            bj = jb[j, 1]
+            ci = col_of[bi]
+            cj = col_of[bj]
+            ki = ci < 0 or known[ci]
+            kj = cj < 0 or known[cj]
+            if jt[j] == J_PRI:
+                off = jf[j, 4]
+            else:
+                off = jf[j, 0] + jf[j, 1] * q
+            if ki and not kj:
+                pose[bj, 2] = pose[bi, 2] + off
+                known[cj] = True
+            elif kj and not ki:
+                pose[bi, 2] = pose[bj, 2] - off
+                known[ci] = True
+    for k in range(nbg):
+        if not known[k]:
+            return F_SINGULAR, 0.0, 0.0
+    n = 2 * nbg
+    mat = np.zeros((n, n))
+    rhs = np.zeros(n)
+    row = 0
+    for k in range(nj):
+        j = gj[k]
+        bi = jb[j, 0]
+        bj = jb[j, 1]
+        ci = col_of[bi]
+        cj = col_of[bj]
+        if jt[j] == J_REV:
+            pix, piy = _local(jf, j, 0, q)
+            pjx, pjy = _local(jf, j, 1, q)
+            uix, uiy = _rot(pose[bi, 2], pix, piy)
+            ujx, ujy = _rot(pose[bj, 2], pjx, pjy)
+            for r in range(2):
+                s = (uix - ujx) if r == 0 else (uiy - ujy)
+                if ci >= 0:
+                    mat[row + r, 2 * ci + r] += 1.0
+                else:
+                    s += pose[bi, r]
+                if cj >= 0:
+                    mat[row + r, 2 * cj + r] -= 1.0
+                else:
+                    s -= pose[bj, r]
+                rhs[row + r] = -s
+            row += 2
+        elif jt[j] == J_PRI:
+            al = jf[j, 4]
+            nx, ny = _rot(pose[bi, 2], -np.sin(al), np.cos(al))
+            agx, agy = _rot(pose[bi, 2], jf[j, 0], jf[j, 1])
+            asx, asy = _rot(pose[bj, 2], jf[j, 2], jf[j, 3])
+            s = nx * (asx - agx) + ny * (asy - agy) - jf[j, 5]
+            if cj >= 0:
+                mat[row, 2 * cj] += nx
+                mat[row, 2 * cj + 1] += ny
+            else:
+                s += nx * pose[bj, 0] + ny * pose[bj, 1]
+            if ci >= 0:
+                mat[row, 2 * ci] -= nx
+                mat[row, 2 * ci + 1] -= ny
+            else:
+                s -= nx * pose[bi, 0] + ny * pose[bi, 1]
+            rhs[row] = -s
+            row += 1
+    if row != n:
+        return F_SINGULAR, 0.0, 0.0
+    quality = _solve_dense(mat, rhs, n)
+    if quality < 1e-13:
+        return F_SINGULAR, 0.0, quality
+    for k in range(nbg):
+        b = gb[k]
+        pose[b, 0] = rhs[2 * k]
+        pose[b, 1] = rhs[2 * k + 1]
+    return F_OK, 0.0, quality
+
+
+@njit(cache=True)
+def _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of):
+    n = 3 * nbg
+    mat = np.zeros((n, n))
+    rhs = np.zeros(n)
+    res_norm = 0.0
+    for it in range(NEWTON_MAXIT):
+        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d1, 0, mat, rhs, col_of)
+        res_norm = 0.0
+        for r in range(n):
+            res_norm = max(res_norm, abs(rhs[r]))
+        if res_norm <= NEWTON_TOL * size:
+            return F_OK, 0.0, 1.0
+        quality = _solve_dense(mat, rhs, n)
+        if quality == 0.0:
+            return F_NEWTON, res_norm, 0.0
+        for k in range(nbg):
+            b = gb[k]
+            for c in range(3):
+                pose[b, c] += rhs[3 * k + c]
+    return F_NEWTON, res_norm, 0.0
+
+
+@njit(cache=True)
+def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
+                pose0, size):
+    """Positions, first and second analogs of every body over the grid q.
+
+    Returns (pose, d1, d2, quality, fail) with pose/d1/d2 of shape (N, nbodies, 3) holding
+    (x, y, θ) of each body's frame and their d/dq, d²/dq²; quality (N, ngroups) a
+    singularity indicator per group (sine of the transmission angle for dyads, normalised pivot
+    otherwise); fail = [kind, position index, group, amount] of the first failure (kind 0 = none).
+    """
+    N = q.shape[0]
+    nb = pose0.shape[0]
+    ng = gkind.shape[0]
+    pose = np.zeros((N, nb, 3))
+    d1 = np.zeros((N, nb, 3))
+    d2 = np.zeros((N, nb, 3))
+    quality = np.zeros((N, ng))
+    fail = np.zeros(4)
+    maxb = gbody.shape[1]
+    mat = np.zeros((3 * maxb, 3 * maxb))
+    rhs = np.zeros(3 * maxb)
+    col_of = -np.ones(nb, dtype=np.int64)
+    cur = pose0.copy()
+    v = np.zeros((nb, 3))
+    acc = np.zeros((nb, 3))
+    for i in range(N):
+        qi = q[i]
+        for g in range(ng):
+            nbg = gnb[g]
+            nj = gnj[g]
+            gb = gbody[g]
+            gj = gjoint[g]
+            for k in range(nbg):
+                col_of[gb[k]] = k
+            kind = gkind[g]
+            if kind == G_RRR:
+                st, amount, qual = _solve_rrr(jf, jb, gspec[g], gsigma[g], qi, cur)
+            elif kind == G_RRP:
+                st, amount, qual = _solve_rrp(jf, jb, gspec[g], gsigma[g], qi, cur)
+            elif kind == G_RPR:
+                st, amount, qual = _solve_rpr(jf, jb, gspec[g], gsigma[g], qi, cur)
+            elif kind == G_LIN:
+                st, amount, qual = _solve_lin(jt, jb, jf, gj, nj, gb, nbg, qi, cur, col_of)
+            else:
+                if i > 0:
+                    dq = qi - q[i - 1]
+                    for k in range(nbg):
+                        b = gb[k]
+                        for c in range(3):
+                            cur[b, c] = pose[i - 1, b, c] + d1[i - 1, b, c] * dq + 0.5 * d2[i - 1, b, c] * dq * dq
+                st, amount, qual = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of)
+            if st != F_OK:
+                fail[0] = st
+                fail[1] = i
+                fail[2] = g
+                fail[3] = amount
+                return pose, d1, d2, quality, fail
+            n = 3 * nbg
+            # first analogs
+            _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 1, mat, rhs, col_of)
+            piv = _solve_dense(mat, rhs, n)
+            if kind == G_NEWTON or kind == G_LIN:
+                qual = piv
+            if piv < 1e-14:
+                fail[0] = F_SINGULAR
+                fail[1] = i
+                fail[2] = g
+                fail[3] = piv
+                return pose, d1, d2, quality, fail
+            for k in range(nbg):
+                for c in range(3):
+                    v[gb[k], c] = rhs[3 * k + c]
+            # second analogs
+            _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 2, mat, rhs, col_of)
+            _solve_dense(mat, rhs, n)
+            for k in range(nbg):
+                for c in range(3):
+                    acc[gb[k], c] = rhs[3 * k + c]
+            quality[i, g] = qual
+            for k in range(nbg):
+                col_of[gb[k]] = -1
+        for b in range(nb):
+            for c in range(3):
+                pose[i, b, c] = cur[b, c]
+                d1[i, b, c] = v[b, c]
+                d2[i, b, c] = acc[b, c]
+    return pose, d1, d2, quality, fail
+
+
+@njit(cache=True)
+def points_cycle(pose, d1, d2, q, pbody, ploc):
+    """Global position and analogs of points given by body index and local coordinates
+    p = p0 + q·p1 (ploc rows: p0x, p0y, p1x, p1y).
+
+    x = r + A p;  x' = r' + ⊥(A p) θ' + A p1;  x'' = r'' + ⊥(A p) θ'' − A p θ'² + 2 ⊥(A p1) θ'.
+    Returns an array (N, npoints, 6): x, y, x', y', x'', y''."""
+    N = pose.shape[0]
+    npnt = pbody.shape[0]
+    out = np.zeros((N, npnt, 6))
+    for i in range(N):
+        qi = q[i]
+        for k in range(npnt):
+            b = pbody[k]
+            th = pose[i, b, 2]
+            w = d1[i, b, 2]
+            e = d2[i, b, 2]
+            ux, uy = _rot(th, ploc[k, 0] + qi * ploc[k, 2], ploc[k, 1] + qi * ploc[k, 3])
+            vx, vy = _rot(th, ploc[k, 2], ploc[k, 3])
+            out[i, k, 0] = pose[i, b, 0] + ux
+            out[i, k, 1] = pose[i, b, 1] + uy
+            out[i, k, 2] = d1[i, b, 0] - uy * w + vx
+            out[i, k, 3] = d1[i, b, 1] + ux * w + vy
+            out[i, k, 4] = d2[i, b, 0] - uy * e - ux * w * w - 2.0 * vy * w
+            out[i, k, 5] = d2[i, b, 1] + ux * e - uy * w * w + 2.0 * vx * w
+    return out

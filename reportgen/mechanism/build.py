@@ -1,0 +1,200 @@
+"""Build a :class:`Mechanism` from the case file's tables (all values evaluated to SI)."""
+from __future__ import annotations
+
+import math
+from typing import Mapping
+
+from ..case import units as U
+from ..case.expr import Q
+from ..case.reader import Node
+from ..errors import CaseError, did_you_mean
+from .model import FRAME, Driver, Joint, Link, Mechanism
+
+LINK_KEYS = ["name", "title", "points", "mass", "weight", "J_S", "com"]
+JOINT_KEYS = ["type", "links", "point", "guide", "slider", "line", "offset", "name"]
+DRIVER_KEYS = ["type", "link", "center", "phi0", "direction", "omega", "epsilon",
+               "cylinder", "rod", "base", "end", "range", "speed", "acceleration"]
+
+
+def build_mechanism(root: Node, names: Mapping[str, Q], g: float) -> Mechanism:
+    """Read [frame], [[links]], [[joints]], [driver] and [sketch] of a case."""
+    frame_node = root.table("frame")
+    frame_node.check_keys(["points"])
+    frame = Link(FRAME, "стойка")
+    pts = frame_node.table("points")
+    for pname, v in pts.data.items():
+        frame.points[str(pname)] = pts.vector(str(pname), v, U.LENGTH, names)
+    links = [frame]
+    deferred = []
+    seen = {FRAME}
+    for ln in root.tables("links"):
+        ln.check_keys(LINK_KEYS, required=["name", "points"])
+        name = ln.string("name", required=True)
+        if name in seen:
+            raise ln.error("name", f"звено «{name}» описано дважды", expected="уникальное имя звена")
+        seen.add(name)
+        link = Link(name, ln.string("title", "") or "")
+        pn = ln.table("points", required=True)
+        if not pn.data:
+            raise pn.error(None, "у звена нет ни одной точки", expected="points = { A = [0, 0], B = [\"0.3 m\", 0] }")
+        for pname, v in pn.data.items():
+            pname = str(pname)
+            if isinstance(v, Mapping):
+                sub = Node(v, pn.key(pname), pn.file)
+                if "offset" in v:
+                    sub.check_keys(["offset", "from", "at"], required=["offset", "from", "at"])
+                    off = sub.vector("offset", v["offset"], U.LENGTH, names)
+                    frm = sub.string("from", required=True)
+                    at = sub.eval_value(v["at"], "at", U.DIMENSIONLESS, names)
+                    deferred.append((name, pname, frm, off, at))
+                    continue
+                sub.check_keys(["r", "angle"], required=["r", "angle"])
+                r = sub.quantity("r", U.LENGTH, names, required=True)
+                a = sub.quantity("angle", U.ANGLE, names, required=True)
+                link.points[pname] = (r * math.cos(a), r * math.sin(a))
+            else:
+                link.points[pname] = pn.vector(pname, v, U.LENGTH, names)
+        link.mass = ln.quantity("mass", U.MASS, names, nonnegative=True)
+        link.weight = ln.quantity("weight", U.FORCE, names, nonnegative=True)
+        if link.weight is None and link.mass is not None:
+            link.weight = link.mass * g
+        link.J_S = ln.quantity("J_S", U.INERTIA, names, nonnegative=True)
+        link.com = ln.string("com")
+        if link.com is not None and link.com not in link.points and link.com not in [d[1] for d in deferred if d[0] == name]:
+            raise ln.error("com", f"точка «{link.com}» не принадлежит звену «{name}»",
+                           expected="имя одной из точек звена: " + ", ".join(link.points),
+                           hint=did_you_mean(link.com, list(link.points)))
+        links.append(link)
+    if len(links) < 2:
+        raise root.error("links", "не описано ни одного подвижного звена", expected="[[links]] …")
+    by_name = {l.name: l for l in links}
+
+    def need_link(node: Node, key: str, name: str) -> Link:
+        if name not in by_name:
+            raise node.error(key, f"нет звена «{name}»", expected="имя звена из [[links]] или \"0\" (стойка)",
+                             hint=did_you_mean(name, list(by_name)))
+        return by_name[name]
+
+    def need_point(node: Node, key: str, link: Link, p: str) -> None:
+        if p not in link.points:
+            where = "стойки" if link.is_frame else f"звена «{link.name}»"
+            raise node.error(key, f"точка «{p}» не задана у {where}",
+                             expected="одна из точек: " + ", ".join(link.points),
+                             hint=did_you_mean(p, list(link.points)))
+
+    joints: list[Joint] = []
+    for jn in root.tables("joints"):
+        jn.check_keys(JOINT_KEYS, required=["type", "point"])
+        kind = jn.string("type", required=True, choices=["R", "P"])
+        point = jn.string("point", required=True)
+        if kind == "R":
+            pair = jn.raw("links")
+            if not (isinstance(pair, list) and len(pair) == 2):
+                raise jn.error("links", "для вращательной пары нужны два звена",
+                               expected="links = [\"1\", \"2\"]", got=repr(pair))
+            a, b = (str(x) for x in pair)
+            la, lb = need_link(jn, "links", a), need_link(jn, "links", b)
+            if a == b:
+                raise jn.error("links", "пара соединяет звено само с собой", expected="два разных звена")
+            need_point(jn, "point", la, point)
+            need_point(jn, "point", lb, point)
+            name = jn.string("name", point)
+            joints.append(Joint("R", (a, b), point, name))
+        else:
+            for k in ("guide", "slider", "line"):
+                if not jn.has(k):
+                    raise jn.error(k, f"для поступательной пары нужен ключ «{k}»",
+                                   expected="guide = \"0\", slider = \"5\", line = { through = [0, \"Y_H\"], angle = \"0 deg\" }")
+            guide = need_link(jn, "guide", jn.string("guide"))
+            slider = need_link(jn, "slider", jn.string("slider"))
+            need_point(jn, "point", slider, point)
+            line = jn.table("line")
+            if line.has("from"):
+                line.check_keys(["from", "to"], required=["from", "to"])
+                p1, p2 = line.string("from"), line.string("to")
+                need_point(line, "from", guide, p1)
+                need_point(line, "to", guide, p2)
+                (x1, y1), (x2, y2) = guide.points[p1], guide.points[p2]
+                if math.hypot(x2 - x1, y2 - y1) == 0:
+                    raise line.error(None, "точки направляющей совпадают", expected="две разные точки")
+                lp, ang = (x1, y1), math.atan2(y2 - y1, x2 - x1)
+            else:
+                line.check_keys(["through", "angle"], required=["through"])
+                thr = line.raw("through")
+                if isinstance(thr, str) and thr in guide.points:
+                    lp = guide.points[thr]
+                elif isinstance(thr, str):
+                    raise line.error("through", f"точка «{thr}» не задана у звена «{guide.name}»",
+                                     expected="имя точки направляющего звена или координаты [x, y]",
+                                     hint=did_you_mean(thr, list(guide.points)))
+                else:
+                    lp = line.vector("through", thr, U.LENGTH, names)
+                ang = line.quantity("angle", U.ANGLE, names, default=0.0)
+            offset = jn.quantity("offset", U.LENGTH, names, default=0.0)
+            name = jn.string("name", f"{slider.name}{guide.name}")
+            joints.append(Joint("P", (guide.name, slider.name), point, name, lp, ang, offset))
+
+    driver = _read_driver(root, names, by_name, joints, need_link, need_point)
+    mech = Mechanism(links, joints, driver, deferred=deferred)
+    _read_sketch(root, names, mech)
+    return mech
+
+
+def _read_driver(root, names, by_name, joints, need_link, need_point) -> Driver:
+    dn = root.table("driver", required=True)
+    dn.check_keys(DRIVER_KEYS, required=["type"])
+    kind = dn.string("type", required=True, choices=["crank", "actuator"])
+    if kind == "crank":
+        link = need_link(dn, "link", dn.string("link", required=True))
+        center = dn.string("center")
+        if center is None:
+            cands = [j.point for j in joints if j.kind == "R" and link.name in j.links and FRAME in j.links]
+            if len(cands) != 1:
+                raise dn.error("center", "не удалось определить ось кривошипа",
+                               expected="center = \"O\": точка вращательной пары кривошипа со стойкой")
+            center = cands[0]
+        need_point(dn, "center", link, center)
+        direction = dn.string("direction", "ccw", choices=["ccw", "cw"])
+        return Driver("crank", link.name, center=center,
+                      phi0=dn.quantity("phi0", U.ANGLE, names, default=0.0),
+                      direction=1 if direction == "ccw" else -1,
+                      omega=dn.quantity("omega", U.ANGULAR_VELOCITY, names, positive=True),
+                      epsilon=dn.quantity("epsilon", U.ANGULAR_ACCELERATION, names, default=0.0))
+    for k in ("cylinder", "rod", "base", "end", "range"):
+        if not dn.has(k):
+            raise dn.error(k, f"для гидроцилиндра нужен ключ «{k}»",
+                           expected="cylinder, rod, base, end, range = [\"S_min\", \"S_max\"]")
+    cyl = need_link(dn, "cylinder", dn.string("cylinder"))
+    rod = need_link(dn, "rod", dn.string("rod"))
+    base = dn.string("base")
+    end = dn.string("end")
+    need_point(dn, "base", cyl, base)
+    need_point(dn, "end", rod, end)
+    if cyl.points[base] != (0.0, 0.0) or rod.points[end] != (0.0, 0.0):
+        raise dn.error("base", "оси гидроцилиндра: начало локальной системы цилиндра должно быть в точке base, штока — в точке end",
+                       expected=f"{base} = [0, 0] у звена «{cyl.name}» и {end} = [0, 0] у звена «{rod.name}»")
+    rng = dn.raw("range")
+    if not (isinstance(rng, list) and len(rng) == 2):
+        raise dn.error("range", "ожидался диапазон длины гидроцилиндра", expected="range = [\"0.42 m\", \"0.67 m\"]")
+    lo = dn.eval_value(rng[0], "range[0]", U.LENGTH, names, positive=True)
+    hi = dn.eval_value(rng[1], "range[1]", U.LENGTH, names, positive=True)
+    if not hi > lo:
+        raise dn.error("range", "верхняя граница диапазона не больше нижней", expected="range = [S_min, S_max], S_max > S_min")
+    return Driver("actuator", cyl.name, center=base, rod=rod.name, end=end, q_range=(lo, hi),
+                  omega=dn.quantity("speed", U.VELOCITY, names, positive=True),
+                  epsilon=dn.quantity("acceleration", U.ACCELERATION, names, default=0.0))
+
+
+def _read_sketch(root: Node, names, mech: Mechanism) -> None:
+    sk = root.table("sketch")
+    sk.check_keys(["at", "points"])
+    mech.sketch_q = sk.quantity("at", U.ANGLE if mech.driver.rotary else U.LENGTH, names,
+                                default=None) if sk.has("at") else None
+    pts = sk.table("points")
+    owner = mech.point_owner()
+    for p, v in pts.data.items():
+        p = str(p)
+        if p not in owner:
+            raise pts.error(p, f"в эскизе указана неизвестная точка «{p}»", expected="имя точки механизма",
+                            hint=did_you_mean(p, list(owner)))
+        mech.sketch[p] = pts.vector(p, v, U.LENGTH, names)

@@ -1,0 +1,115 @@
+"""The mechanism as plain data: links with local points, joints, the driver.
+
+Conventions (see docs/case-format.md):
+
+* link "0" is the frame; its points are global coordinates;
+* every other link has its own local frame in which its points are given; the link angle
+  φ_k is the angle of that frame's x axis;
+* a link that slides on a guide (the slider of a prismatic joint) has its local x axis along the
+  guide direction;
+* a linear actuator (hydraulic cylinder) consists of the cylinder, whose local frame has its
+  origin at the base pivot and its x axis toward the rod end, and the rod, whose local frame has
+  its origin at the rod-end pivot and the same direction; the distance between the two pivots is
+  the generalised coordinate.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+FRAME = "0"
+
+
+@dataclass
+class Link:
+    name: str
+    title: str = ""
+    points: dict[str, tuple[float, float]] = field(default_factory=dict)
+    mass: float | None = None
+    weight: float | None = None
+    J_S: float | None = None
+    com: str | None = None
+
+    @property
+    def is_frame(self) -> bool:
+        return self.name == FRAME
+
+
+@dataclass
+class Joint:
+    """A lower pair.  ``kind`` is "R" (вращательная) or "P" (поступательная).
+
+    For "R": ``links = (a, b)`` and ``point`` is a point name carried by both links.
+    For "P": ``links = (guide, slider)``, ``point`` is the slider's point that moves along the
+    guide line, ``line_point``/``angle`` give the line in the guide's local frame (for the frame:
+    global), ``offset`` is the signed distance of the slider point from the line (left of the
+    direction positive).  ``driving`` marks the actuator's own pair (cylinder–rod)."""
+
+    kind: str
+    links: tuple[str, str]
+    point: str
+    name: str
+    line_point: tuple[float, float] = (0.0, 0.0)
+    angle: float = 0.0
+    offset: float = 0.0
+    driving: bool = False
+
+
+@dataclass
+class Driver:
+    kind: str                       # "crank" or "actuator"
+    link: str                       # crank link, or the cylinder
+    center: str = ""                # crank: pivot point on the frame side; actuator: base pivot
+    phi0: float = 0.0               # crank angle at q = 0
+    direction: int = 1              # +1 counter-clockwise, −1 clockwise
+    omega: float | None = None      # |dq/dt|: rad/s for a crank, m/s for an actuator
+    epsilon: float = 0.0            # d²q/dt²
+    rod: str = ""                   # actuator rod link
+    end: str = ""                   # actuator rod-end pivot point (on the rod)
+    q_range: tuple[float, float] | None = None
+
+    @property
+    def rotary(self) -> bool:
+        return self.kind == "crank"
+
+
+@dataclass
+class Mechanism:
+    links: list[Link]               # frame first
+    joints: list[Joint]
+    driver: Driver
+    sketch: dict[str, tuple[float, float]] = field(default_factory=dict)
+    sketch_q: float = 0.0
+    # points given by a global offset from another point of the same link at a position q:
+    # (link, point, from_point, (dx, dy), q); their local coordinates need the kinematics
+    deferred: list[tuple[str, str, str, tuple[float, float], float]] = field(default_factory=list)
+
+    def link(self, name: str) -> Link:
+        for l in self.links:
+            if l.name == name:
+                return l
+        raise KeyError(name)
+
+    @property
+    def moving(self) -> list[Link]:
+        return [l for l in self.links if not l.is_frame]
+
+    def point_owner(self) -> dict[str, str]:
+        """Point name → the first link carrying it (the frame wins for fixed points)."""
+        owner: dict[str, str] = {}
+        for l in self.links:
+            for p in l.points:
+                owner.setdefault(p, l.name)
+        return owner
+
+    @property
+    def prismatic(self) -> list[Joint]:
+        return [j for j in self.joints if j.kind == "P"]
+
+    def size(self) -> float:
+        """A length scale of the mechanism (for tolerances and drawing)."""
+        import math
+        s = 0.0
+        for l in self.links:
+            for x, y in l.points.values():
+                s = max(s, math.hypot(x, y))
+        return s or 1.0

@@ -1,0 +1,196 @@
+"""Formulas rendered to SVG in Python with ziamath (WeasyPrint has no MathML/JS).
+
+A :class:`Formula` is one numbered display line in the Mathcad style that
+students know: ``symbolic = substituted = result``, for example::
+
+    Formula(
+        symbolic=r"\\omega_1 = \\frac{\\pi n_1}{30}",
+        substituted=r"\\frac{3{,}1416 \\cdot 65}{30}",
+        result=r"6{,}807\\ \\text{рад/с}",
+        where=[(r"n_1", "частота вращения кривошипа, об/мин")],
+        label="eq-omega1",
+    )
+
+Numbers inside the LaTeX should come from :func:`reportgen.report.numbers.tex_num`
+so that they match the tables. Formula numbers «(2.1)» are not drawn by
+ziamath: the report numbers formulas itself (so that references work).
+
+Sizes: every SVG is rendered at :data:`REF_PX` and placed in the page in
+``em`` of the surrounding text, scaled by :data:`MATH_SCALE` (STIX Two Math
+looks about 7 % larger than Liberation Serif at the same size). Hence formulas
+follow the font-size option of the report automatically.
+"""
+
+from __future__ import annotations
+
+import base64
+import functools
+import re
+from dataclasses import dataclass, field
+
+import ziamath as zm
+from markupsafe import Markup
+
+from . import fonts
+
+__all__ = [
+    "Formula",
+    "FormulaImage",
+    "REF_PX",
+    "MATH_SCALE",
+    "render_latex",
+    "inline_math",
+    "formula_images",
+    "data_uri",
+    "where_rows",
+]
+
+REF_PX = 18.0  # size ziamath renders at (px)
+MATH_SCALE = 0.93  # rendered formula size relative to the text size (em per REF_PX)
+
+_configured = False
+
+
+def _configure() -> None:
+    global _configured
+    if _configured:
+        return
+    zm.config.svg2 = False  # plain paths: no <symbol>/<use> ids shared across formulas
+    zm.config.decimal_separator = ","
+    try:
+        # Cyrillic inside \text{} in the same face as the body text.
+        zm.config.text.textfont = str(fonts.find_serif().regular)
+    except FileNotFoundError:  # pragma: no cover - falls back to STIX Two Math
+        pass
+    _configured = True
+
+
+@dataclass
+class Formula:
+    """One numbered display formula: symbolic = substituted = result."""
+
+    symbolic: str
+    substituted: str | None = None
+    result: str | None = None
+    where: list[tuple[str, str]] = field(default_factory=list)
+    label: str | None = None
+
+    def parts(self) -> list[str]:
+        return [p for p in (self.symbolic, self.substituted, self.result) if p]
+
+    def latex(self) -> str:
+        """The whole line as one LaTeX string."""
+        return " = ".join(self.parts())
+
+
+@dataclass(frozen=True)
+class FormulaImage:
+    """A rendered piece of math, sized in em of the surrounding text."""
+
+    svg: str
+    width_em: float
+    height_em: float
+    depth_em: float  # baseline to the bottom of the image
+    tex: str
+
+    @property
+    def src(self) -> str:
+        return data_uri(self.svg)
+
+    def scaled(self, max_width_em: float) -> "FormulaImage":
+        if self.width_em <= max_width_em:
+            return self
+        k = max_width_em / self.width_em
+        return FormulaImage(self.svg, max_width_em, self.height_em * k, self.depth_em * k, self.tex)
+
+    def img(self, cls: str = "math") -> Markup:
+        return Markup(
+            '<img class="{cls}" alt="{alt}" src="{src}" style="width:{w:.3f}em;height:{h:.3f}em;'
+            'vertical-align:-{d:.3f}em">'
+        ).format(cls=cls, alt=self.tex, src=Markup(self.src), w=self.width_em,
+                 h=self.height_em, d=self.depth_em)
+
+
+def data_uri(svg: str | bytes) -> str:
+    if isinstance(svg, str):
+        svg = svg.encode("utf-8")
+    return "data:image/svg+xml;base64," + base64.b64encode(svg).decode("ascii")
+
+
+_VIEWBOX = re.compile(r'viewBox="([-\d.e]+) ([-\d.e]+) ([-\d.e]+) ([-\d.e]+)"')
+
+
+@functools.lru_cache(maxsize=4096)
+def render_latex(tex: str, *, inline: bool = False, size: float | None = None
+                 ) -> tuple[str, float, float, float]:
+    """LaTeX → ``(svg_text, width_px, height_px, depth_px)``.
+
+    ``depth_px`` is the distance from the baseline to the bottom of the image
+    (for ``vertical-align``). Cached; ziamath with ``svg2=False`` and a decimal
+    comma.
+    """
+    _configure()
+    size = size or REF_PX
+    try:
+        m = zm.Latex(tex, size=size, inline=inline)
+        svg = m.svg()
+    except Exception as exc:  # ziamath/latex2mathml raise many kinds
+        raise ValueError(f"Не удалось отрисовать формулу {tex!r}: {exc}") from exc
+    match = _VIEWBOX.search(svg)
+    if not match:  # pragma: no cover - ziamath always writes a viewBox
+        raise ValueError(f"ziamath returned an SVG without viewBox for {tex!r}")
+    _x0, y0, w, h = (float(v) for v in match.groups())
+    depth = h + y0
+    return svg, w, h, depth
+
+
+def _image(tex: str, inline: bool = False) -> FormulaImage:
+    svg, w, h, depth = render_latex(tex, inline=inline)
+    k = MATH_SCALE / REF_PX
+    return FormulaImage(svg, w * k, h * k, depth * k, tex)
+
+
+def inline_math(tex: str) -> Markup:
+    """An ``<img>`` (data URI) for math inside a paragraph, on the text baseline."""
+    return _image(tex, inline=True).img("math-inline")
+
+
+def formula_images(formula: Formula, max_width_em: float) -> list[FormulaImage]:
+    """The display line(s) of a formula that fit ``max_width_em``.
+
+    The whole line if it fits; otherwise it is broken after an equals sign,
+    which is repeated at the start of the next line (ГОСТ 2.105):
+    ``symbolic = substituted =`` / ``= result``, then one part per line.
+    Whatever still does not fit is scaled down.
+    """
+    parts = formula.parts()
+    whole = _image(" = ".join(parts))
+    if whole.width_em <= max_width_em or len(parts) == 1:
+        return [whole.scaled(max_width_em)]
+    candidates: list[list[str]] = []
+    if len(parts) == 3:
+        candidates.append([f"{parts[0]} = {parts[1]} =", f"= {parts[2]}"])
+    lines = [f"{parts[0]} ="] + [f"= {p} =" for p in parts[1:-1]] + [f"= {parts[-1]}"]
+    candidates.append(lines)
+    for cand in candidates:
+        imgs = [_image(t) for t in cand]
+        if all(i.width_em <= max_width_em for i in imgs):
+            return imgs
+    return [i.scaled(max_width_em) for i in imgs]
+
+
+def where_rows(formula: Formula) -> list[tuple[Markup, Markup]]:
+    """The «где» list: (symbol image, description) rows.
+
+    Each description ends with «;», the last with «.», unless it already
+    ends with punctuation.
+    """
+    rows = []
+    n = len(formula.where)
+    for i, (sym, desc) in enumerate(formula.where):
+        text = str(desc).rstrip()
+        if not text.endswith((";", ".", ":", ",")):
+            text += "." if i == n - 1 else ";"
+        # Descriptions are trusted HTML like paragraphs (may hold <sub>, &nbsp;).
+        rows.append((inline_math(sym), Markup(text)))
+    return rows
