@@ -24,7 +24,7 @@ class ReportgenError(Exception):
 def _quoted(text: str) -> str:
     """Wrap ``text`` in «» unless it is already quoted (or is a repr of a container)."""
     t = text.strip()
-    if t[:1] in ('"', "'", "«", "[", "{", "(") or not t:
+    if t[:1] in ('"', "'", "«", "[", "{") or not t:
         return text
     return f"«{text}»"
 
@@ -63,7 +63,9 @@ class CaseError(ReportgenError):
         if extra:
             body = "; ".join([body, *extra]) if body else "; ".join(extra)
         parts.append(body)
-        text = ": ".join(parts) + "."
+        text = ": ".join(parts)
+        if not text.endswith((".", "?", "!", "…")):
+            text += "."
         if self.hint:
             text += f"\n  Подсказка: {self.hint}"
         return text
@@ -145,6 +147,16 @@ class StructureError(ReportgenError):
     """The chain is not a valid mechanism (W != 1, unattached links, unsolvable group)."""
 
 
+_LOOKALIKE = str.maketrans({
+    "0": "o", "1": "l", "а": "a", "в": "b", "е": "e", "к": "k", "м": "m", "н": "h", "о": "o",
+    "р": "p", "с": "c", "т": "t", "у": "y", "х": "x", "ё": "e",
+})
+
+
+def _skeleton(s: str) -> str:
+    return s.lower().translate(_LOOKALIKE)
+
+
 def did_you_mean(word: str, candidates: Iterable[str]) -> str | None:
     """A Russian hint ``возможно, имелось в виду «mass»?`` or ``None`` if nothing is close."""
     cands = [str(c) for c in candidates]
@@ -157,6 +169,12 @@ def did_you_mean(word: str, candidates: Iterable[str]) -> str | None:
     hit = lowered.get(str(word).lower())
     if hit is not None and hit != word:
         return f"возможно, имелось в виду «{hit}»?"
+    # Look-alike characters (0/O, 1/l, Cyrillic/Latin) are a frequent typo: an exact match of
+    # the "skeleton" beats any fuzzy match.
+    skel = _skeleton(str(word))
+    same = [c for c in dict.fromkeys(cands) if _skeleton(c) == skel and c != word]
+    if len(same) == 1:
+        return f"возможно, имелось в виду «{same[0]}»?"
     matches = difflib.get_close_matches(str(word), cands, n=2, cutoff=0.6)
     if not matches:
         low = difflib.get_close_matches(str(word).lower(), list(lowered), n=2, cutoff=0.6)

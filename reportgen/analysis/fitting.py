@@ -18,7 +18,7 @@ from scipy import optimize
 from ..case import units as U
 from ..case.expr import Q, evaluate
 from ..case.reader import Node
-from ..errors import CaseError, ReportgenError
+from ..errors import AssemblyError, CaseError
 
 
 @dataclass
@@ -50,7 +50,7 @@ def solve_fit(node: Node, name: str, guess: float, residual: Callable[[float], f
         count[0] += 1
         try:
             return residual(x)
-        except ReportgenError:
+        except AssemblyError:
             return math.nan
 
     tol = 1e-12 * max(scale, 1e-300)

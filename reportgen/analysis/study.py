@@ -160,11 +160,10 @@ class Study:
                 res = L.solve(model, np.array([qat]))
                 b = model.body(link)
                 th = res.pose[0, b, 2]
-                k = model.point_names.index(frm)
-                if model.pbody[k] != b:
+                if frm not in mech.link(link).points:
                     raise CaseError(f"точка «{frm}» не принадлежит звену «{link}»", file=str(self.spec.path),
                                     key=f"links.{link}.points.{pname}.from",
-                                    expected="точка того же звена")
+                                    expected="точка того же звена: " + ", ".join(mech.link(link).points))
                 fx, fy = mech.link(link).points[frm]
                 c, s = math.cos(th), math.sin(th)
                 mech.link(link).points[pname] = (fx + c * dx + s * dy, fy - s * dx + c * dy)

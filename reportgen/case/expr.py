@@ -42,6 +42,7 @@ from .units import (
     parse_number,
     parse_quantity,
     parse_unit,
+    unit_hint,
 )
 
 __all__ = ["Q", "evaluate", "free_names", "resolve", "FUNCTIONS", "CONSTANTS"]
@@ -81,7 +82,7 @@ class Q:
     """
 
     __slots__ = ("value", "dim")
-    __array_priority__ = 1000  # ndarray (op) Q defers to Q's reflected operators
+    __array_ufunc__ = None  # ndarray (op) Q defers to Q's reflected operators
     __hash__ = None  # type: ignore[assignment]
 
     def __init__(self, value: Any, dim: Dim = DIMENSIONLESS):
@@ -134,8 +135,8 @@ class Q:
     def _check_same(self, other: "Q", op: str) -> None:
         if not check_dim(self.dim, other.dim):
             hint = None
-            if self.dim[:3] == (0, 0, 0) or other.dim[:3] == (0, 0, 0):
-                dimensional = other.dim if self.dim[:3] == (0, 0, 0) else self.dim
+            if DIMENSIONLESS in (self.dim, other.dim):
+                dimensional = other.dim if self.dim == DIMENSIONLESS else self.dim
                 hint = ("числа внутри выражения безразмерны; укажите единицу, например "
                         f"«{example_for(dimensional)}»")
             raise CaseError(f"несовместимые единицы: {dim_name(self.dim)} {op} {dim_name(other.dim)}",
@@ -215,7 +216,7 @@ class Q:
         x = float(o.value)
         fr = Fraction(x).limit_denominator(64)
         if abs(float(fr) - x) > 1e-12 * max(1.0, abs(x)):
-            raise CaseError(f"нельзя возвести {dim_name(self.dim)} в степень {_fmt(x)}: "
+            raise CaseError(f"нельзя возвести величину «{dim_name(self.dim)}» в степень {_fmt(x)}: "
                             "для размерной величины показатель должен быть рациональным")
         new = []
         for k, comp in enumerate(self.dim):
@@ -224,7 +225,7 @@ class Q:
                 if k == 3:
                     c = Fraction(0)  # the angle pseudo-dimension cannot be fractional; drop it
                 else:
-                    raise CaseError(f"нельзя возвести {dim_name(self.dim)} в степень {fr}: "
+                    raise CaseError(f"нельзя возвести величину «{dim_name(self.dim)}» в степень {fr}: "
                                     "получилась бы дробная размерность")
             new.append(int(c))
         with np.errstate(all="ignore"):
@@ -292,12 +293,12 @@ def _need_dimensionless(fname: str, q: Q, *, angle_ok: bool) -> None:
     if angle_ok:
         if _is_angle_like(q.dim):
             return
-        what = "угол или безразмерная величина"
+        what = "угол или безразмерную величину"
     else:
         if check_dim(q.dim, DIMENSIONLESS):
             return
-        what = "безразмерная величина"
-    raise CaseError(f"аргумент функции {fname} должен быть такой: {what}; получено: {dim_name(q.dim)}")
+        what = "безразмерную величину"
+    raise CaseError(f"функция {fname} ожидает {what}, а получила величину «{dim_name(q.dim)}»")
 
 
 def _elementwise(fname: str, fn: Callable, q: Q, dim: Dim, domain: str | None = None) -> Q:
@@ -398,10 +399,15 @@ for _a, _t in _ALIASES.items():
 # =============================================================================================
 # Tokenizer
 
-_NUM_RE = re.compile(r"(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+\-]?\d+)?")
-_NUM_COMMA_RE = re.compile(r"\d+,\d+(?:[eE][+\-]?\d+)?")
-_IDENT_RE = re.compile(r"[^\W\d]\w*")
-_UNIT_ATOM_RE = re.compile(r"[^\W\d_]+|°|%")
+_DIGITS = "0123456789"
+_NUM_RE = re.compile(r"(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+\-]?[0-9]+)?")
+_NUM_COMMA_RE = re.compile(r"[0-9]+,[0-9]+(?:[eE][+\-]?[0-9]+)?")
+_SUPERSCRIPTS = "⁰¹²³⁴⁵⁶⁷⁸⁹⁻"
+_SUP_DIGITS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻", "0123456789-")
+# identifiers: a letter then letters/digits/underscores; superscripts are powers, not letters
+_IDENT_RE = re.compile(rf"(?:(?![{_SUPERSCRIPTS}])[^\W\d])(?:(?![{_SUPERSCRIPTS}])\w)*")
+_UNIT_ATOM_RE = re.compile(rf"(?:(?![{_SUPERSCRIPTS}])[^\W\d_])+|°|%")
+_SUP_RE = re.compile(rf"[{_SUPERSCRIPTS}]+")
 _UNIT_EXP_RE = re.compile(r"(?:\^|\*\*)(?:\(\s*-?\d+\s*\)|-?\d+)|[⁰¹²³⁴⁵⁶⁷⁸⁹⁻]+")
 _OPS = ("**", "<=", ">=", "==", "!=", "+", "-", "−", "*", "·", "⋅", "×", "/", "^", "(", ")", ",",
         "<", ">", "≤", "≥", "≠")
@@ -471,7 +477,7 @@ def _tokenize(text: str) -> tuple[_Tok, ...]:
         if c.isspace():
             i += 1
             continue
-        if c.isdigit() or (c == "." and i + 1 < n and s[i + 1].isdigit()):
+        if c in _DIGITS or (c == "." and i + 1 < n and s[i + 1] in _DIGITS):
             m = None
             if "call" not in stack:
                 m = _NUM_COMMA_RE.match(s, i)
@@ -498,6 +504,18 @@ def _tokenize(text: str) -> tuple[_Tok, ...]:
         m = _IDENT_RE.match(s, i)
         if m:
             toks.append(_Tok("name", m.group(), i, m.group()))
+            i = m.end()
+            continue
+        m = _SUP_RE.match(s, i)
+        if m:  # "X6²" == "X6^2"
+            try:
+                k = int(m.group().translate(_SUP_DIGITS))
+            except ValueError:
+                raise _syntax(text, f"непонятный показатель степени «{m.group()}»", i) from None
+            toks.append(_Tok("op", "^", i, m.group()))
+            toks.append(_Tok("num", float(k), i, m.group(), Q(float(abs(k)))))
+            if k < 0:  # "⁻¹": emit "^ -1" as "^", "-", "1"
+                toks.insert(len(toks) - 1, _Tok("op", "-", i, "⁻"))
             i = m.end()
             continue
         for op in _OPS:
@@ -561,9 +579,9 @@ class _Parser:
                             "аргументы функции перечисляются через запятую внутри скобок: max(a, b); "
                             "десятичная дробь записывается через точку: 0.5")
         if t.kind == "name" and prev is not None and prev.kind == "num":
-            hint = did_you_mean(t.val, _UNIT_CANDIDATES)
+            hint = unit_hint(t.val)
             if hint:
-                hint = f"если «{t.val}» — единица измерения, то {hint}"
+                hint = f"если «{t.val}» — единица измерения: {hint}"
             else:
                 hint = f"если «{t.val}» — множитель, поставьте знак умножения: «{prev.text}*{t.val}»"
             return self.err(f"после числа «{prev.text}» стоит «{t.val}» — это не единица измерения "
@@ -668,12 +686,6 @@ class _Parser:
         return ("call", name_tok.val, tuple(args), name_tok.pos)
 
 
-_UNIT_CANDIDATES = ("m", "mm", "cm", "km", "kg", "g", "t", "s", "ms", "min", "h", "rad", "deg",
-                    "rev", "rpm", "Hz", "N", "kN", "MN", "Pa", "kPa", "MPa", "GPa", "bar", "J", "kJ",
-                    "W", "kW", "м", "мм", "см", "кг", "г", "т", "с", "мин", "Н", "кН", "Па", "кПа",
-                    "МПа", "Дж", "Вт", "рад", "град", "об")
-
-
 @lru_cache(maxsize=4096)
 def _parse(text: str) -> tuple:
     """Parse ``text`` into an AST; a whole-text bare number becomes ``("const", Q, True)``."""
@@ -712,8 +724,9 @@ def _lookup(name: str, names: Mapping[str, Any], text: str) -> Q:
         raise CaseError(f"«{name}» — функция, после неё нужны скобки: {name}(…)", got=text)
     hint = did_you_mean(name, [*names.keys(), *CONSTANTS.keys()])
     msg = f"неизвестное имя «{name}»"
+    where = f" (в выражении «{text}»)" if text != name else ""
     if hint:
-        raise CaseError(f"{msg}; {hint}", got=text)
+        raise CaseError(f"{msg}; {hint.rstrip('?')}{where}", got=text)
     known = sorted(names.keys())
     shown = ", ".join(known[:12]) + (", …" if len(known) > 12 else "")
     raise CaseError(msg, got=text, hint=f"известные имена: {shown}" if known else None)
@@ -729,7 +742,7 @@ def _in_context(err: CaseError, text: str) -> CaseError:
 def _eval(node: tuple, names: Mapping[str, Any], text: str) -> Q:
     kind = node[0]
     if kind == "const":
-        return node[1]
+        return Q(node[1].value, node[1].dim)  # a copy: the AST is cached and shared
     if kind == "name":
         return _lookup(node[1], names, text)
     if kind == "neg":
@@ -803,6 +816,8 @@ def evaluate(text: str | float | int, names: Mapping[str, Q], *, expected: Dim |
         node = _parse(text)
         if node[0] == "const" and node[2]:
             q = Q(node[1].value, bare_is if bare_is is not None else DIMENSIONLESS)
+        elif node[0] == "const":
+            q = Q(node[1].value, node[1].dim)
         else:
             q = _eval(node, names, text.strip())
     else:
@@ -871,12 +886,14 @@ def resolve(params: Mapping[str, object], *, expected: Mapping[str, Dim] | None 
         for n in sorted(used):
             if n in params:
                 mine.append(n)
-            elif n in extra or n in CONSTANTS:
-                continue
+            elif n in extra or n in CONSTANTS or n in FUNCTIONS:
+                continue  # (a bare function name is reported by evaluate)
             else:
                 known = [*params.keys(), *extra.keys()]
                 hint = did_you_mean(n, known)
-                msg = f"неизвестное имя «{n}»" + (f"; {hint}" if hint else "")
+                msg = f"неизвестное имя «{n}»" + (f"; {hint.rstrip('?')}" if hint else "")
+                if _show(val).strip() != n:
+                    msg += f" (в выражении «{_show(val).strip()}»)"
                 raise CaseError(msg, key=key, got=_show(val),
                                 hint=None if hint else "имя должно быть задано среди параметров варианта")
         deps[key] = mine

@@ -17,7 +17,7 @@ __all__ = [
     "VELOCITY", "ANGULAR_VELOCITY", "PRESSURE", "ENERGY", "DENSITY", "ACCELERATION",
     "ANGULAR_ACCELERATION", "FREQUENCY", "POWER", "AREA", "VOLUME", "STIFFNESS",
     "dim_name", "example_for", "parse_unit", "parse_quantity", "check_dim", "format_dim",
-    "dim_mul", "dim_div", "dim_pow", "is_unit_symbol", "apply_factor", "parse_number", "UNIT_SYNTAX",
+    "dim_mul", "dim_div", "dim_pow", "is_unit_symbol", "unit_hint", "apply_factor", "parse_number", "UNIT_SYNTAX",
 ]
 
 Dim = tuple[int, int, int, int]
@@ -241,19 +241,22 @@ def is_unit_symbol(symbol: str) -> bool:
     return _normalize(symbol) in _SYMBOLS
 
 
-def _unknown_unit(sym: str, whole: str) -> CaseError:
-    hint = None
-    m = re.fullmatch(r"([^\W\d_]+)(\d+)", sym)
+def unit_hint(sym: str) -> str | None:
+    """A hint for an unknown unit symbol: ``"m2"`` -> use ``m^2``; ``"Mpa"`` -> ``MPa``."""
+    m = re.fullmatch(r"([^\W\d_]+)([0-9]+)", sym)
     if m and m.group(1) in _SYMBOLS:
-        hint = f"степень записывается через «^»: «{m.group(1)}^{m.group(2)}»"
-    if hint is None:
-        hint = did_you_mean(sym, [*_COMMON_UNITS, *_SYMBOLS.keys()])
+        return f"степень записывается через «^»: «{m.group(1)}^{m.group(2)}»"
+    return did_you_mean(sym, [*_COMMON_UNITS, *_SYMBOLS.keys()])
+
+
+def _unknown_unit(sym: str, whole: str) -> CaseError:
+    hint = unit_hint(sym)
     where = f" в «{whole}»" if whole.strip() != sym else ""
     return CaseError(f"неизвестная единица измерения «{sym}»{where}", expected=UNIT_SYNTAX,
                      got=whole, hint=hint)
 
 
-_UNIT_TOKEN = re.compile(r"\s*(?:(?P<sym>[^\W\d_]+|°|%)|(?P<num>-?\d+)|(?P<op>\^|\*|·|/|\(|\)))")
+_UNIT_TOKEN = re.compile(r"\s*(?:(?P<sym>[^\W\d_]+|°|%)|(?P<num>-?[0-9]+)|(?P<op>\^|\*|·|/|\(|\)))")
 
 
 def _tokenize_unit(norm: str, text: str) -> list[tuple[str, str]]:
@@ -378,7 +381,7 @@ def parse_unit(text: str) -> tuple[float, Dim]:
 
 
 _NUMBER_RE = re.compile(
-    r"\s*(?P<num>[+\-−]?(?:\d+(?:[.,]\d*)?|[.,]\d+)(?:[eE][+\-−]?\d+)?)\s*(?P<unit>.*?)\s*$",
+    r"\s*(?P<num>[+\-−]?(?:[0-9]+(?:[.,][0-9]*)?|[.,][0-9]+)(?:[eE][+\-−]?[0-9]+)?)\s*(?P<unit>.*?)\s*$",
     re.S,
 )
 

@@ -26,6 +26,7 @@ def build_mechanism(root: Node, names: Mapping[str, Q], g: float) -> Mechanism:
         frame.points[str(pname)] = pts.vector(str(pname), v, U.LENGTH, names)
     links = [frame]
     deferred = []
+    qdim = U.LENGTH if root.table("driver").raw("type") == "actuator" else U.ANGLE
     seen = {FRAME}
     for ln in root.tables("links"):
         ln.check_keys(LINK_KEYS, required=["name", "points"])
@@ -45,7 +46,7 @@ def build_mechanism(root: Node, names: Mapping[str, Q], g: float) -> Mechanism:
                     sub.check_keys(["offset", "from", "at"], required=["offset", "from", "at"])
                     off = sub.vector("offset", v["offset"], U.LENGTH, names)
                     frm = sub.string("from", required=True)
-                    at = sub.eval_value(v["at"], "at", U.DIMENSIONLESS, names)
+                    at = sub.eval_value(v["at"], "at", qdim, names)
                     deferred.append((name, pname, frm, off, at))
                     continue
                 sub.check_keys(["r", "angle"], required=["r", "angle"])
