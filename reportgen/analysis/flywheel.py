@@ -34,14 +34,15 @@ analytic derivative, never read off the grid.
 """
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass, field
-from typing import Callable, Iterable, Sequence
+from typing import Callable, Iterable, NamedTuple, Sequence
 
 import numpy as np
 from scipy.optimize import brentq
 
-from reportgen.core.quadrature import Antiderivative, merge_nodes
+from reportgen.core.quadrature import Antiderivative, gauss_legendre, merge_nodes
 
 __all__ = [
     "DynamicModel",
@@ -153,6 +154,12 @@ class DynamicModel:
             if np.any(~np.isfinite(self.J2_n)):
                 raise ValueError("J_II(φ) is not finite on the cycle")
         self._cache: dict = {}
+        self._order = int(order)
+        self._t, self._w = gauss_legendre(self._order)
+        self._nodes_list = self.nodes.tolist()
+        self._Ac_vals = self._Ac.values
+        self._Ad_vals = None if self._Ad is None else self._Ad.values
+        self._has_J = J2 is not None
 
     # -- helpers ---------------------------------------------------------------------------
     @staticmethod
@@ -170,13 +177,23 @@ class DynamicModel:
         x = np.asarray(x, dtype=float)
         k = np.floor((x - self.a) / self.L)
         r = x - k * self.L
-        # guard rounding at the ends
         hi = r >= self.a + self.L
-        r = np.where(hi, r - self.L, r)
-        k = np.where(hi, k + 1, k)
         lo = r < self.a
-        r = np.where(lo, r + self.L, r)
-        k = np.where(lo, k - 1, k)
+        if np.any(hi) or np.any(lo):  # rounding at the ends
+            r = np.where(hi, r - self.L, np.where(lo, r + self.L, r))
+            k = np.where(hi, k + 1, np.where(lo, k - 1, k))
+        return r, k
+
+    def _reduce1(self, t: float) -> tuple[float, int]:
+        a, L = self.a, self.L
+        k = math.floor((t - a) / L)
+        r = t - k * L
+        if r >= a + L:
+            r -= L
+            k += 1
+        elif r < a:
+            r += L
+            k -= 1
         return r, k
 
     def _node_index(self, x):
@@ -188,17 +205,75 @@ class DynamicModel:
         return idx, k
 
     # -- evaluation at arbitrary φ --------------------------------------------------------------
+    def _ev(self, x):
+        """(A_Σ, M_Σ, J_II, J_II′) at arbitrary φ (array).
+
+        A_Σ(φ) = A_Σ(x_i) + ∫_{x_i}^{φ} M_Σ (Gauss–Legendre from the node x_i below φ; no
+        break inside because the breaks are nodes) + k·A_Σ(cycle) for φ reduced by kΦ.
+        One call of each user function for all points.
+        """
+        x = np.asarray(x, dtype=float)
+        shape = x.shape
+        r, k = self._reduce(x.ravel())
+        nn = self.nodes.size
+        i = np.clip(np.searchsorted(self.nodes, r, side="right") - 1, 0, nn - 2)
+        base = self.nodes[i]
+        half = 0.5 * (r - base)
+        mid = 0.5 * (r + base)
+        n, q = r.size, self._order
+        pts = np.empty(n * (q + 1))
+        pts[: n * q] = (mid[:, None] + half[:, None] * self._t).ravel()
+        pts[n * q:] = r
+        mv = self._call(self._M, pts)
+        A = self._Ac_vals[i] + k * self.Ac_total + half * (mv[: n * q].reshape(n, q) @ self._w)
+        Ms = mv[n * q:]
+        if self._Ad_vals is None:
+            A = A + self.Md_const * (r - self.a) + k * self.Ad_total
+            Ms = Ms + self.Md_const
+        else:
+            dv = self._call(self._Mdrive, pts)
+            A = A + self._Ad_vals[i] + k * self.Ad_total \
+                + half * (dv[: n * q].reshape(n, q) @ self._w)
+            Ms = Ms + dv[n * q:]
+        if self._has_J:
+            J = self._call(self._J2, r)
+            dJ = self._call(self._dJ2, r)
+        else:
+            J = dJ = np.full(n, np.nan)
+        return A.reshape(shape), Ms.reshape(shape), J.reshape(shape), dJ.reshape(shape)
+
+    def _ev1(self, t: float):
+        """Scalar fast path of :meth:`_ev` (used inside brentq); returns Python floats."""
+        r, k = self._reduce1(float(t))
+        i = bisect.bisect_right(self._nodes_list, r) - 1
+        i = min(max(i, 0), len(self._nodes_list) - 2)
+        base = self._nodes_list[i]
+        half = 0.5 * (r - base)
+        q = self._order
+        pts = np.empty(q + 1)
+        pts[:q] = 0.5 * (r + base) + half * self._t
+        pts[q] = r
+        mv = self._call(self._M, pts)
+        A = float(self._Ac_vals[i]) + k * self.Ac_total + half * float(mv[:q] @ self._w)
+        Ms = float(mv[q])
+        if self._Ad_vals is None:
+            A += self.Md_const * (r - self.a) + k * self.Ad_total
+            Ms += self.Md_const
+        else:
+            dv = self._call(self._Mdrive, pts)
+            A += float(self._Ad_vals[i]) + k * self.Ad_total + half * float(dv[:q] @ self._w)
+            Ms += float(dv[q])
+        rr = pts[q:]
+        J = float(self._call(self._J2, rr)[0]) if self._has_J else math.nan
+        dJ = float(self._call(self._dJ2, rr)[0]) if self._has_J else math.nan
+        return A, Ms, J, dJ
+
     def A(self, x) -> np.ndarray:
         """A_Σ(φ) = ∫_{φ_a}^{φ} M_Σ at arbitrary φ (periodic continuation)."""
-        r, k = self._reduce(x)
-        out = self._Ac(r) + k * self.Ac_total
-        if self._Ad is None:
-            out = out + self.Md_const * (r - self.a) + k * self.Ad_total
-        else:
-            out = out + self._Ad(r) + k * self.Ad_total
-        return out
+        return self._ev(x)[0]
 
     def Ac(self, x) -> np.ndarray:
+        """A_c(φ) = ∫_{φ_a}^{φ} M_пр.с at arbitrary φ."""
         r, k = self._reduce(x)
         return self._Ac(r) + k * self.Ac_total
 
@@ -220,27 +295,33 @@ class DynamicModel:
         return self._reduce(x)[0]
 
     # -- extremum of a periodic piecewise-smooth function ----------------------------------
-    def extremum(self, gn: np.ndarray, g: Callable, dg: Callable, kind: str,
-                 max_candidates: int = 8) -> tuple[float, float]:
+    def extremum(self, gn: np.ndarray, combine: Callable, kind: str, max_candidates: int = 8):
         """Global max/min over the cycle of g(φ) tabulated as ``gn`` on nodes[:-1].
 
+        ``combine(A_Σ, M_Σ, J_II, J_II′) → (g, s·dg/dφ)`` (s > 0 any positive factor) defines
+        g and the sign of its derivative from the model quantities at a point.
         Grid scan (discrete local extrema, cyclic) → in the two cells around each candidate,
-        ``brentq`` on the sign change of the derivative ``dg`` (evaluated one-sidedly inside
-        the cell, so a jump of dg at a break is never straddled) → the best of the candidate
-        node and the interior roots is taken by exact evaluation of g.  Extrema at breaks
-        (kinks of g) and at the cycle ends are therefore found as well.
+        ``brentq`` on the sign change of dg (evaluated one-sidedly inside the cell, so a jump
+        of dg at a break is never straddled) → the best of the candidate node and the
+        interior roots by exact evaluation of g.  Extrema at breaks (kinks of g) and at the
+        cycle ends are therefore found too.
+        Returns (φ in the cycle, g(φ), (A_Σ, M_Σ, J_II, J_II′) at φ).
         """
         s = 1.0 if kind == "max" else -1.0
         v = s * np.asarray(gn, dtype=float)
         n = v.size
-        vl = np.roll(v, 1)
-        vr = np.roll(v, -1)
-        loc = np.nonzero((v >= vl) & (v >= vr))[0]
+        vl = np.empty_like(v)
+        vl[1:] = v[:-1]
+        vl[0] = v[-1]
+        vr = np.empty_like(v)
+        vr[:-1] = v[1:]
+        vr[-1] = v[0]
+        loc = np.flatnonzero((v >= vl) & (v >= vr))
         if loc.size == 0:
             loc = np.array([int(np.argmax(v))])
         best = v[loc].max()
-        d2 = np.abs(vr - 2 * v + vl)
-        margin = 2.0 * float(d2.max()) + 64 * _EPS * float(np.abs(v).max())
+        # a cell can overshoot its nodes by ~|Δ²g|/8: keep every candidate that close to best
+        margin = 2.0 * float(np.max(np.abs(vr - 2 * v + vl))) + 64 * _EPS * float(np.max(np.abs(v)))
         loc = loc[v[loc] >= best - margin]
         if loc.size > max_candidates:
             loc = loc[np.argsort(-v[loc])[:max_candidates]]
@@ -254,62 +335,72 @@ class DynamicModel:
         hi = np.concatenate((x0, xp))
         eta = np.minimum(eta_abs, 0.25 * (hi - lo))
         ends = np.concatenate((lo + eta, hi - eta))
-        dv = s * np.asarray(dg(ends), dtype=float)
+        _, dv = combine(*self._ev(ends))
+        dv = s * dv
         m = lo.size
         dlo, dhi = dv[:m], dv[m:]
-        pts = [x0]
         roots = []
-        for i in range(m):
-            if hi[i] - lo[i] <= 4 * eta_abs:
+        for j in range(m):
+            if hi[j] - lo[j] <= 4 * eta_abs:
                 continue
-            if dlo[i] > 0 and dhi[i] < 0:
-                a_, b_, e_ = lo[i], hi[i], eta[i]
+            if dlo[j] > 0 and dhi[j] < 0:
+                a_, b_ = lo[j] + eta[j], hi[j] - eta[j]
 
-                def fd(t, a_=a_, b_=b_, e_=e_):
-                    t = min(max(t, a_ + e_), b_ - e_)
-                    return float(dg(np.array([t]))[0])
+                def fd(t, a_=a_, b_=b_):
+                    return combine(*self._ev1(min(max(t, a_), b_)))[1]
 
                 roots.append(brentq(fd, a_, b_, xtol=1e-15 * scale, rtol=4 * _EPS,
                                     maxiter=200))
-        if roots:
-            pts.append(np.asarray(roots))
-        cand = np.concatenate(pts)
-        vals = np.asarray(g(cand), dtype=float)
-        j = int(np.argmax(s * vals))
-        return float(self.wrap(cand[j])), float(vals[j])
+        cand = np.concatenate((x0, np.asarray(roots, dtype=float)))
+        q = self._ev(cand)
+        gv, _ = combine(*q)
+        j = int(np.argmax(s * gv))
+        return (float(self.wrap(cand[j])), float(gv[j]),
+                tuple(float(z[j]) for z in q))
 
-    def line_extremum(self, slope: float, kind: str) -> tuple[float, float]:
-        """max/min over the cycle of A_Σ(φ) − slope·J_II(φ) (Мерцалов ΔT_I, Виттенбауэр K, L).
-
-        Derivative: M_Σ(φ) − slope·J_II′(φ).
-        """
+    def line_extremum(self, slope: float, kind: str):
+        """max/min over the cycle of A_Σ(φ) − slope·J_II(φ) (Мерцалов ΔT_I, Виттенбауэр K, L);
+        derivative M_Σ(φ) − slope·J_II′(φ).  Returns (φ, value, (A_Σ, M_Σ, J_II, J_II′))."""
         gn = self.A_n[:-1] - slope * self.J2_n[:-1]
-        return self.extremum(gn, lambda x: self.A(x) - slope * self.J2(x),
-                             lambda x: self.M_sum(x) - slope * self.dJ2(x), kind)
 
-    def energy_extrema(self, J: float, T: float):
+        def combine(A, Ms, J, dJ):
+            return A - slope * J, Ms - slope * dJ
+
+        return self.extremum(gn, combine, kind)
+
+    def energy_extrema(self, J: float, T: float) -> "_Ext":
         """Extremes of ω²/2 = (T₀ + A_Σ)/(J_I + J_II) for given J_I, T₀.
 
         d(ω²)/dφ = 0 ⇔ M_Σ(J_I + J_II) − (T₀ + A_Σ)·J_II′ = 0 (i.e. M_Σ = ½ J_II′ ω²).
-        Returns (φ_max, e_max, φ_min, e_min) with e = ω²/2.
         """
         gn = (T + self.A_n[:-1]) / (J + self.J2_n[:-1])
 
-        def g(x):
-            return (T + self.A(x)) / (J + self.J2(x))
+        def combine(A, Ms, J2, dJ2):
+            return (T + A) / (J + J2), Ms * (J + J2) - (T + A) * dJ2
 
-        def dg(x):
-            return self.M_sum(x) * (J + self.J2(x)) - (T + self.A(x)) * self.dJ2(x)
-
-        p1, e1 = self.extremum(gn, g, dg, "max")
-        p2, e2 = self.extremum(gn, g, dg, "min")
-        return p1, e1, p2, e2
+        p1, e1, q1 = self.extremum(gn, combine, "max")
+        p2, e2, q2 = self.extremum(gn, combine, "min")
+        return _Ext(p1, e1, p2, e2, q1[0], q2[0], q1[2], q2[2])
 
     def A_min(self) -> float:
         """Exact minimum of A_Σ over the cycle (lower bound of admissible −T₀)."""
         if "A_min" not in self._cache:
-            self._cache["A_min"] = self.extremum(self.A_n[:-1], self.A, self.M_sum, "min")[1]
+            self._cache["A_min"] = self.extremum(
+                self.A_n[:-1], lambda A, Ms, J, dJ: (A, Ms), "min")[1]
         return self._cache["A_min"]
+
+
+class _Ext(NamedTuple):
+    """Extremes of ω²/2: positions, values e = ω²/2, A_Σ and J_II there."""
+
+    p_max: float
+    e_max: float
+    p_min: float
+    e_min: float
+    A_max: float
+    A_min: float
+    J_max: float
+    J_min: float
 
 
 def prepare_model(J2: ArrayFunc | None, dJ2: ArrayFunc | None, M: ArrayFunc,
@@ -421,7 +512,7 @@ def _motion(model: DynamicModel, J: float, T: float, omega_m: float, it: int,
             algorithm: str, ext=None) -> ExactMotion:
     if ext is None:
         ext = model.energy_extrema(J, T)
-    p1, e1, p2, e2 = ext
+    p1, e1, p2, e2 = ext.p_max, ext.e_max, ext.p_min, ext.e_min
     wmax, wmin = math.sqrt(2 * e1), math.sqrt(2 * e2)
     Jt = J + model.J2_g
     w = np.sqrt(2.0 * (T + model.A_g) / Jt)
@@ -452,13 +543,12 @@ def _solve_T0(model: DynamicModel, J: float, omega_m: float, T_guess: float | No
     tolf = 4 * _EPS * omega_m
     for it in range(1, maxiter + 1):
         ext = model.energy_extrema(J, T)
-        p1, e1, p2, e2 = ext
-        w1, w2 = math.sqrt(2 * e1), math.sqrt(max(2 * e2, 0.0))
+        w1, w2 = math.sqrt(2 * ext.e_max), math.sqrt(max(2 * ext.e_min, 0.0))
         f = 0.5 * (w1 + w2) - omega_m
         if abs(f) <= tolf:
             return T, ext, it
-        Jt1 = J + float(model.J2(np.array([p1]))[0])
-        Jt2 = J + float(model.J2(np.array([p2]))[0])
+        Jt1 = J + ext.J_max
+        Jt2 = J + ext.J_min
         if w2 <= 0:
             T = 0.5 * (T + T_low) if f > 0 else T + 0.5 * span
             continue
@@ -472,8 +562,8 @@ def _solve_T0(model: DynamicModel, J: float, omega_m: float, T_guess: float | No
 
     # fallback: brentq on the monotone mean
     def f(T):
-        _, e1, _, e2 = model.energy_extrema(J, T)
-        return 0.5 * (math.sqrt(2 * e1) + math.sqrt(max(2 * e2, 0.0))) - omega_m
+        e = model.energy_extrema(J, T)
+        return 0.5 * (math.sqrt(2 * e.e_max) + math.sqrt(max(2 * e.e_min, 0.0))) - omega_m
 
     lo = T_low + 1e-14 * span
     hi = max(T, lo) + span
@@ -502,10 +592,9 @@ def _exact_newton(model: DynamicModel, omega_m: float, delta: float, maxiter: in
     T = 0.5 * omega_m ** 2 * (J + float(np.mean(model.J2_n[:-1]))) - float(np.mean(An))
     T = max(T, T_low + 1e-6 * abs(T_low) + 1e-12)
     for it in range(1, maxiter + 1):
-        p1, _, p2, _ = model.energy_extrema(J, T)
-        xs = np.array([p1, p2])
-        Aa = model.A(xs)
-        Jj = model.J2(xs)
+        ext = model.energy_extrema(J, T)
+        Aa = (ext.A_max, ext.A_min)
+        Jj = (ext.J_max, ext.J_min)
         Jn = ((Aa[0] - s1 * Jj[0]) - (Aa[1] - s2 * Jj[1])) / (s1 - s2)
         Tn = s1 * (Jn + Jj[0]) - Aa[0]
         # damping keeps the state admissible (J_I + J_II > 0, T₀ + A_Σ > 0)
@@ -527,13 +616,15 @@ def _exact_nested(model: DynamicModel, omega_m: float, delta: float, J_start: fl
     """Nested root finding: inner T₀(J_I) from the mean condition, outer brentq on
     δ(J_I) = (ω_max − ω_min)/ω_ср − [δ] (δ decreases with J_I)."""
     J2min = float(model.J2_n.min())
-    state = {"T": None, "n": 0}
+    state = {"T": None, "J": None, "n": 0}
 
     def f(J):
-        T, ext, _ = _solve_T0(model, J, omega_m, state["T"])
-        state["T"] = T
+        guess = None if state["T"] is None else \
+            state["T"] + 0.5 * omega_m ** 2 * (J - state["J"])
+        T, ext, _ = _solve_T0(model, J, omega_m, guess)
+        state["T"], state["J"] = T, J
         state["n"] += 1
-        return (math.sqrt(2 * ext[1]) - math.sqrt(2 * ext[3])) / omega_m - delta
+        return (math.sqrt(2 * ext.e_max) - math.sqrt(2 * ext.e_min)) / omega_m - delta
 
     J0 = max(J_start, -J2min + 1e-9 * (abs(J2min) + abs(J_start) + 1))
     f0 = f(J0)
@@ -560,12 +651,12 @@ def _exact_nested(model: DynamicModel, omega_m: float, delta: float, J_start: fl
     else:
         J = brentq(f, lo, hi, xtol=4 * _EPS * (abs(hi) + abs(J2min)), rtol=4 * _EPS,
                    maxiter=200)
-    T, ext, _ = _solve_T0(model, J, omega_m, state["T"])
+    T, ext, _ = _solve_T0(model, J, omega_m, state["T"] + 0.5 * omega_m ** 2 * (J - state["J"]))
     return J, T, state["n"], ext
 
 
 def exact(model: DynamicModel, omega_m: float, delta: float, J_I: float | None = None,
-          algorithm: str = "newton") -> ExactMotion:
+          algorithm: str = "newton", T0_guess: float | None = None) -> ExactMotion:
     """Exact periodic steady motion of the machine (energy integral).
 
     ½(J_I + J_II(φ)) ω² = T₀ + A_Σ(φ) (exact for M = M(φ)).  With ``J_I`` given, T₀ is the
@@ -574,10 +665,11 @@ def exact(model: DynamicModel, omega_m: float, delta: float, J_I: float | None =
     M_Σ = ½ J_II′ ω² (d(ω²)/dφ = 0) with A_Σ at arbitrary φ.
     ``algorithm``: "newton" (2-D Newton with envelope Jacobian, falls back to "nested" if it
     does not reach δ to 1e-12) or "nested" (brentq on J_I around Newton on T₀).
+    ``T0_guess`` only speeds up the T₀ search for a given J_I.
     """
     _check_targets(omega_m, delta)
     if J_I is not None:
-        T, ext, it = _solve_T0(model, float(J_I), omega_m)
+        T, ext, it = _solve_T0(model, float(J_I), omega_m, T0_guess)
         return _motion(model, float(J_I), T, omega_m, it, "given", ext)
     if algorithm not in ("newton", "nested"):
         raise ValueError(f"unknown algorithm {algorithm!r}")
@@ -651,8 +743,8 @@ def mertsalov(model: DynamicModel, omega_m: float, delta: float,
     """
     _check_targets(omega_m, delta)
     s = 0.5 * omega_m ** 2
-    p1, v1 = model.line_extremum(s, "max")
-    p2, v2 = model.line_extremum(s, "min")
+    p1, v1, _ = model.line_extremum(s, "max")
+    p2, v2, _ = model.line_extremum(s, "min")
     J = (v1 - v2) / (omega_m ** 2 * delta)
     T_II = s * model.J2_g
     dT = model.A_g - T_II
@@ -742,13 +834,10 @@ class WittenbauerResult:
 
 
 def _tangents(model: DynamicModel, s1: float, s2: float):
-    p1, K = model.line_extremum(s1, "max")
-    p2, L = model.line_extremum(s2, "min")
-    xs = np.array([p1, p2])
-    Jj, Aa = model.J2(xs), model.A(xs)
+    p1, K, q1 = model.line_extremum(s1, "max")
+    p2, L, q2 = model.line_extremum(s2, "min")
     J = (K - L) / (s1 - s2)
-    return (J, K, L, TangentPoint(p1, float(Jj[0]), float(Aa[0])),
-            TangentPoint(p2, float(Jj[1]), float(Aa[1])))
+    return J, K, L, TangentPoint(p1, q1[2], q1[0]), TangentPoint(p2, q2[2], q2[0])
 
 
 def wittenbauer(model: DynamicModel, omega_m: float, delta: float,
@@ -773,8 +862,8 @@ def wittenbauer(model: DynamicModel, omega_m: float, delta: float,
     w = np.sqrt(2.0 * (T0 + model.A_g) / Jt)
     eps = (model.M_g - 0.5 * model.dJ2_g * w * w) / Jt
     if with_delta_achieved:
-        da = exact(model, omega_m, delta, J_I=J).delta_achieved
-        dl = exact(model, omega_m, delta, J_I=Jl).delta_achieved
+        da = exact(model, omega_m, delta, J_I=J, T0_guess=T0).delta_achieved
+        dl = exact(model, omega_m, delta, J_I=Jl, T0_guess=s1 * Jl - Kl).delta_achieved
     else:
         da = dl = float("nan")
     return WittenbauerResult(

@@ -314,6 +314,29 @@ class Study:
         return out
 
 
+    # ------------------------------------------------------------- export hooks
+    def extra_tables(self) -> dict[str, pd.DataFrame]:
+        """Tables beyond kinematics and structure (fits; dynamics and forces when the case has them)."""
+        out = {}
+        if self.fits:
+            out["fits"] = pd.DataFrame([{"name": f.name, "value": f.value, "condition": f.condition,
+                                         "at": f.at, "residual": f.residual} for f in self.fits])
+        for hook in _TABLE_HOOKS:
+            out.update(hook(self))
+        return out
+
+    def all_scalars(self) -> dict:
+        out = dict(self.scalars)
+        for hook in _SCALAR_HOOKS:
+            out.update(hook(self))
+        return out
+
+
+# analyses that extend a Study register here (dynamics, forces): functions Study -> dict
+_TABLE_HOOKS: list = []
+_SCALAR_HOOKS: list = []
+
+
 def true_motion(cols, mech: Mechanism, w: np.ndarray, e: np.ndarray) -> dict[str, np.ndarray]:
     """v = ω·x′, a = ω²·x″ + ε·x′ for every point, link and slider (ω = dq/dt, ε = d²q/dt²)."""
     out = {}

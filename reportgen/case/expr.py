@@ -204,10 +204,7 @@ class Q:
             raise CaseError(f"показатель степени должен быть безразмерным, а не «{dim_name(o.dim)}»")
         if self.dim == DIMENSIONLESS:
             with np.errstate(all="ignore"):
-                if o.is_scalar and float(o.value).is_integer() and float(o.value) >= 0:
-                    v = self.value ** int(o.value)  # exact integer powers, negative bases fine
-                else:
-                    v = np.power(np.asarray(self.value, dtype=float), o.value)
+                v = np.power(np.asarray(self.value, dtype=float), o.value)
             if _scalar_bad(v, self.value, o.value):
                 raise CaseError(f"не удалось возвести {_fmt(self.value)} в степень {_fmt(o.value)}")
             return Q(v, DIMENSIONLESS)
@@ -229,8 +226,7 @@ class Q:
                                     "получилась бы дробная размерность")
             new.append(int(c))
         with np.errstate(all="ignore"):
-            v = np.power(np.asarray(self.value, dtype=float), float(fr) if fr.denominator != 1 else int(fr)) \
-                if not (fr.denominator == 1 and fr >= 0) else self.value ** int(fr)
+            v = np.power(np.asarray(self.value, dtype=float), float(fr))
         if _scalar_bad(v, self.value):
             raise CaseError(f"не удалось возвести {_fmt(self.value)} в степень {_fmt(x)}")
         return Q(v, tuple(new))  # type: ignore[arg-type]

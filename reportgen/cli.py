@@ -1,0 +1,113 @@
+"""Command line: ``reportgen build | batch | export | check | warmup``.
+
+Thin: parsing arguments and printing; the work is done by the library.  Every error caused by
+the input is printed in Russian without a traceback (exit code 2).
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from pathlib import Path
+
+from .errors import CaseError, ReportgenError
+
+
+def _parse_at(study, text: str) -> list[float]:
+    from .case import units as U
+    from .case.expr import evaluate
+    vals = []
+    for i, part in enumerate(p.strip() for p in text.split(",") if p.strip()):
+        try:
+            vals.append(float(evaluate(part, study.params, expected=study.qdim, bare_is=study.qdim).value))
+        except CaseError as e:
+            raise CaseError(f"значение «{part}» в --at: {e.message}", key=f"--at[{i}]") from None
+    if not vals:
+        raise CaseError("пустой список --at", key="--at", expected="значения через запятую, например --at \"30 deg,99.1 deg\"")
+    return vals
+
+
+def cmd_export(args) -> int:
+    from .analysis.study import Study
+    from .export import export
+    study = Study(args.case)
+    at = _parse_at(study, args.at) if args.at else None
+    out = Path(args.output) if args.output else Path("output") / study.name
+    files = export(study, out, at)
+    print(f"Записано файлов: {len(files)} в {out}/")
+    return 0
+
+
+def cmd_check(args) -> int:
+    from .analysis.study import Study
+    study = Study(args.case)
+    st = study.structure
+    print(f"Вариант: {study.name}")
+    print(f"Число степеней свободы (Чебышев): {st.chebyshev}")
+    print(f"Структурная формула: {st.formula}; механизм {st.mech_class} класса")
+    for g in st.groups:
+        print(f"  {g.title}")
+    for f in study.fits:
+        print(f"Подобран параметр {f.name} = {f.value:.12g} (условие {f.condition} при {f.at})")
+    study.cycle  # the whole cycle must assemble
+    for name, fl in study.flags.items():
+        if fl["singular"]:
+            print(f"Внимание: группа {name[3:]} проходит особое положение", file=sys.stderr)
+        elif fl["low"]:
+            import math
+            print(f"Внимание: угол передачи в группе {name[3:]} падает до {math.degrees(fl['min']):.1f}° (< 40°)",
+                  file=sys.stderr)
+    print("Проверка пройдена: механизм собирается во всех положениях цикла.")
+    return 0
+
+
+def cmd_warmup(args) -> int:
+    from .warmup import warmup
+    warmup()
+    print("Ядра numba скомпилированы и сохранены в кэше.")
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="reportgen", description="Курсовой проект по ТММ: расчёт и отчёт по файлу варианта.")
+    p.add_argument("--debug", action="store_true", help="показывать трассировку внутренних ошибок")
+    sub = p.add_subparsers(dest="cmd", required=True, metavar="команда")
+    e = sub.add_parser("export", help="все таблицы в CSV и скаляры в scalars.json")
+    e.add_argument("case", help="файл варианта .toml")
+    e.add_argument("-o", "--output", help="папка вывода (по умолчанию output/<вариант>)")
+    e.add_argument("--at", help="значения обобщённой координаты через запятую, с единицами: \"30 deg,99.1 deg\"")
+    e.set_defaults(func=cmd_export)
+    c = sub.add_parser("check", help="проверить вариант: структура, подбор размеров, сборка во всём цикле")
+    c.add_argument("case")
+    c.set_defaults(func=cmd_check)
+    w = sub.add_parser("warmup", help="скомпилировать ядра numba (один раз после установки)")
+    w.set_defaults(func=cmd_warmup)
+    for hook in _PARSER_HOOKS:
+        hook(sub)
+    return p
+
+
+_PARSER_HOOKS: list = []
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except ReportgenError as e:
+        print(f"Ошибка: {e}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("Прервано.", file=sys.stderr)
+        return 130
+    except Exception as e:  # a bug, not the user's input
+        if args.debug or os.environ.get("REPORTGEN_DEBUG"):
+            raise
+        print(f"Внутренняя ошибка программы: {type(e).__name__}: {e}\n"
+              "Запустите с --debug и сообщите разработчикам.", file=sys.stderr)
+        return 3
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,740 @@
+"""Rendering of a :class:`~reportgen.report.document.Report` to HTML and PDF.
+
+* :func:`render_html` — one HTML string (print flavour for WeasyPrint, or a
+  self-contained screen flavour with fonts and images as ``data:`` URLs);
+* :func:`write_html`, :func:`write_pdf` — atomic writers (temporary file in the
+  same folder, then ``os.replace``);
+* :func:`build_outputs` — both at once.
+
+Numbering is done here, in Python, once: sections «1», «1.2», «1.2.1»,
+appendices «А», «Б», …; figures, tables and formulas per chapter («2.1»,
+«А.1»). The numbers are written into the HTML as text, so the screen HTML
+(browsers have no ``target-counter``) and the PDF agree, and cross-references
+(:func:`~reportgen.report.document.ref`) resolve to text. Page numbers in the
+table of contents come from CSS ``target-counter`` (print only).
+
+«Продолжение таблицы N» (ГОСТ 7.32) is done in passes (docs/reporting.md §2.1):
+every table is first laid out whole with its caption as the first row of
+``<thead>``, so the repeated header on every later page reserves at least the
+height of a continuation caption; the rows that start each page (read from
+``page.anchors``) become the split points; the table is then cut into parts,
+each continuation part starting on a new page under «Продолжение таблицы N»,
+and the layout is repeated until no part spans two pages (normally two passes).
+"""
+
+from __future__ import annotations
+
+import html as _html
+import logging
+import math
+import numbers as _numbers
+import os
+import re
+import tempfile
+import time
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import jinja2
+from markupsafe import Markup, escape
+
+from . import fonts
+from .document import Column, Figure, FormulaBlock, Paragraph, Report, Section, Table
+from .formulas import data_uri, formula_images, inline_math, where_rows
+from .numbers import DASH, fmt
+
+__all__ = [
+    "DEFAULT_OPTIONS",
+    "ESKD_MARGINS",
+    "TEMPLATES_DIR",
+    "resolve_options",
+    "render_html",
+    "render_fragment",
+    "write_html",
+    "write_pdf",
+    "build_outputs",
+    "RenderStats",
+    "last_stats",
+]
+
+log = logging.getLogger(__name__)
+
+TEMPLATES_DIR = Path(os.environ.get("REPORTGEN_TEMPLATES")
+                     or Path(__file__).resolve().parents[2] / "templates")
+
+# ГОСТ 7.32-2017 defaults; every key can be overridden by Report.options.
+DEFAULT_OPTIONS: dict[str, Any] = {
+    "margin_top_mm": 20.0,
+    "margin_right_mm": 15.0,
+    "margin_bottom_mm": 20.0,
+    "margin_left_mm": 30.0,
+    "font_size_pt": 14.0,
+    "table_font_size_pt": 12.0,  # ГОСТ 7.32 allows a smaller size in tables
+    "line_height": 1.5,
+    "indent_mm": 12.5,
+    "figure_word": "Рисунок",  # or «Рис.»
+    "table_word": "Таблица",
+    "continuation_words": "Продолжение таблицы",
+    "dash": " — ",  # between number and caption; «.» gives «Рисунок 1.1. Схема»
+    "eskd_frame": False,  # frame 20/5/5/5 mm and form-2a stamp after the title page
+    "section_new_page": True,  # every level-1 section starts a page
+    "toc_depth": 2,  # levels of headings listed in СОДЕРЖАНИЕ (1–3)
+    "font": None,  # "Liberation Serif" | "STIXGeneral" | "DejaVu Serif" | None (auto)
+    "title_page": True,
+    "assignment_page": True,
+    "assignment_title": "ЗАДАНИЕ",
+    "toc_title": "СОДЕРЖАНИЕ",
+    "introduction_title": "ВВЕДЕНИЕ",
+    "conclusion_title": "ЗАКЛЮЧЕНИЕ",
+    "references_title": "СПИСОК ИСПОЛЬЗОВАННЫХ ИСТОЧНИКОВ",
+    "appendix_word": "ПРИЛОЖЕНИЕ",
+    "note_word": "Примечание",
+    "where_word": "где",
+    "eq_number_width_mm": 18.0,
+    "screen_max_width_px": 860,
+}
+
+# Margins used with the ЕСКД frame unless the options set them: text 5 mm inside
+# the frame on the left and right, the 15 mm stamp in the bottom margin.
+ESKD_MARGINS = {
+    "margin_top_mm": 15.0,
+    "margin_right_mm": 10.0,
+    "margin_bottom_mm": 27.0,
+    "margin_left_mm": 25.0,
+}
+
+# Letters of appendices (ГОСТ 7.32: no Ё, З, Й, О, Ч, Ъ, Ы, Ь).
+APPENDIX_LETTERS = "АБВГДЕЖИКЛМНПРСТУФХЦШЩЭЮЯ"
+
+PAGE_W_MM, PAGE_H_MM = 210.0, 297.0
+PT_MM = 25.4 / 72
+
+MAX_PASSES = 8
+
+
+def resolve_options(options: dict | None) -> dict:
+    """Defaults + overrides; unknown keys are an error (they are usually typos)."""
+    options = dict(options or {})
+    unknown = sorted(set(options) - set(DEFAULT_OPTIONS))
+    if unknown:
+        raise ValueError("Неизвестные параметры оформления: " + ", ".join(unknown)
+                         + ". Допустимые: " + ", ".join(sorted(DEFAULT_OPTIONS)))
+    o = dict(DEFAULT_OPTIONS)
+    if options.get("eskd_frame"):
+        o.update(ESKD_MARGINS)
+    o.update(options)
+    dash = str(o["dash"])
+    if dash.strip() == ".":
+        dash = ". "
+    o["dash"] = dash
+    o["text_width_mm"] = PAGE_W_MM - o["margin_left_mm"] - o["margin_right_mm"]
+    o["text_height_mm"] = PAGE_H_MM - o["margin_top_mm"] - o["margin_bottom_mm"]
+    o["toc_depth"] = max(1, min(3, int(o["toc_depth"])))
+    return o
+
+
+# ---------------------------------------------------------------- view model
+
+
+@dataclass
+class _Heading:
+    kind: str  # "numbered" | "structural" | "appendix"
+    level: int
+    number: str
+    title: Markup
+    id: str
+    new_page: bool = False
+
+
+@dataclass
+class _Part:
+    caption: Markup
+    continued: bool
+    rows: list
+
+
+@dataclass
+class _TableView:
+    id: str
+    key: str  # id used for row anchors
+    ncols: int
+    header: list  # [(html, cls)]
+    units: list | None
+    parts: list
+    note: Markup | None
+
+
+@dataclass
+class _FigureView:
+    id: str
+    src: str
+    width_mm: float
+    caption: Markup
+
+
+@dataclass
+class _EqView:
+    id: str
+    number: str
+    lines: list
+    where: list
+
+
+@dataclass
+class _Node:
+    kind: str  # "section" | "p" | "raw" | "figure" | "table" | "formulas"
+    item: Any = None
+    children: list = field(default_factory=list)
+
+
+_BLOCK_START = re.compile(r"^\s*<(ul|ol|div|table|p|figure|blockquote|dl)\b", re.I)
+
+
+def _is_number(v) -> bool:
+    return isinstance(v, _numbers.Real) and not isinstance(v, bool)
+
+
+class _Builder:
+    """Numbers the document and turns the model into template views."""
+
+    def __init__(self, report: Report, opts: dict, *, for_print: bool,
+                 splits: dict[str, list[int]] | None):
+        self.report = report
+        self.o = opts
+        self.for_print = for_print
+        self.splits = splits or {}
+        self.targets: dict[str, str] = {}  # id -> reference text
+        self.toc: list[dict] = []
+        self.serial = 0
+        self.prefix = ""
+        self.counters = {"fig": 0, "tab": 0, "eq": 0}
+        self.eq_max_em = (opts["text_width_mm"] - 2 * opts["eq_number_width_mm"]) / (
+            opts["font_size_pt"] * PT_MM)
+        self.tables: dict[str, int] = {}  # table key -> number of rows
+
+    # -- numbering helpers
+    def _register(self, target_id: str, text: str) -> None:
+        if target_id in self.targets:
+            raise ValueError(f"Идентификатор «{target_id}» встречается в отчёте дважды")
+        self.targets[target_id] = text
+
+    def _next(self, kind: str) -> str:
+        self.counters[kind] += 1
+        n = self.counters[kind]
+        return f"{self.prefix}.{n}" if self.prefix else str(n)
+
+    def _auto_id(self, kind: str) -> str:
+        self.serial += 1
+        return f"auto-{kind}-{self.serial}"
+
+    def start_chapter(self, prefix: str) -> None:
+        self.prefix = prefix
+        self.counters = {k: 0 for k in self.counters}
+
+    def caption(self, word_key: str, number: str, caption: str) -> Markup:
+        return Markup("{} {}{}").format(self.o[word_key], number, self.o["dash"]) + Markup(caption)
+
+    # -- blocks
+    def blocks(self, children) -> list[_Node]:
+        out = []
+        for child in children:
+            if isinstance(child, Section):
+                out.append(self.section(child, level=max(2, child.level)))
+            elif isinstance(child, Paragraph):
+                kind = "raw" if _BLOCK_START.match(child.html) else "p"
+                out.append(_Node(kind, Markup(child.html)))
+            elif isinstance(child, str):
+                out.append(_Node("p", Markup(child)))
+            elif isinstance(child, Figure):
+                out.append(_Node("figure", self.figure(child)))
+            elif isinstance(child, Table):
+                out.append(_Node("table", self.table(child)))
+            elif isinstance(child, FormulaBlock):
+                out.append(_Node("formulas", [self.formula(f) for f in child.formulas]))
+            else:
+                raise TypeError(f"Unsupported report block: {type(child).__name__}")
+        return out
+
+    def section(self, sec: Section, parents: list | None = None,
+                counter: list[int] | None = None, level: int | None = None) -> _Node:
+        """A section with its heading; numbered «1», «1.2», «А.1» from ``parents``.
+
+        A Section met among plain blocks (introduction, assignment) is an
+        unnumbered subheading.
+        """
+        o = self.o
+        in_body = counter is not None
+        if not in_body:  # outside the numbered body
+            parents, counter, numbered = [], [0], False
+        else:
+            numbered = sec.numbered
+        level = level or sec.level
+        if numbered:
+            counter[0] += 1
+            nums = list(parents) + [counter[0]]
+            number = ".".join(str(n) for n in nums)
+        else:
+            nums = list(parents)
+            number = ""
+        if not sec.id:
+            raise ValueError(f"У раздела «{sec.title}» нет идентификатора")
+        if level == 1:
+            self.start_chapter(number)
+        self._register(sec.id, number or re.sub(r"<[^>]+>", "", sec.title))
+        kind = "numbered" if number else ("structural" if level == 1 else "plain")
+        if in_body and level <= o["toc_depth"] and (numbered or level == 1):
+            self.toc.append({"level": level, "number": number, "title": Markup(sec.title),
+                             "id": sec.id, "kind": kind})
+        head = _Heading(kind, level, number, Markup(sec.title), sec.id,
+                        level == 1 and o["section_new_page"])
+        children = []
+        sub_counter = [0]
+        for child in sec.children:
+            if isinstance(child, Section):
+                if in_body and (numbered or level == 1):
+                    children.append(self.section(child, nums, sub_counter, min(level + 1, 3)))
+                else:
+                    children.append(self.section(child, None, None, min(level + 1, 3)))
+            else:
+                children.extend(self.blocks([child]))
+        return _Node("section", head, children)
+
+    def figure(self, fig: Figure) -> _FigureView:
+        number = self._next("fig")
+        fid = fig.id or self._auto_id("fig")
+        self._register(fid, number)
+        data = fig.svg
+        if isinstance(data, (bytes, bytearray)) and data[:8] == b"\x89PNG\r\n\x1a\n":
+            import base64
+
+            src = "data:image/png;base64," + base64.b64encode(bytes(data)).decode("ascii")
+        else:
+            src = data_uri(data)
+        width = min(float(fig.width_mm), self.o["text_width_mm"])
+        return _FigureView(fid, src, width, self.caption("figure_word", number, fig.caption))
+
+    def header_cell(self, col: Column) -> Markup:
+        head = inline_math(col.header) if col.latex else Markup(col.header)
+        if col.unit and not self._units_row:
+            head = head + Markup(", ") + escape(col.unit)
+        return head
+
+    def table(self, tab: Table) -> _TableView:
+        number = self._next("tab")
+        tid = tab.id or self._auto_id("tab")
+        self._register(tid, number)
+        df = tab.data
+        self._units_row = bool(tab.units_row)
+        header = []
+        units = [] if tab.units_row else None
+        if tab.index_header is not None:
+            header.append((Markup(tab.index_header), "idx"))
+            if units is not None:
+                units.append(Markup(""))
+        for col in tab.columns:
+            if col.key not in df.columns:
+                raise KeyError(f"Таблица «{tab.caption}»: нет столбца «{col.key}» в данных")
+            header.append((self.header_cell(col), ""))
+            if units is not None:
+                units.append(escape(col.unit or ""))
+        highlight = set(int(i) for i in tab.highlight_rows)
+        rows = []
+        cols = [(c, df[c.key].tolist()) for c in tab.columns]
+        index = list(df.index)
+        for i in range(len(df)):
+            cells = []
+            if tab.index_header is not None:
+                v = index[i]
+                if tab.index_fmt is not None:
+                    text = tab.index_fmt(v)
+                elif _is_number(v):
+                    text = fmt(v) if not float(v).is_integer() else fmt(int(v))
+                else:
+                    text = str(v)
+                cells.append((escape(text), "idx"))
+            for col, values in cols:
+                v = values[i]
+                if v is None or (isinstance(v, float) and math.isnan(v)):
+                    cells.append((DASH, "num"))
+                elif _is_number(v) or col.fmt is not None:
+                    cells.append((escape(col.format(v)), "num"))
+                else:
+                    cells.append((escape(str(v)), "text"))
+            rows.append({"id": f"{tid}__r{i}" if self.for_print else None,
+                         "cls": "hl" if i in highlight else "",
+                         "cells": cells})
+        self.tables[tid] = len(rows)
+        cuts = [0] + sorted(s for s in set(self.splits.get(tid, ())) if 0 < s < len(rows))
+        parts = []
+        for k, start in enumerate(cuts):
+            end = cuts[k + 1] if k + 1 < len(cuts) else len(rows)
+            if k == 0:
+                cap = self.caption("table_word", number, tab.caption)
+            else:
+                cap = Markup("{} {}").format(self.o["continuation_words"], number)
+            parts.append(_Part(cap, k > 0, rows[start:end]))
+        note = None
+        if tab.note:
+            note = Markup("{}{}").format(self.o["note_word"], " — ") + Markup(tab.note)
+        return _TableView(tid, tid, len(header), header, units, parts, note)
+
+    def formula(self, f) -> _EqView:
+        number = "(" + self._next("eq") + ")"
+        eid = f.label or self._auto_id("eq")
+        self._register(eid, number)
+        lines = formula_images(f, self.eq_max_em)
+        return _EqView(eid, number, lines, where_rows(f))
+
+
+def _walk(builder: _Builder, report: Report):
+    """Number headings and blocks in document order; return the body views."""
+    o = builder.o
+    body = []
+
+    def structural(key: str, hid: str, children, toc=True):
+        builder.start_chapter("")
+        title = o[key]
+        builder._register(hid, title)
+        if toc:
+            builder.toc.append({"level": 1, "number": "", "title": Markup(escape(title)),
+                                "id": hid, "kind": "structural"})
+        head = _Heading("structural", 1, "", Markup(escape(title)), hid, True)
+        return _Node("section", head, builder.blocks(children) if children else [])
+
+    intro = structural("introduction_title", "introduction", report.introduction) \
+        if report.introduction else None
+    if intro:
+        body.append(intro)
+    counter = [0]
+    for sec in report.sections:
+        body.append(builder.section(sec, [], counter, 1))
+    if report.conclusion:
+        body.append(structural("conclusion_title", "conclusion", report.conclusion))
+    if report.references:
+        builder.start_chapter("")
+        hid = "references"
+        builder._register(hid, o["references_title"])
+        builder.toc.append({"level": 1, "number": "", "title": Markup(escape(o["references_title"])),
+                            "id": hid, "kind": "structural"})
+        head = _Heading("structural", 1, "", Markup(escape(o["references_title"])), hid, True)
+        items = [{"number": str(i + 1), "text": escape(t)} for i, t in enumerate(report.references)]
+        body.append(_Node("references", head, items))
+    for i, app in enumerate(report.appendices or ()):
+        if i >= len(APPENDIX_LETTERS):
+            raise ValueError("Слишком много приложений")
+        letter = APPENDIX_LETTERS[i]
+        builder.start_chapter(letter)
+        builder._register(app.id, letter)
+        word = f"{o['appendix_word']} {letter}"
+        builder.toc.append({"level": 1, "number": "", "title": Markup("{} {}").format(
+            o["appendix_word"].capitalize() + " " + letter, Markup(app.title)),
+            "id": app.id, "kind": "appendix"})
+        head = _Heading("appendix", 1, word, Markup(app.title), app.id, True)
+        children = []
+        sub_counter = [0]
+        for child in app.children:
+            if isinstance(child, Section):
+                children.append(builder.section(child, [letter], sub_counter, 2))  # «А.1»
+            else:
+                children.extend(builder.blocks([child]))
+        body.append(_Node("section", head, children))
+    return body
+
+
+# ---------------------------------------------------------------- templates
+
+
+def _env() -> jinja2.Environment:
+    env = jinja2.Environment(
+        loader=jinja2.FileSystemLoader(str(TEMPLATES_DIR)),
+        autoescape=jinja2.select_autoescape(["html", "j2"], default_for_string=True),
+        undefined=jinja2.StrictUndefined,
+        trim_blocks=True,
+        lstrip_blocks=True,
+        keep_trailing_newline=True,
+    )
+    env.filters["mm"] = lambda v: f"{float(v):.2f}".rstrip("0").rstrip(".") + "mm"
+    env.filters["num"] = lambda v: f"{float(v):.3f}".rstrip("0").rstrip(".")
+    return env
+
+
+_ENV: jinja2.Environment | None = None
+
+
+def _get_env() -> jinja2.Environment:
+    global _ENV
+    if _ENV is None:
+        _ENV = _env()
+    return _ENV
+
+
+_REF = re.compile(r'<a class="ref" href="#([^"]+)"></a>')
+_TAG_SPLIT = re.compile(r"(<[^>]*>)")
+_SUP_RUN = re.compile(r"[⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺]+")
+_SUP_PLAIN = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺", "0123456789\u2212+")
+
+
+def _fill_refs(html: str, targets: dict[str, str]) -> str:
+    missing = []
+
+    def repl(m):
+        tid = m.group(1)
+        if tid not in targets:
+            missing.append(tid)
+            return m.group(0)
+        return f'<a class="ref" href="#{tid}">{_html.escape(targets[tid])}</a>'
+
+    out = _REF.sub(repl, html)
+    if missing:
+        raise KeyError("Ссылки на несуществующие объекты: " + ", ".join(sorted(set(missing))))
+    return out
+
+
+def _superscripts(html: str) -> str:
+    """Unicode superscripts not in Latin-1 (⁰ ⁴…⁹ ⁻ ⁺, absent from Liberation
+    Serif) become ``<sup>`` so that no fallback font is needed."""
+
+    def fix_text(text: str) -> str:
+        def repl(m):
+            run = m.group(0)
+            if set(run) <= set("¹²³"):
+                return run
+            return "<sup>" + run.translate(_SUP_PLAIN) + "</sup>"
+
+        return _SUP_RUN.sub(repl, text)
+
+    pieces = _TAG_SPLIT.split(html)
+    in_style = False
+    for i, piece in enumerate(pieces):
+        if i % 2 == 1:  # a tag
+            low = piece.lower()
+            if low.startswith("<style"):
+                in_style = True
+            elif low.startswith("</style"):
+                in_style = False
+            continue
+        if not in_style and piece:
+            pieces[i] = fix_text(piece)
+    return "".join(pieces)
+
+
+def _visible_text(html: str) -> str:
+    html = re.sub(r"<style.*?</style>", " ", html, flags=re.S | re.I)
+    html = re.sub(r"<[^>]*>", " ", html)
+    return _html.unescape(html)
+
+
+def _check_glyphs(html: str, family: fonts.FontFamily) -> None:
+    missing = fonts.check_text(_visible_text(html), family)
+    if missing:
+        chars = " ".join(f"{c} (U+{ord(c):04X})" for c in missing)
+        warnings.warn(f"В шрифте «{family.name}» нет символов: {chars}; они будут "
+                      f"взяты из другого шрифта", RuntimeWarning, stacklevel=3)
+
+
+def _render(report: Report, *, for_print: bool, splits=None) -> tuple[str, _Builder]:
+    opts = resolve_options(report.options)
+    family = fonts.find_serif(opts["font"])
+    builder = _Builder(report, opts, for_print=for_print, splits=splits)
+    title_on = opts["title_page"]
+    assignment = builder.blocks(report.assignment) if (opts["assignment_page"]) else []
+    body = _walk(builder, report)
+    env = _get_env()
+    meta = {k: ("" if v is None else v) for k, v in (report.meta or {}).items()}
+    css_ctx = {"o": opts, "for_print": for_print, "family": fonts.CSS_FAMILY}
+    css = env.get_template("gost.css" if for_print else "screen.css").render(**css_ctx)
+    ctx = {
+        "o": opts,
+        "meta": meta,
+        "for_print": for_print,
+        "font_css": Markup(fonts.font_face_css(family, embed=not for_print)),
+        "css": Markup(css),
+        "title_page": title_on,
+        "assignment": assignment,
+        "show_assignment": opts["assignment_page"] and (bool(assignment) or bool(meta)),
+        "toc": builder.toc,
+        "body": body,
+        "eskd": bool(opts["eskd_frame"]) and for_print,
+    }
+    html = env.get_template("base.html.j2").render(**ctx)
+    html = _fill_refs(html, builder.targets)
+    html = _superscripts(html)
+    _check_glyphs(html, family)
+    return html, builder
+
+
+def render_html(report: Report, *, for_print: bool) -> str:
+    """The report as one HTML string.
+
+    ``for_print=True``: the WeasyPrint flavour (ГОСТ print stylesheet, fonts by
+    ``file://`` URL, tables whole: :func:`write_pdf` splits them).
+    ``for_print=False``: self-contained screen HTML (fonts and images as
+    ``data:`` URLs, no external references).
+    """
+    return _render(report, for_print=for_print)[0]
+
+
+def render_fragment(block, *, options: dict | None = None, chapter: str = "1",
+                    for_print: bool = False) -> str:
+    """HTML of a single block (Table, Figure, FormulaBlock, Paragraph) numbered as
+    the first of its kind in chapter ``chapter``: for previews and snapshot tests."""
+    opts = resolve_options(options)
+    dummy = Report(meta={}, assignment=[], introduction=[], sections=[], conclusion=[],
+                   references=[], options=options or {})
+    builder = _Builder(dummy, opts, for_print=for_print, splits=None)
+    builder.start_chapter(chapter)
+    nodes = builder.blocks([block])
+    env = _get_env()
+    tpl = env.get_template("_blocks.html.j2")
+    html = tpl.module.render_nodes(nodes)
+    html = _fill_refs(str(html), builder.targets)
+    return _superscripts(html)
+
+
+# ---------------------------------------------------------------- writers
+
+
+def _atomic_write(path: Path, data: bytes) -> Path:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        raise
+    return path
+
+
+def write_html(report: Report, path) -> Path:
+    """Write the self-contained screen HTML atomically."""
+    html = render_html(report, for_print=False)
+    return _atomic_write(Path(path), html.encode("utf-8"))
+
+
+@dataclass
+class RenderStats:
+    passes: int = 0
+    pages: int = 0
+    seconds_html: float = 0.0
+    seconds_layout: float = 0.0
+    seconds_pdf: float = 0.0
+    splits: dict = field(default_factory=dict)
+
+
+last_stats = RenderStats()
+
+
+class _QuietFontTools(logging.Filter):
+    """Drop WeasyPrint's notice about using fontTools instead of HarfBuzz-Subset."""
+
+    def filter(self, record):  # pragma: no cover - depends on the host libraries
+        return "HarfBuzz-Subset" not in record.getMessage()
+
+
+_ROW_ANCHOR = re.compile(r"^(.+)__r(\d+)$")
+
+
+def _page_rows(document) -> dict[str, dict[int, int]]:
+    """``{table id: {row index: page index}}`` from the laid-out document."""
+    out: dict[str, dict[int, int]] = {}
+    for p, page in enumerate(document.pages):
+        for anchor in page.anchors:
+            m = _ROW_ANCHOR.match(anchor)
+            if m:
+                out.setdefault(m.group(1), {})[int(m.group(2))] = p
+    return out
+
+
+def _new_splits(document, splits: dict[str, list[int]]) -> dict[str, list[int]]:
+    """Split points to add: for each table part that spans several pages, the
+    row that starts each of its later pages. On the first pass (no splits yet)
+    every page start is taken; later only the first overflow of each part."""
+    rows = _page_rows(document)
+    added: dict[str, list[int]] = {}
+    for tid, where in rows.items():
+        cuts = sorted(set(splits.get(tid, ())))
+        bounds = [0] + cuts + [max(where) + 1]
+        new = []
+        for a, b in zip(bounds[:-1], bounds[1:]):
+            prev_page = None
+            for r in range(a, b):
+                if r not in where:
+                    continue
+                page = where[r]
+                if prev_page is not None and page != prev_page:
+                    new.append(r)
+                    if cuts:  # later passes: fix one overflow per part, then re-lay out
+                        break
+                prev_page = page
+        if new:
+            added[tid] = new
+    return added
+
+
+def _layout(report: Report, font_config):
+    """Lay out the print HTML, splitting tables until stable. Returns the document."""
+    from weasyprint import HTML
+
+    wlog = logging.getLogger("weasyprint")
+    if not any(isinstance(f, _QuietFontTools) for f in wlog.filters):
+        wlog.addFilter(_QuietFontTools())
+    splits: dict[str, list[int]] = {}
+    stats = RenderStats()
+    document = None
+    for _ in range(MAX_PASSES):
+        t0 = time.perf_counter()
+        html, _builder = _render(report, for_print=True, splits=splits)
+        t1 = time.perf_counter()
+        document = HTML(string=html, base_url=str(TEMPLATES_DIR)).render(font_config=font_config)
+        t2 = time.perf_counter()
+        stats.passes += 1
+        stats.seconds_html += t1 - t0
+        stats.seconds_layout += t2 - t1
+        added = _new_splits(document, splits)
+        if not added:
+            break
+        for tid, rows in added.items():
+            splits[tid] = sorted(set(splits.get(tid, [])) | set(rows))
+    else:
+        log.warning("Разбиение таблиц не сошлось за %d проходов", MAX_PASSES)
+    stats.pages = len(document.pages)
+    stats.splits = splits
+    return document, stats
+
+
+def write_pdf(report: Report, path) -> Path:
+    """Write the PDF atomically (WeasyPrint; «Продолжение таблицы» in passes)."""
+    global last_stats
+    from weasyprint.text.fonts import FontConfiguration
+
+    font_config = FontConfiguration()
+    document, stats = _layout(report, font_config)
+    t0 = time.perf_counter()
+    pdf = document.write_pdf()
+    stats.seconds_pdf = time.perf_counter() - t0
+    last_stats = stats
+    return _atomic_write(Path(path), pdf)
+
+
+def build_outputs(report: Report, out_dir, stem: str,
+                  formats=("pdf", "html")) -> dict[str, Path]:
+    """Write ``out_dir/stem.pdf`` and/or ``out_dir/stem.html``; returns the paths."""
+    out_dir = Path(out_dir)
+    result: dict[str, Path] = {}
+    for f in formats:
+        if f == "pdf":
+            result["pdf"] = write_pdf(report, out_dir / f"{stem}.pdf")
+        elif f == "html":
+            result["html"] = write_html(report, out_dir / f"{stem}.html")
+        else:
+            raise ValueError(f"Неизвестный формат вывода: {f!r} (допустимы pdf, html)")
+    return result
