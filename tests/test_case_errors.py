@@ -62,10 +62,10 @@ def test_impossible_geometry_names_group_and_position(tmp_path, capsys):
 
 
 def test_not_a_mechanism(tmp_path, capsys):
-    # removing the rocker's pivot leaves W = 2
+    # removing the rocker's pivot leaves W = 3·5 − 2·6 = 3
     text = BASE.replace('[[joints]]\ntype = "R"\nlinks = ["0", "3"]\npoint = "C"\n', "", 1)
     rc, err, _ = run(tmp_path, capsys, text)
-    assert rc == 2 and "W = 2" in err and "Чебышев" in err
+    assert rc == 2 and "W = 3·5 − 2·6 = 3" in err and "Чебышев" in err
 
 
 def test_at_with_wrong_unit(tmp_path, capsys):
