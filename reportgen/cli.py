@@ -38,6 +38,46 @@ def cmd_export(args) -> int:
     return 0
 
 
+def _formats(text: str) -> tuple[str, ...]:
+    fm = tuple(f.strip().lower() for f in text.split(",") if f.strip())
+    bad = [f for f in fm if f not in ("pdf", "html")]
+    if bad or not fm:
+        raise CaseError(f"неизвестный формат «{bad[0] if bad else text}»", key="--format", expected="pdf, html или pdf,html")
+    return fm
+
+
+def _sections(text: str | None):
+    return [s.strip() for s in text.split(",") if s.strip()] if text else None
+
+
+def cmd_build(args) -> int:
+    import time
+    from .analysis.study import Study
+    from .report.assemble import build_report
+    from .report.render import build_outputs
+    t0 = time.perf_counter()
+    formats = _formats(args.format)
+    study = Study(args.case)
+    report = build_report(study, _sections(args.sections))
+    files = build_outputs(report, Path(args.output), study.name, formats)
+    for kind, path in files.items():
+        print(f"{kind.upper()}: {path}")
+    print(f"Готово за {time.perf_counter() - t0:.1f} с.")
+    return 0
+
+
+def cmd_batch(args) -> int:
+    from .batch import read_variants, run_batch
+    variants = read_variants(Path(args.variants), Path(args.base) if args.base else None)
+    results = run_batch(variants, Path(args.output), args.jobs, _formats(args.format), _sections(args.sections))
+    ok = [r for r in results if r.ok]
+    bad = [r for r in results if not r.ok]
+    print(f"Отчётов построено: {len(ok)} из {len(results)}; манифест: {Path(args.output) / 'manifest.json'}")
+    for r in bad:
+        print(f"  вариант {r.variant}: {r.error}", file=sys.stderr)
+    return 1 if bad else 0
+
+
 def cmd_check(args) -> int:
     from .analysis.study import Study
     study = Study(args.case)
@@ -80,6 +120,20 @@ def build_parser() -> argparse.ArgumentParser:
     c = sub.add_parser("check", help="проверить вариант: структура, подбор размеров, сборка во всём цикле")
     c.add_argument("case")
     c.set_defaults(func=cmd_check)
+    b = sub.add_parser("build", help="отчёт по варианту: PDF и автономный HTML")
+    b.add_argument("case", help="файл варианта .toml")
+    b.add_argument("-o", "--output", default="output", help="папка вывода (по умолчанию output/)")
+    b.add_argument("--format", default="pdf,html", help="pdf, html или pdf,html")
+    b.add_argument("--sections", help="разделы через запятую: structure,kinematics,dynamics,forces")
+    b.set_defaults(func=cmd_build)
+    bt = sub.add_parser("batch", help="отчёты по всем вариантам группы и манифест")
+    bt.add_argument("variants", help="таблица вариантов (.csv, .toml) или папка с файлами вариантов")
+    bt.add_argument("-o", "--output", required=True, help="папка вывода")
+    bt.add_argument("--base", help="базовый вариант для таблицы CSV")
+    bt.add_argument("--jobs", type=int, default=None, help="число параллельных процессов (по умолчанию — число ядер)")
+    bt.add_argument("--format", default="pdf,html")
+    bt.add_argument("--sections")
+    bt.set_defaults(func=cmd_batch)
     w = sub.add_parser("warmup", help="скомпилировать ядра numba (один раз после установки)")
     w.set_defaults(func=cmd_warmup)
     for hook in _PARSER_HOOKS:

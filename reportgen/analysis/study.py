@@ -75,7 +75,9 @@ class Study:
     @cached_property
     def meta(self) -> dict:
         m = self.root.table("meta")
-        return {k: str(v) for k, v in m.data.items()}
+        out = {k: str(v) for k, v in m.data.items()}
+        out.update(self.spec.meta_overrides)
+        return out
 
     def _build(self, fixed: Mapping[str, float]) -> tuple[dict, Mechanism, Structure, L.SolverModel]:
         names = self.spec.parameters(fixed)

@@ -23,6 +23,7 @@ class CaseSpec:
     path: Path
     data: dict
     overrides: dict[str, Any] = field(default_factory=dict)
+    meta_overrides: dict[str, str] = field(default_factory=dict)
 
     @property
     def root(self) -> Node:
@@ -33,7 +34,8 @@ class CaseSpec:
         return self.path.stem
 
     def digest(self) -> str:
-        h = hashlib.sha256(repr((sorted(_flat(self.data)), sorted(self.overrides.items()))).encode())
+        h = hashlib.sha256(repr((sorted(_flat(self.data)), sorted(self.overrides.items()),
+                                 sorted(self.meta_overrides.items()))).encode())
         return h.hexdigest()[:16]
 
     def parameters(self, fixed: Mapping[str, float] | None = None) -> dict[str, Q]:

@@ -58,7 +58,7 @@ def _figure_motion(df: pd.DataFrame) -> bytes:
     ax.set_ylabel("Скорость и ускорение ползуна")
     ax.set_xlim(0, 360)
     ax.set_xticks(range(0, 361, 45))
-    ax.legend(loc="lower left")
+    fig.legend(loc="outside upper center", ncols=2)
     return mplstyle.to_svg(fig)
 
 
@@ -84,12 +84,12 @@ def build_demo_report(n_rows: int = 60, options: dict | None = None) -> Report:
         Paragraph("Выполнить структурный и кинематический анализ кривошипно-ползунного "
                   "механизма по заданным размерам звеньев и частоте вращения кривошипа."),
         Table("Исходные данные",
-              [Column("name", "Параметр"), Column("value", "Значение", sig=4),
+              [Column("name", "Параметр"), Column("value", "Значение", sig=3),
                Column("unit", "Единица")],
               pd.DataFrame({
                   "name": ["Длина кривошипа OA", "Длина шатуна AB", "Частота вращения кривошипа",
                            "Число положений"],
-                  "value": [R, L, N1, n_rows],
+                  "value": pd.Series([R, L, int(N1), n_rows], dtype=object),
                   "unit": ["м", "м", "об/мин", "—"],
               }), id="tab-given"),
     ]
@@ -150,11 +150,11 @@ def build_demo_report(n_rows: int = 60, options: dict | None = None) -> Report:
                 where=[(r"x_B", "координата ползуна, м"),
                        (r"\varphi_1", "угол поворота кривошипа, рад")],
                 label="eq-xb"),
-        Formula(r"v_B = -\omega_1 l_{OA}\left(\sin\varphi_1 + \frac{\lambda \sin\varphi_1 "
-                r"\cos\varphi_1}{\sqrt{1 - \lambda^2 \sin^2\varphi_1}}\right)",
+        Formula(r"v_B = {-\omega_1 l_{OA}\left(\sin\varphi_1 + \frac{\lambda \sin\varphi_1 "
+                r"\cos\varphi_1}{\sqrt{1 - \lambda^2 \sin^2\varphi_1}}\right)}",
                 label="eq-vb"),
-        Formula(r"a_B \approx -\omega_1^2 l_{OA}\left(\cos\varphi_1 + \lambda\cos 2\varphi_1\right)",
-                r"-" + tex_num(w1, digits=3, paren=False) + r"^2 \cdot " + tex_num(R, digits=3)
+        Formula(r"a_B \approx {-\omega_1^2 l_{OA}\left(\cos\varphi_1 + \lambda\cos 2\varphi_1\right)}",
+                r"-" + tex_num(w1, digits=3) + r"^2 \cdot " + tex_num(R, digits=3)
                 + r"\cdot\left(1 + " + tex_num(lam, digits=3) + r"\right)",
                 tex_num(-w1 ** 2 * R * (1 + lam), digits=3, unit="м/с²"),
                 where=[(r"a_B", "ускорение ползуна, м/с²")],

@@ -76,7 +76,17 @@ class Formula:
     label: str | None = None
 
     def parts(self) -> list[str]:
-        return [p for p in (self.symbolic, self.substituted, self.result) if p]
+        """The non-empty parts; a part starting with a minus is braced so the
+        minus is unary after the inserted "="."""
+        out = []
+        for p in (self.symbolic, self.substituted, self.result):
+            if p is None or not str(p).strip():
+                continue
+            p = str(p).strip()
+            if p.startswith("-"):
+                p = "{" + p + "}"
+            out.append(p)
+        return out
 
     def latex(self) -> str:
         """The whole line as one LaTeX string."""

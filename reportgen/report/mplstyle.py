@@ -63,6 +63,8 @@ def style_rc() -> dict:
         "mathtext.it": f"{name}:italic",
         "mathtext.bf": f"{name}:bold",
         "mathtext.sf": name,
+        "mathtext.cal": name,
+        "mathtext.tt": "DejaVu Sans Mono",
         "mathtext.fallback": "stix",
         "axes.unicode_minus": True,
         "axes.linewidth": 0.8,

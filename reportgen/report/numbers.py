@@ -242,7 +242,9 @@ def tex_num(
 ) -> str:
     """The same number as :func:`fmt`, written for LaTeX (ziamath).
 
-    Decimal comma as ``{,}``, a plain ``-`` (ziamath draws a proper minus),
+    Decimal comma as ``{,}``, a plain ``-`` (ziamath draws a proper minus;
+    a negative number is wrapped in braces, ``{-5{,}792}``, so that the minus
+    is unary),
     grouping as ``\\,``, exponent as ``\\cdot 10^{5}``, unit as
     ``\\ \\text{…}``. ``paren=True`` wraps negative values in parentheses,
     as needed when substituting into ``a \\cdot b``.
@@ -259,7 +261,9 @@ def tex_num(
     if exp is not None:
         body += r" \cdot 10^{" + str(exp) + "}"
     if negative:
-        body = "-" + body
+        # Braces make the minus a prefix (unary) operator in ziamath, without
+        # the spacing of a binary minus after "=" or "\cdot".
+        body = "{-" + body + "}"
         if paren:
             body = r"\left(" + body + r"\right)"
     elif sign and not is_zero:

@@ -534,6 +534,13 @@ def _check_glyphs(html: str, family: fonts.FontFamily) -> None:
                       f"взяты из другого шрифта", RuntimeWarning, stacklevel=3)
 
 
+def _frame_svg() -> str:
+    """The ЕСКД frame (ГОСТ 2.104): 20 mm from the left edge, 5 mm elsewhere."""
+    return ('<svg xmlns="http://www.w3.org/2000/svg" width="210mm" height="297mm" '
+            'viewBox="0 0 210 297"><rect x="20" y="5" width="185" height="287" '
+            'fill="none" stroke="#000" stroke-width="0.6"/></svg>')
+
+
 def _render(report: Report, *, for_print: bool, splits=None) -> tuple[str, _Builder]:
     opts = resolve_options(report.options)
     family = fonts.find_serif(opts["font"])
@@ -543,7 +550,8 @@ def _render(report: Report, *, for_print: bool, splits=None) -> tuple[str, _Buil
     body = _walk(builder, report)
     env = _get_env()
     meta = {k: ("" if v is None else v) for k, v in (report.meta or {}).items()}
-    css_ctx = {"o": opts, "for_print": for_print, "family": fonts.CSS_FAMILY}
+    css_ctx = {"o": opts, "for_print": for_print, "family": fonts.CSS_FAMILY,
+               "frame_uri": data_uri(_frame_svg()) if opts["eskd_frame"] else ""}
     css = env.get_template("gost.css" if for_print else "screen.css").render(**css_ctx)
     ctx = {
         "o": opts,
@@ -654,30 +662,44 @@ def _page_rows(document) -> dict[str, dict[int, int]]:
     return out
 
 
-def _new_splits(document, splits: dict[str, list[int]]) -> dict[str, list[int]]:
-    """Split points to add: for each table part that spans several pages, the
-    row that starts each of its later pages. On the first pass (no splits yet)
-    every page start is taken; later only the first overflow of each part."""
+def _next_splits(document, splits: dict[str, list[int]]) -> dict[str, list[int]] | None:
+    """New split points from a laid-out document, or ``None`` when every table
+    part fits on one page.
+
+    A table without split points yet is cut at the first row of each of its
+    later pages. Otherwise the first part that still spans two pages is
+    fixed: its end moves up to the overflowing row and every later split
+    point moves by the same number of rows (parts keep their sizes).
+    """
     rows = _page_rows(document)
-    added: dict[str, list[int]] = {}
+    result = {k: list(v) for k, v in splits.items()}
+    changed = False
     for tid, where in rows.items():
-        cuts = sorted(set(splits.get(tid, ())))
-        bounds = [0] + cuts + [max(where) + 1]
-        new = []
-        for a, b in zip(bounds[:-1], bounds[1:]):
-            prev_page = None
-            for r in range(a, b):
-                if r not in where:
-                    continue
-                page = where[r]
-                if prev_page is not None and page != prev_page:
-                    new.append(r)
-                    if cuts:  # later passes: fix one overflow per part, then re-lay out
-                        break
-                prev_page = page
-        if new:
-            added[tid] = new
-    return added
+        n = max(where) + 1
+        cuts = sorted(c for c in set(splits.get(tid, ())) if 0 < c < n)
+        if not cuts:
+            starts = [r for r in range(1, n)
+                      if r in where and (r - 1) in where and where[r] != where[r - 1]]
+            if starts:
+                result[tid] = starts
+                changed = True
+            continue
+        bounds = [0] + cuts + [n]
+        for k in range(len(bounds) - 1):
+            a, b = bounds[k], bounds[k + 1]
+            first_page = where.get(a)
+            overflow = next((r for r in range(a + 1, b) if where.get(r) != first_page), None)
+            if overflow is None:
+                continue
+            if b < n:  # b is a split point: move it and the later ones up
+                delta = b - overflow
+                new = cuts[:k] + [overflow] + [c - delta for c in cuts[k + 1:]]
+            else:  # the last part overflowed: cut it
+                new = cuts + [overflow]
+            result[tid] = sorted(c for c in set(new) if 0 < c < n)
+            changed = True
+            break
+    return result if changed else None
 
 
 def _layout(report: Report, font_config):
@@ -699,11 +721,10 @@ def _layout(report: Report, font_config):
         stats.passes += 1
         stats.seconds_html += t1 - t0
         stats.seconds_layout += t2 - t1
-        added = _new_splits(document, splits)
-        if not added:
+        new = _next_splits(document, splits)
+        if new is None:
             break
-        for tid, rows in added.items():
-            splits[tid] = sorted(set(splits.get(tid, [])) | set(rows))
+        splits = new
     else:
         log.warning("Разбиение таблиц не сошлось за %d проходов", MAX_PASSES)
     stats.pages = len(document.pages)

@@ -1,0 +1,170 @@
+"""Assemble the whole «пояснительная записка» of a Study from its section builders.
+
+Each section module declares ``NEEDS`` (the Study results it reads) and ``build(study)``; the
+report runs only the sections requested or present in the case, so e.g. a report without a
+dynamics section never runs the dynamics kernels.
+"""
+from __future__ import annotations
+
+import math
+from typing import Callable, Iterable
+
+import pandas as pd
+from markupsafe import Markup
+
+from ..style.numbers import fmt
+from .document import Column, Paragraph, Report, Table, ref
+from .sections import kinematics as sec_kin
+from .sections import structure as sec_struct
+from .sections.common import value_with_unit
+
+# name → (module with NEEDS/build, predicate: does the case have it)
+SECTIONS: dict[str, tuple] = {
+    "structure": (sec_struct, lambda study: True),
+    "kinematics": (sec_kin, lambda study: True),
+}
+ORDER = ["structure", "kinematics", "dynamics", "forces"]
+
+REFERENCES = [
+    "Артоболевский, И. И. Теория механизмов и машин : учебник для втузов / И. И. Артоболевский. — "
+    "4-е изд., перераб. и доп. — Москва : Наука, 1988. — 640 с.",
+    "Попов, С. А. Курсовое проектирование по теории механизмов и механике машин : учебное пособие / "
+    "С. А. Попов, Г. А. Тимофеев ; под ред. К. В. Фролова. — 5-е изд., перераб. и доп. — Москва : "
+    "Высшая школа, 2004. — 411 с.",
+    "Теория механизмов и машин : учебник для втузов / К. В. Фролов, С. А. Попов, А. К. Мусатов [и др.] ; "
+    "под ред. К. В. Фролова. — Москва : Высшая школа, 1987. — 496 с.",
+    "Кореняко, А. С. Курсовое проектирование по теории механизмов и машин / А. С. Кореняко, "
+    "Л. И. Кременштейн, С. Д. Петровский [и др.]. — 5-е изд., перераб. — Киев : Вища школа, 1970. — 332 с.",
+    "ГОСТ 2.770–68. Единая система конструкторской документации. Обозначения условные графические "
+    "в схемах. Элементы кинематики. — Москва : Стандартинформ, 2007. — 15 с.",
+    "ГОСТ 7.32–2017. Система стандартов по информации, библиотечному и издательскому делу. Отчёт о "
+    "научно-исследовательской работе. Структура и правила оформления. — Москва : Стандартинформ, 2017. — 32 с.",
+]
+
+
+def register(name: str, module, present: Callable) -> None:
+    """Called by the dynamics and forces section modules to add themselves."""
+    SECTIONS[name] = (module, present)
+
+
+def chosen_sections(study, names: Iterable[str] | None) -> list[str]:
+    if names:
+        unknown = [n for n in names if n not in SECTIONS]
+        if unknown:
+            from ..errors import CaseError
+            raise CaseError(f"неизвестный раздел отчёта «{unknown[0]}»", key="--sections",
+                            expected="один из: " + ", ".join(n for n in ORDER if n in SECTIONS))
+        return [n for n in ORDER if n in names]
+    return [n for n in ORDER if n in SECTIONS and SECTIONS[n][1](study)]
+
+
+def needs(study, names: Iterable[str] | None = None) -> set[str]:
+    out: set[str] = set()
+    for n in chosen_sections(study, names):
+        out |= set(SECTIONS[n][0].NEEDS)
+    return out
+
+
+def build_report(study, sections: Iterable[str] | None = None, options: dict | None = None) -> Report:
+    names = chosen_sections(study, sections)
+    built = [SECTIONS[n][0].build(study) for n in names]
+    meta = dict(study.meta)
+    meta.setdefault("topic", "Структурный и кинематический анализ рычажного механизма")
+    meta.setdefault("variant", study.name)
+    opts = dict(study.root.table("report").raw("options", {}) or {})
+    opts.update(options or {})
+    return Report(meta=meta, assignment=_assignment(study, names), introduction=_introduction(study, names, built),
+                  sections=built, conclusion=_conclusion(study, names), references=REFERENCES, options=opts)
+
+
+def _assignment(study, names) -> list:
+    mech = study.mechanism
+    tasks = {"structure": "выполнить структурный анализ механизма",
+             "kinematics": "выполнить кинематический анализ (план положений, аналоги скоростей и ускорений, "
+                           "планы скоростей и ускорений, кинематические диаграммы)",
+             "dynamics": "определить закон движения машины и рассчитать маховик по заданному коэффициенту "
+                         "неравномерности хода",
+             "forces": "выполнить силовой (кинетостатический) анализ механизма по группам Ассура с проверкой "
+                       "рычагом Жуковского"}
+    out = [Paragraph("По заданной схеме и размерам механизма: " + "; ".join(tasks[n] for n in names if n in tasks) + ".")]
+    rows = []
+    raw = study.root.table("parameters").data
+    fitted = {f.name for f in study.fits}
+    for name, q in study.params.items():
+        if name not in raw or name in fitted:
+            continue
+        v, unit = value_with_unit(q)
+        rows.append({"name": name, "value": v, "unit": unit})
+    if rows:
+        out.append(Table("Исходные данные", [Column("name", "Параметр", fmt=_param_name),
+                                             Column("value", "Значение", sig=4), Column("unit", "Единица")],
+                         pd.DataFrame(rows), id="tab-given"))
+    lrows = [{"n": l.name, "title": l.title or "—", "m": l.mass, "G": l.weight, "J": l.J_S}
+             for l in mech.moving if l.mass is not None or l.weight is not None or l.J_S is not None]
+    if lrows:
+        out.append(Table("Массы и моменты инерции звеньев", [
+            Column("n", "Звено"), Column("title", "Название"), Column("m", "Масса", "кг", sig=4),
+            Column("G", "Вес", "Н", sig=4), Column("J", "<i>J</i><sub>S</sub>", "кг·м²", sig=4)],
+            pd.DataFrame(lrows), id="tab-masses"))
+    d = mech.driver
+    if d.rotary:
+        text = (f"Ведущее звено — кривошип {d.link}; начальный угол φ<sub>0</sub>&nbsp;=&nbsp;"
+                f"{fmt(math.degrees(d.phi0), digits=3)}°, вращение "
+                f"{'по часовой стрелке' if d.direction < 0 else 'против часовой стрелки'}")
+        if d.omega:
+            text += (f", угловая скорость ω<sub>1</sub>&nbsp;=&nbsp;{fmt(d.omega, digits=3)}&nbsp;рад/с "
+                     f"(n<sub>1</sub>&nbsp;=&nbsp;{fmt(d.omega * 30 / math.pi, sig=4)}&nbsp;об/мин)")
+        out.append(Paragraph(text + "."))
+    else:
+        lo, hi = d.q_range
+        out.append(Paragraph(f"Ведущее звено — гидроцилиндр {d.link}–{d.rod}; длина изменяется от "
+                             f"{fmt(lo, digits=3)} до {fmt(hi, digits=3)}&nbsp;м."))
+    return out
+
+
+def _param_name(name: str) -> Markup:
+    head, _, tail = name.partition("_")
+    return Markup("<i>{}</i><sub>{}</sub>").format(head, tail) if tail else Markup("<i>{}</i>").format(name)
+
+
+def _introduction(study, names, built) -> list:
+    st = study.structure
+    parts = [Paragraph(
+        "Теория механизмов и машин изучает строение, кинематику и динамику механизмов и общие методы их "
+        "анализа и синтеза. Курсовой проект закрепляет эти методы на примере конкретного механизма: "
+        "определяются его строение, движение звеньев, силы, действующие в кинематических парах, и "
+        "параметры, обеспечивающие требуемый режим работы.")]
+    what = ", ".join(s.title.lower() for s in built)
+    parts.append(Paragraph(
+        f"В пояснительной записке выполнены: {what}. Исследуемый механизм имеет {st.n} подвижных звеньев и "
+        f"структурную формулу {st.formula}. Аналитические расчёты выполнены точно (положения групп Ассура — в "
+        "замкнутом виде, аналоги — из линейных систем групп); графические построения выполнены в масштабе и "
+        "сопоставлены с аналитическими результатами."))
+    return parts
+
+
+def _conclusion(study, names) -> list:
+    st = study.structure
+    out = [Paragraph(f"Механизм имеет одну степень свободы (W&nbsp;=&nbsp;{st.W}), структурная формула "
+                     f"{st.formula}, механизм {['', 'I', 'II', 'III', 'IV'][st.mech_class]} класса.")]
+    for f in study.fits:
+        out.append(Paragraph(f"Подобран размер {f.name}&nbsp;=&nbsp;{fmt(f.value, digits=4)}&nbsp;м "
+                             f"(условие {f.condition} при {f.at})."))
+    if "kinematics" in names:
+        from ..analysis.plans import output_quantity
+        s_col, v_col, a_col, title = output_quantity(study)
+        cyc = study.cycle
+        s = cyc[s_col]
+        if s_col.startswith("phi_"):
+            out.append(Paragraph(f"Размах качания выходного звена ({title}) — {fmt(math.degrees(s.max() - s.min()), digits=2)}°."))
+        else:
+            out.append(Paragraph(f"Ход выходного звена ({title}) H&nbsp;=&nbsp;{fmt(s.max() - s.min(), digits=4)}&nbsp;м."))
+        if study.mechanism.driver.omega is not None and s_col.startswith("s_"):
+            n = s_col[2:]
+            out.append(Paragraph(f"Наибольшая скорость выходного звена {fmt(cyc['vs_' + n].abs().max(), digits=3)}&nbsp;м/с, "
+                                 f"наибольшее ускорение {fmt(cyc['as_' + n].abs().max(), sig=4)}&nbsp;м/с²."))
+        for c, v in study.flags.items():
+            mu = math.degrees(v["min"])
+            note = " — меньше рекомендуемых 40°" if mu < 40 else ""
+            out.append(Paragraph(f"Наименьший угол передачи в группе ({c[3:].replace('_', ',')}) — {fmt(mu, digits=1)}°{note}."))
+    return out

@@ -1,0 +1,80 @@
+"""Helpers shared by the section builders: symbols, chosen position, chunked tables."""
+from __future__ import annotations
+
+import math
+
+import pandas as pd
+
+from ...case import units as U
+from ..document import Column, Section
+
+MAX_COLS = 8
+
+
+def tex_point(p: str) -> str:
+    """LaTeX of a point name: S2 → S_{2}, 23 → 23, O1 → O_{1}."""
+    head = p.rstrip("0123456789")
+    tail = p[len(head):]
+    return f"{head}_{{{tail}}}" if head and tail else p
+
+
+def html_point(p: str) -> str:
+    head = p.rstrip("0123456789")
+    tail = p[len(head):]
+    return f"<i>{head}</i><sub>{tail}</sub>" if head and tail else f"<i>{p}</i>"
+
+
+def sub(sym: str, index: str) -> str:
+    """HTML symbol with subscript: sub('φ', '3') → φ<sub>3</sub>."""
+    return f"<i>{sym}</i><sub>{index}</sub>"
+
+
+def chosen_position(study) -> str:
+    """The report position for which plans and formulas are shown ([report] position)."""
+    node = study.root.table("report")
+    labels = list(study.kinematics["pos"])
+    lab = node.string("position")
+    if lab is None:
+        return "f" if "f" in labels else (labels[1] if len(labels) > 1 else labels[0])
+    if lab not in labels:
+        raise node.error("position", f"нет положения «{lab}»", expected="подпись положения: " + ", ".join(labels))
+    return lab
+
+
+def q_header(study) -> tuple[str, str, str, dict]:
+    """Column key, header and unit of the generalised coordinate for tables."""
+    if study.mechanism.driver.rotary:
+        return "q_deg", "<i>φ</i>", "град", dict(digits=1)
+    return "q", "<i>S</i>", "м", dict(digits=3)
+
+
+def chunked_tables(sec: Section, caption: str, df: pd.DataFrame, columns: list[Column], lead: list[Column],
+                   id_prefix: str, per: int = MAX_COLS) -> list[str]:
+    """Split a wide table into tables of at most ``per`` data columns, each with the lead
+    columns repeated; returns the ids."""
+    ids = []
+    chunks = [columns[i:i + per] for i in range(0, len(columns), per)] or [[]]
+    for k, ch in enumerate(chunks):
+        tid = f"{id_prefix}-{k + 1}" if len(chunks) > 1 else id_prefix
+        cap = caption if len(chunks) == 1 else f"{caption} (часть {k + 1})"
+        sec.table(cap, lead + ch, df, id=tid)
+        ids.append(tid)
+    return ids
+
+
+UNIT_RU = {
+    U.LENGTH: "м", U.MASS: "кг", U.FORCE: "Н", U.MOMENT: "Н·м", U.INERTIA: "кг·м²",
+    U.VELOCITY: "м/с", U.ACCELERATION: "м/с²", U.ANGULAR_VELOCITY: "рад/с", U.PRESSURE: "Па",
+    U.TIME: "с", U.DENSITY: "кг/м³", U.ANGULAR_ACCELERATION: "рад/с²",
+}
+
+
+def value_with_unit(q) -> tuple[float, str]:
+    """A parameter (expr.Q) in the unit it is usually printed in."""
+    dim = tuple(q.dim)
+    v = float(q.value)
+    if dim == U.ANGLE:
+        return math.degrees(v), "°"
+    if dim[:3] == (0, 0, 0):
+        return v, "—"
+    return v, UNIT_RU.get(dim, U.format_dim(dim))

@@ -1,0 +1,266 @@
+"""Section «Кинематический анализ механизма»: plan of positions, analogs, velocity and
+acceleration plans with the graphical/analytical comparison, kinematic diagrams, true
+velocities, and the formulas of the chosen position."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+from markupsafe import Markup
+
+from ...analysis.plans import output_quantity
+from ...mechanism.model import FRAME
+from ...scenes.diagrams import AnalogCurves, OutputDiagrams
+from ...scenes.mechanism import PositionsPlan
+from ...scenes.plans import MIN_MM, READ_MM, PlanScene
+from ...style.numbers import fmt, fmt_pct, tex_num
+from ..document import Column, Formula, Section, ref
+from ..formulas import inline_math
+from .common import chosen_position, chunked_tables, html_point, q_header, sub, tex_point
+
+NEEDS = ("kinematics", "cycle")
+
+
+def _moving_points(study) -> list[str]:
+    fixed = set(study.mechanism.link(FRAME).points)
+    seen, out = set(), []
+    for l in study.mechanism.moving:
+        for p in l.points:
+            if p not in fixed and p not in seen:
+                seen.add(p)
+                out.append(p)
+    return out
+
+
+def _links(study):
+    """Links whose angle changes (a slider on a fixed guide only translates)."""
+    d = study.mechanism.driver
+    cyc = study.cycle
+    return [l for l in study.mechanism.moving if not (d.kind == "actuator" and l.name == d.rod)
+            and float(np.abs(cyc["wq_" + l.name]).max()) > 1e-12]
+
+
+def build(study) -> Section:
+    mech = study.mechanism
+    k = study.kinematics.copy()
+    sec = Section("Кинематический анализ механизма", "sec-kinematics")
+    qkey, qhead, qunit, qfmt = q_header(study)
+    lead = [Column("pos", "№"), Column(qkey, qhead, qunit, **qfmt)]
+    pts = _moving_points(study)
+    rotary = mech.driver.rotary
+    w_known = mech.driver.omega is not None
+
+    # ----- plan of positions
+    s1 = sec.subsection("План положений механизма", "sec-positions")
+    plan = PositionsPlan().draw(study)
+    ncount = int((~k["pos"].astype(str).str.startswith("д")).sum()) if k["pos"].dtype == object else len(k)
+    mu_l = inline_math(r"\mu_l")
+    phi0_m = inline_math(r"\varphi_0")
+    w1_m = inline_math(r"\omega_1")
+    v_m = inline_math(r"v = \omega_1 x^{\prime}")
+    a_m = inline_math(r"a = \omega_1^2 x^{\prime\prime} + \varepsilon_1 x^{\prime}")
+    if rotary:
+        s1.paragraph(f"План положений построен для {ncount} положений кривошипа, начиная с положения "
+                     f"{phi0_m}&nbsp;=&nbsp;{fmt(math.degrees(mech.driver.phi0), digits=1)}°, "
+                     f"при вращении {'по часовой стрелке' if mech.driver.direction < 0 else 'против часовой стрелки'}. "
+                     f"Масштаб {mu_l}&nbsp;=&nbsp;{fmt(plan.mu, sig=3)}&nbsp;м/мм. Штриховыми линиями показаны "
+                     f"траектории центров масс звеньев (рисунок {ref('fig-positions')}).")
+    else:
+        lo, hi = mech.driver.q_range
+        s1.paragraph(f"План положений построен для {ncount} значений длины гидроцилиндра от "
+                     f"{fmt(lo, digits=3)} до {fmt(hi, digits=3)}&nbsp;м; масштаб {mu_l}&nbsp;=&nbsp;"
+                     f"{fmt(plan.mu, sig=3)}&nbsp;м/мм (рисунок {ref('fig-positions')}).")
+    s1.figure("План положений механизма и траектории центров масс", plan.svg, plan.width_mm, id="fig-positions")
+    if study.fits:
+        s1.paragraph("Неизвестные размеры подобраны из условий задания (решение уравнений с точностью 10⁻¹²):")
+        fdf = pd.DataFrame([{"name": f.name, "cond": f.condition, "at": f.at, "value": f.value} for f in study.fits])
+        s1.table("Подобранные размеры", [Column("name", "Величина"), Column("cond", "Условие"),
+                                          Column("at", "Положение"), Column("value", "Значение", "м", digits=4)],
+                 fdf, id="tab-fits")
+    cols = []
+    for p in pts:
+        cols += [Column(f"x_{p}", f"<i>x</i><sub>{p}</sub>", "м", digits=3),
+                 Column(f"y_{p}", f"<i>y</i><sub>{p}</sub>", "м", digits=3)]
+    ids = chunked_tables(s1, "Координаты точек механизма", k, cols, lead, "tab-coords")
+    angle_cols = []
+    for l in _links(study):
+        kd = k.copy()
+        angle_cols.append(Column(f"phi_{l.name}", sub("φ", l.name), "град", fmt=_deg))
+    for j in mech.prismatic:
+        angle_cols.append(Column(f"s_{j.name}", sub("s", j.name), "м", digits=4))
+    for c in k.columns:
+        if c.startswith("phi_") and c[4:] not in [l.name for l in mech.links]:
+            angle_cols.append(Column(c, sub("φ", c[4:]), "град", fmt=_deg))
+    chunked_tables(s1, "Углы звеньев и перемещения в поступательных парах", k, angle_cols, lead, "tab-angles")
+    s1.paragraph(f"Координаты точек приведены в таблице {ref(ids[0])}, углы звеньев — в таблице {ref('tab-angles' if len(angle_cols) <= 8 else 'tab-angles-1')}.")
+
+    # ----- analogs
+    s2 = sec.subsection("Аналоги скоростей и ускорений", "sec-analogs")
+    qs = "φ" if rotary else "S"
+    s2.paragraph(
+        f"Положения звеньев найдены в замкнутом виде для каждой группы Ассура; аналоги скоростей "
+        f"и ускорений (производные по обобщённой координате {qs}) получены точно из линейных систем "
+        f"групп, без численного дифференцирования. Истинные скорости и ускорения: "
+        f"{v_m}, {a_m}.")
+    wcols = [Column(f"wq_{l.name}", sub("φ′", l.name), None, digits=4) for l in _links(study)
+             if not (rotary and l.name == mech.driver.link)]
+    chunked_tables(s2, "Аналоги угловых скоростей звеньев", k, wcols, lead, "tab-wq")
+    ecols = [Column(f"eq_{l.name}", sub("φ″", l.name), None, digits=4) for l in _links(study)
+             if not (rotary and l.name == mech.driver.link)]
+    chunked_tables(s2, "Аналоги угловых ускорений звеньев", k, ecols, lead, "tab-eq")
+    vcols = []
+    for p in pts:
+        vcols += [Column(f"vqx_{p}", f"<i>x′</i><sub>{p}</sub>", None, digits=4),
+                  Column(f"vqy_{p}", f"<i>y′</i><sub>{p}</sub>", None, digits=4)]
+    chunked_tables(s2, "Аналоги скоростей точек", k, vcols, lead, "tab-vq")
+    curves = AnalogCurves().draw(study)
+    s2.figure("Аналоги угловых скоростей звеньев за цикл", curves.svg, curves.width_mm, id="fig-analogs")
+
+    # ----- true velocities
+    if w_known:
+        s3 = sec.subsection("Скорости и ускорения точек и звеньев", "sec-true")
+        w1 = mech.driver.omega
+        if rotary:
+            s3.paragraph(f"Кривошип вращается равномерно с угловой скоростью "
+                         f"{w1_m}&nbsp;=&nbsp;{fmt(w1, digits=3)}&nbsp;рад/с.")
+        tv = [Column(f"v_{p}", sub("V", p), "м/с", digits=3) for p in pts]
+        tv += [Column(f"w_{l.name}", sub("ω", l.name), "рад/с", digits=3) for l in _links(study)
+               if not (rotary and l.name == mech.driver.link)]
+        chunked_tables(s3, "Скорости точек и угловые скорости звеньев", k, tv, lead, "tab-v")
+        ta = [Column(f"a_{p}", sub("a", p), "м/с²", sig=4) for p in pts]
+        ta += [Column(f"e_{l.name}", sub("ε", l.name), "рад/с²", sig=4) for l in _links(study)
+               if not (rotary and l.name == mech.driver.link)]
+        chunked_tables(s3, "Ускорения точек и угловые ускорения звеньев", k, ta, lead, "tab-a")
+
+        # ----- plans at the chosen position
+        lab = chosen_position(study)
+        s4 = sec.subsection(f"Планы скоростей и ускорений для положения {lab}", "sec-plans")
+        row = k[k["pos"] == lab].iloc[0]
+        vplan = PlanScene(lab, "velocity").draw(study)
+        aplan = PlanScene(lab, "acceleration").draw(study)
+        _plan_formulas(s4, study, row, vplan, aplan)
+        s4.figure(f"План скоростей для положения {lab} (μ<sub>v</sub> = {fmt(vplan.mu, sig=3)} м·с⁻¹/мм)",
+                  vplan.svg, vplan.width_mm, id="fig-vplan")
+        s4.figure(f"План ускорений для положения {lab} (μ<sub>a</sub> = {fmt(aplan.mu, sig=3)} м·с⁻²/мм)",
+                  aplan.svg, aplan.width_mm, id="fig-aplan")
+        cmp_cols = [Column("name", "Вектор", fmt=_vec_name), Column("mm", "Длина на плане", "мм", digits=1),
+                    Column("graphic", "По плану", None, sig=4), Column("analytic", "Аналитически", None, sig=4),
+                    Column("delta", "Расхождение", "%", digits=2)]
+        s4.paragraph(f"Отрезки планов измерены с точностью {fmt(READ_MM, digits=1)}&nbsp;мм (отрезки короче "
+                     f"{fmt(MIN_MM, digits=0)}&nbsp;мм не сравниваются); сравнение с "
+                     f"аналитическим решением — в таблицах {ref('tab-vplan')} и {ref('tab-aplan')}. Наибольшее "
+                     f"расхождение: по скоростям {fmt_pct(vplan.table['delta'].max() / 100)}, по ускорениям "
+                     f"{fmt_pct(aplan.table['delta'].max() / 100)} (допускается до 5&nbsp;%).")
+        s4.table(f"Скорости по плану и аналитически (положение {lab}), м/с", cmp_cols, vplan.table, id="tab-vplan")
+        s4.table(f"Ускорения по плану и аналитически (положение {lab}), м/с²", cmp_cols, aplan.table, id="tab-aplan")
+
+    # ----- kinematic diagrams
+    s5 = sec.subsection("Кинематические диаграммы выходного звена", "sec-diagrams")
+    diag = OutputDiagrams().draw(study)
+    s_col, v_col, a_col, title = output_quantity(study)
+    cyc = study.cycle
+    s = cyc[s_col].to_numpy()
+    stroke = float(s.max() - s.min())
+    if s_col.startswith("phi_"):
+        s5.paragraph(f"Выходное звено — {title}; размах качания {fmt(math.degrees(stroke), digits=2)}° "
+                     f"(рисунок {ref('fig-diagrams')}).")
+    else:
+        s5.paragraph(f"Выходное звено — {title}; ход H&nbsp;=&nbsp;{fmt(stroke, digits=4)}&nbsp;м "
+                     f"(рисунок {ref('fig-diagrams')}).")
+    if rotary:
+        i_max, i_min = int(np.argmax(s)), int(np.argmin(s))
+        th = abs(math.degrees(cyc["q"].iloc[i_max] - cyc["q"].iloc[i_min]))
+        work = min(th, 360 - th)
+        Kc = (360 - work) / work if work > 0 else float("nan")
+        s5.paragraph(f"Крайние положения выходного звена соответствуют углам поворота кривошипа "
+                     f"{fmt(math.degrees(cyc['q'].iloc[i_min] - study.grid.start), digits=1)}° и "
+                     f"{fmt(math.degrees(cyc['q'].iloc[i_max] - study.grid.start), digits=1)}°; угол перекрытия "
+                     f"θ&nbsp;=&nbsp;{fmt(abs(180 - work), digits=1)}°, коэффициент изменения средней скорости "
+                     f"K&nbsp;=&nbsp;{fmt(max(Kc, 1 / Kc), digits=3)}.")
+    s5.figure("Кинематические диаграммы выходного звена", diag.svg, diag.width_mm, id="fig-diagrams")
+    flags = study.flags
+    if flags:
+        rows = [{"g": c[3:].replace("_", ","), "mu": v["min"], "q": v["q_min"]} for c, v in flags.items()]
+        mdf = pd.DataFrame(rows)
+        s5.paragraph(f"Наименьшие за цикл углы передачи движения в диадах приведены в таблице {ref('tab-mu')}; "
+                     "рекомендуемое значение — не менее 40°.")
+        s5.table("Наименьшие углы передачи движения", [
+            Column("g", "Группа"), Column("mu", "μ<sub>min</sub>", "град", fmt=_deg),
+            Column("q", qhead + " (μ<sub>min</sub>)", qunit, fmt=_deg if rotary else None, digits=None if rotary else 3)],
+            mdf, id="tab-mu")
+    return sec
+
+
+def _deg(x) -> str:
+    return fmt(math.degrees(float(x)), digits=2)
+
+
+def _vec_name(name: str) -> Markup:
+    """V_BA → V<sub>BA</sub>; a^n_BA → a<sup>n</sup><sub>BA</sub>."""
+    if "^" in name:
+        head, rest = name.split("^", 1)
+        sup_, _, idx = rest.partition("_")
+        return Markup("<i>{}</i><sup>{}</sup><sub>{}</sub>").format(head, sup_, idx)
+    head, _, idx = name.partition("_")
+    return Markup("<i>{}</i><sub>{}</sub>").format(head, idx)
+
+
+def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
+    """Vector equations of each group and the formulas with numbers at the chosen position."""
+    mech = study.mechanism
+    d = mech.driver
+    fs = []
+    if d.rotary:
+        crank = mech.link(d.link)
+        tip = [p for p in crank.points if p != d.center][0]
+        l = math.hypot(*np.subtract(crank.points[tip], crank.points[d.center]))
+        w1 = d.omega
+        T, C = tex_point(tip), tex_point(d.center)
+        fs.append(Formula(rf"V_{{{T}}} = \omega_1 l_{{{C}{T}}}", rf"{tex_num(w1, digits=3)} \cdot {tex_num(l, digits=4)}",
+                          tex_num(w1 * l, digits=3, unit="м/с"),
+                          where=[(r"\omega_1", "угловая скорость кривошипа, рад/с"),
+                                 (rf"l_{{{C}{T}}}", "длина кривошипа, м")]))
+        fs.append(Formula(rf"a_{{{T}}} = \omega_1^2 l_{{{C}{T}}}", rf"{tex_num(w1, digits=3)}^2 \cdot {tex_num(l, digits=4)}",
+                          tex_num(w1 * w1 * l, digits=3, unit="м/с²")))
+    vseg = {s.name: s for s in vplan.plan.segments}
+    aseg = {s.name: s for s in aplan.plan.segments}
+    for link in mech.moving:
+        if d.rotary and link.name == d.link:
+            continue
+        joints = {j.point for j in mech.joints}
+        rel = [s for s in vplan.plan.segments if s.kind == "rel" and s.link == link.name]
+        rel.sort(key=lambda s: (s.end not in joints, -s.length))
+        if not rel or abs(row[f"w_{link.name}"]) < 1e-12 and float(np.abs(study.cycle["wq_" + link.name]).max()) < 1e-12:
+            continue
+        s0 = rel[0]
+        q_, r_ = s0.end, s0.start
+        lq = math.hypot(row[f"x_{q_}"] - row[f"x_{r_}"], row[f"y_{q_}"] - row[f"y_{r_}"])
+        Q, R = tex_point(q_), tex_point(r_)
+        w = row[f"w_{link.name}"]
+        fs.append(Formula(rf"\omega_{{{link.name}}} = \frac{{V_{{{Q}{R}}}}}{{l_{{{R}{Q}}}}}",
+                          rf"\frac{{{tex_num(s0.length, sig=4)}}}{{{tex_num(lq, digits=4)}}}",
+                          tex_num(abs(w), sig=4, unit="рад/с")))
+        tn = aseg.get(f"a^τ_{q_}{r_}")
+        if tn is not None:
+            e = row[f"e_{link.name}"]
+            fs.append(Formula(rf"\varepsilon_{{{link.name}}} = \frac{{a^{{\tau}}_{{{Q}{R}}}}}{{l_{{{R}{Q}}}}}",
+                              rf"\frac{{{tex_num(tn.length, sig=4)}}}{{{tex_num(lq, digits=4)}}}",
+                              tex_num(abs(e), sig=4, unit="рад/с²")))
+    for j in mech.prismatic:
+        guide, slider = j.links
+        if guide == FRAME:
+            continue
+        ck = aseg.get(f"a^k_{j.point}{slider}{j.point}{guide}")
+        vr = vseg.get(f"V_{j.point}{slider}{j.point}{guide}")
+        if ck is not None and vr is not None:
+            P = tex_point(j.point)
+            fs.append(Formula(rf"a^k_{{{P}_{slider}{P}_{guide}}} = 2\omega_{{{guide}}} V_{{{P}_{slider}{P}_{guide}}}",
+                              rf"2 \cdot {tex_num(abs(row['w_' + guide]), sig=4)} \cdot {tex_num(vr.length, sig=4)}",
+                              tex_num(ck.length, sig=4, unit="м/с²")))
+    sec.paragraph("Скорости и ускорения определены построением планов по векторным уравнениям групп Ассура "
+                  "(для точки, общей двум звеньям, — относительное движение вокруг соседних шарниров; для "
+                  "камня на подвижной направляющей — переносное и относительное движение с кориолисовым "
+                  "ускорением). Угловые скорости и ускорения звеньев:")
+    if fs:
+        sec.formula(*fs)

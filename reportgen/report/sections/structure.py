@@ -1,0 +1,83 @@
+"""Section «Структурный анализ механизма»."""
+from __future__ import annotations
+
+import pandas as pd
+
+from ...scenes.mechanism import AssurGroups, KinematicScheme
+from ..document import Column, Section, ref
+from ..formulas import inline_math
+from .common import chosen_position
+
+NEEDS = ("structure", "kinematics")
+
+
+def build(study) -> Section:
+    st = study.structure
+    mech = study.mechanism
+    sec = Section("Структурный анализ механизма", "sec-structure")
+    pos = study.kinematics["pos"].iloc[0]
+    scheme = KinematicScheme(pos).draw(study)
+    links = [l for l in mech.moving]
+    mu_l = inline_math(r"\mu_l")
+    sec.paragraph(
+        f"Кинематическая схема механизма в положении {pos} приведена на рисунке {ref('fig-scheme')} "
+        f"(масштаб {mu_l}&nbsp;=&nbsp;{_mu(scheme.mu)}&nbsp;м/мм). Механизм состоит из стойки 0 и "
+        f"{len(links)} подвижных звеньев, соединённых {st.p5} низшими кинематическими парами.")
+    sec.figure("Кинематическая схема механизма", scheme.svg, scheme.width_mm, id="fig-scheme")
+
+    s1 = sec.subsection("Звенья и кинематические пары", "sec-links-pairs")
+    ldf = pd.DataFrame([{"n": l.name, "title": l.title or "—", "motion": st.link_motion[l.name]} for l in links])
+    s1.paragraph(f"Звенья механизма и виды их движения перечислены в таблице {ref('tab-links')}, "
+                 f"кинематические пары — в таблице {ref('tab-pairs')}.")
+    s1.table("Звенья механизма", [Column("n", "Номер"), Column("title", "Название"), Column("motion", "Вид движения")],
+             ldf, id="tab-links")
+    pdf = pd.DataFrame(st.pairs)
+    pdf["klass"] = pdf["klass"].astype(str)
+    s1.table("Кинематические пары", [Column("name", "Обозначение"), Column("links", "Звенья"),
+                                     Column("kind", "Вид пары"), Column("klass", "Класс"),
+                                     Column("level", "Низшая/высшая")], pdf, id="tab-pairs")
+
+    s2 = sec.subsection("Число степеней свободы", "sec-dof")
+    s2.paragraph("Число степеней свободы плоского механизма определяется по формуле П.&nbsp;Л.&nbsp;Чебышева:")
+    s2.formula(r"W = 3n - 2p_5 - p_4", rf"3 \cdot {st.n} - 2 \cdot {st.p5} - {st.p4}", str(st.W),
+               where=[("n", "число подвижных звеньев"), ("p_5", "число низших (одноподвижных) пар"),
+                      ("p_4", "число высших пар")], label="eq-chebyshev")
+    driver = ("кривошипа " + mech.driver.link) if mech.driver.rotary else \
+        f"гидроцилиндра (звенья {mech.driver.link} и {mech.driver.rod}, поступательная ведущая пара)"
+    s2.paragraph(f"W&nbsp;=&nbsp;{st.W}: для определённости движения достаточно одного ведущего звена — {driver}. "
+                 "Пассивных связей и лишних степеней свободы нет.")
+
+    s3 = sec.subsection("Группы Ассура и структурная формула", "sec-groups")
+    groups = AssurGroups(pos).draw(study)
+    s3.paragraph(f"Механизм раскладывается на начальный механизм и группы Ассура, начиная с группы, "
+                 f"наиболее удалённой от ведущего звена (рисунок {ref('fig-groups')}). Для каждой группы "
+                 f"{inline_math('W = 3n - 2p_5 = 0')}:")
+    rows = []
+    for g in st.groups:
+        n = len(g.links)
+        p = len(g.joints) + (1 if mech.driver.kind == "actuator" and g.klass != 1 and mech.driver.link in g.bodies else 0)
+        if g.klass == 1:
+            rows.append({"g": g.label, "title": "начальный механизм I класса", "n": n, "p": max(p, 1), "W": 1})
+        else:
+            rows.append({"g": g.label, "title": g.title, "n": n, "p": p, "W": 3 * n - 2 * p})
+    gdf = pd.DataFrame(rows)
+    s3.table("Структурные группы механизма (в порядке присоединения)",
+             [Column("g", "Звенья"), Column("title", "Группа"), Column("n", "<i>n</i>"),
+              Column("p", "<i>p</i><sub>5</sub>"), Column("W", "<i>W</i>")], gdf, id="tab-groups")
+    s3.figure("Начальный механизм и группы Ассура", groups.svg, groups.width_mm, id="fig-groups")
+    s3.paragraph(f"Структурная формула механизма: <b>{st.formula}</b>. "
+                 f"Класс механизма определяется наивысшим классом входящих в него групп: механизм "
+                 f"{_roman(st.mech_class)} класса.")
+    if mech.driver.kind == "actuator":
+        s3.paragraph("При заданной длине гидроцилиндра цилиндр и шток образуют одно звено переменной длины, "
+                     "поэтому первая группа решается как группа ВВВ.")
+    return sec
+
+
+def _mu(mu: float) -> str:
+    from ...style.numbers import fmt
+    return fmt(mu, sig=3)
+
+
+def _roman(k: int) -> str:
+    return {1: "I", 2: "II", 3: "III", 4: "IV"}.get(k, str(k))

@@ -1,0 +1,88 @@
+"""Curves over the cycle: kinematic diagrams s, v, a of the output link and the analogs."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..analysis.plans import output_quantity
+from ..style import mplstyle
+from .mechanism import Drawing
+
+
+def _xaxis(study, cyc):
+    if study.mechanism.driver.rotary:
+        return np.degrees(cyc["q"].to_numpy() - study.grid.start), "φ, град", 30
+    return cyc["q"].to_numpy() * 1e3, "S, мм", None
+
+
+class OutputDiagrams:
+    """s(φ), v(φ), a(φ) of the output link (true values when ω is known, analogs otherwise),
+    with the report positions marked."""
+
+    needs = ("cycle", "kinematics")
+
+    def draw(self, study) -> Drawing:
+        cyc = study.cycle
+        s_col, v_col, a_col, title = output_quantity(study)
+        x, xlabel, step = _xaxis(study, cyc)
+        angular = s_col.startswith("phi_")
+        true = study.mechanism.driver.omega is not None
+        name = s_col.split("_", 1)[1]
+        if true:
+            v = cyc[("w_" if angular else "vs_") + name] if angular or s_col.startswith("s_") else cyc[v_col]
+            a = cyc[("e_" if angular else "as_") + name] if angular or s_col.startswith("s_") else cyc[a_col]
+        else:
+            v, a = cyc[v_col], cyc[a_col]
+        s = cyc[s_col].to_numpy()
+        if angular:
+            s = np.degrees(s)
+        units = (("φ, град", "ω, рад/с", "ε, рад/с²") if angular else ("s, м", "v, м/с", "a, м/с²")) if true \
+            else (("φ, град", "φ′", "φ″") if angular else ("s, м", "s′, м/рад", "s″, м/рад²"))
+        fig = mplstyle.figure(160, 175)
+        axs = fig.subplots(3, 1, sharex=True)
+        kin = study.kinematics
+        kq = kin["q"].to_numpy()
+        kx = np.degrees(kq - study.grid.start) if study.mechanism.driver.rotary else kq * 1e3
+        for ax, y, lab in zip(axs, (s, np.asarray(v), np.asarray(a)), units):
+            ax.plot(x, y, lw=1.3)
+            ax.axhline(0, color="0.3", lw=0.6)
+            ax.set_ylabel(lab)
+            yi = np.interp(kx, x, y) if np.all(np.diff(x) > 0) else None
+            if yi is not None:
+                ax.plot(kx, yi, "o", ms=3)
+        axs[-1].set_xlabel(xlabel)
+        if step:
+            axs[-1].set_xticks(np.arange(0, 361, step))
+            axs[-1].set_xlim(0, 360)
+        return Drawing(mplstyle.to_svg(fig), 160, 0.0)
+
+
+class AnalogCurves:
+    """First analogs of the angular velocities of all links over the cycle."""
+
+    needs = ("cycle",)
+
+    def draw(self, study) -> Drawing:
+        cyc = study.cycle
+        x, xlabel, step = _xaxis(study, cyc)
+        fig = mplstyle.figure(160, 80)
+        ax = fig.add_subplot()
+        d = study.mechanism.driver
+        for link in study.mechanism.moving:
+            if d.rotary and link.name == d.link:
+                continue
+            if d.kind == "actuator" and link.name == d.rod:
+                continue
+            col = "wq_" + link.name
+            if np.ptp(cyc[col].to_numpy()) < 1e-12 and abs(cyc[col].iloc[0]) < 1e-12:
+                continue
+            ax.plot(x, cyc[col], lw=1.2, label=f"$\\varphi'_{{{link.name}}}$")
+        ax.axhline(0, color="0.3", lw=0.6)
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel("аналог угловой скорости")
+        ax.legend(ncols=4, fontsize=9, loc="best")
+        if step:
+            ax.set_xticks(np.arange(0, 361, step))
+            ax.set_xlim(0, 360)
+        return Drawing(mplstyle.to_svg(fig), 160, 0.0)

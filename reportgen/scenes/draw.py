@@ -1,0 +1,283 @@
+"""Drawing primitives shared by the scenes: exact-scale canvases and the mechanism symbols
+(ГОСТ 2.770: links, revolute joints, supports, sliders, guides, hydraulic cylinder)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from matplotlib.patches import Circle, Polygon, Rectangle
+from matplotlib.transforms import Affine2D
+
+from ..mechanism.model import FRAME, Mechanism
+from ..style import mplstyle
+
+NICE = (1.0, 1.5, 2.0, 2.5, 4.0, 5.0)
+INK = "#000000"
+GREY = "#7a7a7a"
+LIGHT = "#e6e6e6"
+
+
+def nice_scale(extent: float, avail_mm: float) -> float:
+    """The smallest standard scale factor μ (1, 1.5, 2, 2.5, 4, 5 ·10ᵏ units per mm) with
+    extent/μ ≤ avail_mm."""
+    need = max(extent, 1e-12) / avail_mm
+    k = math.floor(math.log10(need))
+    for base in NICE + (10.0,):
+        mu = base * 10.0 ** k
+        if mu >= need * (1 - 1e-12):
+            return mu
+    return 10.0 ** (k + 1)
+
+
+class Canvas:
+    """A figure whose axes map 1 mm of the printed page to μ units exactly (the figure must be
+    placed in the report at ``width_mm``)."""
+
+    def __init__(self, xmin, xmax, ymin, ymax, mu: float, margin_mm: float = 8.0, max_w: float = 165.0):
+        self.mu = mu
+        self.margin = margin_mm
+        w = (xmax - xmin) / mu + 2 * margin_mm
+        h = (ymax - ymin) / mu + 2 * margin_mm
+        self.width_mm = min(max(w, 40.0), max_w)
+        extra_w = (self.width_mm - w) / 2 * mu
+        self.height_mm = max(h, 30.0)
+        extra_h = (self.height_mm - h) / 2 * mu
+        self.fig = mplstyle.figure(self.width_mm, self.height_mm, layout=None)
+        self.ax = self.fig.add_axes((0, 0, 1, 1))
+        self.ax.set_xlim(xmin - margin_mm * mu - extra_w, xmax + margin_mm * mu + extra_w)
+        self.ax.set_ylim(ymin - margin_mm * mu - extra_h, ymax + margin_mm * mu + extra_h)
+        self.ax.set_aspect("equal")
+        self.ax.axis("off")
+
+    def mm(self, x: float) -> float:
+        """A length given in printed millimetres in data units."""
+        return x * self.mu
+
+    @classmethod
+    def fit(cls, xs, ys, avail_w=150.0, avail_h=190.0, margin_mm=8.0):
+        xs, ys = np.asarray(xs, float), np.asarray(ys, float)
+        xmin, xmax, ymin, ymax = xs.min(), xs.max(), ys.min(), ys.max()
+        mu = max(nice_scale(xmax - xmin, avail_w), nice_scale(ymax - ymin, avail_h))
+        return cls(xmin, xmax, ymin, ymax, mu, margin_mm)
+
+    def svg(self) -> bytes:
+        return mplstyle.to_svg(self.fig)
+
+
+def _point(row, p):
+    return float(row[f"x_{p}"]), float(row[f"y_{p}"])
+
+
+def mechanism_points(mech: Mechanism, rows) -> tuple[list[float], list[float]]:
+    xs, ys = [], []
+    for row in rows:
+        for link in mech.links:
+            for p in link.points:
+                x, y = _point(row, p)
+                xs.append(x)
+                ys.append(y)
+    return xs, ys
+
+
+def _slider_links(mech: Mechanism) -> dict[str, str]:
+    return {j.links[1]: j.point for j in mech.prismatic}
+
+
+def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, labels=True,
+                   numbers=True, alpha=1.0, zorder=2, com=True, supports=True) -> None:
+    ax = cv.ax
+    sliders = _slider_links(mech)
+    d = mech.driver
+    for link in mech.moving:
+        pts = [_point(row, p) for p in link.points]
+        phi = float(row[f"phi_{link.name}"])
+        if d.kind == "actuator" and link.name in (d.link, d.rod):
+            _draw_actuator_part(cv, mech, row, link, color, lw, alpha, zorder)
+        elif link.name in sliders:
+            x, y = _point(row, sliders[link.name])
+            _block(cv, x, y, phi, color, lw, alpha, zorder)
+            others = [p for p in link.points if p != sliders[link.name]]
+            for p in others:
+                ax.plot([x, _point(row, p)[0]], [y, _point(row, p)[1]], color=color, lw=lw, alpha=alpha, zorder=zorder)
+        elif len(pts) >= 3 and not _collinear(pts):
+            poly = Polygon(np.array(_hull(pts)), closed=True, facecolor=LIGHT, edgecolor=color, lw=lw,
+                           alpha=alpha, zorder=zorder - 0.5)
+            ax.add_patch(poly)
+        elif len(pts) >= 2:
+            a, b = _farthest(pts)
+            ax.plot([a[0], b[0]], [a[1], b[1]], color=color, lw=lw * 1.3, alpha=alpha, zorder=zorder,
+                    solid_capstyle="round")
+        if numbers and len(pts) >= 1 and link.name not in sliders:
+            a, b = _farthest(pts) if len(pts) >= 2 else (pts[0], pts[0])
+            mx, my = (a[0] + b[0]) / 2, (a[1] + b[1]) / 2
+            nx, ny = -(b[1] - a[1]), b[0] - a[0]
+            n = math.hypot(nx, ny) or 1.0
+            ax.text(mx + nx / n * cv.mm(3.2), my + ny / n * cv.mm(3.2), link.name, fontsize=9, color=color,
+                    ha="center", va="center", alpha=alpha, zorder=zorder + 2)
+        elif numbers and link.name in sliders:
+            x, y = _point(row, sliders[link.name])
+            ax.text(x + cv.mm(5.5), y + cv.mm(4.5), link.name, fontsize=9, color=color, ha="center",
+                    va="center", alpha=alpha, zorder=zorder + 2)
+    fixed = mech.link(FRAME).points
+    for j in mech.joints:
+        x, y = _point(row, j.point)
+        if j.kind == "R":
+            if supports and FRAME in j.links:
+                _support(cv, x, y, color, alpha, zorder)
+            ax.add_patch(Circle((x, y), cv.mm(1.3), facecolor="white", edgecolor=color, lw=1.0,
+                                alpha=alpha, zorder=zorder + 1))
+        elif supports and j.links[0] == FRAME:
+            _guide(cv, mech, row, j, color, alpha)
+    if com:
+        for link in mech.moving:
+            if link.com and link.com not in {j.point for j in mech.joints}:
+                x, y = _point(row, link.com)
+                ax.add_patch(Circle((x, y), cv.mm(0.8), facecolor=color, edgecolor=color, alpha=alpha,
+                                    zorder=zorder + 1))
+    if labels:
+        placed = set()
+        for link in mech.links:
+            for p in link.points:
+                if p in placed:
+                    continue
+                placed.add(p)
+                x, y = _point(row, p)
+                dx, dy = _label_offset(mech, row, p)
+                ax.text(x + cv.mm(3.0) * dx, y + cv.mm(3.0) * dy, _label(p), fontsize=9, style="italic",
+                        ha="center", va="center", color=color, alpha=alpha, zorder=zorder + 3)
+
+
+def _label(p: str) -> str:
+    """Point name with a subscript for trailing digits after a letter (S2 → S₂)."""
+    head = p.rstrip("0123456789")
+    tail = p[len(head):]
+    if head and tail:
+        return f"${head}_{{{tail}}}$"
+    return p
+
+
+def _label_offset(mech: Mechanism, row, p: str) -> tuple[float, float]:
+    """Unit direction away from the links meeting at p."""
+    x, y = _point(row, p)
+    sx = sy = 0.0
+    for link in mech.links:
+        if p in link.points:
+            for q in link.points:
+                if q != p:
+                    qx, qy = _point(row, q)
+                    n = math.hypot(qx - x, qy - y)
+                    if n > 0:
+                        sx += (qx - x) / n
+                        sy += (qy - y) / n
+    n = math.hypot(sx, sy)
+    if n < 1e-9:
+        return (0.7, 0.7)
+    return (-sx / n, -sy / n)
+
+
+def _collinear(pts) -> bool:
+    (x0, y0), (x1, y1) = _farthest(pts)
+    L = math.hypot(x1 - x0, y1 - y0) or 1.0
+    return all(abs((x1 - x0) * (y - y0) - (y1 - y0) * (x - x0)) / L < 1e-6 * L + 1e-9 for x, y in pts)
+
+
+def _farthest(pts):
+    best, pair = -1.0, (pts[0], pts[-1])
+    for i in range(len(pts)):
+        for j in range(i + 1, len(pts)):
+            d = math.hypot(pts[i][0] - pts[j][0], pts[i][1] - pts[j][1])
+            if d > best:
+                best, pair = d, (pts[i], pts[j])
+    return pair
+
+
+def _hull(pts):
+    pts = sorted(set(pts))
+    if len(pts) < 3:
+        return pts
+
+    def cross(o, a, b):
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    lower, upper = [], []
+    for p in pts:
+        while len(lower) >= 2 and cross(lower[-2], lower[-1], p) <= 0:
+            lower.pop()
+        lower.append(p)
+    for p in reversed(pts):
+        while len(upper) >= 2 and cross(upper[-2], upper[-1], p) <= 0:
+            upper.pop()
+        upper.append(p)
+    return lower[:-1] + upper[:-1]
+
+
+def _block(cv: Canvas, x, y, phi, color, lw, alpha, zorder):
+    w, h = cv.mm(9.0), cv.mm(5.5)
+    rect = Rectangle((-w / 2, -h / 2), w, h, facecolor="white", edgecolor=color, lw=lw, alpha=alpha,
+                     zorder=zorder + 0.5)
+    rect.set_transform(Affine2D().rotate(phi).translate(x, y) + cv.ax.transData)
+    cv.ax.add_patch(rect)
+
+
+def _support(cv: Canvas, x, y, color, alpha, zorder):
+    s = cv.mm(4.0)
+    tri = Polygon([(x, y), (x - s * 0.7, y - s), (x + s * 0.7, y - s)], closed=True, facecolor="white",
+                  edgecolor=color, lw=1.0, alpha=alpha, zorder=zorder - 1)
+    cv.ax.add_patch(tri)
+    _hatch(cv, x - s, x + s, y - s, color, alpha)
+
+
+def _hatch(cv: Canvas, x0, x1, y, color, alpha, angle=0.0):
+    ax = cv.ax
+    c, s = math.cos(angle), math.sin(angle)
+
+    def tr(u, v):
+        return x0 + (u * c - v * s), y + (u * s + v * c)
+    L = math.hypot(x1 - x0, 0) if angle == 0 else x1 - x0
+    a, b = tr(0, 0), tr(L, 0)
+    ax.plot([a[0], b[0]], [a[1], b[1]], color=color, lw=1.0, alpha=alpha)
+    step = cv.mm(1.6)
+    n = int(L / step)
+    for k in range(n + 1):
+        p, q = tr(k * step, 0), tr(k * step - cv.mm(1.5), -cv.mm(1.5))
+        ax.plot([p[0], q[0]], [p[1], q[1]], color=color, lw=0.6, alpha=alpha)
+
+
+def _guide(cv: Canvas, mech, row, j, color, alpha):
+    """A fixed guide: a hatched line along the guide direction around the slider point."""
+    x, y = _point(row, j.point)
+    ang = j.angle
+    ux, uy = math.cos(ang), math.sin(ang)
+    nx, ny = -uy, ux
+    half = cv.mm(14.0)
+    off = cv.mm(2.75)
+    x0, y0 = x - ux * half - nx * off, y - uy * half - ny * off
+    _hatch(cv, x0, x0 + 2 * half, y0, color, alpha, angle=ang)
+
+
+def _draw_actuator_part(cv, mech, row, link, color, lw, alpha, zorder):
+    d = mech.driver
+    bx, by = _point(row, d.center)
+    ex, ey = _point(row, d.end)
+    L = math.hypot(ex - bx, ey - by)
+    ux, uy = (ex - bx) / L, (ey - by) / L
+    lo = d.q_range[0] if d.q_range else L
+    if link.name == d.link:
+        body = 0.55 * lo
+        w = cv.mm(4.0)
+        poly = Polygon([(bx - uy * w / 2, by + ux * w / 2), (bx + ux * body - uy * w / 2, by + uy * body + ux * w / 2),
+                        (bx + ux * body + uy * w / 2, by + uy * body - ux * w / 2), (bx + uy * w / 2, by - ux * w / 2)],
+                       closed=True, facecolor="white", edgecolor=color, lw=lw, alpha=alpha, zorder=zorder)
+        cv.ax.add_patch(poly)
+    else:
+        rod = 0.55 * lo
+        cv.ax.plot([ex, ex - ux * rod], [ey, ey - uy * rod], color=color, lw=lw, alpha=alpha, zorder=zorder - 0.2)
+
+
+def arrow(ax, x0, y0, x1, y1, *, color=INK, lw=1.2, ls="-", head_mm=2.2, mu=1.0, zorder=3):
+    """An arrow from (x0, y0) to (x1, y1) with a head of fixed printed size."""
+    from matplotlib.patches import FancyArrowPatch
+    if math.hypot(x1 - x0, y1 - y0) < 1e-15:
+        return
+    ax.add_patch(FancyArrowPatch((x0, y0), (x1, y1), arrowstyle=f"-|>,head_length={head_mm * 0.35},head_width={head_mm * 0.14}",
+                                 mutation_scale=10, color=color, lw=lw, linestyle=ls, shrinkA=0, shrinkB=0,
+                                 zorder=zorder))
