@@ -119,8 +119,9 @@ class _Eq:
 class ReferenceMechanism:
     """The constraint system Φ(X, q) of a Mechanism in mpmath (see the module docstring)."""
 
-    def __init__(self, mech):
+    def __init__(self, mech, line_angles: dict | None = None):
         self.mech = mech
+        self.line_angles = dict(line_angles or {})   # [outputs.angles]: name → (P, R)
         self.links = [l.name for l in mech.moving]
         self.index = {n: i for i, n in enumerate(self.links)}
         self.n = 3 * len(self.links)
@@ -220,29 +221,30 @@ class ReferenceMechanism:
         J = [[cols[c][r] for c in range(self.n)] for r in range(self.n)]
         return J, fq
 
-    def newton(self, X, q, lu=None, maxit=40):
-        """Newton's method to full precision.  With ``lu`` (the factorised Jacobian at a nearby
-        solution) it runs the chord method, which converges linearly with a rate of the order of
-        the distance to that solution (~1e-12 for the stencil points)."""
+    def newton(self, X, q, lu=None, maxit=60):
+        """Solve Φ(X, q) = 0 to full precision by the chord method: the Jacobian is factorised once
+        (at the starting point, or ``lu`` given: the Jacobian at a nearby solution) and refreshed
+        only if the convergence is slow.  From a float guess (error ~1e-16) or a stencil point
+        (error ~1e-24, Jacobian from 1e-12 away) the contraction per step is ~1e-16 or ~1e-12.
+        Stops when the step is below 1e-46·size; the remaining error is then far smaller."""
         X = list(X)
         tol = mpf(10) ** (-(DPS - 4)) * max(1, self.mech.size())
-        small = 0
+        if lu is None:
+            lu = _lu(self.jacobian(X, q)[0])
+        prev = None
         for _ in range(maxit):
-            F = self.residual(X, q)
-            dx = _lu_solve(lu if lu is not None else _lu(self.jacobian(X, q)[0]), F)
+            dx = _lu_solve(lu, self.residual(X, q))
             X = [x - d for x, d in zip(X, dx)]
             size = max(abs(d) for d in dx)
             if size <= tol:
-                small += 1
-                if small >= 2 or size == 0:
-                    break
-            if lu is None and size < mpf("1e-25"):
-                # the error is now ~1e-50: freeze the Jacobian for the last confirming steps
-                lu = _lu(self.jacobian(X, q)[0])
+                break
+            if prev is not None and size > mpf("1e-3") * prev:
+                lu = _lu(self.jacobian(X, q)[0])      # slow: refresh (plain Newton step)
+            prev = size
         else:
             raise ReferenceError(f"reference Newton did not converge at q = {float(q)!r}")
         worst = max(abs(f) for f in self.residual(X, q))
-        if worst > tol * 1000:
+        if worst > tol:
             raise ReferenceError(f"reference residual {float(worst)!r} at q = {float(q)!r}")
         return X
 
@@ -265,6 +267,9 @@ class ReferenceMechanism:
                 out["s_" + e.name] = ux * (sx - lx) + uy * (sy - ly)
             elif e.kind == "actuator":
                 out["s_" + e.name] = mpf(q)
+        for name, (p, r) in self.line_angles.items():
+            base = name[4:] if name.startswith("phi_") else name
+            out["phi_" + base] = mp.atan2(out["y_" + r] - out["y_" + p], out["x_" + r] - out["x_" + p])
         return out
 
     def evaluate(self, q, guess) -> dict:
@@ -284,8 +289,11 @@ class ReferenceMechanism:
                 sols[k] = self.newton(start, q + k * h, lu=lu)
             vals = {k: self.outputs(X, q + k * h) for k, X in sols.items()}
             out = {}
+            twopi = 2 * mp.pi
             for name in vals[0]:
                 f = {k: vals[k][name] for k in vals}
+                if name.startswith("phi_"):   # atan2 of a line may jump by 2π inside the stencil
+                    f = {k: f[0] + (v - f[0]) - twopi * mp.nint((v - f[0]) / twopi) for k, v in f.items()}
                 d1 = (f[-2] - 8 * f[-1] + 8 * f[1] - f[2]) / (12 * h)
                 d2 = (-f[-2] + 16 * f[-1] - 30 * f[0] + 16 * f[1] - f[2]) / (12 * h * h)
                 out[name] = (f[0], d1, d2)
@@ -319,10 +327,11 @@ def reference_columns(study, q_values, frame=None) -> dict[str, list]:
     """High-precision reference of the kinematic columns at q_values (SI: rad or m).
 
     Returns column → list of mpf for ``q``, every ``x_P y_P vqx_P vqy_P aqx_P aqy_P``,
-    ``phi_k wq_k eq_k`` and ``s_J vqs_J aqs_J``.  The starting guesses come from the kernel's float
+    ``phi_k wq_k eq_k``, ``s_J vqs_J aqs_J`` and the line angles of ``[outputs.angles]``.  The starting guesses come from the kernel's float
     solution ``study.at(q_values)`` (or ``frame`` if given)."""
     q_values = [float(q) for q in np.atleast_1d(np.asarray(q_values, dtype=float))]
-    ref = ReferenceMechanism(study.mechanism)
+    angles = {k: tuple(v) for k, v in study.root.table("outputs").table("angles").data.items()}
+    ref = ReferenceMechanism(study.mechanism, angles)
     df = study.at(q_values) if frame is None else frame
     cols: dict[str, list] = {"q": [mpf(q) for q in q_values]}
     for i, q in enumerate(q_values):
@@ -429,7 +438,7 @@ def closure_residuals(mech, df) -> tuple[float, str]:
             continue
         g, s = j.links
         tg = np.zeros(len(df)) if g == "0" else df["phi_" + g].to_numpy()
-        ts = df["phi_" + s].to_numpy()
+        ts = np.zeros(len(df)) if s == "0" else df["phi_" + s].to_numpy()
         upd(wrap(ts - tg - j.angle), f"angle of prismatic pair {j.name}")
         lx, ly = seen_from(g, j.line_point)
         px, py = xy(j.point)

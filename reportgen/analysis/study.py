@@ -383,3 +383,7 @@ def line_angle(cols, name: str, p: str, r: str) -> dict[str, np.ndarray]:
 def load_case(path: str | Path, overrides: Mapping[str, Any] | None = None) -> Study:
     """Load a case file and return its :class:`Study` (nothing is computed yet)."""
     return Study(path, overrides)
+
+
+# Analyses that extend a Study (cached properties and export hooks) attach themselves on import.
+from . import dynamics as _dynamics  # noqa: E402,F401

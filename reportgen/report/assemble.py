@@ -14,6 +14,7 @@ from markupsafe import Markup
 
 from ..style.numbers import fmt
 from .document import Column, Paragraph, Report, Table, ref
+from .sections import dynamics as sec_dyn
 from .sections import kinematics as sec_kin
 from .sections import structure as sec_struct
 from .sections.common import value_with_unit
@@ -22,6 +23,7 @@ from .sections.common import value_with_unit
 SECTIONS: dict[str, tuple] = {
     "structure": (sec_struct, lambda study: True),
     "kinematics": (sec_kin, lambda study: True),
+    "dynamics": (sec_dyn, sec_dyn.present),
 }
 ORDER = ["structure", "kinematics", "dynamics", "forces"]
 

@@ -104,11 +104,13 @@ def build_demo_report(n_rows: int = 60, options: dict | None = None) -> Report:
                   f"и {ref('fig-pos')}."),
     ]
 
-    s1 = Section("Структурный анализ механизма", "sec-struct")
+    # Section 1: structure and kinematics — the long table 1.1, figures 1.1 and
+    # 1.2, formulas (1.1)–(1.5).
+    s1 = Section("Структурный и кинематический анализ механизма", "sec-kin")
     s1.paragraph("Механизм состоит из стойки 0, кривошипа 1, шатуна 2 и ползуна 3. "
                  "Кинематические пары: три вращательные (О, А, В) и одна поступательная "
                  "(ползун – направляющая), все пары пятого класса.")
-    s11 = s1.subsection("Степень подвижности", "sec-dof")
+    s11 = s1.subsection("Степень подвижности механизма", "sec-dof")
     s11.paragraph("Степень подвижности плоского механизма определяется по формуле "
                   "П.&nbsp;Л.&nbsp;Чебышева:")
     s11.formula(
@@ -119,36 +121,31 @@ def build_demo_report(n_rows: int = 60, options: dict | None = None) -> Report:
         label="eq-w",
     )
     s11.paragraph(f"Полученное по формуле {ref('eq-w')} значение W&nbsp;=&nbsp;1 означает, что "
-                  "для определённости движения достаточно одного входного звена – кривошипа.")
-    s12 = s1.subsection("Структурные группы", "sec-groups")
-    s12.paragraph("Механизм образован присоединением к механизму I класса (стойка и "
-                  "кривошип) одной группы Ассура II класса 2-го вида (шатун 2 – ползун 3). "
-                  "Механизм относится ко II классу.")
+                  "для определённости движения достаточно одного входного звена – кривошипа. "
+                  "Механизм образован присоединением к механизму I класса одной группы "
+                  "Ассура II класса 2-го вида (шатун 2 – ползун 3).")
 
-    s2 = Section("Кинематический анализ механизма", "sec-kin")
-    s21 = s2.subsection("Угловая скорость кривошипа", "sec-w1")
+    s12 = s1.subsection("Скорости и ускорения ползуна", "sec-vb")
     omega1, n1 = inline_math(r"\omega_1"), inline_math("n_1")
-    s21.paragraph(f"Угловая скорость кривошипа {omega1} при частоте "
+    s12.paragraph(f"Угловая скорость кривошипа {omega1} при частоте "
                   f"вращения {n1}&nbsp;=&nbsp;{fmt(N1, sig=3)}&nbsp;об/мин:")
-    s21.formula(
+    s12.formula(
         Formula(r"\omega_1 = \frac{\pi n_1}{30}",
                 r"\frac{3{,}1416 \cdot " + tex_num(N1, digits=0) + "}{30}",
                 tex_num(w1, digits=3, unit="рад/с"),
                 where=[(r"\omega_1", "угловая скорость кривошипа, рад/с"),
                        (r"n_1", "частота вращения кривошипа, об/мин")],
                 label="eq-w1"),
-        Formula(r"\lambda = \frac{l_{OA}}{l_{AB}}",
-                r"\frac{" + tex_num(R, digits=3) + "}{" + tex_num(L, digits=3) + "}",
-                tex_num(lam, digits=3), label="eq-lambda"),
     )
-    s22 = s2.subsection("Скорости и ускорения ползуна", "sec-vb")
-    s22.paragraph(f"Перемещение, скорость и ускорение ползуна найдены точно по формулам "
-                  f"{ref('eq-xb')}–{ref('eq-ab')}; значения для всех положений приведены в "
-                  f"таблице {ref('tab-kin')}, графики – на рисунке {ref('fig-motion')}.")
-    s22.formula(
+    s12.paragraph(f"Перемещение, скорость и ускорение ползуна найдены по формулам "
+                  f"{ref('eq-xb')}–{ref('eq-ab')} при λ&nbsp;=&nbsp;{fmt(lam, digits=3)}; "
+                  f"значения для всех положений приведены в таблице {ref('tab-kin')}, "
+                  f"графики – на рисунках {ref('fig-motion')} и {ref('fig-pos')}.")
+    s12.formula(
         Formula(r"x_B = l_{OA}\cos\varphi_1 + l_{AB}\sqrt{1 - \lambda^2 \sin^2\varphi_1}",
                 where=[(r"x_B", "координата ползуна, м"),
-                       (r"\varphi_1", "угол поворота кривошипа, рад")],
+                       (r"\varphi_1", "угол поворота кривошипа, рад"),
+                       (r"\lambda", "отношение длин кривошипа и шатуна")],
                 label="eq-xb"),
         Formula(r"v_B = {-\omega_1 l_{OA}\left(\sin\varphi_1 + \frac{\lambda \sin\varphi_1 "
                 r"\cos\varphi_1}{\sqrt{1 - \lambda^2 \sin^2\varphi_1}}\right)}",
@@ -157,25 +154,41 @@ def build_demo_report(n_rows: int = 60, options: dict | None = None) -> Report:
                 r"-" + tex_num(w1, digits=3) + r"^2 \cdot " + tex_num(R, digits=3)
                 + r"\cdot\left(1 + " + tex_num(lam, digits=3) + r"\right)",
                 tex_num(-w1 ** 2 * R * (1 + lam), digits=3, unit="м/с²"),
-                where=[(r"a_B", "ускорение ползуна, м/с²")],
+                where=[(r"a_B", "ускорение ползуна при φ<sub>1</sub>&nbsp;=&nbsp;0, м/с²")],
                 label="eq-ab"),
     )
-    s22.table(
+    s12.table(
         "Кинематические характеристики ползуна и шатуна",
-        [Column("q_deg", "φ<sub>1</sub>, град", digits=1),
-         Column("x_B", "x<sub>B</sub>", unit="м", digits=4),
-         Column("v_B", "v<sub>B</sub>", unit="м/с", digits=4),
-         Column("a_B", "a<sub>B</sub>", unit="м/с²", digits=3),
+        [Column("q_deg", "φ<sub>1</sub>", unit="град", digits=1),
+         Column("x_B", "<i>x</i><sub>B</sub>", unit="м", digits=4),
+         Column("v_B", "<i>v</i><sub>B</sub>", unit="м/с", digits=4),
+         Column("a_B", "<i>a</i><sub>B</sub>", unit="м/с²", digits=3),
          Column("phi_2", r"\varphi_2", unit="град", digits=2, latex=True),
          Column("w_2", "ω<sub>2</sub>", unit="рад/с", digits=4)],
         df, id="tab-kin", index_header="№", highlight_rows=[0],
         note=f"Наибольшая скорость ползуна {fmt(v_max, digits=3, unit='м/с')}.",
     )
-    s22.figure("Скорость и ускорение ползуна в функции угла поворота кривошипа",
+    s12.figure("Скорость и ускорение ползуна в функции угла поворота кривошипа",
                _figure_motion(df), width_mm=160, id="fig-motion")
-    s22.figure("Перемещение ползуна", _figure_position(df), width_mm=120, id="fig-pos")
-    s22.paragraph(f"Наибольшая скорость ползуна составляет {fmt(v_max, digits=3, unit='м/с')}, "
-                  f"ход ползуна {fmt(2 * R, digits=3, unit='м')}.")
+    s12.figure("Перемещение ползуна", _figure_position(df), width_mm=120, id="fig-pos")
+
+    # Section 2: a short summary with a small table 2.1.
+    s2 = Section("Анализ результатов", "sec-results")
+    s2.paragraph(f"Экстремальные значения кинематических характеристик (таблица "
+                 f"{ref('tab-ext')}) определены по данным таблицы {ref('tab-kin')}.")
+    ext = pd.DataFrame({
+        "name": ["Ход ползуна", "Наибольшая скорость ползуна", "Наибольшее ускорение ползуна",
+                 "Наибольшая угловая скорость шатуна"],
+        "symbol": ["H", "v<sub>B max</sub>", "a<sub>B max</sub>", "ω<sub>2 max</sub>"],
+        "value": [2 * R, v_max, float(df["a_B"].abs().max()), float(df["w_2"].abs().max())],
+        "unit": ["м", "м/с", "м/с²", "рад/с"],
+    })
+    s2.table("Экстремальные значения",
+             [Column("name", "Величина"),
+              Column("value", "Значение", digits=3),
+              Column("unit", "Единица")], ext, id="tab-ext")
+    s2.paragraph(f"Наибольшая скорость ползуна составляет {fmt(v_max, digits=3, unit='м/с')}, "
+                 f"ход ползуна {fmt(2 * R, digits=3, unit='м')}.")
 
     conclusion = [
         Paragraph("В проекте выполнены структурный и кинематический анализ "

@@ -8,7 +8,9 @@ Russian typographic conventions:
 * numbers with five or more integer digits are grouped by threes with a narrow
   no-break space U+202F: ``12 345``; four-digit numbers are not grouped;
 * exponent form ``1,234·10⁵`` (middle dot U+00B7, superscript digits) only for
-  ``|x| >= exp_from`` or for tiny ``0 < |x| < 1e-4``;
+  ``|x| >= exp_from``, or for tiny ``0 < |x| < 1e-4`` when significant digits
+  are asked for (with fixed ``digits`` a tiny value stays in fixed form, so a
+  table column is uniform and numerical noise prints as ``0,000``);
 * a unit follows after a no-break space U+00A0: ``0,347 м``; angle marks
   (° ′ ″) follow with no space;
 * NaN and infinities print as an em dash ``—``.
@@ -24,7 +26,7 @@ from __future__ import annotations
 
 import math
 import numbers as _numbers
-from decimal import ROUND_HALF_UP, Decimal, InvalidOperation
+from decimal import ROUND_HALF_UP, Decimal
 
 __all__ = [
     "MINUS",
@@ -130,9 +132,9 @@ def _parts(x, digits: int | None, sig: int | None, exp_from: float):
         if a >= Decimal(repr(float(exp_from))):
             use_exp = True
         elif a < _TINY:
-            # In fixed-decimals mode a tiny value is numerical noise for the
-            # column (cos 90° = 6e-17): it prints as zero at that precision.
-            use_exp = digits is None or _quantize(a, digits) != 0
+            # Only in significant-digits mode: with fixed decimals the column
+            # stays in fixed form (cos 90° = 6e-17 prints as 0,000).
+            use_exp = digits is None
 
     if use_exp:
         exp = a.adjusted()

@@ -14,16 +14,26 @@ appendices «А», «Б», …; figures, tables and formulas per chapter («2.1�
 table of contents come from CSS ``target-counter`` (print only).
 
 «Продолжение таблицы N» (ГОСТ 7.32) is done in passes (docs/reporting.md §2.1):
-every table is first laid out whole with its caption as the first row of
-``<thead>``, so the repeated header on every later page reserves at least the
-height of a continuation caption; the rows that start each page (read from
-``page.anchors``) become the split points; the table is then cut into parts,
-each continuation part starting on a new page under «Продолжение таблицы N»,
-and the layout is repeated until no part spans two pages (normally two passes).
+
+1. every table is laid out whole, its caption being the first row of
+   ``<thead>``; WeasyPrint repeats the header on every page, so each later
+   page reserves at least the height of a «Продолжение таблицы N» line;
+2. the rows that start each page (``page.anchors`` of the row ids) become
+   split points; the table is cut into parts, each continuation part starting
+   on a new page (``break-before: page``) under «Продолжение таблицы N» with
+   the column header repeated;
+3. the layout is repeated until no part spans two pages (a part that still
+   overflows moves its end, and the later split points, up); normally two
+   passes. Cell borders are drawn inside the cells so that a row takes the
+   same height at the end of a part as before a page break.
+
+Split points are remembered per unsplit HTML (sha256), so laying out the same
+report again takes one pass.
 """
 
 from __future__ import annotations
 
+import hashlib
 import html as _html
 import logging
 import math
@@ -112,6 +122,7 @@ PAGE_W_MM, PAGE_H_MM = 210.0, 297.0
 PT_MM = 25.4 / 72
 
 MAX_PASSES = 8
+MIN_PART_ROWS = 3  # fewest rows of a table left on a page before «Продолжение таблицы»
 
 
 def resolve_options(options: dict | None) -> dict:
@@ -153,6 +164,7 @@ class _Part:
     caption: Markup
     continued: bool
     rows: list
+    new_page: bool = False  # the table starts on a new page (too few rows fit)
 
 
 @dataclass
@@ -213,6 +225,8 @@ class _Builder:
         self.eq_max_em = (opts["text_width_mm"] - 2 * opts["eq_number_width_mm"]) / (
             opts["font_size_pt"] * PT_MM)
         self.tables: dict[str, int] = {}  # table key -> number of rows
+        self.unnumbered = False  # blocks of the «Задание» page carry no numbers
+        self._units_row = False
 
     # -- numbering helpers
     def _register(self, target_id: str, text: str) -> None:
@@ -221,6 +235,8 @@ class _Builder:
         self.targets[target_id] = text
 
     def _next(self, kind: str) -> str:
+        if self.unnumbered:
+            return ""
         self.counters[kind] += 1
         n = self.counters[kind]
         return f"{self.prefix}.{n}" if self.prefix else str(n)
@@ -234,6 +250,8 @@ class _Builder:
         self.counters = {k: 0 for k in self.counters}
 
     def caption(self, word_key: str, number: str, caption: str) -> Markup:
+        if self.unnumbered:
+            return Markup(caption)
         return Markup("{} {}{}").format(self.o[word_key], number, self.o["dash"]) + Markup(caption)
 
     # -- blocks
@@ -374,14 +392,16 @@ class _Builder:
                 cap = self.caption("table_word", number, tab.caption)
             else:
                 cap = Markup("{} {}").format(self.o["continuation_words"], number)
-            parts.append(_Part(cap, k > 0, rows[start:end]))
+            parts.append(_Part(cap, k > 0, rows[start:end],
+                               k == 0 and 0 in self.splits.get(tid, ())))
         note = None
         if tab.note:
             note = Markup("{}{}").format(self.o["note_word"], " — ") + Markup(tab.note)
         return _TableView(tid, tid, len(header), header, units, parts, note)
 
     def formula(self, f) -> _EqView:
-        number = "(" + self._next("eq") + ")"
+        n = self._next("eq")
+        number = f"({n})" if n else ""
         eid = f.label or self._auto_id("eq")
         self._register(eid, number)
         lines = formula_images(f, self.eq_max_em)
@@ -471,8 +491,10 @@ def _get_env() -> jinja2.Environment:
 
 
 _REF = re.compile(r'<a class="ref" href="#([^"]+)"></a>')
+_REF_AFTER_WORD = re.compile(r'(\w) <a class="ref"')
 _TAG_SPLIT = re.compile(r"(<[^>]*>)")
 _SUP_RUN = re.compile(r"[⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺]+")
+_UNIT_SLASH = re.compile(r"((?:\u00a0|&nbsp;|&#160;)[^\s<>&/]+/[^\s<>&]+)")
 _SUP_PLAIN = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺", "0123456789\u2212+")
 
 
@@ -486,6 +508,8 @@ def _fill_refs(html: str, targets: dict[str, str]) -> str:
             return m.group(0)
         return f'<a class="ref" href="#{tid}">{_html.escape(targets[tid])}</a>'
 
+    # «в таблице 1.1»: no line break between the word and the number
+    html = _REF_AFTER_WORD.sub("\\1&#160;<a class=\"ref\"", html)
     out = _REF.sub(repl, html)
     if missing:
         raise KeyError("Ссылки на несуществующие объекты: " + ", ".join(sorted(set(missing))))
@@ -493,8 +517,13 @@ def _fill_refs(html: str, targets: dict[str, str]) -> str:
 
 
 def _superscripts(html: str) -> str:
-    """Unicode superscripts not in Latin-1 (⁰ ⁴…⁹ ⁻ ⁺, absent from Liberation
-    Serif) become ``<sup>`` so that no fallback font is needed."""
+    """Typographic fixes in text nodes.
+
+    * Unicode superscripts not in Latin-1 (⁰ ⁴…⁹ ⁻ ⁺, absent from Liberation
+      Serif) become ``<sup>``, so that no fallback font is needed;
+    * a unit with a slash after a number and a no-break space («65 об/мин»)
+      is kept on one line (browsers and WeasyPrint break after «/»).
+    """
 
     def fix_text(text: str) -> str:
         def repl(m):
@@ -503,6 +532,7 @@ def _superscripts(html: str) -> str:
                 return run
             return "<sup>" + run.translate(_SUP_PLAIN) + "</sup>"
 
+        text = _UNIT_SLASH.sub(r'<span class="nobr">\1</span>', text)
         return _SUP_RUN.sub(repl, text)
 
     pieces = _TAG_SPLIT.split(html)
@@ -510,9 +540,9 @@ def _superscripts(html: str) -> str:
     for i, piece in enumerate(pieces):
         if i % 2 == 1:  # a tag
             low = piece.lower()
-            if low.startswith("<style"):
-                in_style = True
-            elif low.startswith("</style"):
+            if low.startswith(("<style", "<title")):
+                in_style = True  # raw text elements: no markup inside
+            elif low.startswith(("</style", "</title")):
                 in_style = False
             continue
         if not in_style and piece:
@@ -546,7 +576,11 @@ def _render(report: Report, *, for_print: bool, splits=None) -> tuple[str, _Buil
     family = fonts.find_serif(opts["font"])
     builder = _Builder(report, opts, for_print=for_print, splits=splits)
     title_on = opts["title_page"]
-    assignment = builder.blocks(report.assignment) if (opts["assignment_page"]) else []
+    assignment = []
+    if opts["assignment_page"]:
+        builder.unnumbered = True
+        assignment = builder.blocks(report.assignment)
+        builder.unnumbered = False
     body = _walk(builder, report)
     env = _get_env()
     meta = {k: ("" if v is None else v) for k, v in (report.meta or {}).items()}
@@ -595,8 +629,8 @@ def render_fragment(block, *, options: dict | None = None, chapter: str = "1",
     builder.start_chapter(chapter)
     nodes = builder.blocks([block])
     env = _get_env()
-    tpl = env.get_template("_blocks.html.j2")
-    html = tpl.module.render_nodes(nodes)
+    module = env.get_template("_blocks.html.j2").make_module({"o": opts, "for_print": for_print})
+    html = module.render_nodes(nodes)
     html = _fill_refs(str(html), builder.targets)
     return _superscripts(html)
 
@@ -649,6 +683,7 @@ class _QuietFontTools(logging.Filter):
 
 
 _ROW_ANCHOR = re.compile(r"^(.+)__r(\d+)$")
+_SPLIT_MEMO: dict[str, dict[str, list[int]]] = {}  # sha256 of the unsplit print HTML -> splits
 
 
 def _page_rows(document) -> dict[str, dict[int, int]]:
@@ -662,27 +697,47 @@ def _page_rows(document) -> dict[str, dict[int, int]]:
     return out
 
 
-def _next_splits(document, splits: dict[str, list[int]]) -> dict[str, list[int]] | None:
+def _tidy_cuts(cuts: list[int], n: int, min_rows: int) -> list[int]:
+    """Keep at least ``min_rows`` rows in the last part (moving its start up,
+    which only leaves some room at the bottom of the previous page)."""
+    if not cuts or n - cuts[-1] >= min_rows:
+        return cuts
+    prev = cuts[-2] if len(cuts) > 1 else 0
+    start = max(n - min_rows, prev + min_rows)
+    if start >= n or start <= prev:
+        return cuts
+    return cuts[:-1] + [min(start, cuts[-1])]
+
+
+def _next_splits(document, splits: dict[str, list[int]],
+                 min_rows: int = MIN_PART_ROWS) -> dict[str, list[int]] | None:
     """New split points from a laid-out document, or ``None`` when every table
     part fits on one page.
 
     A table without split points yet is cut at the first row of each of its
-    later pages. Otherwise the first part that still spans two pages is
-    fixed: its end moves up to the overflowing row and every later split
-    point moves by the same number of rows (parts keep their sizes).
+    later pages; if fewer than ``min_rows`` rows would stay on its first page,
+    the table starts on a new page instead (split point 0). Otherwise the
+    first part that still spans two pages is fixed: its end moves up to the
+    overflowing row and every later split point moves by the same number of
+    rows (parts keep their sizes). The last part keeps ``min_rows`` rows.
     """
     rows = _page_rows(document)
     result = {k: list(v) for k, v in splits.items()}
     changed = False
     for tid, where in rows.items():
         n = max(where) + 1
+        lead = [0] if 0 in splits.get(tid, ()) else []
         cuts = sorted(c for c in set(splits.get(tid, ())) if 0 < c < n)
         if not cuts:
             starts = [r for r in range(1, n)
                       if r in where and (r - 1) in where and where[r] != where[r - 1]]
-            if starts:
-                result[tid] = starts
-                changed = True
+            if not starts:
+                continue
+            if starts[0] < min_rows and not lead and n > min_rows:
+                result[tid] = [0]  # too few rows would stay: start on a new page
+            else:
+                result[tid] = lead + _tidy_cuts(starts, n, min_rows)
+            changed = True
             continue
         bounds = [0] + cuts + [n]
         for k in range(len(bounds) - 1):
@@ -696,7 +751,8 @@ def _next_splits(document, splits: dict[str, list[int]]) -> dict[str, list[int]]
                 new = cuts[:k] + [overflow] + [c - delta for c in cuts[k + 1:]]
             else:  # the last part overflowed: cut it
                 new = cuts + [overflow]
-            result[tid] = sorted(c for c in set(new) if 0 < c < n)
+            new = sorted(c for c in set(new) if 0 < c < n)
+            result[tid] = lead + _tidy_cuts(new, n, min_rows)
             changed = True
             break
     return result if changed else None
@@ -706,17 +762,29 @@ def _layout(report: Report, font_config):
     """Lay out the print HTML, splitting tables until stable. Returns the document."""
     from weasyprint import HTML
 
+    image_cache: dict = {}  # parsed images (figures, formulas) shared by the passes
     wlog = logging.getLogger("weasyprint")
     if not any(isinstance(f, _QuietFontTools) for f in wlog.filters):
         wlog.addFilter(_QuietFontTools())
     splits: dict[str, list[int]] = {}
     stats = RenderStats()
     document = None
-    for _ in range(MAX_PASSES):
+    key = None
+    for i in range(MAX_PASSES):
         t0 = time.perf_counter()
         html, _builder = _render(report, for_print=True, splits=splits)
+        if i == 0:
+            # The same report laid out again (batch re-runs, determinism checks)
+            # starts from the split points found last time; the final layout
+            # is verified below all the same.
+            key = hashlib.sha256(html.encode("utf-8")).hexdigest()
+            known = _SPLIT_MEMO.get(key)
+            if known:
+                splits = {k: list(v) for k, v in known.items()}
+                html, _builder = _render(report, for_print=True, splits=splits)
         t1 = time.perf_counter()
-        document = HTML(string=html, base_url=str(TEMPLATES_DIR)).render(font_config=font_config)
+        document = HTML(string=html, base_url=str(TEMPLATES_DIR)).render(
+            font_config=font_config, cache=image_cache)
         t2 = time.perf_counter()
         stats.passes += 1
         stats.seconds_html += t1 - t0
@@ -727,18 +795,33 @@ def _layout(report: Report, font_config):
         splits = new
     else:
         log.warning("Разбиение таблиц не сошлось за %d проходов", MAX_PASSES)
+    if key is not None and splits:
+        if len(_SPLIT_MEMO) >= 64:
+            _SPLIT_MEMO.pop(next(iter(_SPLIT_MEMO)))
+        _SPLIT_MEMO[key] = {k: list(v) for k, v in splits.items()}
     stats.pages = len(document.pages)
     stats.splits = splits
     return document, stats
 
 
+_FONT_CONFIG = None
+
+
+def _font_config():
+    """One WeasyPrint font configuration per process: @font-face files are
+    loaded once (the same files for every report)."""
+    global _FONT_CONFIG
+    if _FONT_CONFIG is None:
+        from weasyprint.text.fonts import FontConfiguration
+
+        _FONT_CONFIG = FontConfiguration()
+    return _FONT_CONFIG
+
+
 def write_pdf(report: Report, path) -> Path:
     """Write the PDF atomically (WeasyPrint; «Продолжение таблицы» in passes)."""
     global last_stats
-    from weasyprint.text.fonts import FontConfiguration
-
-    font_config = FontConfiguration()
-    document, stats = _layout(report, font_config)
+    document, stats = _layout(report, _font_config())
     t0 = time.perf_counter()
     pdf = document.write_pdf()
     stats.seconds_pdf = time.perf_counter() - t0

@@ -7,6 +7,7 @@ import numpy as np
 
 from ..analysis.plans import output_quantity
 from ..style import mplstyle
+from .draw import SUBSCRIPT
 from .mechanism import Drawing
 
 
@@ -77,7 +78,7 @@ class AnalogCurves:
             col = "wq_" + link.name
             if np.ptp(cyc[col].to_numpy()) < 1e-12 and abs(cyc[col].iloc[0]) < 1e-12:
                 continue
-            ax.plot(x, cyc[col], lw=1.2, label=f"$\\varphi'_{{{link.name}}}$")
+            ax.plot(x, cyc[col], lw=1.2, label="φ′" + link.name.translate(SUBSCRIPT))
         ax.axhline(0, color="0.3", lw=0.6)
         ax.set_xlabel(xlabel)
         ax.set_ylabel("аналог угловой скорости")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from matplotlib.collections import LineCollection
 from matplotlib.patches import Circle, Polygon, Rectangle
 from matplotlib.transforms import Affine2D
 
@@ -143,17 +144,21 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
                 placed.add(p)
                 x, y = _point(row, p)
                 dx, dy = _label_offset(mech, row, p)
-                ax.text(x + cv.mm(3.0) * dx, y + cv.mm(3.0) * dy, _label(p), fontsize=9, style="italic",
+                ax.text(x + cv.mm(3.0) * dx, y + cv.mm(3.0) * dy, subscript_label(p), fontsize=9, style="italic",
                         ha="center", va="center", color=color, alpha=alpha, zorder=zorder + 3)
 
 
-def _label(p: str) -> str:
-    """Point name with a subscript for trailing digits after a letter (S2 → S₂)."""
+SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def subscript_label(p: str, lower: bool = False) -> str:
+    """Point name with Unicode subscript digits after a letter (S2 → S₂; plain text is far
+    cheaper to lay out than mathtext)."""
     head = p.rstrip("0123456789")
     tail = p[len(head):]
-    if head and tail:
-        return f"${head}_{{{tail}}}$"
-    return p
+    if lower:
+        head = head.lower()
+    return head + tail.translate(SUBSCRIPT) if head else p
 
 
 def _label_offset(mech: Mechanism, row, p: str) -> tuple[float, float]:
@@ -232,14 +237,13 @@ def _hatch(cv: Canvas, x0, x1, y, color, alpha, angle=0.0):
 
     def tr(u, v):
         return x0 + (u * c - v * s), y + (u * s + v * c)
-    L = math.hypot(x1 - x0, 0) if angle == 0 else x1 - x0
+    L = x1 - x0
     a, b = tr(0, 0), tr(L, 0)
     ax.plot([a[0], b[0]], [a[1], b[1]], color=color, lw=1.0, alpha=alpha)
     step = cv.mm(1.6)
     n = int(L / step)
-    for k in range(n + 1):
-        p, q = tr(k * step, 0), tr(k * step - cv.mm(1.5), -cv.mm(1.5))
-        ax.plot([p[0], q[0]], [p[1], q[1]], color=color, lw=0.6, alpha=alpha)
+    segs = [(tr(k * step, 0), tr(k * step - cv.mm(1.5), -cv.mm(1.5))) for k in range(n + 1)]
+    ax.add_collection(LineCollection(segs, colors=color, linewidths=0.6, alpha=alpha))
 
 
 def _guide(cv: Canvas, mech, row, j, color, alpha):

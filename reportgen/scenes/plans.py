@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 
 from ..analysis.plans import Plan, acceleration_plan, velocity_plan
-from .draw import GREY, INK, Canvas, arrow
+from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow
 
 READ_MM = 0.5        # reading accuracy of a length on the drawing, mm
 MIN_MM = 5.0         # shorter segments are drawn but not compared (reading error dominates)
@@ -30,14 +30,15 @@ class PlanDrawing:
 
 
 def _tip_label(lab: str, plan: Plan, kind: str) -> str:
+    """Lower-case plan points (a, b, s₂; a′, b′ on the acceleration plan), n and k for the
+    ends of the normal and Coriolis components."""
     if lab.startswith("n") and lab not in plan.point_of_tip:
-        return "$n_{" + lab[1:] + "}$"
+        return "n" + lab[1:].lower().translate(SUBSCRIPT)
     if lab.startswith("k") and lab not in plan.point_of_tip:
-        return "$k$"
+        return "k"
     head = lab.rstrip("0123456789")
     tail = lab[len(head):]
-    s = head.lower() + ("'" if kind == "acceleration" else "")
-    return f"${s}_{{{tail}}}$" if tail else f"${s}$"
+    return head.lower() + ("′" if kind == "acceleration" else "") + tail.translate(SUBSCRIPT)
 
 
 class PlanScene:
@@ -62,7 +63,7 @@ class PlanScene:
             arrow(ax, a[0], a[1], b[0], b[1], color=st["color"], lw=st["lw"], ls=st["ls"])
         pole = "p" if self.kind == "velocity" else "π"
         ax.plot([0], [0], marker="o", ms=3, color=INK)
-        ax.text(-cv.mm(3), -cv.mm(3), f"${pole}$", fontsize=10, ha="center", va="center")
+        ax.text(-cv.mm(3), -cv.mm(3), pole, fontsize=10, style="italic", ha="center", va="center")
         placed = {}
         for lab, v in plan.tips.items():
             if np.hypot(*v) < 1e-12 and lab in plan.point_of_tip:

@@ -1,0 +1,637 @@
+"""Section «Динамический анализ и синтез маховика»: the dynamic model, the loads, the reduced
+moment of inertia and moments with numbers at the chosen position, works and kinetic energy,
+the flywheel by three methods (Мерцалов, Виттенбауэр, exact) and its dimensions, the law of
+motion ω(φ), ε(φ) and the true velocities and accelerations.
+
+``conclusion_lines(study)`` gives the lines of the ЗАКЛЮЧЕНИЕ about the dynamics."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+from markupsafe import Markup
+
+from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, MomentCurves,
+                                MotionCurves, WittenbauerDiagram, WorkCurves)
+from ...style.numbers import fmt, fmt_pct, tex_num
+from ..document import Column, Formula, Section, ref
+from ..formulas import inline_math
+from .common import MAX_COLS, chosen_position, chunked_tables, sub, tex_point
+
+NEEDS = ("kinematics", "cycle", "dynamics")
+
+METHOD_RU = {"exact": "точное решение уравнения движения", "mertsalov": "метод Н. И. Мерцалова",
+             "wittenbauer": "метод Ф. Виттенбауэра"}
+
+
+TEX = {
+    "J2": r"J_{II}(\varphi)",
+    "JO": r"J_{O}",
+    "Msum0": r"M_{\Sigma}(\varphi) = 0",
+    "delta": r"\delta = (\omega_{max} - \omega_{min})/\omega_{ср}",
+    "wm": r"\omega_{ср} = (\omega_{max} + \omega_{min})/2",
+    "mert_ext": r"M_{\Sigma} = \frac{1}{2} J_{II}^{\prime} \omega_{\text{ср}}^2",
+    "exact_ext": r"M_{\Sigma} = \frac{1}{2} J_{II}^{\prime} \omega^2",
+    "vrim": r"v = \omega_{max} D/2",
+    "v": r"v = \omega x^{\prime}",
+    "a": r"a = \omega^2 x^{\prime\prime} + \varepsilon x^{\prime}",
+    "wk": r"\omega_k = \omega \varphi_k^{\prime}",
+    "ek": r"\varepsilon_k = \omega^2 \varphi_k^{\prime\prime} + \varepsilon \varphi_k^{\prime}",
+}
+
+
+def _im(key: str):
+    """Inline math of a named LaTeX snippet (f-string expressions cannot hold backslashes)."""
+    return inline_math(TEX[key])
+
+
+def present(study) -> bool:
+    """The section is built when the case has [dynamics]."""
+    return study.root.has("dynamics")
+
+
+# --------------------------------------------------------------------------------------------
+# small helpers
+# --------------------------------------------------------------------------------------------
+def _t(x, sig=4, digits=None, paren=False, unit=None) -> str:
+    """LaTeX of a number; with ``paren`` it is safe as a factor or a base of a power (negative
+    or exponent-form numbers in parentheses, rounding noise below 1e-13 written as 0)."""
+    if paren and abs(float(x)) < 1e-13:
+        x = 0.0
+    t = tex_num(x, sig=sig, digits=digits, paren=paren, unit=unit)
+    if paren and r"\cdot 10" in t and not t.startswith(r"\left("):
+        t = r"\left(" + t + r"\right)"
+    return t
+
+
+def _tx(text: str) -> str:
+    """LaTeX of a load/link name in a subscript."""
+    return r"\text{" + text + "}"
+
+
+def _cycle_tex(study) -> str:
+    return r"2\pi" if study.dynamics.settings.cycle_length < 7 else r"4\pi"
+
+
+def _h(sym: str, idx: str) -> str:
+    return f"<i>{sym}</i><sub>{idx}</sub>"
+
+
+def _per(n: int, most: int = MAX_COLS) -> int:
+    """Columns per part so that a wide table splits into parts of nearly equal width."""
+    parts = max(1, math.ceil(n / most))
+    return max(1, math.ceil(n / parts))
+
+
+def _c(x) -> str:
+    """LaTeX of an empirical constant as written (0.437, 6123): shortest representation."""
+    return tex_num(x, sig=len(repr(float(x)).replace("-", "").replace(".", "").lstrip("0").rstrip("0")) or 1)
+
+
+def _deg(x) -> str:
+    return fmt(math.degrees(float(x)), digits=2)
+
+
+def _phase_deg(study, q) -> str:
+    return fmt(math.degrees(float(q) - study.dynamics.settings.cycle_start), digits=2) + "°"
+
+
+# --------------------------------------------------------------------------------------------
+# build
+# --------------------------------------------------------------------------------------------
+def build(study) -> Section:
+    d = study.dynamics
+    sec = Section("Динамический анализ и синтез маховика", "sec-dynamics")
+    lab = chosen_position(study)
+    row = d.row(lab)
+    mrow = d.motion[d.motion["pos"] == lab].iloc[0]
+    cols = d.ev(np.array([row["q"]]))
+    kv = {k: float(v[0]) for k, v in cols.items()}
+    lead = [Column("pos", "№"), Column("q_deg", "<i>φ</i>", "град", digits=1)]
+    _model(sec, study, d)
+    _inertia(sec, study, d, lab, row, kv, lead)
+    _moments(sec, study, d, lab, row, kv, lead)
+    _works(sec, study, d, lead)
+    _flywheel(sec, study, d)
+    _dimensions(sec, study, d)
+    _motion(sec, study, d, lab, row, mrow, lead)
+    if d.settings.compare is not None:
+        _comparison(sec, study, d, lab)
+    return sec
+
+
+def _model(sec: Section, study, d) -> None:
+    s = sec.subsection("Динамическая модель машины", "sec-dyn-model")
+    st = d.settings
+    crank = study.mechanism.driver.link
+    Jpr = inline_math(r"J_{\text{пр}}(\varphi) = J_I + J_{II}(\varphi)")
+    Mpr = inline_math(r"M_{\text{пр}}(\varphi) = M_{\text{д}}(\varphi) + M_{\text{с}}(\varphi)")
+    s.paragraph(
+        f"Звеном приведения служит кривошип {crank}, обобщённая координата — угол его поворота φ. "
+        f"Машина заменяется динамической моделью — звеном приведения с приведённым моментом инерции "
+        f"{Jpr} и приведённым моментом сил {Mpr}. Первая группа звеньев (ротор двигателя, передачи, "
+        f"кривошип и маховик) имеет постоянный приведённый момент инерции {inline_math('J_I')}; "
+        f"вторая группа (звенья рычажного механизма) — переменный {_im('J2')}. "
+        f"Цикл установившегося движения — один {'оборот' if st.cycle_length < 7 else 'двойной оборот'} "
+        f"кривошипа, Φ&nbsp;=&nbsp;{'2π' if st.cycle_length < 7 else '4π'}.")
+    s.paragraph("Уравнение движения машины в энергетической и дифференциальной формах "
+                "(уравнение Лагранжа второго рода для звена приведения):")
+    s.formula(Formula(r"\frac{J_{\text{пр}}(\varphi)\,\omega^2}{2} - \frac{J_{\text{пр}}(\varphi_0)\,\omega_0^2}{2}"
+                      r" = \int_{\varphi_0}^{\varphi} M_{\text{пр}}\,d\varphi", label="eq-dyn-energy"),
+              Formula(r"J_{\text{пр}}\,\varepsilon + \frac{1}{2}\frac{dJ_{\text{пр}}}{d\varphi}\,\omega^2 = M_{\text{пр}}",
+                      where=[(r"\omega = d\varphi/dt", "угловая скорость звена приведения, рад/с"),
+                             (r"\varepsilon = d\omega/dt", "его угловое ускорение, рад/с²")],
+                      label="eq-dyn-lagrange"))
+    rows = []
+    for il in d.model.links:
+        rows.append({"n": il.name, "title": il.title or "—", "m": il.m or math.nan,
+                     "J": il.J_S or math.nan, "S": il.S or "—", "group": "II"})
+    if d.model.crank is not None:
+        c = d.model.crank
+        rows.append({"n": c.name, "title": c.title or "—", "m": c.m or math.nan, "J": c.J_S or math.nan,
+                     "S": c.S or "—", "group": "I"})
+    if rows:
+        s.table("Инерционные параметры звеньев в динамической модели", [
+            Column("n", "Звено"), Column("title", "Название"), Column("m", "<i>m</i>", "кг", sig=4),
+            Column("J", _h("J", "S"), "кг·м²", sig=4), Column("S", "Центр масс"), Column("group", "Группа")],
+            pd.DataFrame(rows), id="tab-dyn-links")
+    JO = fmt(st.J_O, sig=4, unit="кг·м²")
+    extra = ""
+    if d.J_crank:
+        extra = (f" и момент инерции кривошипа {fmt(d.J_crank, sig=4, unit='кг·м²')}, итого "
+                 f"{inline_math('J_{I,0}')}&nbsp;=&nbsp;{fmt(d.J_I_const, sig=4, unit='кг·м²')}")
+    s.paragraph(f"Постоянная часть первой группы без маховика: приведённый момент инерции ротора и передачи "
+                f"{_im('JO')}&nbsp;=&nbsp;{JO}{extra}.")
+    # loads
+    lrows = []
+    for ld in d.loads.loads:
+        lrows.append({"name": ld.name, "what": Markup(ld.title).striptags(),
+                      "where": (f"{ld.point}, звено {ld.link}" if ld.point else f"звено {ld.link}"),
+                      "law": _law(ld)})
+    if lrows:
+        s.paragraph(f"Внешние нагрузки машины перечислены в таблице {ref('tab-dyn-loads')}. Силы тяжести "
+                    f"вычислены при g&nbsp;=&nbsp;{fmt(d.loads.g, sig=4)}&nbsp;м/с².")
+        s.table("Нагрузки, действующие на звенья", [
+            Column("name", "Обозначение"), Column("what", "Нагрузка"), Column("where", "Точка приложения"),
+            Column("law", "Закон изменения")], pd.DataFrame(lrows), id="tab-dyn-loads")
+    if d.breaks.size:
+        pts = ", ".join(_phase_deg(study, q) for q in d.breaks)
+        s.paragraph(f"Нагрузки меняют закон действия (точки переключения, найденные решением уравнений) при "
+                    f"φ&nbsp;=&nbsp;{pts}. Интегралы работ вычисляются по участкам между ними квадратурой "
+                    "Гаусса–Лежандра, поэтому разрывы нагрузок не вносят погрешности.")
+
+
+def _law(ld) -> str:
+    """Russian description of a load law (plain text with no-break spaces)."""
+    if ld.kind == "weight":
+        return f"G\u00a0=\u00a0{fmt(-ld.vector[1], sig=4)}\u00a0Н, вертикально вниз"
+    parts = []
+    if ld.vector is not None:
+        parts.append(f"F\u00a0=\u00a0({fmt(ld.vector[0], sig=4)}; {fmt(ld.vector[1], sig=4)})\u00a0Н")
+    for p in ld.pieces:
+        head = (f"на фазе {fmt(math.degrees(p.phase[0]), digits=0)}…{fmt(math.degrees(p.phase[1]), digits=0)}°"
+                f"{' (' + p.name + ')' if p.name else ''}: " if p.phase is not None else "")
+        unit = "Н·м" if ld.kind == "moment" else ("Па" if ld.area is not None else "Н")
+        if p.table is not None:
+            parts.append(head + f"таблица {len(p.table.x)} точек от «{p.of.text}», "
+                         f"{fmt(p.table.y.min(), sig=3)}…{fmt(p.table.y.max(), sig=3)}\u00a0{unit}")
+        else:
+            parts.append(head + f"{fmt(p.const, sig=4)}\u00a0{unit}")
+    if ld.area is not None:
+        parts.append(f"площадь {fmt(ld.area, sig=4)}\u00a0м²")
+    if ld.kind == "force" and ld.vector is None:
+        parts.append(f"направление {ld.direction_text}")
+    if ld.against:
+        parts.append("против движения")
+    for c in ld.when:
+        parts.append(f"при {c.text}")
+    return "; ".join(parts)
+
+
+def _inertia(sec, study, d, lab, row, kv, lead) -> None:
+    s = sec.subsection("Приведённый момент инерции", "sec-dyn-inertia")
+    s.paragraph("Приведённый момент инерции второй группы найден из равенства кинетических энергий "
+                "звеньев механизма и звена приведения; аналоги скоростей вычислены точно:")
+    s.formula(Formula(r"J_{II}(\varphi) = \sum_k \left[ m_k \left( x_{S_k}^{\prime 2} + y_{S_k}^{\prime 2} \right)"
+                      r" + J_{S_k}\, \varphi_k^{\prime 2} \right]",
+                      where=[(r"m_k, J_{S_k}", "масса звена k и его момент инерции относительно центра масс"),
+                             (r"x^{\prime}_{S_k}, y^{\prime}_{S_k}", "аналоги скорости центра масс, м"),
+                             (r"\varphi^{\prime}_k", "аналог угловой скорости звена")],
+                      label="eq-J2"),
+              Formula(r"\frac{dJ_{II}}{d\varphi} = 2\sum_k \left[ m_k \left( x^{\prime}_{S_k} x^{\prime\prime}_{S_k}"
+                      r" + y^{\prime}_{S_k} y^{\prime\prime}_{S_k} \right) + J_{S_k}\,\varphi^{\prime}_k"
+                      r" \varphi^{\prime\prime}_k \right]", label="eq-dJ2"))
+    s.paragraph(f"Для положения {lab} (φ&nbsp;=&nbsp;{fmt(row['q_deg'], digits=1)}°):")
+    fs = []
+    for il in d.model.links:
+        terms_s, terms_n = [], []
+        k = il.name
+        if il.m:
+            S = il.S
+            terms_s.append(rf"m_{{{k}}} \left( x_{{{tex_point(S)}}}^{{\prime 2}} + y_{{{tex_point(S)}}}^{{\prime 2}} \right)")
+            terms_n.append(rf"{_t(il.m)} \cdot \left( {_t(kv['vqx_' + S], paren=True)}^2 + {_t(kv['vqy_' + S], paren=True)}^2 \right)")
+        if il.J_S:
+            terms_s.append(rf"J_{{S{k}}} \varphi_{{{k}}}^{{\prime 2}}")
+            terms_n.append(rf"{_t(il.J_S)} \cdot {_t(kv['wq_' + k], paren=True)}^2")
+        fs.append(Formula(rf"J_{{II,{k}}} = " + " + ".join(terms_s), " + ".join(terms_n),
+                          _t(row["J_II_" + k], sig=5, unit="кг·м²")))
+    names = " + ".join(rf"J_{{II,{il.name}}}" for il in d.model.links) or "0"
+    vals = " + ".join(_t(row["J_II_" + il.name], sig=5) for il in d.model.links) or "0"
+    fs.append(Formula(rf"J_{{II}} = {names}", vals, _t(row["J_II"], sig=5, unit="кг·м²")))
+    s.formula(*fs)
+    cols = [Column("J_II_" + il.name, _h("J", "II," + il.name), "кг·м²", sig=4) for il in d.model.links]
+    cols += [Column("J_II", _h("J", "II"), "кг·м²", sig=5), Column("dJ_II", "<i>dJ</i><sub>II</sub>/<i>dφ</i>", "кг·м²", sig=4)]
+    ids = chunked_tables(s, "Приведённый момент инерции второй группы звеньев", d.table, cols, lead, "tab-dyn-J",
+                         per=_per(len(cols)))
+    fig = InertiaCurves().draw(study)
+    s.paragraph(f"Значения по положениям — в таблице {ref(ids[0])}, график {_im('J2')} "
+                f"с вкладом каждого звена — на рисунке {ref('fig-dyn-J')}.")
+    s.figure("Приведённый момент инерции второй группы звеньев и вклад звеньев", fig.svg, fig.width_mm,
+             id="fig-dyn-J")
+
+
+def _moments(sec, study, d, lab, row, kv, lead) -> None:
+    s = sec.subsection("Приведённые моменты сил", "sec-dyn-moments")
+    s.paragraph("Приведённый момент каждой силы найден из равенства мощностей (по существу — рычаг "
+                "Н.&nbsp;Е.&nbsp;Жуковского), отнесённых к угловой скорости звена приведения:")
+    s.formula(Formula(r"M_{\text{пр}} = \sum_i \left( F_{ix}\, x^{\prime}_i + F_{iy}\, y^{\prime}_i \right) + \sum_k M_k \varphi^{\prime}_k",
+                      where=[(r"F_{ix}, F_{iy}", "проекции силы на оси координат, Н"),
+                             (r"x^{\prime}_i, y^{\prime}_i", "аналоги скорости точки приложения силы, м"),
+                             (r"M_k, \varphi^{\prime}_k", "момент, приложенный к звену k, Н·м, и аналог его угловой скорости")],
+                      label="eq-Mpr"))
+    fs = []
+    working = [ld for ld in d.loads.loads if ld.name not in d.idle_loads]
+    for ld in working:
+        name = _tx(ld.name)
+        val = row["M_" + ld.name]
+        if ld.kind == "moment":
+            Mv = val / kv["wq_" + ld.link] if kv["wq_" + ld.link] else 0.0
+            fs.append(Formula(rf"M_{{{name}}} = M\, \varphi^{{\prime}}_{{{ld.link}}}",
+                              rf"{_t(Mv, paren=True)} \cdot {_t(kv['wq_' + ld.link], paren=True)}",
+                              _t(val, sig=4, unit="Н·м")))
+            continue
+        P = ld.point
+        ph = d.loads.phase({"q": np.array([row["q"]])})
+        Fx, Fy = ld.force({k: np.array([v]) for k, v in kv.items()}, ph)
+        Fx, Fy = float(Fx[0]), float(Fy[0])
+        if ld.kind == "weight":
+            fs.append(Formula(rf"M_{{{name}}} = -G_{{{ld.link}}}\, y^{{\prime}}_{{{tex_point(P)}}}",
+                              rf"-{_t(-ld.vector[1])} \cdot {_t(kv['vqy_' + P], paren=True)}",
+                              _t(val, sig=4, unit="Н·м")))
+        else:
+            fs.append(Formula(rf"M_{{{name}}} = F_x\, x^{{\prime}}_{{{tex_point(P)}}} + F_y\, y^{{\prime}}_{{{tex_point(P)}}}",
+                              rf"{_t(Fx, paren=True)} \cdot {_t(kv['vqx_' + P], paren=True)} + "
+                              rf"{_t(Fy, paren=True)} \cdot {_t(kv['vqy_' + P], paren=True)}",
+                              _t(val, sig=4, unit="Н·м")))
+    side = "с" if d.balance == "drive" else "д"
+    names = " + ".join(rf"M_{{{_tx(ld.name)}}}" for ld in working) or "0"
+    vals = " + ".join(_t(row["M_" + ld.name], sig=4, paren=True) for ld in working) or "0"
+    fs.append(Formula(rf"M_{{\text{{{side}}}}} = {names}", vals,
+                      _t(row["M_c" if d.balance == "drive" else "M_d"], sig=4, unit="Н·м")))
+    if d.idle_loads:
+        s.paragraph("Нагрузки " + ", ".join(d.idle_loads) + " работы не совершают (их приведённые моменты "
+                    "равны нулю во всём цикле) и далее не учитываются.")
+    s.paragraph(f"Для положения {lab}:")
+    s.formula(*fs)
+    cols = [Column("M_" + ld.name, _h("M", ld.name), "Н·м", sig=4) for ld in working]
+    cols += [Column("M_c", _h("M", "с"), "Н·м", sig=4), Column("M_d", _h("M", "д"), "Н·м", sig=4),
+             Column("M_sum", _h("M", "Σ"), "Н·м", sig=4)]
+    ids = chunked_tables(s, "Приведённые моменты сил", d.table, cols, lead, "tab-dyn-M", per=_per(len(cols)))
+    fig = MomentCurves().draw(study)
+    s.paragraph(f"Приведённые моменты по положениям — в таблице {ref(ids[0])}, их графики — на рисунке "
+                f"{ref('fig-dyn-M')}.")
+    s.figure("Приведённые моменты сил", fig.svg, fig.width_mm, id="fig-dyn-M")
+
+
+def _works(sec, study, d, lead) -> None:
+    s = sec.subsection("Работы сил и изменение кинетической энергии", "sec-dyn-works")
+    sc = d.scalars
+    st = d.settings
+    C = _cycle_tex(study)
+    if d.balance == "drive":
+        s.formula(Formula(rf"A_{{\text{{с}}}} = \int_0^{{{C}}} M_{{\text{{с}}}}\, d\varphi", None,
+                          _t(sc["A_c"], sig=5, unit="Дж"), label="eq-Ac"))
+        if st.drive is None:
+            s.paragraph("Движущий момент принят постоянным; из условия равенства нулю работы всех сил за цикл "
+                        "установившегося движения:")
+            s.formula(Formula(rf"M_{{\text{{д}}}} = -\frac{{A_{{\text{{с}}}}}}{{{C}}}",
+                              rf"-\frac{{{_t(sc['A_c'], sig=5, paren=True)}}}{{{_t(st.cycle_length, sig=5)}}}",
+                              _t(sc["M_d"], sig=5, unit="Н·м"), label="eq-Md"))
+        else:
+            s.paragraph(f"Движущий момент задан; его работа за цикл {fmt(sc['A_d'], sig=5, unit='Дж')} "
+                        "уравновешивает работу сил сопротивления.")
+    else:
+        s.formula(Formula(rf"A_{{\text{{д}}}} = \int_0^{{{C}}} M_{{\text{{д}}}}\, d\varphi", None,
+                          _t(sc["A_d"], sig=5, unit="Дж"), label="eq-Ad"))
+        s.paragraph("Момент сил сопротивления потребителя принят постоянным; из условия равенства нулю работы "
+                    "всех сил за цикл:")
+        s.formula(Formula(rf"M_{{\text{{с}}}} = -\frac{{A_{{\text{{д}}}}}}{{{C}}}",
+                          rf"-\frac{{{_t(sc['A_d'], sig=5)}}}{{{_t(st.cycle_length, sig=5)}}}",
+                          _t(sc["M_c"], sig=5, unit="Н·м"), label="eq-Mc"))
+    s.paragraph("Изменение кинетической энергии машины равно работе всех сил:")
+    s.formula(Formula(r"\Delta T(\varphi) = A_{\Sigma}(\varphi) = A_{\text{д}}(\varphi) + A_{\text{с}}(\varphi)"
+                      r" = \int_{0}^{\varphi} \left( M_{\text{д}} + M_{\text{с}} \right) d\varphi", label="eq-dT"))
+    s.paragraph(f"Наибольшее и наименьшее значения ΔT за цикл: {fmt(sc['dT_max'], sig=5, unit='Дж')} при "
+                f"φ&nbsp;=&nbsp;{_phase_deg(study, sc['q_dT_max'])} и {fmt(sc['dT_min'], sig=5, unit='Дж')} при "
+                f"φ&nbsp;=&nbsp;{_phase_deg(study, sc['q_dT_min'])} (найдены решением уравнения "
+                f"{_im('Msum0')}).")
+    cols = [Column("A_c", _h("A", "с"), "Дж", sig=5), Column("A_d", _h("A", "д"), "Дж", sig=5),
+            Column("A_sum", "Δ<i>T</i>", "Дж", sig=5), Column("T_II", _h("T", "II"), "Дж", sig=5),
+            Column("dT_I", "Δ" + _h("T", "I"), "Дж", sig=5)]
+    ids = chunked_tables(s, "Работы сил и изменение кинетической энергии", d.table, cols, lead, "tab-dyn-A")
+    f1 = WorkCurves().draw(study)
+    f2 = EnergyCurves().draw(study)
+    s.paragraph(f"Работы по положениям — в таблице {ref(ids[0])}; графики работ — на рисунке {ref('fig-dyn-A')}, "
+                f"изменения кинетической энергии — на рисунке {ref('fig-dyn-T')}.")
+    s.figure("Работы сил сопротивления, движущих сил и суммарная работа", f1.svg, f1.width_mm, id="fig-dyn-A")
+    s.figure("Изменение кинетической энергии машины и первой группы звеньев", f2.svg, f2.width_mm,
+             id="fig-dyn-T")
+
+
+def _flywheel(sec, study, d) -> None:
+    s = sec.subsection("Момент инерции маховика", "sec-dyn-flywheel")
+    sc = d.scalars
+    st = d.settings
+    r = d.result
+    me, wi, ex = r.mertsalov, r.wittenbauer, r.exact
+    w, dl = st.omega_m, st.delta
+    s.paragraph(f"Требуемый коэффициент неравномерности хода δ&nbsp;=&nbsp;{fmt(dl, sig=4)} при средней угловой "
+                f"скорости ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(w, digits=3)}&nbsp;рад/с "
+                f"(n&nbsp;=&nbsp;{fmt(w * 30 / math.pi, digits=1)}&nbsp;об/мин); "
+                f"{_im('delta')}, "
+                f"{_im('wm')}. "
+                f"Момент инерции {inline_math('J_I')} найден тремя способами; в дальнейших расчётах принят "
+                f"{METHOD_RU[st.method]}.")
+    # Мерцалов
+    s.paragraph("<b>Метод Мерцалова.</b> Кинетическая энергия второй группы приближённо вычисляется по средней "
+                "скорости, изменение кинетической энергии первой группы — как разность:")
+    s.formula(Formula(r"T_{II}(\varphi) \approx \frac{J_{II}(\varphi)\,\omega_{\text{ср}}^2}{2}, \quad"
+                      r" \Delta T_I(\varphi) = \Delta T(\varphi) - T_{II}(\varphi)", label="eq-mertsalov"),
+              Formula(r"\Delta T_{I\,max}", None, _t(me.dT_I_max, sig=5, unit="Дж")),
+              Formula(r"\Delta T_{I\,min}", None, _t(me.dT_I_min, sig=5, unit="Дж")),
+              Formula(r"J_I = \frac{\Delta T_{I\,max} - \Delta T_{I\,min}}{\omega_{\text{ср}}^2\,\delta}",
+                      rf"\frac{{{_t(me.dT_I_max, sig=5, paren=True)} - {_t(me.dT_I_min, sig=5, paren=True)}}}"
+                      rf"{{{_t(w, digits=3)}^2 \cdot {_t(dl, sig=4)}}}",
+                      _t(me.J_I, sig=5, unit="кг·м²"), label="eq-JI-mertsalov"))
+    s.paragraph(f"Экстремумы Δ<i>T</i><sub>I</sub> найдены по всему циклу решением уравнения "
+                f"{_im('mert_ext')} "
+                f"(при φ&nbsp;=&nbsp;{_phase_deg(study, me.phi_dT_max)} и {_phase_deg(study, me.phi_dT_min)}).")
+    # Виттенбауэр
+    fig = WittenbauerDiagram().draw(study)
+    s.paragraph(f"<b>Метод Виттенбауэра.</b> Строится диаграмма энергия–масса ΔT(J<sub>II</sub>) (рисунок "
+                f"{ref('fig-dyn-witt')}); к ней проводятся касательные под углами ψ<sub>max</sub> и ψ<sub>min</sub>, "
+                "тангенсы которых (в масштабах диаграммы μ<sub>J</sub>, μ<sub>T</sub>) пропорциональны "
+                "ω<sub>max</sub>²/2 и ω<sub>min</sub>²/2; касательные отсекают на оси ΔT отрезок KL:")
+    s.formula(Formula(r"\mathrm{tg}\,\psi_{max} = \frac{\mu_J}{2\mu_T}\,\omega_{\text{ср}}^2 \left(1 + \frac{\delta}{2}\right)^2,"
+                      r"\quad \mathrm{tg}\,\psi_{min} = \frac{\mu_J}{2\mu_T}\,\omega_{\text{ср}}^2 \left(1 - \frac{\delta}{2}\right)^2",
+                      label="eq-witt-slopes"),
+              Formula(r"J_I = \frac{KL}{\omega_{\text{ср}}^2\,\delta}",
+                      rf"\frac{{{_t(wi.KL, sig=5)}}}{{{_t(w, digits=3)}^2 \cdot {_t(dl, sig=4)}}}",
+                      _t(wi.J_I, sig=5, unit="кг·м²"), label="eq-JI-witt"))
+    s.figure("Диаграмма энергия–масса (диаграмма Виттенбауэра) с касательными", fig.svg, fig.width_mm,
+             id="fig-dyn-witt")
+    s.paragraph(f"Точки касания: φ&nbsp;=&nbsp;{_phase_deg(study, wi.tangent_max.phi)} (верхняя) и "
+                f"{_phase_deg(study, wi.tangent_min.phi)} (нижняя); K&nbsp;=&nbsp;{fmt(wi.K, sig=5, unit='Дж')}, "
+                f"L&nbsp;=&nbsp;{fmt(wi.L, sig=5, unit='Дж')}. С точными наклонами (1&nbsp;±&nbsp;δ/2)² метод "
+                "Виттенбауэра точен: касание означает, что в этих положениях ω&nbsp;=&nbsp;ω<sub>max</sub> и "
+                "ω<sub>min</sub>. С упрощёнными наклонами ω<sub>ср</sub>²(1&nbsp;±&nbsp;δ)/2 получается "
+                f"J<sub>I</sub>&nbsp;=&nbsp;{fmt(wi.J_I_linear, sig=6, unit='кг·м²')}.")
+    # exact
+    s.paragraph(f"<b>Точное решение.</b> При моментах, зависящих только от φ, уравнение {ref('eq-dyn-energy')} "
+                "интегрируется точно:")
+    s.formula(Formula(r"\omega(\varphi) = \sqrt{\frac{2\left(T_0 + A_{\Sigma}(\varphi)\right)}{J_I + J_{II}(\varphi)}}",
+                      label="eq-omega-exact"))
+    s.paragraph(f"Постоянная T<sub>0</sub> и момент инерции J<sub>I</sub> подобраны (метод Ньютона) так, чтобы "
+                f"(ω<sub>max</sub>&nbsp;+&nbsp;ω<sub>min</sub>)/2&nbsp;=&nbsp;ω<sub>ср</sub> и "
+                f"(ω<sub>max</sub>&nbsp;−&nbsp;ω<sub>min</sub>)/ω<sub>ср</sub>&nbsp;=&nbsp;δ; экстремумы ω "
+                f"найдены из уравнения {_im('exact_ext')}: "
+                f"J<sub>I</sub>&nbsp;=&nbsp;{fmt(ex.J_I, sig=6, unit='кг·м²')}, "
+                f"T<sub>0</sub>&nbsp;=&nbsp;{fmt(ex.T0, sig=6, unit='Дж')}.")
+    rows = [{"m": "точное решение", "J": r.J_I_exact, "dev": 0.0, "delta": sc["delta_achieved_exact"]},
+            {"m": "Мерцалов", "J": r.J_I_mertsalov, "dev": r.dev_mertsalov_pct,
+             "delta": sc["delta_achieved_mertsalov"]},
+            {"m": "Виттенбауэр (наклоны (1 ± δ/2)²)", "J": r.J_I_wittenbauer, "dev": r.dev_wittenbauer_pct,
+             "delta": sc["delta_achieved_wittenbauer"]},
+            {"m": "Виттенбауэр (наклоны 1 ± δ)", "J": r.J_I_wittenbauer_linear,
+             "dev": r.dev_wittenbauer_linear_pct, "delta": sc["delta_achieved_wittenbauer_linear"]}]
+    s.paragraph(f"Сравнение методов — в таблице {ref('tab-dyn-methods')}: для каждого J<sub>I</sub> указан "
+                "коэффициент неравномерности, который фактически получится при точном движении машины.")
+    s.table("Момент инерции первой группы звеньев по трём методам", [
+        Column("m", "Метод"), Column("J", _h("J", "I"), "кг·м²", sig=7),
+        Column("dev", "Отклонение от точного", "%", fmt=lambda x: fmt(x, digits=4)),
+        Column("delta", "Фактический δ", None, digits=5)], pd.DataFrame(rows), id="tab-dyn-methods",
+        highlight_rows=[["exact", "mertsalov", "wittenbauer"].index(st.method)])
+    Jc = d.J_I_const
+    s.paragraph("Момент инерции маховика (дополнительной маховой массы):")
+    s.formula(Formula(r"J_{\text{доп}} = J_I - J_{I,0}", rf"{_t(r.J_I, sig=6)} - {_t(Jc, sig=4)}",
+                      _t(r.J_flywheel, sig=5, unit="кг·м²"), label="eq-Jdop"))
+    if not r.flywheel.needed:
+        s.paragraph("J<sub>доп</sub>&nbsp;≤&nbsp;0: собственной инерции машины достаточно, маховик не нужен.")
+    pr = d.printed if d.settings.printed else None
+    if pr is not None and len(pr):
+        _printed(s, pr)
+
+
+def _printed(s, pr: pd.DataFrame) -> None:
+    bad = pr[~pr["within"]]
+    s.paragraph(f"Значения, напечатанные в исходном расчёте, сопоставлены с вычисленными в таблице "
+                f"{ref('tab-dyn-printed')} (допуск — единица последнего напечатанного разряда). Совпадают "
+                f"{int(pr['within'].sum())} из {len(pr)}.")
+    df = pr.copy()
+    df["name"] = [Markup(t) if t else k for t, k in zip(df["title"], df["key"])]
+    df["ok"] = ["да" if w else "нет" for w in df["within"]]
+    s.table("Сравнение с напечатанными значениями", [
+        Column("name", "Величина", fmt=Markup), Column("printed", "Напечатано"),
+        Column("computed", "Вычислено", None, sig=7), Column("diff", "Разность", None, sig=3),
+        Column("ok", "Совпадает")], df, id="tab-dyn-printed",
+        highlight_rows=[int(i) for i in np.flatnonzero(~pr["within"].to_numpy())])
+    for _, r in bad.iterrows():
+        title = r["title"] or r["key"]
+        note = r["note"] or "расхождение превышает единицу последнего напечатанного разряда."
+        s.paragraph(Markup(f"Примечание — {title}: напечатано {r['printed']}, точное значение "
+                           f"{fmt(r['computed'], sig=6)}. ") + Markup(note))
+
+
+def _dimensions(sec, study, d) -> None:
+    s = sec.subsection("Размеры маховика", "sec-dyn-dims")
+    fw = d.result.flywheel
+    kw = d.settings.flywheel_kw
+    J = d.result.J_flywheel
+    if not fw.needed:
+        s.paragraph("Маховик не требуется.")
+        return
+    r5 = rf"\sqrt[5]{{{_t(J, sig=6)}}}"
+    s.paragraph("Маховик в виде обода со спицами и ступицей (эмпирические зависимости курсового пособия, "
+                f"ψ<sub>b</sub>&nbsp;=&nbsp;{fmt(kw['psi_b'], sig=3)}, ψ<sub>h</sub>&nbsp;=&nbsp;{fmt(kw['psi_h'], sig=3)}, "
+                f"ρ&nbsp;=&nbsp;{fmt(kw['rho'], sig=4)}&nbsp;кг/м³):")
+    rim, disk = fw.rim, fw.disk
+    s.formula(Formula(rf"D_2 = {_c(kw['rim_coef'])} \sqrt[5]{{J_{{\text{{доп}}}}}}", rf"{_c(kw['rim_coef'])} \cdot {r5}",
+                      _t(rim.D2, digits=3, unit="м")),
+              Formula(rf"D_1 = {_c(kw['rim_inner_ratio'])}\, D_2", None, _t(rim.D1, digits=3, unit="м")),
+              Formula(rf"b = {_c(kw['rim_width_ratio'])}\, D_2", None, _t(rim.b, digits=3, unit="м")),
+              Formula(rf"m = {_c(kw['rim_mass_coef'])} \left( D_2^2 - D_1^2 \right) b",
+                      rf"{_c(kw['rim_mass_coef'])} \cdot \left( {_t(rim.D2, digits=3)}^2 - {_t(rim.D1, digits=3)}^2 \right) \cdot {_t(rim.b, digits=3)}",
+                      _t(rim.m, sig=4, unit="кг")))
+    s.paragraph("Маховик в виде сплошного диска:")
+    s.formula(Formula(rf"D = {_c(kw['disk_coef'])} \sqrt[5]{{J_{{\text{{доп}}}}}}", rf"{_c(kw['disk_coef'])} \cdot {r5}",
+                      _t(disk.D, digits=3, unit="м")),
+              Formula(rf"b = {_c(kw['disk_width_ratio'])}\, D", None, _t(disk.b, digits=3, unit="м")),
+              Formula(rf"m = {_c(kw['disk_mass_coef'])}\, D^3", rf"{_c(kw['disk_mass_coef'])} \cdot {_t(disk.D, digits=3)}^3",
+                      _t(disk.m, sig=4, unit="кг")))
+    fig = FlywheelDrawing().draw(study)
+    s.figure(f"Маховик: обод со спицами и сплошной диск (размеры в мм, масштаб 1:{fmt(fig.mu * 1000, sig=3)})",
+             fig.svg, fig.width_mm, id="fig-dyn-flywheel")
+    rows = [
+        {"v": "обод со спицами (эмпирически)", "D": rim.D2, "d": rim.D1, "b": rim.b, "m": rim.m, "u": rim.v_rim},
+        {"v": "сплошной диск (эмпирически)", "D": disk.D, "d": math.nan, "b": disk.b, "m": disk.m, "u": disk.v_rim},
+        {"v": "диск, J = mD²/8", "D": fw.disk_physical.D, "d": math.nan, "b": fw.disk_physical.b,
+         "m": fw.disk_physical.m, "u": fw.disk_physical.v_rim},
+        {"v": "кольцо без спиц, J = m(D₂² + D₁²)/8", "D": fw.rim_physical.D2, "d": fw.rim_physical.D1,
+         "b": fw.rim_physical.b, "m": fw.rim_physical.m, "u": fw.rim_physical.v_rim},
+    ]
+    s.paragraph(f"Варианты маховика сопоставлены в таблице {ref('tab-dyn-fw')}; окружная скорость обода "
+                f"{_im('vrim')} сравнивается с допускаемой "
+                f"[v]&nbsp;=&nbsp;{fmt(fw.v_limit, sig=3)}&nbsp;м/с.")
+    s.table("Размеры и масса маховика", [
+        Column("v", "Вариант"), Column("D", "<i>D</i>", "м", digits=3), Column("d", "<i>D</i><sub>1</sub>", "м", digits=3),
+        Column("b", "<i>b</i>", "м", digits=3), Column("m", "<i>m</i>", "кг", sig=4),
+        Column("u", "<i>v</i>", "м/с", digits=2)], pd.DataFrame(rows), id="tab-dyn-fw")
+    if fw.any_exceeds:
+        s.paragraph(f"<b>Внимание:</b> окружная скорость обода превышает допускаемую "
+                    f"{fmt(fw.v_limit, sig=3)}&nbsp;м/с — маховик следует установить на более медленный вал "
+                    "или выполнить из более прочного материала.")
+    else:
+        s.paragraph("Окружная скорость обода всех вариантов меньше допускаемой.")
+
+
+def _motion(sec, study, d, lab, row, mrow, lead) -> None:
+    s = sec.subsection("Закон движения машины", "sec-dyn-motion")
+    st = d.settings
+    r = d.result
+    sc = d.scalars
+    w, e = row["omega"], row["eps"]
+    Jt = r.J_I + row["J_II"]
+    s.paragraph(f"Угловая скорость и угловое ускорение звена приведения ({METHOD_RU[st.method]}) для положения {lab}:")
+    fs = []
+    if st.method == "mertsalov":
+        me = r.mertsalov
+        mid = 0.5 * (me.dT_I_max + me.dT_I_min)
+        fs.append(Formula(r"\omega = \omega_{\text{ср}} + \frac{\Delta T_I - (\Delta T_{I\,max} + \Delta T_{I\,min})/2}"
+                          r"{\omega_{\text{ср}} J_I}",
+                          rf"{_t(st.omega_m, digits=3)} + \frac{{{_t(row['dT_I'], sig=5, paren=True)} - "
+                          rf"{_t(mid, sig=5, paren=True)}}}{{{_t(st.omega_m, digits=3)} \cdot {_t(r.J_I, sig=5)}}}",
+                          _t(w, sig=5, unit="рад/с")))
+    else:
+        T0 = r.exact.T0 if st.method == "exact" else r.wittenbauer.T0
+        fs.append(Formula(r"\omega = \sqrt{\frac{2\left(T_0 + A_{\Sigma}\right)}{J_I + J_{II}}}",
+                          rf"\sqrt{{\frac{{2 \cdot \left({_t(T0, sig=7)} + {_t(row['A_sum'], sig=5, paren=True)}\right)}}"
+                          rf"{{{_t(r.J_I, sig=6)} + {_t(row['J_II'], sig=5)}}}}}",
+                          _t(w, sig=5, unit="рад/с")))
+    fs.append(Formula(r"\varepsilon = \frac{M_{\Sigma} - \frac{1}{2} J_{II}^{\prime}\,\omega^2}{J_I + J_{II}}",
+                      rf"\frac{{{_t(row['M_sum'], sig=5, paren=True)} - 0{{,}}5 \cdot {_t(row['dJ_II'], sig=4, paren=True)}"
+                      rf" \cdot {_t(w, sig=5)}^2}}{{{_t(Jt, sig=6)}}}",
+                      _t(e, sig=4, unit="рад/с²"), label="eq-eps"))
+    s.formula(*fs)
+    cols = [Column("omega", "ω", "рад/с", sig=5), Column("eps", "ε", "рад/с²", sig=4)]
+    if st.method != "exact":
+        cols += [Column("omega_exact", "ω<sub>точн</sub>", "рад/с", sig=5),
+                 Column("eps_exact", "ε<sub>точн</sub>", "рад/с²", sig=4)]
+    ids = chunked_tables(s, "Угловая скорость и угловое ускорение звена приведения", d.table, cols, lead, "tab-dyn-w")
+    fig = MotionCurves().draw(study)
+    s.paragraph(f"За цикл ω<sub>max</sub>&nbsp;=&nbsp;{fmt(sc['omega_max'], sig=5)}&nbsp;рад/с при "
+                f"φ&nbsp;=&nbsp;{_phase_deg(study, sc['q_omega_max'])}, ω<sub>min</sub>&nbsp;=&nbsp;"
+                f"{fmt(sc['omega_min'], sig=5)}&nbsp;рад/с при φ&nbsp;=&nbsp;{_phase_deg(study, sc['q_omega_min'])}; "
+                f"коэффициент неравномерности точного движения с принятым J<sub>I</sub> — "
+                f"{fmt(r.delta_achieved, digits=5)} (задан {fmt(st.delta, sig=4)}). Значения по положениям — в "
+                f"таблице {ref(ids[0])}, графики — на рисунке {ref('fig-dyn-w')}.")
+    s.figure("Угловая скорость и угловое ускорение звена приведения", fig.svg, fig.width_mm, id="fig-dyn-w")
+    # true motion
+    mech = study.mechanism
+    fixed = set(mech.link("0").points)
+    pts, seen = [], set()
+    for l in mech.moving:
+        for p in l.points:
+            if p not in fixed and p not in seen:
+                seen.add(p)
+                pts.append(p)
+    links = [l.name for l in mech.moving if l.name != mech.driver.link
+             and float(np.abs(study.cycle["wq_" + l.name]).max()) > 1e-12]
+    s.paragraph("Истинные скорости и ускорения точек и звеньев вычислены с найденными ω(φ) и ε(φ): "
+                f"{_im('v')}, "
+                f"{_im('a')}, "
+                f"{_im('wk')}, "
+                f"{_im('ek')}.")
+    tv = [Column(f"v_{p}", sub("V", p), "м/с", sig=4) for p in pts]
+    tv += [Column(f"w_{k}", sub("ω", k), "рад/с", sig=4) for k in links]
+    chunked_tables(s, "Истинные скорости точек и угловые скорости звеньев", d.motion, tv, lead, "tab-dyn-v",
+                   per=_per(len(tv)))
+    ta = [Column(f"a_{p}", sub("a", p), "м/с²", sig=4) for p in pts]
+    ta += [Column(f"e_{k}", sub("ε", k), "рад/с²", sig=4) for k in links]
+    chunked_tables(s, "Истинные ускорения точек и угловые ускорения звеньев", d.motion, ta, lead, "tab-dyn-a",
+                   per=_per(len(ta)))
+
+
+def _comparison(sec, study, d, lab) -> None:
+    cmp = d.comparison
+    title = d.settings.compare[1]
+    s = sec.subsection("Сравнение с исходным вариантом", "sec-dyn-compare")
+    at = cmp.attrs
+    s.paragraph(f"Результаты сопоставлены с вариантом «{title}» (таблица {ref('tab-dyn-compare')}); сравниваются "
+                "одинаковые методы. Наибольшее за цикл различие угловых скоростей точного движения — "
+                f"{fmt(at['omega_diff_max'], sig=3)}&nbsp;рад/с ({fmt_pct(at['omega_diff_rel'], digits=3)} от "
+                f"ω<sub>ср</sub>), угловых ускорений — {fmt(at['eps_diff_max'], sig=3)}&nbsp;рад/с²; "
+                f"угловые скорости, принятые в расчётах вариантов, различаются не более чем на "
+                f"{fmt(at['omega_diff_chosen'], sig=3)}&nbsp;рад/с.")
+    df = cmp.copy()
+    df["title"] = [Markup(t) for t in df["title"]]
+    s.table("Сравнение с исходным вариантом", [
+        Column("title", "Величина", fmt=Markup), Column("unit", "Единица"),
+        Column("this", "Данный вариант", None, sig=6), Column("other", "Исходный вариант", None, sig=6),
+        Column("change_pct", "Изменение", "%", fmt=lambda x: fmt(x, digits=3, sign=True))], df,
+        id="tab-dyn-compare")
+
+
+# --------------------------------------------------------------------------------------------
+# ЗАКЛЮЧЕНИЕ
+# --------------------------------------------------------------------------------------------
+def conclusion_lines(study) -> list[str]:
+    """HTML lines about the dynamics for the ЗАКЛЮЧЕНИЕ (assemble._conclusion)."""
+    d = study.dynamics
+    sc = d.scalars
+    r = d.result
+    st = d.settings
+    out = []
+    if d.balance == "drive":
+        out.append(f"Работа сил сопротивления за цикл A<sub>с</sub>&nbsp;=&nbsp;{fmt(sc['A_c'], sig=5)}&nbsp;Дж; "
+                   f"{'постоянный ' if st.drive is None else 'средний '}приведённый движущий момент "
+                   f"M<sub>д</sub>&nbsp;=&nbsp;{fmt(sc['M_d'], sig=5)}&nbsp;Н·м.")
+    else:
+        out.append(f"Работа движущих сил за цикл A<sub>д</sub>&nbsp;=&nbsp;{fmt(sc['A_d'], sig=5)}&nbsp;Дж; "
+                   f"постоянный приведённый момент сопротивления M<sub>с</sub>&nbsp;=&nbsp;{fmt(sc['M_c'], sig=5)}&nbsp;Н·м.")
+    out.append(f"Для δ&nbsp;=&nbsp;{fmt(st.delta, sig=4)} при ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(st.omega_m, digits=3)}&nbsp;рад/с "
+               f"требуется J<sub>I</sub>&nbsp;=&nbsp;{fmt(r.J_I, sig=5)}&nbsp;кг·м² ({METHOD_RU[st.method]}); "
+               f"точное значение {fmt(r.J_I_exact, sig=6)}&nbsp;кг·м², метод Мерцалова даёт отклонение "
+               f"{fmt(r.dev_mertsalov_pct, digits=3, sign=True)}&nbsp;%, метод Виттенбауэра "
+               f"{fmt(r.dev_wittenbauer_pct, digits=3, sign=True)}&nbsp;%.")
+    fw = r.flywheel
+    if fw.needed:
+        out.append(f"Момент инерции маховика J<sub>доп</sub>&nbsp;=&nbsp;{fmt(r.J_flywheel, sig=5)}&nbsp;кг·м²: обод "
+                   f"D<sub>2</sub>&nbsp;=&nbsp;{fmt(fw.rim.D2, digits=3)}&nbsp;м, b&nbsp;=&nbsp;{fmt(fw.rim.b, digits=3)}&nbsp;м, "
+                   f"m&nbsp;=&nbsp;{fmt(fw.rim.m, sig=4)}&nbsp;кг или диск D&nbsp;=&nbsp;{fmt(fw.disk.D, digits=3)}&nbsp;м, "
+                   f"m&nbsp;=&nbsp;{fmt(fw.disk.m, sig=4)}&nbsp;кг"
+                   + ("; окружная скорость обода превышает допускаемую." if fw.any_exceeds else "."))
+    else:
+        out.append("Собственной инерции машины достаточно для заданного δ: маховик не нужен.")
+    out.append(f"Угловая скорость кривошипа изменяется от {fmt(sc['omega_min'], sig=5)} до "
+               f"{fmt(sc['omega_max'], sig=5)}&nbsp;рад/с; фактический коэффициент неравномерности "
+               f"{fmt(r.delta_achieved, digits=5)}.")
+    cmp = d.comparison if st.compare is not None else None
+    if cmp is not None:
+        jr = cmp.set_index("key")
+        out.append(f"По сравнению с вариантом «{st.compare[1]}» точный J<sub>I</sub> изменился на "
+                   f"{fmt(jr.loc['J_I_exact', 'change_pct'], digits=3, sign=True)}&nbsp;%, J<sub>I</sub> по методу "
+                   f"Мерцалова — на {fmt(jr.loc['J_I_mertsalov', 'change_pct'], digits=3, sign=True)}&nbsp;%; "
+                   f"угловая скорость точного движения — не более чем на {fmt(cmp.attrs['omega_diff_max'], sig=3)}"
+                   f"&nbsp;рад/с ({fmt_pct(cmp.attrs['omega_diff_rel'], digits=3)} от ω<sub>ср</sub>).")
+    return out
