@@ -219,7 +219,7 @@ def test_moment_loads_and_given_drive(tmp_path):
      "loads.force[0].point", "не принадлежит звену"),
     (DYN + '[dynamics.printed]\nJ_X = "1.0"\n', "dynamics.printed.J_X", "нет величины"),
     (DYN.replace("delta = 0.05", "delta = 1.5"), "dynamics.delta", "меньше 1"),
-])
+], ids=["drive-unbalanced", "unknown-key", "unknown-column", "table-range", "point", "printed-key", "delta"])
 def test_case_errors(tmp_path, extra, key, words):
     s = _case(tmp_path, extra)
     with pytest.raises(CaseError) as e:

@@ -269,7 +269,8 @@ def _transverse_bar_guess(q: float) -> list[float]:
     (_transverse_bar, [0.5, 0.55, 0.6], "transverse bar on the rod, later ВВП group")],
     ids=["t-head-RPR", "transverse-bar-RRP"])
 def test_prismatic_pair_guided_by_the_actuator_rod(build, qs, what):
-    """ENGINE BUG (reported): a prismatic pair guided by the actuator's rod (see the comment above)."""
+    """Regression: a prismatic pair guided by the actuator's rod, whose points move with q
+    (p = p0 + q·(1, 0) in the merged cylinder–rod body)."""
     from reference import ReferenceMechanism
     from reportgen.errors import AssemblyError
 
@@ -284,17 +285,17 @@ def test_prismatic_pair_guided_by_the_actuator_rod(build, qs, what):
         df = s.at(qs)
     except AssemblyError as e:
         raise AssertionError(
-            f"ENGINE BUG: {label}: the engine reports that a valid mechanism does not assemble ({e}); "
+            f"{label}: the engine reports that a valid mechanism does not assemble ({e}); "
             f"the kernel places the rod's guide line through the cylinder base instead of the rod end "
             f"(q·(1, 0) of the rod's line point is dropped for prismatic pairs)") from None
     res, where = closure_residuals(s.mechanism, df)
     size = s.mechanism.size()
     assert res <= TOL_CLOSURE * size, (
-        f"ENGINE BUG: {label}: loop closure violated by {res:.3g} m ({where}) — the kernel drops the "
+        f"{label}: loop closure violated by {res:.3g} m ({where}) — the kernel drops the "
         f"q-dependent part q·(1, 0) of the rod's line point (guide placed through the cylinder base)")
     ref = reference_columns(s, qs, frame=df)
     err = scaled_errors(df, ref)
     for kind, tol in TOL.items():
         e, col, i = err[kind]
-        assert e <= tol, (f"ENGINE BUG: {label}: {col} at q = {qs[i]} is {df[col].iloc[i]!r}, "
+        assert e <= tol, (f"{label}: {col} at q = {qs[i]} is {df[col].iloc[i]!r}, "
                           f"reference {float(ref[col][i])!r}")

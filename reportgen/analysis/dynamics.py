@@ -161,9 +161,10 @@ def read_settings(study) -> Settings:
     kw = {}
     for k, (dim, dflt) in FLYWHEEL_KEYS.items():
         kw[k] = fw.quantity(k, dim or U.DIMENSIONLESS, params, default=dflt, positive=True)
-    if not kw["psi_h"] < 1 or not kw["rim_inner_ratio"] < 1:
-        raise fw.error("psi_h", "отношение внутреннего диаметра обода к наружному должно быть меньше 1",
-                       expected="0 < psi_h < 1")
+    for k in ("psi_h", "rim_inner_ratio"):
+        if not kw[k] < 1:
+            raise fw.error(k, "отношение внутреннего диаметра обода к наружному должно быть меньше 1",
+                           expected=f"0 < {k} < 1", got=str(fw.raw(k)))
     m = len(study.grid.cycle) - 1
     points = node.integer("points", int(round(m * length / (2 * math.pi))), minimum=72)
     printed = _read_printed(node)
@@ -331,22 +332,20 @@ class Dynamics:
                 return tab(np.mod(np.asarray(q, dtype=float) - a, Phi))
         elif s.drive is not None:
             Mdrive = float(s.drive)
+        self._Mdrive = Mdrive
         try:
             self.result: DynamicsResult = solve_dynamics(
                 self.model.J2, self.model.dJ2, self.model.M, self.breaks, a, Phi, self.J_I_const,
                 s.omega_m, s.delta, self.grid, s.method, Mdrive, s.flywheel_kw)
         except ValueError as e:
-            if "does not balance" in str(e):
-                w = _works_probe(self.model.M, Mdrive, self.grid, self.breaks, a, Phi)
-                raise CaseError("заданный движущий момент не уравновешивает работу сил сопротивления за цикл: "
-                                f"A_д = {w[1]:.6g} Дж, A_с = {w[0]:.6g} Дж; установившегося движения нет",
-                                file=str(study.spec.path), key="dynamics.drive",
-                                expected="движущий момент с работой за цикл −A_с, или без ключа drive "
-                                         "(M_дв = −A_с/Φ)") from None
-            if "J_I + J_II" in str(e) or "positive" in str(e):
-                raise CaseError(f"не удалось рассчитать установившееся движение: {e}", file=str(study.spec.path),
-                                key="dynamics", expected="δ и ω_ср, при которых движение существует") from None
-            raise
+            if "does not balance" not in str(e):
+                raise
+            w = _works_probe(self.model.M, Mdrive, self.grid, self.breaks, a, Phi)
+            raise CaseError("заданный движущий момент не уравновешивает работу сил сопротивления за цикл: "
+                            f"A_д = {w[1]:.6g} Дж, A_с = {w[0]:.6g} Дж; установившегося движения нет",
+                            file=str(study.spec.path), key="dynamics.drive",
+                            expected="движущий момент с работой за цикл −A_с, или без ключа drive "
+                                     "(M_дв = −A_с/Φ)") from None
         self.positions, self.labels = self._positions()
 
     # -------------------------------------------------------------------------- positions
@@ -370,10 +369,11 @@ class Dynamics:
         return self.settings.balance
 
     def _const_moment(self, q) -> np.ndarray:
-        m = self.result.model
-        if m.Md_const is not None:
-            return np.full(np.shape(q), m.Md_const)
-        return m._md(np.asarray(q, dtype=float))
+        """The moment that is not a sum of loads: the balancing constant or the given drive."""
+        q = np.asarray(q, dtype=float)
+        if callable(self._Mdrive):
+            return self._Mdrive(q)
+        return np.full(q.shape, self.result.model.Md_const)
 
     def frame(self, q, labels: list[str] | None = None) -> pd.DataFrame:
         """Dynamics columns at q (exact evaluation; see docs/outputs.md «Динамика»)."""

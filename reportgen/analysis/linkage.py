@@ -49,7 +49,12 @@ class SolverModel:
 
     def local_point(self, link: str, p: str) -> tuple[float, float, float, float]:
         """Local coordinates p0, p1 (p = p0 + q·p1) of point p of a link in its solver body."""
-        x, y = self.mech.link(link).points[p]
+        return self.local_coords(link, self.mech.link(link).points[p])
+
+    def local_coords(self, link: str, xy) -> tuple[float, float, float, float]:
+        """Coordinates given in a link's own frame, in its solver body: the actuator's rod is
+        merged into the cylinder, its frame origin sitting at distance q along the axis."""
+        x, y = xy
         d = self.mech.driver
         if d.kind == "actuator" and link == d.rod:
             return x, y, 1.0, 0.0
@@ -75,9 +80,10 @@ def assemble(mech: Mechanism, st: Structure) -> SolverModel:
             rows_f.append([pa[0], pa[1], pb[0], pb[1], pa[2], pa[3], pb[2], pb[3], 0.0, 0.0])
         else:
             s = lp(b, j.point)
+            g = model.local_coords(a, j.line_point)
             rows_t.append(K.J_PRI)
             rows_b.append((bidx[body_of[a]], bidx[body_of[b]]))
-            rows_f.append([j.line_point[0], j.line_point[1], s[0], s[1], j.angle, j.offset, 0, 0, 0, 0])
+            rows_f.append([g[0], g[1], s[0], s[1], j.angle, j.offset, g[2], g[3], s[2], s[3]])
     drive_index = None
     if mech.driver.kind == "crank":
         drive_index = len(rows_t)
@@ -307,11 +313,10 @@ def slider_displacement(model: SolverModel, res: KinematicsResult, j):
     u' = ⊥u·θ', u'' = ⊥u·θ'' − u·θ'² (θ the guide's angle)."""
     guide, slider = j.links
     gb = model.body(guide)
-    lx, ly = j.line_point
-    sx, sy, s1x, s1y = model.local_point(slider, j.point)
+    g = model.local_coords(guide, j.line_point)
+    sl = model.local_point(slider, j.point)
     pts = K.points_cycle(res.pose, res.d1, res.d2, res.q,
-                         np.array([gb, model.body(slider)], np.int64),
-                         np.array([[lx, ly, 0.0, 0.0], [sx, sy, s1x, s1y]]))
+                         np.array([gb, model.body(slider)], np.int64), np.array([g, sl], dtype=np.float64))
     G, P = pts[:, 0, :], pts[:, 1, :]
     th = res.pose[:, gb, 2] + j.angle
     w = res.d1[:, gb, 2]

@@ -595,7 +595,7 @@ def read_loads(study) -> Loads:
     params = study.params
     mech = study.mechanism
     start, length = cycle_of(study)
-    g = root.table("loads").quantity("g", U.ACCELERATION, params, default=9.81, positive=True)
+    g = node.quantity("g", U.ACCELERATION, params, default=9.81, positive=True)
     evaluator = ColumnEvaluator(study)
     columns = evaluator.names()
     dim_of = _column_dims(study)

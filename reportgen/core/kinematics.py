@@ -66,6 +66,14 @@ def _local(jf, j, which, q):
 
 
 @njit(cache=True)
+def _pri(jf, j, q):
+    """Guide line point g (on the guide body) and slider point s (on the slider body) of a
+    prismatic joint at q (both may move with q when they belong to an actuator's rod)."""
+    return (jf[j, 0] + q * jf[j, 6], jf[j, 1] + q * jf[j, 7],
+            jf[j, 2] + q * jf[j, 8], jf[j, 3] + q * jf[j, 9])
+
+
+@njit(cache=True)
 def _glob(pose, b, px, py):
     ux, uy = _rot(pose[b, 2], px, py)
     return pose[b, 0] + ux, pose[b, 1] + uy
@@ -160,14 +168,13 @@ def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma):
             gam[1] = -uiy * wi * wi + 2.0 * vix * wi - (-ujy * wj * wj + 2.0 * vjx * wj)
         return 2
     elif kind == J_PRI:
-        gx = jf[j, 0]
-        gy = jf[j, 1]
-        sx = jf[j, 2]
-        sy = jf[j, 3]
+        gx, gy, sx, sy = _pri(jf, j, q)
         al = jf[j, 4]
         nx, ny = _rot(ti, -np.sin(al), np.cos(al))
         agx, agy = _rot(ti, gx, gy)
         asx, asy = _rot(tj, sx, sy)
+        g1x, g1y = _rot(ti, jf[j, 6], jf[j, 7])
+        s1x, s1y = _rot(tj, jf[j, 8], jf[j, 9])
         dx = pose[bj, 0] + asx - pose[bi, 0] - agx
         dy = pose[bj, 1] + asy - pose[bi, 1] - agy
         # row 0: relative angle
@@ -182,11 +189,13 @@ def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma):
         coef[1, 0] = -nx
         coef[1, 1] = -ny
         coef[1, 2] = pnx * dx + pny * dy - (nx * (-agy) + ny * agx)
+        expl[1] = nx * (s1x - g1x) + ny * (s1y - g1y)
         if with_gamma:
-            ddx = vel[bj, 0] + (-asy) * wj - vel[bi, 0] - (-agy) * wi
-            ddy = vel[bj, 1] + asx * wj - vel[bi, 1] - agx * wi
+            ddx = vel[bj, 0] + (-asy) * wj + s1x - vel[bi, 0] - (-agy) * wi - g1x
+            ddy = vel[bj, 1] + asx * wj + s1y - vel[bi, 1] - agx * wi - g1y
             gam[1] = (-(nx * dx + ny * dy) * wi * wi + 2.0 * (pnx * ddx + pny * ddy) * wi
-                      + nx * (-asx * wj * wj + agx * wi * wi) + ny * (-asy * wj * wj + agy * wi * wi))
+                      + nx * (-asx * wj * wj + agx * wi * wi) + ny * (-asy * wj * wj + agy * wi * wi)
+                      + 2.0 * (nx * (-s1y * wj + g1y * wi) + ny * (s1x * wj - g1x * wi)))
         return 2
     else:
         coef[0, 2] = -1.0
@@ -212,8 +221,9 @@ def _joint_residual(jt, jb, jf, j, q, pose, res):
         al = jf[j, 4]
         ti = pose[bi, 2]
         nx, ny = _rot(ti, -np.sin(al), np.cos(al))
-        gx, gy = _glob(pose, bi, jf[j, 0], jf[j, 1])
-        sx, sy = _glob(pose, bj, jf[j, 2], jf[j, 3])
+        lgx, lgy, lsx, lsy = _pri(jf, j, q)
+        gx, gy = _glob(pose, bi, lgx, lgy)
+        sx, sy = _glob(pose, bj, lsx, lsy)
         d = pose[bj, 2] - ti - al
         res[0] = np.arctan2(np.sin(d), np.cos(d))
         res[1] = nx * (sx - gx) + ny * (sy - gy) - jf[j, 5]
@@ -338,6 +348,7 @@ def _solve_rrr(jf, jb, spec, sigma, q, pose):
 def _line_of_body(jf, jb, jP, b, q, pose):
     """A body b whose angle is already known and that is tied by prismatic joint jP to a known
     body can only translate along the guide: r_b = r0 + t·u.  Returns (r0x, r0y, ux, uy)."""
+    lgx, lgy, lsx, lsy = _pri(jf, jP, q)
     gi = jb[jP, 0]
     sj = jb[jP, 1]
     al = jf[jP, 4]
@@ -347,15 +358,15 @@ def _line_of_body(jf, jb, jP, b, q, pose):
         ti = pose[gi, 2]
         nx, ny = _rot(ti, -np.sin(al), np.cos(al))
         ux, uy = _rot(ti, np.cos(al), np.sin(al))
-        Gx, Gy = _glob(pose, gi, jf[jP, 0], jf[jP, 1])
-        sx, sy = _rot(pose[b, 2], jf[jP, 2], jf[jP, 3])
+        Gx, Gy = _glob(pose, gi, lgx, lgy)
+        sx, sy = _rot(pose[b, 2], lsx, lsy)
         return Gx + e * nx - sx, Gy + e * ny - sy, ux, uy
     # b is the guide, the known body sj carries the slider point
     tb = pose[b, 2]
     nx, ny = _rot(tb, -np.sin(al), np.cos(al))
     ux, uy = _rot(tb, np.cos(al), np.sin(al))
-    Sx, Sy = _glob(pose, sj, jf[jP, 2], jf[jP, 3])
-    gx, gy = _rot(tb, jf[jP, 0], jf[jP, 1])
+    Sx, Sy = _glob(pose, sj, lsx, lsy)
+    gx, gy = _rot(tb, lgx, lgy)
     return Sx - gx - e * nx, Sy - gy - e * ny, ux, uy
 
 
@@ -450,11 +461,12 @@ def _solve_rpr(jf, jb, spec, sigma, q, pose):
         PSx, PSy = _glob(pose, jb[jS, 0], kx, ky)
     al = jf[jP, 4]
     e = jf[jP, 5]
+    lgx, lgy, lsx, lsy = _pri(jf, jP, q)
     nlx = -np.sin(al)
     nly = np.cos(al)
     # slider point relative to the slider's pivot, expressed in the guide frame
-    rx, ry = _rot(al, jf[jP, 2] - psx, jf[jP, 3] - psy)
-    K = e + nlx * (jf[jP, 0] - pgx) + nly * (jf[jP, 1] - pgy) - (nlx * rx + nly * ry)
+    rx, ry = _rot(al, lsx - psx, lsy - psy)
+    K = e + nlx * (lgx - pgx) + nly * (lgy - pgy) - (nlx * rx + nly * ry)
     wx = PSx - PGx
     wy = PSy - PGy
     W = np.hypot(wx, wy)
@@ -538,9 +550,10 @@ def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of):
             row += 2
         elif jt[j] == J_PRI:
             al = jf[j, 4]
+            lgx, lgy, lsx, lsy = _pri(jf, j, q)
             nx, ny = _rot(pose[bi, 2], -np.sin(al), np.cos(al))
-            agx, agy = _rot(pose[bi, 2], jf[j, 0], jf[j, 1])
-            asx, asy = _rot(pose[bj, 2], jf[j, 2], jf[j, 3])
+            agx, agy = _rot(pose[bi, 2], lgx, lgy)
+            asx, asy = _rot(pose[bj, 2], lsx, lsy)
             s = nx * (asx - agx) + ny * (asy - agy) - jf[j, 5]
             if cj >= 0:
                 mat[row, 2 * cj] += nx

@@ -491,10 +491,15 @@ def _get_env() -> jinja2.Environment:
 
 
 _REF = re.compile(r'<a class="ref" href="#([^"]+)"></a>')
-_REF_AFTER_WORD = re.compile(r'(\w) <a class="ref"')
+_REF_AFTER_WORD = re.compile(r'(\w) <a class="ref" href="#([^"]+)">')
 _TAG_SPLIT = re.compile(r"(<[^>]*>)")
 _SUP_RUN = re.compile(r"[⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺]+")
-_UNIT_SLASH = re.compile(r"((?:\u00a0|&nbsp;|&#160;)[^\s<>&/]+/[^\s<>&]+)")
+_NB = r"(?:&nbsp;|&#160;|\u00a0)"
+# «65&nbsp;об/мин» (browsers and WeasyPrint break after «/»)
+_UNIT_SLASH = re.compile(r"([^\s<>]+)(" + _NB + r")([^\s<>&/]+/[^\s<>&]+)")
+_UNIT_SLASH_BARE = re.compile(r"(" + _NB + r"[^\s<>&/]+/[^\s<>&]+)")
+_NBSP_BEFORE_IMG = re.compile(_NB + r"(<img\b[^>]*>)")
+_NBSP_BEFORE_TAG = re.compile(_NB + r"(<(?:a|span|i|b|em|strong)\b[^>]*>)")
 _SUP_PLAIN = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺", "0123456789\u2212+")
 
 
@@ -508,21 +513,24 @@ def _fill_refs(html: str, targets: dict[str, str]) -> str:
             return m.group(0)
         return f'<a class="ref" href="#{tid}">{_html.escape(targets[tid])}</a>'
 
-    # «в таблице 1.1»: no line break between the word and the number
-    html = _REF_AFTER_WORD.sub("\\1&#160;<a class=\"ref\"", html)
     out = _REF.sub(repl, html)
+    # «в таблице 1.1»: a no-break space between the word and the number, as the
+    # first character of the link (see _typography for why not before it)
+    out = _REF_AFTER_WORD.sub(r'\1<a class="ref" href="#\2">&#160;', out)
     if missing:
         raise KeyError("Ссылки на несуществующие объекты: " + ", ".join(sorted(set(missing))))
     return out
 
 
-def _superscripts(html: str) -> str:
+def _typography(html: str) -> str:
     """Typographic fixes in text nodes.
 
     * Unicode superscripts not in Latin-1 (⁰ ⁴…⁹ ⁻ ⁺, absent from Liberation
       Serif) become ``<sup>``, so that no fallback font is needed;
     * a unit with a slash after a number and a no-break space («65 об/мин»)
-      is kept on one line (browsers and WeasyPrint break after «/»).
+      is kept on one line (browsers and WeasyPrint break after «/»);
+    * a no-break space before an inline element becomes a nowrap span
+      (works around a WeasyPrint 70 line-breaking bug, see below).
     """
 
     def fix_text(text: str) -> str:
@@ -532,8 +540,16 @@ def _superscripts(html: str) -> str:
                 return run
             return "<sup>" + run.translate(_SUP_PLAIN) + "</sup>"
 
-        text = _UNIT_SLASH.sub(r'<span class="nobr">\1</span>', text)
+        text = _UNIT_SLASH.sub(r'<span class="nobr">\1 \3</span>', text)
+        text = _UNIT_SLASH_BARE.sub(r'<span class="nobr">\1</span>', text)
         return _SUP_RUN.sub(repl, text)
+
+    # A no-break space right before an inline element («=&nbsp;<img>»,
+    # «таблицы&nbsp;<a>») makes WeasyPrint 70 break lines wrongly: it
+    # hyphenates the first word of the paragraph instead. The same space as the
+    # first character inside the element is laid out correctly.
+    html = _NBSP_BEFORE_IMG.sub(r'<span class="nb">&#160;\1</span>', html)
+    html = _NBSP_BEFORE_TAG.sub(r'\1&#160;', html)
 
     pieces = _TAG_SPLIT.split(html)
     in_style = False
@@ -602,7 +618,7 @@ def _render(report: Report, *, for_print: bool, splits=None) -> tuple[str, _Buil
     }
     html = env.get_template("base.html.j2").render(**ctx)
     html = _fill_refs(html, builder.targets)
-    html = _superscripts(html)
+    html = _typography(html)
     _check_glyphs(html, family)
     return html, builder
 
@@ -632,7 +648,7 @@ def render_fragment(block, *, options: dict | None = None, chapter: str = "1",
     module = env.get_template("_blocks.html.j2").make_module({"o": opts, "for_print": for_print})
     html = module.render_nodes(nodes)
     html = _fill_refs(str(html), builder.targets)
-    return _superscripts(html)
+    return _typography(html)
 
 
 # ---------------------------------------------------------------- writers

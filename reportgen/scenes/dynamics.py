@@ -174,7 +174,7 @@ class WittenbauerDiagram:
         ax.set_xlim(-0.04 * jmax, jmax)
         ax.set_xlabel("$J_{II}$, кг·м²")
         ax.set_ylabel("$\\Delta T$, Дж")
-        ax.legend(fontsize=9, loc="lower right")
+        ax.legend(fontsize=9, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncols=3)
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 
@@ -213,7 +213,7 @@ class MotionCurves:
 # --------------------------------------------------------------------------------------------
 def _dim(ax, p1, p2, text, off, mu, vertical=False):
     """A dimension line between p1 and p2 shifted by ``off`` (data units, perpendicular), with
-    extension lines, arrows and the text in the middle."""
+    extension lines, arrows and the text in the middle on the outer side (away from the part)."""
     (x1, y1), (x2, y2) = p1, p2
     if vertical:
         a, b = (x1 + off, y1), (x2 + off, y2)
@@ -227,7 +227,9 @@ def _dim(ax, p1, p2, text, off, mu, vertical=False):
                                           shrinkA=0, shrinkB=0))
     mx, my = 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])
     if vertical:
-        ax.text(mx - 1.2 * mu, my, text, rotation=90, ha="right", va="center", fontsize=9)
+        side = 1.0 if off > 0 else -1.0
+        ax.text(mx + side * 1.0 * mu, my, text, rotation=90, ha="left" if side > 0 else "right",
+                va="center", fontsize=9)
     else:
         ax.text(mx, my + 1.0 * mu, text, ha="center", va="bottom", fontsize=9)
 

@@ -398,8 +398,8 @@ def _flywheel(sec, study, d) -> None:
                 "ω<sub>min</sub>. С упрощёнными наклонами ω<sub>ср</sub>²(1&nbsp;±&nbsp;δ)/2 получается "
                 f"J<sub>I</sub>&nbsp;=&nbsp;{fmt(wi.J_I_linear, sig=6, unit='кг·м²')}.")
     # exact
-    s.paragraph(f"<b>Точное решение.</b> При моментах, зависящих только от φ, уравнение {ref('eq-dyn-energy')} "
-                "интегрируется точно:")
+    s.paragraph(f"<b>Точное решение.</b> Если моменты сил зависят только от положения звена приведения, "
+                f"уравнение движения {ref('eq-dyn-energy')} интегрируется точно:")
     s.formula(Formula(r"\omega(\varphi) = \sqrt{\frac{2\left(T_0 + A_{\Sigma}(\varphi)\right)}{J_I + J_{II}(\varphi)}}",
                       label="eq-omega-exact"))
     s.paragraph(f"Постоянная T<sub>0</sub> и момент инерции J<sub>I</sub> подобраны (метод Ньютона) так, чтобы "
@@ -441,6 +441,7 @@ def _printed(s, pr: pd.DataFrame) -> None:
     df = pr.copy()
     df["name"] = [Markup(t) if t else k for t, k in zip(df["title"], df["key"])]
     df["ok"] = ["да" if w else "нет" for w in df["within"]]
+    df["printed"] = [_as_printed(t, v) for t, v in zip(df["printed"], df["value"])]
     s.table("Сравнение с напечатанными значениями", [
         Column("name", "Величина", fmt=Markup), Column("printed", "Напечатано"),
         Column("computed", "Вычислено", None, sig=7), Column("diff", "Разность", None, sig=3),
@@ -451,6 +452,13 @@ def _printed(s, pr: pd.DataFrame) -> None:
         note = r["note"] or "расхождение превышает единицу последнего напечатанного разряда."
         s.paragraph(Markup(f"Примечание — {title}: напечатано {r['printed']}, точное значение "
                            f"{fmt(r['computed'], sig=6)}. ") + Markup(note))
+
+
+def _as_printed(text: str, value: float) -> str:
+    """A printed number in the report's style with its printed digits: "-6.1e3" → "−6,1·10³"."""
+    mant = text.lower().split("e")[0].lstrip("+-−")
+    digits = mant.replace(".", "").replace(",", "").lstrip("0") or "0"
+    return fmt(value, sig=len(digits), exp_from=1e3 if "e" in text.lower() else 1e6)
 
 
 def _dimensions(sec, study, d) -> None:
