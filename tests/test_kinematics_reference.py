@@ -181,17 +181,13 @@ def test_reference_against_closed_form_slider_crank():
                 assert abs(ref[col][i] - exact) < mpf("1e-25"), f"reference {col} at {float(q)}: {ref[col][i]} vs {exact}"
 
 
-# ----------------------------------------------------------------------------- engine bug
+# ----------------------------------------------------------------------------- rod guides
 #
 # A prismatic pair whose GUIDE is the actuator's rod.  The kernel merges the rod into the
-# cylinder body, so the rod's local points become p0 + q·(1, 0); for revolute joints this is done
-# (jf columns 4..7), but ``linkage.assemble`` stores only ``line_point`` (p0) for a prismatic pair
-# and the kernel (``_solve_rpr``, ``_line_of_body``, ``_solve_lin``, ``_joint_rows``,
-# ``_joint_residual``) and ``linkage.slider_displacement`` (``[lx, ly, 0, 0]``) never add the
-# q·(1, 0) term: the guide line is placed through the point p0 of the CYLINDER frame (the base
-# pivot for a line through the rod end) instead of the rod.  The engine then returns wrong
-# positions without any error (T-head below) or reports a valid mechanism as not assembling
-# (transverse bar below).
+# cylinder body, so the rod's local points are p0 + q·(1, 0), for revolute and prismatic pairs
+# alike (jf columns 6..9 of a prismatic pair).  Before this was handled the guide line was placed
+# through the cylinder's base instead of the rod end: wrong positions without an error (T-head)
+# or a valid mechanism reported as not assembling (transverse bar).
 
 
 def _t_head() -> dict:
