@@ -36,7 +36,6 @@ from __future__ import annotations
 import hashlib
 import html as _html
 import logging
-import math
 import numbers as _numbers
 import os
 import re
@@ -52,7 +51,7 @@ from markupsafe import Markup, escape
 
 from . import fonts
 from .document import Column, Figure, FormulaBlock, Paragraph, Report, Section, Table
-from .formulas import data_uri, formula_images, inline_math, where_rows
+from .formulas import Formula, data_uri, formula_images, inline_math, where_rows
 from .numbers import DASH, fmt
 
 __all__ = [
@@ -204,6 +203,18 @@ class _Node:
 _BLOCK_START = re.compile(r"^\s*<(ul|ol|div|table|p|figure|blockquote|dl)\b", re.I)
 
 
+def _missing(v) -> bool:
+    """None, NaN, pandas.NA / NaT: printed as an em dash."""
+    if v is None:
+        return True
+    if isinstance(v, str):
+        return False
+    try:
+        return bool(v != v)  # NaN; pandas.NA raises in bool()
+    except TypeError:
+        return True
+
+
 def _is_number(v) -> bool:
     return isinstance(v, _numbers.Real) and not isinstance(v, bool)
 
@@ -271,6 +282,8 @@ class _Builder:
                 out.append(_Node("table", self.table(child)))
             elif isinstance(child, FormulaBlock):
                 out.append(_Node("formulas", [self.formula(f) for f in child.formulas]))
+            elif isinstance(child, Formula):
+                out.append(_Node("formulas", [self.formula(child)]))
             else:
                 raise TypeError(f"Unsupported report block: {type(child).__name__}")
         return out
@@ -374,7 +387,7 @@ class _Builder:
                 cells.append((escape(text), "idx"))
             for col, values in cols:
                 v = values[i]
-                if v is None or (isinstance(v, float) and math.isnan(v)):
+                if _missing(v):
                     cells.append((DASH, "num"))
                 elif _is_number(v) or col.fmt is not None:
                     cells.append((escape(col.format(v)), "num"))

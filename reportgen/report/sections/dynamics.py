@@ -78,6 +78,18 @@ def _h(sym: str, idx: str) -> str:
     return f"<i>{sym}</i><sub>{idx}</sub>"
 
 
+def _clean(df: pd.DataFrame) -> pd.DataFrame:
+    """A copy for printing: values that are rounding noise against their column (|x| below
+    1e-12 of the column's largest value, e.g. V_qy of a slider on a horizontal guide) become 0."""
+    out = df.copy()
+    for c in out.columns:
+        if pd.api.types.is_float_dtype(out[c]):
+            v = out[c].to_numpy()
+            big = float(np.nanmax(np.abs(v))) if v.size else 0.0
+            out[c] = np.where(np.abs(v) <= 1e-12 * big, 0.0, v)
+    return out
+
+
 def _per(n: int, most: int = MAX_COLS) -> int:
     """Columns per part so that a wide table splits into parts of nearly equal width."""
     parts = max(1, math.ceil(n / most))
@@ -103,19 +115,19 @@ def _phase_deg(study, q) -> str:
 def build(study) -> Section:
     d = study.dynamics
     sec = Section("Динамический анализ и синтез маховика", "sec-dynamics")
+    tab, mot = _clean(d.table), _clean(d.motion)
     lab = chosen_position(study)
     row = d.row(lab)
-    mrow = d.motion[d.motion["pos"] == lab].iloc[0]
     cols = d.ev(np.array([row["q"]]))
     kv = {k: float(v[0]) for k, v in cols.items()}
     lead = [Column("pos", "№"), Column("q_deg", "<i>φ</i>", "град", digits=1)]
     _model(sec, study, d)
-    _inertia(sec, study, d, lab, row, kv, lead)
-    _moments(sec, study, d, lab, row, kv, lead)
-    _works(sec, study, d, lead)
+    _inertia(sec, study, d, tab, lab, row, kv, lead)
+    _moments(sec, study, d, tab, lab, row, kv, lead)
+    _works(sec, study, d, tab, lead)
     _flywheel(sec, study, d)
     _dimensions(sec, study, d)
-    _motion(sec, study, d, lab, row, mrow, lead)
+    _motion(sec, study, d, tab, mot, lab, row, lead)
     if d.settings.compare is not None:
         _comparison(sec, study, d, lab)
     return sec
@@ -192,12 +204,12 @@ def _law(ld) -> str:
     for p in ld.pieces:
         head = (f"на фазе {fmt(math.degrees(p.phase[0]), digits=0)}…{fmt(math.degrees(p.phase[1]), digits=0)}°"
                 f"{' (' + p.name + ')' if p.name else ''}: " if p.phase is not None else "")
-        unit = "Н·м" if ld.kind == "moment" else ("Па" if ld.area is not None else "Н")
+        unit, k = _law_unit(ld, p)
         if p.table is not None:
             parts.append(head + f"таблица {len(p.table.x)} точек от «{p.of.text}», "
-                         f"{fmt(p.table.y.min(), sig=3)}…{fmt(p.table.y.max(), sig=3)}\u00a0{unit}")
+                         f"{fmt(p.table.y.min() / k, sig=3)}…{fmt(p.table.y.max() / k, sig=3)}\u00a0{unit}")
         else:
-            parts.append(head + f"{fmt(p.const, sig=4)}\u00a0{unit}")
+            parts.append(head + f"{fmt(p.const / k, sig=4)}\u00a0{unit}")
     if ld.area is not None:
         parts.append(f"площадь {fmt(ld.area, sig=4)}\u00a0м²")
     if ld.kind == "force" and ld.vector is None:
@@ -209,7 +221,17 @@ def _law(ld) -> str:
     return "; ".join(parts)
 
 
-def _inertia(sec, study, d, lab, row, kv, lead) -> None:
+def _law_unit(ld, p) -> tuple[str, float]:
+    """The unit a load law is printed in: МПа for pressures, кН above 10 кН, else Н or Н·м."""
+    big = float(np.max(np.abs(p.table.y))) if p.table is not None else abs(float(p.const))
+    if ld.kind == "moment":
+        return ("кН·м", 1e3) if big >= 1e4 else ("Н·м", 1.0)
+    if ld.area is not None:
+        return "МПа", 1e6
+    return ("кН", 1e3) if big >= 1e4 else ("Н", 1.0)
+
+
+def _inertia(sec, study, d, tab, lab, row, kv, lead) -> None:
     s = sec.subsection("Приведённый момент инерции", "sec-dyn-inertia")
     s.paragraph("Приведённый момент инерции второй группы найден из равенства кинетических энергий "
                 "звеньев механизма и звена приведения; аналоги скоростей вычислены точно:")
@@ -242,7 +264,7 @@ def _inertia(sec, study, d, lab, row, kv, lead) -> None:
     s.formula(*fs)
     cols = [Column("J_II_" + il.name, _h("J", "II," + il.name), "кг·м²", sig=4) for il in d.model.links]
     cols += [Column("J_II", _h("J", "II"), "кг·м²", sig=5), Column("dJ_II", "<i>dJ</i><sub>II</sub>/<i>dφ</i>", "кг·м²", sig=4)]
-    ids = chunked_tables(s, "Приведённый момент инерции второй группы звеньев", d.table, cols, lead, "tab-dyn-J",
+    ids = chunked_tables(s, "Приведённый момент инерции второй группы звеньев", tab, cols, lead, "tab-dyn-J",
                          per=_per(len(cols)))
     fig = InertiaCurves().draw(study)
     s.paragraph(f"Значения по положениям — в таблице {ref(ids[0])}, график {_im('J2')} "
@@ -251,7 +273,7 @@ def _inertia(sec, study, d, lab, row, kv, lead) -> None:
              id="fig-dyn-J")
 
 
-def _moments(sec, study, d, lab, row, kv, lead) -> None:
+def _moments(sec, study, d, tab, lab, row, kv, lead) -> None:
     s = sec.subsection("Приведённые моменты сил", "sec-dyn-moments")
     s.paragraph("Приведённый момент каждой силы найден из равенства мощностей (по существу — рычаг "
                 "Н.&nbsp;Е.&nbsp;Жуковского), отнесённых к угловой скорости звена приведения:")
@@ -297,14 +319,14 @@ def _moments(sec, study, d, lab, row, kv, lead) -> None:
     cols = [Column("M_" + ld.name, _h("M", ld.name), "Н·м", sig=4) for ld in working]
     cols += [Column("M_c", _h("M", "с"), "Н·м", sig=4), Column("M_d", _h("M", "д"), "Н·м", sig=4),
              Column("M_sum", _h("M", "Σ"), "Н·м", sig=4)]
-    ids = chunked_tables(s, "Приведённые моменты сил", d.table, cols, lead, "tab-dyn-M", per=_per(len(cols)))
+    ids = chunked_tables(s, "Приведённые моменты сил", tab, cols, lead, "tab-dyn-M", per=_per(len(cols)))
     fig = MomentCurves().draw(study)
     s.paragraph(f"Приведённые моменты по положениям — в таблице {ref(ids[0])}, их графики — на рисунке "
                 f"{ref('fig-dyn-M')}.")
     s.figure("Приведённые моменты сил", fig.svg, fig.width_mm, id="fig-dyn-M")
 
 
-def _works(sec, study, d, lead) -> None:
+def _works(sec, study, d, tab, lead) -> None:
     s = sec.subsection("Работы сил и изменение кинетической энергии", "sec-dyn-works")
     sc = d.scalars
     st = d.settings
@@ -339,7 +361,7 @@ def _works(sec, study, d, lead) -> None:
     cols = [Column("A_c", _h("A", "с"), "Дж", sig=5), Column("A_d", _h("A", "д"), "Дж", sig=5),
             Column("A_sum", "Δ<i>T</i>", "Дж", sig=5), Column("T_II", _h("T", "II"), "Дж", sig=5),
             Column("dT_I", "Δ" + _h("T", "I"), "Дж", sig=5)]
-    ids = chunked_tables(s, "Работы сил и изменение кинетической энергии", d.table, cols, lead, "tab-dyn-A")
+    ids = chunked_tables(s, "Работы сил и изменение кинетической энергии", tab, cols, lead, "tab-dyn-A")
     f1 = WorkCurves().draw(study)
     f2 = EnergyCurves().draw(study)
     s.paragraph(f"Работы по положениям — в таблице {ref(ids[0])}; графики работ — на рисунке {ref('fig-dyn-A')}, "
@@ -513,7 +535,7 @@ def _dimensions(sec, study, d) -> None:
         s.paragraph("Окружная скорость обода всех вариантов меньше допускаемой.")
 
 
-def _motion(sec, study, d, lab, row, mrow, lead) -> None:
+def _motion(sec, study, d, tab, mot, lab, row, lead) -> None:
     s = sec.subsection("Закон движения машины", "sec-dyn-motion")
     st = d.settings
     r = d.result
@@ -545,7 +567,7 @@ def _motion(sec, study, d, lab, row, mrow, lead) -> None:
     if st.method != "exact":
         cols += [Column("omega_exact", "ω<sub>точн</sub>", "рад/с", sig=5),
                  Column("eps_exact", "ε<sub>точн</sub>", "рад/с²", sig=4)]
-    ids = chunked_tables(s, "Угловая скорость и угловое ускорение звена приведения", d.table, cols, lead, "tab-dyn-w")
+    ids = chunked_tables(s, "Угловая скорость и угловое ускорение звена приведения", tab, cols, lead, "tab-dyn-w")
     fig = MotionCurves().draw(study)
     s.paragraph(f"За цикл ω<sub>max</sub>&nbsp;=&nbsp;{fmt(sc['omega_max'], sig=5)}&nbsp;рад/с при "
                 f"φ&nbsp;=&nbsp;{_phase_deg(study, sc['q_omega_max'])}, ω<sub>min</sub>&nbsp;=&nbsp;"
@@ -572,11 +594,11 @@ def _motion(sec, study, d, lab, row, mrow, lead) -> None:
                 f"{_im('ek')}.")
     tv = [Column(f"v_{p}", sub("V", p), "м/с", sig=4) for p in pts]
     tv += [Column(f"w_{k}", sub("ω", k), "рад/с", sig=4) for k in links]
-    chunked_tables(s, "Истинные скорости точек и угловые скорости звеньев", d.motion, tv, lead, "tab-dyn-v",
+    chunked_tables(s, "Истинные скорости точек и угловые скорости звеньев", mot, tv, lead, "tab-dyn-v",
                    per=_per(len(tv)))
     ta = [Column(f"a_{p}", sub("a", p), "м/с²", sig=4) for p in pts]
     ta += [Column(f"e_{k}", sub("ε", k), "рад/с²", sig=4) for k in links]
-    chunked_tables(s, "Истинные ускорения точек и угловые ускорения звеньев", d.motion, ta, lead, "tab-dyn-a",
+    chunked_tables(s, "Истинные ускорения точек и угловые ускорения звеньев", mot, ta, lead, "tab-dyn-a",
                    per=_per(len(ta)))
 
 
