@@ -6,7 +6,7 @@ from decimal import Decimal
 import numpy as np
 import pytest
 
-from reportgen.report.numbers import (
+from reportgen.style.numbers import (
     MINUS,
     NBSP,
     NNBSP,

@@ -16,7 +16,8 @@ import pandas as pd
 import pytest
 from syrupy.extensions.single_file import SingleFileSnapshotExtension, WriteMode
 
-from reportgen.report import fonts, mplstyle, render
+from reportgen.report import render
+from reportgen.style import fonts, mplstyle
 from reportgen.report.demo import build_demo_report
 from reportgen.report.document import (
     Column,

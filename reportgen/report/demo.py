@@ -15,10 +15,10 @@ import sys
 import numpy as np
 import pandas as pd
 
-from . import mplstyle
+from ..style import mplstyle
 from .document import Column, Formula, Paragraph, Report, Section, Table, ref
 from .formulas import inline_math
-from .numbers import fmt, tex_num
+from ..style.numbers import fmt, tex_num
 
 __all__ = ["crank_slider", "build_demo_report"]
 

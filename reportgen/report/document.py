@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from .formulas import Formula
-from .numbers import fmt as _fmt
+from ..style.numbers import fmt as _fmt
 
 __all__ = [
     "Column",
@@ -123,7 +123,7 @@ class Section:
     def figure(self, caption: str, svg, width_mm: float = 160, id: str | None = None) -> Figure:
         """Add a figure; ``svg`` may also be a matplotlib ``Figure`` (converted here)."""
         if hasattr(svg, "savefig"):
-            from .mplstyle import to_svg
+            from ..style.mplstyle import to_svg
 
             svg = to_svg(svg)
         return self.add(Figure(caption, svg, width_mm, id))

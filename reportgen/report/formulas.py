@@ -11,7 +11,7 @@ students know: ``symbolic = substituted = result``, for example::
         label="eq-omega1",
     )
 
-Numbers inside the LaTeX should come from :func:`reportgen.report.numbers.tex_num`
+Numbers inside the LaTeX should come from :func:`reportgen.style.numbers.tex_num`
 so that they match the tables. Formula numbers «(2.1)» are not drawn by
 ziamath: the report numbers formulas itself (so that references work).
 
@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 import ziamath as zm
 from markupsafe import Markup
 
-from . import fonts
+from ..style import fonts
 
 __all__ = [
     "Formula",

@@ -49,10 +49,10 @@ from typing import Any
 import jinja2
 from markupsafe import Markup, escape
 
-from . import fonts
+from ..style import fonts
 from .document import Column, Figure, FormulaBlock, Paragraph, Report, Section, Table
 from .formulas import Formula, data_uri, formula_images, inline_math, where_rows
-from .numbers import DASH, fmt
+from ..style.numbers import DASH, fmt
 
 __all__ = [
     "DEFAULT_OPTIONS",

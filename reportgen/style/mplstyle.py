@@ -1,1 +1,145 @@
-../report/mplstyle.py
+"""matplotlib figures for the printed report: same serif font, decimal comma,
+deterministic SVG.
+
+Scenes create a figure with :func:`figure` (an OO ``Figure``; pyplot and its
+figure registry are never used), draw on it, and hand :func:`to_svg` bytes to
+the report::
+
+    fig = figure(160, 90)
+    ax = fig.add_subplot()
+    ax.plot(phi_deg, v_B)
+    ax.set_xlabel("φ, град")
+    svg = to_svg(fig)
+
+The style is applied to ``matplotlib.rcParams`` by :func:`apply_style` (called
+by :func:`figure`), because artists added to a figure later read their
+defaults (line widths, font) from ``rcParams`` at creation time; the values are
+the same for every report, so this is idempotent.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import functools
+import io
+
+import matplotlib
+from matplotlib import font_manager
+from matplotlib.figure import Figure
+from matplotlib.ticker import ScalarFormatter
+
+from . import fonts
+from .numbers import mpl_formatter
+
+__all__ = ["MM", "style_rc", "apply_style", "style", "figure", "localize_axes", "to_svg"]
+
+MM = 1 / 25.4  # inches per millimetre
+SVG_HASHSALT = "reportgen"
+
+
+@functools.lru_cache(maxsize=None)
+def _register_font() -> str:
+    """Register the report's serif faces with matplotlib; return the family name."""
+    family = fonts.find_serif()
+    for path in family.faces().values():
+        font_manager.fontManager.addfont(str(path))
+    return font_manager.FontProperties(fname=str(family.regular)).get_name()
+
+
+def style_rc() -> dict:
+    """rcParams for figures printed at 1:1 on an A4 page (sizes in points)."""
+    name = _register_font()
+    return {
+        "font.family": "serif",
+        "font.serif": [name, "DejaVu Serif"],
+        "font.size": 11,
+        "axes.titlesize": 11,
+        "axes.labelsize": 11,
+        "xtick.labelsize": 10,
+        "ytick.labelsize": 10,
+        "legend.fontsize": 10,
+        "mathtext.fontset": "custom",
+        "mathtext.rm": name,
+        "mathtext.it": f"{name}:italic",
+        "mathtext.bf": f"{name}:bold",
+        "mathtext.sf": name,
+        "mathtext.cal": name,
+        "mathtext.tt": "DejaVu Sans Mono",
+        "mathtext.fallback": "stix",
+        "axes.unicode_minus": True,
+        "axes.linewidth": 0.8,
+        "axes.edgecolor": "black",
+        "axes.labelcolor": "black",
+        "axes.grid": True,
+        "axes.axisbelow": True,
+        "axes.prop_cycle": matplotlib.cycler(
+            color=["#000000", "#1f4e9c", "#b2182b", "#2e7d32", "#6a3d9a", "#e08214"]
+        ),
+        "grid.color": "#9a9a9a",
+        "grid.linestyle": (0, (3, 2)),
+        "grid.linewidth": 0.4,
+        "lines.linewidth": 1.4,
+        "lines.markersize": 4,
+        "xtick.color": "black",
+        "ytick.color": "black",
+        "xtick.direction": "in",
+        "ytick.direction": "in",
+        "xtick.major.width": 0.8,
+        "ytick.major.width": 0.8,
+        "xtick.major.size": 3.5,
+        "ytick.major.size": 3.5,
+        "legend.frameon": True,
+        "legend.framealpha": 1.0,
+        "legend.edgecolor": "#555555",
+        "legend.fancybox": False,
+        "figure.facecolor": "white",
+        "axes.facecolor": "white",
+        "savefig.facecolor": "white",
+        "figure.dpi": 100,
+        "svg.fonttype": "path",
+        "svg.hashsalt": SVG_HASHSALT,
+        "svg.image_inline": True,
+        "path.simplify": True,
+    }
+
+
+def apply_style() -> None:
+    """Put the report style into ``matplotlib.rcParams`` (idempotent)."""
+    matplotlib.rcParams.update(style_rc())
+
+
+@contextlib.contextmanager
+def style():
+    """The report style for the duration of a ``with`` block only."""
+    with matplotlib.rc_context(style_rc()):
+        yield
+
+
+def figure(width_mm: float = 160, height_mm: float = 90, **kw) -> Figure:
+    """A new OO figure of the given printed size (constrained layout)."""
+    apply_style()
+    kw.setdefault("layout", "constrained")
+    return Figure(figsize=(width_mm * MM, height_mm * MM), **kw)
+
+
+def localize_axes(ax, digits: int | None = None) -> None:
+    """Decimal-comma tick labels with U+2212 on both axes of ``ax``.
+
+    Only default (scalar) formatters are replaced; a formatter the scene set
+    itself (degrees, log scale, …) is kept.
+    """
+    for axis in (ax.xaxis, ax.yaxis):
+        if axis.get_scale() != "linear":
+            continue
+        if type(axis.get_major_formatter()) is ScalarFormatter:
+            axis.set_major_formatter(mpl_formatter(digits))
+
+
+def to_svg(fig: Figure) -> bytes:
+    """The figure as deterministic SVG bytes (glyphs as paths, no date, fixed ids)."""
+    for ax in fig.axes:
+        localize_axes(ax)
+    buf = io.BytesIO()
+    with matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": SVG_HASHSALT}):
+        fig.savefig(buf, format="svg", metadata={"Date": None})
+    return buf.getvalue()
