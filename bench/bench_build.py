@@ -15,6 +15,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
 DEFAULT = ["cases/ws000_six_bar.toml", "cases/ws004_slotted_lever.toml", "cases/ws002_tractor_hitch.toml"]
 
 

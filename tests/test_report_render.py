@@ -14,7 +14,7 @@ import warnings
 import numpy as np
 import pandas as pd
 import pytest
-from syrupy.extensions.single_file import SingleFileSnapshotExtension, WriteMode
+from conftest import normalize_html
 
 from reportgen.report import render
 from reportgen.style import fonts, mplstyle
@@ -248,24 +248,6 @@ def test_print_html_uses_font_files_and_counters(demo):
 # ---------------------------------------------------------------- snapshot
 
 
-class HTMLSnapshotExtension(SingleFileSnapshotExtension):
-    _write_mode = WriteMode.TEXT
-    file_extension = "html"
-
-
-@pytest.fixture
-def snapshot_html(snapshot):
-    return snapshot.use_extension(HTMLSnapshotExtension)
-
-
-def _normalize(html: str) -> str:
-    def repl(m):
-        digest = hashlib.sha256(m.group(0).encode()).hexdigest()[:12]
-        return f"data:{m.group(1)};sha256={digest}"
-
-    return re.sub(r"data:([\w/+.-]+);base64,[A-Za-z0-9+/=]+", repl, html)
-
-
 def _sample_table() -> Table:
     df = pd.DataFrame({
         "q_deg": [0.0, 30.0, 60.0, 90.0, 120.0],
@@ -293,7 +275,7 @@ def test_table_fragment_snapshot(snapshot_html):
     assert "−0,000490" in html and "1,00·10<sup>−6</sup>" in html
     assert "1,23·10<sup>6</sup>" in html and "12\u202f346" in html
     assert "C &amp; D" in html and ">—<" in html
-    assert _normalize(html) == snapshot_html
+    assert normalize_html(html) == snapshot_html
 
 
 def test_units_row_and_options():

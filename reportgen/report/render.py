@@ -390,7 +390,7 @@ class _Builder:
                 if _missing(v):
                     cells.append((DASH, "num"))
                 elif _is_number(v) or col.fmt is not None:
-                    cells.append((escape(col.format(v)), "num"))
+                    cells.append((escape(col.format(v)), "num" if _is_number(v) else "text"))
                 else:
                     cells.append((escape(str(v)), "text"))
             rows.append({"id": f"{tid}__r{i}" if self.for_print else None,
