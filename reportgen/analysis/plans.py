@@ -69,14 +69,29 @@ def _coincident(row, mech: Mechanism, guide: str, p: str):
     return v, a
 
 
-def velocity_plan(row: pd.Series, mech: Mechanism) -> Plan:
-    plan = Plan("velocity")
+def _start(kind: str, row, mech: Mechanism) -> tuple[Plan, set]:
+    """A plan with the absolute vectors of all points (fixed points at the pole)."""
+    plan = Plan(kind)
+    pre = "v" if kind == "velocity" else "a"
     fixed = set(mech.link(FRAME).points)
     for link in mech.links:
         for p in link.points:
             if p not in plan.tips:
-                plan.tips[p] = np.zeros(2) if p in fixed else _vec(row, "v", p)
+                plan.tips[p] = np.zeros(2) if p in fixed else _vec(row, pre, p)
                 plan.point_of_tip[p] = p
+    return plan, fixed
+
+
+def _finish(plan: Plan, fixed: set, prefix: str) -> Plan:
+    """Absolute vectors from the pole to every moving point."""
+    for p, v in list(plan.tips.items()):
+        if plan.point_of_tip.get(p) == p and p not in fixed:
+            plan.segments.append(Segment("p", p, "abs", f"{prefix}_{p}", "", float(np.hypot(*v))))
+    return plan
+
+
+def velocity_plan(row: pd.Series, mech: Mechanism) -> Plan:
+    plan, fixed = _start("velocity", row, mech)
     for link in mech.moving:
         ref = _reference(mech, link)
         for p in link.points:
@@ -95,20 +110,11 @@ def velocity_plan(row: pd.Series, mech: Mechanism) -> Plan:
         d = plan.tips[j.point] - v
         plan.segments.append(Segment(lab, j.point, "slide", f"V_{j.point}{slider}{j.point}{guide}", slider,
                                      float(np.hypot(*d))))
-    for p, v in list(plan.tips.items()):
-        if p in plan.point_of_tip and p == plan.point_of_tip[p] and p not in fixed:
-            plan.segments.append(Segment("p", p, "abs", f"V_{p}", "", float(np.hypot(*v))))
-    return plan
+    return _finish(plan, fixed, "V")
 
 
 def acceleration_plan(row: pd.Series, mech: Mechanism) -> Plan:
-    plan = Plan("acceleration")
-    fixed = set(mech.link(FRAME).points)
-    for link in mech.links:
-        for p in link.points:
-            if p not in plan.tips:
-                plan.tips[p] = np.zeros(2) if p in fixed else _vec(row, "a", p)
-                plan.point_of_tip[p] = p
+    plan, fixed = _start("acceleration", row, mech)
     for link in mech.moving:
         ref = _reference(mech, link)
         w, e = row["w_" + link.name], row["e_" + link.name]
@@ -139,10 +145,7 @@ def acceleration_plan(row: pd.Series, mech: Mechanism) -> Plan:
         ar = plan.tips[j.point] - plan.tips[klab]
         plan.segments.append(Segment(klab, j.point, "slide", f"a^r_{j.point}{slider}{j.point}{guide}", slider,
                                      float(np.hypot(*ar))))
-    for p, v in list(plan.tips.items()):
-        if p in plan.point_of_tip and p == plan.point_of_tip[p] and p not in fixed:
-            plan.segments.append(Segment("p", p, "abs", f"a_{p}", "", float(np.hypot(*v))))
-    return plan
+    return _finish(plan, fixed, "a")
 
 
 def output_quantity(study) -> tuple[str, str, str, str]:

@@ -279,6 +279,33 @@ def _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d2, level, mat, rhs,
 
 
 @njit(cache=True)
+def _pivot(jf, jb, j, body, q, pose):
+    """For revolute joint j attaching ``body`` to an already solved body: the joint's local
+    point on ``body`` and its global position (from the solved side)."""
+    if jb[j, 0] == body:
+        px, py = _local(jf, j, 0, q)
+        kx, ky = _local(jf, j, 1, q)
+        gx, gy = _glob(pose, jb[j, 1], kx, ky)
+    else:
+        px, py = _local(jf, j, 1, q)
+        kx, ky = _local(jf, j, 0, q)
+        gx, gy = _glob(pose, jb[j, 0], kx, ky)
+    return px, py, gx, gy
+
+
+@njit(cache=True)
+def _inner(jf, jb, j, a, q):
+    """Local points of the inner revolute joint j on body a and on the other body."""
+    if jb[j, 0] == a:
+        ax, ay = _local(jf, j, 0, q)
+        bx, by = _local(jf, j, 1, q)
+    else:
+        ax, ay = _local(jf, j, 1, q)
+        bx, by = _local(jf, j, 0, q)
+    return ax, ay, bx, by
+
+
+@njit(cache=True)
 def _solve_rrr(jf, jb, spec, sigma, q, pose):
     """ВВВ group: bodies a, b; joint jA (a–known), jB (a–b), jC (b–known)."""
     a = spec[0]
@@ -286,29 +313,9 @@ def _solve_rrr(jf, jb, spec, sigma, q, pose):
     jA = spec[2]
     jB = spec[3]
     jC = spec[4]
-    # global position of A (on the known side of jA) and local points on a
-    if jb[jA, 0] == a:
-        pax, pay = _local(jf, jA, 0, q)
-        kx, ky = _local(jf, jA, 1, q)
-        Ax, Ay = _glob(pose, jb[jA, 1], kx, ky)
-    else:
-        pax, pay = _local(jf, jA, 1, q)
-        kx, ky = _local(jf, jA, 0, q)
-        Ax, Ay = _glob(pose, jb[jA, 0], kx, ky)
-    if jb[jC, 0] == b:
-        pcx, pcy = _local(jf, jC, 0, q)
-        kx, ky = _local(jf, jC, 1, q)
-        Cx, Cy = _glob(pose, jb[jC, 1], kx, ky)
-    else:
-        pcx, pcy = _local(jf, jC, 1, q)
-        kx, ky = _local(jf, jC, 0, q)
-        Cx, Cy = _glob(pose, jb[jC, 0], kx, ky)
-    if jb[jB, 0] == a:
-        pbax, pbay = _local(jf, jB, 0, q)
-        pbbx, pbby = _local(jf, jB, 1, q)
-    else:
-        pbax, pbay = _local(jf, jB, 1, q)
-        pbbx, pbby = _local(jf, jB, 0, q)
+    pax, pay, Ax, Ay = _pivot(jf, jb, jA, a, q, pose)
+    pcx, pcy, Cx, Cy = _pivot(jf, jb, jC, b, q, pose)
+    pbax, pbay, pbbx, pbby = _inner(jf, jb, jB, a, q)
     La = np.hypot(pbax - pax, pbay - pay)
     Lb = np.hypot(pbbx - pcx, pbby - pcy)
     dx = Cx - Ax
@@ -388,20 +395,8 @@ def _solve_rrp(jf, jb, spec, sigma, q, pose):
     jB = spec[3]
     jP = spec[4]
     pose[b, 2] = _angle_from_prismatic(jf, jb, jP, b, pose)
-    if jb[jA, 0] == a:
-        pax, pay = _local(jf, jA, 0, q)
-        kx, ky = _local(jf, jA, 1, q)
-        Ax, Ay = _glob(pose, jb[jA, 1], kx, ky)
-    else:
-        pax, pay = _local(jf, jA, 1, q)
-        kx, ky = _local(jf, jA, 0, q)
-        Ax, Ay = _glob(pose, jb[jA, 0], kx, ky)
-    if jb[jB, 0] == a:
-        pbax, pbay = _local(jf, jB, 0, q)
-        pbbx, pbby = _local(jf, jB, 1, q)
-    else:
-        pbax, pbay = _local(jf, jB, 1, q)
-        pbbx, pbby = _local(jf, jB, 0, q)
+    pax, pay, Ax, Ay = _pivot(jf, jb, jA, a, q, pose)
+    pbax, pbay, pbbx, pbby = _inner(jf, jb, jB, a, q)
     La = np.hypot(pbax - pax, pbay - pay)
     r0x, r0y, ux, uy = _line_of_body(jf, jb, jP, b, q, pose)
     bx, by = _rot(pose[b, 2], pbbx, pbby)
@@ -443,22 +438,8 @@ def _solve_rpr(jf, jb, spec, sigma, q, pose):
     S = jb[jP, 1]
     jG = jA if G == a else jC
     jS = jC if G == a else jA
-    if jb[jG, 0] == G:
-        pgx, pgy = _local(jf, jG, 0, q)
-        kx, ky = _local(jf, jG, 1, q)
-        PGx, PGy = _glob(pose, jb[jG, 1], kx, ky)
-    else:
-        pgx, pgy = _local(jf, jG, 1, q)
-        kx, ky = _local(jf, jG, 0, q)
-        PGx, PGy = _glob(pose, jb[jG, 0], kx, ky)
-    if jb[jS, 0] == S:
-        psx, psy = _local(jf, jS, 0, q)
-        kx, ky = _local(jf, jS, 1, q)
-        PSx, PSy = _glob(pose, jb[jS, 1], kx, ky)
-    else:
-        psx, psy = _local(jf, jS, 1, q)
-        kx, ky = _local(jf, jS, 0, q)
-        PSx, PSy = _glob(pose, jb[jS, 0], kx, ky)
+    pgx, pgy, PGx, PGy = _pivot(jf, jb, jG, G, q, pose)
+    psx, psy, PSx, PSy = _pivot(jf, jb, jS, S, q, pose)
     al = jf[jP, 4]
     e = jf[jP, 5]
     lgx, lgy, lsx, lsy = _pri(jf, jP, q)
