@@ -26,7 +26,7 @@ from reportgen.case.load import CaseSpec  # noqa: E402
 
 CASES = Path(__file__).resolve().parents[1] / "cases"
 WORKSHEETS = ["ws000_six_bar", "ws002_tractor_hitch", "ws004_slotted_lever"]
-EXTRA = ["slider_crank", "four_bar", "whitworth"]
+EXTRA = ["slider_crank", "four_bar", "whitworth", "class3_triad"]
 ALL = WORKSHEETS + EXTRA
 
 TOL = {"position": 1e-12, "first": 1e-12, "second": 1e-11}
@@ -115,7 +115,7 @@ def test_true_motion_from_reference_analogs(name):
 
 # ----------------------------------------------------------------------------- the extra cases
 
-EXPECTED_GROUPS = {"slider_crank": ["RRP"], "four_bar": ["RRR"], "whitworth": ["RPR", "RRP"]}
+EXPECTED_GROUPS = {"slider_crank": ["RRP"], "four_bar": ["RRR"], "whitworth": ["RPR", "RRP"], "class3_triad": []}
 
 
 @pytest.mark.parametrize("name", EXTRA)
@@ -123,6 +123,9 @@ def test_extra_case_loads_solves_and_matches_reference(name):
     s = load_case(CASES / f"{name}.toml")
     assert [g.kind for g in s.structure.groups if g.klass == 2] == EXPECTED_GROUPS[name]
     assert s.structure.W == 1
+    if name == "class3_triad":        # a class III group of order 3, solved by Newton
+        (g,) = [g for g in s.structure.groups if g.klass == 3]
+        assert g.order == 3 and g.solver == "NEWTON" and s.structure.mech_class == 3
     k = s.kinematics
     assert len(k) == 12 and list(k["pos"]) == [str(i) for i in range(12)]
     cyc = s.cycle                       # the whole cycle assembles (AssemblyError otherwise)
