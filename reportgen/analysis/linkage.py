@@ -143,9 +143,11 @@ def _pose_from_sketch(model: SolverModel) -> np.ndarray:
     """Initial body poses from the sketch (used by Newton groups at the first position)."""
     pose = np.zeros((len(model.bodies), 3))
     mech = model.mech
+    known = dict(mech.link(FRAME).points)      # fixed points are known exactly
+    known.update(mech.sketch)
     for link in mech.moving:
         bi = model.body(link.name)
-        sk = [(p, mech.sketch[p]) for p in link.points if p in mech.sketch]
+        sk = [(p, known[p]) for p in link.points if p in known]
         if not sk:
             continue
         if len(sk) >= 2:
