@@ -132,3 +132,14 @@ def test_ws004_table(ws004):
     c = ws004.cycle
     w = c.wq_3.to_numpy()
     assert int(np.sum(np.sign(w[1:]) != np.sign(w[:-1]))) in (2, 3)
+
+
+def test_every_assur_group_has_zero_mobility(ws000, ws002, ws004):
+    """3n − 2p₅ = 0 for every group (the actuator's driving pair belongs to the rod's group)."""
+    for s in (ws000, ws002, ws004):
+        st = s.structure
+        first, *groups = st.groups
+        assert first.klass == 1 and 3 * len(first.links) - 2 * first.pairs == 1
+        for g in groups:
+            assert 3 * len(g.links) - 2 * g.pairs == 0, (s.name, g.label, g.pairs)
+        assert sum(g.pairs for g in st.groups) == st.p5

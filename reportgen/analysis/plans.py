@@ -156,11 +156,18 @@ def output_quantity(study) -> tuple[str, str, str, str]:
     chosen = node.string("output")
     if chosen:
         pre, _, name = chosen.partition("_")
+        title = node.string("output_title", chosen)
+        if chosen not in study.kinematics.columns:
+            raise node.error("output", f"нет столбца «{chosen}»",
+                             expected="столбец кинематики: s_<пара>, phi_<звено>, x_<точка> или y_<точка>")
         if pre == "s":
-            return f"s_{name}", f"vqs_{name}", f"aqs_{name}", f"перемещение в паре {name}"
+            return chosen, f"vqs_{name}", f"aqs_{name}", title
         if pre == "phi":
-            return f"phi_{name}", f"wq_{name}", f"eq_{name}", f"угол звена {name}"
-        return chosen, "vqy_" + name, "aqy_" + name, chosen
+            return chosen, f"wq_{name}", f"eq_{name}", title
+        if pre in ("x", "y"):
+            return chosen, f"vq{pre}_{name}", f"aq{pre}_{name}", title
+        raise node.error("output", f"столбец «{chosen}» не является перемещением",
+                         expected="s_<пара>, phi_<звено>, x_<точка> или y_<точка>")
     for j in reversed(mech.prismatic):
         if j.links[0] == FRAME:
             return f"s_{j.name}", f"vqs_{j.name}", f"aqs_{j.name}", f"ползун {j.links[1]}"

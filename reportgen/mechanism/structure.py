@@ -37,6 +37,7 @@ class Group:
     order: int = 2
     kind: str = ""                    # "RRR", … for dyads; "" otherwise
     solver: str = "NEWTON"            # LIN, RRR, RRP, RPR, NEWTON
+    pairs: int = 0                    # lower pairs of the group (to earlier links and inside)
     spec: list[int] = field(default_factory=list)   # solver body/joint indices (set by assembly)
 
     @property
@@ -164,6 +165,7 @@ def analyse(mech: Mechanism) -> Structure:
         groups.append(_classify(mech, combo, js, sj, known, body_of))
         known |= set(combo)
         remaining = [b for b in remaining if b not in combo]
+    _count_pairs(mech, groups)
     motion = _link_motion(mech, groups)
     pairs = _pairs_table(mech)
     mech_class = max(g.klass for g in groups)
@@ -200,6 +202,19 @@ def _classify(mech: Mechanism, combo, js, sj, known, body_of) -> Group:
     g.order = len(external)
     g.solver = "NEWTON"
     return g
+
+
+def _count_pairs(mech: Mechanism, groups: list[Group]) -> None:
+    """p₅ of every group in structural terms: pairs joining its links to each other or to links
+    attached before it (the actuator's driving pair belongs to the rod's group)."""
+    pairs = [j.links for j in mech.joints]
+    if mech.driver.kind == "actuator":
+        pairs.append((mech.driver.link, mech.driver.rod))
+    known = {FRAME}
+    for g in groups:
+        own = set(g.links)
+        g.pairs = sum(1 for a, b in pairs if (a in own or b in own) and a in own | known and b in own | known)
+        known |= own
 
 
 def _link_motion(mech: Mechanism, groups) -> dict[str, str]:

@@ -67,7 +67,11 @@ def needs(study, names: Iterable[str] | None = None) -> set[str]:
     return out
 
 
+REPORT_KEYS = ["position", "output", "output_title", "options"]
+
+
 def build_report(study, sections: Iterable[str] | None = None, options: dict | None = None) -> Report:
+    study.root.table("report").check_keys(REPORT_KEYS)
     names = chosen_sections(study, sections)
     built = [SECTIONS[n][0].build(study) for n in names]
     meta = dict(study.meta)

@@ -29,17 +29,22 @@ class OutputDiagrams:
         x, xlabel, step = _xaxis(study, cyc)
         angular = s_col.startswith("phi_")
         true = study.mechanism.driver.omega is not None
-        name = s_col.split("_", 1)[1]
+        pre, _, name = s_col.partition("_")
         if true:
-            v = cyc[("w_" if angular else "vs_") + name] if angular or s_col.startswith("s_") else cyc[v_col]
-            a = cyc[("e_" if angular else "as_") + name] if angular or s_col.startswith("s_") else cyc[a_col]
+            vname, aname = {"phi": ("w", "e"), "s": ("vs", "as"), "x": ("vx", "ax"), "y": ("vy", "ay")}[pre]
+            v, a = cyc[f"{vname}_{name}"], cyc[f"{aname}_{name}"]
         else:
             v, a = cyc[v_col], cyc[a_col]
         s = cyc[s_col].to_numpy()
         if angular:
             s = np.degrees(s)
-        units = (("φ, град", "ω, рад/с", "ε, рад/с²") if angular else ("s, м", "v, м/с", "a, м/с²")) if true \
-            else (("φ, град", "φ′", "φ″") if angular else ("s, м", "s′, м/рад", "s″, м/рад²"))
+        rotary = study.mechanism.driver.rotary
+        if true:
+            units = ("φ, град", "ω, рад/с", "ε, рад/с²") if angular else ("s, м", "v, м/с", "a, м/с²")
+        elif angular:
+            units = ("φ, град", "φ′", "φ″" + (", 1/рад" if rotary else ", 1/м²"))
+        else:
+            units = ("s, м", "s′" + (", м/рад" if rotary else ""), "s″" + (", м/рад²" if rotary else ", 1/м"))
         fig = mplstyle.figure(160, 175)
         axs = fig.subplots(3, 1, sharex=True)
         kin = study.kinematics

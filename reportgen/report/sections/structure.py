@@ -52,14 +52,8 @@ def build(study) -> Section:
     s3.paragraph(f"Механизм раскладывается на начальный механизм и группы Ассура, начиная с группы, "
                  f"наиболее удалённой от ведущего звена (рисунок {ref('fig-groups')}). Для каждой группы "
                  f"{inline_math('W = 3n - 2p_5 = 0')}:")
-    rows = []
-    for g in st.groups:
-        n = len(g.links)
-        p = len(g.joints) + (1 if mech.driver.kind == "actuator" and g.klass != 1 and mech.driver.link in g.bodies else 0)
-        if g.klass == 1:
-            rows.append({"g": g.label, "title": "начальный механизм I класса", "n": n, "p": max(p, 1), "W": 1})
-        else:
-            rows.append({"g": g.label, "title": g.title, "n": n, "p": p, "W": 3 * n - 2 * p})
+    rows = [{"g": g.label, "title": "начальный механизм I класса" if g.klass == 1 else g.title,
+             "n": len(g.links), "p": g.pairs, "W": 3 * len(g.links) - 2 * g.pairs} for g in st.groups]
     gdf = pd.DataFrame(rows)
     s3.table("Структурные группы механизма (в порядке присоединения)",
              [Column("g", "Звенья"), Column("title", "Группа"), Column("n", "<i>n</i>"),
