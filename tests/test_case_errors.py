@@ -73,3 +73,13 @@ def test_at_with_wrong_unit(tmp_path, capsys):
     err = capsys.readouterr().err
     assert rc == 2 and "--at" in err and "угол" in err
     assert not (tmp_path / "x").exists()
+
+
+def test_unknown_report_option(tmp_path, capsys):
+    text = BASE + '\n[report]\noptions = { figure_wrd = "Рис." }\n'
+    p = tmp_path / "opt.toml"
+    p.write_text(text, encoding="utf-8")
+    rc = main(["build", str(p), "-o", str(tmp_path / "out"), "--format", "html"])
+    err = capsys.readouterr().err
+    assert rc == 2 and "report.options.figure_wrd" in err and "figure_word" in err
+    assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())

@@ -71,7 +71,10 @@ REPORT_KEYS = ["position", "output", "output_title", "options"]
 
 
 def build_report(study, sections: Iterable[str] | None = None, options: dict | None = None) -> Report:
-    study.root.table("report").check_keys(REPORT_KEYS)
+    from .render import DEFAULT_OPTIONS
+    node = study.root.table("report")
+    node.check_keys(REPORT_KEYS)
+    node.table("options").check_keys(list(DEFAULT_OPTIONS))
     names = chosen_sections(study, sections)
     built = [SECTIONS[n][0].build(study) for n in names]
     meta = dict(study.meta)
