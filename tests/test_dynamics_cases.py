@@ -134,6 +134,13 @@ def test_press_cutting_work(press):
     assert sc["fw_needed"]
 
 
+def test_batch_variant_skips_printed_values():
+    """Printed worksheet values belong to the worksheet case, not to a variant derived from it."""
+    v = load_case(CASES / "ws000_six_bar.toml", {"l_OA": "0.3 m"})
+    assert v.dynamics.settings.printed == () and v.dynamics.printed.empty
+    assert "dynamics_printed" not in v.extra_tables()
+
+
 def test_report_sections_build(engine, corrected):
     from reportgen.report.assemble import build_report
     from reportgen.report.sections import dynamics as sec

@@ -472,7 +472,7 @@ def _printed(s, pr: pd.DataFrame) -> None:
     for _, r in bad.iterrows():
         title = r["title"] or r["key"]
         note = r["note"] or "расхождение превышает единицу последнего напечатанного разряда."
-        s.paragraph(Markup(f"Примечание — {title}: напечатано {r['printed']}, точное значение "
+        s.paragraph(Markup(f"Примечание — {title}: напечатано {_as_printed(r['printed'], r['value'])}, точное значение "
                            f"{fmt(r['computed'], sig=6)}. ") + Markup(note))
 
 
