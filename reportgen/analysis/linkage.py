@@ -304,7 +304,7 @@ def columns(model: SolverModel, res: KinematicsResult, grid: bool = True) -> dic
         nm = f"{d.rod}{d.link}"
         out["s_" + nm], out["vqs_" + nm], out["aqs_" + nm] = q.copy(), np.ones_like(q), np.zeros_like(q)
     for g, grp in enumerate(model.groups[:res.quality.shape[1]]):
-        if grp.kind in ("RRR", "RRP", "RPR"):
+        if grp.kind in ("RRR", "RRP"):     # a ВПВ group has no transmission angle of its own
             out["mu_" + grp.name] = np.arcsin(np.minimum(1.0, np.abs(res.quality[:, g])))
     return out
 

@@ -153,27 +153,16 @@ def _introduction(study, names, built) -> list:
 
 
 def _conclusion(study, names) -> list:
-    st = study.structure
-    out = [Paragraph(f"Механизм имеет одну степень свободы (W&nbsp;=&nbsp;{st.W}), структурная формула "
-                     f"{st.formula}, механизм {['', 'I', 'II', 'III', 'IV'][st.mech_class]} класса.")]
-    for f in study.fits:
-        out.append(Paragraph(f"Подобран размер {f.name}&nbsp;=&nbsp;{fmt(f.value, digits=4)}&nbsp;м "
-                             f"(условие {f.condition} при {f.at})."))
-    if "kinematics" in names:
-        from ..analysis.plans import output_quantity
-        s_col, v_col, a_col, title = output_quantity(study)
-        cyc = study.cycle
-        s = cyc[s_col]
-        if s_col.startswith("phi_"):
-            out.append(Paragraph(f"Размах качания выходного звена ({title}) — {fmt(math.degrees(s.max() - s.min()), digits=2)}°."))
-        else:
-            out.append(Paragraph(f"Ход выходного звена ({title}) H&nbsp;=&nbsp;{fmt(s.max() - s.min(), digits=4)}&nbsp;м."))
-        if study.mechanism.driver.omega is not None and s_col.startswith("s_"):
-            n = s_col[2:]
-            out.append(Paragraph(f"Наибольшая скорость выходного звена {fmt(cyc['vs_' + n].abs().max(), digits=3)}&nbsp;м/с, "
-                                 f"наибольшее ускорение {fmt(cyc['as_' + n].abs().max(), sig=4)}&nbsp;м/с²."))
-        for c, v in study.flags.items():
-            mu = math.degrees(v["min"])
-            note = " — меньше рекомендуемых 40°" if mu < 40 else ""
-            out.append(Paragraph(f"Наименьший угол передачи в группе ({c[3:].replace('_', ',')}) — {fmt(mu, digits=1)}°{note}."))
+    """ЗАКЛЮЧЕНИЕ: the key results, contributed by each section module (``conclusion_lines``)."""
+    out = []
+    for n in names:
+        mod = SECTIONS[n][0]
+        if hasattr(mod, "conclusion_lines"):
+            out += [Paragraph(line) for line in mod.conclusion_lines(study)]
     return out
+
+
+# the force analysis registers its section (module with NEEDS/build, predicate)
+from .sections import forces as _sec_forces  # noqa: E402
+
+register("forces", _sec_forces, _sec_forces.present)

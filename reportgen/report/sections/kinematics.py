@@ -264,3 +264,24 @@ def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
                   "ускорением). Угловые скорости и ускорения звеньев:")
     if fs:
         sec.formula(*fs)
+
+
+def conclusion_lines(study) -> list[str]:
+    """Key kinematic results for the ЗАКЛЮЧЕНИЕ."""
+    out = []
+    s_col, v_col, a_col, title = output_quantity(study)
+    cyc = study.cycle
+    s = cyc[s_col]
+    if s_col.startswith("phi_"):
+        out.append(f"Размах качания выходного звена ({title}) — {fmt(math.degrees(s.max() - s.min()), digits=2)}°.")
+    else:
+        out.append(f"Ход выходного звена ({title}) H&nbsp;=&nbsp;{fmt(s.max() - s.min(), digits=4)}&nbsp;м.")
+    if study.mechanism.driver.omega is not None and s_col.startswith("s_"):
+        n = s_col[2:]
+        out.append(f"Наибольшая скорость выходного звена {fmt(cyc['vs_' + n].abs().max(), digits=3)}&nbsp;м/с, "
+                   f"наибольшее ускорение {fmt(cyc['as_' + n].abs().max(), sig=4)}&nbsp;м/с².")
+    for c, v in study.flags.items():
+        mu = math.degrees(v["min"])
+        note = " — меньше рекомендуемых 40°" if mu < 40 else ""
+        out.append(f"Наименьший угол передачи в группе ({c[3:].replace('_', ',')}) — {fmt(mu, digits=1)}°{note}.")
+    return out

@@ -75,3 +75,14 @@ def _mu(mu: float) -> str:
 
 def _roman(k: int) -> str:
     return {1: "I", 2: "II", 3: "III", 4: "IV"}.get(k, str(k))
+
+
+def conclusion_lines(study) -> list[str]:
+    """Structure and fitted dimensions for the ЗАКЛЮЧЕНИЕ."""
+    from ...style.numbers import fmt
+    st = study.structure
+    out = [f"Механизм имеет одну степень свободы (W&nbsp;=&nbsp;{st.W}), структурная формула "
+           f"{st.formula}, механизм {_roman(st.mech_class)} класса."]
+    for f in study.fits:
+        out.append(f"Подобран размер {f.name}&nbsp;=&nbsp;{fmt(f.value, digits=4)}&nbsp;м (условие {f.condition} при {f.at}).")
+    return out
