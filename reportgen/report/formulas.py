@@ -25,7 +25,11 @@ from __future__ import annotations
 
 import base64
 import functools
+import hashlib
+import os
 import re
+import tempfile
+from pathlib import Path
 from dataclasses import dataclass, field
 
 import ziamath as zm
@@ -130,6 +134,46 @@ def data_uri(svg: str | bytes) -> str:
 _VIEWBOX = re.compile(r'viewBox="([-\d.e]+) ([-\d.e]+) ([-\d.e]+) ([-\d.e]+)"')
 
 
+# Rendering a formula with ziamath costs ~0.05–0.1 s; the SVG of a given LaTeX string never
+# changes for a given ziamath version, so rendered formulas are kept on disk and shared by
+# repeated builds and by the worker processes of a batch (REPORTGEN_CACHE, default
+# ~/.cache/reportgen; REPORTGEN_CACHE=off disables it).
+_CACHE_VERSION = 1
+
+
+def _cache_dir() -> Path | None:
+    root = os.environ.get("REPORTGEN_CACHE")
+    if root and root.lower() == "off":
+        return None
+    base = Path(root) if root else Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "reportgen"
+    return base / "formulas"
+
+
+def _disk_get(key: str) -> str | None:
+    d = _cache_dir()
+    if d is None:
+        return None
+    try:
+        return (d / key[:2] / f"{key}.svg").read_text(encoding="utf-8")
+    except OSError:
+        return None
+
+
+def _disk_put(key: str, svg: str) -> None:
+    d = _cache_dir()
+    if d is None:
+        return
+    try:
+        sub = d / key[:2]
+        sub.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=sub, suffix=".tmp")
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(svg)
+        os.replace(tmp, sub / f"{key}.svg")
+    except OSError:
+        pass  # a read-only home is no reason to fail a report
+
+
 @functools.lru_cache(maxsize=4096)
 def render_latex(tex: str, *, inline: bool = False, size: float | None = None
                  ) -> tuple[str, float, float, float]:
@@ -141,11 +185,15 @@ def render_latex(tex: str, *, inline: bool = False, size: float | None = None
     """
     _configure()
     size = size or REF_PX
-    try:
-        m = zm.Latex(tex, size=size, inline=inline)
-        svg = m.svg()
-    except Exception as exc:  # ziamath/latex2mathml raise many kinds
-        raise ValueError(f"Не удалось отрисовать формулу {tex!r}: {exc}") from exc
+    key = hashlib.sha256(repr((tex, inline, size, zm.__version__, _CACHE_VERSION)).encode()).hexdigest()
+    svg = _disk_get(key)
+    if svg is None:
+        try:
+            m = zm.Latex(tex, size=size, inline=inline)
+            svg = m.svg()
+        except Exception as exc:  # ziamath/latex2mathml raise many kinds
+            raise ValueError(f"Не удалось отрисовать формулу {tex!r}: {exc}") from exc
+        _disk_put(key, svg)
     match = _VIEWBOX.search(svg)
     if not match:  # pragma: no cover - ziamath always writes a viewBox
         raise ValueError(f"ziamath returned an SVG without viewBox for {tex!r}")
