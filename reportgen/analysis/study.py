@@ -387,3 +387,4 @@ def load_case(path: str | Path, overrides: Mapping[str, Any] | None = None) -> S
 
 # Analyses that extend a Study (cached properties and export hooks) attach themselves on import.
 from . import dynamics as _dynamics  # noqa: E402,F401
+from . import forces as _forces  # noqa: E402,F401

@@ -54,9 +54,9 @@ def n_unknowns(kind):
 
 
 @njit(cache=True)
-def _unit(kind, c, px, py, ux, uy):
+def _unit(kind, c, ux, uy):
     """Load on the second link of a pair per unit value of its unknown number c:
-    (f_x, f_y, pure moment); the force acts at the pair's point (px, py)."""
+    (f_x, f_y, pure moment); the force acts at the pair's point."""
     if kind == K_REV:
         if c == 0:
             return 1.0, 0.0, 0.0
@@ -193,7 +193,7 @@ def solve_reactions(jkind, jlink, joff, glink, gnl, gjoint, gnj, jpt, jdir, lref
                     dx = px - lref[i, lk, 0]
                     dy = py - lref[i, lk, 1]
                     for c in range(n_unknowns(kind)):
-                        fx, fy, mz = _unit(kind, c, px, py, ux, uy)
+                        fx, fy, mz = _unit(kind, c, ux, uy)
                         fx *= sgn
                         fy *= sgn
                         mz = sgn * mz + dx * fy - dy * fx

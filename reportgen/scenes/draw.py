@@ -85,11 +85,15 @@ def _slider_links(mech: Mechanism) -> dict[str, str]:
 
 
 def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, labels=True,
-                   numbers=True, alpha=1.0, zorder=2, com=True, supports=True) -> None:
+                   numbers=True, alpha=1.0, zorder=2, com=True, supports=True, only=None) -> None:
+    """Draw the mechanism at a position (``only``: a set of link names to draw, e.g. one
+    Assur group taken apart)."""
     ax = cv.ax
     sliders = _slider_links(mech)
     d = mech.driver
     for link in mech.moving:
+        if only is not None and link.name not in only:
+            continue
         pts = [_point(row, p) for p in link.points]
         phi = float(row[f"phi_{link.name}"])
         if d.kind == "actuator" and link.name in (d.link, d.rod):
@@ -121,6 +125,8 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
                     va="center", alpha=alpha, zorder=zorder + 2)
     fixed = mech.link(FRAME).points
     for j in mech.joints:
+        if only is not None and not set(j.links) & set(only):
+            continue
         x, y = _point(row, j.point)
         if j.kind == "R":
             if supports and FRAME in j.links:
@@ -131,6 +137,8 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
             _guide(cv, mech, row, j, color, alpha)
     if com:
         for link in mech.moving:
+            if only is not None and link.name not in only:
+                continue
             if link.com and link.com not in {j.point for j in mech.joints}:
                 x, y = _point(row, link.com)
                 ax.add_patch(Circle((x, y), cv.mm(0.8), facecolor=color, edgecolor=color, alpha=alpha,
@@ -138,6 +146,8 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
     if labels:
         placed = set()
         for link in mech.links:
+            if only is not None and link.name not in only:
+                continue
             for p in link.points:
                 if p in placed:
                     continue

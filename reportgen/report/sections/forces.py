@@ -1,0 +1,700 @@
+"""Section «Силовой (кинетостатический) анализ»: the loads and inertia forces at the chosen
+position, each Assur group taken apart with its force polygon and its reactions, the table of
+reactions over the report positions, the balancing moment (or the actuator force) with its
+checks by power balance and Жуковский's lever, reaction diagrams over the cycle; for an
+actuator-driven linkage the capacity, force and pressure of the cylinders (worksheet 002,
+table 4.1) and, with ``[carrier]``, the axle loads of the vehicle (table 6.1).
+
+``present(study)``: the case has ``[forces]``.  ``conclusion_lines(study)``: the lines of the
+ЗАКЛЮЧЕНИЕ about the force analysis."""
+from __future__ import annotations
+
+import math
+
+import pandas as pd
+from markupsafe import Markup
+
+from ...analysis.forces import crank_pin
+from ...core import kinetostatics as KS
+from ...mechanism.model import FRAME
+from ...scenes.forces import (AxleCurves, CapacityCurves, GroupForces, ReactionCurves, ZhukovskyLever,
+                              group_vectors, shown_key)
+from ...style.numbers import fmt, tex_num
+from ..document import Column, Formula, Section, ref
+from ..formulas import inline_math
+from .common import chosen_position, chunked_tables, q_header, sub, tex_point
+
+NEEDS = ("kinematics", "cycle", "forces")
+
+
+def present(study) -> bool:
+    """The section is built when the case has [forces]."""
+    return study.root.has("forces")
+
+
+# --------------------------------------------------------------------------------------------
+# helpers
+# --------------------------------------------------------------------------------------------
+def _t(x, sig=4, digits=None, unit=None) -> str:
+    """A number substituted into a formula (negative values in parentheses); with ``unit`` a
+    result (no parentheses)."""
+    if abs(float(x)) < 1e-12:
+        x = 0.0
+    if unit == "%":          # ziamath cannot set \text{%}
+        return tex_num(x, sig=sig, digits=digits) + r"\ \%"
+    return tex_num(x, sig=sig, digits=digits, unit=unit, paren=unit is None)
+
+
+def _R(key: str) -> str:
+    """HTML of R_ij for the column key "i_j"."""
+    a, b = key.split("_")[:2]
+    return sub("R", a + b)
+
+
+def _load_tex(ld: dict, comp: str = "") -> str:
+    """LaTeX symbol of a load (or of its projection ``comp`` = "x" | "y"): G_{2}, \Phi_{2y},
+    M_{\Phi 2}, or the load's name."""
+    k = ld["link"]
+    if ld["kind"] == "G":
+        return f"G_{{{k}{comp}}}"
+    if ld["kind"] == "Phi":
+        return rf"\Phi_{{{k}{comp}}}"
+    if ld["kind"] in ("MPhi", "Mfly"):
+        return rf"M_{{\Phi {k}}}"
+    name = _name_tex(ld["name"])
+    return rf"\left({name}\right)_{{{comp}}}" if comp else name
+
+
+def _name_tex(name: str) -> str:
+    """A load name with its trailing digits as a subscript: P6 → P_{6}, Pпс → P_{\text{пс}}."""
+    head = name.rstrip("0123456789")
+    tail = name[len(head):]
+    if tail and head:
+        return f"{head}_{{{tail}}}"
+    if len(name) > 1 and name[0].isascii():
+        return rf"{name[0]}_{{\text{{{name[1:]}}}}}"
+    return rf"\text{{{name}}}"
+
+
+def _in(x) -> str:
+    """An input value in LaTeX as written (shortest representation: 0.6, 1.62, 56 000)."""
+    return tex_num(x, digits=_decimals(x), sig=None, paren=True)
+
+
+def _short(x) -> str:
+    """Five significant digits without trailing zeros (9000, −35, 110,37)."""
+    if x is None or math.isnan(float(x)):
+        return fmt(math.nan)
+    v = float(f"{float(x):.5g}")
+    return fmt(v, digits=_decimals(v), sig=None)
+
+
+def _decimals(x) -> int:
+    t = f"{float(x):.10g}"
+    return len(t.split(".")[1]) if "." in t and "e" not in t else 0
+
+
+def _fin(x, unit=None) -> str:
+    """An input value in prose or a table, as written (an em dash for none)."""
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return fmt(math.nan)
+    return fmt(x, digits=_decimals(x), sig=None, unit=unit)
+
+
+def _deg(x) -> str:
+    return fmt(math.degrees(float(x)), digits=1)
+
+
+def _shown_pairs(f) -> list[str]:
+    """The pairs of the reactions tables: ``[forces] pairs`` or every pair as declared."""
+    if f.settings.pairs:
+        return list(f.settings.pairs)
+    return [p.name for p in f.model.pairs if p.kind != KS.K_MOM]
+
+
+def _lead(study):
+    qkey, qhead, qunit, qfmt = q_header(study)
+    return [Column("pos", "№"), Column(qkey, qhead, qunit, **qfmt)]
+
+
+def _motion_text(study, f) -> str:
+    s = f.settings
+    if s.motion == "static":
+        return ("Расчёт статический: звенья движутся медленно, силы инерции не учитываются; "
+                "звенья нагружены заданными силами и силами тяжести.")
+    if s.motion == "dynamics":
+        a = str(inline_math(r"a = \omega^2 x^{\prime\prime} + \varepsilon x^{\prime}"))
+        e = str(inline_math(r"\varepsilon_k = \omega^2 \varphi_k^{\prime\prime} + \varepsilon \varphi_k^{\prime}"))
+        return ("Силы инерции вычислены по истинному закону движения машины ω(φ), ε(φ), найденному в "
+                f"динамическом анализе: ускорения точек {a}, угловые ускорения звеньев {e}.")
+    d = study.mechanism.driver
+    return ("Силы инерции вычислены при постоянной скорости ведущего звена "
+            f"({'ω₁' if d.rotary else 'v'}&nbsp;=&nbsp;{fmt(d.omega, sig=4)}&nbsp;"
+            f"{'рад/с' if d.rotary else 'м/с'}" + (f", ε₁&nbsp;=&nbsp;{fmt(d.epsilon, sig=4)}" if d.epsilon else "") + ").")
+
+
+# --------------------------------------------------------------------------------------------
+# build
+# --------------------------------------------------------------------------------------------
+def build(study) -> Section:
+    f = study.forces
+    lab = chosen_position(study)
+    if lab not in f.labels:
+        lab = f.labels[1] if len(f.labels) > 1 else f.labels[0]
+    sec = Section("Силовой (кинетостатический) анализ", "sec-forces")
+    static = f.settings.motion == "static"
+    sec.paragraph(
+        "Силовой расчёт выполнен кинетостатическим методом (принцип Д’Аламбера): к каждому звену, кроме "
+        "заданных сил и сил тяжести, прикладываются главный вектор и главный момент сил инерции, и звено "
+        "рассматривается как находящееся в равновесии. Группы Ассура статически определимы (3n уравнений "
+        "равновесия при 3n неизвестных составляющих реакций), поэтому реакции находятся по группам, "
+        "начиная с группы, присоединённой последней, и заканчивая начальным механизмом. Реакция "
+        f"{sub('R', 'ij')} — сила, с которой звено i действует на звено j; {sub('R', 'ji')}&nbsp;=&nbsp;"
+        f"−{sub('R', 'ij')}. Трение в кинематических парах не учитывается. " + _motion_text(study, f))
+    if f.settings.capacity is not None:
+        _capacity(sec, study, f, lab)
+    _loads(sec, study, f, lab, static)
+    _groups(sec, study, f, lab)
+    _reactions(sec, study, f)
+    _balance(sec, study, f, lab)
+    _cycle(sec, study, f)
+    if f.settings.carrier is not None:
+        _carrier(sec, study, f, lab)
+    return sec
+
+
+# --------------------------------------------------------------------------------------------
+# loads
+# --------------------------------------------------------------------------------------------
+def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
+    s = sec.subsection("Нагрузки звеньев", "sec-frc-loads")
+    row = f.row(lab)
+    det = f.details(lab)
+    mech = study.mechanism
+    q = row["q_deg"] if f.rotary else row["q"]
+    where = f"φ&nbsp;=&nbsp;{fmt(q, digits=1)}°" if f.rotary else f"S&nbsp;=&nbsp;{fmt(q, digits=3)}&nbsp;м"
+    inertial = [(name, m, J, S) for name, m, J, S in f.inertial]
+    if inertial:
+        s.paragraph(f"Силы инерции звеньев приводятся к главному вектору, приложенному в центре масс, и "
+                    f"главному моменту (положение {lab}, {where}"
+                    + (f", ω&nbsp;=&nbsp;{fmt(row['omega'], sig=4)}&nbsp;рад/с, ε&nbsp;=&nbsp;"
+                       f"{fmt(row['eps'], sig=4)}&nbsp;рад/с²" if f.rotary else "") + "):")
+        fs = [Formula(r"\Phi_k = -m_k a_{S_k}", where=[(r"m_k", "масса звена k, кг"),
+                                                        (r"a_{S_k}", "ускорение его центра масс, м/с²")],
+                      label="eq-frc-Phi"),
+              Formula(r"M_{\Phi k} = -J_{S_k} \varepsilon_k",
+                      where=[(r"J_{S_k}", "момент инерции звена относительно центра масс, кг·м²"),
+                             (r"\varepsilon_k", "угловое ускорение звена, рад/с²")], label="eq-frc-MPhi")]
+        for name, m, J, S in inertial:
+            if m:
+                fs.append(Formula(rf"\Phi_{{{name}}} = m_{{{name}}} a_{{{tex_point(S)}}}",
+                                  rf"{_t(m)} \cdot {_t(row['aS_' + name])}", _t(row["Phi_" + name], unit="Н")))
+            if J:
+                fs.append(Formula(rf"M_{{\Phi {name}}} = J_{{S{name}}} \varepsilon_{{{name}}}",
+                                  rf"{_t(J)} \cdot {_t(abs(row['eps_' + name]))}",
+                                  _t(abs(row["MPhi_" + name]), unit="Н·м")))
+        if f.settings.flywheel:
+            dyn = study.dynamics
+            J1 = dyn.result.J_I - dyn.J_crank
+            c = mech.driver.link
+            fs.append(Formula(rf"M_{{\Phi {c}}} = J_{{1\text{{пр}}}} \varepsilon_{{{c}}}",
+                              rf"{_t(J1)} \cdot {_t(abs(row['eps']))}", _t(abs(row["MPhi_fly"]), unit="Н·м")))
+        s.formula(*fs)
+        if f.settings.flywheel:
+            s.paragraph("Как в исходном расчёте, к кривошипу приложен момент сил инерции первой группы звеньев "
+                        "(ротор, передача, маховик) с приведённым моментом инерции J<sub>1пр</sub> за вычетом "
+                        "момента инерции самого кривошипа; при этом уравновешивающий момент равен движущему.")
+        rows = []
+        for name, m, J, S in inertial:
+            l = mech.link(name)
+            rows.append({"n": name, "m": m or math.nan, "a": row.get("aS_" + name, math.nan) if m else math.nan,
+                         "Phi": row.get("Phi_" + name, math.nan) if m else math.nan, "J": J or math.nan,
+                         "e": row["eps_" + name], "MPhi": row["MPhi_" + name] if J else math.nan,
+                         "G": l.weight or math.nan})
+        s.table(f"Массы, ускорения, силы и моменты сил инерции звеньев (положение {lab})", [
+            Column("n", "Звено"), Column("m", "<i>m</i>", "кг", fmt=_fin), Column("a", sub("a", "S"), "м/с²", sig=4),
+            Column("Phi", "Φ", "Н", sig=4), Column("J", sub("J", "S"), "кг·м²", fmt=_fin),
+            Column("e", "ε", "рад/с²", sig=4), Column("MPhi", sub("M", "Φ"), "Н·м", sig=4),
+            Column("G", "<i>G</i>", "Н", fmt=_fin)], pd.DataFrame(rows), id="tab-frc-inertia")
+    lrows = []
+    for ld in det["loads"]:
+        if ld["kind"] in ("Phi", "MPhi", "Mfly"):
+            continue
+        if ld["M"] is None:
+            lrows.append({"name": ld["name"], "link": ld["link"], "point": ld["point"], "Fx": ld["Fx"],
+                          "Fy": ld["Fy"], "F": math.hypot(ld["Fx"], ld["Fy"]), "M": math.nan})
+        else:
+            lrows.append({"name": ld["name"], "link": ld["link"], "point": "—", "Fx": math.nan, "Fy": math.nan,
+                          "F": math.nan, "M": ld["M"]})
+    if lrows:
+        s.paragraph(f"Заданные нагрузки и силы тяжести в положении {lab} — в таблице {ref('tab-frc-applied')} "
+                    "(силы тяжести приложены в центрах масс и направлены вниз).")
+        s.table(f"Заданные силы и моменты (положение {lab})", [
+            Column("name", "Нагрузка"), Column("link", "Звено"), Column("point", "Точка"),
+            Column("Fx", sub("F", "x"), "Н", fmt=_short), Column("Fy", sub("F", "y"), "Н", fmt=_short),
+            Column("F", "<i>F</i>", "Н", fmt=_short), Column("M", "<i>M</i>", "Н·м", fmt=_short)],
+            pd.DataFrame(lrows), id="tab-frc-applied")
+    if not inertial and not lrows:
+        s.paragraph("Звенья не нагружены: все реакции равны нулю.")
+    _incidence(s, study, f)
+
+
+def _incidence(s: Section, study, f) -> None:
+    """Incidence of links and pairs (worksheet 000, «Силовой расчет»): +1 where the reaction R_ij
+    of the column acts on the link as written (link j), −1 on link i."""
+    rows = []
+    cols = []
+    for p in f.model.pairs:
+        head = "М<sub>ур</sub>" if p.kind == KS.K_MOM else (
+            p.point + (" (П)" if p.kind == KS.K_PRI else " (Ц)" if p.kind == KS.K_ACT else ""))
+        cols.append((p, head))
+    for link in f.model.links:
+        r = {"link": link}
+        for k, (p, _) in enumerate(cols):
+            r[f"c{k}"] = "1" if p.b == link else ("−1" if p.a == link else "0")
+        rows.append(r)
+    rows = rows[1:] + rows[:1]
+    columns = [Column("link", "Звено")] + [Column(f"c{k}", h) for k, (p, h) in enumerate(cols)]
+    s.paragraph(f"Связи звеньев и кинематических пар (таблица {ref('tab-frc-incidence')}): «1» — реакция пары "
+                f"{sub('R', 'ij')} приложена к звену j, «−1» — равная ей и противоположная {sub('R', 'ji')} — "
+                "к звену i; (П) — поступательная пара (нормальная сила и реактивный момент), (Ц) — пара "
+                "цилиндр–шток (усилие гидроцилиндра, нормальная сила и момент).")
+    per = 12
+    chunked_tables(s, "Матрица инциденций звеньев и кинематических пар", pd.DataFrame(rows),
+                   columns[1:], columns[:1], "tab-frc-incidence", per=per)
+
+
+# --------------------------------------------------------------------------------------------
+# groups
+# --------------------------------------------------------------------------------------------
+def _groups(sec: Section, study, f, lab: str) -> None:
+    s = sec.subsection(f"Реакции в кинематических парах по группам Ассура (положение {lab})", "sec-frc-groups")
+    s.paragraph("Для каждой группы составляются уравнения равновесия каждого звена: две проекции сил и "
+                "моменты относительно точки звена; неизвестные — составляющие реакций во внешних и "
+                "внутренних парах группы (для поступательной пары — нормальная сила и реактивный момент, "
+                "определяющий точку её приложения). Реакции со стороны групп, рассчитанных ранее, известны. "
+                "Система линейных уравнений группы решается точно; векторные уравнения сил проверяются "
+                "построением планов сил в масштабе μ<sub>F</sub> (замкнутые многоугольники).")
+    for gi, g in enumerate(f.model.groups):
+        draw = GroupForces(lab, gi).draw(study)
+        ext, moments, internal = group_vectors(study, lab, gi)
+        gid = f"fig-frc-group-{gi + 1}"
+        names = " + ".join(v.label.replace("R", "<i>R</i>", 1) if v.label.startswith("R") else v.label
+                            for v in ext) or "0"
+        head = g.title[0].upper() + g.title[1:]
+        unknown = [f.model.pairs[k] for k in g.pairs]
+        ulist = ", ".join(_unknown_text(p) for p in unknown)
+        s.paragraph(f"<b>{head}.</b> Неизвестные: {ulist} — {3 * len(g.links)} уравнений. Уравнение сил группы "
+                    f"(рисунок {ref(gid)}): {names}&nbsp;=&nbsp;0.")
+        s.figure(f"Группа {g.label}: схема нагружения (μ<sub>l</sub> = {fmt(draw.mu, sig=3)} м/мм, стрелки сил "
+                 f"без масштаба) и план сил (μ<sub>F</sub> = {fmt(draw.mu_F, sig=3)} Н/мм)",
+                 draw.svg, draw.width_mm, id=gid)
+        rows = []
+        det = f.details(lab)
+        for k in g.pairs:
+            p = f.model.pairs[k]
+            pv = det["pairs"][k]
+            if p.kind == KS.K_MOM:
+                continue
+            rows.append({"pair": _R(p.name), "Rx": pv["Rx"], "Ry": pv["Ry"], "R": math.hypot(pv["Rx"], pv["Ry"]),
+                         "ang": math.degrees(math.atan2(pv["Ry"], pv["Rx"])),
+                         "extra": _prismatic_text(p, pv)})
+        gcols = [Column("pair", "Реакция", fmt=lambda v: Markup(v)),
+                 Column("Rx", sub("R", "x"), "Н", sig=5), Column("Ry", sub("R", "y"), "Н", sig=5),
+                 Column("R", "<i>R</i>", "Н", sig=5), Column("ang", "Угол с осью x", "град", digits=1)]
+        if any(r["extra"] for r in rows):
+            gcols.append(Column("extra", "Примечание"))
+        s.table(f"Реакции в парах группы {g.label} (положение {lab})", gcols, pd.DataFrame(rows),
+                id=f"tab-frc-group-{gi + 1}")
+        if any(p.kind == KS.K_MOM for p in unknown):
+            _crank_moment(s, study, f, lab, g, det)
+
+
+def _unknown_text(p) -> str:
+    if p.kind == KS.K_REV:
+        return f"{_R(p.name)} (2 составляющие)"
+    if p.kind == KS.K_PRI:
+        return f"{_R(p.name)}, перпендикулярная направляющей, и её точка приложения (реактивный момент)"
+    if p.kind == KS.K_ACT:
+        return f"усилие гидроцилиндра <i>F</i>, нормальная сила и момент в паре {p.a}–{p.b}"
+    return f"уравновешивающий момент {sub('M', 'ур')}"
+
+
+def _prismatic_text(p, pv) -> str:
+    if p.kind == KS.K_PRI:
+        return (f"N = {fmt(pv['N'], sig=5)} Н, M = {fmt(pv['Mp'], sig=4)} Н·м, "
+                f"h = {fmt(pv['Mp'] / pv['N'] if pv['N'] else 0.0, sig=4)} м")
+    if p.kind == KS.K_ACT:
+        return f"F = {fmt(pv['F'], sig=6)} Н, N = {fmt(pv['N'], sig=4)} Н, M = {fmt(pv['Mp'], sig=4)} Н·м"
+    return ""
+
+
+def _crank_moment(s: Section, study, f, lab, g, det) -> None:
+    """M_ур from the moment equation of the crank about its centre."""
+    mech = study.mechanism
+    d = mech.driver
+    cols = det["cols"]
+    O = tex_point(d.center)
+    ox, oy = cols["x_" + d.center], cols["y_" + d.center]
+    sym, num = [], []
+    total = 0.0
+    for k, pv in enumerate(det["pairs"]):
+        p = pv["pair"]
+        if p.kind == KS.K_MOM or d.link not in (p.a, p.b) or FRAME in (p.a, p.b):
+            continue
+        sgn = 1.0 if p.b == d.link else -1.0
+        key = p.name if sgn > 0 else f"{p.b}_{p.a}"
+        Fx, Fy = sgn * pv["Rx"], sgn * pv["Ry"]
+        dx, dy = pv["x"] - ox, pv["y"] - oy
+        P = tex_point(p.point)
+        a_, b_ = key.split("_")[:2]
+        sym.append(rf"(x_{{{P}}} - x_{{{O}}}) R_{{{a_}{b_}y}} - (y_{{{P}}} - y_{{{O}}}) R_{{{a_}{b_}x}}")
+        num.append(rf"{_t(dx)} \cdot {_t(Fy)} - {_t(dy)} \cdot {_t(Fx)}")
+        total += dx * Fy - dy * Fx
+    for ld in det["loads"]:
+        if ld["link"] != d.link:
+            continue
+        if ld["M"] is not None:
+            sym.append(_load_tex(ld))
+            num.append(_t(ld["M"]))
+        elif ld["point"] != d.center:
+            P = tex_point(ld["point"])
+            dx, dy = cols["x_" + ld["point"]] - ox, cols["y_" + ld["point"]] - oy
+            sym.append(rf"(x_{{{P}}} - x_{{{O}}}) {_load_tex(ld, 'y')} - (y_{{{P}}} - y_{{{O}}}) {_load_tex(ld, 'x')}")
+            num.append(rf"{_t(dx)} \cdot {_t(ld['Fy'])} - {_t(dy)} \cdot {_t(ld['Fx'])}")
+    Mb = float(f.row(lab)["M_bal"])
+    s.paragraph(f"Уравновешивающий момент {sub('M', 'ур')} (момент, который нужно приложить к кривошипу {d.link}, "
+                f"против часовой стрелки — плюс) — из уравнения моментов сил, действующих на кривошип, "
+                f"относительно оси {d.center}:")
+    s.formula(Formula(r"M_{ур} = -\left[" + " + ".join(sym) + r"\right]",
+                      r"-\left[" + " + ".join(num) + r"\right]", _t(Mb, sig=5, unit="Н·м"), label="eq-frc-Mbal"))
+
+
+# --------------------------------------------------------------------------------------------
+# reactions over the positions
+# --------------------------------------------------------------------------------------------
+def _reactions(sec: Section, study, f) -> None:
+    s = sec.subsection("Реакции в кинематических парах по положениям", "sec-frc-table")
+    tab = f.table
+    lead = _lead(study)
+    pairs = _shown_pairs(f)
+    comp = []
+    for key in pairs:
+        comp += [Column("Rx_" + key, _R(key) + "<sub>x</sub>", "Н", sig=5, digits=None),
+                 Column("Ry_" + key, _R(key) + "<sub>y</sub>", "Н", sig=5)]
+    mag = [Column("R_" + key, _R(key), "Н", sig=5) for key in pairs]
+    if f.rotary:
+        mag.append(Column("M_bal", sub("M", "ур"), "Н·м", sig=5))
+    else:
+        mag.append(Column("F_act", "<i>F</i>", "Н", sig=6))
+    for c in comp + mag:
+        if not f.rotary:
+            c.sig, c.digits = None, 0
+    ids = chunked_tables(s, "Составляющие реакций в кинематических парах", tab, comp, lead, "tab-frc-comp", per=6)
+    ids2 = chunked_tables(s, "Модули реакций в кинематических парах", tab, mag, lead, "tab-frc-mag", per=6)
+    note = ""
+    declared = {p.name for p in f.model.pairs}
+    reversed_ = [k for k in pairs if k not in declared]
+    if reversed_:
+        text = "; ".join(f"{_R(k)} — сила звена {_who(k.split('_')[0])} на {_whom(k.split('_')[1])}"
+                         for k in reversed_)
+        note = f" Направления реакций выбраны как в исходном расчёте: {text}."
+    s.paragraph(f"Составляющие реакций по положениям механизма — в таблице {ref(ids[0])}, их модули — в таблице "
+                f"{ref(ids2[0])}.{note}")
+
+
+# --------------------------------------------------------------------------------------------
+# balancing moment and its checks
+# --------------------------------------------------------------------------------------------
+def _balance(sec: Section, study, f, lab: str) -> None:
+    rot = f.rotary
+    title = "Уравновешивающий момент и проверка рычагом Жуковского" if rot else \
+        "Усилие гидроцилиндра и проверка рычагом Жуковского"
+    s = sec.subsection(title, "sec-frc-balance")
+    row = f.row(lab)
+    mech = study.mechanism
+    d = mech.driver
+    main = "M_bal" if rot else "F_act"
+    unit = "Н·м" if rot else "Н"
+    inertia = "" if f.settings.motion == "static" else ", включая силы инерции"
+    s.paragraph(f"Проверка по принципу возможных перемещений (равенство нулю суммы мощностей всех сил{inertia}; "
+                "аналоги скоростей — производные по обобщённой координате):")
+    if rot:
+        s.formula(Formula(r"M_{ур} \varphi_1^{\prime} + \sum_i \left( F_{ix} x_i^{\prime} + F_{iy} y_i^{\prime} \right)"
+                          r" + \sum_k M_k \varphi_k^{\prime} = 0",
+                          where=[(r"\varphi_1^{\prime} = \pm 1", f"аналог угловой скорости кривошипа "
+                                                                 f"({'−1: вращение по часовой стрелке' if d.direction < 0 else '+1'})")],
+                          label="eq-frc-power"))
+    else:
+        s.formula(Formula(r"F \cdot 1 + \sum_i \left( F_{ix} x_i^{\prime} + F_{iy} y_i^{\prime} \right)"
+                          r" + \sum_k M_k \varphi_k^{\prime} = 0",
+                          where=[(r"x_i^{\prime}, y_i^{\prime}", "передаточные отношения dx/dS, dy/dS точек приложения сил")],
+                          label="eq-frc-power"))
+    lever = ZhukovskyLever(lab).draw(study)
+    plan = "аналогов скоростей" if lever.analog else "скоростей"
+    s.paragraph(f"Рычаг Н.&nbsp;Е.&nbsp;Жуковского — план {plan}, повёрнутый на 90° против часовой стрелки "
+                f"(рисунок {ref('fig-frc-lever')}); силы приложены в одноимённых точках плана, моменты заменены "
+                "парами сил на двух точках звена. Сумма моментов всех сил относительно полюса p равна нулю:")
+    if rot:
+        pin = tex_point(_pin(mech))
+        s.formula(Formula(rf"F_{{ур}} h_{{{pin.lower()}}} + \sum_i F_i h_i = 0", label="eq-frc-lever"))
+    else:
+        s.formula(Formula(r"F \left( h_{2} - h_{1} \right) + \sum_i F_i h_i = 0", label="eq-frc-lever"))
+    mt = lever.moments
+    mu_unit = "м·с⁻¹/мм" if not lever.analog else ("м/мм" if rot else "мм⁻¹")
+    s.figure(f"Рычаг Жуковского для положения {lab} (μ<sub>v</sub> = {fmt(lever.mu, sig=3)} {mu_unit})",
+             lever.svg, lever.width_mm, id="fig-frc-lever")
+    loads = mt[~mt["balancing"].astype(bool)]
+    s.table(f"Моменты сил относительно полюса рычага Жуковского (положение {lab})", [
+        Column("label", "Сила"), Column("F", "<i>F</i>", "Н", fmt=_short), Column("h", "<i>h</i>", "мм", digits=1),
+        Column("Fh", "±<i>F·h</i>", "Н·мм", fmt=lambda v: fmt(v, sig=5, exp_from=1e12))], mt, id="tab-frc-lever",
+        note="Плечо h — расстояние от полюса p до линии действия силы на рычаге; знак «+» — момент против "
+             "часовой стрелки. Моменты звеньев заменены парами сил (′ и ″) на двух точках звена.")
+    total = float(loads["Fh"].sum())
+    if rot:
+        pin = tex_point(_pin(mech))
+        res = [Formula(rf"F_{{ур}} = -\frac{{\sum F_i h_i}}{{h_{{{pin.lower()}}}}}",
+                       rf"-\frac{{{_t(total, sig=6)}}}{{{_t(lever.arm_mm, sig=4)}}}",
+                       _t(row["F_bal_zhukovsky"], sig=5, unit="Н")),
+               Formula(rf"M_{{ур}}^{{Ж}} = F_{{ур}} l_{{{tex_point(d.center)}{pin}}}",
+                       rf"{_t(row['F_bal_zhukovsky'], sig=5)} \cdot {_t(_crank_length(mech), sig=4)}",
+                       _t(row["M_bal_zhukovsky"], sig=6, unit="Н·м")),
+               Formula(r"M_{ур}^{кин}", None, _t(row["M_bal"], sig=6, unit="Н·м")),
+               Formula(r"\Delta = \frac{\left| M_{ур}^{кин} - M_{ур}^{Ж} \right|}{\max \left| M_{ур} \right|} \cdot 100\%",
+                       None, _t(row["dev_zhukovsky_pct"], sig=2, unit="%"))]
+    else:
+        res = [Formula(r"F^{Ж} = -\frac{\sum F_i h_i}{h_{2} - h_{1}}",
+                       rf"-\frac{{{_t(total, sig=6)}}}{{{_t(lever.arm_mm, sig=4)}}}",
+                       _t(row["F_act_zhukovsky"], sig=7, unit="Н")),
+               Formula(r"F^{кин}", None, _t(row["F_act"], sig=7, unit="Н")),
+               Formula(r"\Delta = \frac{\left| F^{кин} - F^{Ж} \right|}{\max |F|} \cdot 100\%", None,
+                       _t(row["dev_zhukovsky_pct"], sig=2, unit="%"))]
+    s.paragraph(f"Результат для положения {lab} и расхождение с силовым расчётом по группам "
+                "(допускается до 5&nbsp;%; аналитически значения совпадают с точностью округления):")
+    s.formula(*res)
+    cols = [Column(main, (sub("M", "ур") if rot else "<i>F</i>") + " (по группам)", unit, sig=7),
+            Column(main + "_power", (sub("M", "ур") if rot else "<i>F</i>") + " (мощности)", unit, sig=7),
+            Column(main + "_zhukovsky", (sub("M", "ур") if rot else "<i>F</i>") + " (Жуковский)", unit, sig=7),
+            Column("dev_zhukovsky_pct", "Δ", "%", sig=2)]
+    if f.settings.flywheel:
+        cols.insert(3, Column("M_d_dyn", sub("M", "дв") + " (динамика)", "Н·м", sig=7))
+        cols.append(Column("M_bal_linkage", sub("M", "ур") + " без маховика", "Н·м", sig=5))
+    chunked_tables(s, "Уравновешивающий момент и его проверки" if rot else "Усилие гидроцилиндра и его проверки",
+                   f.table, cols, _lead(study), "tab-frc-checks")
+    sc = f.scalars
+    text = (f"Наибольшее расхождение по всем положениям и сетке цикла — "
+            f"{fmt(sc['dev_zhukovsky_max_pct'], sig=2)}&nbsp;%.")
+    if f.settings.flywheel:
+        text += (f" С учётом момента сил инерции первой группы уравновешивающий момент совпадает с движущим "
+                 f"моментом динамического расчёта (наибольшее относительное отличие "
+                 f"{fmt(sc['dev_M_bal_M_d_max'], sig=2)}). Уравновешивающий момент самого рычажного механизма "
+                 f"(без момента сил инерции первой группы, {sub('M', 'ур')}&nbsp;+&nbsp;{sub('M', 'Φ1')}) меняется "
+                 f"по положениям (последний столбец таблицы); реакции от момента, приложенного к кривошипу, не "
+                 f"зависят.")
+    s.paragraph(text)
+
+
+def _who(link: str) -> str:
+    return "стойки" if link == FRAME else link
+
+
+def _whom(link: str) -> str:
+    return "стойку" if link == FRAME else f"звено {link}"
+
+
+def _pin(mech) -> str:
+    return crank_pin(mech)
+
+
+def _crank_length(mech) -> float:
+    """l_OA: distance of the crank pin from the crank's centre."""
+    d = mech.driver
+    crank = mech.link(d.link)
+    (x0, y0), (x1, y1) = crank.points[d.center], crank.points[_pin(mech)]
+    return math.hypot(x1 - x0, y1 - y0)
+
+
+# --------------------------------------------------------------------------------------------
+# over the cycle
+# --------------------------------------------------------------------------------------------
+def _cycle(sec: Section, study, f) -> None:
+    s = sec.subsection("Реакции за цикл", "sec-frc-cycle")
+    fig = ReactionCurves().draw(study)
+    sc = f.scalars
+    rows = []
+    for p in f.model.pairs:
+        if p.kind == KS.K_MOM:
+            continue
+        q = sc[f"q_R_{p.name}_max"]
+        rows.append({"pair": _R(shown_key(f, p)), "R": sc[f"R_{p.name}_max"],
+                     "q": math.degrees(q - study.grid.start) if f.rotary else q})
+    qkey, qhead, qunit, qfmt = q_header(study)
+    main = "M_bal" if f.rotary else "F_act"
+    s.paragraph(f"Модули реакций во всех парах и {'уравновешивающий момент' if f.rotary else 'усилие гидроцилиндра'} "
+                f"на сетке цикла показаны на рисунке {ref('fig-frc-cycle')}, наибольшие значения — в таблице "
+                f"{ref('tab-frc-max')}. Наибольший по модулю {'уравновешивающий момент' if f.rotary else 'усилие'} — "
+                f"{fmt(sc[main + '_absmax'], sig=5)}&nbsp;{'Н·м' if f.rotary else 'Н'}.")
+    s.figure("Реакции в кинематических парах и " + ("уравновешивающий момент" if f.rotary else "усилие гидроцилиндра")
+             + (" за цикл" if f.rotary else " по ходу гидроцилиндра"), fig.svg, fig.width_mm, id="fig-frc-cycle")
+    s.table("Наибольшие реакции в кинематических парах", [
+        Column("pair", "Реакция", fmt=lambda v: Markup(v)),
+        Column("R", "<i>R</i><sub>max</sub>", "Н", sig=5), Column("q", qhead, qunit, **qfmt)],
+        pd.DataFrame(rows), id="tab-frc-max")
+
+
+# --------------------------------------------------------------------------------------------
+# capacity of an actuator-driven linkage
+# --------------------------------------------------------------------------------------------
+def _capacity(sec: Section, study, f, lab: str) -> None:
+    s = sec.subsection("Усилие, давление и грузоподъёмность гидропривода", "sec-frc-capacity")
+    a, c = f.settings.actuator, f.settings.capacity
+    row = f.row(lab)
+    P = float(-[ld for ld in f.solution.loads if ld.name == c.load][0].Fy[0])
+    pt = tex_point(c.point)
+    s.paragraph(f"Усилие на штоке находится из силового расчёта по группам; по принципу возможных перемещений "
+                f"для единственной вертикальной нагрузки {c.load} оно равно произведению нагрузки на передаточное "
+                f"число {inline_math(rf'i_{{{pt}}} = dy_{{{pt}}}/dS')} её точки приложения. Площадь поршня, "
+                f"давление в {a.count} гидроцилиндрах и грузоподъёмность (в точке {c.point} и на оси "
+                + ", ".join(c.points) + f") для положения {lab} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м):")
+    ip = row["i_" + c.point]
+    L_ = _name_tex(c.load)
+    fs = [Formula(rf"F = {L_} \cdot i_{{{pt}}}", rf"{_in(P)} \cdot {_t(ip, sig=5)}", _t(row["F_act"], sig=6, unit="Н"),
+                  label="eq-frc-F"),
+          Formula(r"A = \frac{\pi D^2}{4}", rf"\frac{{\pi \cdot {_in(a.diameter)}^2}}{{4}}", _t(a.area, sig=5, unit="м²")),
+          Formula(r"p = \frac{F}{k A \eta}", rf"\frac{{{_t(row['F_act'], sig=6)}}}{{{a.count} \cdot {_t(a.area, sig=5)} \cdot {_in(a.efficiency)}}}",
+                  _t(row["p_act"] / 1e6, sig=6, unit="МПа"), label="eq-frc-p")]
+    for q in list(c.points) + [c.point]:
+        Q = tex_point(q)
+        fs.append(Formula(rf"G_{{{Q}}} = \frac{{k p_{{max}} \eta A}}{{i_{{{Q}}}}}",
+                          rf"\frac{{{a.count} \cdot {_in(a.pressure)} \cdot {_in(a.efficiency)} \cdot {_t(a.area, sig=5)}}}{{{_t(row['i_' + q], sig=5)}}}",
+                          _t(row["Gcap_" + q], sig=5, unit="Н")))
+    fs.append(Formula(rf"\Delta G = \frac{{G_{{{pt}}} - {L_}}}{{{L_}}} \cdot 100\%",
+                      rf"\frac{{{_t(row['Gcap_' + c.point], sig=5)} - {_in(P)}}}{{{_in(P)}}} \cdot 100\%",
+                      _t(row["reserve_pct"], digits=1, unit="%")))
+    s.formula(*fs)
+    if any(ld.name != c.load for ld in f.solution.loads):
+        rest = inline_math(r"G = (k p_{max} \eta A - F_{ост})/i")
+        s.paragraph("Если механизм нагружен и другими силами (силы тяжести звеньев), их доля усилия "
+                    f"{inline_math('F_{ост}')} вычитается: {rest}.")
+    cols = [Column("F_act", "<i>F</i>", "Н", digits=0, sig=None),
+            Column("p_act", "<i>p</i>", "Па", fmt=lambda v: fmt(v, digits=0, sig=None, exp_from=1e12))]
+    cols += [Column("Gcap_" + q, sub("G", q), "Н", digits=0, sig=None) for q in list(c.points) + [c.point]]
+    cols += [Column("reserve_pct", "Δ<i>G</i>", "%", digits=1)]
+    s.table("Результаты анализа механизма на грузоподъёмность", _lead(study) + cols, f.table, id="tab-frc-capacity")
+    s.figure("Грузоподъёмность, усилие и давление в гидроцилиндрах по ходу поршня", CapacityCurves().draw(study).svg,
+             160, id="fig-frc-capacity")
+    sc = f.scalars
+    txt = (f"Результаты — в таблице {ref('tab-frc-capacity')} и на рисунке {ref('fig-frc-capacity')}. Усилие гидроцилиндров "
+           f"при давлении в гидросистеме {fmt(a.pressure / 1e6, sig=4)}&nbsp;МПа: k·p·η·A&nbsp;=&nbsp;{fmt(a.F_max, sig=6)}&nbsp;Н. ")
+    if sc["pressure_exceeded"]:
+        bad = f.table[f.table["p_act"] > a.pressure]
+        where = ", ".join(fmt(v, digits=3) for v in bad["q"]) if len(bad) else fmt(sc["q_p_act_max"], digits=3)
+        txt += (f"<b>При S&nbsp;=&nbsp;{where}&nbsp;м требуемое давление ({fmt(sc['p_act_max'] / 1e6, sig=5)}&nbsp;МПа) "
+                f"превышает давление в гидросистеме: запас грузоподъёмности отрицателен "
+                f"({fmt(sc['reserve_min_pct'], digits=1)}&nbsp;%), груз {c.load} в этом положении не поднимается.</b>")
+    else:
+        txt += f"Наименьший запас грузоподъёмности — {fmt(sc['reserve_min_pct'], digits=1)}&nbsp;%."
+    s.paragraph(txt)
+
+
+# --------------------------------------------------------------------------------------------
+# carrier vehicle
+# --------------------------------------------------------------------------------------------
+def _carrier(sec: Section, study, f, lab: str) -> None:
+    c = f.settings.carrier
+    s = sec.subsection("Нагрузки на мосты и управляемость " + (c.title or "машины-носителя"), "sec-frc-carrier")
+    row = f.row(lab)
+    G = float(-[ld for ld in f.solution.loads if ld.name == c.load][0].Fy[0])
+    total = G + c.weight + c.ballast
+    x = row["x_load"]
+    s.paragraph(f"Реакции управляемого (переднего) моста R<sub>A</sub> и заднего моста R<sub>B</sub> находятся из "
+                f"уравнений равновесия машины: суммы сил и моментов относительно оси задних колёс. Вес машины "
+                f"P<sub>в</sub>&nbsp;=&nbsp;{_fin(c.weight, 'Н')} приложен на расстоянии b&nbsp;=&nbsp;"
+                f"{_fin(c.weight_arm, 'м')} впереди задней оси, противовесы P<sub>гр</sub>&nbsp;=&nbsp;"
+                f"{_fin(c.ballast, 'Н')} — на a&nbsp;=&nbsp;{_fin(c.ballast_arm, 'м')} впереди "
+                f"передней оси, база L&nbsp;=&nbsp;{_fin(c.wheelbase, 'м')}, груз {c.load} — на расстоянии "
+                f"x<sub>G</sub> (координата его центра масс) позади задней оси. Для положения {lab}:")
+    RA = row["R_front"]
+    s.formula(
+        Formula(r"R_A = \frac{P_{гр} (a + L) + P_в b - G x_G}{L}",
+                rf"\frac{{{_in(c.ballast)} \cdot ({_in(c.ballast_arm)} + {_in(c.wheelbase)}) + {_in(c.weight)} \cdot "
+                rf"{_in(c.weight_arm)} - {_in(G)} \cdot {_t(x, sig=5)}}}{{{_in(c.wheelbase)}}}",
+                _t(RA, sig=5, unit="Н"), label="eq-frc-RA"),
+        Formula(r"R_B = P_{гр} + P_в + G - R_A", None, _t(row["R_rear"], sig=5, unit="Н")),
+        Formula(r"\Delta R_A = \frac{R_A}{G + P_в + P_{гр}} \cdot 100\%",
+                rf"\frac{{{_t(RA, sig=5)}}}{{{_in(total)}}} \cdot 100\%", _t(row["front_share_pct"], digits=1, unit="%")),
+        Formula(r"R_{A,min} = k_A (G + P_в + P_{гр})", rf"{_in(c.min_share)} \cdot {_in(total)}",
+                _t(row["R_front_min"], sig=5, unit="Н")))
+    s.paragraph("Наибольший груз, при котором на управляемый мост приходится не меньше R<sub>A,min</sub> "
+                "(из того же уравнения моментов):")
+    m0 = c.ballast * (c.ballast_arm + c.wheelbase) + c.weight * c.weight_arm
+    s.formula(
+        Formula(r"G_{max} = \frac{P_в b + P_{гр} (a + L) - R_{A,min} L}{x_G}",
+                rf"\frac{{{_t(m0, sig=6)} - {_t(row['R_front_min'], sig=5)} \cdot {_in(c.wheelbase)}}}{{{_t(x, sig=5)}}}",
+                _t(row["Gmax_carrier"], sig=5, unit="Н"), label="eq-frc-Gmax"),
+        Formula(r"G_{max}^{лист} = \frac{P_в b + P_{гр} (a + L) - R_{A,min}}{x_G}",
+                rf"\frac{{{_t(m0, sig=6)} - {_t(row['R_front_min'], sig=5)}}}{{{_t(x, sig=5)}}}",
+                _t(row["Gmax_carrier_as_printed"], sig=5, unit="Н")),
+        Formula(r"G_{max}^{*} = \frac{P_в b + P_{гр} (a + L) - k_A L (P_в + P_{гр})}{x_G + k_A L}", None,
+                _t(row["Gmax_carrier_consistent"], sig=5, unit="Н")))
+    s.paragraph("В исходном расчёте (рабочий лист, формула GS6max) из суммы моментов вычитается сила "
+                "R<sub>A,min</sub> без плеча L — формула неоднородна по размерности; её значения приведены «как в "
+                "листе» для сравнения, верное значение — G<sub>max</sub>. Кроме того, R<sub>A,min</sub> вычислена "
+                "для номинального груза; если условие R<sub>A</sub>&nbsp;≥&nbsp;k<sub>A</sub>·ΣG относить к самому "
+                "наибольшему грузу, получается G<sub>max</sub><sup>*</sup>.")
+    cols = [Column("R_front", sub("R", "A"), "Н", digits=0, sig=None), Column("R_rear", sub("R", "B"), "Н", digits=0, sig=None),
+            Column("front_share_pct", "Δ" + sub("R", "A"), "%", digits=1),
+            Column("rear_share_pct", "Δ" + sub("R", "B"), "%", digits=1),
+            Column("Gmax_carrier_as_printed", sub("G", "max") + " (как в листе)", "Н", digits=0, sig=None),
+            Column("Gmax_carrier", sub("G", "max"), "Н", digits=0, sig=None),
+            Column("Gmax_carrier_consistent", sub("G", "max") + "<sup>*</sup>", "Н", digits=0, sig=None)]
+    s.table("Результаты анализа устойчивости и управляемости", _lead(study) + cols, f.table, id="tab-frc-carrier")
+    s.figure("Доля веса на управляемом мосту и наибольший груз по ходу поршня", AxleCurves().draw(study).svg, 160,
+             id="fig-frc-carrier")
+    sc = f.scalars
+    s.paragraph(f"Результаты — в таблице {ref('tab-frc-carrier')} и на рисунке {ref('fig-frc-carrier')}. Наименьшая "
+                f"нагрузка на управляемый мост — {fmt(sc['R_front_min_value'], sig=5)}&nbsp;Н "
+                f"({fmt(sc['R_front_min_value'] / total * 100, digits=1)}&nbsp;% веса, допускается не менее "
+                f"{fmt(100 * c.min_share, digits=0)}&nbsp;%).")
+
+
+# --------------------------------------------------------------------------------------------
+# conclusion
+# --------------------------------------------------------------------------------------------
+def conclusion_lines(study) -> list[str]:
+    """Lines of the ЗАКЛЮЧЕНИЕ about the force analysis (HTML)."""
+    f = study.forces
+    sc = f.scalars
+    out = []
+    big = max((p for p in f.model.pairs if p.kind != KS.K_MOM), key=lambda p: sc[f"R_{p.name}_max"])
+    q = sc[f"q_R_{big.name}_max"]
+    where = (f"φ&nbsp;=&nbsp;{fmt(math.degrees(q - study.grid.start), digits=1)}°" if f.rotary
+             else f"S&nbsp;=&nbsp;{fmt(q, digits=3)}&nbsp;м")
+    out.append(f"Силовой расчёт выполнен по группам Ассура; наибольшая реакция — в паре {big.a}–{big.b}: "
+               f"{fmt(sc[f'R_{big.name}_max'], sig=5)}&nbsp;Н при {where}.")
+    if f.rotary:
+        out.append(f"Наибольший по модулю уравновешивающий момент — {fmt(sc['M_bal_absmax'], sig=5)}&nbsp;Н·м; "
+                   f"проверка рычагом Жуковского и по балансу мощностей даёт расхождение не более "
+                   f"{fmt(sc['dev_zhukovsky_max_pct'], sig=2)}&nbsp;%.")
+    else:
+        out.append(f"Наибольшее усилие гидроцилиндра — {fmt(sc['F_act_absmax'], sig=6)}&nbsp;Н; проверка рычагом "
+                   f"Жуковского даёт расхождение не более {fmt(sc['dev_zhukovsky_max_pct'], sig=2)}&nbsp;%.")
+    s = f.settings
+    if s.capacity is not None:
+        if sc["pressure_exceeded"]:
+            out.append(f"Требуемое давление в гидроцилиндрах достигает {fmt(sc['p_act_max'] / 1e6, sig=5)}&nbsp;МПа при "
+                       f"S&nbsp;=&nbsp;{fmt(sc['q_p_act_max'], digits=3)}&nbsp;м и превышает давление в гидросистеме "
+                       f"{_fin(s.actuator.pressure / 1e6)}&nbsp;МПа: запас грузоподъёмности "
+                       f"{fmt(sc['reserve_min_pct'], digits=1)}&nbsp;%, в начале подъёма груз не поднимается.")
+        else:
+            out.append(f"Наименьший запас грузоподъёмности — {fmt(sc['reserve_min_pct'], digits=1)}&nbsp;%.")
+    if s.carrier is not None:
+        c = s.carrier
+        t = f.table
+        out.append(f"Доля веса на управляемом мосту — от {fmt(t['front_share_pct'].min(), digits=1)} до "
+                   f"{fmt(t['front_share_pct'].max(), digits=1)}&nbsp;% (не менее {fmt(100 * c.min_share, digits=0)}&nbsp;%); "
+                   f"наибольший допустимый груз по условию управляемости — от {fmt(t['Gmax_carrier'].min(), sig=5)} до "
+                   f"{fmt(t['Gmax_carrier'].max(), sig=5)}&nbsp;Н по ходу поршня (формула рабочего листа, неоднородная "
+                   f"по размерности, дала бы {fmt(t['Gmax_carrier_as_printed'].min(), sig=5)}…"
+                   f"{fmt(t['Gmax_carrier_as_printed'].max(), sig=5)}&nbsp;Н).")
+    return out

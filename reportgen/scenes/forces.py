@@ -1,0 +1,468 @@
+"""Drawings of the force analysis: each Assur group taken apart with its loads and its force
+polygon to scale, Жуковский's lever (the velocity plan turned by 90°), reaction diagrams over
+the cycle, and the capacity, actuator and axle-load curves of an actuator-driven linkage.
+
+Scenes only draw what ``study.forces`` computed (``Forces.details`` at a report position,
+``Forces.cycle`` over the cycle)."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+from matplotlib.patches import Arc
+
+from ..analysis.forces import crank_pin, lever_points
+from ..analysis.plans import velocity_plan
+from ..core import kinetostatics as KS
+from ..style import mplstyle
+from ..style.numbers import fmt
+from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow, draw_mechanism, nice_scale, subscript_label
+from .mechanism import Drawing
+
+BLUE = "#1f4e9c"
+RED = "#b2182b"
+ARROW_MM = 22.0          # the largest load arrow on a scheme (arrows on schemes are not to scale)
+MIN_ARROW_MM = 6.0
+
+
+def sub(text: str) -> str:
+    """Digits as Unicode subscripts after the first character: R12 → R₁₂, Φ2 → Φ₂."""
+    return text[0] + text[1:].translate(SUBSCRIPT)
+
+
+def load_label(ld: dict) -> str:
+    """Label of a load on a drawing: G₂, Φ₂, M_Φ₂ (as MΦ₂), or the load's own name."""
+    if ld["kind"] in ("G", "Phi", "MPhi", "Mfly"):
+        return sub(ld["name"]) if ld["kind"] != "MPhi" and ld["kind"] != "Mfly" else "M" + sub(ld["name"][1:])
+    return ld["name"]
+
+
+def pair_label(a: str, b: str) -> str:
+    return "R" + (a + b).translate(SUBSCRIPT)
+
+
+@dataclass
+class Vector:
+    """A force of the group's polygon: label, (Fx, Fy), point of application, role."""
+
+    label: str
+    F: np.ndarray
+    at: tuple[float, float]
+    role: str              # "load", "known", "unknown", "internal"
+    link: str = ""         # the link the force acts on
+    other: str = ""        # internal reaction: the link that exerts it
+
+
+@dataclass
+class GroupDrawing(Drawing):
+    mu_F: float = 0.0
+    vectors: list[Vector] = field(default_factory=list)
+
+
+def group_vectors(study, label: str, gi: int) -> tuple[list[Vector], list[dict], list[Vector]]:
+    """Forces on group ``gi`` at position ``label``: the external forces (loads and known
+    reactions of the groups solved before, then this group's unknown reactions), the moments
+    on its links, and its internal reactions (force on the second link of the pair)."""
+    f = study.forces
+    det = f.details(label)
+    g = f.model.groups[gi]
+    links = set(g.links)
+    cols = det["cols"]
+    ext, moments, internal = [], [], []
+    for ld in det["loads"]:
+        if ld["link"] not in links:
+            continue
+        if ld["M"] is None:
+            ext.append(Vector(load_label(ld), np.array([ld["Fx"], ld["Fy"]]),
+                              (cols["x_" + ld["point"]], cols["y_" + ld["point"]]), "load", ld["link"]))
+        else:
+            moments.append(dict(label=load_label(ld), M=ld["M"], link=ld["link"]))
+    unknown = set(g.pairs)
+    for k, pv in enumerate(det["pairs"]):
+        p = pv["pair"]
+        if p.kind == KS.K_MOM:
+            if p.b in links:
+                moments.append(dict(label="Mур", M=pv["M"], link=p.b))
+            continue
+        F = np.array([pv["Rx"], pv["Ry"]])
+        at = (pv["x"], pv["y"])
+        if p.a in links and p.b in links:
+            internal.append(Vector(pair_label(p.a, p.b), F, at, "internal", p.b, p.a))
+        elif p.b in links:
+            ext.append(Vector(pair_label(p.a, p.b), F, at, "unknown" if k in unknown else "known", p.b))
+        elif p.a in links:
+            ext.append(Vector(pair_label(p.b, p.a), -F, at, "unknown" if k in unknown else "known", p.a))
+    order = {"load": 0, "known": 1, "unknown": 2}
+    ext.sort(key=lambda v: order[v.role])
+    return ext, moments, internal
+
+
+def _arrow_mm(F: float, Fmax: float) -> float:
+    return max(MIN_ARROW_MM, ARROW_MM * F / Fmax) if Fmax > 0 else MIN_ARROW_MM
+
+
+def _moment_arc(cv: Canvas, x, y, M, label, color=INK, r_mm=5.0):
+    """A moment as an arc with an arrowhead (counter-clockwise for M > 0)."""
+    ax = cv.ax
+    r = cv.mm(r_mm)
+    ax.add_patch(Arc((x, y), 2 * r, 2 * r, theta1=20, theta2=290, color=color, lw=1.0, zorder=6))
+    end = math.radians(290 if M > 0 else 20)
+    tip = (x + r * math.cos(end), y + r * math.sin(end))
+    d = 1 if M > 0 else -1
+    tang = (-math.sin(end) * d, math.cos(end) * d)
+    arrow(ax, tip[0] - tang[0] * cv.mm(1.5), tip[1] - tang[1] * cv.mm(1.5), tip[0], tip[1], color=color,
+          lw=1.0, head_mm=2.0, zorder=7)
+    ax.text(x + r * 1.25, y + r * 1.25, label, fontsize=8, color=color, ha="left", va="bottom", zorder=7)
+
+
+class GroupForces:
+    """One Assur group taken apart at a report position: the links to scale μ_l with the loads
+    and reactions as arrows (arrows not to scale), and beside it the force polygon of the group
+    to scale μ_F (external forces head to tail; the internal reaction closes the polygon of one
+    link, dashed)."""
+
+    needs = ("forces",)
+
+    def __init__(self, label: str, gi: int):
+        self.label, self.gi = label, gi
+
+    def draw(self, study) -> GroupDrawing:
+        f = study.forces
+        mech = study.mechanism
+        det = f.details(self.label)
+        cols = det["cols"]
+        g = f.model.groups[self.gi]
+        ext, moments, internal = group_vectors(study, self.label, self.gi)
+        pts = {p for l in g.links for p in mech.link(l).points}
+        xs = np.array([cols["x_" + p] for p in pts])
+        ys = np.array([cols["y_" + p] for p in pts])
+        span = max(np.ptp(xs), np.ptp(ys), 1e-6)
+        mu_l = nice_scale(span, 70.0)
+        Fmax = max([float(np.hypot(*v.F)) for v in ext + internal] + [1e-12])
+        # arrow tips on the scheme (mm converted with μ_l)
+        tips = []
+        for v in ext:
+            n = float(np.hypot(*v.F))
+            if n < 1e-9 * Fmax:
+                continue
+            L = (_arrow_mm(n, Fmax) + 4.0) * mu_l * (1 if v.role == "load" else -1)
+            tips.append((v.at[0] + v.F[0] / n * L, v.at[1] + v.F[1] / n * L))
+        allx = np.concatenate([xs, [t[0] for t in tips]])
+        ally = np.concatenate([ys, [t[1] for t in tips]])
+        # force polygon: the external forces link by link (the link with most forces first), so
+        # that an internal reaction closes the polygon of the links before it
+        seq = [v for v in ext if float(np.hypot(*v.F)) > 1e-9 * Fmax]
+        count = {l: sum(1 for v in seq if v.link == l) for l in g.links}
+        order = sorted(g.links, key=lambda l: (-count[l], g.links.index(l)))
+        seq = [v for l in order for v in seq if v.link == l]
+        cum = np.cumsum([np.zeros(2)] + [v.F for v in seq], axis=0)
+        pext = max(np.ptp(cum[:, 0]), np.ptp(cum[:, 1]), 1e-9)
+        mu_F = nice_scale(pext, 62.0)
+        k = mu_l / mu_F                                   # force → data units of the canvas
+        x0 = allx.max() + cv_gap(mu_l) - cum[:, 0].min() * k
+        y0 = (ally.max() + ally.min()) / 2 - (cum[:, 1].max() + cum[:, 1].min()) / 2 * k
+        poly = np.column_stack([x0 + cum[:, 0] * k, y0 + cum[:, 1] * k])
+        cv = Canvas(min(allx.min(), poly[:, 0].min()), max(allx.max(), poly[:, 0].max()),
+                    min(ally.min(), poly[:, 1].min()), max(ally.max(), poly[:, 1].max()), mu_l,
+                    margin_mm=10, max_w=170.0)
+        ax = cv.ax
+        draw_mechanism(cv, mech, cols, only=set(g.links), supports=False, lw=1.4, com=True)
+        for v in ext:
+            n = float(np.hypot(*v.F))
+            if n < 1e-9 * Fmax:
+                continue
+            L = _arrow_mm(n, Fmax) * mu_l
+            color = {"load": INK, "known": INK, "unknown": BLUE}[v.role]
+            ex, ey = v.F[0] / n, v.F[1] / n
+            if v.role == "load":          # loads start at their point, reactions end at the pair
+                a0, a1 = v.at, (v.at[0] + ex * L, v.at[1] + ey * L)
+                lx, ly = a1[0] + ex * cv.mm(2.5), a1[1] + ey * cv.mm(2.5)
+            else:
+                a0, a1 = (v.at[0] - ex * L, v.at[1] - ey * L), v.at
+                lx, ly = a0[0] - ex * cv.mm(2.5), a0[1] - ey * cv.mm(2.5)
+            arrow(ax, a0[0], a0[1], a1[0], a1[1], color=color, lw=1.2, zorder=6)
+            ax.text(lx, ly, v.label, fontsize=8, color=color, ha="center", va="center", zorder=7)
+        placed: dict[str, int] = {}
+        for m in moments:
+            if abs(m["M"]) < 1e-12:
+                continue
+            S = mech.link(m["link"]).com or f.model.ref[m["link"]]
+            k_ = placed.get(S, 0)
+            placed[S] = k_ + 1
+            _moment_arc(cv, cols["x_" + S], cols["y_" + S], m["M"], m["label"],
+                        RED if m["label"] == "Mур" else INK, r_mm=5.0 + 3.5 * k_)
+        # polygon
+        for i, v in enumerate(seq):
+            a, b = poly[i], poly[i + 1]
+            color = BLUE if v.role == "unknown" else INK
+            arrow(ax, a[0], a[1], b[0], b[1], color=color, lw=1.3, zorder=6)
+            mid = (a + b) / 2
+            d = b - a
+            nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
+            if np.hypot(*d) > cv.mm(3):
+                ax.text(mid[0] + nrm[0] * cv.mm(2.8), mid[1] + nrm[1] * cv.mm(2.8), v.label, fontsize=8,
+                        color=color, ha="center", va="center", zorder=7)
+        # internal reactions: a cut between the first links of the order and the rest crossed by
+        # one internal pair; its force on the first links closes their polygon (dashed)
+        n = 0
+        closing = []
+        for kk in range(1, len(order)):
+            n += count[order[kk - 1]]
+            side = set(order[:kk])
+            cross = [v for v in internal if (v.link in side) != (v.other in side)]
+            if len(cross) != 1 or n == 0:
+                continue
+            v = cross[0]
+            F, lab = (v.F, v.label) if v.link in side else (-v.F, pair_label(v.link, v.other))
+            start, end = poly[n], poly[0]
+            arrow(ax, start[0], start[1], end[0], end[1], color=BLUE, lw=1.0, ls="--", zorder=5)
+            closing.append(Vector(lab, F, v.at, "internal", v.link if v.link in side else v.other))
+            mid = (start + end) / 2
+            d = end - start
+            nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
+            if np.hypot(*d) > cv.mm(3):
+                ax.text(mid[0] + nrm[0] * cv.mm(2.8), mid[1] + nrm[1] * cv.mm(2.8), lab, fontsize=8, color=BLUE,
+                        ha="center", va="center")
+        ax.plot([poly[0, 0]], [poly[0, 1]], "o", ms=2.5, color=INK)
+        return GroupDrawing(cv.svg(), cv.width_mm, mu_l, mu_F, seq + closing)
+
+
+def cv_gap(mu_l: float) -> float:
+    """Gap between the scheme and the force polygon: 22 mm in canvas units."""
+    return 22.0 * mu_l
+
+
+@dataclass
+class LeverDrawing(Drawing):
+    moments: pd.DataFrame = None        # label, F [N], h [mm], Fh = ±F·h [N·mm], balancing
+    analog: bool = True                 # a plan of velocity analogs (static mode)
+    arm_mm: float = 0.0                 # signed moment of the unit balancing load about the pole [mm]
+
+
+class ZhukovskyLever:
+    """Жуковский's lever: the plan of velocities (analogs when the motion is static) turned by
+    90° counter-clockwise, with every load applied at the image of its point (moments as
+    couples on two points of their link) and the balancing force at the image of the crank pin
+    (or the actuator's force on the rod and the cylinder)."""
+
+    needs = ("forces", "kinematics")
+
+    def __init__(self, label: str):
+        self.label = label
+
+    def draw(self, study) -> LeverDrawing:
+        f = study.forces
+        mech = study.mechanism
+        det = f.details(self.label)
+        cols = det["cols"]
+        w = float(f.solution.omega[det["index"]])
+        analog = abs(w) < 1e-300
+        scale = 1.0 if analog else w
+        row = pd.Series({**cols, **{f"vx_{p}": scale * cols[f"vqx_{p}"] for p in _points(mech)},
+                         **{f"vy_{p}": scale * cols[f"vqy_{p}"] for p in _points(mech)}})
+        plan = velocity_plan(row, mech)
+        rot = {k: np.array([-v[1], v[0]]) for k, v in plan.tips.items()}
+        # applied loads (forces at images, moments as couples)
+        items = []
+        for ld in det["loads"]:
+            if ld["M"] is None:
+                p = ld["point"]
+                items.append((load_label(ld), rot[p], np.array([ld["Fx"], ld["Fy"]]), False))
+            else:
+                cc = {k: np.array([v]) for k, v in cols.items()}
+                (xa, ya, va), (xb, yb, vb) = lever_points(cc, mech, ld["link"])
+                dx, dy = float(xb[0] - xa[0]), float(yb[0] - ya[0])
+                l2 = dx * dx + dy * dy
+                fc = ld["M"] / l2 * np.array([-dy, dx])
+                pa = scale * np.array([-float(va[1][0]), float(va[0][0])])
+                pb = scale * np.array([-float(vb[1][0]), float(vb[0][0])])
+                lab = load_label(ld)
+                items.append((lab + "′", pb, fc, False))
+                items.append((lab + "″", pa, -fc, False))
+        row_f = f.row(self.label)
+        d = mech.driver
+        if d.rotary:
+            pin = crank_pin(mech)
+            o = np.array([cols["x_" + d.center], cols["y_" + d.center]])
+            a = np.array([cols["x_" + pin], cols["y_" + pin]])
+            t = np.array([-(a - o)[1], (a - o)[0]]) / np.hypot(*(a - o))
+            bal = [("Fур", rot[pin], float(row_f["F_bal_zhukovsky"]) * t, True)]
+            arm = float(rot[pin][0] * t[1] - rot[pin][1] * t[0])
+        else:
+            e = np.array([cols["x_" + d.end], cols["y_" + d.end]])
+            b = np.array([cols["x_" + d.center], cols["y_" + d.center]])
+            u = (e - b) / np.hypot(*(e - b))
+            wc = cols["wq_" + d.link]
+            vc = np.array([cols["vqx_" + d.center] - wc * (e - b)[1], cols["vqy_" + d.center] + wc * (e - b)[0]])
+            pc = scale * np.array([-vc[1], vc[0]])
+            F = float(row_f["F_act_zhukovsky"])
+            dp = rot[d.end] - pc
+            arm = float(dp[0] * u[1] - dp[1] * u[0])
+            bal = [("F" + d.rod.translate(SUBSCRIPT), rot[d.end], F * u, True),
+                   ("F" + d.link.translate(SUBSCRIPT), pc, -F * u, True)]
+        tips = np.array([[0.0, 0.0]] + [list(v) for v in rot.values()] + [list(it[1]) for it in items + bal])
+        cv = Canvas.fit(tips[:, 0], tips[:, 1], avail_w=120, avail_h=120, margin_mm=16)
+        ax = cv.ax
+        for seg in plan.segments:
+            p0 = np.zeros(2) if seg.start == "p" else rot[seg.start]
+            p1 = rot[seg.end]
+            ax.plot([p0[0], p1[0]], [p0[1], p1[1]], color=GREY if seg.kind == "abs" else INK,
+                    lw=0.8 if seg.kind == "abs" else 1.2, ls="--" if seg.kind == "abs" else "-", zorder=2)
+        ax.plot([0], [0], "o", ms=3, color=INK)
+        ax.text(-cv.mm(3), -cv.mm(3), "p", fontsize=10, style="italic", ha="center", va="center")
+        for lab, v in rot.items():
+            if lab not in plan.point_of_tip or np.hypot(*v) < 1e-12:
+                continue
+            ax.text(v[0] + cv.mm(2.2), v[1] + cv.mm(2.2), subscript_label(lab, lower=True), fontsize=8,
+                    ha="center", va="center", color=GREY)
+        Fmax = max([float(np.hypot(*it[2])) for it in items + bal] + [1e-12])
+        rows = []
+        for lab, p, F, is_bal in items + bal:
+            n = float(np.hypot(*F))
+            if n < 1e-9 * Fmax:
+                continue
+            L = cv.mm(_arrow_mm(n, Fmax) * 0.8)
+            color = RED if is_bal else INK
+            tip = p + F / n * L
+            arrow(ax, p[0], p[1], tip[0], tip[1], color=color, lw=1.1, zorder=6)
+            ax.text(tip[0] + F[0] / n * cv.mm(2.5), tip[1] + F[1] / n * cv.mm(2.5), lab, fontsize=8,
+                    color=color, ha="center", va="center", zorder=7)
+            mom = float(p[0] * F[1] - p[1] * F[0]) / cv.mu
+            rows.append(dict(label=lab, F=n, h=abs(mom) / n, Fh=mom, balancing=is_bal))
+        table = pd.DataFrame(rows, columns=["label", "F", "h", "Fh", "balancing"])
+        return LeverDrawing(cv.svg(), cv.width_mm, cv.mu, table, analog, arm / cv.mu)
+
+
+def _points(mech) -> list[str]:
+    out = []
+    for l in mech.links:
+        for p in l.points:
+            if p not in out:
+                out.append(p)
+    return out
+
+
+# --------------------------------------------------------------------------------------------
+# Curves over the cycle
+# --------------------------------------------------------------------------------------------
+def _x(study, df):
+    if study.mechanism.driver.rotary:
+        return np.degrees(df["q"].to_numpy() - study.grid.start), "φ, град", 30
+    return df["q"].to_numpy(), "S, м", None
+
+
+def _mark_positions(ax, study, x_of, y_col, tab):
+    x = x_of(tab)
+    ax.plot(x, tab[y_col].to_numpy(), "o", ms=3, color=INK)
+
+
+class ReactionCurves:
+    """Magnitudes of the reactions of every pair over the cycle (kN) and the balancing moment
+    (or the actuator force)."""
+
+    needs = ("forces",)
+
+    def draw(self, study) -> Drawing:
+        f = study.forces
+        cyc, tab = f.cycle, f.table
+        x, xlabel, step = _x(study, cyc)
+        fig = mplstyle.figure(160, 150)
+        ax1, ax2 = fig.subplots(2, 1, sharex=True, height_ratios=[3, 2])
+        for p in f.model.pairs:
+            if p.kind == KS.K_MOM:
+                continue
+            key = shown_key(f, p)
+            ax1.plot(x, cyc["R_" + key] / 1e3, lw=1.2, label=pair_label(*key.split("_")[:2]))
+        ax1.set_ylabel("R, кН")
+        ax1.legend(ncols=6, fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), frameon=False)
+        main, lab = ("M_bal", "Mур, Н·м") if f.rotary else ("F_act", "F, кН")
+        k = 1.0 if f.rotary else 1e-3
+        xt = _x(study, tab)[0]
+        ax2.plot(x, cyc[main] * k, lw=1.3, label="Mур" if f.rotary else None)
+        ax2.plot(xt, tab[main] * k, "o", ms=3)
+        if "M_bal_linkage" in cyc:
+            ax2.plot(x, cyc["M_bal_linkage"], lw=1.1, ls="--", label="Mур без маховика")
+            ax2.legend(fontsize=8, loc="best")
+        ax2.axhline(0, color="0.3", lw=0.6)
+        ax2.set_ylabel(lab)
+        ax2.set_xlabel(xlabel)
+        if step:
+            ax2.set_xticks(np.arange(0, 361, step))
+            ax2.set_xlim(0, 360)
+        return Drawing(mplstyle.to_svg(fig), 160, 0.0)
+
+
+def shown_key(f, p) -> str:
+    """The orientation of a pair as chosen in ``[forces] pairs`` (else as declared)."""
+    rev = f"{p.b}_{p.a}"
+    if rev in f.settings.pairs and p.name not in f.settings.pairs:
+        return rev
+    return p.name
+
+
+class CapacityCurves:
+    """Worksheet 002, figures 4.1–4.3: the capacity at the points and at the load (with the
+    load), the actuator force with the cylinders' force, the pressure with the system pressure."""
+
+    needs = ("forces",)
+
+    def draw(self, study) -> Drawing:
+        f = study.forces
+        s = f.settings
+        cyc, tab = f.cycle, f.table
+        S = cyc["q"].to_numpy()
+        fig = mplstyle.figure(160, 190)
+        ax1, ax2, ax3 = fig.subplots(3, 1, sharex=True)
+        c = s.capacity
+        for pt in list(c.points) + [c.point]:
+            ax1.plot(S, cyc["Gcap_" + pt] / 1e3, lw=1.3, label="G" + pt.translate(SUBSCRIPT))
+            ax1.plot(tab["q"], tab["Gcap_" + pt] / 1e3, "o", ms=3)
+        P = float(-[ld for ld in f.solution.loads if ld.name == c.load][0].Fy[0])
+        ax1.axhline(P / 1e3, color=RED, lw=1.0, ls="--", label=f"{c.load} = {fmt(P / 1e3, sig=4)} кН")
+        ax1.set_ylabel("G, кН")
+        ax1.legend(fontsize=8, loc="best")
+        ax2.plot(S, cyc["F_act"] / 1e3, lw=1.3)
+        ax2.plot(tab["q"], tab["F_act"] / 1e3, "o", ms=3)
+        ax2.axhline(s.actuator.F_max / 1e3, color=RED, lw=1.0, ls="--", label="k·p·η·A")
+        ax2.set_ylabel("F, кН")
+        ax2.legend(fontsize=8, loc="best")
+        ax3.plot(S, cyc["p_act"] / 1e6, lw=1.3)
+        ax3.plot(tab["q"], tab["p_act"] / 1e6, "o", ms=3)
+        ax3.axhline(s.actuator.pressure / 1e6, color=RED, lw=1.0, ls="--", label="давление в гидросистеме")
+        ax3.set_ylabel("p, МПа")
+        ax3.set_xlabel("S, м")
+        ax3.legend(fontsize=8, loc="best")
+        return Drawing(mplstyle.to_svg(fig), 160, 0.0)
+
+
+class AxleCurves:
+    """Worksheet 002, figure 6.2: the shares of the weight on the steered and the rear axle
+    and the maximum capacity (corrected, self-consistent, and as printed in the worksheet)."""
+
+    needs = ("forces",)
+
+    def draw(self, study) -> Drawing:
+        f = study.forces
+        c = f.settings.carrier
+        cyc, tab = f.cycle, f.table
+        S = cyc["q"].to_numpy()
+        fig = mplstyle.figure(160, 130)
+        ax1, ax2 = fig.subplots(2, 1, sharex=True)
+        ax1.plot(S, cyc["front_share_pct"], lw=1.3, label="управляемый мост R_A")
+        ax1.plot(tab["q"], tab["front_share_pct"], "o", ms=3)
+        ax1.axhline(100 * c.min_share, color=RED, lw=1.0, ls="--", label="наименьшая допустимая доля")
+        ax1.set_ylabel("R_A/ΣG, %")
+        ax1.legend(fontsize=8, loc="best")
+        ax2.plot(S, cyc["Gmax_carrier"] / 1e3, lw=1.3, label="G_max (исправлено)")
+        ax2.plot(S, cyc["Gmax_carrier_consistent"] / 1e3, lw=1.1, ls="-.", label="G_max при R_A,min(G)")
+        ax2.plot(S, cyc["Gmax_carrier_as_printed"] / 1e3, lw=1.0, ls=":", color=GREY, label="как в листе")
+        ax2.set_ylabel("G, кН")
+        ax2.set_xlabel("S, м")
+        ax2.legend(fontsize=8, loc="best")
+        return Drawing(mplstyle.to_svg(fig), 160, 0.0)
+
+
+__all__ = ["GroupForces", "GroupDrawing", "ZhukovskyLever", "LeverDrawing", "ReactionCurves", "CapacityCurves",
+           "AxleCurves", "group_vectors", "load_label", "pair_label", "shown_key", "sub", "Vector"]
