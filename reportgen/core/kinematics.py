@@ -28,6 +28,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from .linalg import solve_dense
+
 # joint kinds
 J_REV = 0
 J_PRI = 1
@@ -77,55 +79,6 @@ def _pri(jf, j, q):
 def _glob(pose, b, px, py):
     ux, uy = _rot(pose[b, 2], px, py)
     return pose[b, 0] + ux, pose[b, 1] + uy
-
-
-@njit(cache=True)
-def _solve_dense(a, b, n):
-    """Gaussian elimination with partial pivoting on the leading n×n block (in place).
-
-    Returns the smallest |pivot| divided by the largest row norm (a conditioning indicator)."""
-    scale = 0.0
-    for i in range(n):
-        s = 0.0
-        for k in range(n):
-            s += a[i, k] * a[i, k]
-        if s > scale:
-            scale = s
-    scale = np.sqrt(scale)
-    if scale == 0.0:
-        scale = 1.0
-    minpiv = 1e300
-    for c in range(n):
-        p = c
-        best = abs(a[c, c])
-        for r in range(c + 1, n):
-            if abs(a[r, c]) > best:
-                best = abs(a[r, c])
-                p = r
-        if best < minpiv:
-            minpiv = best
-        if best == 0.0:
-            return 0.0
-        if p != c:
-            for k in range(n):
-                t = a[c, k]
-                a[c, k] = a[p, k]
-                a[p, k] = t
-            t = b[c]
-            b[c] = b[p]
-            b[p] = t
-        for r in range(c + 1, n):
-            f = a[r, c] / a[c, c]
-            if f != 0.0:
-                for k in range(c, n):
-                    a[r, k] -= f * a[c, k]
-                b[r] -= f * b[c]
-    for c in range(n - 1, -1, -1):
-        s = b[c]
-        for k in range(c + 1, n):
-            s -= a[c, k] * b[k]
-        b[c] = s / a[c, c]
-    return minpiv / scale
 
 
 @njit(cache=True)
@@ -550,7 +503,7 @@ def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of):
             row += 1
     if row != n:
         return F_SINGULAR, 0.0, 0.0
-    quality = _solve_dense(mat, rhs, n)
+    quality = solve_dense(mat, rhs, n, 0.0)
     if quality < 1e-13:
         return F_SINGULAR, 0.0, quality
     for k in range(nbg):
@@ -573,7 +526,7 @@ def _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of):
             res_norm = max(res_norm, abs(rhs[r]))
         if res_norm <= NEWTON_TOL * size:
             return F_OK, 0.0, 1.0
-        quality = _solve_dense(mat, rhs, n)
+        quality = solve_dense(mat, rhs, n, 0.0)
         if quality == 0.0:
             return F_NEWTON, res_norm, 0.0
         for k in range(nbg):
@@ -643,7 +596,7 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
             n = 3 * nbg
             # first analogs
             _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 1, mat, rhs, col_of)
-            piv = _solve_dense(mat, rhs, n)
+            piv = solve_dense(mat, rhs, n, 0.0)
             if kind == G_NEWTON or kind == G_LIN:
                 qual = piv
             if piv < 1e-14:
@@ -657,7 +610,7 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
                     v[gb[k], c] = rhs[3 * k + c]
             # second analogs
             _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 2, mat, rhs, col_of)
-            _solve_dense(mat, rhs, n)
+            solve_dense(mat, rhs, n, 0.0)
             for k in range(nbg):
                 for c in range(3):
                     acc[gb[k], c] = rhs[3 * k + c]

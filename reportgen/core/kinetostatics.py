@@ -32,6 +32,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from .linalg import solve_dense
+
 # unknown kinds of a pair
 K_REV = 0      # revolute: R_x, R_y
 K_PRI = 1      # prismatic: N, M_p
@@ -72,54 +74,6 @@ def _unit(kind, c, ux, uy):
             return -uy, ux, 0.0
         return 0.0, 0.0, 1.0
     return 0.0, 0.0, 1.0
-
-
-@njit(cache=True)
-def _lu_solve(a, b, n):
-    """Gaussian elimination with partial pivoting on the leading n×n block (in place);
-    returns the smallest |pivot| relative to the largest row norm (0 if singular)."""
-    scale = 0.0
-    for i in range(n):
-        s = 0.0
-        for k in range(n):
-            s += a[i, k] * a[i, k]
-        if s > scale:
-            scale = s
-    scale = np.sqrt(scale)
-    if scale == 0.0:
-        return 0.0
-    minpiv = 1e300
-    for c in range(n):
-        p = c
-        best = abs(a[c, c])
-        for r in range(c + 1, n):
-            if abs(a[r, c]) > best:
-                best = abs(a[r, c])
-                p = r
-        if best < minpiv:
-            minpiv = best
-        if best <= SINGULAR_PIVOT * scale:
-            return 0.0
-        if p != c:
-            for k in range(n):
-                t = a[c, k]
-                a[c, k] = a[p, k]
-                a[p, k] = t
-            t = b[c]
-            b[c] = b[p]
-            b[p] = t
-        for r in range(c + 1, n):
-            f = a[r, c] / a[c, c]
-            if f != 0.0:
-                for k in range(c, n):
-                    a[r, k] -= f * a[c, k]
-                b[r] -= f * b[c]
-    for c in range(n - 1, -1, -1):
-        s = b[c]
-        for k in range(c + 1, n):
-            s -= a[c, k] * b[k]
-        b[c] = s / a[c, c]
-    return minpiv / scale
 
 
 @njit(cache=True)
@@ -207,7 +161,7 @@ def solve_reactions(jkind, jlink, joff, glink, gnl, gjoint, gnj, jpt, jdir, lref
                             rhs[r0] -= fx * v
                             rhs[r0 + 1] -= fy * v
                             rhs[r0 + 2] -= mz * v
-            qual = _lu_solve(mat, rhs, n)
+            qual = solve_dense(mat, rhs, n, SINGULAR_PIVOT)
             quality[i, g] = qual
             if qual == 0.0 and fail[0] == 0:
                 fail[0] = F_SINGULAR
