@@ -465,8 +465,25 @@ def works(M: ArrayFunc, Mdrive: float | ArrayFunc | None, grid,
 # --------------------------------------------------------------------------------------------
 # 4. Exact periodic motion (needed by the other methods for "δ achieved")
 # --------------------------------------------------------------------------------------------
+class _EnergyIntegral:
+    """ω and ε of a motion given by the energy integral ½(J_I + J_II(φ))ω² = T₀ + A_Σ(φ)
+    (the exact solution, and Виттенбауэр's with T₀ from the upper tangency — Гутьяр's form).
+    Needs the attributes ``T0``, ``J_I`` and ``model``."""
+
+    def omega_at(self, phi) -> np.ndarray:
+        """ω(φ) = √(2(T₀ + A_Σ(φ))/(J_I + J_II(φ))) at arbitrary φ."""
+        m = self.model
+        return np.sqrt(2.0 * (self.T0 + m.A(phi)) / (self.J_I + m.J2(phi)))
+
+    def eps_at(self, phi) -> np.ndarray:
+        """ε(φ) = (M_Σ − ½ J_II′ ω²)/(J_I + J_II) at arbitrary φ."""
+        m = self.model
+        w = self.omega_at(phi)
+        return (m.M_sum(phi) - 0.5 * m.dJ2(phi) * w * w) / (self.J_I + m.J2(phi))
+
+
 @dataclass(frozen=True, eq=False)
-class ExactMotion:
+class ExactMotion(_EnergyIntegral):
     """Exact periodic steady motion ½(J_I + J_II)ω² = T₀ + A_Σ(φ).
 
     J_I [kg·m²], T0 [J] (kinetic energy at φ_a is T0 + A_Σ(φ_a) = T0);
@@ -491,16 +508,6 @@ class ExactMotion:
     algorithm: str
     model: DynamicModel = field(repr=False)
 
-    def omega_at(self, phi) -> np.ndarray:
-        """ω(φ) = √(2(T₀ + A_Σ(φ))/(J_I + J_II(φ))) at arbitrary φ."""
-        m = self.model
-        return np.sqrt(2.0 * (self.T0 + m.A(phi)) / (self.J_I + m.J2(phi)))
-
-    def eps_at(self, phi) -> np.ndarray:
-        """ε(φ) = (M_Σ − ½ J_II′ ω²)/(J_I + J_II) at arbitrary φ."""
-        m = self.model
-        w = self.omega_at(phi)
-        return (m.M_sum(phi) - 0.5 * m.dJ2(phi) * w * w) / (self.J_I + m.J2(phi))
 
 
 def _check_targets(omega_m: float, delta: float):
@@ -782,7 +789,7 @@ class TangentPoint:
 
 
 @dataclass(frozen=True, eq=False)
-class WittenbauerResult:
+class WittenbauerResult(_EnergyIntegral):
     """Energy–mass (Виттенбауэр) diagram ΔT(J_II) and the flywheel it gives.
 
     Curve: J_curve = J_II(φ), dT_curve = A_Σ(φ) on the grid (phi).
@@ -822,16 +829,6 @@ class WittenbauerResult:
     delta_achieved: float
     delta_achieved_linear: float
     model: DynamicModel = field(repr=False)
-
-    def omega_at(self, phi) -> np.ndarray:
-        """ω(φ) = √(2(T₀ + A_Σ)/(J_I + J_II)) with T₀ from the upper tangency (Гутьяр form)."""
-        m = self.model
-        return np.sqrt(2.0 * (self.T0 + m.A(phi)) / (self.J_I + m.J2(phi)))
-
-    def eps_at(self, phi) -> np.ndarray:
-        m = self.model
-        w = self.omega_at(phi)
-        return (m.M_sum(phi) - 0.5 * m.dJ2(phi) * w * w) / (self.J_I + m.J2(phi))
 
     def upper_tangent(self, J) -> np.ndarray:
         return self.K + self.slope_max * np.asarray(J, dtype=float)
