@@ -1,7 +1,6 @@
 """The coursework report end to end: content, layout facts, fonts, determinism, laziness."""
 import hashlib
 import re
-import shutil
 import subprocess
 from pathlib import Path
 
@@ -13,7 +12,6 @@ from reportgen.cli import main
 from reportgen.report.assemble import build_report, needs
 from reportgen.report.render import build_outputs
 
-pytestmark = pytest.mark.skipif(shutil.which("pdftotext") is None, reason="poppler-utils are installed by scripts/setup.sh")
 
 
 @pytest.fixture(scope="module")

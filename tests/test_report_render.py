@@ -7,7 +7,6 @@ from __future__ import annotations
 import hashlib
 import math
 import re
-import shutil
 import subprocess
 import warnings
 
@@ -37,8 +36,6 @@ from reportgen.report.formulas import (
     render_latex,
 )
 
-POPPLER = shutil.which("pdftotext") and shutil.which("pdffonts")
-needs_poppler = pytest.mark.skipif(not POPPLER, reason="poppler-utils not installed")
 
 
 # ---------------------------------------------------------------- fixtures
@@ -79,7 +76,6 @@ def pdf_pages(path) -> list[str]:
 # ---------------------------------------------------------------- PDF
 
 
-@needs_poppler
 def test_page_count_and_passes(outputs):
     pages = pdf_pages(outputs["pdf"])
     assert 10 <= len(pages) <= 15
@@ -92,7 +88,6 @@ def test_page_count_and_passes(outputs):
     assert all(b - a >= 10 for a, b in zip(bounds, bounds[1:]))
 
 
-@needs_poppler
 def test_toc_lines_with_page_numbers(outputs):
     pages = pdf_pages(outputs["pdf"])
     toc_page = next(i for i, p in enumerate(pages) if "СОДЕРЖАНИЕ" in p)
@@ -115,7 +110,6 @@ def test_toc_lines_with_page_numbers(outputs):
     assert "ЗАКЛЮЧЕНИЕ" in pages[entries["ЗАКЛЮЧЕНИЕ"] - 1]
 
 
-@needs_poppler
 def test_captions_numbers_and_commas(outputs):
     text = pdftotext(outputs["pdf"]).replace("\u00a0", " ")
     for needle in ["ПОЯСНИТЕЛЬНАЯ ЗАПИСКА", "ЗАДАНИЕ", "Таблица 1.1 — Кинематические",
@@ -140,7 +134,6 @@ def test_captions_numbers_and_commas(outputs):
         assert not re.fullmatch(r"\s*[А-Яа-яЁё]{1,8}\u2010", line), line
 
 
-@needs_poppler
 def test_every_continuation_page_starts_with_label(outputs):
     pages = pdf_pages(outputs["pdf"])
     cont = [p for p in pages if "Продолжение таблицы 1.1" in p]
@@ -151,7 +144,6 @@ def test_every_continuation_page_starts_with_label(outputs):
         assert "№" in p  # the header is repeated
 
 
-@needs_poppler
 def test_no_number_on_title_page(outputs):
     pages = pdf_pages(outputs["pdf"])
     title = [line.strip() for line in pages[0].splitlines() if line.strip()]
@@ -161,7 +153,6 @@ def test_no_number_on_title_page(outputs):
     assert "2" in second
 
 
-@needs_poppler
 def test_only_the_report_serif_is_embedded(outputs):
     out = subprocess.run(["pdffonts", str(outputs["pdf"])], check=True, capture_output=True,
                          text=True).stdout.splitlines()[2:]
@@ -387,7 +378,6 @@ def test_numbering_of_levels_and_appendices():
 # ---------------------------------------------------------------- ЕСКД frame
 
 
-@needs_poppler
 def test_eskd_frame_and_stamp(tmp_path):
     s = Section("Раздел", "s1")
     s.paragraph("Текст раздела. " * 40)
