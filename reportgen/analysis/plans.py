@@ -82,11 +82,17 @@ def _start(kind: str, row, mech: Mechanism) -> tuple[Plan, set]:
     return plan, fixed
 
 
+def _seg(plan: Plan, start: str, end: str, kind: str, name: str, link: str = "") -> None:
+    """Add the segment start→end of the plan ("p" is the pole); its length is read off the tips."""
+    a = np.zeros(2) if start == "p" else plan.tips[start]
+    plan.segments.append(Segment(start, end, kind, name, link, float(np.hypot(*(plan.tips[end] - a)))))
+
+
 def _finish(plan: Plan, fixed: set, prefix: str) -> Plan:
     """Absolute vectors from the pole to every moving point."""
     for p, v in list(plan.tips.items()):
         if plan.point_of_tip.get(p) == p and p not in fixed:
-            plan.segments.append(Segment("p", p, "abs", f"{prefix}_{p}", "", float(np.hypot(*v))))
+            _seg(plan, "p", p, "abs", f"{prefix}_{p}")
     return plan
 
 
@@ -97,8 +103,7 @@ def velocity_plan(row: pd.Series, mech: Mechanism) -> Plan:
         for p in link.points:
             if p == ref:
                 continue
-            d = plan.tips[p] - plan.tips[ref]
-            plan.segments.append(Segment(ref, p, "rel", f"V_{p}{ref}", link.name, float(np.hypot(*d))))
+            _seg(plan, ref, p, "rel", f"V_{p}{ref}", link.name)
     for j in mech.prismatic:
         guide, slider = j.links
         if guide == FRAME:
@@ -107,9 +112,7 @@ def velocity_plan(row: pd.Series, mech: Mechanism) -> Plan:
         lab = f"{j.point}{guide}"
         plan.tips[lab] = v
         plan.point_of_tip[lab] = j.point
-        d = plan.tips[j.point] - v
-        plan.segments.append(Segment(lab, j.point, "slide", f"V_{j.point}{slider}{j.point}{guide}", slider,
-                                     float(np.hypot(*d))))
+        _seg(plan, lab, j.point, "slide", f"V_{j.point}{slider}{j.point}{guide}", slider)
     return _finish(plan, fixed, "V")
 
 
@@ -125,9 +128,8 @@ def acceleration_plan(row: pd.Series, mech: Mechanism) -> Plan:
             an = -w * w * r
             lab = f"n{p}{ref}"
             plan.tips[lab] = plan.tips[ref] + an
-            plan.segments.append(Segment(ref, lab, "normal", f"a^n_{p}{ref}", link.name, float(np.hypot(*an))))
-            at = plan.tips[p] - plan.tips[lab]
-            plan.segments.append(Segment(lab, p, "tangential", f"a^τ_{p}{ref}", link.name, float(np.hypot(*at))))
+            _seg(plan, ref, lab, "normal", f"a^n_{p}{ref}", link.name)
+            _seg(plan, lab, p, "tangential", f"a^τ_{p}{ref}", link.name)
     for j in mech.prismatic:
         guide, slider = j.links
         if guide == FRAME:
@@ -140,11 +142,8 @@ def acceleration_plan(row: pd.Series, mech: Mechanism) -> Plan:
         ak = 2.0 * row["w_" + guide] * _rot90(v_rel)
         klab = f"k{j.point}"
         plan.tips[klab] = a_g + ak
-        plan.segments.append(Segment(lab, klab, "coriolis", f"a^k_{j.point}{slider}{j.point}{guide}", slider,
-                                     float(np.hypot(*ak))))
-        ar = plan.tips[j.point] - plan.tips[klab]
-        plan.segments.append(Segment(klab, j.point, "slide", f"a^r_{j.point}{slider}{j.point}{guide}", slider,
-                                     float(np.hypot(*ar))))
+        _seg(plan, lab, klab, "coriolis", f"a^k_{j.point}{slider}{j.point}{guide}", slider)
+        _seg(plan, klab, j.point, "slide", f"a^r_{j.point}{slider}{j.point}{guide}", slider)
     return _finish(plan, fixed, "a")
 
 
