@@ -48,9 +48,19 @@ def _jsonable(v):
 
 
 def tables(study: Study, at: Iterable[float] | None = None) -> dict[str, pd.DataFrame]:
-    """All tables of the study (computing what they need)."""
+    """All tables of the study (computing what they need): the linkage's, then each task's."""
+    out: dict[str, pd.DataFrame] = {}
+    if study.has_linkage:
+        out.update(_linkage_tables(study))
+    out.update(study.extra_tables())
+    if at is not None and study.has_linkage:
+        out["at"] = study.at(list(at))
+    return out
+
+
+def _linkage_tables(study: Study) -> dict[str, pd.DataFrame]:
     st = study.structure
-    out = {
+    return {
         "kinematics": study.kinematics,
         "cycle": study.cycle,
         "links": pd.DataFrame([{"link": l.name, "title": l.title, "motion": st.link_motion[l.name],
@@ -61,11 +71,6 @@ def tables(study: Study, at: Iterable[float] | None = None) -> dict[str, pd.Data
                                  "order": g.order, "kind": g.kind_ru, "title": g.title}
                                 for i, g in enumerate(st.groups)]),
     }
-    for name, df in study.extra_tables().items():
-        out[name] = df
-    if at is not None:
-        out["at"] = study.at(list(at))
-    return out
 
 
 def export(study: Study, out_dir: Path, at: Iterable[float] | None = None) -> list[Path]:

@@ -24,12 +24,16 @@ _TINY = {
 
 
 def warmup() -> None:
+    """Run the kinematics and every registered analysis that has a ``warmup(study)`` hook."""
+    import importlib
+
     from .analysis.study import Study
+    from .registry import KINDS
     s = Study(CaseSpec(Path("warmup.toml"), _TINY))
     s.kinematics
     s.cycle
-    for hook in _WARMUP_HOOKS:
-        hook(s)
-
-
-_WARMUP_HOOKS: list = []
+    for kind in KINDS:
+        module, cls = kind.analysis.split(":")
+        hook = getattr(getattr(importlib.import_module(f"reportgen.analysis.{module}"), cls), "warmup", None)
+        if hook is not None:
+            hook(s)

@@ -23,8 +23,8 @@ Dynamic model (Артоболевский «Теория механизмов и
 * True motion: v = ω x′, a = ω² x″ + ε x′ (and the same for link angles and sliders) with ω(φ),
   ε(φ) of the chosen method, :func:`reportgen.analysis.study.true_motion`.
 
-The results are attached to :class:`~reportgen.analysis.study.Study` as the cached property
-``study.dynamics`` (and ``study.loads``, ``study.flywheel``), exported through the Study's table
+The results are reached as ``study.dynamics`` (the «dynamics» line of :mod:`reportgen.registry`;
+``study.loads`` and ``study.flywheel`` beside it), exported through the Study's table
 and scalar hooks when the case has ``[dynamics]``.  ``study.kinematics`` stays the kinematic
 analysis at ω₁ = const.
 """
@@ -46,7 +46,7 @@ from ..errors import CaseError, did_you_mean
 from .flywheel import DynamicsResult, solve_dynamics
 from .loads import (ColumnEvaluator, Loads, Table1D, com_point, cycle_of, read_loads, read_table,
                     switching_points)
-from .study import _SCALAR_HOOKS, _TABLE_HOOKS, Study, true_motion
+from .study import true_motion
 
 __all__ = ["Settings", "ReducedModel", "Dynamics", "Printed", "read_settings", "METHODS"]
 
@@ -473,6 +473,14 @@ class Dynamics:
         pmin, vmin, _ = m.extremum(m.A_n[:-1], lambda A, Ms, J, dJ: (A, Ms), "min")
         return pmax, vmax, pmin, vmin
 
+    def tables(self) -> dict[str, pd.DataFrame]:
+        """The tables of ``reportgen export`` (columns in docs/outputs.md)."""
+        out = {"dynamics": self.table, "dynamics_cycle": self.cycle, "motion": self.motion,
+               "motion_cycle": self.motion_cycle}
+        if self.settings.printed:
+            out["dynamics_printed"] = self.printed
+        return out
+
     @cached_property
     def scalars(self) -> dict[str, Any]:
         """Named scalars (docs/outputs.md «Динамика»)."""
@@ -566,6 +574,7 @@ class Dynamics:
         """Dynamics of the case named in ``[dynamics.compare]`` (None if none)."""
         if self.settings.compare is None:
             return None
+        from .study import Study
         return Study(self.settings.compare[0]).dynamics
 
     @cached_property
@@ -641,57 +650,3 @@ def _works_probe(M, Mdrive, grid, breaks, a, Phi) -> tuple[float, float]:
     else:
         A_d = float(Mdrive) * Phi
     return A_c, A_d
-
-
-# --------------------------------------------------------------------------------------------
-# Attachment to Study
-# --------------------------------------------------------------------------------------------
-def _attach(name: str):
-    """Add ``fn`` to :class:`Study` as the cached property ``name``."""
-    def deco(fn):
-        prop = cached_property(fn)
-        prop.__set_name__(Study, name)
-        setattr(Study, name, prop)
-        return fn
-    return deco
-
-
-@_attach("loads")
-def _study_loads(self) -> Loads:
-    """The applied loads of the case (weights and ``[loads]``); computes no kinematics."""
-    return read_loads(self)
-
-
-@_attach("dynamics")
-def _study_dynamics(self) -> Dynamics:
-    """Dynamic analysis and flywheel synthesis (needs ``[dynamics]``)."""
-    d = Dynamics(self)
-    self.computed.add("dynamics")
-    return d
-
-
-@_attach("flywheel")
-def _study_flywheel(self):
-    """Flywheel dimensions (:class:`~reportgen.analysis.flywheel.FlywheelDims`)."""
-    return self.dynamics.result.flywheel
-
-
-def _tables_hook(study) -> dict[str, pd.DataFrame]:
-    if not study.root.has("dynamics"):
-        return {}
-    d = study.dynamics
-    out = {"dynamics": d.table, "dynamics_cycle": d.cycle, "motion": d.motion,
-           "motion_cycle": d.motion_cycle}
-    if d.settings.printed:
-        out["dynamics_printed"] = d.printed
-    return out
-
-
-def _scalars_hook(study) -> dict[str, Any]:
-    if not study.root.has("dynamics"):
-        return {}
-    return dict(study.dynamics.scalars)
-
-
-_TABLE_HOOKS.append(_tables_hook)
-_SCALAR_HOOKS.append(_scalars_hook)

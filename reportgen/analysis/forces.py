@@ -46,8 +46,8 @@ worksheet prints (… − R_A,min)/x_G (a force subtracted from moments) — giv
 and the self-consistent G_max with R_A,min = k·(G + P_в + P_гр):
 G_max = (P_в·b + P_гр(a + L) − k·L(P_в + P_гр))/(x_G + k·L).
 
-The results are attached to :class:`~reportgen.analysis.study.Study` as ``study.forces``
-(:class:`Forces`), exported through the Study's hooks when the case has ``[forces]``.
+The results are reached as ``study.forces`` (:class:`Forces`, the «forces» line of
+:mod:`reportgen.registry`), exported when the case has ``[forces]``.
 """
 from __future__ import annotations
 
@@ -65,7 +65,7 @@ from ..errors import StructureError, did_you_mean
 from ..mechanism.model import FRAME
 from ..mechanism.structure import solver_bodies
 from .loads import ColumnEvaluator, com_point
-from .study import _SCALAR_HOOKS, _TABLE_HOOKS, Study, true_motion
+from .study import true_motion
 
 __all__ = ["ForceSettings", "ActuatorData", "CapacityData", "CarrierData", "ForceModel",
            "Pair", "ForceGroup", "LoadItem", "Solution", "Forces", "read_settings",
@@ -809,6 +809,15 @@ class Forces:
         return {"loads": loads, "pairs": pairs, "cols": cols, "index": i}
 
     # ---------------------------------------------------------------------------- scalars
+    def tables(self) -> dict[str, pd.DataFrame]:
+        """The tables of ``reportgen export`` (columns in docs/outputs.md «Силовой анализ»)."""
+        return {"forces": self.table, "forces_cycle": self.cycle}
+
+    @staticmethod
+    def warmup(study) -> None:
+        """Compile the kinetostatics kernel on the warm-up study (``reportgen warmup``)."""
+        Forces(study).solve(study.grid.q)
+
     @cached_property
     def scalars(self) -> dict[str, Any]:
         """Named scalars (docs/outputs.md «Силовой анализ»)."""
@@ -865,45 +874,3 @@ def _rel(a, b, floor=0.0) -> np.ndarray:
     den = np.maximum(np.maximum(np.abs(a), np.abs(b)), floor)
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(den > 0, np.abs(a - b) / np.where(den > 0, den, 1.0), 0.0)
-
-
-# --------------------------------------------------------------------------------------------
-# Attachment to Study
-# --------------------------------------------------------------------------------------------
-def _study_forces(self) -> Forces:
-    """Force (kinetostatic or static) analysis (``[forces]``)."""
-    f = Forces(self)
-    self.computed.add("forces")
-    return f
-
-
-_prop = cached_property(_study_forces)
-_prop.__set_name__(Study, "forces")
-Study.forces = _prop
-
-
-def _tables_hook(study) -> dict[str, pd.DataFrame]:
-    if not study.root.has("forces"):
-        return {}
-    f = study.forces
-    return {"forces": f.table, "forces_cycle": f.cycle}
-
-
-def _scalars_hook(study) -> dict[str, Any]:
-    if not study.root.has("forces"):
-        return {}
-    return dict(study.forces.scalars)
-
-
-_TABLE_HOOKS.append(_tables_hook)
-_SCALAR_HOOKS.append(_scalars_hook)
-
-
-def _warmup(study) -> None:
-    """Compile the kinetostatics kernel on the warm-up study (``reportgen warmup``)."""
-    Forces(study).solve(study.grid.q)
-
-
-from ..warmup import _WARMUP_HOOKS  # noqa: E402
-
-_WARMUP_HOOKS.append(_warmup)

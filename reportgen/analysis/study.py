@@ -1,11 +1,13 @@
 """A Study: one case with lazily computed, cached results (pandas DataFrames and scalars).
 
-Asking for ``kinematics`` solves the linkage only; ``dynamics`` and ``forces`` (added by their
-modules) compute what they need first.  ``computed`` records which stages ran, so a report can be
-checked to compute only what its scenes need.
+Asking for ``kinematics`` solves the linkage only; the task analyses (``dynamics``, ``forces``, …,
+one line each in :mod:`reportgen.registry`) are created on first use by name and compute what they
+need first.  ``computed`` records which stages ran, so a report can be checked to compute only what
+its scenes need.
 """
 from __future__ import annotations
 
+import importlib
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -23,6 +25,7 @@ from ..errors import CaseError
 from ..mechanism.build import build_mechanism
 from ..mechanism.model import Mechanism
 from ..mechanism.structure import Structure, analyse
+from ..registry import BY_NAME, KINDS, LINKAGE_SECTIONS
 from . import linkage as L
 from .fitting import FitResult, evaluate_condition, solve_fit, split_condition
 
@@ -62,6 +65,47 @@ class Study:
             spec = load_spec(spec, overrides)
         self.spec = spec
         self.computed: set[str] = set()
+        self._analyses: dict[str, Any] = {}
+
+    # ----------------------------------------------------------------- task analyses (registry)
+    def analysis(self, name: str):
+        """The analysis of the task kind ``name`` (created on first use, then cached)."""
+        try:
+            return self._analyses[name]
+        except KeyError:
+            pass
+        kind = BY_NAME[name]
+        module, cls = kind.analysis.split(":")
+        obj = getattr(importlib.import_module(f"{__package__}.{module}"), cls)(self)
+        self._analyses[name] = obj
+        self.computed.add(name)
+        return obj
+
+    def __getattr__(self, name: str):
+        # study.dynamics, study.forces, … : the registered analyses by name
+        if not name.startswith("_") and name in BY_NAME:
+            return self.analysis(name)
+        raise AttributeError(f"{type(self).__name__!s} has no attribute {name!r}")
+
+    @property
+    def has_linkage(self) -> bool:
+        """Does the case describe a linkage (a case may hold only a cam, gears, …)."""
+        return any(self.root.has(k) for k in LINKAGE_SECTIONS)
+
+    def tasks(self) -> list[str]:
+        """The registered task kinds the case enables, in registry order."""
+        return [k.name for k in KINDS if self.root.has(k.section)]
+
+    @cached_property
+    def loads(self):
+        """The applied loads of the case (weights and ``[loads]``); computes no kinematics."""
+        from .loads import read_loads
+        return read_loads(self)
+
+    @property
+    def flywheel(self):
+        """Flywheel dimensions (:class:`~reportgen.analysis.flywheel.FlywheelDims`)."""
+        return self.analysis("dynamics").result.flywheel
 
     # ----------------------------------------------------------------- inputs
     @property
@@ -175,6 +219,9 @@ class Study:
 
     @property
     def params(self) -> dict:
+        """The case's parameters in SI (with fitted values when the linkage has fits)."""
+        if not self.has_linkage:
+            return self.spec.parameters()
         return self._final[0]
 
     @property
@@ -316,27 +363,22 @@ class Study:
         return out
 
 
-    # ------------------------------------------------------------- export hooks
+    # ------------------------------------------------------------- export
     def extra_tables(self) -> dict[str, pd.DataFrame]:
-        """Tables beyond kinematics and structure (fits; dynamics and forces when the case has them)."""
+        """Tables beyond kinematics and structure: fits, then each task analysis of the case."""
         out = {}
         if self.fits:
             out["fits"] = pd.DataFrame([{"name": f.name, "value": f.value, "condition": f.condition,
                                          "at": f.at, "residual": f.residual} for f in self.fits])
-        for hook in _TABLE_HOOKS:
-            out.update(hook(self))
+        for name in self.tasks():
+            out.update(self.analysis(name).tables())
         return out
 
     def all_scalars(self) -> dict:
-        out = dict(self.scalars)
-        for hook in _SCALAR_HOOKS:
-            out.update(hook(self))
+        out = dict(self.scalars) if self.has_linkage else {}
+        for name in self.tasks():
+            out.update(self.analysis(name).scalars)
         return out
-
-
-# analyses that extend a Study register here (dynamics, forces): functions Study -> dict
-_TABLE_HOOKS: list = []
-_SCALAR_HOOKS: list = []
 
 
 def true_motion(cols, mech: Mechanism, w: np.ndarray, e: np.ndarray) -> dict[str, np.ndarray]:
@@ -383,8 +425,3 @@ def line_angle(cols, name: str, p: str, r: str) -> dict[str, np.ndarray]:
 def load_case(path: str | Path, overrides: Mapping[str, Any] | None = None) -> Study:
     """Load a case file and return its :class:`Study` (nothing is computed yet)."""
     return Study(path, overrides)
-
-
-# Analyses that extend a Study (cached properties and export hooks) attach themselves on import.
-from . import dynamics as _dynamics  # noqa: E402,F401
-from . import forces as _forces  # noqa: E402,F401

@@ -8,12 +8,13 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from ..errors import CaseError
+from ..registry import LINKAGE_SECTIONS, STANDALONE_SECTIONS, TASK_SECTIONS
 from . import units as U
 from .expr import Q, resolve
 from .reader import Node
 
-TOP_KEYS = ["meta", "parameters", "frame", "links", "joints", "driver", "grid", "sketch", "fit",
-            "outputs", "loads", "dynamics", "forces", "report", "carrier", "actuator"]
+TOP_KEYS = list(dict.fromkeys(["meta", "parameters", *LINKAGE_SECTIONS, "grid", "sketch", "fit", "outputs",
+                                "loads", "report", "carrier", "actuator", *TASK_SECTIONS]))
 
 
 @dataclass
@@ -87,7 +88,11 @@ def load_spec(path: str | Path, overrides: Mapping[str, Any] | None = None) -> C
         raise CaseError(f"синтаксическая ошибка TOML: {e}", file=str(path),
                         expected="корректный TOML (строки в кавычках, [разделы], key = value)") from None
     spec = CaseSpec(path, data, dict(overrides or {}))
-    spec.root.check_keys(TOP_KEYS, required=["frame", "links", "joints", "driver"])
+    root = spec.root
+    has_linkage = any(root.has(k) for k in LINKAGE_SECTIONS)
+    only_tasks = [k for k in STANDALONE_SECTIONS if root.has(k)]
+    # a linkage needs all four of its sections; a case without one holds at least one other task
+    root.check_keys(TOP_KEYS, required=list(LINKAGE_SECTIONS) if has_linkage or not only_tasks else [])
     if overrides:
         params = spec.root.table("parameters").data
         for k in overrides:

@@ -6,26 +6,35 @@ dynamics section never runs the dynamics kernels.
 """
 from __future__ import annotations
 
+import importlib
 import math
-from typing import Callable, Iterable
+from typing import Iterable
 
 import pandas as pd
 from markupsafe import Markup
 
+from ..registry import KINDS
 from ..style.numbers import fmt
 from .document import Column, Paragraph, Report, Table, ref
-from .sections import dynamics as sec_dyn
 from .sections import kinematics as sec_kin
 from .sections import structure as sec_struct
 from .sections.common import value_with_unit
 
-# name → (module with NEEDS/build, predicate: does the case have it)
+
+def _has_linkage(study) -> bool:
+    return study.has_linkage
+
+
+# name → (module with NEEDS/build, predicate: does the case have it); the linkage's own two
+# sections, then one per registered task kind (reportgen/report/sections/<name>.py), in order
 SECTIONS: dict[str, tuple] = {
-    "structure": (sec_struct, lambda study: True),
-    "kinematics": (sec_kin, lambda study: True),
-    "dynamics": (sec_dyn, sec_dyn.present),
+    "structure": (sec_struct, _has_linkage),
+    "kinematics": (sec_kin, _has_linkage),
 }
-ORDER = ["structure", "kinematics", "dynamics", "forces"]
+for _kind in KINDS:
+    _mod = importlib.import_module(f"{__package__}.sections.{_kind.name}")
+    SECTIONS[_kind.name] = (_mod, _mod.present)
+ORDER = list(SECTIONS)
 
 REFERENCES = [
     "Артоболевский, И. И. Теория механизмов и машин : учебник для втузов / И. И. Артоболевский. — "
@@ -42,11 +51,6 @@ REFERENCES = [
     "ГОСТ 7.32–2017. Система стандартов по информации, библиотечному и издательскому делу. Отчёт о "
     "научно-исследовательской работе. Структура и правила оформления. — Москва : Стандартинформ, 2017. — 32 с.",
 ]
-
-
-def register(name: str, module, present: Callable) -> None:
-    """Called by the dynamics and forces section modules to add themselves."""
-    SECTIONS[name] = (module, present)
 
 
 def chosen_sections(study, names: Iterable[str] | None) -> list[str]:
@@ -87,15 +91,37 @@ def build_report(study, sections: Iterable[str] | None = None, options: dict | N
 
 
 def _assignment(study, names) -> list:
-    mech = study.mechanism
-    tasks = {"structure": "выполнить структурный анализ механизма",
-             "kinematics": "выполнить кинематический анализ (план положений, аналоги скоростей и ускорений, "
-                           "планы скоростей и ускорений, кинематические диаграммы)",
-             "dynamics": "определить закон движения машины и рассчитать маховик по заданному коэффициенту "
-                         "неравномерности хода",
-             "forces": "выполнить силовой (кинетостатический) анализ механизма по группам Ассура с проверкой "
-                       "рычагом Жуковского"}
-    out = [Paragraph("По заданной схеме и размерам механизма: " + "; ".join(tasks[n] for n in names if n in tasks) + ".")]
+    tasks = _assignment_tasks(names)
+    lead = "По заданной схеме и размерам механизма: " if study.has_linkage else "Требуется: "
+    out = [Paragraph(lead + "; ".join(tasks) + ".")] if tasks else []
+    out += _given_parameters(study)
+    if study.has_linkage:
+        out += _linkage_data(study)
+    return out
+
+
+_TASKS = {"structure": "выполнить структурный анализ механизма",
+          "kinematics": "выполнить кинематический анализ (план положений, аналоги скоростей и ускорений, "
+                        "планы скоростей и ускорений, кинематические диаграммы)",
+          "dynamics": "определить закон движения машины и рассчитать маховик по заданному коэффициенту "
+                      "неравномерности хода",
+          "forces": "выполнить силовой (кинетостатический) анализ механизма по группам Ассура с проверкой "
+                    "рычагом Жуковского"}
+
+
+def _assignment_tasks(names) -> list[str]:
+    """One clause per chosen section: the section module's ``TASK`` (a task kind's own wording) or
+    the linkage's clauses above."""
+    out = []
+    for n in names:
+        text = getattr(SECTIONS[n][0], "TASK", None) or _TASKS.get(n)
+        if text:
+            out.append(text)
+    return out
+
+
+def _given_parameters(study) -> list:
+    out = []
     rows = []
     raw = study.root.table("parameters").data
     fitted = {f.name for f in study.fits}
@@ -108,6 +134,12 @@ def _assignment(study, names) -> list:
         out.append(Table("Исходные данные", [Column("name", "Параметр", fmt=_param_name),
                                              Column("value", "Значение", sig=4), Column("unit", "Единица")],
                          pd.DataFrame(rows), id="tab-given"))
+    return out
+
+
+def _linkage_data(study) -> list:
+    out = []
+    mech = study.mechanism
     lrows = [{"n": l.name, "title": l.title or "—", "m": l.mass, "G": l.weight, "J": l.J_S}
              for l in mech.moving if l.mass is not None or l.weight is not None or l.J_S is not None]
     if lrows:
@@ -137,16 +169,17 @@ def _param_name(name: str) -> Markup:
 
 
 def _introduction(study, names, built) -> list:
-    st = study.structure
+    st = study.structure if study.has_linkage else None
     parts = [Paragraph(
         "Теория механизмов и машин изучает строение, кинематику и динамику механизмов и общие методы их "
         "анализа и синтеза. Курсовой проект закрепляет эти методы на примере конкретного механизма: "
         "определяются его строение, движение звеньев, силы, действующие в кинематических парах, и "
         "параметры, обеспечивающие требуемый режим работы.")]
     what = ", ".join(s.title.lower() for s in built)
+    mech = (f" Исследуемый механизм имеет {st.n} подвижных звеньев и структурную формулу {st.formula}."
+            if st is not None else "")
     parts.append(Paragraph(
-        f"В пояснительной записке выполнены: {what}. Исследуемый механизм имеет {st.n} подвижных звеньев и "
-        f"структурную формулу {st.formula}. Аналитические расчёты выполнены точно (положения групп Ассура — в "
+        f"В пояснительной записке выполнены: {what}.{mech} Аналитические расчёты выполнены точно (положения групп Ассура — в "
         "замкнутом виде, аналоги — из линейных систем групп); графические построения выполнены в масштабе и "
         "сопоставлены с аналитическими результатами."))
     return parts
@@ -160,9 +193,3 @@ def _conclusion(study, names) -> list:
         if hasattr(mod, "conclusion_lines"):
             out += [Paragraph(line) for line in mod.conclusion_lines(study)]
     return out
-
-
-# the force analysis registers its section (module with NEEDS/build, predicate)
-from .sections import forces as _sec_forces  # noqa: E402
-
-register("forces", _sec_forces, _sec_forces.present)
