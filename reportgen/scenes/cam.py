@@ -21,7 +21,7 @@ _NEEDS = ("cam",)
 # ГОСТ 2.302 scales as metres of the part per printed millimetre: 10:1 … 1:10
 _GOST = ((0.0001, "10:1"), (0.0002, "5:1"), (0.00025, "4:1"), (0.0004, "2,5:1"), (0.0005, "2:1"),
          (0.001, "1:1"), (0.002, "1:2"), (0.0025, "1:2,5"), (0.004, "1:4"), (0.005, "1:5"), (0.01, "1:10"))
-PLOT_W = 144.0          # mm of the φ axis: 360° at 2,5°/мм
+PLOT_W = 120.0          # mm of the φ axis: 360° at 3°/мм
 PLOT_H = 36.0           # mm of each diagram
 
 
@@ -84,7 +84,7 @@ class LawDiagrams:
         names = (("s″", s2 * f, unit), ("s′", s1 * f, unit), ("s", s * f, unit))
         if _rocker(cam):
             names = (("ψ″", s2, ""), ("ψ′", s1, ""), ("ψ", s * f, "°"))
-        fig_w, left, top = 170.0, 16.0, 4.0
+        fig_w, left, top = 160.0, 18.0, 4.0
         total_h = top + 3 * PLOT_H + 2 * 9.0 + 12.0
         fig = mplstyle.figure(fig_w, total_h, layout=None)
         self.scales = []
@@ -135,6 +135,8 @@ class PhasePortrait:
             pts_all.append(D)
         B = np.array([cam._geom(x, 1, O)["B"] for x in np.linspace(0, 2 * math.pi, 181)])
         pts_all.append(B)
+        if cam.follower == "rocker":
+            pts_all.append(np.zeros((1, 2)))     # the pivot A
         P = np.vstack([np.atleast_2d(a) for a in pts_all])
         span = P.max(axis=0) - P.min(axis=0)
         lo, hi = P.min(axis=0) - 0.12 * span.max(), P.max(axis=0) + 0.12 * span.max()
@@ -268,7 +270,7 @@ class ProfileDrawing:
         pr = cam.profile(g)
         W, C = pr["W"], pr["C"]
         k = cam.k
-        fol = [self._follower(cam, p) for p in follower_positions(cam)]
+        fol = [self._follower(cam, p, full=(i == 0)) for i, p in enumerate(follower_positions(cam))]
         xs = np.concatenate([W[:, 0], C[:, 0]] + [f[:, 0] for seg in fol for f in seg["lines"]])
         ys = np.concatenate([W[:, 1], C[:, 1]] + [f[:, 1] for seg in fol for f in seg["lines"]])
         ext = max(xs.max() - xs.min(), ys.max() - ys.min())
@@ -298,7 +300,7 @@ class ProfileDrawing:
         return Drawing(cv.svg(), cv.width_mm, self.mu)
 
     @staticmethod
-    def _follower(cam, phi: float) -> dict:
+    def _follower(cam, phi: float, full: bool = True) -> dict:
         """Lines and circles of the follower at the cam angle φ, turned back into the cam frame."""
         f = cam.frames(np.array([phi]))
         k = cam.k
@@ -325,9 +327,14 @@ class ProfileDrawing:
                 label = rot(P + (rr + L) * u)[0]
         else:
             A = -syn.O
-            lines.append(rot(np.array([A, P])))
-            circles.append((rot(A)[0], 0.04 * cam.arm))
-            label = rot(A)[0]
+            if full:   # the whole arm with its pivot A in the first position, a piece of it in the others
+                lines.append(rot(np.array([A, P])))
+                circles.append((rot(A)[0], 0.02 * cam.arm))
+                label = rot(A)[0]
+            else:
+                end = P + (A - P) * min(1.0, 0.5 * syn.r0 / cam.arm)
+                lines.append(rot(np.array([end, P])))
+                label = rot(end)[0]
         if cam.contact == "roller":
             circles.append((rot(P)[0], rr))
         elif cam.contact == "knife" and cam.follower == "translating":
