@@ -260,3 +260,12 @@ def test_cli_check_and_export(tmp_path, capsys):
                    .replace('law = "sine"', 'law = "sinus"'), encoding="utf-8")
     assert main(["check", str(bad)]) == 2
     assert "sinus" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("laws,rot", [(("sine", "poly345"), "ccw"), (("cosine", "poly4567"), "cw")])
+def test_translating_closed_form_vs_generic_solver(tmp_path, laws, rot):
+    """The closed form (two families of parallel rays) and the general solver used for the rocker
+    (SLSQP on the exact constraint maxima + Newton on the contact conditions) give one centre."""
+    c = make(tmp_path, trans(*laws, head=f'rotation = "{rot}"')).cam
+    O = c.synth_generic(np.zeros(2), c.h)
+    assert np.allclose(O, c._O_synth, atol=1e-10 * c.h)

@@ -417,25 +417,28 @@ class Cam:
         L = self.arm
         if self.aw_fixed is not None:
             return self._rocker_result(self._rocker_O(self.aw_fixed, self.psi0_fixed), "fixed")
-        B0 = np.array([L, 0.0])
-        sc = L
+        O = self.synth_generic(np.array([L, 0.0]), L)
+        return self._rocker_result(O, self._gov)
+
+    def synth_generic(self, B0, sc: float) -> np.ndarray:
+        """The centre O nearest to B₀ with max h ≤ 0 on the rise and the return: SLSQP on the exact
+        maxima (root-found tangent points), then Newton on the contact conditions.  Serves the
+        rocker; for a translating follower it is an independent check of the closed form."""
         cons = [{"type": "ineq", "fun": lambda O: -self._hmax(1, O * sc)[0] / sc},
                 {"type": "ineq", "fun": lambda O: -self._hmax(2, O * sc)[0] / sc}]
-        x0 = (B0 - 2.0 * L * np.array([0.0, 1.0])) / sc
+        x0 = (B0 - 2.0 * sc * np.array([0.0, 1.0])) / sc
         res = minimize(lambda O: float((O - B0 / sc) @ (O - B0 / sc)), x0, method="SLSQP",
                        constraints=cons, options={"ftol": 1e-15, "maxiter": 200})
-        O = self._polish(res.x * sc, B0)
-        return self._rocker_result(O, self._gov)
+        return self._polish(res.x * sc, B0, sc)
 
     def _rocker_O(self, a, psi0) -> np.ndarray:
         """Cam centre at distance a_w from the pivot, at angle ψ₀ from the arm's start on the side
         opposite to the motion of B (below the arm)."""
         return np.array([a * math.cos(psi0), -a * math.sin(psi0)])
 
-    def _polish(self, O, B0) -> np.ndarray:
+    def _polish(self, O, B0, sc: float) -> np.ndarray:
         """Newton on the contact conditions of the active rays (h = 0 and dh/dφ = 0 at the tangent
         point, O − B₀ along the ray's normal when one ray governs)."""
-        sc = self.arm
         act = []
         for which in (1, 2):
             v, p = self._hmax(which, O)
