@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 
 from reportgen.analysis.study import Study
-from reportgen.core import cams as K
 from reportgen.errors import CaseError
 
 ROOT = Path(__file__).resolve().parents[1]

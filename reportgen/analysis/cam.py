@@ -35,7 +35,6 @@ from scipy.optimize import brentq, fsolve, minimize
 
 from ..case import units as U
 from ..core import cams as K
-from ..errors import CaseError
 
 __all__ = ["Cam", "LAWS", "Phase"]
 
@@ -107,6 +106,17 @@ class Cam:
         node = study.root.table("cam")
         self.node = node
         self._read(node, study.params)
+
+    @staticmethod
+    def warmup(study) -> None:
+        """Compile the law kernels (numba, cached on disk) on a tiny input of every law."""
+        x = np.array([0.0, 0.5, 1.0])
+        k = K.piecewise_knots(x, np.array([1.0, 0.0, -1.0]))
+        for code in (K.UNIFORM, K.COSINE, K.SINE, K.POLY345, K.POLY4567, K.PIECEWISE):
+            for side in (1, -1):
+                K.cam_cycle(np.array([0.3]), np.array([0.0]), np.array([1.0]), np.array([K.RISE], dtype=np.int64),
+                            np.array([code], dtype=np.int64), np.array([0.5]), np.array([0, 3], dtype=np.int64),
+                            *k, 0.01, side)
 
     # ------------------------------------------------------------------ reading
     def _read(self, node, names) -> None:
@@ -682,6 +692,6 @@ class Cam:
 
 
 def _finite(df: pd.DataFrame) -> pd.DataFrame:
-    """Never inf/NaN in a table: a non-finite curvature radius (a straight piece) becomes 0
-    only in columns where the rest is finite is not meaningful, so such rows carry 0 in ρ."""
+    """Never inf/NaN in a table: an infinite radius of curvature (an inflection point of the
+    profile exactly on a table angle, C′ × C″ = 0) is written as 0 (documented in outputs.md)."""
     return df.replace([np.inf, -np.inf], np.nan).fillna(0.0)

@@ -8,9 +8,7 @@ import math
 import numpy as np
 from matplotlib.patches import Circle, Polygon
 
-from ..core import cams as K
 from ..style import mplstyle
-from ..style.numbers import fmt
 from .draw import GREY, INK, LIGHT, Canvas, nice_scale
 from .mechanism import Drawing
 
