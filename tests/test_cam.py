@@ -268,3 +268,28 @@ def test_translating_closed_form_vs_generic_solver(tmp_path, laws, rot):
     c = make(tmp_path, trans(*laws, head=f'rotation = "{rot}"')).cam
     O = c.synth_generic(np.zeros(2), c.h)
     assert np.allclose(O, c._O_synth, atol=1e-10 * c.h)
+
+
+def test_central_knife_r0_by_brute_force(tmp_path):
+    """Independent of the root finding: for e = 0 the least s₀ is max over a dense sampling of
+    (s′/tg[ϑ_у] − s) on the rise and (−s′/tg[ϑ_в] − s) on the return."""
+    c = make(tmp_path, trans("sine", "cosine", head="e = 0", contact="knife")).cam
+    t1, t2 = math.tan(c.rise.allowed), math.tan(c.ret.allowed)
+    p1 = np.linspace(c.rise.start, c.rise.start + c.rise.length, 200001)
+    p2 = np.linspace(c.ret.start, c.ret.start + c.ret.length, 200001)
+    s, s1 = c.law(p1)[:2]
+    u, u1 = c.law(p2)[:2]
+    brute = max((s1 / t1 - s).max(), (-u1 / t2 - u).max())
+    assert c.synthesis.r0 == pytest.approx(brute, rel=1e-9)
+    assert c.synthesis.r0 >= brute
+
+
+def test_roller_radius_rule():
+    c = Study(ROOT / "cases/cam_translating_roller.toml").cam
+    rc = c.rho_min_centre
+    rho = c.profile(c.grid)["rho_c"]
+    assert rc <= rho[rho > 0].min() + 1e-15
+    assert c.roller <= min(0.7 * rc, 0.4 * c.synthesis.r0) and c.roller > min(0.7 * rc, 0.4 * c.synthesis.r0) - 1e-3
+    assert (c.profile(c.grid)["rho"][rho > 0] > 0).all()       # no undercut: ρ − r_р > 0 on convex parts
+    tab = c.tables()
+    assert all(np.isfinite(df.select_dtypes("number").to_numpy()).all() for df in tab.values())

@@ -31,7 +31,7 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
-from scipy.optimize import brentq, fsolve, minimize
+from scipy.optimize import brentq, fsolve, minimize, minimize_scalar
 
 from ..case import units as U
 from ..core import cams as K
@@ -580,13 +580,22 @@ class Cam:
 
     @cached_property
     def rho_min_centre(self) -> float:
-        """Smallest radius of curvature of the convex parts of the centre profile, on the grid of
-        the cycle (every 0.5° and the phase boundaries)."""
+        """Smallest radius of curvature of the convex parts of the centre profile: the least grid
+        value (every 0.5° and the phase boundaries) refined by bounded Brent's method between the
+        neighbouring grid angles."""
         g = self.grid
-        prof = self._profile_nr(g)
-        rho = prof["rho_c"]
+        rho = self._profile_nr(g)["rho_c"]
         conv = rho > 0
-        return float(np.min(rho[conv])) if conv.any() else math.inf
+        if not conv.any():
+            return math.inf
+        i = int(np.argmin(np.where(conv, rho, np.inf)))
+        a, b = g[max(i - 1, 0)], g[min(i + 1, len(g) - 1)]
+
+        def f(p):
+            v = float(self._profile_nr(np.array([p]))["rho_c"][0])
+            return v if v > 0 else math.inf
+        r = minimize_scalar(f, bounds=(a, b), method="bounded", options={"xatol": 1e-12})
+        return float(min(rho[i], r.fun)) if r.success else float(rho[i])
 
     def _profile_nr(self, phi):
         save = self.__dict__.get("roller")
