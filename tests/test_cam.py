@@ -293,3 +293,18 @@ def test_roller_radius_rule():
     assert (c.profile(c.grid)["rho"][rho > 0] > 0).all()       # no undercut: ρ − r_р > 0 on convex parts
     tab = c.tables()
     assert all(np.isfinite(df.select_dtypes("number").to_numpy()).all() for df in tab.values())
+
+
+def test_profile_scale_requested_or_refused(tmp_path):
+    from reportgen.scenes.cam import ProfileDrawing
+    st = Study(ROOT / "cases/ws001_cam_2013_2.toml")        # asks 2:1, the whole cam needs 1:1
+    d = ProfileDrawing()
+    d.draw(st)
+    assert d.refused == "2:1" and d.scale == "1:1"
+    body = (ROOT / "cases/cam_translating_roller.toml").read_text(encoding="utf-8").replace(
+        'step = "10 deg"', 'step = "10 deg"\nscale = "1:2"')
+    p = tmp_path / "c.toml"
+    p.write_text(body, encoding="utf-8")
+    d = ProfileDrawing()
+    d.draw(Study(p))
+    assert d.refused is None and d.scale == "1:2" and d.mu == 0.002

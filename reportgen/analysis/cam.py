@@ -122,7 +122,7 @@ class Cam:
     def _read(self, node, names) -> None:
         node.check_keys(["follower", "contact", "rotation", "speed", "stroke", "swing", "arm",
                          "far_dwell", "rise", "return", "r0", "e", "a_w", "psi0", "roller",
-                         "rho_min", "step", "title"], required=["rise", "return"])
+                         "rho_min", "step", "scale", "title"], required=["rise", "return"])
         self.follower = node.string("follower", "translating", choices=["translating", "rocker"])
         self.contact = node.string("contact", "roller", choices=["knife", "roller", "flat"])
         self.k = 1 if node.string("rotation", "ccw", choices=["ccw", "cw"]) == "ccw" else -1
@@ -178,6 +178,8 @@ class Cam:
         self.roller_fixed = node.quantity("roller", U.LENGTH, names, positive=True)
         self.rho_min = node.quantity("rho_min", U.LENGTH, names, default="5 mm", nonnegative=True)
         self.step = node.quantity("step", U.ANGLE, names, default="10 deg", positive=True)
+        self.scale = node.string("scale", None, choices=["10:1", "5:1", "4:1", "2,5:1", "2:1", "1:1", "1:2",
+                                                          "1:2,5", "1:4", "1:5", "1:10"])
         if math.degrees(self.step) < 1 or math.degrees(self.step) > 45:
             raise node.error("step", "шаг таблицы координат вне допустимого диапазона", expected="от 1° до 45°")
         if self.contact != "flat":

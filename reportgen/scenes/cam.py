@@ -214,6 +214,18 @@ class PhasePortrait:
         return cam.phase_extreme(ph, lambda p, sd: sign * cam._at(p, sd)[1], lambda p, sd: sign * cam._at(p, sd)[2])[1]
 
 
+def _flat_hull(cam, g, W) -> np.ndarray:
+    """The cam of a flat-faced follower is the intersection of the half-planes n(φ)·X ≤ r₀ + s(φ)
+    bounded by the face in every position; the envelope points outside it (a swallowtail where s′
+    jumps backwards) are not on the real profile and are left out of the drawing."""
+    s = cam.law(g)[0]
+    k = cam.k
+    n = np.column_stack([np.sin(k * g), np.cos(k * g)])          # R(−kφ)(0, 1)
+    lim = cam.synthesis.r0 + s
+    viol = (W @ n.T - lim[None, :]).max(axis=1)
+    return W[viol <= 1e-9 * cam.synthesis.r0]
+
+
 def _clip(poly: np.ndarray, n: np.ndarray, c: float) -> np.ndarray:
     """Sutherland–Hodgman: the part of a convex polygon with n·x ≤ c."""
     out = []
@@ -273,6 +285,15 @@ class ProfileDrawing:
         ys = np.concatenate([W[:, 1], C[:, 1]] + [f[:, 1] for seg in fol for f in seg["lines"]])
         ext = max(xs.max() - xs.min(), ys.max() - ys.min())
         self.mu, self.scale = gost_scale(ext, 160)
+        self.refused = None
+        if cam.scale is not None:
+            mu = dict((n, m) for m, n in _GOST)[cam.scale]
+            if ext / mu <= 160:
+                self.mu, self.scale = mu, cam.scale
+            else:   # the asked scale does not fit on the sheet: the largest one that does
+                self.refused = cam.scale
+        if cam.contact == "flat":
+            W = _flat_hull(cam, g, W)
         cv = Canvas(xs.min(), xs.max(), ys.min(), ys.max(), self.mu, margin_mm=8)
         ax = cv.ax
         ax.fill(W[:, 0], W[:, 1], facecolor=LIGHT, edgecolor=INK, lw=1.6, zorder=2)

@@ -318,6 +318,9 @@ def _profile(sec, study, cam) -> None:
     fig = ProfileDrawing()
     d = fig.draw(study)
     pos = ", ".join(f"{i}&nbsp;— φ&nbsp;=&nbsp;{_deg(p, 1)}" for i, p in enumerate(follower_positions(cam)))
+    if fig.refused:
+        s.paragraph(f"В заданном масштабе {fig.refused} профиль не помещается на лист формата А4, поэтому принят "
+                    f"наибольший помещающийся стандартный масштаб {fig.scale} (ГОСТ 2.302).")
     s.paragraph(f"Профиль кулачка вычерчен на рисунке {ref('fig-cam-profile')} в масштабе {fig.scale}; толкатель "
                 f"показан в положениях {pos}. Координаты профиля приведены в таблице {ref('tab-cam-coords')}.")
     s.figure(f"Профиль кулачка (М {fig.scale})", d.svg, d.width_mm, id="fig-cam-profile")
