@@ -308,3 +308,40 @@ def test_profile_scale_requested_or_refused(tmp_path):
     d = ProfileDrawing()
     d.draw(Study(p))
     assert d.refused is None and d.scale == "1:2" and d.mu == 0.002
+
+
+def _texts(block):
+    from reportgen.report.document import Figure, FormulaBlock, Paragraph, Section, Table
+    if isinstance(block, Section):
+        yield block.title
+        for c in block.children:
+            yield from _texts(c)
+    elif isinstance(block, Paragraph):
+        yield str(block.html)
+    elif isinstance(block, Table):
+        yield block.caption
+        yield " ".join(c.header for c in block.columns)
+        yield block.data.to_string(header=False, index=False)
+    elif isinstance(block, Figure):
+        yield block.caption
+    elif isinstance(block, FormulaBlock):
+        for f in block.formulas:
+            yield f.latex()
+
+
+@pytest.mark.parametrize("case", ["cam_translating_roller.toml", "ws001_cam_2013_2.toml"])
+def test_note_section_text(case):
+    from reportgen.report.sections import cam as S
+    st = Study(ROOT / "cases" / case)
+    assert S.present(st)
+    sec = S.build(st)
+    text = "\n".join(_texts(sec))
+    for bad in ("nan", "None", "inf", "cam_", "synthesis", "rho_c", "phi_deg"):
+        assert bad not in text, bad
+    ids = [c.id for c in sec.children]
+    assert ids[0] == "sec-cam-data" and ids[-1] == "sec-cam-profile"
+    lines = " ".join(S.conclusion_lines(st))
+    if st.cam.contact == "flat":
+        assert "40,00" in lines and "жёстких — 2" in lines
+    else:
+        assert "28,62" in lines and "мягких" not in lines
