@@ -169,8 +169,12 @@ def test_translating_fixed_e_central(tmp_path):
     assert max(t1 - c.rise.allowed, t2 - c.ret.allowed) == pytest.approx(0, abs=1e-9)
 
 
-def test_rocker_synthesis(tmp_path):
-    st = Study(ROOT / "cases/cam_rocker_roller.toml")
+@pytest.mark.parametrize("rot", ["cw", "ccw"])
+def test_rocker_synthesis(tmp_path, rot):
+    src = (ROOT / "cases/cam_rocker_roller.toml").read_text(encoding="utf-8").replace(
+        'rotation = "cw"', f'rotation = "{rot}"')
+    (tmp_path / "r.toml").write_text(src, encoding="utf-8")
+    st = Study(tmp_path / "r.toml")
     c = st.cam
     syn = c.synthesis
     t1, t2 = c.theta_max
@@ -183,7 +187,7 @@ def test_rocker_synthesis(tmp_path):
     l = c.arm
     assert syn.r0 ** 2 == pytest.approx(syn.a_w ** 2 + l * l - 2 * syn.a_w * l * math.cos(syn.psi0), rel=1e-12)
     # the same centre given as a_w, ψ₀ reproduces the angles; moving it 1 % closer to B₀ violates them
-    body = (ROOT / "cases/cam_rocker_roller.toml").read_text(encoding="utf-8").split("[cam]", 1)[1]
+    body = src.split("[cam]", 1)[1]
     fixed = make(tmp_path, "[cam]\n" + f"a_w = {syn.a_w}\npsi0 = \"{math.degrees(syn.psi0)!r} deg\"\n" + body).cam
     assert fixed.theta_max[0] == pytest.approx(t1, abs=1e-9)
     Ob = syn.O + 0.01 * (np.array([l, 0]) - syn.O)
@@ -209,9 +213,17 @@ def test_flat_face_convexity(tmp_path):
 
 
 # ---------------------------------------------------------------- profile
-@pytest.mark.parametrize("case", ["cam_translating_roller.toml", "cam_rocker_roller.toml"])
-def test_profile_normal_gives_pressure_angle(case):
-    c = Study(ROOT / "cases" / case).cam
+@pytest.mark.parametrize("case,change", [
+    ("cam_translating_roller.toml", None), ("cam_rocker_roller.toml", None),
+    ("cam_rocker_roller.toml", ('rotation = "cw"', 'rotation = "ccw"')),
+    ("cam_translating_roller.toml", ('contact = "roller"\nrotation = "ccw"', 'contact = "knife"\nrotation = "cw"'))])
+def test_profile_normal_gives_pressure_angle(tmp_path, case, change):
+    src = (ROOT / "cases" / case).read_text(encoding="utf-8")
+    if change:
+        assert change[0] in src
+        src = src.replace(*change)
+    (tmp_path / case).write_text(src, encoding="utf-8")
+    c = Study(tmp_path / case).cam
     phi = np.linspace(0.01, 2 * math.pi - 0.01, 997)
     d = 1e-6
     for key in ("C", "W"):
