@@ -357,3 +357,15 @@ def test_note_section_text(case):
         assert "40,00" in lines and "жёстких — 2" in lines
     else:
         assert "28,62" in lines and "мягких" not in lines
+
+
+def test_linkage_and_cam_in_one_case(tmp_path):
+    cam = (ROOT / "cases/cam_translating_roller.toml").read_text(encoding="utf-8").split("[cam]", 1)[1]
+    link = (ROOT / "cases/four_bar.toml").read_text(encoding="utf-8")
+    p = tmp_path / "both.toml"
+    p.write_text(link + "\n[cam]" + cam, encoding="utf-8")
+    st = Study(p)
+    assert st.has_linkage and "cam" in st.tasks()
+    sc = st.all_scalars()
+    assert sc["cam_r0"] == pytest.approx(Study(ROOT / "cases/cam_translating_roller.toml").cam.synthesis.r0)
+    assert "W" in sc
