@@ -369,3 +369,19 @@ def test_linkage_and_cam_in_one_case(tmp_path):
     sc = st.all_scalars()
     assert sc["cam_r0"] == pytest.approx(Study(ROOT / "cases/cam_translating_roller.toml").cam.synthesis.r0)
     assert "W" in sc
+
+
+def test_approximate_variant_two_formulations(tmp_path):
+    """The approximate variant (rays through the points of s′max) in (e, s₀) closed form equals the
+    nearest point of the two half-planes in the plane of the centre; the same holds for the exact
+    tangent rays when both govern."""
+    c = make(tmp_path, trans("sine", "poly345")).cam
+    syn = c.synthesis
+    q1 = c.phase_extreme(c.rise, lambda p, sd: c._at(p, sd)[1], lambda p, sd: c._at(p, sd)[2])[1]
+    q2 = c.phase_extreme(c.ret, lambda p, sd: -c._at(p, sd)[1], lambda p, sd: -c._at(p, sd)[2])[1]
+    Oa = c.nearest_in_two(np.zeros(2), c.halfplane(1, q1), c.halfplane(2, q2))
+    assert -c.k * Oa[0] == pytest.approx(syn.e_approx, abs=1e-13)
+    assert float(np.hypot(*Oa)) == pytest.approx(syn.r0_approx, rel=1e-12)
+    assert syn.governing == "both"
+    O = c.nearest_in_two(np.zeros(2), c.halfplane(1, syn.phi_rise), c.halfplane(2, syn.phi_return))
+    assert np.allclose(O, c._O_synth, atol=1e-13)

@@ -82,6 +82,7 @@ class Synthesis:
     governing: str = ""     # "rise", "return", "both", "fixed", "convexity"
     r0_approx: float = math.nan
     e_approx: float = math.nan
+    a_w_approx: float = math.nan
 
 
 def _piece_knots(name: str, nu: float, ramp: float, table) -> tuple:
@@ -355,6 +356,26 @@ class Cam:
         dh = sg * (g["v2"] - k * (dw @ r + w @ g["dr"])) - t * (dw @ u + w @ g["du"])
         return h, dh
 
+    def halfplane(self, which: int, phi: float) -> tuple[np.ndarray, float]:
+        """The ray of the phase portrait at φ as a half-plane n·O ≤ c of allowed centres
+        (h(φ, O) is linear in O: h = h(φ, 0) + n·O with n = ±k r + tg[ϑ] u)."""
+        g = self._geom(phi, 1, np.zeros(2))
+        t = math.tan(self.rise.allowed if which == 1 else self.ret.allowed)
+        sg = 1.0 if which == 1 else -1.0
+        return sg * self.k * g["r"] + t * g["u"], -self._h(which, phi, 1, np.zeros(2))[0]
+
+    @staticmethod
+    def nearest_in_two(B0, hp1, hp2) -> np.ndarray:
+        """The point of {n₁·O ≤ c₁, n₂·O ≤ c₂} nearest to B₀: a projection on one line or the vertex."""
+        best = None
+        for (n, c), (m, d) in ((hp1, hp2), (hp2, hp1)):
+            P = B0 - (n @ B0 - c) / (n @ n) * n
+            if m @ P <= d + 1e-14 * (abs(d) + 1) and (best is None or np.hypot(*(P - B0)) < np.hypot(*(best - B0))):
+                best = P
+        if best is None:
+            best = np.linalg.solve(np.array([hp1[0], hp2[0]]), np.array([hp1[1], hp2[1]]))
+        return best
+
     def _hmax(self, which: int, O) -> tuple[float, float]:
         ph = self.rise if which == 1 else self.ret
         return self.phase_extreme(ph, lambda p, sd: self._h(which, p, sd, O)[0],
@@ -430,7 +451,14 @@ class Cam:
         if self.aw_fixed is not None:
             return self._rocker_result(self._rocker_O(self.aw_fixed, self.psi0_fixed), "fixed")
         O = self.synth_generic(np.array([L, 0.0]), L)
-        return self._rocker_result(O, self._gov)
+        syn = self._rocker_result(O, self._gov)
+        # approximate variant: the rays through the points of the largest |ψ′|
+        q1 = self.phase_extreme(self.rise, lambda p, sd: self._at(p, sd)[1], lambda p, sd: self._at(p, sd)[2])[1]
+        q2 = self.phase_extreme(self.ret, lambda p, sd: -self._at(p, sd)[1], lambda p, sd: -self._at(p, sd)[2])[1]
+        Oa = self.nearest_in_two(np.array([L, 0.0]), self.halfplane(1, q1), self.halfplane(2, q2))
+        syn.r0_approx = float(np.hypot(L - Oa[0], Oa[1]))
+        syn.a_w_approx = float(np.hypot(*Oa))
+        return syn
 
     def synth_generic(self, B0, sc: float) -> np.ndarray:
         """The centre O nearest to B₀ with max h ≤ 0 on the rise and the return: SLSQP on the exact
@@ -685,6 +713,8 @@ class Cam:
             out.update(cam_e=syn.e, cam_s0=syn.s0, cam_r0_approx=syn.r0_approx, cam_e_approx=syn.e_approx)
         if self.follower == "rocker":
             out.update(cam_a_w=syn.a_w, cam_psi0=syn.psi0, cam_arm=self.arm)
+            if syn.governing != "fixed":
+                out.update(cam_r0_approx=syn.r0_approx, cam_a_w_approx=syn.a_w_approx)
         th1, th2 = self.theta_max
         out.update(cam_theta_rise_max=th1, cam_theta_return_max=th2)
         prof = self.profile(self.grid)

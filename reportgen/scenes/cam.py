@@ -145,7 +145,7 @@ class PhasePortrait:
         box = np.array([[lo[0], lo[1]], [hi[0], lo[1]], [hi[0], hi[1]], [lo[0], hi[1]]])
         reg = box
         for which, phi in ((1, syn.phi_rise), (2, syn.phi_return)):
-            reg = _clip(reg, *self._line(cam, which, phi))
+            reg = _clip(reg, *cam.halfplane(which, phi))
         if len(reg) >= 3:
             ax.add_patch(Polygon(reg, closed=True, facecolor=LIGHT, edgecolor="none", hatch="///", zorder=0))
         for D in curves:
@@ -166,9 +166,8 @@ class PhasePortrait:
             D = self._D(cam, phi)
             ax.annotate("$K_у$" if which == 1 else "$K_в$", D, xytext=(5, -4), textcoords="offset points",
                         fontsize=10)
-        if cam.follower == "translating":
-            for which, phi in ((1, self._vmax(cam, cam.rise, 1)), (2, self._vmax(cam, cam.ret, -1))):
-                self._ray(ax, cam, which, phi, lo, hi, "--", lw=0.7)
+        for which, phi in ((1, self._vmax(cam, cam.rise, 1)), (2, self._vmax(cam, cam.ret, -1))):
+            self._ray(ax, cam, which, phi, lo, hi, "--", lw=0.7)
         ax.plot(*O, "o", color=INK, ms=4, zorder=5)
         ax.annotate("O", O, xytext=(4, -10), textcoords="offset points", fontsize=10)
         B0 = cam._geom(0.0, 1, O)["B"]
@@ -188,18 +187,8 @@ class PhasePortrait:
         g = cam._geom(phi, 1, np.zeros(2))
         return g["B"] - cam.k * g["v1"] * g["r"]
 
-    @staticmethod
-    def _line(cam, which, phi):
-        """The half-plane n·O ≤ c of the ray at φ (h(φ, O) ≤ 0 is linear in O)."""
-        g = cam._geom(phi, 1, np.zeros(2))
-        t = math.tan(cam.rise.allowed if which == 1 else cam.ret.allowed)
-        sg = 1.0 if which == 1 else -1.0
-        n = sg * cam.k * g["r"] + t * g["u"]
-        h0 = cam._h(which, phi, 1, np.zeros(2))[0]
-        return n, -h0          # h(O) = h(0) + n·O ≤ 0
-
     def _ray(self, ax, cam, which, phi, lo, hi, ls, lw=1.0):
-        n, c = self._line(cam, which, phi)
+        n, c = cam.halfplane(which, phi)
         D = self._D(cam, phi)
         d = np.array([-n[1], n[0]]) / np.hypot(*n)
         L = float(np.hypot(*(hi - lo))) * 2

@@ -266,6 +266,11 @@ def _size(sec, study, cam) -> None:
                           _t(syn.r0 * 1000, unit="мм")))
         s.paragraph(f"Точки касания: на удалении φ&nbsp;=&nbsp;{_deg(syn.phi_rise, 3)}, на возвращении "
                     f"φ&nbsp;=&nbsp;{_deg(syn.phi_return, 3)}.")
+        if syn.governing != "fixed":
+            s.paragraph(f"Приближённый способ (лучи через точки наибольшего аналога скорости, штриховые линии) даёт "
+                        f"r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0_approx)}, a<sub>w</sub>&nbsp;=&nbsp;{_mm(syn.a_w_approx)}; "
+                        f"отличие r<sub>0</sub> от точного решения "
+                        f"{fmt((syn.r0_approx / syn.r0 - 1) * 100, digits=2, sign=True)}&nbsp;%.")
     sc = PhasePortrait()
     fig = sc.draw(study)
     s.figure(f"Фазовый портрет, определяющие лучи и область допустимого расположения центра кулачка "
