@@ -16,6 +16,7 @@ from markupsafe import Markup
 from ..registry import KINDS
 from ..style.numbers import fmt
 from .document import Column, Paragraph, Report, Table, ref
+from .russian import param_symbol, param_title, plural
 from .sections import kinematics as sec_kin
 from .sections import structure as sec_struct
 from .sections.common import value_with_unit
@@ -129,12 +130,18 @@ def _given_parameters(study) -> list:
         if name not in raw or name in fitted:
             continue
         v, unit = value_with_unit(q)
-        rows.append({"name": name, "value": v, "unit": unit})
+        rows.append({"title": param_title(name), "name": name, "value": v, "unit": unit})
     if rows:
-        out.append(Table("Исходные данные", [Column("name", "Параметр", fmt=_param_name),
-                                             Column("value", "Значение", sig=4), Column("unit", "Единица")],
+        out.append(Table("Исходные данные", [Column("title", "Параметр"), Column("name", "Обозначение", fmt=param_symbol),
+                                             Column("value", "Значение", fmt=_as_written), Column("unit", "Единица")],
                          pd.DataFrame(rows), id="tab-given"))
     return out
+
+
+def _as_written(x) -> str:
+    """A given value as the case writes it (shortest representation, no padding zeros)."""
+    t = f"{float(x):.10g}"
+    return fmt(float(t), digits=len(t.split(".")[1]) if "." in t and "e" not in t else 0, sig=None)
 
 
 def _linkage_data(study) -> list:
@@ -161,11 +168,6 @@ def _linkage_data(study) -> list:
         out.append(Paragraph(f"Ведущее звено — гидроцилиндр {d.link}–{d.rod}; длина изменяется от "
                              f"{fmt(lo, digits=3)} до {fmt(hi, digits=3)}&nbsp;м."))
     return out
-
-
-def _param_name(name: str) -> Markup:
-    head, _, tail = name.partition("_")
-    return Markup("<i>{}</i><sub>{}</sub>").format(head, tail) if tail else Markup("<i>{}</i>").format(name)
 
 
 def _introduction(study, names, built) -> list:

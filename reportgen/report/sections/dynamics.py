@@ -450,12 +450,10 @@ def _flywheel(sec, study, d) -> None:
                       _t(r.J_flywheel, sig=5, unit="кг·м²"), label="eq-Jdop"))
     if not r.flywheel.needed:
         s.paragraph("J<sub>доп</sub>&nbsp;≤&nbsp;0: собственной инерции машины достаточно, маховик не нужен.")
-    pr = d.printed if d.settings.printed else None
-    if pr is not None and len(pr):
-        _printed(s, pr)
 
 
-def _printed(s, pr: pd.DataFrame) -> None:
+def printed_block(s, pr: pd.DataFrame) -> None:
+    """The comparison with the values printed in the worksheet (the answer key, report/key.py)."""
     bad = pr[~pr["within"]]
     s.paragraph(f"Значения, напечатанные в исходном расчёте, сопоставлены с вычисленными в таблице "
                 f"{ref('tab-dyn-printed')} (допуск — единица последнего напечатанного разряда). Совпадают "

@@ -22,6 +22,7 @@ from ...scenes.forces import (AxleCurves, CapacityCurves, GroupForces, ReactionC
 from ...style.numbers import fmt, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
+from ..russian import plural
 from .common import chosen_position, chunked_tables, q_header, sub, tex_point
 
 NEEDS = ("kinematics", "cycle", "forces")
@@ -201,7 +202,7 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
                               rf"{_t(J1)} \cdot {_t(abs(row['eps']))}", _t(abs(row["MPhi_fly"]), unit="Н·м")))
         s.formula(*fs)
         if f.settings.flywheel:
-            s.paragraph("Как в исходном расчёте, к кривошипу приложен момент сил инерции первой группы звеньев "
+            s.paragraph("К кривошипу приложен момент сил инерции первой группы звеньев "
                         "(ротор, передача, маховик) с приведённым моментом инерции J<sub>1пр</sub> за вычетом "
                         "момента инерции самого кривошипа; при этом уравновешивающий момент равен движущему.")
         rows = []
@@ -255,10 +256,15 @@ def _incidence(s: Section, study, f) -> None:
         rows.append(r)
     rows = rows[1:] + rows[:1]
     columns = [Column("link", "Звено")] + [Column(f"c{k}", h) for k, (p, h) in enumerate(cols)]
+    kinds = {p.kind for p in f.model.pairs}
+    legend = []
+    if KS.K_PRI in kinds:
+        legend.append("(П) — поступательная пара (нормальная сила и реактивный момент)")
+    if KS.K_ACT in kinds:
+        legend.append("(Ц) — пара цилиндр–шток (усилие гидроцилиндра, нормальная сила и момент)")
     s.paragraph(f"Связи звеньев и кинематических пар (таблица {ref('tab-frc-incidence')}): «1» — реакция пары "
                 f"{sub('R', 'ij')} приложена к звену j, «−1» — равная ей и противоположная {sub('R', 'ji')} — "
-                "к звену i; (П) — поступательная пара (нормальная сила и реактивный момент), (Ц) — пара "
-                "цилиндр–шток (усилие гидроцилиндра, нормальная сила и момент).")
+                "к звену i" + "".join("; " + x for x in legend) + ".")
     per = 12
     chunked_tables(s, "Матрица инциденций звеньев и кинематических пар", pd.DataFrame(rows),
                    columns[1:], columns[:1], "tab-frc-incidence", per=per)
@@ -284,7 +290,7 @@ def _groups(sec: Section, study, f, lab: str) -> None:
         head = g.title[0].upper() + g.title[1:]
         unknown = [f.model.pairs[k] for k in g.pairs]
         ulist = ", ".join(_unknown_text(p) for p in unknown)
-        s.paragraph(f"<b>{head}.</b> Неизвестные: {ulist} — {3 * len(g.links)} уравнений. Уравнение сил группы "
+        s.paragraph(f"<b>{head}.</b> Неизвестные: {ulist} — {plural(3 * len(g.links), 'уравнение', 'уравнения', 'уравнений')} равновесия. Уравнение сил группы "
                     f"(рисунок {ref(gid)}): {names}&nbsp;=&nbsp;0.")
         s.figure(f"Группа {g.label}: схема нагружения (μ<sub>l</sub> = {fmt(draw.mu, sig=3)} м/мм, стрелки сил "
                  f"без масштаба) и план сил (μ<sub>F</sub> = {fmt(draw.mu_F, sig=3)} Н/мм)",
@@ -398,7 +404,7 @@ def _reactions(sec: Section, study, f) -> None:
     if reversed_:
         text = "; ".join(f"{_R(k)} — сила звена {_who(k.split('_')[0])} на {_whom(k.split('_')[1])}"
                          for k in reversed_)
-        note = f" Направления реакций выбраны как в исходном расчёте: {text}."
+        note = f" Направления реакций в таблицах: {text}."
     s.paragraph(f"Составляющие реакций по положениям механизма — в таблице {ref(ids[0])}, их модули — в таблице "
                 f"{ref(ids2[0])}.{note}")
 
@@ -482,7 +488,7 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     chunked_tables(s, "Уравновешивающий момент и его проверки" if rot else "Усилие гидроцилиндра и его проверки",
                    f.table, cols, _lead(study), "tab-frc-checks")
     sc = f.scalars
-    text = (f"Наибольшее расхождение по всем положениям и сетке цикла — "
+    text = (f"Наибольшее расхождение по всем положениям цикла — "
             f"{fmt(sc['dev_zhukovsky_max_pct'], sig=2)}&nbsp;%.")
     if f.settings.flywheel:
         text += (f" С учётом момента сил инерции первой группы уравновешивающий момент совпадает с движущим "
@@ -531,8 +537,8 @@ def _cycle(sec: Section, study, f) -> None:
     qkey, qhead, qunit, qfmt = q_header(study)
     main = "M_bal" if f.rotary else "F_act"
     s.paragraph(f"Модули реакций во всех парах и {'уравновешивающий момент' if f.rotary else 'усилие гидроцилиндра'} "
-                f"на сетке цикла показаны на рисунке {ref('fig-frc-cycle')}, наибольшие значения — в таблице "
-                f"{ref('tab-frc-max')}. Наибольший по модулю {'уравновешивающий момент' if f.rotary else 'усилие'} — "
+                f"за цикл показаны на рисунке {ref('fig-frc-cycle')}, наибольшие значения — в таблице "
+                f"{ref('tab-frc-max')}. {'Наибольший по модулю уравновешивающий момент' if f.rotary else 'Наибольшее по модулю усилие'} — "
                 f"{fmt(sc[main + '_absmax'], sig=5)}&nbsp;{'Н·м' if f.rotary else 'Н'}.")
     s.figure("Реакции в кинематических парах и " + ("уравновешивающий момент" if f.rotary else "усилие гидроцилиндра")
              + (" за цикл" if f.rotary else " по ходу гидроцилиндра"), fig.svg, fig.width_mm, id="fig-frc-cycle")
@@ -632,20 +638,14 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
         Formula(r"G_{max} = \frac{P_в b + P_{гр} (a + L) - R_{A,min} L}{x_G}",
                 rf"\frac{{{_t(m0, sig=6)} - {_t(row['R_front_min'], sig=5)} \cdot {_in(c.wheelbase)}}}{{{_t(x, sig=5)}}}",
                 _t(row["Gmax_carrier"], sig=5, unit="Н"), label="eq-frc-Gmax"),
-        Formula(r"G_{max}^{лист} = \frac{P_в b + P_{гр} (a + L) - R_{A,min}}{x_G}",
-                rf"\frac{{{_t(m0, sig=6)} - {_t(row['R_front_min'], sig=5)}}}{{{_t(x, sig=5)}}}",
-                _t(row["Gmax_carrier_as_printed"], sig=5, unit="Н")),
         Formula(r"G_{max}^{*} = \frac{P_в b + P_{гр} (a + L) - k_A L (P_в + P_{гр})}{x_G + k_A L}", None,
                 _t(row["Gmax_carrier_consistent"], sig=5, unit="Н")))
-    s.paragraph("В исходном расчёте (рабочий лист, формула GS6max) из суммы моментов вычитается сила "
-                "R<sub>A,min</sub> без плеча L — формула неоднородна по размерности; её значения приведены «как в "
-                "листе» для сравнения, верное значение — G<sub>max</sub>. Кроме того, R<sub>A,min</sub> вычислена "
+    s.paragraph("Здесь R<sub>A,min</sub> вычислена "
                 "для номинального груза; если условие R<sub>A</sub>&nbsp;≥&nbsp;k<sub>A</sub>·ΣG относить к самому "
                 "наибольшему грузу, получается G<sub>max</sub><sup>*</sup>.")
     cols = [Column("R_front", sub("R", "A"), "Н", digits=0, sig=None), Column("R_rear", sub("R", "B"), "Н", digits=0, sig=None),
             Column("front_share_pct", "Δ" + sub("R", "A"), "%", digits=1),
             Column("rear_share_pct", "Δ" + sub("R", "B"), "%", digits=1),
-            Column("Gmax_carrier_as_printed", sub("G", "max") + " (как в листе)", "Н", digits=0, sig=None),
             Column("Gmax_carrier", sub("G", "max"), "Н", digits=0, sig=None),
             Column("Gmax_carrier_consistent", sub("G", "max") + "<sup>*</sup>", "Н", digits=0, sig=None)]
     s.table("Результаты анализа устойчивости и управляемости", _lead(study) + cols, f.table, id="tab-frc-carrier")
@@ -694,7 +694,5 @@ def conclusion_lines(study) -> list[str]:
         out.append(f"Доля веса на управляемом мосту — от {fmt(t['front_share_pct'].min(), digits=1)} до "
                    f"{fmt(t['front_share_pct'].max(), digits=1)}&nbsp;% (не менее {fmt(100 * c.min_share, digits=0)}&nbsp;%); "
                    f"наибольший допустимый груз по условию управляемости — от {fmt(t['Gmax_carrier'].min(), sig=5)} до "
-                   f"{fmt(t['Gmax_carrier'].max(), sig=5)}&nbsp;Н по ходу поршня (формула рабочего листа, неоднородная "
-                   f"по размерности, дала бы {fmt(t['Gmax_carrier_as_printed'].min(), sig=5)}…"
-                   f"{fmt(t['Gmax_carrier_as_printed'].max(), sig=5)}&nbsp;Н).")
+                   f"{fmt(t['Gmax_carrier'].max(), sig=5)}&nbsp;Н по ходу поршня.")
     return out
