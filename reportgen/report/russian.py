@@ -122,3 +122,25 @@ def position_names(labels) -> dict[str, str]:
             out[lab] = str(nxt)
             nxt += 1
     return out
+
+
+_COND = re.compile(r"^\s*vq([xy])_(\w+)\s*(>=|>|<=|<)\s*0\s*$")
+_OPS = {">=": "≥", "<=": "≤", "!=": "≠", "==": "="}
+_TOKEN = re.compile(r"\b(vq|aq|v|a|x|y|phi|wq|eq|w|e)([xy]?)_(\w+)\b")
+
+
+def condition_text(text: str) -> str:
+    """A load's condition written for a student (plain text, no identifiers): "vqx_H >= 0" →
+    «при движении точки H в положительном направлении оси x»; other expressions get Greek
+    letters and ≥/≤ with the point as a subscript-like suffix («φ(3) ≥ …»)."""
+    m = _COND.match(text)
+    if m:
+        axis, point, op = m.groups()
+        sense = "положительном" if op in (">=", ">") else "отрицательном"
+        return f"при движении точки {point} в {sense} направлении оси {axis}"
+    out = text
+    for op, sym in _OPS.items():
+        out = out.replace(op, sym)
+    plain = {"vq": "Vq", "aq": "aq", "wq": "ωq", "eq": "εq", "phi": "φ", "w": "ω", "e": "ε"}
+    out = _TOKEN.sub(lambda m: f"{plain.get(m.group(1), m.group(1))}{m.group(2)}({m.group(3)})", out)
+    return "при " + out

@@ -17,7 +17,8 @@ from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, Mo
 from ...style.numbers import fmt, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
-from .common import MAX_COLS, chosen_position, chunked_tables, sub, tex_point
+from ..russian import condition_text
+from .common import MAX_COLS, chosen_position, chunked_tables, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle", "dynamics")
 
@@ -120,7 +121,7 @@ def build(study) -> Section:
     row = d.row(lab)
     cols = d.ev(np.array([row["q"]]))
     kv = {k: float(v[0]) for k, v in cols.items()}
-    lead = [Column("pos", "№"), Column("q_deg", "<i>φ</i>", "град", digits=1)]
+    lead = [Column("pos", "№", fmt=pos_fmt(study)), Column("q_deg", "<i>φ</i>", "град", digits=1)]
     _model(sec, study, d)
     _inertia(sec, study, d, tab, lab, row, kv, lead)
     _moments(sec, study, d, tab, lab, row, kv, lead)
@@ -217,7 +218,7 @@ def _law(ld) -> str:
     if ld.against:
         parts.append("против движения")
     for c in ld.when:
-        parts.append(f"при {c.text}")
+        parts.append(condition_text(c.text))
     return "; ".join(parts)
 
 
@@ -244,7 +245,7 @@ def _inertia(sec, study, d, tab, lab, row, kv, lead) -> None:
               Formula(r"\frac{dJ_{II}}{d\varphi} = 2\sum_k \left[ m_k \left( x^{\prime}_{S_k} x^{\prime\prime}_{S_k}"
                       r" + y^{\prime}_{S_k} y^{\prime\prime}_{S_k} \right) + J_{S_k}\,\varphi^{\prime}_k"
                       r" \varphi^{\prime\prime}_k \right]", label="eq-dJ2"))
-    s.paragraph(f"Для положения {lab} (φ&nbsp;=&nbsp;{fmt(row['q_deg'], digits=1)}°):")
+    s.paragraph(f"Для положения {pos_no(study, lab)} (φ&nbsp;=&nbsp;{fmt(row['q_deg'], digits=1)}°):")
     fs = []
     for il in d.model.links:
         terms_s, terms_n = [], []
@@ -314,7 +315,7 @@ def _moments(sec, study, d, tab, lab, row, kv, lead) -> None:
     if d.idle_loads:
         s.paragraph("Нагрузки " + ", ".join(d.idle_loads) + " работы не совершают (их приведённые моменты "
                     "равны нулю во всём цикле) и далее не учитываются.")
-    s.paragraph(f"Для положения {lab}:")
+    s.paragraph(f"Для положения {pos_no(study, lab)}:")
     s.formula(*fs)
     cols = [Column("M_" + ld.name, _h("M", ld.name), "Н·м", sig=4) for ld in working]
     cols += [Column("M_c", _h("M", "с"), "Н·м", sig=4), Column("M_d", _h("M", "д"), "Н·м", sig=4),
@@ -540,7 +541,7 @@ def _motion(sec, study, d, tab, mot, lab, row, lead) -> None:
     sc = d.scalars
     w, e = row["omega"], row["eps"]
     Jt = r.J_I + row["J_II"]
-    s.paragraph(f"Угловая скорость и угловое ускорение звена приведения ({METHOD_RU[st.method]}) для положения {lab}:")
+    s.paragraph(f"Угловая скорость и угловое ускорение звена приведения ({METHOD_RU[st.method]}) для положения {pos_no(study, lab)}:")
     fs = []
     if st.method == "mertsalov":
         me = r.mertsalov

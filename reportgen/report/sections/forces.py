@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pandas as pd
 from markupsafe import Markup
 
@@ -23,7 +24,7 @@ from ...style.numbers import fmt, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import plural
-from .common import chosen_position, chunked_tables, q_header, sub, tex_point
+from .common import chosen_position, chunked_tables, q_header, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle", "forces")
 
@@ -115,7 +116,7 @@ def _shown_pairs(f) -> list[str]:
 
 def _lead(study):
     qkey, qhead, qunit, qfmt = q_header(study)
-    return [Column("pos", "№"), Column(qkey, qhead, qunit, **qfmt)]
+    return [Column("pos", "№", fmt=pos_fmt(study)), Column(qkey, qhead, qunit, **qfmt)]
 
 
 def _motion_text(study, f) -> str:
@@ -177,7 +178,7 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
     inertial = [(name, m, J, S) for name, m, J, S in f.inertial]
     if inertial:
         s.paragraph(f"Силы инерции звеньев приводятся к главному вектору, приложенному в центре масс, и "
-                    f"главному моменту (положение {lab}, {where}"
+                    f"главному моменту (положение {pos_no(study, lab)}, {where}"
                     + (f", ω&nbsp;=&nbsp;{fmt(row['omega'], sig=4)}&nbsp;рад/с, ε&nbsp;=&nbsp;"
                        f"{fmt(row['eps'], sig=4)}&nbsp;рад/с²" if f.rotary else "") + "):")
         fs = [Formula(r"\Phi_k = -m_k a_{S_k}", where=[(r"m_k", "масса звена k, кг"),
@@ -212,7 +213,7 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
                          "Phi": row.get("Phi_" + name, math.nan) if m else math.nan, "J": J or math.nan,
                          "e": row["eps_" + name], "MPhi": row["MPhi_" + name] if J else math.nan,
                          "G": l.weight or math.nan})
-        s.table(f"Массы, ускорения, силы и моменты сил инерции звеньев (положение {lab})", [
+        s.table(f"Массы, ускорения, силы и моменты сил инерции звеньев (положение {pos_no(study, lab)})", [
             Column("n", "Звено"), Column("m", "<i>m</i>", "кг", fmt=_fin), Column("a", sub("a", "S"), "м/с²", sig=4),
             Column("Phi", "Φ", "Н", sig=4), Column("J", sub("J", "S"), "кг·м²", fmt=_fin),
             Column("e", "ε", "рад/с²", sig=4), Column("MPhi", sub("M", "Φ"), "Н·м", sig=4),
@@ -228,9 +229,9 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
             lrows.append({"name": ld["name"], "link": ld["link"], "point": "—", "Fx": math.nan, "Fy": math.nan,
                           "F": math.nan, "M": ld["M"]})
     if lrows:
-        s.paragraph(f"Заданные нагрузки и силы тяжести в положении {lab} — в таблице {ref('tab-frc-applied')} "
+        s.paragraph(f"Заданные нагрузки и силы тяжести в положении {pos_no(study, lab)} — в таблице {ref('tab-frc-applied')} "
                     "(силы тяжести приложены в центрах масс и направлены вниз).")
-        s.table(f"Заданные силы и моменты (положение {lab})", [
+        s.table(f"Заданные силы и моменты (положение {pos_no(study, lab)})", [
             Column("name", "Нагрузка"), Column("link", "Звено"), Column("point", "Точка"),
             Column("Fx", sub("F", "x"), "Н", fmt=_short), Column("Fy", sub("F", "y"), "Н", fmt=_short),
             Column("F", "<i>F</i>", "Н", fmt=_short), Column("M", "<i>M</i>", "Н·м", fmt=_short)],
@@ -274,7 +275,7 @@ def _incidence(s: Section, study, f) -> None:
 # groups
 # --------------------------------------------------------------------------------------------
 def _groups(sec: Section, study, f, lab: str) -> None:
-    s = sec.subsection(f"Реакции в кинематических парах по группам Ассура (положение {lab})", "sec-frc-groups")
+    s = sec.subsection(f"Реакции в кинематических парах по группам Ассура (положение {pos_no(study, lab)})", "sec-frc-groups")
     s.paragraph("Для каждой группы составляются уравнения равновесия каждого звена: две проекции сил и "
                 "моменты относительно точки звена; неизвестные — составляющие реакций во внешних и "
                 "внутренних парах группы (для поступательной пары — нормальная сила и реактивный момент, "
@@ -310,7 +311,7 @@ def _groups(sec: Section, study, f, lab: str) -> None:
                  Column("R", "<i>R</i>", "Н", sig=5), Column("ang", "Угол с осью x", "град", digits=1)]
         if any(r["extra"] for r in rows):
             gcols.append(Column("extra", "Примечание"))
-        s.table(f"Реакции в парах группы {g.label} (положение {lab})", gcols, pd.DataFrame(rows),
+        s.table(f"Реакции в парах группы {g.label} (положение {pos_no(study, lab)})", gcols, pd.DataFrame(rows),
                 id=f"tab-frc-group-{gi + 1}")
         if any(p.kind == KS.K_MOM for p in unknown):
             _crank_moment(s, study, f, lab, g, det)
@@ -446,37 +447,48 @@ def _balance(sec: Section, study, f, lab: str) -> None:
         s.formula(Formula(rf"F_{{ур}} h_{{{pin.lower()}}} + \sum_i F_i h_i = 0", label="eq-frc-lever"))
     else:
         s.formula(Formula(r"F \left( h_{2} - h_{1} \right) + \sum_i F_i h_i = 0", label="eq-frc-lever"))
-    mt = lever.moments
+    mt = lever.moments.copy()
+    # the student's arithmetic: forces to five digits, arms as measured to 0,1 mm, products of
+    # the printed numbers (so that every printed product equals F·h of its row)
+    F_r = np.array([float(f"{abs(float(x)):.5g}") for x in mt["F"]])
+    h_r = np.round(np.abs(mt["h"].to_numpy(float)), 1)
+    mt["h"] = h_r
+    mt["Fh"] = np.sign(mt["Fh"].to_numpy(float)) * F_r * h_r
+    arm = round(abs(float(lever.arm_mm)), 1) * (1.0 if lever.arm_mm >= 0 else -1.0)
     mu_unit = "м·с⁻¹/мм" if not lever.analog else ("м/мм" if rot else "мм⁻¹")
-    s.figure(f"Рычаг Жуковского для положения {lab} (μ<sub>v</sub> = {fmt(lever.mu, sig=3)} {mu_unit})",
+    s.figure(f"Рычаг Жуковского для положения {pos_no(study, lab)} (μ<sub>v</sub> = {fmt(lever.mu, sig=3)} {mu_unit})",
              lever.svg, lever.width_mm, id="fig-frc-lever")
     loads = mt[~mt["balancing"].astype(bool)]
-    s.table(f"Моменты сил относительно полюса рычага Жуковского (положение {lab})", [
+    s.table(f"Моменты сил относительно полюса рычага Жуковского (положение {pos_no(study, lab)})", [
         Column("label", "Сила"), Column("F", "<i>F</i>", "Н", fmt=_short), Column("h", "<i>h</i>", "мм", digits=1),
         Column("Fh", "±<i>F·h</i>", "Н·мм", fmt=lambda v: fmt(v, sig=5, exp_from=1e12))], mt, id="tab-frc-lever",
         note="Плечо h — расстояние от полюса p до линии действия силы на рычаге; знак «+» — момент против "
              "часовой стрелки. Моменты звеньев заменены парами сил (′ и ″) на двух точках звена.")
     total = float(loads["Fh"].sum())
+    F_graph = -total / arm
+    M_graph = F_graph * _crank_length(mech) if rot else F_graph
+    exact = float(row[main])
+    dev_graph = 100.0 * abs(exact - M_graph) / max(abs(exact), 1e-12)
     if rot:
         pin = tex_point(_pin(mech))
         res = [Formula(rf"F_{{ур}} = -\frac{{\sum F_i h_i}}{{h_{{{pin.lower()}}}}}",
-                       rf"-\frac{{{_t(total, sig=6)}}}{{{_t(lever.arm_mm, sig=4)}}}",
-                       _t(row["F_bal_zhukovsky"], sig=5, unit="Н")),
+                       rf"-\frac{{{_t(total, sig=6)}}}{{{_t(arm, digits=1)}}}",
+                       _t(F_graph, sig=5, unit="Н")),
                Formula(rf"M_{{ур}}^{{Ж}} = F_{{ур}} l_{{{tex_point(d.center)}{pin}}}",
-                       rf"{_t(row['F_bal_zhukovsky'], sig=5)} \cdot {_t(_crank_length(mech), sig=4)}",
-                       _t(row["M_bal_zhukovsky"], sig=6, unit="Н·м")),
-               Formula(r"M_{ур}^{кин}", None, _t(row["M_bal"], sig=6, unit="Н·м")),
-               Formula(r"\Delta = \frac{\left| M_{ур}^{кин} - M_{ур}^{Ж} \right|}{\max \left| M_{ур} \right|} \cdot 100\%",
-                       None, _t(row["dev_zhukovsky_pct"], sig=2, unit="%"))]
+                       rf"{_t(F_graph, sig=5)} \cdot {_t(_crank_length(mech), sig=4)}",
+                       _t(M_graph, sig=5, unit="Н·м")),
+               Formula(r"M_{ур}^{кин}", None, _t(row["M_bal"], sig=5, unit="Н·м")),
+               Formula(r"\Delta = \frac{\left| M_{ур}^{кин} - M_{ур}^{Ж} \right|}{\left| M_{ур}^{кин} \right|} \cdot 100\%",
+                       None, _t(dev_graph, sig=2, unit="%"))]
     else:
         res = [Formula(r"F^{Ж} = -\frac{\sum F_i h_i}{h_{2} - h_{1}}",
-                       rf"-\frac{{{_t(total, sig=6)}}}{{{_t(lever.arm_mm, sig=4)}}}",
-                       _t(row["F_act_zhukovsky"], sig=7, unit="Н")),
-               Formula(r"F^{кин}", None, _t(row["F_act"], sig=7, unit="Н")),
-               Formula(r"\Delta = \frac{\left| F^{кин} - F^{Ж} \right|}{\max |F|} \cdot 100\%", None,
-                       _t(row["dev_zhukovsky_pct"], sig=2, unit="%"))]
-    s.paragraph(f"Результат для положения {lab} и расхождение с силовым расчётом по группам "
-                "(допускается до 5&nbsp;%; аналитически значения совпадают с точностью округления):")
+                       rf"-\frac{{{_t(total, sig=6)}}}{{{_t(arm, digits=1)}}}",
+                       _t(F_graph, sig=6, unit="Н")),
+               Formula(r"F^{кин}", None, _t(row["F_act"], sig=6, unit="Н")),
+               Formula(r"\Delta = \frac{\left| F^{кин} - F^{Ж} \right|}{|F^{кин}|} \cdot 100\%", None,
+                       _t(dev_graph, sig=2, unit="%"))]
+    s.paragraph(f"Результат для положения {pos_no(study, lab)} (плечи измерены с точностью 0,1&nbsp;мм) и "
+                "расхождение с силовым расчётом по группам (допускается до 5&nbsp;%):")
     s.formula(*res)
     cols = [Column(main, (sub("M", "ур") if rot else "<i>F</i>") + " (по группам)", unit, sig=7),
             Column(main + "_power", (sub("M", "ур") if rot else "<i>F</i>") + " (мощности)", unit, sig=7),
@@ -485,6 +497,9 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     if f.settings.flywheel:
         cols.insert(3, Column("M_d_dyn", sub("M", "дв") + " (динамика)", "Н·м", sig=7))
         cols.append(Column("M_bal_linkage", sub("M", "ур") + " без маховика", "Н·м", sig=5))
+    dyn_check = "M_bal_dyn" in f.table
+    if dyn_check:
+        cols.insert(3, Column("M_bal_dyn", sub("M", "д") + " − " + sub("J", "I") + "ε (динамика)", "Н·м", sig=7))
     chunked_tables(s, "Уравновешивающий момент и его проверки" if rot else "Усилие гидроцилиндра и его проверки",
                    f.table, cols, _lead(study), "tab-frc-checks")
     sc = f.scalars
@@ -497,6 +512,16 @@ def _balance(sec: Section, study, f, lab: str) -> None:
                  f"(без момента сил инерции первой группы, {sub('M', 'ур')}&nbsp;+&nbsp;{sub('M', 'Φ1')}) меняется "
                  f"по положениям (последний столбец таблицы); реакции от момента, приложенного к кривошипу, не "
                  f"зависят.")
+    if dyn_check:
+        dyn = study.dynamics
+        J = float(dyn.result.J_I - dyn.J_crank)
+        text += (f" Уравновешивающий момент переменен по положениям: силы инерции звеньев вычислены по истинному "
+                 f"закону движения ω(φ), ε(φ), момент сил инерции маховика к кривошипу не прикладывается. По "
+                 f"уравнению движения машины он равен движущему моменту за вычетом момента, идущего на разгон "
+                 f"первой группы звеньев: {sub('M', 'ур')}(φ)&nbsp;=&nbsp;{sub('M', 'д')}&nbsp;−&nbsp;"
+                 f"{sub('J', 'I')}·ε(φ), где {sub('M', 'д')}&nbsp;=&nbsp;{fmt(abs(dyn.scalars['M_d']), sig=5)}"
+                 f"&nbsp;Н·м, {sub('J', 'I')}&nbsp;=&nbsp;{fmt(J, sig=5)}&nbsp;кг·м² (без кривошипа). "
+                 f"Наибольшее относительное расхождение двух расчётов — {fmt(sc['dev_M_bal_dyn_max'], sig=2)}.")
     s.paragraph(text)
 
 
@@ -561,7 +586,7 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
                 f"для единственной вертикальной нагрузки {c.load} оно равно произведению нагрузки на передаточное "
                 f"число {inline_math(rf'i_{{{pt}}} = dy_{{{pt}}}/dS')} её точки приложения. Площадь поршня, "
                 f"давление в {a.count} гидроцилиндрах и грузоподъёмность (в точке {c.point} и на оси "
-                + ", ".join(c.points) + f") для положения {lab} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м):")
+                + ", ".join(c.points) + f") для положения {pos_no(study, lab)} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м):")
     ip = row["i_" + c.point]
     L_ = _name_tex(c.load)
     fs = [Formula(rf"F = {L_} \cdot i_{{{pt}}}", rf"{_in(P)} \cdot {_t(ip, sig=5)}", _t(row["F_act"], sig=6, unit="Н"),
@@ -619,7 +644,7 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
                 f"{_fin(c.weight_arm, 'м')} впереди задней оси, противовесы P<sub>гр</sub>&nbsp;=&nbsp;"
                 f"{_fin(c.ballast, 'Н')} — на a&nbsp;=&nbsp;{_fin(c.ballast_arm, 'м')} впереди "
                 f"передней оси, база L&nbsp;=&nbsp;{_fin(c.wheelbase, 'м')}, груз {c.load} — на расстоянии "
-                f"x<sub>G</sub> (координата его центра масс) позади задней оси. Для положения {lab}:")
+                f"x<sub>G</sub> (координата его центра масс) позади задней оси. Для положения {pos_no(study, lab)}:")
     RA = row["R_front"]
     s.formula(
         Formula(r"R_A = \frac{P_{гр} (a + L) + P_в b - G x_G}{L}",

@@ -17,7 +17,7 @@ from ...scenes.plans import MIN_MM, READ_MM, PlanScene
 from ...style.numbers import fmt, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
-from .common import chosen_position, chunked_tables, html_point, q_header, sub, tex_point
+from .common import chosen_position, chunked_tables, html_point, q_header, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle")
 
@@ -46,7 +46,7 @@ def build(study) -> Section:
     k = study.kinematics.copy()
     sec = Section("Кинематический анализ механизма", "sec-kinematics")
     qkey, qhead, qunit, qfmt = q_header(study)
-    lead = [Column("pos", "№"), Column(qkey, qhead, qunit, **qfmt)]
+    lead = [Column("pos", "№", fmt=pos_fmt(study)), Column(qkey, qhead, qunit, **qfmt)]
     pts = _moving_points(study)
     rotary = mech.driver.rotary
     w_known = mech.driver.omega is not None
@@ -135,14 +135,14 @@ def build(study) -> Section:
 
         # ----- plans at the chosen position
         lab = chosen_position(study)
-        s4 = sec.subsection(f"Планы скоростей и ускорений для положения {lab}", "sec-plans")
+        s4 = sec.subsection(f"Планы скоростей и ускорений для положения {pos_no(study, lab)}", "sec-plans")
         row = k[k["pos"] == lab].iloc[0]
         vplan = PlanScene(lab, "velocity").draw(study)
         aplan = PlanScene(lab, "acceleration").draw(study)
         _plan_formulas(s4, study, row, vplan, aplan)
-        s4.figure(f"План скоростей для положения {lab} (μ<sub>v</sub> = {fmt(vplan.mu, sig=3)} м·с⁻¹/мм)",
+        s4.figure(f"План скоростей для положения {pos_no(study, lab)} (μ<sub>v</sub> = {fmt(vplan.mu, sig=3)} м·с⁻¹/мм)",
                   vplan.svg, vplan.width_mm, id="fig-vplan")
-        s4.figure(f"План ускорений для положения {lab} (μ<sub>a</sub> = {fmt(aplan.mu, sig=3)} м·с⁻²/мм)",
+        s4.figure(f"План ускорений для положения {pos_no(study, lab)} (μ<sub>a</sub> = {fmt(aplan.mu, sig=3)} м·с⁻²/мм)",
                   aplan.svg, aplan.width_mm, id="fig-aplan")
         cmp_cols = [Column("name", "Вектор", fmt=_vec_name), Column("mm", "Длина на плане", "мм", digits=1),
                     Column("graphic", "По плану", None, sig=4), Column("analytic", "Аналитически", None, sig=4),
@@ -152,8 +152,8 @@ def build(study) -> Section:
                      f"аналитическим решением — в таблицах {ref('tab-vplan')} и {ref('tab-aplan')}. Наибольшее "
                      f"расхождение: по скоростям {fmt_pct(vplan.table['delta'].max() / 100)}, по ускорениям "
                      f"{fmt_pct(aplan.table['delta'].max() / 100)} (допускается до 5&nbsp;%).")
-        s4.table(f"Скорости по плану и аналитически (положение {lab}), м/с", cmp_cols, vplan.table, id="tab-vplan")
-        s4.table(f"Ускорения по плану и аналитически (положение {lab}), м/с²", cmp_cols, aplan.table, id="tab-aplan")
+        s4.table(f"Скорости по плану и аналитически (положение {pos_no(study, lab)}), м/с", cmp_cols, vplan.table, id="tab-vplan")
+        s4.table(f"Ускорения по плану и аналитически (положение {pos_no(study, lab)}), м/с²", cmp_cols, aplan.table, id="tab-aplan")
 
     # ----- kinematic diagrams
     s5 = sec.subsection("Кинематические диаграммы выходного звена", "sec-diagrams")
