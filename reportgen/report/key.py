@@ -36,6 +36,11 @@ def build_key(study, options: dict | None = None) -> Report:
     printed = _printed(study)
     if printed is not None:
         sections.append(printed)
+    if "dynamics" in study.tasks() and study.dynamics.settings.compare is not None:
+        from .sections.dynamics import comparison_block
+        cmp = Section("Сравнение с другим вариантом", "key-compare")
+        comparison_block(cmp, study)
+        sections.append(cmp)
     errors = _errors(study)
     if errors is not None:
         sections.append(errors)

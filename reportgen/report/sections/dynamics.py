@@ -129,8 +129,6 @@ def build(study) -> Section:
     _flywheel(sec, study, d)
     _dimensions(sec, study, d)
     _motion(sec, study, d, tab, mot, lab, row, lead)
-    if d.settings.compare is not None:
-        _comparison(sec, study, d, lab)
     return sec
 
 
@@ -601,7 +599,9 @@ def _motion(sec, study, d, tab, mot, lab, row, lead) -> None:
                    per=_per(len(ta)))
 
 
-def _comparison(sec, study, d, lab) -> None:
+def comparison_block(sec, study) -> None:
+    """The comparison with another variant of the case (the answer key, report/key.py)."""
+    d = study.dynamics
     cmp = d.comparison
     title = d.settings.compare[1]
     s = sec.subsection("Сравнение с исходным вариантом", "sec-dyn-compare")
@@ -655,12 +655,4 @@ def conclusion_lines(study) -> list[str]:
     out.append(f"Угловая скорость кривошипа изменяется от {fmt(sc['omega_min'], sig=5)} до "
                f"{fmt(sc['omega_max'], sig=5)}&nbsp;рад/с; фактический коэффициент неравномерности "
                f"{fmt(r.delta_achieved, digits=5)}.")
-    cmp = d.comparison if st.compare is not None else None
-    if cmp is not None:
-        jr = cmp.set_index("key")
-        out.append(f"По сравнению с вариантом «{st.compare[1]}» точный J<sub>I</sub> изменился на "
-                   f"{fmt(jr.loc['J_I_exact', 'change_pct'], digits=3, sign=True)}&nbsp;%, J<sub>I</sub> по методу "
-                   f"Мерцалова — на {fmt(jr.loc['J_I_mertsalov', 'change_pct'], digits=3, sign=True)}&nbsp;%; "
-                   f"угловая скорость точного движения — не более чем на {fmt(cmp.attrs['omega_diff_max'], sig=3)}"
-                   f"&nbsp;рад/с ({fmt_pct(cmp.attrs['omega_diff_rel'], digits=3)} от ω<sub>ср</sub>).")
     return out
