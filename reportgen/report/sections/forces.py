@@ -54,7 +54,7 @@ def _R(key: str) -> str:
 
 
 def _load_tex(ld: dict, comp: str = "") -> str:
-    """LaTeX symbol of a load (or of its projection ``comp`` = "x" | "y"): G_{2}, \Phi_{2y},
+    r"""LaTeX symbol of a load (or of its projection ``comp`` = "x" | "y"): G_{2}, \Phi_{2y},
     M_{\Phi 2}, or the load's name."""
     k = ld["link"]
     if ld["kind"] == "G":

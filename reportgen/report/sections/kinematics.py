@@ -258,10 +258,15 @@ def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
             fs.append(Formula(rf"a^k_{{{P}_{slider}{P}_{guide}}} = 2\omega_{{{guide}}} V_{{{P}_{slider}{P}_{guide}}}",
                               rf"2 \cdot {tex_num(abs(row['w_' + guide]), sig=4)} \cdot {tex_num(vr.length, sig=4)}",
                               tex_num(ck.length, sig=4, unit="м/с²")))
-    sec.paragraph("Скорости и ускорения определены построением планов по векторным уравнениям групп Ассура "
-                  "(для точки, общей двум звеньям, — относительное движение вокруг соседних шарниров; для "
-                  "камня на подвижной направляющей — переносное и относительное движение с кориолисовым "
-                  "ускорением). Угловые скорости и ускорения звеньев:")
+    # only what the mechanism has: a slider on the frame, a stone on a moving guide (Coriolis)
+    kinds = ["для точки, общей двум звеньям, — относительное вращательное движение вокруг соседних шарниров"]
+    if any(j.links[0] == FRAME for j in mech.prismatic):
+        kinds.append("для ползуна на неподвижной направляющей — скорость и ускорение вдоль направляющей")
+    if any(j.links[0] != FRAME for j in mech.prismatic):
+        kinds.append("для камня на подвижной направляющей — переносное и относительное движение с "
+                     "кориолисовым ускорением")
+    sec.paragraph("Скорости и ускорения определены построением планов по векторным уравнениям групп Ассура ("
+                  + "; ".join(kinds) + "). Угловые скорости и ускорения звеньев:")
     if fs:
         sec.formula(*fs)
 
