@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import re
 
-from markupsafe import Markup
+from markupsafe import Markup, escape
 
 NBSP = "\u00a0"
 
@@ -144,3 +144,37 @@ def condition_text(text: str) -> str:
     plain = {"vq": "Vq", "aq": "aq", "wq": "ωq", "eq": "εq", "phi": "φ", "w": "ω", "e": "ε"}
     out = _TOKEN.sub(lambda m: f"{plain.get(m.group(1), m.group(1))}{m.group(2)}({m.group(3)})", out)
     return "при " + out
+
+
+_EXPR_TOKEN = re.compile(r"(\d+(?:\.\d+)?(?:[eE][-+]?\d+)?)|([A-Za-z_][A-Za-z0-9_]*)|(>=|<=|!=|==|\*|[^\sA-Za-z0-9_])|(\s+)")
+_UNITS_RU = {"m": "м", "mm": "мм", "cm": "см", "deg": "°", "rad": "рад", "kg": "кг", "N": "Н", "s": "с",
+             "Pa": "Па", "MPa": "МПа", "rpm": "об/мин"}
+
+
+def expr_html(text: str) -> Markup:
+    """A case expression in textbook notation (escaped HTML): "phi_6 = phi_P6" → φ<sub>6</sub> =
+    φ<sub>P6</sub>, "y_56 = 0.2 m" → <i>y</i><sub>56</sub> = 0,2 м; ``*`` → ·, ``>=`` → ≥."""
+    out = []
+    prev_number = pending = False
+    for num, ident, op, space in _EXPR_TOKEN.findall(text):
+        if space:
+            if prev_number:
+                pending = True
+            else:
+                out.append(Markup(" "))
+            continue
+        if ident and prev_number and ident in _UNITS_RU:
+            unit = _UNITS_RU[ident]
+            out.append(Markup(unit if unit == "°" else NBSP + unit))
+            prev_number = pending = False
+            continue
+        if pending:
+            out.append(Markup(" "))
+        prev_number, pending = bool(num), False
+        if num:
+            out.append(escape(num.replace(".", ",")))
+        elif ident:
+            out.append(param_symbol(ident))
+        else:
+            out.append(escape(_OPS.get(op, "·" if op == "*" else op)))
+    return Markup("").join(out)

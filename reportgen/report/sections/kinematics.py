@@ -17,6 +17,7 @@ from ...scenes.plans import MIN_MM, READ_MM, PlanScene
 from ...style.numbers import fmt, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
+from ..russian import expr_html
 from .common import chosen_position, chunked_tables, html_point, q_header, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle")
@@ -75,8 +76,10 @@ def build(study) -> Section:
     if study.fits:
         s1.paragraph("Неизвестные размеры подобраны из условий задания (решение уравнений с точностью 10⁻¹²):")
         fdf = pd.DataFrame([{"name": f.name, "cond": f.condition, "at": f.at, "value": f.value} for f in study.fits])
-        s1.table("Подобранные размеры", [Column("name", "Величина"), Column("cond", "Условие"),
-                                          Column("at", "Положение"), Column("value", "Значение", "м", digits=4)],
+        s1.table("Подобранные размеры", [Column("name", "Величина", fmt=expr_html),
+                                          Column("cond", "Условие", fmt=expr_html),
+                                          Column("at", "Положение", fmt=expr_html),
+                                          Column("value", "Значение", "м", digits=4)],
                  fdf, id="tab-fits")
     cols = []
     for p in pts:

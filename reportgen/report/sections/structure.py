@@ -2,10 +2,12 @@
 from __future__ import annotations
 
 import pandas as pd
+from markupsafe import Markup
 
 from ...scenes.mechanism import AssurGroups, KinematicScheme
 from ..document import Column, Section, ref
 from ..formulas import inline_math
+from ..russian import expr_html
 from .common import chosen_position
 
 NEEDS = ("structure", "kinematics")
@@ -84,5 +86,6 @@ def conclusion_lines(study) -> list[str]:
     out = [f"Механизм имеет одну степень свободы (W&nbsp;=&nbsp;{st.W}), структурная формула "
            f"{st.formula}, механизм {_roman(st.mech_class)} класса."]
     for f in study.fits:
-        out.append(f"Подобран размер {f.name}&nbsp;=&nbsp;{fmt(f.value, digits=4)}&nbsp;м (условие {f.condition} при {f.at}).")
+        out.append(Markup("Подобран размер {}&nbsp;=&nbsp;{}&nbsp;м (условие {} при {}).").format(
+            expr_html(f.name), fmt(f.value, digits=4), expr_html(f.condition), expr_html(f.at)))
     return out
