@@ -92,7 +92,7 @@ def build_report(study, sections: Iterable[str] | None = None, options: dict | N
 
 
 def _assignment(study, names) -> list:
-    tasks = _assignment_tasks(names)
+    tasks = _assignment_tasks(study, names)
     lead = "По заданной схеме и размерам механизма: " if study.has_linkage else "Требуется: "
     out = [Paragraph(lead + "; ".join(tasks) + ".")] if tasks else []
     out += _given_parameters(study)
@@ -110,12 +110,16 @@ _TASKS = {"structure": "выполнить структурный анализ �
                     "рычагом Жуковского"}
 
 
-def _assignment_tasks(names) -> list[str]:
+def _assignment_tasks(study, names) -> list[str]:
     """One clause per chosen section: the section module's ``TASK`` (a task kind's own wording) or
-    the linkage's clauses above."""
+    the linkage's clauses above; only what the note contains (no plans of velocities without a
+    given speed of the driving link)."""
     out = []
     for n in names:
         text = getattr(SECTIONS[n][0], "TASK", None) or _TASKS.get(n)
+        if n == "kinematics" and study.mechanism.driver.omega is None:
+            text = ("выполнить кинематический анализ (план положений, аналоги скоростей и ускорений, "
+                    "кинематические диаграммы)")
         if text:
             out.append(text)
     return out

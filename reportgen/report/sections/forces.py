@@ -288,12 +288,17 @@ def _groups(sec: Section, study, f, lab: str) -> None:
         gid = f"fig-frc-group-{gi + 1}"
         names = " + ".join(v.label.replace("R", "<i>R</i>", 1) if v.label.startswith("R") else v.label
                             for v in ext) or "0"
-        head = g.title[0].upper() + g.title[1:]
         unknown = [f.model.pairs[k] for k in g.pairs]
+        act = next((p for p in unknown if p.kind == KS.K_ACT), None)
+        if act is not None:   # the initial mechanism of an actuator-driven linkage (structure.decomposition)
+            head = (f"Начальный механизм ({', '.join(g.links)}) с ведущей поступательной парой "
+                    f"{act.a}–{act.b}")
+        else:
+            head = g.title[0].upper() + g.title[1:]
         ulist = ", ".join(_unknown_text(p) for p in unknown)
         s.paragraph(f"<b>{head}.</b> Неизвестные: {ulist} — {plural(3 * len(g.links), 'уравнение', 'уравнения', 'уравнений')} равновесия. Уравнение сил группы "
                     f"(рисунок {ref(gid)}): {names}&nbsp;=&nbsp;0.")
-        s.figure(f"Группа {g.label}: схема нагружения (μ<sub>l</sub> = {fmt(draw.mu, sig=3)} м/мм, стрелки сил "
+        s.figure(f"{'Начальный механизм' if act is not None else 'Группа'} {g.label}: схема нагружения (μ<sub>l</sub> = {fmt(draw.mu, sig=3)} м/мм, стрелки сил "
                  f"без масштаба) и план сил (μ<sub>F</sub> = {fmt(draw.mu_F, sig=3)} Н/мм)",
                  draw.svg, draw.width_mm, id=gid)
         rows = []
