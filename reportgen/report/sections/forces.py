@@ -602,7 +602,7 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
     for q in list(c.points) + [c.point]:
         Q = tex_point(q)
         fs.append(Formula(rf"G_{{{Q}}} = \frac{{k p_{{max}} \eta A}}{{i_{{{Q}}}}}",
-                          rf"\frac{{{a.count} \cdot {_in(a.pressure)} \cdot {_in(a.efficiency)} \cdot {_t(a.area, sig=5)}}}{{{_t(row['i_' + q], sig=5)}}}",
+                          rf"\frac{{{a.count} \cdot {_in(a.pressure / 1e6)} \cdot 10^{{6}} \cdot {_in(a.efficiency)} \cdot {_t(a.area, sig=5)}}}{{{_t(row['i_' + q], sig=5)}}}",
                           _t(row["Gcap_" + q], sig=5, unit="Н")))
     fs.append(Formula(rf"\Delta G = \frac{{G_{{{pt}}} - {L_}}}{{{L_}}} \cdot 100\%",
                       rf"\frac{{{_t(row['Gcap_' + c.point], sig=5)} - {_in(P)}}}{{{_in(P)}}} \cdot 100\%",
@@ -613,7 +613,7 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
         s.paragraph("Если механизм нагружен и другими силами (силы тяжести звеньев), их доля усилия "
                     f"{inline_math('F_{ост}')} вычитается: {rest}.")
     cols = [Column("F_act", "<i>F</i>", "Н", digits=0, sig=None),
-            Column("p_act", "<i>p</i>", "Па", fmt=lambda v: fmt(v, digits=0, sig=None, exp_from=1e12))]
+            Column("p_act", "<i>p</i>", "МПа", fmt=lambda v: fmt(v / 1e6, digits=3, sig=None))]
     cols += [Column("Gcap_" + q, sub("G", q), "Н", digits=0, sig=None) for q in list(c.points) + [c.point]]
     cols += [Column("reserve_pct", "Δ<i>G</i>", "%", digits=1)]
     s.table("Результаты анализа механизма на грузоподъёмность", _lead(study) + cols, f.table, id="tab-frc-capacity")
@@ -621,7 +621,7 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
              160, id="fig-frc-capacity")
     sc = f.scalars
     txt = (f"Результаты — в таблице {ref('tab-frc-capacity')} и на рисунке {ref('fig-frc-capacity')}. Усилие гидроцилиндров "
-           f"при давлении в гидросистеме {fmt(a.pressure / 1e6, sig=4)}&nbsp;МПа: k·p·η·A&nbsp;=&nbsp;{fmt(a.F_max, sig=6)}&nbsp;Н. ")
+           f"при давлении в гидросистеме {_fin(a.pressure / 1e6)}&nbsp;МПа: k·p·η·A&nbsp;=&nbsp;{fmt(a.F_max, sig=6)}&nbsp;Н. ")
     if sc["pressure_exceeded"]:
         bad = f.table[f.table["p_act"] > a.pressure]
         where = ", ".join(fmt(v, digits=3) for v in bad["q"]) if len(bad) else fmt(sc["q_p_act_max"], digits=3)
