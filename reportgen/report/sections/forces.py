@@ -453,9 +453,10 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     else:
         s.formula(Formula(r"F \left( h_{2} - h_{1} \right) + \sum_i F_i h_i = 0", label="eq-frc-lever"))
     mt = lever.moments.copy()
-    # the student's arithmetic: forces to five digits, arms as measured to 0,1 mm, products of
+    # the student's arithmetic: forces to 0,01 Н, arms as measured to 0,1 mm, products of
     # the printed numbers (so that every printed product equals F·h of its row)
-    F_r = np.array([float(f"{abs(float(x)):.5g}") for x in mt["F"]])
+    F_r = np.round(np.abs(mt["F"].to_numpy(float)), 2)
+    mt["F"] = F_r
     h_r = np.round(np.abs(mt["h"].to_numpy(float)), 1)
     mt["h"] = h_r
     mt["Fh"] = np.sign(mt["Fh"].to_numpy(float)) * F_r * h_r
@@ -465,8 +466,9 @@ def _balance(sec: Section, study, f, lab: str) -> None:
              lever.svg, lever.width_mm, id="fig-frc-lever")
     loads = mt[~mt["balancing"].astype(bool)]
     s.table(f"Моменты сил относительно полюса рычага Жуковского (положение {pos_no(study, lab)})", [
-        Column("label", "Сила"), Column("F", "<i>F</i>", "Н", fmt=_short), Column("h", "<i>h</i>", "мм", digits=1),
-        Column("Fh", "±<i>F·h</i>", "Н·мм", fmt=lambda v: fmt(v, sig=5, exp_from=1e12))], mt, id="tab-frc-lever",
+        Column("label", "Сила"), Column("F", "<i>F</i>", "Н", digits=2, sig=None),
+        Column("h", "<i>h</i>", "мм", digits=1, sig=None),
+        Column("Fh", "±<i>F·h</i>", "Н·мм", fmt=lambda v: fmt(v, digits=1, sig=None, exp_from=1e12))], mt, id="tab-frc-lever",
         note="Плечо h — расстояние от полюса p до линии действия силы на рычаге; знак «+» — момент против "
              "часовой стрелки. Моменты звеньев заменены парами сил (′ и ″) на двух точках звена.")
     total = float(loads["Fh"].sum())
