@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import importlib
 import math
+import re
 from typing import Iterable
 
 import pandas as pd
@@ -52,6 +53,17 @@ REFERENCES = [
     "ГОСТ 7.32–2017. Система стандартов по информации, библиотечному и издательскому делу. Отчёт о "
     "научно-исследовательской работе. Структура и правила оформления. — Москва : Стандартинформ, 2017. — 32 с.",
 ]
+
+
+def _typeset(ref: str) -> str:
+    """Non-breaking spaces in a reference (ГОСТ 7.0.100 entry): between initials and before the
+    surname («И.\u00a0И.\u00a0Артоболевский»), in «640\u00a0с.» and «ГОСТ\u00a02.770»."""
+    ref = re.sub(r"\b([А-ЯЁA-Z]\.) (?=[А-ЯЁA-Z])", "\\1\u00a0", ref)
+    ref = re.sub(r"(\d+) с\.", "\\1\u00a0с.", ref)
+    return re.sub(r"ГОСТ (\d)", "ГОСТ\u00a0\\1", ref)
+
+
+REFERENCES = [_typeset(r) for r in REFERENCES]
 
 
 def chosen_sections(study, names: Iterable[str] | None) -> list[str]:
@@ -178,7 +190,7 @@ def _introduction(study, names, built) -> list:
     st = study.structure if study.has_linkage else None
     parts = [Paragraph(
         "Теория механизмов и машин изучает строение, кинематику и динамику механизмов и общие методы их "
-        "анализа и синтеза. Курсовой проект закрепляет эти методы на примере конкретного механизма: "
+        "анализа и синтеза [1, 3]. Курсовой проект закрепляет эти методы на примере конкретного механизма [2, 4]: "
         "определяются его строение, движение звеньев, силы, действующие в кинематических парах, и "
         "параметры, обеспечивающие требуемый режим работы.")]
     what = ", ".join(s.title.lower() for s in built)
