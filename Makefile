@@ -2,7 +2,7 @@
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
-CASE   ?= cases/ws000_six_bar.toml
+CASE   ?= cases/ws000_six_bar_corrected.toml
 
 .PHONY: report test setup bench clean
 

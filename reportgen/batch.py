@@ -94,7 +94,7 @@ def _init_worker() -> None:
     warmup()
 
 
-def run_variant(v: Variant, out_dir: str, formats: tuple[str, ...], sections) -> Outcome:
+def run_variant(v: Variant, out_dir: str, formats: tuple[str, ...], sections, key: bool = False) -> Outcome:
     t0 = time.perf_counter()
     try:
         from .analysis.study import Study
@@ -105,6 +105,9 @@ def run_variant(v: Variant, out_dir: str, formats: tuple[str, ...], sections) ->
         study = Study(spec)
         report = build_report(study, sections)
         files = build_outputs(report, Path(out_dir), _stem(v), formats)
+        if key:
+            from .report.key import write_key
+            files.update(write_key(study, Path(out_dir), _stem(v), formats))
         return Outcome(v.name, True, spec.digest(), [str(p) for p in files.values()], time.perf_counter() - t0)
     except ReportgenError as e:
         return Outcome(v.name, False, "", [], time.perf_counter() - t0, str(e))
@@ -124,7 +127,7 @@ def _progress(total: int):
 
 
 def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
-              formats: tuple[str, ...] = ("pdf", "html"), sections=None) -> list[Outcome]:
+              formats: tuple[str, ...] = ("pdf", "html"), sections=None, key: bool = False) -> list[Outcome]:
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     jobs = max(1, jobs or os.cpu_count() or 1)
@@ -132,14 +135,14 @@ def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
     results: list[Outcome] = []
     if jobs == 1 or len(variants) == 1:
         for v in variants:
-            results.append(run_variant(v, str(out_dir), formats, sections))
+            results.append(run_variant(v, str(out_dir), formats, sections, key))
             if bar:
                 bar.update()
     else:
         ctx = multiprocessing.get_context("forkserver")
         with ProcessPoolExecutor(max_workers=min(jobs, len(variants)), mp_context=ctx,
                                  initializer=_init_worker) as ex:
-            futs = [ex.submit(run_variant, v, str(out_dir), formats, sections) for v in variants]
+            futs = [ex.submit(run_variant, v, str(out_dir), formats, sections, key) for v in variants]
             for f in as_completed(futs):
                 results.append(f.result())
                 if bar:

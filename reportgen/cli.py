@@ -60,6 +60,9 @@ def cmd_build(args) -> int:
     study = Study(args.case)
     report = build_report(study, _sections(args.sections))
     files = build_outputs(report, Path(args.output), study.name, formats)
+    if args.key:
+        from .report.key import write_key
+        files.update(write_key(study, Path(args.output), study.name, formats))
     for kind, path in files.items():
         print(f"{kind.upper()}: {path}")
     print(f"Готово за {time.perf_counter() - t0:.1f} с.")
@@ -69,7 +72,8 @@ def cmd_build(args) -> int:
 def cmd_batch(args) -> int:
     from .batch import read_variants, run_batch
     variants = read_variants(Path(args.variants), Path(args.base) if args.base else None)
-    results = run_batch(variants, Path(args.output), args.jobs, _formats(args.format), _sections(args.sections))
+    results = run_batch(variants, Path(args.output), args.jobs, _formats(args.format), _sections(args.sections),
+                          key=args.key)
     ok = [r for r in results if r.ok]
     bad = [r for r in results if not r.ok]
     print(f"Отчётов построено: {len(ok)} из {len(results)}; манифест: {Path(args.output) / 'manifest.json'}")
@@ -133,6 +137,7 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("-o", "--output", default="output", help="папка вывода (по умолчанию output/)")
     b.add_argument("--format", default="pdf,html", help="pdf, html или pdf,html")
     b.add_argument("--sections", help="разделы через запятую: structure,kinematics,dynamics,forces")
+    b.add_argument("--key", action="store_true", help="также ключ для преподавателя: <вариант>-key.pdf/.html")
     b.set_defaults(func=cmd_build)
     bt = sub.add_parser("batch", help="отчёты по всем вариантам группы и манифест")
     bt.add_argument("variants", help="таблица вариантов (.csv, .toml) или папка с файлами вариантов")
@@ -141,6 +146,7 @@ def build_parser() -> argparse.ArgumentParser:
     bt.add_argument("--jobs", type=int, default=None, help="число параллельных процессов (по умолчанию — число ядер)")
     bt.add_argument("--format", default="pdf,html")
     bt.add_argument("--sections")
+    bt.add_argument("--key", action="store_true", help="также ключи для преподавателя (<вариант>-key.pdf/.html)")
     bt.set_defaults(func=cmd_batch)
     w = sub.add_parser("warmup", help="скомпилировать ядра numba (один раз после установки)")
     w.set_defaults(func=cmd_warmup)

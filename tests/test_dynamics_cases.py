@@ -52,7 +52,8 @@ def test_corrected_case_changes(corrected, ws000):
     assert 0 < d.comparison.attrs["omega_diff_max"] < 0.05
     from reportgen.report.sections.dynamics import conclusion_lines
     text = " ".join(conclusion_lines(corrected))
-    assert "изменился на" in text and "рабочий лист 000" in text
+    # the comparison with the worksheet's variant is the teacher's: in the answer key only
+    assert "рабочий лист 000" not in text
 
 
 # --------------------------------------------------------------------------------------------
@@ -157,7 +158,19 @@ def test_report_sections_build(engine, corrected):
         walk(rep.sections[0])
         assert {"fig-dyn-J", "fig-dyn-witt", "fig-dyn-flywheel", "tab-dyn-methods"} <= ids
         assert all(isinstance(x, str) and x for x in sec.conclusion_lines(s))
-    assert "tab-dyn-compare" in ids
+    # the comparison with another variant is for the teacher: in the answer key, not in the note
+    assert "tab-dyn-compare" not in ids
+    from reportgen.report.key import build_key
+    key_ids = set()
+
+    def walk_key(node):
+        for ch in getattr(node, "children", []):
+            if getattr(ch, "id", None):
+                key_ids.add(ch.id)
+            walk_key(ch)
+    for sec_ in build_key(corrected).sections:
+        walk_key(sec_)
+    assert "tab-dyn-compare" in key_ids
 
 
 # --------------------------------------------------------------------------------------------

@@ -715,6 +715,17 @@ class Forces:
             # the balancing moment of the linkage alone (without the inertia of the first group):
             # the flywheel's moment acts on the crank only and changes no reaction
             out["M_bal_linkage"] = out["M_bal"] + out["MPhi_fly"]
+        elif self.rotary and s.motion == "dynamics" and self.study.dynamics.balance == "drive":
+            # the course's check of the balancing moment against the dynamics: with the inertia
+            # loads of the true motion, the linkage is balanced on the crank by what the drive gives
+            # minus what the first group (rotor, gear, flywheel) takes to accelerate,
+            # M_ур(φ) = M_д − (J_I − J_кр)·ε(φ) (Артоболевский, гл. 14; equation of motion in the
+            # differential form, J_II and its derivative being carried by the linkage's own inertia loads)
+            dyn = self.study.dynamics
+            sgn = float(mech.driver.direction)
+            J = float(dyn.result.J_I - dyn.J_crank)
+            out["M_d_dyn"] = np.full(q.shape, sgn * float(dyn.scalars["M_d"]))
+            out["M_bal_dyn"] = out["M_d_dyn"] - J * cols["e_" + mech.driver.link]
         if s.actuator is not None:
             A = s.actuator
             out["p_act"] = out["F_act"] / (A.count * A.area * A.efficiency)
@@ -857,6 +868,9 @@ class Forces:
             k = int(np.argmin(r))
             out["R_front_min_value"] = float(r[k])
             out["q_R_front_min"] = float(cyc["q"].iloc[k])
+        if "M_bal_dyn" in tab:
+            out["dev_M_bal_dyn_max"] = float(np.max(np.abs(tab["M_bal"] - tab["M_bal_dyn"]))
+                                             / np.max(np.abs(tab["M_bal"])))
         if s.flywheel:
             out["dev_M_bal_M_d_max"] = float(np.max(np.abs(tab["M_bal"] - tab["M_d_dyn"])
                                                     / np.abs(tab["M_d_dyn"])))

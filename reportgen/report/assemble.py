@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import importlib
 import math
+import re
 from typing import Iterable
 
 import pandas as pd
@@ -16,6 +17,7 @@ from markupsafe import Markup
 from ..registry import KINDS
 from ..style.numbers import fmt
 from .document import Column, Paragraph, Report, Table, ref
+from .russian import param_symbol, param_title, plural
 from .sections import kinematics as sec_kin
 from .sections import structure as sec_struct
 from .sections.common import value_with_unit
@@ -51,6 +53,17 @@ REFERENCES = [
     "ГОСТ 7.32–2017. Система стандартов по информации, библиотечному и издательскому делу. Отчёт о "
     "научно-исследовательской работе. Структура и правила оформления. — Москва : Стандартинформ, 2017. — 32 с.",
 ]
+
+
+def _typeset(ref: str) -> str:
+    """Non-breaking spaces in a reference (ГОСТ 7.0.100 entry): between initials and before the
+    surname («И.\u00a0И.\u00a0Артоболевский»), in «640\u00a0с.» and «ГОСТ\u00a02.770»."""
+    ref = re.sub(r"\b([А-ЯЁA-Z]\.) (?=[А-ЯЁA-Z])", "\\1\u00a0", ref)
+    ref = re.sub(r"(\d+) с\.", "\\1\u00a0с.", ref)
+    return re.sub(r"ГОСТ (\d)", "ГОСТ\u00a0\\1", ref)
+
+
+REFERENCES = [_typeset(r) for r in REFERENCES]
 
 
 def chosen_sections(study, names: Iterable[str] | None) -> list[str]:
@@ -91,7 +104,7 @@ def build_report(study, sections: Iterable[str] | None = None, options: dict | N
 
 
 def _assignment(study, names) -> list:
-    tasks = _assignment_tasks(names)
+    tasks = _assignment_tasks(study, names)
     lead = "По заданной схеме и размерам механизма: " if study.has_linkage else "Требуется: "
     out = [Paragraph(lead + "; ".join(tasks) + ".")] if tasks else []
     out += _given_parameters(study)
@@ -109,12 +122,16 @@ _TASKS = {"structure": "выполнить структурный анализ �
                     "рычагом Жуковского"}
 
 
-def _assignment_tasks(names) -> list[str]:
+def _assignment_tasks(study, names) -> list[str]:
     """One clause per chosen section: the section module's ``TASK`` (a task kind's own wording) or
-    the linkage's clauses above."""
+    the linkage's clauses above; only what the note contains (no plans of velocities without a
+    given speed of the driving link)."""
     out = []
     for n in names:
         text = getattr(SECTIONS[n][0], "TASK", None) or _TASKS.get(n)
+        if n == "kinematics" and study.mechanism.driver.omega is None:
+            text = ("выполнить кинематический анализ (план положений, аналоги скоростей и ускорений, "
+                    "кинематические диаграммы)")
         if text:
             out.append(text)
     return out
@@ -129,12 +146,18 @@ def _given_parameters(study) -> list:
         if name not in raw or name in fitted:
             continue
         v, unit = value_with_unit(q)
-        rows.append({"name": name, "value": v, "unit": unit})
+        rows.append({"title": param_title(name), "name": name, "value": v, "unit": unit})
     if rows:
-        out.append(Table("Исходные данные", [Column("name", "Параметр", fmt=_param_name),
-                                             Column("value", "Значение", sig=4), Column("unit", "Единица")],
+        out.append(Table("Исходные данные", [Column("title", "Параметр"), Column("name", "Обозначение", fmt=param_symbol),
+                                             Column("value", "Значение", fmt=_as_written), Column("unit", "Единица")],
                          pd.DataFrame(rows), id="tab-given"))
     return out
+
+
+def _as_written(x) -> str:
+    """A given value as the case writes it (shortest representation, no padding zeros)."""
+    t = f"{float(x):.10g}"
+    return fmt(float(t), digits=len(t.split(".")[1]) if "." in t and "e" not in t else 0, sig=None)
 
 
 def _linkage_data(study) -> list:
@@ -163,16 +186,11 @@ def _linkage_data(study) -> list:
     return out
 
 
-def _param_name(name: str) -> Markup:
-    head, _, tail = name.partition("_")
-    return Markup("<i>{}</i><sub>{}</sub>").format(head, tail) if tail else Markup("<i>{}</i>").format(name)
-
-
 def _introduction(study, names, built) -> list:
     st = study.structure if study.has_linkage else None
     parts = [Paragraph(
         "Теория механизмов и машин изучает строение, кинематику и динамику механизмов и общие методы их "
-        "анализа и синтеза. Курсовой проект закрепляет эти методы на примере конкретного механизма: "
+        "анализа и синтеза [1, 3]. Курсовой проект закрепляет эти методы на примере конкретного механизма [2, 4]: "
         "определяются его строение, движение звеньев, силы, действующие в кинематических парах, и "
         "параметры, обеспечивающие требуемый режим работы.")]
     what = ", ".join(s.title.lower() for s in built)

@@ -7,6 +7,7 @@ import pandas as pd
 
 from ...case import units as U
 from ..document import Column, Section
+from ..russian import position_names
 
 MAX_COLS = 8
 
@@ -39,6 +40,18 @@ def chosen_position(study) -> str:
     if lab not in labels:
         raise node.error("position", f"нет положения «{lab}»", expected="подпись положения: " + ", ".join(labels))
     return lab
+
+
+def pos_no(study, lab: str) -> str:
+    """The student's number of a report position (extra positions named in the case, e.g. "f",
+    are numbered after the regular ones: report/russian.position_names)."""
+    return position_names(study.kinematics["pos"]).get(str(lab), str(lab))
+
+
+def pos_fmt(study):
+    """Column formatter printing positions by number."""
+    names = position_names(study.kinematics["pos"])
+    return lambda lab: names.get(str(lab), str(lab))
 
 
 def q_header(study) -> tuple[str, str, str, dict]:

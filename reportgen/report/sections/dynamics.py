@@ -17,13 +17,17 @@ from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, Mo
 from ...style.numbers import fmt, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
-from .common import MAX_COLS, chosen_position, chunked_tables, sub, tex_point
+from ..russian import condition_text
+from .common import MAX_COLS, chosen_position, chunked_tables, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle", "dynamics")
 
 METHOD_RU = {"exact": "точное решение уравнения движения", "mertsalov": "метод Н. И. Мерцалова",
              "wittenbauer": "метод Ф. Виттенбауэра"}
 
+
+METHOD_INSTR = {"exact": "точным решением уравнения движения", "mertsalov": "методом Н. И. Мерцалова",
+                "wittenbauer": "методом Ф. Виттенбауэра"}
 
 TEX = {
     "J2": r"J_{II}(\varphi)",
@@ -120,7 +124,7 @@ def build(study) -> Section:
     row = d.row(lab)
     cols = d.ev(np.array([row["q"]]))
     kv = {k: float(v[0]) for k, v in cols.items()}
-    lead = [Column("pos", "№"), Column("q_deg", "<i>φ</i>", "град", digits=1)]
+    lead = [Column("pos", "№", fmt=pos_fmt(study)), Column("q_deg", "<i>φ</i>", "град", digits=1)]
     _model(sec, study, d)
     _inertia(sec, study, d, tab, lab, row, kv, lead)
     _moments(sec, study, d, tab, lab, row, kv, lead)
@@ -128,8 +132,6 @@ def build(study) -> Section:
     _flywheel(sec, study, d)
     _dimensions(sec, study, d)
     _motion(sec, study, d, tab, mot, lab, row, lead)
-    if d.settings.compare is not None:
-        _comparison(sec, study, d, lab)
     return sec
 
 
@@ -217,7 +219,7 @@ def _law(ld) -> str:
     if ld.against:
         parts.append("против движения")
     for c in ld.when:
-        parts.append(f"при {c.text}")
+        parts.append(condition_text(c.text))
     return "; ".join(parts)
 
 
@@ -244,7 +246,7 @@ def _inertia(sec, study, d, tab, lab, row, kv, lead) -> None:
               Formula(r"\frac{dJ_{II}}{d\varphi} = 2\sum_k \left[ m_k \left( x^{\prime}_{S_k} x^{\prime\prime}_{S_k}"
                       r" + y^{\prime}_{S_k} y^{\prime\prime}_{S_k} \right) + J_{S_k}\,\varphi^{\prime}_k"
                       r" \varphi^{\prime\prime}_k \right]", label="eq-dJ2"))
-    s.paragraph(f"Для положения {lab} (φ&nbsp;=&nbsp;{fmt(row['q_deg'], digits=1)}°):")
+    s.paragraph(f"Для положения {pos_no(study, lab)} (φ&nbsp;=&nbsp;{fmt(row['q_deg'], digits=1)}°):")
     fs = []
     for il in d.model.links:
         terms_s, terms_n = [], []
@@ -314,7 +316,7 @@ def _moments(sec, study, d, tab, lab, row, kv, lead) -> None:
     if d.idle_loads:
         s.paragraph("Нагрузки " + ", ".join(d.idle_loads) + " работы не совершают (их приведённые моменты "
                     "равны нулю во всём цикле) и далее не учитываются.")
-    s.paragraph(f"Для положения {lab}:")
+    s.paragraph(f"Для положения {pos_no(study, lab)}:")
     s.formula(*fs)
     cols = [Column("M_" + ld.name, _h("M", ld.name), "Н·м", sig=4) for ld in working]
     cols += [Column("M_c", _h("M", "с"), "Н·м", sig=4), Column("M_d", _h("M", "д"), "Н·м", sig=4),
@@ -383,8 +385,8 @@ def _flywheel(sec, study, d) -> None:
                 f"(n&nbsp;=&nbsp;{fmt(w * 30 / math.pi, digits=1)}&nbsp;об/мин); "
                 f"{_im('delta')}, "
                 f"{_im('wm')}. "
-                f"Момент инерции {inline_math('J_I')} найден тремя способами; в дальнейших расчётах принят "
-                f"{METHOD_RU[st.method]}.")
+                f"Момент инерции {inline_math('J_I')} найден тремя способами; в дальнейших расчётах принято "
+                f"значение, найденное {METHOD_INSTR[st.method]}.")
     # Мерцалов
     s.paragraph("<b>Метод Мерцалова.</b> Кинетическая энергия второй группы приближённо вычисляется по средней "
                 "скорости, изменение кинетической энергии первой группы — как разность:")
@@ -450,12 +452,10 @@ def _flywheel(sec, study, d) -> None:
                       _t(r.J_flywheel, sig=5, unit="кг·м²"), label="eq-Jdop"))
     if not r.flywheel.needed:
         s.paragraph("J<sub>доп</sub>&nbsp;≤&nbsp;0: собственной инерции машины достаточно, маховик не нужен.")
-    pr = d.printed if d.settings.printed else None
-    if pr is not None and len(pr):
-        _printed(s, pr)
 
 
-def _printed(s, pr: pd.DataFrame) -> None:
+def printed_block(s, pr: pd.DataFrame) -> None:
+    """The comparison with the values printed in the worksheet (the answer key, report/key.py)."""
     bad = pr[~pr["within"]]
     s.paragraph(f"Значения, напечатанные в исходном расчёте, сопоставлены с вычисленными в таблице "
                 f"{ref('tab-dyn-printed')} (допуск — единица последнего напечатанного разряда). Совпадают "
@@ -542,7 +542,7 @@ def _motion(sec, study, d, tab, mot, lab, row, lead) -> None:
     sc = d.scalars
     w, e = row["omega"], row["eps"]
     Jt = r.J_I + row["J_II"]
-    s.paragraph(f"Угловая скорость и угловое ускорение звена приведения ({METHOD_RU[st.method]}) для положения {lab}:")
+    s.paragraph(f"Угловая скорость и угловое ускорение звена приведения ({METHOD_RU[st.method]}) для положения {pos_no(study, lab)}:")
     fs = []
     if st.method == "mertsalov":
         me = r.mertsalov
@@ -602,7 +602,9 @@ def _motion(sec, study, d, tab, mot, lab, row, lead) -> None:
                    per=_per(len(ta)))
 
 
-def _comparison(sec, study, d, lab) -> None:
+def comparison_block(sec, study) -> None:
+    """The comparison with another variant of the case (the answer key, report/key.py)."""
+    d = study.dynamics
     cmp = d.comparison
     title = d.settings.compare[1]
     s = sec.subsection("Сравнение с исходным вариантом", "sec-dyn-compare")
@@ -651,17 +653,15 @@ def conclusion_lines(study) -> list[str]:
                    f"m&nbsp;=&nbsp;{fmt(fw.rim.m, sig=4)}&nbsp;кг или диск D&nbsp;=&nbsp;{fmt(fw.disk.D, digits=3)}&nbsp;м, "
                    f"m&nbsp;=&nbsp;{fmt(fw.disk.m, sig=4)}&nbsp;кг"
                    + ("; окружная скорость обода превышает допускаемую." if fw.any_exceeds else "."))
+        if min(fw.rim.m, fw.disk.m) > 500:
+            out.append(f"Маховик массой {fmt(min(fw.rim.m, fw.disk.m) / 1000, digits=1)}&nbsp;т на валу кривошипа "
+                       "громоздок. Его целесообразно установить на быстроходный вал (вал двигателя): при "
+                       "передаточном отношении u от этого вала к кривошипу требуемый момент инерции "
+                       "уменьшается в u² раз, J<sub>дв</sub>&nbsp;=&nbsp;J<sub>доп</sub>/u² (кинетическая энергия "
+                       "маховика та же), а масса при том же диаметре — примерно в u² раз.")
     else:
         out.append("Собственной инерции машины достаточно для заданного δ: маховик не нужен.")
     out.append(f"Угловая скорость кривошипа изменяется от {fmt(sc['omega_min'], sig=5)} до "
                f"{fmt(sc['omega_max'], sig=5)}&nbsp;рад/с; фактический коэффициент неравномерности "
                f"{fmt(r.delta_achieved, digits=5)}.")
-    cmp = d.comparison if st.compare is not None else None
-    if cmp is not None:
-        jr = cmp.set_index("key")
-        out.append(f"По сравнению с вариантом «{st.compare[1]}» точный J<sub>I</sub> изменился на "
-                   f"{fmt(jr.loc['J_I_exact', 'change_pct'], digits=3, sign=True)}&nbsp;%, J<sub>I</sub> по методу "
-                   f"Мерцалова — на {fmt(jr.loc['J_I_mertsalov', 'change_pct'], digits=3, sign=True)}&nbsp;%; "
-                   f"угловая скорость точного движения — не более чем на {fmt(cmp.attrs['omega_diff_max'], sig=3)}"
-                   f"&nbsp;рад/с ({fmt_pct(cmp.attrs['omega_diff_rel'], digits=3)} от ω<sub>ср</sub>).")
     return out

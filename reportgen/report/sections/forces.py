@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pandas as pd
 from markupsafe import Markup
 
@@ -22,7 +23,8 @@ from ...scenes.forces import (AxleCurves, CapacityCurves, GroupForces, ReactionC
 from ...style.numbers import fmt, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
-from .common import chosen_position, chunked_tables, q_header, sub, tex_point
+from ..russian import plural
+from .common import chosen_position, chunked_tables, q_header, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle", "forces")
 
@@ -52,7 +54,7 @@ def _R(key: str) -> str:
 
 
 def _load_tex(ld: dict, comp: str = "") -> str:
-    """LaTeX symbol of a load (or of its projection ``comp`` = "x" | "y"): G_{2}, \Phi_{2y},
+    r"""LaTeX symbol of a load (or of its projection ``comp`` = "x" | "y"): G_{2}, \Phi_{2y},
     M_{\Phi 2}, or the load's name."""
     k = ld["link"]
     if ld["kind"] == "G":
@@ -114,7 +116,7 @@ def _shown_pairs(f) -> list[str]:
 
 def _lead(study):
     qkey, qhead, qunit, qfmt = q_header(study)
-    return [Column("pos", "№"), Column(qkey, qhead, qunit, **qfmt)]
+    return [Column("pos", "№", fmt=pos_fmt(study)), Column(qkey, qhead, qunit, **qfmt)]
 
 
 def _motion_text(study, f) -> str:
@@ -144,7 +146,7 @@ def build(study) -> Section:
     sec = Section("Силовой (кинетостатический) анализ", "sec-forces")
     static = f.settings.motion == "static"
     sec.paragraph(
-        "Силовой расчёт выполнен кинетостатическим методом (принцип Д’Аламбера): к каждому звену, кроме "
+        "Силовой расчёт выполнен кинетостатическим методом (принцип Д’Аламбера) [1, 3]: к каждому звену, кроме "
         "заданных сил и сил тяжести, прикладываются главный вектор и главный момент сил инерции, и звено "
         "рассматривается как находящееся в равновесии. Группы Ассура статически определимы (3n уравнений "
         "равновесия при 3n неизвестных составляющих реакций), поэтому реакции находятся по группам, "
@@ -176,7 +178,7 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
     inertial = [(name, m, J, S) for name, m, J, S in f.inertial]
     if inertial:
         s.paragraph(f"Силы инерции звеньев приводятся к главному вектору, приложенному в центре масс, и "
-                    f"главному моменту (положение {lab}, {where}"
+                    f"главному моменту (положение {pos_no(study, lab)}, {where}"
                     + (f", ω&nbsp;=&nbsp;{fmt(row['omega'], sig=4)}&nbsp;рад/с, ε&nbsp;=&nbsp;"
                        f"{fmt(row['eps'], sig=4)}&nbsp;рад/с²" if f.rotary else "") + "):")
         fs = [Formula(r"\Phi_k = -m_k a_{S_k}", where=[(r"m_k", "масса звена k, кг"),
@@ -201,7 +203,7 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
                               rf"{_t(J1)} \cdot {_t(abs(row['eps']))}", _t(abs(row["MPhi_fly"]), unit="Н·м")))
         s.formula(*fs)
         if f.settings.flywheel:
-            s.paragraph("Как в исходном расчёте, к кривошипу приложен момент сил инерции первой группы звеньев "
+            s.paragraph("К кривошипу приложен момент сил инерции первой группы звеньев "
                         "(ротор, передача, маховик) с приведённым моментом инерции J<sub>1пр</sub> за вычетом "
                         "момента инерции самого кривошипа; при этом уравновешивающий момент равен движущему.")
         rows = []
@@ -211,7 +213,7 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
                          "Phi": row.get("Phi_" + name, math.nan) if m else math.nan, "J": J or math.nan,
                          "e": row["eps_" + name], "MPhi": row["MPhi_" + name] if J else math.nan,
                          "G": l.weight or math.nan})
-        s.table(f"Массы, ускорения, силы и моменты сил инерции звеньев (положение {lab})", [
+        s.table(f"Массы, ускорения, силы и моменты сил инерции звеньев (положение {pos_no(study, lab)})", [
             Column("n", "Звено"), Column("m", "<i>m</i>", "кг", fmt=_fin), Column("a", sub("a", "S"), "м/с²", sig=4),
             Column("Phi", "Φ", "Н", sig=4), Column("J", sub("J", "S"), "кг·м²", fmt=_fin),
             Column("e", "ε", "рад/с²", sig=4), Column("MPhi", sub("M", "Φ"), "Н·м", sig=4),
@@ -227,9 +229,9 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
             lrows.append({"name": ld["name"], "link": ld["link"], "point": "—", "Fx": math.nan, "Fy": math.nan,
                           "F": math.nan, "M": ld["M"]})
     if lrows:
-        s.paragraph(f"Заданные нагрузки и силы тяжести в положении {lab} — в таблице {ref('tab-frc-applied')} "
+        s.paragraph(f"Заданные нагрузки и силы тяжести в положении {pos_no(study, lab)} — в таблице {ref('tab-frc-applied')} "
                     "(силы тяжести приложены в центрах масс и направлены вниз).")
-        s.table(f"Заданные силы и моменты (положение {lab})", [
+        s.table(f"Заданные силы и моменты (положение {pos_no(study, lab)})", [
             Column("name", "Нагрузка"), Column("link", "Звено"), Column("point", "Точка"),
             Column("Fx", sub("F", "x"), "Н", fmt=_short), Column("Fy", sub("F", "y"), "Н", fmt=_short),
             Column("F", "<i>F</i>", "Н", fmt=_short), Column("M", "<i>M</i>", "Н·м", fmt=_short)],
@@ -255,10 +257,15 @@ def _incidence(s: Section, study, f) -> None:
         rows.append(r)
     rows = rows[1:] + rows[:1]
     columns = [Column("link", "Звено")] + [Column(f"c{k}", h) for k, (p, h) in enumerate(cols)]
+    kinds = {p.kind for p in f.model.pairs}
+    legend = []
+    if KS.K_PRI in kinds:
+        legend.append("(П) — поступательная пара (нормальная сила и реактивный момент)")
+    if KS.K_ACT in kinds:
+        legend.append("(Ц) — пара цилиндр–шток (усилие гидроцилиндра, нормальная сила и момент)")
     s.paragraph(f"Связи звеньев и кинематических пар (таблица {ref('tab-frc-incidence')}): «1» — реакция пары "
                 f"{sub('R', 'ij')} приложена к звену j, «−1» — равная ей и противоположная {sub('R', 'ji')} — "
-                "к звену i; (П) — поступательная пара (нормальная сила и реактивный момент), (Ц) — пара "
-                "цилиндр–шток (усилие гидроцилиндра, нормальная сила и момент).")
+                "к звену i" + "".join("; " + x for x in legend) + ".")
     per = 12
     chunked_tables(s, "Матрица инциденций звеньев и кинематических пар", pd.DataFrame(rows),
                    columns[1:], columns[:1], "tab-frc-incidence", per=per)
@@ -268,7 +275,7 @@ def _incidence(s: Section, study, f) -> None:
 # groups
 # --------------------------------------------------------------------------------------------
 def _groups(sec: Section, study, f, lab: str) -> None:
-    s = sec.subsection(f"Реакции в кинематических парах по группам Ассура (положение {lab})", "sec-frc-groups")
+    s = sec.subsection(f"Реакции в кинематических парах по группам Ассура (положение {pos_no(study, lab)})", "sec-frc-groups")
     s.paragraph("Для каждой группы составляются уравнения равновесия каждого звена: две проекции сил и "
                 "моменты относительно точки звена; неизвестные — составляющие реакций во внешних и "
                 "внутренних парах группы (для поступательной пары — нормальная сила и реактивный момент, "
@@ -281,12 +288,17 @@ def _groups(sec: Section, study, f, lab: str) -> None:
         gid = f"fig-frc-group-{gi + 1}"
         names = " + ".join(v.label.replace("R", "<i>R</i>", 1) if v.label.startswith("R") else v.label
                             for v in ext) or "0"
-        head = g.title[0].upper() + g.title[1:]
         unknown = [f.model.pairs[k] for k in g.pairs]
+        act = next((p for p in unknown if p.kind == KS.K_ACT), None)
+        if act is not None:   # the initial mechanism of an actuator-driven linkage (structure.decomposition)
+            head = (f"Начальный механизм ({', '.join(g.links)}) с ведущей поступательной парой "
+                    f"{act.a}–{act.b}")
+        else:
+            head = g.title[0].upper() + g.title[1:]
         ulist = ", ".join(_unknown_text(p) for p in unknown)
-        s.paragraph(f"<b>{head}.</b> Неизвестные: {ulist} — {3 * len(g.links)} уравнений. Уравнение сил группы "
+        s.paragraph(f"<b>{head}.</b> Неизвестные: {ulist} — {plural(3 * len(g.links), 'уравнение', 'уравнения', 'уравнений')} равновесия. Уравнение сил группы "
                     f"(рисунок {ref(gid)}): {names}&nbsp;=&nbsp;0.")
-        s.figure(f"Группа {g.label}: схема нагружения (μ<sub>l</sub> = {fmt(draw.mu, sig=3)} м/мм, стрелки сил "
+        s.figure(f"{'Начальный механизм' if act is not None else 'Группа'} {g.label}: схема нагружения (μ<sub>l</sub> = {fmt(draw.mu, sig=3)} м/мм, стрелки сил "
                  f"без масштаба) и план сил (μ<sub>F</sub> = {fmt(draw.mu_F, sig=3)} Н/мм)",
                  draw.svg, draw.width_mm, id=gid)
         rows = []
@@ -304,7 +316,7 @@ def _groups(sec: Section, study, f, lab: str) -> None:
                  Column("R", "<i>R</i>", "Н", sig=5), Column("ang", "Угол с осью x", "град", digits=1)]
         if any(r["extra"] for r in rows):
             gcols.append(Column("extra", "Примечание"))
-        s.table(f"Реакции в парах группы {g.label} (положение {lab})", gcols, pd.DataFrame(rows),
+        s.table(f"Реакции в парах группы {g.label} (положение {pos_no(study, lab)})", gcols, pd.DataFrame(rows),
                 id=f"tab-frc-group-{gi + 1}")
         if any(p.kind == KS.K_MOM for p in unknown):
             _crank_moment(s, study, f, lab, g, det)
@@ -398,7 +410,7 @@ def _reactions(sec: Section, study, f) -> None:
     if reversed_:
         text = "; ".join(f"{_R(k)} — сила звена {_who(k.split('_')[0])} на {_whom(k.split('_')[1])}"
                          for k in reversed_)
-        note = f" Направления реакций выбраны как в исходном расчёте: {text}."
+        note = f" Направления реакций в таблицах: {text}."
     s.paragraph(f"Составляющие реакций по положениям механизма — в таблице {ref(ids[0])}, их модули — в таблице "
                 f"{ref(ids2[0])}.{note}")
 
@@ -440,57 +452,86 @@ def _balance(sec: Section, study, f, lab: str) -> None:
         s.formula(Formula(rf"F_{{ур}} h_{{{pin.lower()}}} + \sum_i F_i h_i = 0", label="eq-frc-lever"))
     else:
         s.formula(Formula(r"F \left( h_{2} - h_{1} \right) + \sum_i F_i h_i = 0", label="eq-frc-lever"))
-    mt = lever.moments
+    mt = lever.moments.copy()
+    # the student's arithmetic: forces to 0,01 Н, arms as measured to 0,1 mm, products of
+    # the printed numbers (so that every printed product equals F·h of its row)
+    F_r = np.round(np.abs(mt["F"].to_numpy(float)), 2)
+    mt["F"] = F_r
+    h_r = np.round(np.abs(mt["h"].to_numpy(float)), 1)
+    mt["h"] = h_r
+    mt["Fh"] = np.sign(mt["Fh"].to_numpy(float)) * F_r * h_r
+    arm = round(abs(float(lever.arm_mm)), 1) * (1.0 if lever.arm_mm >= 0 else -1.0)
     mu_unit = "м·с⁻¹/мм" if not lever.analog else ("м/мм" if rot else "мм⁻¹")
-    s.figure(f"Рычаг Жуковского для положения {lab} (μ<sub>v</sub> = {fmt(lever.mu, sig=3)} {mu_unit})",
+    s.figure(f"Рычаг Жуковского для положения {pos_no(study, lab)} (μ<sub>v</sub> = {fmt(lever.mu, sig=3)} {mu_unit})",
              lever.svg, lever.width_mm, id="fig-frc-lever")
     loads = mt[~mt["balancing"].astype(bool)]
-    s.table(f"Моменты сил относительно полюса рычага Жуковского (положение {lab})", [
-        Column("label", "Сила"), Column("F", "<i>F</i>", "Н", fmt=_short), Column("h", "<i>h</i>", "мм", digits=1),
-        Column("Fh", "±<i>F·h</i>", "Н·мм", fmt=lambda v: fmt(v, sig=5, exp_from=1e12))], mt, id="tab-frc-lever",
+    s.table(f"Моменты сил относительно полюса рычага Жуковского (положение {pos_no(study, lab)})", [
+        Column("label", "Сила"), Column("F", "<i>F</i>", "Н", digits=2, sig=None),
+        Column("h", "<i>h</i>", "мм", digits=1, sig=None),
+        Column("Fh", "±<i>F·h</i>", "Н·мм", fmt=lambda v: fmt(v, digits=1, sig=None, exp_from=1e12))], mt, id="tab-frc-lever",
         note="Плечо h — расстояние от полюса p до линии действия силы на рычаге; знак «+» — момент против "
              "часовой стрелки. Моменты звеньев заменены парами сил (′ и ″) на двух точках звена.")
     total = float(loads["Fh"].sum())
+    F_graph = -total / arm
+    M_graph = F_graph * _crank_length(mech) if rot else F_graph
+    exact = float(row[main])
+    dev_graph = 100.0 * abs(exact - M_graph) / max(abs(exact), 1e-12)
     if rot:
         pin = tex_point(_pin(mech))
         res = [Formula(rf"F_{{ур}} = -\frac{{\sum F_i h_i}}{{h_{{{pin.lower()}}}}}",
-                       rf"-\frac{{{_t(total, sig=6)}}}{{{_t(lever.arm_mm, sig=4)}}}",
-                       _t(row["F_bal_zhukovsky"], sig=5, unit="Н")),
+                       rf"-\frac{{{_t(total, sig=6)}}}{{{_t(arm, digits=1)}}}",
+                       _t(F_graph, sig=5, unit="Н")),
                Formula(rf"M_{{ур}}^{{Ж}} = F_{{ур}} l_{{{tex_point(d.center)}{pin}}}",
-                       rf"{_t(row['F_bal_zhukovsky'], sig=5)} \cdot {_t(_crank_length(mech), sig=4)}",
-                       _t(row["M_bal_zhukovsky"], sig=6, unit="Н·м")),
-               Formula(r"M_{ур}^{кин}", None, _t(row["M_bal"], sig=6, unit="Н·м")),
-               Formula(r"\Delta = \frac{\left| M_{ур}^{кин} - M_{ур}^{Ж} \right|}{\max \left| M_{ур} \right|} \cdot 100\%",
-                       None, _t(row["dev_zhukovsky_pct"], sig=2, unit="%"))]
+                       rf"{_t(F_graph, sig=5)} \cdot {_t(_crank_length(mech), sig=4)}",
+                       _t(M_graph, sig=5, unit="Н·м")),
+               Formula(r"M_{ур}^{кин}", None, _t(row["M_bal"], sig=5, unit="Н·м")),
+               Formula(r"\Delta = \frac{\left| M_{ур}^{кин} - M_{ур}^{Ж} \right|}{\left| M_{ур}^{кин} \right|} \cdot 100\%",
+                       None, _t(dev_graph, sig=2, unit="%"))]
     else:
         res = [Formula(r"F^{Ж} = -\frac{\sum F_i h_i}{h_{2} - h_{1}}",
-                       rf"-\frac{{{_t(total, sig=6)}}}{{{_t(lever.arm_mm, sig=4)}}}",
-                       _t(row["F_act_zhukovsky"], sig=7, unit="Н")),
-               Formula(r"F^{кин}", None, _t(row["F_act"], sig=7, unit="Н")),
-               Formula(r"\Delta = \frac{\left| F^{кин} - F^{Ж} \right|}{\max |F|} \cdot 100\%", None,
-                       _t(row["dev_zhukovsky_pct"], sig=2, unit="%"))]
-    s.paragraph(f"Результат для положения {lab} и расхождение с силовым расчётом по группам "
-                "(допускается до 5&nbsp;%; аналитически значения совпадают с точностью округления):")
+                       rf"-\frac{{{_t(total, sig=6)}}}{{{_t(arm, digits=1)}}}",
+                       _t(F_graph, sig=6, unit="Н")),
+               Formula(r"F^{кин}", None, _t(row["F_act"], sig=6, unit="Н")),
+               Formula(r"\Delta = \frac{\left| F^{кин} - F^{Ж} \right|}{|F^{кин}|} \cdot 100\%", None,
+                       _t(dev_graph, sig=2, unit="%"))]
+    s.paragraph(f"Результат для положения {pos_no(study, lab)} (плечи измерены с точностью 0,1&nbsp;мм) и "
+                "расхождение с силовым расчётом по группам (допускается до 5&nbsp;%):")
     s.formula(*res)
-    cols = [Column(main, (sub("M", "ур") if rot else "<i>F</i>") + " (по группам)", unit, sig=7),
-            Column(main + "_power", (sub("M", "ур") if rot else "<i>F</i>") + " (мощности)", unit, sig=7),
-            Column(main + "_zhukovsky", (sub("M", "ур") if rot else "<i>F</i>") + " (Жуковский)", unit, sig=7),
-            Column("dev_zhukovsky_pct", "Δ", "%", sig=2)]
+    # one number of decimals per column; the relative deviations (round-off) are in the answer key
+    nd = dict(digits=1 if rot else 0, sig=None)
+    cols = [Column(main, (sub("M", "ур") if rot else "<i>F</i>") + " (по группам)", unit, **nd),
+            Column(main + "_power", (sub("M", "ур") if rot else "<i>F</i>") + " (мощности)", unit, **nd),
+            Column(main + "_zhukovsky", (sub("M", "ур") if rot else "<i>F</i>") + " (Жуковский)", unit, **nd)]
     if f.settings.flywheel:
-        cols.insert(3, Column("M_d_dyn", sub("M", "дв") + " (динамика)", "Н·м", sig=7))
-        cols.append(Column("M_bal_linkage", sub("M", "ур") + " без маховика", "Н·м", sig=5))
+        cols.append(Column("M_d_dyn", sub("M", "дв") + " (динамика)", "Н·м", **nd))
+        cols.append(Column("M_bal_linkage", sub("M", "ур") + " без маховика", "Н·м", **nd))
+    dyn_check = "M_bal_dyn" in f.table
+    if dyn_check:
+        cols.append(Column("M_bal_dyn", sub("M", "д") + " − " + sub("J", "I") + "ε (динамика)", "Н·м", **nd))
     chunked_tables(s, "Уравновешивающий момент и его проверки" if rot else "Усилие гидроцилиндра и его проверки",
                    f.table, cols, _lead(study), "tab-frc-checks")
     sc = f.scalars
-    text = (f"Наибольшее расхождение по всем положениям и сетке цикла — "
-            f"{fmt(sc['dev_zhukovsky_max_pct'], sig=2)}&nbsp;%.")
+    text = ("Аналитически три способа (по группам, по балансу мощностей, по рычагу Жуковского) дают одно и то же "
+            "значение во всех положениях: различие — в пределах погрешности округления чисел.")
     if f.settings.flywheel:
         text += (f" С учётом момента сил инерции первой группы уравновешивающий момент совпадает с движущим "
-                 f"моментом динамического расчёта (наибольшее относительное отличие "
-                 f"{fmt(sc['dev_M_bal_M_d_max'], sig=2)}). Уравновешивающий момент самого рычажного механизма "
+                 f"моментом динамического расчёта. Уравновешивающий момент самого рычажного механизма "
                  f"(без момента сил инерции первой группы, {sub('M', 'ур')}&nbsp;+&nbsp;{sub('M', 'Φ1')}) меняется "
                  f"по положениям (последний столбец таблицы); реакции от момента, приложенного к кривошипу, не "
                  f"зависят.")
+    if dyn_check:
+        dyn = study.dynamics
+        J = float(dyn.result.J_I - dyn.J_crank)
+        text += (f" Уравновешивающий момент переменен по положениям: силы инерции звеньев вычислены по истинному "
+                 f"закону движения ω(φ), ε(φ), момент сил инерции маховика к кривошипу не прикладывается. По "
+                 f"уравнению движения машины он равен движущему моменту за вычетом момента, идущего на разгон "
+                 f"первой группы звеньев: {sub('M', 'ур')}(φ)&nbsp;=&nbsp;{sub('M', 'д')}&nbsp;−&nbsp;"
+                 f"{sub('J', 'I')}·ε(φ), где {sub('M', 'д')}&nbsp;=&nbsp;{fmt(abs(dyn.scalars['M_d']), sig=5)}"
+                 f"&nbsp;Н·м, {sub('J', 'I')}&nbsp;=&nbsp;{fmt(J, sig=5)}&nbsp;кг·м² (без кривошипа)"
+                 + ("; моменты в таблице — со знаком (против часовой стрелки — плюс), кривошип вращается по "
+                    "часовой стрелке, поэтому движущий момент отрицателен. " if study.mechanism.driver.direction < 0
+                    else ". ") +
+                 "Значения двух расчётов совпадают (последний столбец таблицы).")
     s.paragraph(text)
 
 
@@ -531,8 +572,8 @@ def _cycle(sec: Section, study, f) -> None:
     qkey, qhead, qunit, qfmt = q_header(study)
     main = "M_bal" if f.rotary else "F_act"
     s.paragraph(f"Модули реакций во всех парах и {'уравновешивающий момент' if f.rotary else 'усилие гидроцилиндра'} "
-                f"на сетке цикла показаны на рисунке {ref('fig-frc-cycle')}, наибольшие значения — в таблице "
-                f"{ref('tab-frc-max')}. Наибольший по модулю {'уравновешивающий момент' if f.rotary else 'усилие'} — "
+                f"за цикл показаны на рисунке {ref('fig-frc-cycle')}, наибольшие значения — в таблице "
+                f"{ref('tab-frc-max')}. {'Наибольший по модулю уравновешивающий момент' if f.rotary else 'Наибольшее по модулю усилие'} — "
                 f"{fmt(sc[main + '_absmax'], sig=5)}&nbsp;{'Н·м' if f.rotary else 'Н'}.")
     s.figure("Реакции в кинематических парах и " + ("уравновешивающий момент" if f.rotary else "усилие гидроцилиндра")
              + (" за цикл" if f.rotary else " по ходу гидроцилиндра"), fig.svg, fig.width_mm, id="fig-frc-cycle")
@@ -555,7 +596,7 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
                 f"для единственной вертикальной нагрузки {c.load} оно равно произведению нагрузки на передаточное "
                 f"число {inline_math(rf'i_{{{pt}}} = dy_{{{pt}}}/dS')} её точки приложения. Площадь поршня, "
                 f"давление в {a.count} гидроцилиндрах и грузоподъёмность (в точке {c.point} и на оси "
-                + ", ".join(c.points) + f") для положения {lab} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м):")
+                + ", ".join(c.points) + f") для положения {pos_no(study, lab)} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м):")
     ip = row["i_" + c.point]
     L_ = _name_tex(c.load)
     fs = [Formula(rf"F = {L_} \cdot i_{{{pt}}}", rf"{_in(P)} \cdot {_t(ip, sig=5)}", _t(row["F_act"], sig=6, unit="Н"),
@@ -566,7 +607,7 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
     for q in list(c.points) + [c.point]:
         Q = tex_point(q)
         fs.append(Formula(rf"G_{{{Q}}} = \frac{{k p_{{max}} \eta A}}{{i_{{{Q}}}}}",
-                          rf"\frac{{{a.count} \cdot {_in(a.pressure)} \cdot {_in(a.efficiency)} \cdot {_t(a.area, sig=5)}}}{{{_t(row['i_' + q], sig=5)}}}",
+                          rf"\frac{{{a.count} \cdot {_in(a.pressure / 1e6)} \cdot 10^{{6}} \cdot {_in(a.efficiency)} \cdot {_t(a.area, sig=5)}}}{{{_t(row['i_' + q], sig=5)}}}",
                           _t(row["Gcap_" + q], sig=5, unit="Н")))
     fs.append(Formula(rf"\Delta G = \frac{{G_{{{pt}}} - {L_}}}{{{L_}}} \cdot 100\%",
                       rf"\frac{{{_t(row['Gcap_' + c.point], sig=5)} - {_in(P)}}}{{{_in(P)}}} \cdot 100\%",
@@ -577,7 +618,7 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
         s.paragraph("Если механизм нагружен и другими силами (силы тяжести звеньев), их доля усилия "
                     f"{inline_math('F_{ост}')} вычитается: {rest}.")
     cols = [Column("F_act", "<i>F</i>", "Н", digits=0, sig=None),
-            Column("p_act", "<i>p</i>", "Па", fmt=lambda v: fmt(v, digits=0, sig=None, exp_from=1e12))]
+            Column("p_act", "<i>p</i>", "МПа", fmt=lambda v: fmt(v / 1e6, digits=3, sig=None))]
     cols += [Column("Gcap_" + q, sub("G", q), "Н", digits=0, sig=None) for q in list(c.points) + [c.point]]
     cols += [Column("reserve_pct", "Δ<i>G</i>", "%", digits=1)]
     s.table("Результаты анализа механизма на грузоподъёмность", _lead(study) + cols, f.table, id="tab-frc-capacity")
@@ -585,7 +626,7 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
              160, id="fig-frc-capacity")
     sc = f.scalars
     txt = (f"Результаты — в таблице {ref('tab-frc-capacity')} и на рисунке {ref('fig-frc-capacity')}. Усилие гидроцилиндров "
-           f"при давлении в гидросистеме {fmt(a.pressure / 1e6, sig=4)}&nbsp;МПа: k·p·η·A&nbsp;=&nbsp;{fmt(a.F_max, sig=6)}&nbsp;Н. ")
+           f"при давлении в гидросистеме {_fin(a.pressure / 1e6)}&nbsp;МПа: k·p·η·A&nbsp;=&nbsp;{fmt(a.F_max, sig=6)}&nbsp;Н. ")
     if sc["pressure_exceeded"]:
         bad = f.table[f.table["p_act"] > a.pressure]
         where = ", ".join(fmt(v, digits=3) for v in bad["q"]) if len(bad) else fmt(sc["q_p_act_max"], digits=3)
@@ -613,7 +654,7 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
                 f"{_fin(c.weight_arm, 'м')} впереди задней оси, противовесы P<sub>гр</sub>&nbsp;=&nbsp;"
                 f"{_fin(c.ballast, 'Н')} — на a&nbsp;=&nbsp;{_fin(c.ballast_arm, 'м')} впереди "
                 f"передней оси, база L&nbsp;=&nbsp;{_fin(c.wheelbase, 'м')}, груз {c.load} — на расстоянии "
-                f"x<sub>G</sub> (координата его центра масс) позади задней оси. Для положения {lab}:")
+                f"x<sub>G</sub> (координата его центра масс) позади задней оси. Для положения {pos_no(study, lab)}:")
     RA = row["R_front"]
     s.formula(
         Formula(r"R_A = \frac{P_{гр} (a + L) + P_в b - G x_G}{L}",
@@ -632,20 +673,14 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
         Formula(r"G_{max} = \frac{P_в b + P_{гр} (a + L) - R_{A,min} L}{x_G}",
                 rf"\frac{{{_t(m0, sig=6)} - {_t(row['R_front_min'], sig=5)} \cdot {_in(c.wheelbase)}}}{{{_t(x, sig=5)}}}",
                 _t(row["Gmax_carrier"], sig=5, unit="Н"), label="eq-frc-Gmax"),
-        Formula(r"G_{max}^{лист} = \frac{P_в b + P_{гр} (a + L) - R_{A,min}}{x_G}",
-                rf"\frac{{{_t(m0, sig=6)} - {_t(row['R_front_min'], sig=5)}}}{{{_t(x, sig=5)}}}",
-                _t(row["Gmax_carrier_as_printed"], sig=5, unit="Н")),
         Formula(r"G_{max}^{*} = \frac{P_в b + P_{гр} (a + L) - k_A L (P_в + P_{гр})}{x_G + k_A L}", None,
                 _t(row["Gmax_carrier_consistent"], sig=5, unit="Н")))
-    s.paragraph("В исходном расчёте (рабочий лист, формула GS6max) из суммы моментов вычитается сила "
-                "R<sub>A,min</sub> без плеча L — формула неоднородна по размерности; её значения приведены «как в "
-                "листе» для сравнения, верное значение — G<sub>max</sub>. Кроме того, R<sub>A,min</sub> вычислена "
+    s.paragraph("Здесь R<sub>A,min</sub> вычислена "
                 "для номинального груза; если условие R<sub>A</sub>&nbsp;≥&nbsp;k<sub>A</sub>·ΣG относить к самому "
                 "наибольшему грузу, получается G<sub>max</sub><sup>*</sup>.")
     cols = [Column("R_front", sub("R", "A"), "Н", digits=0, sig=None), Column("R_rear", sub("R", "B"), "Н", digits=0, sig=None),
             Column("front_share_pct", "Δ" + sub("R", "A"), "%", digits=1),
             Column("rear_share_pct", "Δ" + sub("R", "B"), "%", digits=1),
-            Column("Gmax_carrier_as_printed", sub("G", "max") + " (как в листе)", "Н", digits=0, sig=None),
             Column("Gmax_carrier", sub("G", "max"), "Н", digits=0, sig=None),
             Column("Gmax_carrier_consistent", sub("G", "max") + "<sup>*</sup>", "Н", digits=0, sig=None)]
     s.table("Результаты анализа устойчивости и управляемости", _lead(study) + cols, f.table, id="tab-frc-carrier")
@@ -673,12 +708,15 @@ def conclusion_lines(study) -> list[str]:
     out.append(f"Силовой расчёт выполнен по группам Ассура; наибольшая реакция — в паре {big.a}–{big.b}: "
                f"{fmt(sc[f'R_{big.name}_max'], sig=5)}&nbsp;Н при {where}.")
     if f.rotary:
-        out.append(f"Наибольший по модулю уравновешивающий момент — {fmt(sc['M_bal_absmax'], sig=5)}&nbsp;Н·м; "
-                   f"проверка рычагом Жуковского и по балансу мощностей даёт расхождение не более "
-                   f"{fmt(sc['dev_zhukovsky_max_pct'], sig=2)}&nbsp;%.")
+        line = (f"Наибольший по модулю уравновешивающий момент — {fmt(sc['M_bal_absmax'], digits=1)}&nbsp;Н·м; "
+                "проверки рычагом Жуковского и по балансу мощностей его подтверждают")
+        if "dev_M_bal_dyn_max" in sc:
+            line += (", он совпадает с моментом M<sub>д</sub>&nbsp;−&nbsp;J<sub>I</sub>ε, найденным из уравнения "
+                     "движения машины")
+        out.append(line + ".")
     else:
-        out.append(f"Наибольшее усилие гидроцилиндра — {fmt(sc['F_act_absmax'], sig=6)}&nbsp;Н; проверка рычагом "
-                   f"Жуковского даёт расхождение не более {fmt(sc['dev_zhukovsky_max_pct'], sig=2)}&nbsp;%.")
+        out.append(f"Наибольшее усилие гидроцилиндра — {fmt(sc['F_act_absmax'], digits=0)}&nbsp;Н; проверка рычагом "
+                   "Жуковского его подтверждает.")
     s = f.settings
     if s.capacity is not None:
         if sc["pressure_exceeded"]:
@@ -694,7 +732,5 @@ def conclusion_lines(study) -> list[str]:
         out.append(f"Доля веса на управляемом мосту — от {fmt(t['front_share_pct'].min(), digits=1)} до "
                    f"{fmt(t['front_share_pct'].max(), digits=1)}&nbsp;% (не менее {fmt(100 * c.min_share, digits=0)}&nbsp;%); "
                    f"наибольший допустимый груз по условию управляемости — от {fmt(t['Gmax_carrier'].min(), sig=5)} до "
-                   f"{fmt(t['Gmax_carrier'].max(), sig=5)}&nbsp;Н по ходу поршня (формула рабочего листа, неоднородная "
-                   f"по размерности, дала бы {fmt(t['Gmax_carrier_as_printed'].min(), sig=5)}…"
-                   f"{fmt(t['Gmax_carrier_as_printed'].max(), sig=5)}&nbsp;Н).")
+                   f"{fmt(t['Gmax_carrier'].max(), sig=5)}&nbsp;Н по ходу поршня.")
     return out

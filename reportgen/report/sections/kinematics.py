@@ -17,7 +17,8 @@ from ...scenes.plans import MIN_MM, READ_MM, PlanScene
 from ...style.numbers import fmt, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
-from .common import chosen_position, chunked_tables, html_point, q_header, sub, tex_point
+from ..russian import expr_html
+from .common import chosen_position, chunked_tables, html_point, q_header, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle")
 
@@ -46,7 +47,7 @@ def build(study) -> Section:
     k = study.kinematics.copy()
     sec = Section("Кинематический анализ механизма", "sec-kinematics")
     qkey, qhead, qunit, qfmt = q_header(study)
-    lead = [Column("pos", "№"), Column(qkey, qhead, qunit, **qfmt)]
+    lead = [Column("pos", "№", fmt=pos_fmt(study)), Column(qkey, qhead, qunit, **qfmt)]
     pts = _moving_points(study)
     rotary = mech.driver.rotary
     w_known = mech.driver.omega is not None
@@ -75,8 +76,10 @@ def build(study) -> Section:
     if study.fits:
         s1.paragraph("Неизвестные размеры подобраны из условий задания (решение уравнений с точностью 10⁻¹²):")
         fdf = pd.DataFrame([{"name": f.name, "cond": f.condition, "at": f.at, "value": f.value} for f in study.fits])
-        s1.table("Подобранные размеры", [Column("name", "Величина"), Column("cond", "Условие"),
-                                          Column("at", "Положение"), Column("value", "Значение", "м", digits=4)],
+        s1.table("Подобранные размеры", [Column("name", "Величина", fmt=expr_html),
+                                          Column("cond", "Условие", fmt=expr_html),
+                                          Column("at", "Положение", fmt=expr_html),
+                                          Column("value", "Значение", "м", digits=4)],
                  fdf, id="tab-fits")
     cols = []
     for p in pts:
@@ -135,14 +138,14 @@ def build(study) -> Section:
 
         # ----- plans at the chosen position
         lab = chosen_position(study)
-        s4 = sec.subsection(f"Планы скоростей и ускорений для положения {lab}", "sec-plans")
+        s4 = sec.subsection(f"Планы скоростей и ускорений для положения {pos_no(study, lab)}", "sec-plans")
         row = k[k["pos"] == lab].iloc[0]
         vplan = PlanScene(lab, "velocity").draw(study)
         aplan = PlanScene(lab, "acceleration").draw(study)
         _plan_formulas(s4, study, row, vplan, aplan)
-        s4.figure(f"План скоростей для положения {lab} (μ<sub>v</sub> = {fmt(vplan.mu, sig=3)} м·с⁻¹/мм)",
+        s4.figure(f"План скоростей для положения {pos_no(study, lab)} (μ<sub>v</sub> = {fmt(vplan.mu, sig=3)} м·с⁻¹/мм)",
                   vplan.svg, vplan.width_mm, id="fig-vplan")
-        s4.figure(f"План ускорений для положения {lab} (μ<sub>a</sub> = {fmt(aplan.mu, sig=3)} м·с⁻²/мм)",
+        s4.figure(f"План ускорений для положения {pos_no(study, lab)} (μ<sub>a</sub> = {fmt(aplan.mu, sig=3)} м·с⁻²/мм)",
                   aplan.svg, aplan.width_mm, id="fig-aplan")
         cmp_cols = [Column("name", "Вектор", fmt=_vec_name), Column("mm", "Длина на плане", "мм", digits=1),
                     Column("graphic", "По плану", None, sig=4), Column("analytic", "Аналитически", None, sig=4),
@@ -152,8 +155,8 @@ def build(study) -> Section:
                      f"аналитическим решением — в таблицах {ref('tab-vplan')} и {ref('tab-aplan')}. Наибольшее "
                      f"расхождение: по скоростям {fmt_pct(vplan.table['delta'].max() / 100)}, по ускорениям "
                      f"{fmt_pct(aplan.table['delta'].max() / 100)} (допускается до 5&nbsp;%).")
-        s4.table(f"Скорости по плану и аналитически (положение {lab}), м/с", cmp_cols, vplan.table, id="tab-vplan")
-        s4.table(f"Ускорения по плану и аналитически (положение {lab}), м/с²", cmp_cols, aplan.table, id="tab-aplan")
+        s4.table(f"Скорости по плану и аналитически (положение {pos_no(study, lab)}), м/с", cmp_cols, vplan.table, id="tab-vplan")
+        s4.table(f"Ускорения по плану и аналитически (положение {pos_no(study, lab)}), м/с²", cmp_cols, aplan.table, id="tab-aplan")
 
     # ----- kinematic diagrams
     s5 = sec.subsection("Кинематические диаграммы выходного звена", "sec-diagrams")
@@ -258,10 +261,15 @@ def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
             fs.append(Formula(rf"a^k_{{{P}_{slider}{P}_{guide}}} = 2\omega_{{{guide}}} V_{{{P}_{slider}{P}_{guide}}}",
                               rf"2 \cdot {tex_num(abs(row['w_' + guide]), sig=4)} \cdot {tex_num(vr.length, sig=4)}",
                               tex_num(ck.length, sig=4, unit="м/с²")))
-    sec.paragraph("Скорости и ускорения определены построением планов по векторным уравнениям групп Ассура "
-                  "(для точки, общей двум звеньям, — относительное движение вокруг соседних шарниров; для "
-                  "камня на подвижной направляющей — переносное и относительное движение с кориолисовым "
-                  "ускорением). Угловые скорости и ускорения звеньев:")
+    # only what the mechanism has: a slider on the frame, a stone on a moving guide (Coriolis)
+    kinds = ["для точки, общей двум звеньям, — относительное вращательное движение вокруг соседних шарниров"]
+    if any(j.links[0] == FRAME for j in mech.prismatic):
+        kinds.append("для ползуна на неподвижной направляющей — скорость и ускорение вдоль направляющей")
+    if any(j.links[0] != FRAME for j in mech.prismatic):
+        kinds.append("для камня на подвижной направляющей — переносное и относительное движение с "
+                     "кориолисовым ускорением")
+    sec.paragraph("Скорости и ускорения определены построением планов по векторным уравнениям групп Ассура ("
+                  + "; ".join(kinds) + "). Угловые скорости и ускорения звеньев:")
     if fs:
         sec.formula(*fs)
 
@@ -282,6 +290,11 @@ def conclusion_lines(study) -> list[str]:
                    f"наибольшее ускорение {fmt(cyc['as_' + n].abs().max(), sig=4)}&nbsp;м/с².")
     for c, v in study.flags.items():
         mu = math.degrees(v["min"])
-        note = " — меньше рекомендуемых 40°" if mu < 40 else ""
-        out.append(f"Наименьший угол передачи в группе ({c[3:].replace('_', ',')}) — {fmt(mu, digits=1)}°{note}.")
+        note = ""
+        if mu < 40:
+            note = (" — меньше допускаемого 40°: в этих положениях растут реакции в парах группы и опасно "
+                    "заклинивание. Угол передачи можно увеличить, удлинив шатун группы или сместив опору "
+                    "выходного звена так, чтобы в крайних положениях шатун был ближе к перпендикуляру к "
+                    "выходному звену (повторить синтез с ограничением μ ≥ 40°)")
+        out.append(f"Наименьший угол передачи в группе ({c[3:].replace('_', ', ')}) — {fmt(mu, digits=1)}°{note}.")
     return out

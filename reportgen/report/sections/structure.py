@@ -2,10 +2,12 @@
 from __future__ import annotations
 
 import pandas as pd
+from markupsafe import Markup
 
 from ...scenes.mechanism import AssurGroups, KinematicScheme
 from ..document import Column, Section, ref
 from ..formulas import inline_math
+from ..russian import expr_html
 from .common import chosen_position
 
 NEEDS = ("structure", "kinematics")
@@ -38,7 +40,7 @@ def build(study) -> Section:
                                      Column("level", "Низшая/высшая")], pdf, id="tab-pairs")
 
     s2 = sec.subsection("Число степеней свободы", "sec-dof")
-    s2.paragraph("Число степеней свободы плоского механизма определяется по формуле П.&nbsp;Л.&nbsp;Чебышева:")
+    s2.paragraph("Число степеней свободы плоского механизма определяется по формуле П.&nbsp;Л.&nbsp;Чебышева [1]:")
     s2.formula(r"W = 3n - 2p_5 - p_4", rf"3 \cdot {st.n} - 2 \cdot {st.p5} - {st.p4}", str(st.W),
                where=[("n", "число подвижных звеньев"), ("p_5", "число низших (одноподвижных) пар"),
                       ("p_4", "число высших пар")], label="eq-chebyshev")
@@ -52,20 +54,51 @@ def build(study) -> Section:
     s3.paragraph(f"Механизм раскладывается на начальный механизм и группы Ассура, начиная с группы, "
                  f"наиболее удалённой от ведущего звена (рисунок {ref('fig-groups')}). Для каждой группы "
                  f"{inline_math('W = 3n - 2p_5 = 0')}:")
-    rows = [{"g": g.label, "title": "начальный механизм I класса" if g.klass == 1 else g.title,
-             "n": len(g.links), "p": g.pairs, "W": 3 * len(g.links) - 2 * g.pairs} for g in st.groups]
+    rows, formula = decomposition(study)
     gdf = pd.DataFrame(rows)
     s3.table("Структурные группы механизма (в порядке присоединения)",
              [Column("g", "Звенья"), Column("title", "Группа"), Column("n", "<i>n</i>"),
               Column("p", "<i>p</i><sub>5</sub>"), Column("W", "<i>W</i>")], gdf, id="tab-groups")
     s3.figure("Начальный механизм и группы Ассура", groups.svg, groups.width_mm, id="fig-groups")
-    s3.paragraph(f"Структурная формула механизма: <b>{st.formula}</b>. "
+    s3.paragraph(f"Структурная формула механизма: <b>{formula}</b>. "
                  f"Класс механизма определяется наивысшим классом входящих в него групп: механизм "
                  f"{_roman(st.mech_class)} класса.")
     if mech.driver.kind == "actuator":
-        s3.paragraph("При заданной длине гидроцилиндра цилиндр и шток образуют одно звено переменной длины, "
-                     "поэтому первая группа решается как группа ВВВ.")
+        d = mech.driver
+        s3.paragraph(f"Ведущая пара — поступательная пара {d.link}–{d.rod} гидроцилиндра (обобщённая координата — "
+                     f"его длина S). Цилиндр {d.link} и шток {d.rod} вместе со звеном, к которому присоединён "
+                     "шток, и стойкой образуют начальный механизм с одной степенью свободы; при заданной длине S "
+                     "цилиндр и шток составляют одно звено переменной длины, и положения звеньев начального "
+                     "механизма находятся как для группы ВВВ. Это же разделение использовано в кинематическом "
+                     "и силовом анализе: в силовом расчёте начальный механизм рассчитывается последним, "
+                     "неизвестное усилие гидроцилиндра входит в его уравнения равновесия.")
     return sec
+
+
+def decomposition(study) -> tuple[list[dict], str]:
+    """Rows of the structural table and the structural formula. For an actuator-driven linkage
+    the initial mechanism is the cylinder, the rod and the link the rod drives, with the driving
+    prismatic pair inside (n = 3, p5 = 4, W = 1; Попов, Тимофеев, гл. 2), not a crank I(0,1)."""
+    st = study.structure
+    d = study.mechanism.driver
+    rows = [{"g": g.label, "title": "начальный механизм I класса" if g.klass == 1 else g.title,
+             "n": len(g.links), "p": g.pairs, "W": 3 * len(g.links) - 2 * g.pairs} for g in st.groups]
+    parts = st.formula.split(" → ")
+    if d.kind != "actuator":
+        return rows, st.formula
+    ic = next(i for i, g in enumerate(st.groups) if d.link in g.links)
+    ir = next(i for i, g in enumerate(st.groups) if d.rod in g.links)
+    if ic == ir:
+        return rows, st.formula
+    gc, gr = st.groups[ic], st.groups[ir]
+    links = list(dict.fromkeys([d.link, d.rod] + list(gc.links) + list(gr.links)))
+    label = "(" + ",".join(links) + ")"
+    head = {"g": label, "title": f"начальный механизм с ведущей поступательной парой {d.link}–{d.rod} "
+                                 f"(гидроцилиндр)", "n": len(links), "p": gc.pairs + gr.pairs,
+            "W": 3 * len(links) - 2 * (gc.pairs + gr.pairs)}
+    rest = [r for i, r in enumerate(rows) if i not in (ic, ir)]
+    rest_parts = [p for i, p in enumerate(parts) if i not in (ic, ir)]
+    return [head] + rest, " → ".join([f"I{label}"] + rest_parts)
 
 
 def _mu(mu: float) -> str:
@@ -82,7 +115,8 @@ def conclusion_lines(study) -> list[str]:
     from ...style.numbers import fmt
     st = study.structure
     out = [f"Механизм имеет одну степень свободы (W&nbsp;=&nbsp;{st.W}), структурная формула "
-           f"{st.formula}, механизм {_roman(st.mech_class)} класса."]
+           f"{decomposition(study)[1]}, механизм {_roman(st.mech_class)} класса."]
     for f in study.fits:
-        out.append(f"Подобран размер {f.name}&nbsp;=&nbsp;{fmt(f.value, digits=4)}&nbsp;м (условие {f.condition} при {f.at}).")
+        out.append(Markup("Подобран размер {}&nbsp;=&nbsp;{}&nbsp;м (условие {} при {}).").format(
+            expr_html(f.name), fmt(f.value, digits=4), expr_html(f.condition), expr_html(f.at)))
     return out

@@ -1,0 +1,204 @@
+"""The teacher's answer key of a case («Ключ к варианту»), separate from the student's note.
+
+``build_key(study)`` returns a :class:`~reportgen.report.document.Report` rendered by the same
+layer as the note (reportgen/report/render.py): the given data, the key results of every section,
+the independent checks (rigidity of the links over the cycle — loop closure; Жуковский's lever and
+the power balance of the force analysis; the energy balance of the dynamics), the comparison with
+the values printed in the worksheet where the case has them (``[dynamics.printed]``), and the
+worksheet's own errors the program found.  Nothing of this belongs in the student's note.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+from markupsafe import Markup
+
+from ..registry import KINDS
+from ..style.numbers import fmt
+from .assemble import REFERENCES, _given_parameters, _linkage_data
+from .document import Column, Report, Section
+from .russian import position_names
+
+CHECK_COLS = [Column("what", "Проверка", fmt=Markup), Column("value", "Наибольшее расхождение"),
+              Column("verdict", "Вывод")]
+
+
+def build_key(study, options: dict | None = None) -> Report:
+    """The answer key of ``study`` as a Report (no title page, no assignment page)."""
+    meta = dict(study.meta)
+    meta["topic"] = "Ключ к варианту (для преподавателя)"
+    opts = dict(study.root.table("report").raw("options", {}) or {})
+    opts.update(options or {})
+    opts.update(title_page=False, assignment_page=False)
+    sections = [_given(study), _results(study), _checks(study)]
+    printed = _printed(study)
+    if printed is not None:
+        sections.append(printed)
+    if "dynamics" in study.tasks() and study.dynamics.settings.compare is not None:
+        from .sections.dynamics import comparison_block
+        cmp = Section("Сравнение с другим вариантом", "key-compare")
+        comparison_block(cmp, study)
+        sections.append(cmp)
+    errors = _errors(study)
+    if errors is not None:
+        sections.append(errors)
+    intro = []
+    return Report(meta=meta, assignment=[], introduction=intro, sections=sections, conclusion=[],
+                  references=REFERENCES, options=opts)
+
+
+def _given(study) -> Section:
+    sec = Section("Исходные данные", "key-given")
+    for block in _given_parameters(study) + (_linkage_data(study) if study.has_linkage else []):
+        sec.add(block)
+    if not sec.children:
+        sec.paragraph("Параметров в файле варианта нет.")
+    return sec
+
+
+def _scalar_rows(scalars: dict) -> pd.DataFrame:
+    rows = []
+    for k, v in scalars.items():
+        if isinstance(v, (bool, np.bool_)):
+            rows.append({"key": k, "value": "да" if v else "нет"})
+        elif isinstance(v, (int, float, np.integer, np.floating)):
+            x = float(v)
+            rows.append({"key": k, "value": fmt(x, sig=6) if math.isfinite(x) else "—"})
+        elif isinstance(v, str):
+            rows.append({"key": k, "value": v})
+    return pd.DataFrame(rows)
+
+
+def _results(study) -> Section:
+    sec = Section("Основные результаты по разделам", "key-results")
+    if study.has_linkage:
+        st = study.structure
+        s = sec.subsection("Структура и кинематика", "key-kin")
+        s.paragraph(f"Число степеней свободы: {st.chebyshev}; структурная формула {st.formula}; "
+                    f"механизм {st.mech_class} класса. Группы: " + "; ".join(g.title for g in st.groups) + ".")
+        names = position_names(study.kinematics["pos"])
+        extra = [f"{lab} → {num}" for lab, num in names.items() if lab != num]
+        if extra:
+            s.paragraph("Дополнительные положения в записке пронумерованы: " + ", ".join(extra) + ".")
+        flags = [(n[3:], fl) for n, fl in study.flags.items()]
+        if flags:
+            rows = [{"g": "(" + g.replace("_", ", ") + ")", "min": math.degrees(fl["min"]), "low": "да" if fl["low"] else "нет"} for g, fl in flags]
+            s.table("Наименьшие углы передачи по группам", [
+                Column("g", "Группа"), Column("min", "μ<sub>min</sub>", "град", digits=1),
+                Column("low", "Меньше 40°")], pd.DataFrame(rows), id="key-mu")
+    for kind in KINDS:
+        if kind.name not in study.tasks():
+            continue
+        a = study.analysis(kind.name)
+        df = _scalar_rows(a.scalars)
+        if len(df):
+            s = sec.subsection(kind.title, f"key-{kind.name}")
+            s.table(f"Ключевые величины: {kind.title.lower()}", [Column("key", "Величина (имя в программе)"),
+                                                                 Column("value", "Значение")],
+                    df, id=f"key-tab-{kind.name}")
+    return sec
+
+
+def _verdict(x: float, tol: float) -> str:
+    return "выполнена" if x <= tol else "НЕ выполнена"
+
+
+def loop_closure(study) -> float:
+    """Largest change over the cycle of a distance between two points of one link, m (rigidity
+    of every link = closure of every vector loop; 0 up to round-off for a correct solution)."""
+    cyc = study.cycle
+    worst = 0.0
+    for link in study.mechanism.moving:
+        pts = [p for p in link.points if f"x_{p}" in cyc]
+        for i, p in enumerate(pts):
+            for q in pts[i + 1:]:
+                d = np.hypot(cyc[f"x_{p}"] - cyc[f"x_{q}"], cyc[f"y_{p}"] - cyc[f"y_{q}"]).to_numpy()
+                (x0, y0), (x1, y1) = link.points[p], link.points[q]
+                worst = max(worst, float(np.max(np.abs(d - math.hypot(x1 - x0, y1 - y0)))))
+    return worst
+
+
+def _checks(study) -> Section:
+    sec = Section("Проверки", "key-checks")
+    rows = []
+    if study.has_linkage:
+        err = loop_closure(study)
+        rows.append({"what": "Замыкание контуров: расстояния между точками каждого звена за цикл",
+                     "value": f"{fmt(err, sig=2)} м", "verdict": _verdict(err, 1e-9)})
+    tasks = study.tasks()
+    if "forces" in tasks:
+        sc = study.forces.scalars
+        rows.append({"what": "Рычаг Жуковского: уравновешивающая сила (момент) по группам и по рычагу",
+                     "value": f"{fmt(sc['dev_zhukovsky_max_pct'], sig=2)} %",
+                     "verdict": _verdict(sc["dev_zhukovsky_max_pct"], 1e-6)})
+        if "dev_power_max" in sc:
+            rows.append({"what": "Баланс мощностей (принцип возможных перемещений)",
+                         "value": fmt(sc["dev_power_max"], sig=2), "verdict": _verdict(sc["dev_power_max"], 1e-8)})
+        for k, title in (("dev_M_bal_M_d_max", "Уравновешивающий момент и движущий момент динамики"),
+                         ("dev_M_bal_dyn_max", "Уравновешивающий момент и M<sub>д</sub> − J<sub>I</sub>ε динамики")):
+            if k in sc and math.isfinite(sc[k]):
+                rows.append({"what": title, "value": fmt(sc[k], sig=2), "verdict": _verdict(sc[k], 1e-6)})
+    if "dynamics" in tasks:
+        d = study.dynamics
+        sc = d.scalars
+        A = sc.get("A_d", math.nan) + sc.get("A_c", math.nan)
+        scale = max(abs(sc.get("A_c", 0.0)), abs(sc.get("A_d", 0.0)), 1e-12)
+        if math.isfinite(A):
+            rows.append({"what": "Баланс энергии за цикл: A<sub>д</sub> + A<sub>с</sub> = 0",
+                         "value": fmt(abs(A) / scale, sig=2), "verdict": _verdict(abs(A) / scale, 1e-9)})
+        dl = abs(sc["delta_achieved"] - sc["delta"]) / sc["delta"]
+        rows.append({"what": "Коэффициент неравномерности при точном движении и заданный",
+                     "value": fmt(dl, sig=2), "verdict": "—"})
+    if rows:
+        df = pd.DataFrame(rows)
+        sec.table("Независимые проверки", CHECK_COLS, df, id="key-checks-tab")
+    else:
+        sec.paragraph("Проверок для этого варианта нет.")
+    return sec
+
+
+def _printed(study) -> Section | None:
+    if "dynamics" not in study.tasks() or not study.dynamics.settings.printed:
+        return None
+    from .sections.dynamics import printed_block
+    pr = study.dynamics.printed
+    if pr is None or not len(pr):
+        return None
+    sec = Section("Сравнение с напечатанными значениями", "key-printed")
+    printed_block(sec, pr)
+    return sec
+
+
+def _errors(study) -> Section | None:
+    """The worksheet's errors the program found (case-driven: printed values out of tolerance,
+    the worksheet's formula for the carrier's largest load)."""
+    items = []
+    if "dynamics" in study.tasks() and study.dynamics.settings.printed:
+        pr = study.dynamics.printed
+        for _, r in pr[~pr["within"]].iterrows():
+            items.append(f"{r['title'] or r['key']}: напечатано {r['printed']}, точное значение "
+                         f"{fmt(r['computed'], sig=6)}.")
+    if "forces" in study.tasks():
+        f = study.forces
+        if f.settings.carrier is not None and "Gmax_carrier_as_printed" in f.table:
+            t = f.table
+            items.append("Наибольший груз по условию управляемости: в листе из суммы моментов вычитается сила "
+                         "R<sub>A,min</sub> без плеча L (формула неоднородна по размерности); по ней получилось бы "
+                         f"{fmt(t['Gmax_carrier_as_printed'].min(), sig=5)}…"
+                         f"{fmt(t['Gmax_carrier_as_printed'].max(), sig=5)} Н вместо "
+                         f"{fmt(t['Gmax_carrier'].min(), sig=5)}…{fmt(t['Gmax_carrier'].max(), sig=5)} Н.")
+    if not items:
+        return None
+    sec = Section("Ошибки исходного расчёта", "key-errors")
+    for it in items:
+        sec.paragraph(it)
+    return sec
+
+
+def write_key(study, out_dir, stem: str, formats=("pdf", "html")) -> dict:
+    """Write ``out_dir/<stem>-key.pdf`` (and .html); returns {"key-pdf": path, …}."""
+    from .render import build_outputs
+    files = build_outputs(build_key(study), out_dir, f"{stem}-key", formats)
+    return {f"key-{k}": p for k, p in files.items()}

@@ -1,0 +1,180 @@
+"""Russian wording helpers for the generated text: numeral–noun agreement, the textbook symbol
+and the Russian name of a case parameter, the student's number of a report position.
+
+Agreement rule (Розенталь Д. Э. Справочник по правописанию и стилистике, §185): the noun after a
+numeral takes the nominative singular after 1 (but not 11), the genitive singular after 2–4 (but
+not 12–14), the genitive plural otherwise: «21 уравнение», «3 уравнения», «5 уравнений».
+"""
+from __future__ import annotations
+
+import re
+
+from markupsafe import Markup, escape
+
+NBSP = "\u00a0"
+
+
+def plural_form(n: int, one: str, few: str, many: str) -> str:
+    """The noun form agreeing with the integer ``n`` (one: 1, 21; few: 2–4, 22; many: 0, 5–20)."""
+    n = abs(int(n))
+    if n % 10 == 1 and n % 100 != 11:
+        return one
+    if 2 <= n % 10 <= 4 and not 12 <= n % 100 <= 14:
+        return few
+    return many
+
+
+def plural(n: int, one: str, few: str, many: str) -> str:
+    """«n noun» with agreement and a non-breaking space: plural(3, "уравнение", "уравнения",
+    "уравнений") → "3 уравнения"."""
+    return f"{int(n)}{NBSP}{plural_form(n, one, few, many)}"
+
+
+# leading part of a parameter name → (textbook letter, Russian name); checked longest first
+_HEADS = {
+    "omega": ("ω", "угловая скорость"),
+    "delta": ("δ", "коэффициент"),
+    "alpha": ("α", "угол"),
+    "beta": ("β", "угол"),
+    "gamma": ("γ", "угол"),
+    "theta": ("θ", "угол"),
+    "phi": ("φ", "угол"),
+    "psi": ("ψ", "угол"),
+    "eps": ("ε", "угловое ускорение"),
+    "rho": ("ρ", "плотность"),
+    "mu": ("μ", "коэффициент"),
+    "eta": ("η", "коэффициент полезного действия"),
+    "l": ("l", "длина"),
+    "L": ("l", "длина"),
+    "X": ("x", "координата по оси x"),
+    "x": ("x", "координата по оси x"),
+    "Y": ("y", "координата по оси y"),
+    "y": ("y", "координата по оси y"),
+    "S": ("S", "ход (длина) ведущего звена"),
+    "H": ("H", "ход"),
+    "m": ("m", "масса"),
+    "J": ("J", "момент инерции"),
+    "G": ("G", "вес"),
+    "F": ("F", "сила"),
+    "P": ("P", "сила"),
+    "M": ("M", "момент"),
+    "n": ("n", "частота вращения"),
+    "D": ("D", "диаметр"),
+    "d": ("d", "диаметр"),
+    "e": ("e", "эксцентриситет"),
+    "h": ("h", "размер"),
+    "a": ("a", "размер"),
+    "b": ("b", "размер"),
+    "c": ("c", "размер"),
+    "r": ("r", "радиус"),
+    "R": ("R", "радиус"),
+}
+_SUFFIX_RU = {"min": "наименьшее значение", "max": "наибольшее значение", "p": "рабочее значение"}
+_NAME = re.compile(r"^([A-Za-z]+?)_?([A-Za-z0-9]*)$")
+
+
+def _split(name: str) -> tuple[str, str, str]:
+    """(head, index, Russian name) of a parameter name: "l_AB" → ("l", "AB", …), "phiBD" →
+    ("φ", "BD", …), "X01" → ("x", "01", …), "S_min" → ("S", "min", …)."""
+    head, _, tail = name.partition("_")
+    for key in sorted(_HEADS, key=len, reverse=True):
+        rest = head[len(key):]
+        if head.startswith(key) and (not rest or rest[0].isupper() or rest[0].isdigit()):
+            letter, ru = _HEADS[key]
+            return letter, rest + tail, ru
+    return head, tail.replace("_", ""), "параметр"
+
+
+def param_symbol(name: str) -> Markup:
+    """Textbook symbol of a parameter in HTML: l_AB → <i>l</i><sub>AB</sub>, phi_P6 → φ<sub>P6</sub>."""
+    letter, index, _ = _split(name)
+    if index:
+        return Markup("<i>{}</i><sub>{}</sub>").format(letter, index)
+    return Markup("<i>{}</i>").format(letter)
+
+
+def param_title(name: str) -> str:
+    """Russian name of a parameter derived from its symbol: l_AB → «длина звена AB»,
+    X_C → «координата по оси x точки C», S_min → «ход (длина) ведущего звена, наименьшее значение»."""
+    letter, index, ru = _split(name)
+    if not index:
+        return ru
+    if index in _SUFFIX_RU:
+        return f"{ru}, {_SUFFIX_RU[index]}"
+    if ru.startswith("координата"):
+        return f"{ru} точки {index}"
+    if ru == "угол":
+        return f"угол {index}"
+    return f"{ru} {index}"
+
+
+def position_names(labels) -> dict[str, str]:
+    """The student's number of every report position: numeric labels stay, the others (extra
+    positions named in the case, e.g. "f") get the next numbers in their order."""
+    labels = [str(x) for x in labels]
+    nums = [int(x) for x in labels if x.isdigit()]
+    nxt = (max(nums) + 1) if nums else 1
+    out = {}
+    for lab in labels:
+        if lab.isdigit():
+            out[lab] = lab
+        else:
+            out[lab] = str(nxt)
+            nxt += 1
+    return out
+
+
+_COND = re.compile(r"^\s*vq([xy])_(\w+)\s*(>=|>|<=|<)\s*0\s*$")
+_OPS = {">=": "≥", "<=": "≤", "!=": "≠", "==": "="}
+_TOKEN = re.compile(r"\b(vq|aq|v|a|x|y|phi|wq|eq|w|e)([xy]?)_(\w+)\b")
+
+
+def condition_text(text: str) -> str:
+    """A load's condition written for a student (plain text, no identifiers): "vqx_H >= 0" →
+    «при движении точки H в положительном направлении оси x»; other expressions get Greek
+    letters and ≥/≤ with the point as a subscript-like suffix («φ(3) ≥ …»)."""
+    m = _COND.match(text)
+    if m:
+        axis, point, op = m.groups()
+        sense = "положительном" if op in (">=", ">") else "отрицательном"
+        return f"при движении точки {point} в {sense} направлении оси {axis}"
+    out = text
+    for op, sym in _OPS.items():
+        out = out.replace(op, sym)
+    plain = {"vq": "Vq", "aq": "aq", "wq": "ωq", "eq": "εq", "phi": "φ", "w": "ω", "e": "ε"}
+    out = _TOKEN.sub(lambda m: f"{plain.get(m.group(1), m.group(1))}{m.group(2)}({m.group(3)})", out)
+    return "при " + out
+
+
+_EXPR_TOKEN = re.compile(r"(\d+(?:\.\d+)?(?:[eE][-+]?\d+)?)|([A-Za-z_][A-Za-z0-9_]*)|(>=|<=|!=|==|\*|[^\sA-Za-z0-9_])|(\s+)")
+_UNITS_RU = {"m": "м", "mm": "мм", "cm": "см", "deg": "°", "rad": "рад", "kg": "кг", "N": "Н", "s": "с",
+             "Pa": "Па", "MPa": "МПа", "rpm": "об/мин"}
+
+
+def expr_html(text: str) -> Markup:
+    """A case expression in textbook notation (escaped HTML): "phi_6 = phi_P6" → φ<sub>6</sub> =
+    φ<sub>P6</sub>, "y_56 = 0.2 m" → <i>y</i><sub>56</sub> = 0,2 м; ``*`` → ·, ``>=`` → ≥."""
+    out = []
+    prev_number = pending = False
+    for num, ident, op, space in _EXPR_TOKEN.findall(text):
+        if space:
+            if prev_number:
+                pending = True
+            else:
+                out.append(Markup(" "))
+            continue
+        if ident and prev_number and ident in _UNITS_RU:
+            unit = _UNITS_RU[ident]
+            out.append(Markup(unit if unit == "°" else NBSP + unit))
+            prev_number = pending = False
+            continue
+        if pending:
+            out.append(Markup(" "))
+        prev_number, pending = bool(num), False
+        if num:
+            out.append(escape(num.replace(".", ",")))
+        elif ident:
+            out.append(param_symbol(ident))
+        else:
+            out.append(escape(_OPS.get(op, "·" if op == "*" else op)))
+    return Markup("").join(out)
