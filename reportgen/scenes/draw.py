@@ -11,6 +11,7 @@ from matplotlib.transforms import Affine2D
 
 from ..mechanism.model import FRAME, Mechanism
 from ..style import mplstyle
+from .labels import LabelPlacer, tex_point
 
 NICE = (1.0, 1.5, 2.0, 2.5, 4.0, 5.0)
 INK = "#000000"
@@ -49,6 +50,7 @@ class Canvas:
         self.ax.set_ylim(ymin - margin_mm * mu - extra_h, ymax + margin_mm * mu + extra_h)
         self.ax.set_aspect("equal")
         self.ax.axis("off")
+        self.labels = LabelPlacer(self.ax)
 
     def mm(self, x: float) -> float:
         """A length given in printed millimetres in data units."""
@@ -62,6 +64,8 @@ class Canvas:
         return cls(xmin, xmax, ymin, ymax, mu, margin_mm)
 
     def svg(self) -> bytes:
+        """The drawing as SVG, after the registered labels are placed clear of everything."""
+        self.labels.place()
         return mplstyle.to_svg(self.fig)
 
 
@@ -116,13 +120,10 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
             a, b = _farthest(pts) if len(pts) >= 2 else (pts[0], pts[0])
             mx, my = (a[0] + b[0]) / 2, (a[1] + b[1]) / 2
             nx, ny = -(b[1] - a[1]), b[0] - a[0]
-            n = math.hypot(nx, ny) or 1.0
-            ax.text(mx + nx / n * cv.mm(3.2), my + ny / n * cv.mm(3.2), link.name, fontsize=9, color=color,
-                    ha="center", va="center", alpha=alpha, zorder=zorder + 2)
+            cv.labels.add(mx, my, link.name, prefer=(nx, ny), color=color, fontsize=9)
         elif numbers and link.name in sliders:
             x, y = _point(row, sliders[link.name])
-            ax.text(x + cv.mm(5.5), y + cv.mm(4.5), link.name, fontsize=9, color=color, ha="center",
-                    va="center", alpha=alpha, zorder=zorder + 2)
+            cv.labels.add(x, y, link.name, prefer=(0.7, 0.7), color=color, fontsize=9)
     fixed = mech.link(FRAME).points
     for j in mech.joints:
         if only is not None and not set(j.links) & set(only):
@@ -153,9 +154,7 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
                     continue
                 placed.add(p)
                 x, y = _point(row, p)
-                dx, dy = _label_offset(mech, row, p)
-                ax.text(x + cv.mm(3.0) * dx, y + cv.mm(3.0) * dy, subscript_label(p), fontsize=9, style="italic",
-                        ha="center", va="center", color=color, alpha=alpha, zorder=zorder + 3)
+                cv.labels.add(x, y, tex_point(p), prefer=_label_offset(mech, row, p), color=color, fontsize=10)
 
 
 SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
