@@ -223,4 +223,4 @@ def tex_point(p: str, prime: bool = False, lower: bool = False) -> str:
         head, tail = p, ""
     if lower:
         head = head.lower()
-    return "$" + head + ("'" if prime else "") + (f"_{{{tail}}}" if tail else "") + "$"
+    return "$" + head + ("′" if prime else "") + (f"_{{{tail}}}" if tail else "") + "$"

@@ -7,7 +7,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..mechanism.model import FRAME
-from .draw import GREY, INK, Canvas, draw_mechanism, mechanism_points
+from matplotlib.patches import Circle
+
+from .draw import GREY, INK, Canvas, draw_guide, draw_mechanism, mechanism_points
 
 
 @dataclass
@@ -40,11 +42,14 @@ class KinematicScheme:
 
 class PositionsPlan:
     """All report positions overlaid (the first drawn bold, the others thin and numbered at the
-    crank pin / rod end) and the trajectories of the centres of mass over the whole cycle."""
+    crank pin / rod end), the crank circle, both extreme positions of the output link bold and
+    labelled (B′, B″), each fixed guide hatched over the whole travel of its slider, and the
+    trajectories of the centres of mass over the cycle (dashed)."""
 
     needs = ("kinematics", "cycle")
 
     def draw(self, study) -> Drawing:
+        from ..analysis.plans import output_quantity
         mech = study.mechanism
         k = study.kinematics
         regular = k[~k["pos"].str.startswith("д")] if k["pos"].dtype == object else k
@@ -55,22 +60,74 @@ class PositionsPlan:
         for p in coms:
             xs += list(cyc[f"x_{p}"])
             ys += list(cyc[f"y_{p}"])
-        cv = Canvas.fit(xs, ys, avail_w=155, avail_h=190, margin_mm=12)
+        cv = Canvas.fit(xs, ys, avail_w=155, avail_h=190, margin_mm=12, gost=True)
+        for p in coms:
+            cv.ax.plot(cyc[f"x_{p}"], cyc[f"y_{p}"], ls=(0, (5, 3)), lw=0.7, color=INK, zorder=2)
+        tip = _tracer_point(study)
+        cx, cy = _centre(study, rows)
+        if mech.driver.rotary:
+            r = float(np.hypot(rows[0][f"x_{tip}"] - cx, rows[0][f"y_{tip}"] - cy))
+            cv.ax.add_patch(Circle((cx, cy), r, fill=False, lw=0.6, color=INK, zorder=1))
         for i, row in enumerate(rows[1:], start=1):
             draw_mechanism(cv, mech, row, color=GREY, lw=0.7, labels=False, numbers=False, alpha=0.9,
                            zorder=1, com=False, supports=False)
-        draw_mechanism(cv, mech, rows[0], color=INK, lw=1.5, zorder=4)
-        # position numbers at the driver's moving point
-        tip = _tracer_point(study)
+        s_col = output_quantity(study)[0]
+        s = cyc[s_col].to_numpy()
+        ext = [cyc.iloc[int(np.argmin(s))], cyc.iloc[int(np.argmax(s))]]
+        for row in ext:
+            draw_mechanism(cv, mech, row, color=INK, lw=1.2, labels=False, numbers=False, zorder=3, com=False,
+                           supports=False)
+        draw_mechanism(cv, mech, rows[0], color=INK, lw=1.5, zorder=4, guides=False)
+        for j in mech.prismatic:
+            if j.links[0] == FRAME:
+                u = np.array([np.cos(j.angle), np.sin(j.angle)])
+                p0 = np.array([rows[0][f"x_{j.point}"], rows[0][f"y_{j.point}"]])
+                t = (np.column_stack([cyc[f"x_{j.point}"], cyc[f"y_{j.point}"]]) - p0) @ u
+                draw_guide(cv, mech, rows[0], j, (float(t.min()), float(t.max())))
+        out = _output_point(study, s_col)
+        for mark, row in zip(("′", "″"), ext):
+            for p in dict.fromkeys([out, tip]):
+                cv.labels.add(float(row[f"x_{p}"]), float(row[f"y_{p}"]), _marked(p, mark), fontsize=10)
+        # position numbers at the driver's moving point; coincident positions share one label
+        groups: list[tuple[float, float, list[str]]] = []
         for row in rows:
             x, y = float(row[f"x_{tip}"]), float(row[f"y_{tip}"])
-            cx, cy = _centre(study, rows)
-            d = np.hypot(x - cx, y - cy) or 1.0
-            cv.ax.text(x + (x - cx) / d * cv.mm(4), y + (y - cy) / d * cv.mm(4), row["pos"], fontsize=8,
-                       ha="center", va="center", color=INK)
-        for p in coms:
-            cv.ax.plot(cyc[f"x_{p}"], cyc[f"y_{p}"], ls="--", lw=0.8, color=INK, zorder=2)
+            for gx, gy, names in groups:
+                if np.hypot(x - gx, y - gy) < cv.mm(0.5):
+                    names.append(str(row["pos"]))
+                    break
+            else:
+                groups.append((x, y, [str(row["pos"])]))
+        for x, y, names in groups:
+            cv.labels.add(x, y, ", ".join(names), prefer=(x - cx, y - cy), fontsize=8)
         return Drawing(cv.svg(), cv.width_mm, cv.mu)
+
+
+def _marked(p: str, mark: str) -> str:
+    """B with a prime or double prime in mathtext: $B′$, $S″_{2}$."""
+    head = p.rstrip("0123456789")
+    tail = p[len(head):]
+    return "$" + head + mark + (f"_{{{tail}}}" if tail else "") + "$"
+
+
+def _output_point(study, s_col: str) -> str:
+    """The point that shows the output link's extreme positions: the slider's point, or the
+    rocker's point farthest from its pivot."""
+    mech = study.mechanism
+    name = s_col.partition("_")[2]
+    for j in mech.prismatic:
+        if j.name == name:
+            return j.point
+    link = mech.link(name) if name in [l.name for l in mech.links] else None
+    if link is None:
+        return _tracer_point(study)
+    fixed = set(mech.link(FRAME).points)
+    piv = [p for p in link.points if p in fixed]
+    rest = [p for p in link.points if p not in fixed]
+    if not piv or not rest:
+        return rest[0] if rest else _tracer_point(study)
+    c = link.points[piv[0]]
+    return max(rest, key=lambda p: np.hypot(link.points[p][0] - c[0], link.points[p][1] - c[1]))
 
 
 def _tracer_point(study) -> str:
