@@ -9,7 +9,7 @@ import numpy as np
 from ..mechanism.model import FRAME
 from matplotlib.patches import Circle
 
-from .draw import GREY, INK, Canvas, draw_guide, draw_mechanism, mechanism_points
+from .draw import GREY, INK, Canvas, draw_guide, gost_scale, draw_mechanism, mechanism_points
 
 
 @dataclass
@@ -107,6 +107,8 @@ def _marked(p: str, mark: str) -> str:
     """B with a prime or double prime in mathtext: $B′$, $S″_{2}$."""
     head = p.rstrip("0123456789")
     tail = p[len(head):]
+    if not head:
+        head, tail = p, ""
     return "$" + head + mark + (f"_{{{tail}}}" if tail else "") + "$"
 
 
@@ -145,55 +147,62 @@ def _centre(study, rows):
 
 
 class AssurGroups:
-    """The initial mechanism and each Assur group drawn separately at one position, with the
-    external pairs marked (the places where the group is attached)."""
+    """The initial mechanism and each Assur group drawn separately at one position, at one
+    ГОСТ 2.302 scale, side by side, with the mechanism symbols (supports hatched, sliders and
+    guides), the external pairs shown black and every label placed clear."""
 
     needs = ("kinematics", "structure")
+    GAP_MM = 18.0
 
     def __init__(self, label: str):
         self.label = label
 
-    def draw(self, study) -> Drawing:
-        from ..style import mplstyle
+    def _links(self, study, g) -> set[str]:
         mech = study.mechanism
-        st = study.structure
+        links = set(g.links) | ({mech.driver.link} if g.klass == 1 else set())
+        if mech.driver.kind == "actuator" and mech.driver.rod in links | {mech.driver.link}:
+            links |= {mech.driver.rod, mech.driver.link} & (set(g.links) | ({mech.driver.link} if g.klass == 1 else set()))
+        return links
+
+    def draw(self, study) -> Drawing:
+        mech = study.mechanism
         row = _row(study, self.label)
-        groups = st.groups
-        n = len(groups)
-        fig = mplstyle.figure(165, 62 if n <= 4 else 110, layout=None)
-        cols = min(n, 4)
-        rws = (n + cols - 1) // cols
-        for gi, g in enumerate(groups):
-            ax = fig.add_subplot(rws, cols, gi + 1)
-            ax.set_aspect("equal")
-            ax.axis("off")
-            links = set(g.links) | ({mech.driver.link} if g.klass == 1 else set())
-            if mech.driver.kind == "actuator" and g.klass != 1 and mech.driver.rod in links:
-                links.add(mech.driver.rod)
-            pts = []
-            for ln in links:
-                for p in mech.link(ln).points:
-                    pts.append((float(row[f"x_{p}"]), float(row[f"y_{p}"])))
-            pts = np.array(pts)
-            span = max(np.ptp(pts[:, 0]), np.ptp(pts[:, 1]), 1e-3)
-            for ln in links:
-                link = mech.link(ln)
-                P = [(float(row[f"x_{p}"]), float(row[f"y_{p}"])) for p in link.points]
-                if len(P) >= 2:
-                    P2 = np.array(P)
-                    order = np.argsort(P2[:, 0] * 1e-9 + np.arange(len(P2)))
-                    ax.plot(P2[order, 0], P2[order, 1], color=INK, lw=1.4, solid_capstyle="round")
-                ax.text(np.mean([p[0] for p in P]) + 0.05 * span, np.mean([p[1] for p in P]) + 0.05 * span,
-                        ln, fontsize=9, color=INK)
+        groups = study.structure.groups
+        parts = []
+        for g in groups:
+            links = self._links(study, g)
+            pts = {p for ln in links for p in mech.link(ln).points}
+            xs = [float(row[f"x_{p}"]) for p in pts]
+            ys = [float(row[f"y_{p}"]) for p in pts]
+            parts.append((g, links, pts, min(xs), max(xs), min(ys), max(ys)))
+        span = max(mech.size() * 0.05, 1e-3)
+        widths = [p[4] - p[3] + 2 * span for p in parts]
+        height = max(p[6] - p[5] for p in parts) + 2 * span
+        # the gaps are fixed on paper: the scale fits the links into what the gaps leave
+        avail = 165.0 - 24.0 - self.GAP_MM * (len(parts) - 1)
+        mu = max(gost_scale(sum(widths), avail), gost_scale(height, 90.0))
+        gap = self.GAP_MM * mu
+        shifted, x0 = [], 0.0
+        for (g, links, pts, xmin, xmax, ymin, ymax), w in zip(parts, widths):
+            dx = x0 - (xmin - span)
+            dy = -(ymin + ymax) / 2
+            r = row.copy()
+            for c in row.index:
+                if c.startswith("x_"):
+                    r[c] = row[c] + dx
+                elif c.startswith("y_"):
+                    r[c] = row[c] + dy
+            shifted.append((g, links, r, x0 + w / 2))
+            x0 += w + gap
+        allx = [0.0, x0 - gap]
+        ally = [-height / 2, height / 2]
+        cv = Canvas(min(allx), max(allx), min(ally), max(ally), mu, margin_mm=12, max_w=165.0)
+        for g, links, r, xc in shifted:
+            draw_mechanism(cv, mech, r, only=links, lw=1.4)
             for j in mech.joints:
-                if not (set(j.links) & links):
-                    continue
-                x, y = float(row[f"x_{j.point}"]), float(row[f"y_{j.point}"])
-                external = not set(j.links) <= links
-                ax.plot([x], [y], marker="o", ms=5, mfc="white" if not external else INK, mec=INK, zorder=3)
-                if j.kind == "P" and set(j.links) <= links | {FRAME}:
-                    ax.plot([x - 0.08 * span, x + 0.08 * span], [y, y], color=INK, lw=3, alpha=0.5)
-                ax.text(x + 0.04 * span, y - 0.08 * span, j.point, fontsize=8, style="italic")
-            ax.set_title(g.label + (" " + g.kind_ru if g.kind_ru else ""), fontsize=9)
-            ax.margins(0.18)
-        return Drawing(mplstyle.to_svg(fig), 165, 0.0)
+                if j.kind == "R" and set(j.links) & links and not set(j.links) <= links | {FRAME}:
+                    x, y = float(r[f"x_{j.point}"]), float(r[f"y_{j.point}"])
+                    cv.ax.add_patch(Circle((x, y), cv.mm(1.3), facecolor=INK, edgecolor=INK, zorder=6))
+            cv.labels.add(xc, -height / 2 - cv.mm(4), g.label + (" " + g.kind_ru if g.kind_ru else ""),
+                          prefer=(0, -1), fontsize=10)
+        return Drawing(cv.svg(), cv.width_mm, mu)

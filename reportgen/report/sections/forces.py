@@ -455,22 +455,22 @@ def _balance(sec: Section, study, f, lab: str) -> None:
         pin = tex_point(_pin(mech))
         res = [Formula(rf"F_{{ур}} = -\frac{{\sum F_i h_i}}{{h_{{{pin.lower()}}}}}",
                        rf"-\frac{{{_t(total, sig=6)}}}{{{_t(lever.arm_mm, sig=4)}}}",
-                       _t(row["F_bal_zhukovsky"], sig=5, unit="Н")),
+                       _t(lever.graphic, sig=4, unit="Н")),
                Formula(rf"M_{{ур}}^{{Ж}} = F_{{ур}} l_{{{tex_point(d.center)}{pin}}}",
-                       rf"{_t(row['F_bal_zhukovsky'], sig=5)} \cdot {_t(_crank_length(mech), sig=4)}",
-                       _t(row["M_bal_zhukovsky"], sig=6, unit="Н·м")),
+                       rf"{_t(lever.graphic, sig=4)} \cdot {_t(_crank_length(mech), sig=4)}",
+                       _t(lever.graphic * _crank_length(mech), sig=4, unit="Н·м")),
                Formula(r"M_{ур}^{кин}", None, _t(row["M_bal"], sig=6, unit="Н·м")),
-               Formula(r"\Delta = \frac{\left| M_{ур}^{кин} - M_{ур}^{Ж} \right|}{\max \left| M_{ур} \right|} \cdot 100\%",
-                       None, _t(row["dev_zhukovsky_pct"], sig=2, unit="%"))]
+               Formula(r"\Delta = \frac{\left| M_{ур}^{кин} - M_{ур}^{Ж} \right|}{\left| M_{ур}^{кин} \right|} \cdot 100\%",
+                       None, _t(_dev(lever.graphic * _crank_length(mech), row["M_bal"]), sig=2, unit="%"))]
     else:
         res = [Formula(r"F^{Ж} = -\frac{\sum F_i h_i}{h_{2} - h_{1}}",
                        rf"-\frac{{{_t(total, sig=6)}}}{{{_t(lever.arm_mm, sig=4)}}}",
-                       _t(row["F_act_zhukovsky"], sig=7, unit="Н")),
+                       _t(lever.graphic, sig=4, unit="Н")),
                Formula(r"F^{кин}", None, _t(row["F_act"], sig=7, unit="Н")),
-               Formula(r"\Delta = \frac{\left| F^{кин} - F^{Ж} \right|}{\max |F|} \cdot 100\%", None,
-                       _t(row["dev_zhukovsky_pct"], sig=2, unit="%"))]
+               Formula(r"\Delta = \frac{\left| F^{кин} - F^{Ж} \right|}{|F^{кин}|} \cdot 100\%", None,
+                       _t(_dev(lever.graphic, row["F_act"]), sig=2, unit="%"))]
     s.paragraph(f"Результат для положения {lab} и расхождение с силовым расчётом по группам "
-                "(допускается до 5&nbsp;%; аналитически значения совпадают с точностью округления):")
+                "(допускается до 5&nbsp;%; плечи измерены на чертеже с точностью 0,5&nbsp;мм):")
     s.formula(*res)
     cols = [Column(main, (sub("M", "ур") if rot else "<i>F</i>") + " (по группам)", unit, sig=7),
             Column(main + "_power", (sub("M", "ур") if rot else "<i>F</i>") + " (мощности)", unit, sig=7),
@@ -492,6 +492,11 @@ def _balance(sec: Section, study, f, lab: str) -> None:
                  f"по положениям (последний столбец таблицы); реакции от момента, приложенного к кривошипу, не "
                  f"зависят.")
     s.paragraph(text)
+
+
+def _dev(graphic: float, exact: float) -> float:
+    """Discrepancy of a value found on a drawing from the exact one, % of the exact value."""
+    return abs(graphic - exact) / abs(exact) * 100.0 if abs(exact) > 1e-12 else 0.0
 
 
 def _who(link: str) -> str:
