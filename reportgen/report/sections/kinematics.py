@@ -17,6 +17,7 @@ from ...scenes.plans import MIN_MM, READ_MM, PlanScene
 from ...style.numbers import fmt, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
+from . import vectors
 from .common import chosen_position, chunked_tables, html_point, q_header, sub, tex_point
 
 NEEDS = ("kinematics", "cycle")
@@ -139,6 +140,7 @@ def build(study) -> Section:
         row = k[k["pos"] == lab].iloc[0]
         vplan = PlanScene(lab, "velocity").draw(study)
         aplan = PlanScene(lab, "acceleration").draw(study)
+        vectors.add(s4, study, row)
         _plan_formulas(s4, study, row, vplan, aplan)
         s4.figure(f"План скоростей для положения {lab} (μ<sub>v</sub> = {fmt(vplan.mu, sig=3)} м·с⁻¹/мм)",
                   vplan.svg, vplan.width_mm, id="fig-vplan")
