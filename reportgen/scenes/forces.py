@@ -185,8 +185,10 @@ class GroupForces:
         x0 = allx.max() + cv_gap(mu_l) - cum[:, 0].min() * k
         y0 = (ally.max() + ally.min()) / 2 - (cum[:, 1].max() + cum[:, 1].min()) / 2 * k
         poly = np.column_stack([x0 + cum[:, 0] * k, y0 + cum[:, 1] * k])
-        cv = Canvas(min(allx.min(), poly[:, 0].min()), max(allx.max(), poly[:, 0].max()),
-                    min(ally.min(), poly[:, 1].min()), max(ally.max(), poly[:, 1].max()), mu_l,
+        inset = _inset(seq, cum, mu_F, k, poly, mu_l)
+        ext_pts = np.vstack([poly] + ([inset["box"]] if inset else []))
+        cv = Canvas(min(allx.min(), ext_pts[:, 0].min()), max(allx.max(), ext_pts[:, 0].max()),
+                    min(ally.min(), ext_pts[:, 1].min()), max(ally.max(), ext_pts[:, 1].max()), mu_l,
                     margin_mm=10, max_w=170.0)
         ax = cv.ax
         draw_mechanism(cv, mech, cols, only=set(g.links), supports=False, lw=1.4, com=True)
@@ -222,7 +224,10 @@ class GroupForces:
             mid = (a + b) / 2
             d = b - a
             nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
-            cv.labels.add(mid[0], mid[1], math_label(v.label), prefer=nrm, fontsize=10, color=color)
+            if not inset or i not in inset["tiny"]:
+                cv.labels.add(mid[0], mid[1], math_label(v.label), prefer=nrm, fontsize=10, color=color)
+        if inset:
+            _draw_inset(cv, seq, inset)
         # internal reactions: a cut between the first links of the order and the rest crossed by
         # one internal pair; its force on the first links closes their polygon (dashed)
         n = 0
@@ -244,6 +249,80 @@ class GroupForces:
             cv.labels.add(mid[0], mid[1], math_label(lab), prefer=nrm, fontsize=10, color=BLUE)
         ax.plot([poly[0, 0]], [poly[0, 1]], "o", ms=2.5, color=INK)
         return GroupDrawing(cv.svg(), cv.width_mm, mu_l, mu_F, seq + closing)
+
+
+TINY_MM = 5.0          # a polygon side shorter than this is repeated enlarged in an inset
+INSET_MM = (6.0, 40.0)  # the smallest enlarged side at least, the whole enlarged chain at most
+
+
+def _runs(idx: list[int]) -> list[list[int]]:
+    out: list[list[int]] = []
+    for i in idx:
+        if out and out[-1][-1] == i - 1:
+            out[-1].append(i)
+        else:
+            out.append([i])
+    return out
+
+
+def _magnification(small: float, span: float, mu_F: float) -> float:
+    """m of the series 2, 5, 10, 20, 50, … : the smallest with the smallest side ≥ 6 mm, not
+    making the chain longer than 45 mm."""
+    best = 1.0
+    for e in range(0, 8):
+        for base in (2.0, 5.0, 10.0):
+            m = base * 10 ** e
+            if span * m / mu_F > INSET_MM[1]:
+                return best
+            best = m
+            if small * m / mu_F >= INSET_MM[0]:
+                return m
+    return best
+
+
+def _inset(seq, cum, mu_F, k, poly, mu_l):
+    """Each run of the polygon's tiny sides enlarged m times, drawn under the polygon side by
+    side; None when every side is long enough to be read."""
+    tiny = [i for i, v in enumerate(seq) if float(np.hypot(*v.F)) / mu_F < TINY_MM]
+    parts, shown = [], set()
+    ox = poly[:, 0].min()
+    top = poly[:, 1].min() - 16.0 * mu_l
+    pad = 5.0 * mu_l
+    for run in _runs(tiny):
+        sub = cum[run[0]:run[-1] + 2]
+        span = max(np.ptp(sub[:, 0]), np.ptp(sub[:, 1]), 1e-12)
+        small = max(min(float(np.hypot(*seq[i].F)) for i in run), 1e-12)
+        m = _magnification(small, span, mu_F)
+        if m <= 1.0:
+            continue
+        pts = (sub - sub.min(axis=0)) * k * m
+        pts = pts + np.array([ox + pad, top - pad - pts[:, 1].max()])
+        box = np.array([[pts[:, 0].min() - pad, pts[:, 1].min() - pad], [pts[:, 0].max() + pad, top]])
+        parts.append(dict(run=run, pts=pts, box=box, m=m))
+        shown |= set(run)
+        ox = box[1, 0] + 6.0 * mu_l
+    if not parts:
+        return None
+    return dict(tiny=shown, parts=parts, box=np.vstack([p["box"] for p in parts]))
+
+
+def _draw_inset(cv, seq, inset) -> None:
+    """The enlarged chains in dashed frames, each with its magnification."""
+    from matplotlib.patches import Rectangle
+    for part in inset["parts"]:
+        (x0, y0), (x1, y1) = part["box"]
+        cv.ax.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, fill=False, lw=0.5, ls=(0, (4, 2)), color=GREY))
+        pts = part["pts"]
+        for n, i in enumerate(part["run"]):
+            v = seq[i]
+            a, b = pts[n], pts[n + 1]
+            color = BLUE if v.role == "unknown" else INK
+            arrow(cv.ax, a[0], a[1], b[0], b[1], color=color, lw=1.1, zorder=6)
+            d = b - a
+            nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
+            cv.labels.add((a[0] + b[0]) / 2, (a[1] + b[1]) / 2, math_label(v.label), prefer=nrm, fontsize=10,
+                          color=color)
+        cv.labels.add((x0 + x1) / 2, y0, f"×{part['m']:.0f}", prefer=(0, -1), fontsize=8)
 
 
 def cv_gap(mu_l: float) -> float:
