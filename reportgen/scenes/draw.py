@@ -188,16 +188,6 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
 SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 
-def subscript_label(p: str, lower: bool = False) -> str:
-    """Point name with Unicode subscript digits after a letter (S2 → S₂; plain text is far
-    cheaper to lay out than mathtext)."""
-    head = p.rstrip("0123456789")
-    tail = p[len(head):]
-    if lower:
-        head = head.lower()
-    return head + tail.translate(SUBSCRIPT) if head else p
-
-
 def _label_offset(mech: Mechanism, row, p: str) -> tuple[float, float]:
     """Unit direction away from the links meeting at p."""
     x, y = _point(row, p)

@@ -18,7 +18,7 @@ from ..analysis.plans import READ_MM, velocity_plan
 from ..core import kinetostatics as KS
 from ..style import mplstyle
 from ..style.numbers import fmt
-from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow, draw_mechanism, nice_scale
+from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow, draw_mechanism, gost_scale, nice_scale
 from .labels import tex_point
 from .mechanism import Drawing
 
@@ -160,7 +160,7 @@ class GroupForces:
         xs = np.array([cols["x_" + p] for p in pts])
         ys = np.array([cols["y_" + p] for p in pts])
         span = max(np.ptp(xs), np.ptp(ys), 1e-6)
-        mu_l = nice_scale(span, 70.0)
+        mu_l = gost_scale(span, 70.0)
         Fmax = max([float(np.hypot(*v.F)) for v in ext + internal] + [1e-12])
         # arrow tips on the scheme (mm converted with μ_l)
         tips = []

@@ -9,7 +9,7 @@ import numpy as np
 from ..mechanism.model import FRAME
 from matplotlib.patches import Circle
 
-from .draw import GREY, INK, Canvas, draw_guide, gost_scale, draw_mechanism, mechanism_points
+from .draw import GREY, INK, Canvas, draw_guide, draw_mechanism, gost_scale, mechanism_points
 
 
 @dataclass
@@ -35,7 +35,7 @@ class KinematicScheme:
     def draw(self, study) -> Drawing:
         row = _row(study, self.label)
         xs, ys = mechanism_points(study.mechanism, [row])
-        cv = Canvas.fit(xs, ys, avail_w=140, avail_h=120, margin_mm=12)
+        cv = Canvas.fit(xs, ys, avail_w=140, avail_h=120, margin_mm=12, gost=True)
         draw_mechanism(cv, study.mechanism, row)
         return Drawing(cv.svg(), cv.width_mm, cv.mu)
 
