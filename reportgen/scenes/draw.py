@@ -55,6 +55,12 @@ def gost_ratio(mu_m_per_mm: float) -> str:
     return f"{round(1 / k)}:1"
 
 
+def mu_text(mu: float) -> str:
+    """A round scale factor as printed: 0,04 (not 0,0400), 0,15, 2,5·10⁻⁴ → 0,00025."""
+    txt = f"{mu:.10f}".rstrip("0").rstrip(".")
+    return txt.replace(".", ",")
+
+
 class Canvas:
     """A figure whose axes map 1 mm of the printed page to μ units exactly (the figure must be
     placed in the report at ``width_mm``)."""

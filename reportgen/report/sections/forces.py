@@ -19,6 +19,7 @@ from ...core import kinetostatics as KS
 from ...mechanism.model import FRAME
 from ...scenes.forces import (AxleCurves, CapacityCurves, GroupForces, ReactionCurves, ZhukovskyLever,
                               group_vectors, shown_key)
+from ...scenes.draw import mu_text
 from ...style.numbers import fmt, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
@@ -286,8 +287,8 @@ def _groups(sec: Section, study, f, lab: str) -> None:
         ulist = ", ".join(_unknown_text(p) for p in unknown)
         s.paragraph(f"<b>{head}.</b> Неизвестные: {ulist} — {3 * len(g.links)} уравнений. Уравнение сил группы "
                     f"(рисунок {ref(gid)}): {names}&nbsp;=&nbsp;0.")
-        s.figure(f"Группа {g.label}: схема нагружения (μ<sub>l</sub> = {fmt(draw.mu, sig=3)} м/мм, стрелки сил "
-                 f"без масштаба) и план сил (μ<sub>F</sub> = {fmt(draw.mu_F, sig=3)} Н/мм)",
+        s.figure(f"Группа {g.label}: схема нагружения (μ<sub>l</sub> = {mu_text(draw.mu)} м/мм, стрелки сил "
+                 f"без масштаба) и план сил (μ<sub>F</sub> = {mu_text(draw.mu_F)} Н/мм)",
                  draw.svg, draw.width_mm, id=gid)
         rows = []
         det = f.details(lab)
@@ -442,7 +443,7 @@ def _balance(sec: Section, study, f, lab: str) -> None:
         s.formula(Formula(r"F \left( h_{2} - h_{1} \right) + \sum_i F_i h_i = 0", label="eq-frc-lever"))
     mt = lever.moments
     mu_unit = "м·с⁻¹/мм" if not lever.analog else ("м/мм" if rot else "мм⁻¹")
-    s.figure(f"Рычаг Жуковского для положения {lab} (μ<sub>v</sub> = {fmt(lever.mu, sig=3)} {mu_unit})",
+    s.figure(f"Рычаг Жуковского для положения {lab} (μ<sub>v</sub> = {mu_text(lever.mu)} {mu_unit})",
              lever.svg, lever.width_mm, id="fig-frc-lever")
     loads = mt[~mt["balancing"].astype(bool)]
     s.table(f"Моменты сил относительно полюса рычага Жуковского (положение {lab})", [
