@@ -72,3 +72,24 @@ def test_zhukovsky_lever_arms_measured_and_products_agree(ws000):
     exact = float(ws000.forces.row(lab)["F_bal_zhukovsky"])
     assert abs(lv.graphic - exact) / abs(exact) < 0.05
     assert lv.graphic != exact
+
+
+@pytest.mark.parametrize("name,coriolis", [("ws000_six_bar", False), ("slider_crank", False),
+                                           ("ws004_slotted_lever", True), ("whitworth", True)])
+def test_vector_equations_have_coriolis_only_on_a_moving_guide(name, coriolis):
+    """Every group gets its velocity and acceleration equations; the Coriolis term a^k appears
+    exactly where a slider moves on a rotating link, the relative term a^r on every guide."""
+    from reportgen import load_case
+    from reportgen.report.sections import vectors
+    from reportgen.report.sections.common import chosen_position
+    st = load_case(CASES / f"{name}.toml")
+    row = st.kinematics[st.kinematics["pos"] == chosen_position(st)].iloc[0]
+    acc = []
+    for g in st.structure.groups:
+        vf, _, af, _ = vectors.group_equations(st, row, g)
+        assert vf and af, g.label
+        acc += [f.symbolic for f in af]
+    text = " ".join(acc)
+    assert ("^{k}" in text) == coriolis
+    assert ("^{r}" in text) == bool(st.mechanism.prismatic)
+    assert "^{n}" in text and "^{\\tau}" in text

@@ -105,11 +105,9 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
             vf.append(Formula(rf"\bar{{V}}_{{{P}}} = \bar{{V}}_{{{P}_{{0}}}} + \bar{{V}}_{{{P}{P}_{{0}}}}"))
             vn.append(Markup("{}, {} направляющей — скорость ползуна направлена вдоль направляющей").format(
                 _m(rf"\bar{{V}}_{{{P}_{{0}}}} = 0"), _m(rf"\bar{{V}}_{{{P}{P}_{{0}}}} \;\parallel")))
-            af.append(Formula(rf"\bar{{a}}_{{{P}}} = \bar{{a}}_{{{P}_{{0}}}} + \bar{{a}}^{{k}}_{{{P}{P}_{{0}}}}"
-                              rf" + \bar{{a}}^{{r}}_{{{P}{P}_{{0}}}}"))
-            an.append(Markup("{}, {} (направляющая неподвижна, кориолисова ускорения нет), {} направляющей").format(
-                _m(rf"\bar{{a}}_{{{P}_{{0}}}} = 0"), _m(rf"a^{{k}}_{{{P}{P}_{{0}}}} = 0"),
-                _m(rf"\bar{{a}}^{{r}}_{{{P}{P}_{{0}}}} \;\parallel")))
+            af.append(Formula(rf"\bar{{a}}_{{{P}}} = \bar{{a}}_{{{P}_{{0}}}} + \bar{{a}}^{{r}}_{{{P}{P}_{{0}}}}"))
+            an.append(Markup("{} (направляющая неподвижна, поэтому кориолисова ускорения нет), {} направляющей").format(
+                _m(rf"\bar{{a}}_{{{P}_{{0}}}} = 0"), _m(rf"\bar{{a}}^{{r}}_{{{P}{P}_{{0}}}} \;\parallel")))
             continue
         vf.append(Formula(rf"\bar{{V}}_{{{Ps}}} = \bar{{V}}_{{{Pg}}} + \bar{{V}}_{{{Ps}{Pg}}}"))
         gref = _attach(mech, mech.link(guide), links | {guide})
