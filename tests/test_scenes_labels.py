@@ -67,7 +67,7 @@ def test_no_label_overlaps_or_clipping(st, captured):
                 assert not re.fullmatch(r"[a-zA-Z]+\d+|n[a-z]{2,}", t), (name, t)
 
 
-@pytest.mark.parametrize("st", [s for s in STUDIES if s.id in ("ws000_six_bar", "ws004_slotted_lever")])
+@pytest.mark.parametrize("st", [s for s in STUDIES if s.values[0].root.has("forces")])
 def test_force_drawings_labels(st, captured):
     from reportgen.report.sections.common import chosen_position
     from reportgen.scenes.forces import GroupForces, ZhukovskyLever
