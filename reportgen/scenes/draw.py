@@ -148,7 +148,7 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
             ax.add_patch(poly)
         elif len(pts) >= 2:
             a, b = _farthest(pts)
-            ax.plot([a[0], b[0]], [a[1], b[1]], color=color, lw=lw * 1.3, alpha=alpha, zorder=zorder,
+            ax.plot([a[0], b[0]], [a[1], b[1]], color=color, lw=lw * 1.3, alpha=alpha, zorder=zorder + 0.7,
                     solid_capstyle="round")
         if numbers and len(pts) >= 1 and link.name not in sliders:
             a, b = _farthest(pts) if len(pts) >= 2 else (pts[0], pts[0])
