@@ -177,3 +177,227 @@ def output_quantity(study) -> tuple[str, str, str, str]:
                 return f"phi_{l}", f"wq_{l}", f"eq_{l}", f"звено {l}"
     l = groups[-1].links[-1]
     return f"phi_{l}", f"wq_{l}", f"eq_{l}", f"звено {l}"
+
+
+# ----------------------------------------------------------------------------------------------
+# The graphical construction (графическое построение планов)
+
+READ_MM = 0.5        # a length is drawn and read on the plan to 0,5 mm
+
+
+def drawn(value: float, mu: float) -> float:
+    """A magnitude as it is laid off on the drawing: value/μ rounded to READ_MM, times μ."""
+    return round(value / mu / READ_MM) * READ_MM * mu
+
+
+def _guide_dir(row, mech: Mechanism, j) -> np.ndarray:
+    """Current unit direction of a guide: the joint's angle turned with the guide link (its
+    rotation read off two of its points, or off the slider's, which turns with it)."""
+    guide, slider = j.links
+    if guide == FRAME:
+        return np.array([np.cos(j.angle), np.sin(j.angle)])
+    for name in (guide, slider):
+        pts = list(mech.link(name).points.items())
+        if len(pts) >= 2:
+            (p, a), (q, b) = pts[0], pts[1]
+            d0 = np.arctan2(b[1] - a[1], b[0] - a[0])
+            now = _vec(row, "", q) - _vec(row, "", p)
+            th = np.arctan2(now[1], now[0]) - d0 + j.angle
+            return np.array([np.cos(th), np.sin(th)])
+    v = _vec(row, "v", j.point) - _coincident(row, mech, guide, j.point)[0]
+    n = float(np.hypot(*v)) or 1.0
+    return v / n
+
+
+@dataclass
+class Construction:
+    """The state of every link found by the construction: (V or a of its reference point, ω or ε)."""
+    ref: dict[str, str]
+    lin: dict[str, np.ndarray]
+    ang: dict[str, float]
+
+    def point(self, row, link: str, p: str, normal=None) -> np.ndarray:
+        r = _vec(row, "", p) - _vec(row, "", self.ref[link])
+        out = self.lin[link] + self.ang[link] * _rot90(r)
+        return out if normal is None else out + normal(link, r)
+
+
+def _solve_groups(study, row, known_ang, rhs_terms) -> Construction:
+    """Group by group (Assur's order), the unknown (vector, scalar) of each link of the group from
+    the linear conditions of its pairs — for a dyad exactly the intersection of the two lines of
+    its vector equations. ``rhs_terms(kind, joint, …)`` supplies the drawn (known) vectors."""
+    mech = study.mechanism
+    ref = {l.name: _reference(mech, l) for l in mech.moving}
+    con = Construction(ref, {FRAME: np.zeros(2)}, {FRAME: 0.0})
+    ref[FRAME] = next(iter(mech.link(FRAME).points), "")
+    d = mech.driver
+    for g in study.structure.groups:
+        links = list(g.links)
+        if d.kind == "actuator" and (d.link in links or d.rod in links):
+            links = list(dict.fromkeys(links + [d.link, d.rod]))
+        links = [l for l in links if l not in con.lin]
+        if not links:
+            continue
+        idx = {l: 3 * i for i, l in enumerate(links)}
+        rows_, rhs = [], []
+
+        def coef(link, p, sign, A, b_off, comp):
+            """Add sign·(field of link at p) component ``comp`` to row A; known links go to rhs."""
+            r = _vec(row, "", p) - _vec(row, "", ref[link]) if link != FRAME else np.zeros(2)
+            rot = _rot90(r)
+            extra = rhs_terms("normal", link, r)
+            if link in idx:
+                i = idx[link]
+                A[i + comp] += sign
+                A[i + 2] += sign * rot[comp]
+                return -sign * extra[comp]
+            val = con.lin[link] + con.ang[link] * rot + extra
+            return -sign * val[comp]
+
+        for j in mech.joints:
+            a, b = j.links
+            if not ({a, b} & set(links)) or not ({a, b} <= set(links) | set(con.lin)):
+                continue
+            if j.kind == "R":
+                for comp in (0, 1):
+                    A = np.zeros(3 * len(links))
+                    c = coef(a, j.point, 1.0, A, 0, comp) + coef(b, j.point, -1.0, A, 0, comp)
+                    rows_.append(A)
+                    rhs.append(c)
+            else:
+                u = _guide_dir(row, mech, j)
+                n = _rot90(u)
+                A = np.zeros(3 * len(links))
+                c = 0.0
+                for sgn, lk in ((1.0, b), (-1.0, a)):
+                    if lk in idx:
+                        A[idx[lk] + 2] += sgn
+                    else:
+                        c -= sgn * con.ang[lk]
+                rows_.append(A)
+                rhs.append(c)
+                rel = rhs_terms("relative", j, u)          # Coriolis (and driven relative) part
+                for dirv, known in ((n, float(n @ rel)),) + (((u, float(u @ rel)),) if j.driving else ()):
+                    A = np.zeros(3 * len(links))
+                    c = known
+                    for comp in (0, 1):
+                        B = np.zeros(3 * len(links))
+                        c += dirv[comp] * (coef(b, j.point, 1.0, B, 0, comp) + coef(a, j.point, -1.0, B, 0, comp))
+                        A += dirv[comp] * B
+                    rows_.append(A)
+                    rhs.append(c)
+        if d.rotary and d.link in links:
+            A = np.zeros(3 * len(links))
+            A[idx[d.link] + 2] = 1.0
+            rows_.append(A)
+            rhs.append(known_ang(d.link))
+        sol, *_ = np.linalg.lstsq(np.array(rows_), np.array(rhs), rcond=None)
+        for l, i in idx.items():
+            con.lin[l] = sol[i:i + 2].copy()
+            con.ang[l] = float(sol[i + 2])
+    return con
+
+
+def _constructed_row(row, mech: Mechanism, con: Construction, pre: str, ang: str, normal=None) -> pd.Series:
+    out = row.copy()
+    owner = mech.point_owner()
+    for p, link in owner.items():
+        v = np.zeros(2) if link == FRAME else con.point(row, link, p, normal)
+        out[f"{pre}x_{p}"], out[f"{pre}y_{p}"] = v
+    for l in mech.moving:
+        out[f"{ang}_{l.name}"] = con.ang[l.name]
+    return out
+
+
+def _longest_rel(plan: Plan, link: str):
+    rel = [s for s in plan.segments if s.kind == "rel" and s.link == link]
+    return max(rel, key=lambda s: s.length) if rel else None
+
+
+def construct_velocity(row: pd.Series, study, mu: float) -> tuple[pd.Series, Plan]:
+    """The velocity plan as it is constructed: pa = ω₁·l_OA/μ_v drawn to 0,5 mm (for an
+    actuator the rod's relative velocity), then each group's points at the intersection of the
+    lines of its equations V̄_B = V̄_A + V̄_BA (⊥ AB), V̄_B = V̄_C + V̄_BC (⊥ CB) or, for a slider,
+    ∥ the guide. Returns the row of constructed velocities and the plan."""
+    mech = study.mechanism
+    d = mech.driver
+    w1 = float(row["w_" + d.link])
+    if d.rotary:
+        crank = mech.link(d.link)
+        tip = [p for p in crank.points if p != d.center][0]
+        l = float(np.hypot(*(_vec(row, "", tip) - _vec(row, "", d.center))))
+        w1 = np.sign(w1) * drawn(abs(w1) * l, mu) / l
+
+    def terms(kind, obj, vec):
+        if kind == "normal":
+            return np.zeros(2)
+        if obj.driving:
+            return vec * drawn(float(row.get(f"vs_{obj.name}", 0.0)), mu)
+        return np.zeros(2)
+    con = _solve_groups(study, row, lambda _l: w1, terms)
+    vrow = _constructed_row(row, mech, con, "v", "w")
+    return vrow, velocity_plan(vrow, mech)
+
+
+def measured_omegas(vrow, vplan: Plan, mech: Mechanism, mu_v: float) -> dict[str, float]:
+    """ω of each link as the student gets it: the longest relative segment of its velocity plan
+    read to 0,5 mm over the link length (a slider turns with its guide)."""
+    out = {}
+    for l in mech.moving:
+        s = _longest_rel(vplan, l.name)
+        w = float(vrow["w_" + l.name])
+        if s is not None and s.length > 1e-12:
+            r = float(np.hypot(*(_vec(vrow, "", s.end) - _vec(vrow, "", s.start))))
+            out[l.name] = np.sign(w) * drawn(s.length, mu_v) / r
+        else:
+            out[l.name] = w
+    for j in mech.prismatic:
+        if j.links[0] != FRAME and _longest_rel(vplan, j.links[1]) is None:
+            out[j.links[1]] = out[j.links[0]]
+    return out
+
+
+def construct_acceleration(row: pd.Series, vrow: pd.Series, omegas: dict[str, float], study, mu: float,
+                           mu_v: float) -> tuple[pd.Series, Plan]:
+    """The acceleration plan as it is constructed: normal components aⁿ = ω²·l with ω measured on
+    the velocity plan, Coriolis a^k = 2·ω·V_r with V_r read off the velocity plan, both drawn to
+    0,5 mm; the tangential (⊥ link) and relative (∥ guide) directions intersected group by
+    group."""
+    mech = study.mechanism
+    d = mech.driver
+    e1 = float(row["e_" + d.link])
+    if d.rotary:
+        crank = mech.link(d.link)
+        tip = [p for p in crank.points if p != d.center][0]
+        l = float(np.hypot(*(_vec(row, "", tip) - _vec(row, "", d.center))))
+        e1 = np.sign(e1) * drawn(abs(e1) * l, mu) / l
+
+    def terms(kind, obj, vec):
+        if kind == "normal":
+            if obj == FRAME:
+                return np.zeros(2)
+            r = float(np.hypot(*vec))
+            if r < 1e-15:
+                return np.zeros(2)
+            return -vec / r * drawn(omegas[obj] ** 2 * r, mu)
+        guide, slider = obj.links
+        out = np.zeros(2)
+        if guide != FRAME:
+            vg = _coincident(vrow, mech, guide, obj.point)[0]
+            v_rel = _vec(vrow, "v", obj.point) - vg
+            vr = float(np.hypot(*v_rel))
+            if vr > 1e-15:
+                mag = drawn(2 * abs(omegas[guide]) * drawn(vr, mu_v), mu)
+                out = out + np.sign(omegas[guide]) * _rot90(v_rel / vr) * mag
+        if obj.driving:
+            out = out + vec * drawn(float(row.get(f"as_{obj.name}", 0.0)), mu)
+        return out
+    con = _solve_groups(study, row, lambda _l: e1, terms)
+    arow = _constructed_row(row, mech, con, "a", "e",
+                            normal=lambda link, r: terms("normal", link, r))
+    for l, w in omegas.items():
+        arow["w_" + l] = w
+    for c in vrow.index:
+        if c.startswith(("vx_", "vy_")):
+            arow[c] = vrow[c]
+    return arow, acceleration_plan(arow, mech)

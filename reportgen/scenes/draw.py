@@ -11,6 +11,7 @@ from matplotlib.transforms import Affine2D
 
 from ..mechanism.model import FRAME, Mechanism
 from ..style import mplstyle
+from .labels import LabelPlacer, tex_point
 
 NICE = (1.0, 1.5, 2.0, 2.5, 4.0, 5.0)
 INK = "#000000"
@@ -28,6 +29,36 @@ def nice_scale(extent: float, avail_mm: float) -> float:
         if mu >= need * (1 - 1e-12):
             return mu
     return 10.0 ** (k + 1)
+
+
+# ГОСТ 2.302-68 scales as the denominator k of 1:k (enlargements 2:1 … 10:1 as 1/2 … 1/10)
+GOST_K = (0.1, 0.2, 0.25, 0.5, 1.0, 2.0, 2.5, 4.0, 5.0, 10.0, 15.0, 20.0, 25.0, 40.0, 50.0, 75.0, 100.0,
+          200.0, 400.0, 500.0, 800.0, 1000.0)
+
+
+def gost_scale(extent_m: float, avail_mm: float) -> float:
+    """μ_l in m/mm of the smallest-reduction ГОСТ 2.302 scale 1:k with extent/μ ≤ avail_mm
+    (μ_l = k/1000 m/mm)."""
+    need = max(extent_m, 1e-12) / avail_mm * 1000.0
+    for k in GOST_K:
+        if k >= need * (1 - 1e-12):
+            return k / 1000.0
+    return nice_scale(extent_m, avail_mm)
+
+
+def gost_ratio(mu_m_per_mm: float) -> str:
+    """The scale as ГОСТ 2.302 writes it: μ = 0,04 м/мм → «1:40», μ = 0,0025 → «1:2,5»,
+    μ = 0,0005 → «2:1»."""
+    k = mu_m_per_mm * 1000.0
+    if k >= 1.0 - 1e-9:
+        return "1:" + (f"{k:.1f}".replace(".", ",").rstrip("0").rstrip(",") if abs(k - round(k)) > 1e-9 else str(round(k)))
+    return f"{round(1 / k)}:1"
+
+
+def mu_text(mu: float) -> str:
+    """A round scale factor as printed: 0,04 (not 0,0400), 0,15, 2,5·10⁻⁴ → 0,00025."""
+    txt = f"{mu:.10f}".rstrip("0").rstrip(".")
+    return txt.replace(".", ",")
 
 
 class Canvas:
@@ -49,19 +80,26 @@ class Canvas:
         self.ax.set_ylim(ymin - margin_mm * mu - extra_h, ymax + margin_mm * mu + extra_h)
         self.ax.set_aspect("equal")
         self.ax.axis("off")
+        self.labels = LabelPlacer(self.ax)
 
     def mm(self, x: float) -> float:
         """A length given in printed millimetres in data units."""
         return x * self.mu
 
     @classmethod
-    def fit(cls, xs, ys, avail_w=150.0, avail_h=190.0, margin_mm=8.0):
+    def fit(cls, xs, ys, avail_w=150.0, avail_h=190.0, margin_mm=8.0, gost=False):
+        """The canvas of the smallest standard scale holding the points (``gost``: a ГОСТ 2.302
+        scale for a drawing of the mechanism in metres, else a round μ of a plan)."""
         xs, ys = np.asarray(xs, float), np.asarray(ys, float)
         xmin, xmax, ymin, ymax = xs.min(), xs.max(), ys.min(), ys.max()
-        mu = max(nice_scale(xmax - xmin, avail_w), nice_scale(ymax - ymin, avail_h))
+        pick = gost_scale if gost else nice_scale
+        avail_w = min(avail_w, 165.0 - 2 * margin_mm)
+        mu = max(pick(xmax - xmin, avail_w), pick(ymax - ymin, avail_h))
         return cls(xmin, xmax, ymin, ymax, mu, margin_mm)
 
     def svg(self) -> bytes:
+        """The drawing as SVG, after the registered labels are placed clear of everything."""
+        self.labels.place()
         return mplstyle.to_svg(self.fig)
 
 
@@ -85,7 +123,7 @@ def _slider_links(mech: Mechanism) -> dict[str, str]:
 
 
 def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, labels=True,
-                   numbers=True, alpha=1.0, zorder=2, com=True, supports=True, only=None) -> None:
+                   numbers=True, alpha=1.0, zorder=2, com=True, supports=True, only=None, guides=True) -> None:
     """Draw the mechanism at a position (``only``: a set of link names to draw, e.g. one
     Assur group taken apart)."""
     ax = cv.ax
@@ -110,19 +148,16 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
             ax.add_patch(poly)
         elif len(pts) >= 2:
             a, b = _farthest(pts)
-            ax.plot([a[0], b[0]], [a[1], b[1]], color=color, lw=lw * 1.3, alpha=alpha, zorder=zorder,
+            ax.plot([a[0], b[0]], [a[1], b[1]], color=color, lw=lw * 1.3, alpha=alpha, zorder=zorder + 0.7,
                     solid_capstyle="round")
         if numbers and len(pts) >= 1 and link.name not in sliders:
             a, b = _farthest(pts) if len(pts) >= 2 else (pts[0], pts[0])
             mx, my = (a[0] + b[0]) / 2, (a[1] + b[1]) / 2
             nx, ny = -(b[1] - a[1]), b[0] - a[0]
-            n = math.hypot(nx, ny) or 1.0
-            ax.text(mx + nx / n * cv.mm(3.2), my + ny / n * cv.mm(3.2), link.name, fontsize=9, color=color,
-                    ha="center", va="center", alpha=alpha, zorder=zorder + 2)
+            cv.labels.add(mx, my, link.name, prefer=(nx, ny), color=color, fontsize=9)
         elif numbers and link.name in sliders:
             x, y = _point(row, sliders[link.name])
-            ax.text(x + cv.mm(5.5), y + cv.mm(4.5), link.name, fontsize=9, color=color, ha="center",
-                    va="center", alpha=alpha, zorder=zorder + 2)
+            cv.labels.add(x, y, link.name, prefer=(0.7, 0.7), color=color, fontsize=9)
     fixed = mech.link(FRAME).points
     for j in mech.joints:
         if only is not None and not set(j.links) & set(only):
@@ -133,7 +168,7 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
                 _support(cv, x, y, color, alpha, zorder)
             ax.add_patch(Circle((x, y), cv.mm(1.3), facecolor="white", edgecolor=color, lw=1.0,
                                 alpha=alpha, zorder=zorder + 1))
-        elif supports and j.links[0] == FRAME:
+        elif supports and guides and j.links[0] == FRAME:
             _guide(cv, mech, row, j, color, alpha)
     if com:
         for link in mech.moving:
@@ -153,22 +188,10 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
                     continue
                 placed.add(p)
                 x, y = _point(row, p)
-                dx, dy = _label_offset(mech, row, p)
-                ax.text(x + cv.mm(3.0) * dx, y + cv.mm(3.0) * dy, subscript_label(p), fontsize=9, style="italic",
-                        ha="center", va="center", color=color, alpha=alpha, zorder=zorder + 3)
+                cv.labels.add(x, y, tex_point(p), prefer=_label_offset(mech, row, p), color=color, fontsize=10)
 
 
 SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
-
-
-def subscript_label(p: str, lower: bool = False) -> str:
-    """Point name with Unicode subscript digits after a letter (S2 → S₂; plain text is far
-    cheaper to lay out than mathtext)."""
-    head = p.rstrip("0123456789")
-    tail = p[len(head):]
-    if lower:
-        head = head.lower()
-    return head + tail.translate(SUBSCRIPT) if head else p
 
 
 def _label_offset(mech: Mechanism, row, p: str) -> tuple[float, float]:
@@ -256,16 +279,24 @@ def _hatch(cv: Canvas, x0, x1, y, color, alpha, angle=0.0):
     ax.add_collection(LineCollection(segs, colors=color, linewidths=0.6, alpha=alpha))
 
 
-def _guide(cv: Canvas, mech, row, j, color, alpha):
-    """A fixed guide: a hatched line along the guide direction around the slider point."""
+def _guide(cv: Canvas, mech, row, j, color, alpha, span=None):
+    """A fixed guide: a hatched line along the guide direction under the slider, around the
+    slider point or over ``span`` = (s_min, s_max), the slider point's travel along the guide
+    measured from its position in ``row``."""
     x, y = _point(row, j.point)
     ang = j.angle
     ux, uy = math.cos(ang), math.sin(ang)
     nx, ny = -uy, ux
-    half = cv.mm(14.0)
+    lo, hi = span if span is not None else (0.0, 0.0)
+    lo, hi = lo - cv.mm(14.0), hi + cv.mm(14.0)
     off = cv.mm(2.75)
-    x0, y0 = x - ux * half - nx * off, y - uy * half - ny * off
-    _hatch(cv, x0, x0 + 2 * half, y0, color, alpha, angle=ang)
+    x0, y0 = x + ux * lo - nx * off, y + uy * lo - ny * off
+    _hatch(cv, x0, x0 + (hi - lo), y0, color, alpha, angle=ang)
+
+
+def draw_guide(cv: Canvas, mech, row, j, span, color=INK):
+    """The whole fixed guide of a slider over its travel ``span`` (for the plan of positions)."""
+    _guide(cv, mech, row, j, color, 1.0, span)
 
 
 def _draw_actuator_part(cv, mech, row, link, color, lw, alpha, zorder):

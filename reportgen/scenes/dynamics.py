@@ -259,7 +259,7 @@ class FlywheelDrawing:
         x4 = x3 + Rd + gap + bd / 2
         xs = [-R2 - 0.2 * R2, x4 + bd / 2 + 0.25 * R2]
         ys = [-R2 - 0.3 * R2, R2 + 0.3 * R2]
-        cv = Canvas.fit(xs, ys, avail_w=150, avail_h=90, margin_mm=4)
+        cv = Canvas.fit(xs, ys, avail_w=150, avail_h=90, margin_mm=4, gost=True)
         ax, mu = cv.ax, cv.mu
         hub_R, bore_R = 0.125 * rim.D2, 0.05 * rim.D2
         # rim front view

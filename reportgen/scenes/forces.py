@@ -14,11 +14,12 @@ import pandas as pd
 from matplotlib.patches import Arc
 
 from ..analysis.forces import crank_pin, lever_points
-from ..analysis.plans import velocity_plan
+from ..analysis.plans import READ_MM, velocity_plan
 from ..core import kinetostatics as KS
 from ..style import mplstyle
 from ..style.numbers import fmt
-from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow, draw_mechanism, nice_scale, subscript_label
+from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow, draw_mechanism, gost_scale, nice_scale
+from .labels import tex_point
 from .mechanism import Drawing
 
 BLUE = "#1f4e9c"
@@ -37,6 +38,26 @@ def load_label(ld: dict) -> str:
     if ld["kind"] in ("G", "Phi", "MPhi", "Mfly"):
         return sub(ld["name"]) if ld["kind"] != "MPhi" and ld["kind"] != "Mfly" else "M" + sub(ld["name"][1:])
     return ld["name"]
+
+
+UNSUB = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
+
+
+def math_label(label: str) -> str:
+    """A force label of the tables (R₁₂, Φ₂, MΦ₂, Fур, G₂′) in mathtext for a drawing:
+    $R_{12}$, $\\Phi_{2}$, $M_{\\Phi 2}$, $F_{ур}$, $G′_{2}$."""
+    text = label.translate(UNSUB)
+    primes = ""
+    while text and text[-1] in "′″":
+        primes = text[-1] + primes
+        text = text[:-1]
+    if not text:
+        return label
+    head, rest = text[0], text[1:]
+    greek = {"Φ": r"\Phi", "ω": r"\omega", "ε": r"\varepsilon"}
+    head = greek.get(head, head)
+    rest = "".join(greek.get(c, c) + (" " if c in greek else "") for c in rest).strip()
+    return "$" + head + primes + (f"_{{{rest}}}" if rest else "") + "$"
 
 
 def pair_label(a: str, b: str) -> str:
@@ -114,7 +135,7 @@ def _moment_arc(cv: Canvas, x, y, M, label, color=INK, r_mm=5.0):
     tang = (-math.sin(end) * d, math.cos(end) * d)
     arrow(ax, tip[0] - tang[0] * cv.mm(1.5), tip[1] - tang[1] * cv.mm(1.5), tip[0], tip[1], color=color,
           lw=1.0, head_mm=2.0, zorder=7)
-    ax.text(x + r * 1.25, y + r * 1.25, label, fontsize=8, color=color, ha="left", va="bottom", zorder=7)
+    cv.labels.add(x + r * 0.9, y + r * 0.9, math_label(label), prefer=(1, 1), fontsize=10, color=color)
 
 
 class GroupForces:
@@ -139,7 +160,7 @@ class GroupForces:
         xs = np.array([cols["x_" + p] for p in pts])
         ys = np.array([cols["y_" + p] for p in pts])
         span = max(np.ptp(xs), np.ptp(ys), 1e-6)
-        mu_l = nice_scale(span, 70.0)
+        mu_l = gost_scale(span, 70.0)
         Fmax = max([float(np.hypot(*v.F)) for v in ext + internal] + [1e-12])
         # arrow tips on the scheme (mm converted with μ_l)
         tips = []
@@ -164,8 +185,10 @@ class GroupForces:
         x0 = allx.max() + cv_gap(mu_l) - cum[:, 0].min() * k
         y0 = (ally.max() + ally.min()) / 2 - (cum[:, 1].max() + cum[:, 1].min()) / 2 * k
         poly = np.column_stack([x0 + cum[:, 0] * k, y0 + cum[:, 1] * k])
-        cv = Canvas(min(allx.min(), poly[:, 0].min()), max(allx.max(), poly[:, 0].max()),
-                    min(ally.min(), poly[:, 1].min()), max(ally.max(), poly[:, 1].max()), mu_l,
+        inset = _inset(seq, cum, mu_F, k, poly, mu_l)
+        ext_pts = np.vstack([poly] + ([inset["box"]] if inset else []))
+        cv = Canvas(min(allx.min(), ext_pts[:, 0].min()), max(allx.max(), ext_pts[:, 0].max()),
+                    min(ally.min(), ext_pts[:, 1].min()), max(ally.max(), ext_pts[:, 1].max()), mu_l,
                     margin_mm=10, max_w=170.0)
         ax = cv.ax
         draw_mechanism(cv, mech, cols, only=set(g.links), supports=False, lw=1.4, com=True)
@@ -178,12 +201,12 @@ class GroupForces:
             ex, ey = v.F[0] / n, v.F[1] / n
             if v.role == "load":          # loads start at their point, reactions end at the pair
                 a0, a1 = v.at, (v.at[0] + ex * L, v.at[1] + ey * L)
-                lx, ly = a1[0] + ex * cv.mm(2.5), a1[1] + ey * cv.mm(2.5)
+                lx, ly, pref = a1[0], a1[1], (ex, ey)
             else:
                 a0, a1 = (v.at[0] - ex * L, v.at[1] - ey * L), v.at
-                lx, ly = a0[0] - ex * cv.mm(2.5), a0[1] - ey * cv.mm(2.5)
+                lx, ly, pref = a0[0], a0[1], (-ex, -ey)
             arrow(ax, a0[0], a0[1], a1[0], a1[1], color=color, lw=1.2, zorder=6)
-            ax.text(lx, ly, v.label, fontsize=8, color=color, ha="center", va="center", zorder=7)
+            cv.labels.add(lx, ly, math_label(v.label), prefer=pref, fontsize=10, color=color)
         placed: dict[str, int] = {}
         for m in moments:
             if abs(m["M"]) < 1e-12:
@@ -201,9 +224,10 @@ class GroupForces:
             mid = (a + b) / 2
             d = b - a
             nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
-            if np.hypot(*d) > cv.mm(3):
-                ax.text(mid[0] + nrm[0] * cv.mm(2.8), mid[1] + nrm[1] * cv.mm(2.8), v.label, fontsize=8,
-                        color=color, ha="center", va="center", zorder=7)
+            if not inset or i not in inset["tiny"]:
+                cv.labels.add(mid[0], mid[1], math_label(v.label), prefer=nrm, fontsize=10, color=color)
+        if inset:
+            _draw_inset(cv, seq, inset)
         # internal reactions: a cut between the first links of the order and the rest crossed by
         # one internal pair; its force on the first links closes their polygon (dashed)
         n = 0
@@ -222,11 +246,83 @@ class GroupForces:
             mid = (start + end) / 2
             d = end - start
             nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
-            if np.hypot(*d) > cv.mm(3):
-                ax.text(mid[0] + nrm[0] * cv.mm(2.8), mid[1] + nrm[1] * cv.mm(2.8), lab, fontsize=8, color=BLUE,
-                        ha="center", va="center")
+            cv.labels.add(mid[0], mid[1], math_label(lab), prefer=nrm, fontsize=10, color=BLUE)
         ax.plot([poly[0, 0]], [poly[0, 1]], "o", ms=2.5, color=INK)
         return GroupDrawing(cv.svg(), cv.width_mm, mu_l, mu_F, seq + closing)
+
+
+TINY_MM = 5.0          # a polygon side shorter than this is repeated enlarged in an inset
+INSET_MM = (6.0, 40.0)  # the smallest enlarged side at least, the whole enlarged chain at most
+
+
+def _runs(idx: list[int]) -> list[list[int]]:
+    out: list[list[int]] = []
+    for i in idx:
+        if out and out[-1][-1] == i - 1:
+            out[-1].append(i)
+        else:
+            out.append([i])
+    return out
+
+
+def _magnification(small: float, span: float, mu_F: float) -> float:
+    """m of the series 2, 5, 10, 20, 50, … : the smallest with the smallest side ≥ 6 mm, not
+    making the chain longer than 45 mm."""
+    best = 1.0
+    for e in range(0, 8):
+        for base in (2.0, 5.0, 10.0):
+            m = base * 10 ** e
+            if span * m / mu_F > INSET_MM[1]:
+                return best
+            best = m
+            if small * m / mu_F >= INSET_MM[0]:
+                return m
+    return best
+
+
+def _inset(seq, cum, mu_F, k, poly, mu_l):
+    """Each run of the polygon's tiny sides enlarged m times, drawn under the polygon side by
+    side; None when every side is long enough to be read."""
+    tiny = [i for i, v in enumerate(seq) if float(np.hypot(*v.F)) / mu_F < TINY_MM]
+    parts, shown = [], set()
+    ox = poly[:, 0].min()
+    top = poly[:, 1].min() - 16.0 * mu_l
+    pad = 5.0 * mu_l
+    for run in _runs(tiny):
+        sub = cum[run[0]:run[-1] + 2]
+        span = max(np.ptp(sub[:, 0]), np.ptp(sub[:, 1]), 1e-12)
+        small = max(min(float(np.hypot(*seq[i].F)) for i in run), 1e-12)
+        m = _magnification(small, span, mu_F)
+        if m <= 1.0:
+            continue
+        pts = (sub - sub.min(axis=0)) * k * m
+        pts = pts + np.array([ox + pad, top - pad - pts[:, 1].max()])
+        box = np.array([[pts[:, 0].min() - pad, pts[:, 1].min() - pad], [pts[:, 0].max() + pad, top]])
+        parts.append(dict(run=run, pts=pts, box=box, m=m))
+        shown |= set(run)
+        ox = box[1, 0] + 6.0 * mu_l
+    if not parts:
+        return None
+    return dict(tiny=shown, parts=parts, box=np.vstack([p["box"] for p in parts]))
+
+
+def _draw_inset(cv, seq, inset) -> None:
+    """The enlarged chains in dashed frames, each with its magnification."""
+    from matplotlib.patches import Rectangle
+    for part in inset["parts"]:
+        (x0, y0), (x1, y1) = part["box"]
+        cv.ax.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, fill=False, lw=0.5, ls=(0, (4, 2)), color=GREY))
+        pts = part["pts"]
+        for n, i in enumerate(part["run"]):
+            v = seq[i]
+            a, b = pts[n], pts[n + 1]
+            color = BLUE if v.role == "unknown" else INK
+            arrow(cv.ax, a[0], a[1], b[0], b[1], color=color, lw=1.1, zorder=6)
+            d = b - a
+            nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
+            cv.labels.add((a[0] + b[0]) / 2, (a[1] + b[1]) / 2, math_label(v.label), prefer=nrm, fontsize=10,
+                          color=color)
+        cv.labels.add((x0 + x1) / 2, y0, f"×{part['m']:.0f}", prefer=(0, -1), fontsize=8)
 
 
 def cv_gap(mu_l: float) -> float:
@@ -238,7 +334,10 @@ def cv_gap(mu_l: float) -> float:
 class LeverDrawing(Drawing):
     moments: pd.DataFrame = None        # label, F [N], h [mm], Fh = ±F·h [N·mm], balancing
     analog: bool = True                 # a plan of velocity analogs (static mode)
-    arm_mm: float = 0.0                 # signed moment of the unit balancing load about the pole [mm]
+    arm_mm: float = 0.0                 # signed moment of the unit balancing load about the pole [mm],
+                                        # as measured on the drawing (to 0,5 mm)
+    graphic: float = 0.0                # the balancing force found on the drawing: −Σ F·h / h_ур
+    arm_exact_mm: float = 0.0
 
 
 class ZhukovskyLever:
@@ -303,7 +402,7 @@ class ZhukovskyLever:
             bal = [("F" + d.rod.translate(SUBSCRIPT), rot[d.end], F * u, True),
                    ("F" + d.link.translate(SUBSCRIPT), pc, -F * u, True)]
         tips = np.array([[0.0, 0.0]] + [list(v) for v in rot.values()] + [list(it[1]) for it in items + bal])
-        cv = Canvas.fit(tips[:, 0], tips[:, 1], avail_w=120, avail_h=120, margin_mm=16)
+        cv = Canvas.fit(tips[:, 0], tips[:, 1], avail_w=150, avail_h=170, margin_mm=16)
         ax = cv.ax
         for seg in plan.segments:
             p0 = np.zeros(2) if seg.start == "p" else rot[seg.start]
@@ -311,12 +410,11 @@ class ZhukovskyLever:
             ax.plot([p0[0], p1[0]], [p0[1], p1[1]], color=GREY if seg.kind == "abs" else INK,
                     lw=0.8 if seg.kind == "abs" else 1.2, ls="--" if seg.kind == "abs" else "-", zorder=2)
         ax.plot([0], [0], "o", ms=3, color=INK)
-        ax.text(-cv.mm(3), -cv.mm(3), "p", fontsize=10, style="italic", ha="center", va="center")
+        cv.labels.add(0.0, 0.0, "$p$", prefer=(-1, -1), fontsize=10)
         for lab, v in rot.items():
             if lab not in plan.point_of_tip or np.hypot(*v) < 1e-12:
                 continue
-            ax.text(v[0] + cv.mm(2.2), v[1] + cv.mm(2.2), subscript_label(lab, lower=True), fontsize=8,
-                    ha="center", va="center", color=GREY)
+            cv.labels.add(v[0], v[1], tex_point(lab, lower=True), prefer=v, fontsize=10, color=GREY)
         Fmax = max([float(np.hypot(*it[2])) for it in items + bal] + [1e-12])
         rows = []
         for lab, p, F, is_bal in items + bal:
@@ -327,12 +425,18 @@ class ZhukovskyLever:
             color = RED if is_bal else INK
             tip = p + F / n * L
             arrow(ax, p[0], p[1], tip[0], tip[1], color=color, lw=1.1, zorder=6)
-            ax.text(tip[0] + F[0] / n * cv.mm(2.5), tip[1] + F[1] / n * cv.mm(2.5), lab, fontsize=8,
-                    color=color, ha="center", va="center", zorder=7)
+            cv.labels.add(tip[0], tip[1], math_label(lab), prefer=F, fontsize=10, color=color)
             mom = float(p[0] * F[1] - p[1] * F[0]) / cv.mu
-            rows.append(dict(label=lab, F=n, h=abs(mom) / n, Fh=mom, balancing=is_bal))
-        table = pd.DataFrame(rows, columns=["label", "F", "h", "Fh", "balancing"])
-        return LeverDrawing(cv.svg(), cv.width_mm, cv.mu, table, analog, arm / cv.mu)
+            h = round(abs(mom) / n / READ_MM) * READ_MM          # the arm as measured on the drawing
+            rows.append(dict(label=lab, F=n, h=h, Fh=math.copysign(n * h, mom) if h > 0 else 0.0,
+                             balancing=is_bal, h_exact=abs(mom) / n))
+        table = pd.DataFrame(rows, columns=["label", "F", "h", "Fh", "balancing", "h_exact"])
+        arm_mm = arm / cv.mu
+        arm_read = math.copysign(round(abs(arm_mm) / READ_MM) * READ_MM, arm_mm)
+        loads_ = table[~table["balancing"].astype(bool)]
+        total = float(loads_["Fh"].sum())
+        graph = -total / arm_read if abs(arm_read) > 0 else 0.0
+        return LeverDrawing(cv.svg(), cv.width_mm, cv.mu, table, analog, arm_read, graph, arm_mm)
 
 
 def _points(mech) -> list[str]:

@@ -12,6 +12,7 @@ import numpy as np
 import pandas as pd
 from markupsafe import Markup
 
+from ...scenes.draw import gost_ratio
 from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, MomentCurves,
                                 MotionCurves, WittenbauerDiagram, WorkCurves)
 from ...style.numbers import fmt, fmt_pct, tex_num
@@ -510,7 +511,7 @@ def _dimensions(sec, study, d) -> None:
               Formula(rf"m = {_c(kw['disk_mass_coef'])}\, D^3", rf"{_c(kw['disk_mass_coef'])} \cdot {_t(disk.D, digits=3)}^3",
                       _t(disk.m, sig=4, unit="кг")))
     fig = FlywheelDrawing().draw(study)
-    s.figure(f"Маховик: обод со спицами и сплошной диск (размеры в мм, масштаб 1:{fmt(fig.mu * 1000, sig=3)})",
+    s.figure(f"Маховик: обод со спицами и сплошной диск (размеры в мм, масштаб {gost_ratio(fig.mu)})",
              fig.svg, fig.width_mm, id="fig-dyn-flywheel")
     rows = [
         {"v": "обод со спицами (эмпирически)", "D": rim.D2, "d": rim.D1, "b": rim.b, "m": rim.m, "u": rim.v_rim},

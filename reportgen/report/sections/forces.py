@@ -20,6 +20,7 @@ from ...core import kinetostatics as KS
 from ...mechanism.model import FRAME
 from ...scenes.forces import (AxleCurves, CapacityCurves, GroupForces, ReactionCurves, ZhukovskyLever,
                               group_vectors, shown_key)
+from ...scenes.draw import mu_text
 from ...style.numbers import fmt, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
@@ -298,8 +299,8 @@ def _groups(sec: Section, study, f, lab: str) -> None:
         ulist = ", ".join(_unknown_text(p) for p in unknown)
         s.paragraph(f"<b>{head}.</b> Неизвестные: {ulist} — {plural(3 * len(g.links), 'уравнение', 'уравнения', 'уравнений')} равновесия. Уравнение сил группы "
                     f"(рисунок {ref(gid)}): {names}&nbsp;=&nbsp;0.")
-        s.figure(f"{'Начальный механизм' if act is not None else 'Группа'} {g.label}: схема нагружения (μ<sub>l</sub> = {fmt(draw.mu, sig=3)} м/мм, стрелки сил "
-                 f"без масштаба) и план сил (μ<sub>F</sub> = {fmt(draw.mu_F, sig=3)} Н/мм)",
+        s.figure(f"{'Начальный механизм' if act is not None else 'Группа'} {g.label}: схема нагружения (μ<sub>l</sub> = {mu_text(draw.mu)} м/мм, стрелки сил "
+                 f"без масштаба) и план сил (μ<sub>F</sub> = {mu_text(draw.mu_F)} Н/мм)",
                  draw.svg, draw.width_mm, id=gid)
         rows = []
         det = f.details(lab)
@@ -462,7 +463,7 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     mt["Fh"] = np.sign(mt["Fh"].to_numpy(float)) * F_r * h_r
     arm = round(abs(float(lever.arm_mm)), 1) * (1.0 if lever.arm_mm >= 0 else -1.0)
     mu_unit = "м·с⁻¹/мм" if not lever.analog else ("м/мм" if rot else "мм⁻¹")
-    s.figure(f"Рычаг Жуковского для положения {pos_no(study, lab)} (μ<sub>v</sub> = {fmt(lever.mu, sig=3)} {mu_unit})",
+    s.figure(f"Рычаг Жуковского для положения {pos_no(study, lab)} (μ<sub>v</sub> = {mu_text(lever.mu)} {mu_unit})",
              lever.svg, lever.width_mm, id="fig-frc-lever")
     loads = mt[~mt["balancing"].astype(bool)]
     s.table(f"Моменты сил относительно полюса рычага Жуковского (положение {pos_no(study, lab)})", [
@@ -494,7 +495,7 @@ def _balance(sec: Section, study, f, lab: str) -> None:
                Formula(r"F^{кин}", None, _t(row["F_act"], sig=6, unit="Н")),
                Formula(r"\Delta = \frac{\left| F^{кин} - F^{Ж} \right|}{|F^{кин}|} \cdot 100\%", None,
                        _t(dev_graph, sig=2, unit="%"))]
-    s.paragraph(f"Результат для положения {pos_no(study, lab)} (плечи измерены с точностью 0,1&nbsp;мм) и "
+    s.paragraph(f"Результат для положения {pos_no(study, lab)} (плечи измерены на чертеже с точностью 0,5&nbsp;мм) и "
                 "расхождение с силовым расчётом по группам (допускается до 5&nbsp;%):")
     s.formula(*res)
     # one number of decimals per column; the relative deviations (round-off) are in the answer key
@@ -533,6 +534,11 @@ def _balance(sec: Section, study, f, lab: str) -> None:
                     else ". ") +
                  "Значения двух расчётов совпадают (последний столбец таблицы).")
     s.paragraph(text)
+
+
+def _dev(graphic: float, exact: float) -> float:
+    """Discrepancy of a value found on a drawing from the exact one, % of the exact value."""
+    return abs(graphic - exact) / abs(exact) * 100.0 if abs(exact) > 1e-12 else 0.0
 
 
 def _who(link: str) -> str:

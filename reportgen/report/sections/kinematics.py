@@ -14,10 +14,12 @@ from ...mechanism.model import FRAME
 from ...scenes.diagrams import AnalogCurves, OutputDiagrams
 from ...scenes.mechanism import PositionsPlan
 from ...scenes.plans import MIN_MM, READ_MM, PlanScene
+from ...scenes.draw import gost_ratio, mu_text
 from ...style.numbers import fmt, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import expr_html
+from . import vectors
 from .common import chosen_position, chunked_tables, html_point, q_header, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle")
@@ -65,13 +67,13 @@ def build(study) -> Section:
         s1.paragraph(f"План положений построен для {ncount} положений кривошипа, начиная с положения "
                      f"{phi0_m}&nbsp;=&nbsp;{fmt(math.degrees(mech.driver.phi0), digits=1)}°, "
                      f"при вращении {'по часовой стрелке' if mech.driver.direction < 0 else 'против часовой стрелки'}. "
-                     f"Масштаб {mu_l}&nbsp;=&nbsp;{fmt(plan.mu, sig=3)}&nbsp;м/мм. Штриховыми линиями показаны "
+                     f"Масштаб {mu_l}&nbsp;=&nbsp;{mu_text(plan.mu)}&nbsp;м/мм ({gost_ratio(plan.mu)}). Штриховыми линиями показаны "
                      f"траектории центров масс звеньев (рисунок {ref('fig-positions')}).")
     else:
         lo, hi = mech.driver.q_range
         s1.paragraph(f"План положений построен для {ncount} значений длины гидроцилиндра от "
                      f"{fmt(lo, digits=3)} до {fmt(hi, digits=3)}&nbsp;м; масштаб {mu_l}&nbsp;=&nbsp;"
-                     f"{fmt(plan.mu, sig=3)}&nbsp;м/мм (рисунок {ref('fig-positions')}).")
+                     f"{mu_text(plan.mu)}&nbsp;м/мм (рисунок {ref('fig-positions')}).")
     s1.figure("План положений механизма и траектории центров масс", plan.svg, plan.width_mm, id="fig-positions")
     if study.fits:
         s1.paragraph("Неизвестные размеры подобраны из условий задания (решение уравнений с точностью 10⁻¹²):")
@@ -142,15 +144,18 @@ def build(study) -> Section:
         row = k[k["pos"] == lab].iloc[0]
         vplan = PlanScene(lab, "velocity").draw(study)
         aplan = PlanScene(lab, "acceleration").draw(study)
+        vectors.add(s4, study, row)
         _plan_formulas(s4, study, row, vplan, aplan)
-        s4.figure(f"План скоростей для положения {pos_no(study, lab)} (μ<sub>v</sub> = {fmt(vplan.mu, sig=3)} м·с⁻¹/мм)",
+        s4.figure(f"План скоростей для положения {pos_no(study, lab)} (μ<sub>v</sub> = {mu_text(vplan.mu)} м·с⁻¹/мм)",
                   vplan.svg, vplan.width_mm, id="fig-vplan")
-        s4.figure(f"План ускорений для положения {pos_no(study, lab)} (μ<sub>a</sub> = {fmt(aplan.mu, sig=3)} м·с⁻²/мм)",
+        s4.figure(f"План ускорений для положения {pos_no(study, lab)} (μ<sub>a</sub> = {mu_text(aplan.mu)} м·с⁻²/мм)",
                   aplan.svg, aplan.width_mm, id="fig-aplan")
         cmp_cols = [Column("name", "Вектор", fmt=_vec_name), Column("mm", "Длина на плане", "мм", digits=1),
                     Column("graphic", "По плану", None, sig=4), Column("analytic", "Аналитически", None, sig=4),
                     Column("delta", "Расхождение", "%", digits=2)]
-        s4.paragraph(f"Отрезки планов измерены с точностью {fmt(READ_MM, digits=1)}&nbsp;мм (отрезки короче "
+        s4.paragraph(f"Планы построены графически: известные векторы отложены отрезками, округлёнными до "
+                     f"{fmt(READ_MM, digits=1)}&nbsp;мм, неизвестные найдены пересечением линий их направлений; "
+                     f"отрезки построенных планов измерены с той же точностью (отрезки короче "
                      f"{fmt(MIN_MM, digits=0)}&nbsp;мм не сравниваются); сравнение с "
                      f"аналитическим решением — в таблицах {ref('tab-vplan')} и {ref('tab-aplan')}. Наибольшее "
                      f"расхождение: по скоростям {fmt_pct(vplan.table['delta'].max() / 100)}, по ускорениям "

@@ -1,0 +1,145 @@
+"""The vector equations of the graphic-analytic method, written out group by group for the
+chosen position (Артоболевский И. И., «Теория механизмов и машин», гл. 3; Попов С. А.,
+Тимофеев Г. А., «Курсовое проектирование по ТММ», кинематический анализ).
+
+For every link of a group the equation of its joint points relative to the point by which the
+link is attached (its external pair, else its first pair):
+
+* velocities  V̄_B = V̄_A + V̄_BA,  V̄_BA ⟂ AB,  V_BA = ω·l_AB;
+* accelerations  ā_B = ā_A + āⁿ_BA + ā^τ_BA,  aⁿ_BA = ω²·l_AB directed from B to A,
+  a^τ_BA = ε·l_AB ⟂ AB;
+
+for a slider P of link s on the guide of link g (point P_g of the guide under it):
+
+* V̄_{P_s} = V̄_{P_g} + V̄_{P_sP_g},  V̄_{P_sP_g} ∥ guide;
+* ā_{P_s} = ā_{P_g} + ā^k + ā^r,  a^k = 2·ω_g·V_{P_sP_g} (V̄_r turned by 90° in the sense of ω_g),
+  ā^r ∥ guide — the Coriolis term only where the guide rotates (on the frame: ā_P ∥ guide).
+
+Magnitudes known before the group is solved are given with numbers; the unknown ones are found
+by the construction of the plans (their values follow in the text)."""
+from __future__ import annotations
+
+import math
+
+from markupsafe import Markup
+
+from ...mechanism.model import FRAME
+from ...style.numbers import tex_num
+from ..formulas import Formula, inline_math
+from .common import tex_point
+
+
+def _len(row, a: str, b: str) -> float:
+    return math.hypot(row[f"x_{a}"] - row[f"x_{b}"], row[f"y_{a}"] - row[f"y_{b}"])
+
+
+def _attach(mech, link, group_links: set) -> str:
+    """The point by which a link of the group is attached: a pair with a link outside the
+    group (solved before, or the frame), else the link's first pair."""
+    joints = [j for j in mech.joints if link.name in j.links and j.kind == "R"]
+    for j in joints:
+        other = j.links[0] if j.links[1] == link.name else j.links[1]
+        if other not in group_links:
+            return j.point
+    return joints[0].point if joints else next(iter(link.points))
+
+
+def _pt(p: str, link: str | None = None) -> str:
+    """T of a point; a point of a given link carries its number: A_3 → A_{3}."""
+    t = tex_point(p)
+    return f"{t}_{{{link}}}" if link is not None else t
+
+
+def _m(tex: str) -> Markup:
+    return inline_math(tex)
+
+
+def _ang(name: str) -> str:
+    return name if name.isdigit() else f"{{{name}}}"
+
+
+def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Formula], list[Markup]]:
+    """Velocity and acceleration equations of one group: (formulas, notes) for each."""
+    mech = study.mechanism
+    d = mech.driver
+    links = set(g.links) | ({d.link} if g.klass == 1 else set())
+    joint_pts = {j.point for j in mech.joints}
+    vf, vn, af, an = [], [], [], []
+    for name in [l for l in g.links] + ([d.link] if g.klass == 1 and d.link not in g.links else []):
+        link = mech.link(name)
+        if d.kind == "actuator" and name == d.rod:
+            continue
+        ref = _attach(mech, link, links)
+        w = float(row.get(f"w_{name}", 0.0))
+        e = float(row.get(f"e_{name}", 0.0))
+        sliding_only = float(study.cycle["wq_" + name].abs().max()) < 1e-12    # a slider on the frame
+        for p in link.points:
+            if p == ref or p not in joint_pts or sliding_only:
+                continue
+            P, R = tex_point(p), tex_point(ref)
+            l = _len(row, p, ref)
+            fixed_ref = ref in mech.link(FRAME).points
+            base_v = "" if fixed_ref else rf"\bar{{V}}_{{{R}}} + "
+            vf.append(Formula(rf"\bar{{V}}_{{{P}}} = {base_v}\bar{{V}}_{{{P}{R}}}"))
+            known = g.klass == 1 and name == d.link and d.rotary
+            mag = (rf"V_{{{P}{R}}} = \omega_{{{_ang(name)}}} l_{{{R}{P}}} = {tex_num(abs(w), sig=4)} \cdot "
+                   rf"{tex_num(l, sig=4)} = {tex_num(abs(w) * l, sig=4, unit='м/с')}") if known else \
+                rf"V_{{{P}{R}}} = \omega_{{{_ang(name)}}} l_{{{R}{P}}}"
+            vn.append(Markup("{}, {}{}").format(_m(rf"\bar{{V}}_{{{P}{R}}} \;\perp\; {R}{P}"), _m(mag),
+                                                "" if known else Markup(" — величина находится построением")))
+            base_a = "" if fixed_ref else rf"\bar{{a}}_{{{R}}} + "
+            af.append(Formula(rf"\bar{{a}}_{{{P}}} = {base_a}\bar{{a}}^{{n}}_{{{P}{R}}} + \bar{{a}}^{{\tau}}_{{{P}{R}}}"))
+            an.append(Markup("{} (направлено от точки {} к точке {}); {}, {}").format(
+                _m(rf"a^{{n}}_{{{P}{R}}} = \omega_{{{_ang(name)}}}^{{2}} l_{{{R}{P}}} = "
+                   rf"{tex_num(abs(w), sig=4)}^{{2}} \cdot {tex_num(l, sig=4)} = {tex_num(w * w * l, sig=4, unit='м/с²')}"),
+                _m(P), _m(R), _m(rf"\bar{{a}}^{{\tau}}_{{{P}{R}}} \;\perp\; {R}{P}"),
+                _m(rf"a^{{\tau}}_{{{P}{R}}} = \varepsilon_{{{_ang(name)}}} l_{{{R}{P}}}"
+                   + (rf" = {tex_num(abs(e) * l, sig=4, unit='м/с²')}" if known else ""))))
+    for j in mech.prismatic:
+        guide, slider = j.links
+        if not ({guide, slider} & links) or j.driving and g.klass != 1:
+            continue
+        P = tex_point(j.point)
+        Ps, Pg = _pt(j.point, slider), _pt(j.point, guide)
+        if guide == FRAME:
+            vf.append(Formula(rf"\bar{{V}}_{{{P}}} = \bar{{V}}_{{{P}_{{0}}}} + \bar{{V}}_{{{P}{P}_{{0}}}}"))
+            vn.append(Markup("{}, {} направляющей — скорость ползуна направлена вдоль направляющей").format(
+                _m(rf"\bar{{V}}_{{{P}_{{0}}}} = 0"), _m(rf"\bar{{V}}_{{{P}{P}_{{0}}}} \;\parallel")))
+            af.append(Formula(rf"\bar{{a}}_{{{P}}} = \bar{{a}}_{{{P}_{{0}}}} + \bar{{a}}^{{r}}_{{{P}{P}_{{0}}}}"))
+            an.append(Markup("{} (направляющая неподвижна, поэтому кориолисова ускорения нет), {} направляющей").format(
+                _m(rf"\bar{{a}}_{{{P}_{{0}}}} = 0"), _m(rf"\bar{{a}}^{{r}}_{{{P}{P}_{{0}}}} \;\parallel")))
+            continue
+        vf.append(Formula(rf"\bar{{V}}_{{{Ps}}} = \bar{{V}}_{{{Pg}}} + \bar{{V}}_{{{Ps}{Pg}}}"))
+        gref = _attach(mech, mech.link(guide), links | {guide})
+        G = tex_point(gref)
+        vn.append(Markup("{} — скорость точки звена {} под ползуном: {}, {}; {} направляющей "
+                         "звена {} — величины находятся построением").format(
+            _m(rf"\bar{{V}}_{{{Pg}}}"), guide, _m(rf"\bar{{V}}_{{{Pg}}} = \bar{{V}}_{{{G}}} + \bar{{V}}_{{{Pg}{G}}}"),
+            _m(rf"\bar{{V}}_{{{Pg}{G}}} \;\perp\; {G}{P}"), _m(rf"\bar{{V}}_{{{Ps}{Pg}}} \;\parallel"), guide))
+        af.append(Formula(rf"\bar{{a}}_{{{Ps}}} = \bar{{a}}_{{{Pg}}} + \bar{{a}}^{{k}}_{{{Ps}{Pg}}} + "
+                          rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}}"))
+        an.append(Markup("{}, направление — вектор относительной скорости, повёрнутый на 90° в сторону "
+                         "вращения звена {}; {} — величина находится построением").format(
+            _m(rf"a^{{k}}_{{{Ps}{Pg}}} = 2 \omega_{{{_ang(guide)}}} V_{{{Ps}{Pg}}}"), guide,
+            _m(rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}} \;\parallel") + Markup(" направляющей")))
+    return vf, vn, af, an
+
+
+def add(sec, study, row) -> None:
+    """Write the vector equations of every group of the mechanism into the section."""
+    sec.paragraph("Векторные уравнения скоростей и ускорений составлены для каждой структурной группы в "
+                  "порядке присоединения; известные по величине и направлению векторы откладываются на "
+                  "планах, неизвестные по величине находятся пересечением линий их направлений.")
+    for g in study.structure.groups:
+        vf, vn, af, an = group_equations(study, row, g)
+        if not vf and not af:
+            continue
+        title = g.title
+        sec.paragraph(Markup("Скорости, {}:").format(title))
+        sec.formula(*vf)
+        for n in vn:
+            sec.paragraph(Markup("где {}.").format(n))
+        sec.paragraph(Markup("Ускорения, {}:").format(title))
+        sec.formula(*af)
+        for n in an:
+            sec.paragraph(Markup("где {}.").format(n))

@@ -1,0 +1,226 @@
+"""Label placement for the drawings: no label overlaps another label, a line, an arrowhead or a
+joint symbol, and none leaves the figure.
+
+A scene registers each label with its anchor (the point it names) and, optionally, a preferred
+direction; :meth:`LabelPlacer.place` is called after everything else is drawn. For every label,
+candidate positions on rings around the anchor (8–16 directions, radii from 2,5 mm up) are tried
+in order of distance and of deviation from the preferred direction; a candidate is rejected if
+the rendered extent of the text (``Text.get_window_extent``) meets a placed label, leaves the
+axes, or crosses a drawn segment (lines, arrow shafts and heads, outlines of patches). The first
+free candidate wins; if none is free the one with the fewest crossings is taken. A label placed
+farther than ``LEADER_MM`` from its anchor gets a thin leader line (ГОСТ 2.316 style).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.collections import LineCollection
+from matplotlib.lines import Line2D
+from matplotlib.text import Text
+
+MM_PT = 72 / 25.4        # points per millimetre
+RADII_MM = (2.2, 3.2, 4.5, 6.0, 8.0, 10.5, 14.0, 18.0)
+LEADER_MM = 5.5
+PAD_PX = 1.0
+
+
+@dataclass
+class _Item:
+    x: float
+    y: float
+    text: str
+    prefer: tuple[float, float] | None
+    kw: dict = field(default_factory=dict)
+    artist: Text | None = None
+
+
+def _renderer(fig):
+    if fig.canvas is None or not hasattr(fig.canvas, "get_renderer"):
+        FigureCanvasAgg(fig)
+    return fig.canvas.get_renderer()
+
+
+def _segments(ax, renderer, skip) -> np.ndarray:
+    """All drawn segments of the axes in display coordinates, shape (n, 4)."""
+    segs = []
+
+    def add_poly(v):
+        v = np.asarray(v, float)
+        if len(v) >= 2:
+            segs.append(np.hstack([v[:-1], v[1:]]))
+    for ln in ax.lines:
+        if ln in skip or not ln.get_visible():
+            continue
+        v = ln.get_transform().transform(np.column_stack(ln.get_data()).astype(float))
+        v = v[np.all(np.isfinite(v), axis=1)]
+        if len(v) == 1 and ln.get_marker() not in (None, "", "None", " "):
+            r = ln.get_markersize() / 2 * renderer.points_to_pixels(1)
+            x, y = v[0]
+            add_poly([(x - r, y - r), (x + r, y - r), (x + r, y + r), (x - r, y + r), (x - r, y - r)])
+        add_poly(v)
+    for coll in ax.collections:
+        if coll in skip or not isinstance(coll, LineCollection) or not coll.get_visible():
+            continue
+        tr = coll.get_transform()
+        for s in coll.get_segments():
+            add_poly(tr.transform(np.asarray(s, float)))
+    for p in ax.patches:
+        if p in skip or not p.get_visible():
+            continue
+        try:
+            path = p.get_path()
+            tr = p.get_transform()
+            for poly in path.to_polygons(tr, closed_only=False):
+                add_poly(poly)
+        except (ValueError, AttributeError):
+            continue
+    return np.vstack(segs) if segs else np.zeros((0, 4))
+
+
+def _crossings(segs: np.ndarray, bb) -> int:
+    """How many segments meet the rectangle ``bb`` (Liang–Barsky clipping, vectorized)."""
+    if len(segs) == 0:
+        return 0
+    x0, y0, x1, y1 = bb.x0 - PAD_PX, bb.y0 - PAD_PX, bb.x1 + PAD_PX, bb.y1 + PAD_PX
+    px, py = segs[:, 0], segs[:, 1]
+    dx, dy = segs[:, 2] - px, segs[:, 3] - py
+    t0 = np.zeros(len(segs))
+    t1 = np.ones(len(segs))
+    ok = np.ones(len(segs), bool)
+    for p, q in ((-dx, px - x0), (dx, x1 - px), (-dy, py - y0), (dy, y1 - py)):
+        par = np.abs(p) < 1e-12
+        ok &= ~(par & (q < 0))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = np.where(par, 0.0, q / np.where(par, 1.0, p))
+        t0 = np.where(~par & (p < 0), np.maximum(t0, r), t0)
+        t1 = np.where(~par & (p > 0), np.minimum(t1, r), t1)
+    return int(np.count_nonzero(ok & (t0 <= t1)))
+
+
+def _overlap(a, b) -> bool:
+    return a.x0 < b.x1 and b.x0 < a.x1 and a.y0 < b.y1 and b.y0 < a.y1
+
+
+class LabelPlacer:
+    """Collects the labels of one axes and places them after the drawing is complete."""
+
+    def __init__(self, ax, *, fontsize: float = 10.0):
+        self.ax = ax
+        self.fig = ax.figure
+        self.fontsize = fontsize
+        self.items: list[_Item] = []
+        self.avoid_boxes = []
+
+    def add(self, x: float, y: float, text: str, prefer=None, **kw) -> None:
+        """A label for the point (x, y) in data coordinates; ``prefer``: a direction (dx, dy)."""
+        if prefer is not None:
+            n = math.hypot(*prefer)
+            prefer = (prefer[0] / n, prefer[1] / n) if n > 1e-12 else None
+        self.items.append(_Item(float(x), float(y), text, prefer, kw))
+
+    def place(self) -> list[Text]:
+        ax, fig = self.ax, self.fig
+        renderer = _renderer(fig)
+        segs = _segments(ax, renderer, skip=())
+        frame = ax.get_window_extent(renderer)
+        figbox = fig.bbox
+        px_mm = fig.dpi / 25.4
+        placed = list(self.avoid_boxes)
+        out = []
+        for it in self.items:
+            kw = dict(fontsize=self.fontsize, ha="center", va="center", zorder=10)
+            kw.update(it.kw)
+            t = ax.text(it.x, it.y, it.text, **kw)
+            ax0 = ax.transData.transform((it.x, it.y))
+            best = None
+            for k, (cx, cy) in enumerate(self._candidates(it, px_mm)):
+                t.set_position(ax.transData.inverted().transform((ax0[0] + cx, ax0[1] + cy)))
+                bb = t.get_window_extent(renderer)
+                inside = (bb.x0 >= max(frame.x0, figbox.x0) + 1 and bb.x1 <= min(frame.x1, figbox.x1) - 1
+                          and bb.y0 >= max(frame.y0, figbox.y0) + 1 and bb.y1 <= min(frame.y1, figbox.y1) - 1)
+                if not inside or any(_overlap(bb, o) for o in placed):
+                    continue
+                hits = _crossings(segs, bb)
+                cost = (hits, k)
+                if best is None or cost < best[0]:
+                    best = (cost, (cx, cy), bb)
+                if hits == 0:
+                    break
+            if best is None:       # nowhere free inside: nearest candidate inside the figure
+                cands = self._candidates(it, px_mm)
+                for cx, cy in cands:
+                    t.set_position(ax.transData.inverted().transform((ax0[0] + cx, ax0[1] + cy)))
+                    bb = t.get_window_extent(renderer)
+                    if bb.x0 >= figbox.x0 and bb.x1 <= figbox.x1 and bb.y0 >= figbox.y0 and bb.y1 <= figbox.y1:
+                        best = ((99, 0), (cx, cy), bb)
+                        break
+                else:
+                    best = ((99, 0), cands[0], t.get_window_extent(renderer))
+            _, (cx, cy), bb = best
+            t.set_position(ax.transData.inverted().transform((ax0[0] + cx, ax0[1] + cy)))
+            placed.append(bb)
+            if math.hypot(cx, cy) > LEADER_MM * px_mm:
+                self._leader(ax0, bb)
+            out.append(t)
+        return out
+
+    def _candidates(self, it: _Item, px_mm: float) -> list[tuple[float, float]]:
+        cands = []
+        for r in RADII_MM:
+            n = 8 if r < 5 else 16
+            angs = [2 * math.pi * i / n + (math.pi / n if r in RADII_MM[1::2] else 0.0) for i in range(n)]
+            if it.prefer is not None:
+                a0 = math.atan2(it.prefer[1], it.prefer[0])
+                angs.sort(key=lambda a: abs(math.remainder(a - a0, 2 * math.pi)))
+            else:
+                angs.sort(key=lambda a: abs(math.remainder(a - math.pi / 4, 2 * math.pi)))
+            cands += [(r * px_mm * math.cos(a), r * px_mm * math.sin(a)) for a in angs]
+        return cands
+
+    def _leader(self, anchor, bb) -> None:
+        """A thin line from the anchor to the nearest point of the label's box."""
+        x = min(max(anchor[0], bb.x0), bb.x1)
+        y = min(max(anchor[1], bb.y0), bb.y1)
+        inv = self.ax.transData.inverted()
+        (x0, y0), (x1, y1) = inv.transform(anchor), inv.transform((x, y))
+        self.ax.add_line(Line2D([x0, x1], [y0, y1], lw=0.4, color="#444444", zorder=9))
+
+
+def check_figure(fig) -> list[str]:
+    """Problems with the texts of a figure: pairs of overlapping labels and labels clipped by
+    the figure (from matplotlib's rendered extents). An empty list means the figure is clean."""
+    renderer = _renderer(fig)
+    fig.draw_without_rendering()
+    texts = []
+    for ax in fig.axes:
+        texts += [t for t in ax.texts if t.get_visible() and t.get_text().strip()]
+        texts += [t for t in (ax.title, ax._left_title, ax._right_title) if t.get_visible() and t.get_text().strip()]
+    texts += [t for t in fig.texts if t.get_visible() and t.get_text().strip()]
+    boxes = [(t.get_text(), t.get_window_extent(renderer)) for t in texts]
+    problems = []
+    fb = fig.bbox
+    for name, bb in boxes:
+        if bb.x0 < fb.x0 - 0.5 or bb.x1 > fb.x1 + 0.5 or bb.y0 < fb.y0 - 0.5 or bb.y1 > fb.y1 + 0.5:
+            problems.append(f"clipped: {name!r}")
+    for i in range(len(boxes)):
+        for j in range(i + 1, len(boxes)):
+            a, b = boxes[i][1], boxes[j][1]
+            if a.x0 < b.x1 - 0.5 and b.x0 < a.x1 - 0.5 and a.y0 < b.y1 - 0.5 and b.y0 < a.y1 - 0.5:
+                problems.append(f"overlap: {boxes[i][0]!r} / {boxes[j][0]!r}")
+    return problems
+
+
+
+def tex_point(p: str, prime: bool = False, lower: bool = False) -> str:
+    """A point name in mathtext: S2 → $S_{2}$, with ``lower`` and ``prime`` the plan point
+    s′₂ → $s'_{2}$ (textbook notation of the plans)."""
+    head = p.rstrip("0123456789")
+    tail = p[len(head):]
+    if not head:
+        head, tail = p, ""
+    if lower:
+        head = head.lower()
+    return "$" + head + ("′" if prime else "") + (f"_{{{tail}}}" if tail else "") + "$"
