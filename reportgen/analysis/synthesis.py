@@ -14,6 +14,7 @@ exact position solution), its stroke (or swing) and the time-ratio coefficient
 from __future__ import annotations
 
 import math
+import re
 from functools import cached_property
 
 import numpy as np
@@ -99,7 +100,28 @@ class Synthesis:
         return {"synthesis_variants": df}
 
     @cached_property
+    def printed(self) -> list[dict]:
+        """``[synthesis.printed]``: values printed in the source (``key = { value, title, note }``,
+        key a result of the synthesis) with the exact ones; read here so that ``check`` sees
+        the mistakes ``build`` would."""
+        node = self.node.table("printed")
+        out = []
+        for k in node.data:
+            sub = node.table(k)
+            sub.check_keys(["value", "title", "note"], required=["value"])
+            if k not in self.chosen:
+                raise sub.error(None, f"синтез не даёт результата «{k}»",
+                                expected="один из результатов: " + ", ".join(self.chosen))
+            pv = sub.quantity("value", SY.dim_of(k), {}, required=True)
+            text = str(sub.raw("value")).split()[0].lower().split("e")[0]
+            digits = max(len(re.sub(r"\D", "", text).lstrip("0")), 1)
+            out.append(dict(key=k, printed=pv, computed=float(self.chosen[k]), title=sub.string("title", k),
+                            note=sub.string("note"), digits=digits))
+        return out
+
+    @cached_property
     def scalars(self) -> dict[str, float]:
+        self.printed
         out = {f"syn_{k}": float(v) for k, v in self.chosen.items()}
         out["syn_variants"] = len(self.variants)
         chk = self.check
