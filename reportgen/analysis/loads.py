@@ -476,10 +476,30 @@ def reduced_moment(loads: Loads, cols) -> dict[str, np.ndarray]:
 
 
 def cycle_of(study) -> tuple[float, float]:
-    """Start and length of the machine cycle: the grid start and [dynamics] cycle = "2pi" | "4pi"."""
+    """Start and length of the machine cycle: the grid start and [dynamics] ``cycle``: k·π
+    ("2pi", "4pi", "3*pi", "1080 deg", any angle that is a whole multiple of π) or a whole
+    number of crank revolutions (``cycle = 3``)."""
     node = study.root.table("dynamics")
-    text = node.string("cycle", "2pi", choices=["2pi", "4pi"])
-    return float(study.grid.start), (2.0 if text == "2pi" else 4.0) * math.pi
+    raw = node.raw("cycle", "2pi")
+    if isinstance(raw, int) and not isinstance(raw, bool):
+        if raw < 1:
+            raise node.error("cycle", "число оборотов за цикл должно быть положительным",
+                             expected="целое число оборотов ≥ 1 или угол k·π", got=str(raw))
+        return float(study.grid.start), 2.0 * math.pi * raw
+    text = raw.strip() if isinstance(raw, str) else raw
+    m = re.fullmatch(r"(\d+)\s*\*?\s*pi", text) if isinstance(text, str) else None
+    if m:
+        k = int(m.group(1))
+    else:
+        x = node.quantity("cycle", U.ANGLE, study.params, positive=True)
+        k = int(round(x / math.pi))
+        if k < 1 or abs(x - k * math.pi) > 1e-9 * max(x, 1.0):
+            raise node.error("cycle", "длина цикла должна быть кратна π",
+                             expected="\"2pi\", \"4pi\", \"3*pi\", \"1080 deg\" или число оборотов (cycle = 3)",
+                             got=str(raw))
+    if k < 1:
+        raise node.error("cycle", "длина цикла должна быть положительной", expected="k·π, k ≥ 1", got=str(raw))
+    return float(study.grid.start), k * math.pi
 
 
 # --------------------------------------------------------------------------------------------
