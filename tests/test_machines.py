@@ -75,3 +75,13 @@ def test_cycle_errors(tmp_path):
         _variant(tmp_path, "cycle = 0\n").dynamics
     with pytest.raises(CaseError, match="δ"):
         _variant(tmp_path, 'J_fly = "10 kg*m^2"\n').dynamics
+
+
+def test_parameters_in_load_table(tmp_path, direct):
+    """Cells of a load table may use [parameters] (with their own units)."""
+    text = SRC.replace("[parameters]\n", '[parameters]\nF_max = "40 kN"\n', 1)
+    text = text.replace("[86, 40], [93, 40]", '[86, "F_max"], [93, "F_max"]')
+    assert '"F_max"' in text
+    p = tmp_path / "tab.toml"
+    p.write_text(text, encoding="utf-8")
+    assert load_case(p).dynamics.scalars["J_fly"] == pytest.approx(direct["J_fly"], rel=1e-12)

@@ -161,7 +161,7 @@ def read_settings(study) -> Settings:
         if isinstance(raw, dict):
             dn = node.table("drive")
             dn.check_keys(["table", "units"], required=["table"])
-            drive = read_table(dn, "table", U.ANGLE, U.MOMENT, dn.raw("units"))
+            drive = read_table(dn, "table", U.ANGLE, U.MOMENT, dn.raw("units"), params)
         else:
             drive = node.quantity("drive", U.MOMENT, params)
     fw = node.table("flywheel")

@@ -240,8 +240,10 @@ def _unit_factor(node: Node, key: str, text: Any, dim: U.Dim) -> float:
     return float(q.value)
 
 
-def read_table(node: Node, key: str, xdim: U.Dim, ydim: U.Dim, units: Any = None) -> Table1D:
-    """Rows [[x, y], …]: numbers (SI, or in ``units = [ux, uy]``) or strings with units."""
+def read_table(node: Node, key: str, xdim: U.Dim, ydim: U.Dim, units: Any = None,
+               names: Mapping[str, Q] | None = None) -> Table1D:
+    """Rows [[x, y], …]: numbers (SI, or in ``units = [ux, uy]``) or strings with units, which
+    may use the case's ``[parameters]`` (``names``): ``["180 deg", "T_e"]``."""
     rows = node.raw(key)
     if not isinstance(rows, list) or len(rows) < 2:
         raise node.error(key, "таблица должна содержать не менее двух строк [x, y]",
@@ -263,7 +265,7 @@ def read_table(node: Node, key: str, xdim: U.Dim, ydim: U.Dim, units: Any = None
             if isinstance(cell, (int, float)) and not isinstance(cell, bool):
                 vals.append(float(cell) * f)
             else:
-                vals.append(node.eval_value(cell, f"{key}[{i}][{j}]", dim, {}))
+                vals.append(node.eval_value(cell, f"{key}[{i}][{j}]", dim, names or {}))
         xs.append(vals[0])
         ys.append(vals[1])
     x, y = np.array(xs), np.array(ys)
@@ -581,7 +583,7 @@ def _pieces(node: Node, kind: str, params, columns, dim_of, cycle_length: float,
         ph = phase_of(n)
         if n.has("table"):
             of = of_expr(n if n.has("of") else node)
-            tab = read_table(n, "table", of.dim, ydim, n.raw("units", parent_units))
+            tab = read_table(n, "table", of.dim, ydim, n.raw("units", parent_units), params)
             return Piece(name, ph, table=tab, of=of, node=n)
         if n.has(vkey):
             return Piece(name, ph, const=n.quantity(vkey, ydim, params), node=n)
