@@ -85,3 +85,16 @@ def test_parameters_in_load_table(tmp_path, direct):
     p = tmp_path / "tab.toml"
     p.write_text(text, encoding="utf-8")
     assert load_case(p).dynamics.scalars["J_fly"] == pytest.approx(direct["J_fly"], rel=1e-12)
+
+
+@pytest.mark.parametrize("text, si, dim", [
+    ("1 in", 0.0254, "LENGTH"), ("2 ft", 0.6096, "LENGTH"), ("1 lbf", 4.4482216152605, "FORCE"),
+    ("1 lbf*ft", 1.3558179483314004, "MOMENT"), ("1 lb*ft^2", 0.0421401100938048, "INERTIA"),
+    ("1 slug*ft^2", 1.3558179483314004, "INERTIA"), ("1 psi", 6894.757293168361, "PRESSURE"),
+    ("1 hp", 745.6998715822702, "POWER"), ("1 in/s", 0.0254, "VELOCITY"),
+])
+def test_imperial_units(text, si, dim):
+    from reportgen.case import units as U
+    v, d = U.parse_quantity(text)
+    assert d == getattr(U, dim)
+    assert v == pytest.approx(si, rel=1e-14)
