@@ -98,3 +98,17 @@ def test_imperial_units(text, si, dim):
     v, d = U.parse_quantity(text)
     assert d == getattr(U, dim)
     assert v == pytest.approx(si, rel=1e-14)
+
+
+def test_exported_K_stroke_and_power(direct):
+    """Scalars of every linkage: output stroke and K (exact extreme positions); power of the
+    machine: P_d = A_d·ω_ср/Φ = M_d·ω_ср for a constant driving moment."""
+    st = load_case(Path(__file__).resolve().parent.parent / "cases" / "ws001_p6_six_bar.toml")
+    sc = st.scalars
+    assert sc["output_stroke"] == pytest.approx(0.2, abs=1e-12)
+    assert sc["output_K"] == pytest.approx(1.3, abs=1e-12)
+    w = st.mechanism.driver.omega
+    t_work = max(sc["output_q2"] - sc["output_q1"], 2 * math.pi - (sc["output_q2"] - sc["output_q1"])) / w
+    assert sc["output_v_work"] == pytest.approx(0.2 / t_work, rel=1e-12)
+    assert direct["P_d"] == pytest.approx(direct["M_d"] * direct["omega_m"], rel=1e-12)
+    assert direct["P_d"] == pytest.approx(-direct["P_c"], rel=1e-9)

@@ -570,6 +570,9 @@ class Dynamics:
             "fw_ring_phys_D2": fw.rim_physical.D2, "fw_ring_phys_D1": fw.rim_physical.D1,
             "fw_ring_phys_b": fw.rim_physical.b, "fw_ring_phys_m": fw.rim_physical.m,
             "fw_v_limit": fw.v_limit, "fw_v_exceeds": fw.any_exceeds,
+            # mean powers over the cycle: P = A/t_ц, t_ц = Φ/ω_ср
+            "P_d": Ad * s.omega_m / s.cycle_length, "P_c": Ac * s.omega_m / s.cycle_length,
+            "t_cycle": s.cycle_length / s.omega_m,
             "fw_ratio": s.ratio, "J_fly_shaft": r.J_flywheel / s.ratio ** 2,
             "omega_max_shaft": r.omega_max * s.ratio, "omega_min_shaft": r.omega_min * s.ratio,
         }
