@@ -14,7 +14,6 @@ exact position solution), its stroke (or swing) and the time-ratio coefficient
 from __future__ import annotations
 
 import math
-import re
 from functools import cached_property
 
 import numpy as np
@@ -22,6 +21,7 @@ import pandas as pd
 from scipy.optimize import brentq
 
 from ..case import synthesis as SY
+from ..case.printed import read_printed
 from .plans import output_quantity
 
 __all__ = ["Synthesis", "output_extremes"]
@@ -101,23 +101,9 @@ class Synthesis:
 
     @cached_property
     def printed(self) -> list[dict]:
-        """``[synthesis.printed]``: values printed in the source (``key = { value, title, note }``,
-        key a result of the synthesis) with the exact ones; read here so that ``check`` sees
-        the mistakes ``build`` would."""
-        node = self.node.table("printed")
-        out = []
-        for k in node.data:
-            sub = node.table(k)
-            sub.check_keys(["value", "title", "note"], required=["value"])
-            if k not in self.chosen:
-                raise sub.error(None, f"синтез не даёт результата «{k}»",
-                                expected="один из результатов: " + ", ".join(self.chosen))
-            pv = sub.quantity("value", SY.dim_of(k), {}, required=True)
-            text = str(sub.raw("value")).split()[0].lower().split("e")[0]
-            digits = max(len(re.sub(r"\D", "", text).lstrip("0")), 1)
-            out.append(dict(key=k, printed=pv, computed=float(self.chosen[k]), title=sub.string("title", k),
-                            note=sub.string("note"), digits=digits))
-        return out
+        """``[synthesis.printed]`` with the exact values (read here so that ``check`` sees the
+        mistakes ``build`` would)."""
+        return read_printed(self.node.table("printed"), self.chosen, SY.dim_of)
 
     @cached_property
     def scalars(self) -> dict[str, float]:

@@ -163,21 +163,26 @@ def _check(sec, study, sy) -> None:
 
 
 def _printed(sec, sy) -> None:
-    if not sy.printed:
+    printed_table(sec, sy.printed, "tab-syn-printed", lambda k: SY.dim_of(k) == SY.U.ANGLE)
+
+
+def printed_table(sec, printed: list[dict], tid: str, angular=lambda k: False) -> None:
+    """Values printed in the source beside the exact ones, with the notes (why they differ)."""
+    if not printed:
         return
     rows, notes = [], []
-    for p in sy.printed:
-        ang = SY.dim_of(p["key"]) == SY.U.ANGLE
+    for p in printed:
+        ang = angular(p["key"])
         f = (lambda z, n=5: fmt(math.degrees(z), sig=n) + "°") if ang else (lambda z, n=5: fmt(z, sig=n))
         title = _title_html(p["title"])
         rows.append({"name": title, "printed": f(p["printed"], p["digits"]), "computed": f(p["computed"]),
                      "rel": fmt(100 * (p["printed"] - p["computed"]) / p["computed"], sig=2) + "&nbsp;%"})
         if p["note"]:
             notes.append(Markup("Примечание — {}: {}").format(title, p["note"]))
-    sec.paragraph(f"Значения, напечатанные в исходном решении, сопоставлены с точными в таблице {ref('tab-syn-printed')}.")
+    sec.paragraph(f"Значения, напечатанные в исходном решении, сопоставлены с точными в таблице {ref(tid)}.")
     sec.table("Сравнение с напечатанными значениями",
               [Column("name", "Величина", fmt=Markup), Column("printed", "Напечатано"), Column("computed", "Точно"),
-               Column("rel", "Отклонение", fmt=Markup)], pd.DataFrame(rows), id="tab-syn-printed")
+               Column("rel", "Отклонение", fmt=Markup)], pd.DataFrame(rows), id=tid)
     for n in notes:
         sec.paragraph(n)
 
