@@ -112,3 +112,18 @@ def test_exported_K_stroke_and_power(direct):
     assert sc["output_v_work"] == pytest.approx(0.2 / t_work, rel=1e-12)
     assert direct["P_d"] == pytest.approx(direct["M_d"] * direct["omega_m"], rel=1e-12)
     assert direct["P_d"] == pytest.approx(-direct["P_c"], rel=1e-9)
+
+
+def test_at_table_has_dynamics_columns(direct):
+    """``export --at``: dynamics and true-motion columns at arbitrary positions equal the
+    dynamics tables at the report positions."""
+    from reportgen.export import tables
+    st = load_case(Path(__file__).resolve().parent.parent / "cases" / "crank_press.toml")
+    d = st.dynamics
+    q = [float(d.positions[3]), float(d.positions[3]) + 2 * math.pi]
+    at = tables(st, q)["at"]
+    row = d.table.iloc[3]
+    for c in ("J_II", "M_c", "omega", "eps"):
+        assert at[c].iloc[0] == pytest.approx(row[c], rel=1e-12, abs=1e-12)
+        assert at[c].iloc[1] == pytest.approx(row[c], rel=1e-9, abs=1e-9)
+    assert at["true_v_B"].iloc[0] == pytest.approx(d.motion.iloc[3]["v_B"], rel=1e-12)

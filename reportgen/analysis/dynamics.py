@@ -461,6 +461,20 @@ class Dynamics:
             df.insert(0, "pos", labels)
         return df
 
+    def at(self, q) -> pd.DataFrame:
+        """Dynamics and true-motion columns at arbitrary positions q (for ``export --at``);
+        q is taken modulo the cycle."""
+        q = np.atleast_1d(np.asarray(q, dtype=float))
+        s = self.settings
+        qc = s.cycle_start + np.mod(q - s.cycle_start, s.cycle_length)
+        a, b = self.frame(qc), self.motion_frame(qc)
+        # true velocities and accelerations (with ω(φ), ε(φ)) beside the kinematics' columns
+        b = b.drop(columns=[c for c in ("q", "q_deg", "omega", "eps") if c in a.columns or c.startswith("q")])
+        b = b.rename(columns=lambda c: c if c in ("omega", "eps") else "true_" + c)
+        df = pd.concat([a, b], axis=1)
+        df["q"], df["q_deg"] = q, np.degrees(q)
+        return df
+
     def motion_frame(self, q, labels: list[str] | None = None) -> pd.DataFrame:
         """True velocities and accelerations with ω(φ), ε(φ) of the chosen method."""
         q = np.atleast_1d(np.asarray(q, dtype=float))
