@@ -133,3 +133,17 @@ def test_parameters_may_use_results(tmp_path):
     assert not st.has_linkage and st.tasks() == ["synthesis"]
     assert st.synthesis.check is None
     assert set(st.synthesis.tables()) == {"synthesis_variants"}
+
+
+@pytest.mark.parametrize("name, n", [("synth_crank_rocker", 4), ("ws001_p6_six_bar", 4)])
+def test_every_variant_reproduces(tmp_path, name, n):
+    """Every listed variant, put back into the engine, has the asked swing (stroke) and K."""
+    import re
+    text = (CASES / f"{name}.toml").read_text(encoding="utf-8")
+    for k in range(1, n + 1):
+        p = tmp_path / f"{name}_{k}.toml"
+        p.write_text(re.sub(r"(?m)^variant = \d+", f"variant = {k}", text, count=1), encoding="utf-8")
+        sy = load_case(p).synthesis
+        assert sy.chosen["variant"] == k
+        assert sy.check["stroke"] == pytest.approx(sy.target_stroke(), abs=1e-10)
+        assert sy.check["K"] == pytest.approx(sy.inputs["K"], abs=1e-10)

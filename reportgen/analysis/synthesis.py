@@ -40,17 +40,39 @@ def output_extremes(study) -> dict:
     def f(x: float) -> float:
         return float(study.at([x])[v_col].iloc[0])
 
-    roots = []
-    for i in np.nonzero(np.sign(v[:-1]) * np.sign(v[1:]) < 0)[0]:
-        roots.append(brentq(f, q[i], q[i + 1], xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
-    for i in np.nonzero(v[:-1] == 0)[0]:
-        roots.append(float(q[i]))
+    period = study.grid.length if study.mechanism.driver.rotary else None
+    # nodes of the cycle (the last node repeats the first for a rotary driver); a zero of the
+    # analog at a node (an extreme position at the start of the cycle) is bracketed around it
+    if period:
+        q, v = q[:-1], v[:-1]
+    n = len(q)
+    tiny = 1e-9 * float(np.max(np.abs(v)))
+    roots: list[float] = []
+
+    def add(x: float) -> None:
+        x = float(x)
+        if period:
+            x = q[0] + (x - q[0]) % period
+        if all(abs(x - r) > 1e-9 and (not period or abs(abs(x - r) - period) > 1e-9) for r in roots):
+            roots.append(x)
+
+    last = n if period else n - 1
+    for i in range(last):
+        j = (i + 1) % n
+        a, b = q[i], q[j] + (period if j == 0 else 0.0)
+        if abs(v[i]) <= tiny:
+            h = 0.5 * (b - a)
+            lo, hi = a - h, a + h
+            flo, fhi = f(lo), f(hi)
+            add(brentq(f, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+                if flo * fhi < 0 else a)
+        elif v[i] * v[j] < 0 and abs(v[j]) > tiny:
+            add(brentq(f, a, b, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
     roots = sorted(roots)
     if len(roots) != 2:
         return dict(column=s_col, title=title, extremes=len(roots))
     q1, q2 = roots
     s = study.at(np.array(roots))[s_col].to_numpy()
-    period = study.grid.length if study.mechanism.driver.rotary else None
     d1 = q2 - q1
     d2 = (period - d1) if period else float("nan")
     return dict(column=s_col, title=title, extremes=2, q1=q1, q2=q2, s1=float(s[0]), s2=float(s[1]),
