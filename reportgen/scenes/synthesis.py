@@ -68,6 +68,10 @@ class SynthesisConstruction:
                     (v["l"] * math.sin(h), v["l"] * math.cos(h)), (-v["a"], v["d"]), (v["a"], v["d"])]
         out = [(0.0, 0.0), (v["x_B1"], v["y_B1"]), (v["x_B2"], v["y_B2"])]
         out += [(w["x_O"] - w["a"], w["y_O"] - w["a"]) for w in vs] + [(w["x_O"] + w["a"], w["y_O"] + w["a"]) for w in vs]
+        if v["theta"] > 1e-12:
+            for xc, yc, R in S.theta_circles((v["x_B1"], v["y_B1"]), (v["x_B2"], v["y_B2"]), v["theta"]):
+                if any(abs(math.hypot(w["x_O"] - xc, w["y_O"] - yc) - R) < 1e-9 * R for w in vs):
+                    out += [(xc - R, yc - R), (xc + R, yc + R)]
         if kind == "six_bar":
             out += [(v["x_C1"], v["path_y"]), (v["x_C2"], v["path_y"])]
         return out
@@ -90,6 +94,18 @@ class SynthesisConstruction:
             if any(abs(math.hypot(x - xc, y - yc) - R) < 1e-9 * R for x, y in centres):
                 cv.ax.add_patch(Circle((xc, yc), R, fill=False, ls=":", lw=0.8, ec=GREY))
 
+    @staticmethod
+    def _locus(cv, vs):
+        """The given locus of the crank centre: the circle about the rocker pivot (all
+        centres equally far from it) or the horizontal lines through the centres."""
+        ds = [math.hypot(w["x_O"], w["y_O"]) for w in vs]
+        if max(ds) - min(ds) < 1e-9 * max(ds) and len({round(w["y_O"], 9) for w in vs}) > 1:
+            cv.ax.add_patch(Circle((0.0, 0.0), ds[0], fill=False, ls="-.", lw=0.6, ec=GREY))
+            return
+        xs = [w["x_O"] for w in vs]
+        for y in {round(w["y_O"], 12) for w in vs}:
+            _seg(cv, (min(xs) - cv.mm(8), y), (max(xs) + cv.mm(8), y), lw=0.6, ls="-.", color=GREY)
+
     # ---------------------------------------------------------------- kinds
     def _crank_rocker(self, cv, v, vs, rocker="C", lab=("B₁", "B₂")):
         c0 = (0.0, 0.0)
@@ -102,6 +118,7 @@ class SynthesisConstruction:
         _seg(cv, b1, b2, lw=0.8, ls="-.", color=GREY)
         _angle(cv, c0, b1, b2, "ψ", r_mm=8)
         self._circles(cv, b1, b2, v["theta"], [(w["x_O"], w["y_O"]) for w in vs])
+        self._locus(cv, vs)
         for w in vs:
             if w["variant"] != v["variant"]:
                 _pt(cv, (w["x_O"], w["y_O"]), f"O({w['variant']})", filled=False, color=GREY)
