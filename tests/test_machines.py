@@ -127,3 +127,18 @@ def test_at_table_has_dynamics_columns(direct):
         assert at[c].iloc[0] == pytest.approx(row[c], rel=1e-12, abs=1e-12)
         assert at[c].iloc[1] == pytest.approx(row[c], rel=1e-9, abs=1e-9)
     assert at["true_v_B"].iloc[0] == pytest.approx(d.motion.iloc[3]["v_B"], rel=1e-12)
+
+
+def test_at_table_has_force_columns():
+    """``export --at``: the force analysis at arbitrary positions equals its table at the
+    report positions."""
+    from reportgen.export import tables
+    st = load_case(Path(__file__).resolve().parent.parent / "cases" / "ws000_six_bar.toml")
+    assert "forces" in st.tasks()
+    f = st.forces
+    row = f.table.iloc[2]
+    at = tables(st, [float(row["q"])])["at"]
+    cols = [c for c in f.table.columns if c.startswith("R")]
+    assert cols and set(cols) <= set(at.columns)
+    for c in cols:
+        assert at[c].iloc[0] == pytest.approx(row[c], rel=1e-10, abs=1e-9)
