@@ -147,3 +147,12 @@ def test_every_variant_reproduces(tmp_path, name, n):
         assert sy.chosen["variant"] == k
         assert sy.check["stroke"] == pytest.approx(sy.target_stroke(), abs=1e-10)
         assert sy.check["K"] == pytest.approx(sy.inputs["K"], abs=1e-10)
+
+
+def test_K_one_slider_crank(tmp_path):
+    base = '[parameters]\nH = "0.3 m"\n[synthesis]\ntype = "slider_crank"\nK = 1\nH = "H"\n'
+    with pytest.raises(CaseError, match="K = 1"):
+        _spec(tmp_path, base + 'e = "0.05 m"\n').parameters()
+    p = _spec(tmp_path, base + "lam = 0.25\n").parameters()
+    assert float(p["syn_a"].value) == pytest.approx(0.15, abs=1e-15)     # H = 2a
+    assert float(p["syn_e"].value) == pytest.approx(0.0, abs=1e-15)

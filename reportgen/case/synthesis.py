@@ -60,6 +60,9 @@ def inputs(node: Node, names: Mapping[str, Q]) -> tuple[str, dict[str, float]]:
     if out["K"] < 1 or out["K"] >= 3:
         raise node.error("K", "коэффициент изменения средней скорости вне допустимых пределов",
                          expected="1 ≤ K < 3 (угол θ = 180°·(K − 1)/(K + 1) < 90°)", got=str(out["K"]))
+    if kind == "slider_crank" and out["K"] == 1 and "lam" not in out:
+        raise node.error("e", "при K = 1 (θ = 0) смещение e не определяет длину шатуна",
+                         expected="отношение lam = a/b (центральный механизм: H = 2a)")
     if kind == "crank_rocker" and not out["psi"] < math.pi:
         raise node.error("psi", "угол размаха коромысла слишком велик", expected="0 < ψ < 180°")
     return kind, out
@@ -71,8 +74,6 @@ def variants(kind: str, x: Mapping[str, float]) -> list[dict]:
     if kind == "crank_rocker":
         return S.crank_rocker(K, x["psi"], x["c"], d=x.get("d"), line_y=x.get("o1_y"))
     if kind == "slider_crank":
-        if K == 1 and "lam" not in x:
-            return []
         return S.slider_crank(K, x["H"], e=x.get("e"), lam=x.get("lam"))
     if kind == "slotted_lever":
         return S.slotted_lever(K, x["H"], d=x.get("d"), a=x.get("a"))
