@@ -54,8 +54,23 @@ def tables(study: Study, at: Iterable[float] | None = None) -> dict[str, pd.Data
         out.update(_linkage_tables(study))
     out.update(study.extra_tables())
     if at is not None and study.has_linkage:
-        out["at"] = study.at(list(at))
+        out["at"] = _at_table(study, list(at))
     return out
+
+
+def _at_table(study: Study, q: list[float]) -> pd.DataFrame:
+    """Kinematics at the requested positions, with the columns of every task analysis that
+    can evaluate itself at arbitrary positions (an ``at(q)`` method: dynamics, …)."""
+    df = study.at(q)
+    for name in study.tasks():
+        fn = getattr(study.analysis(name), "at", None)
+        if fn is None:
+            continue
+        extra = fn(np.asarray(q, dtype=float))
+        df = pd.concat([df.reset_index(drop=True),
+                        extra.drop(columns=[c for c in extra.columns if c in df.columns]).reset_index(drop=True)],
+                       axis=1)
+    return df
 
 
 def _linkage_tables(study: Study) -> dict[str, pd.DataFrame]:

@@ -27,6 +27,9 @@ class TaskKind:
 
 
 KINDS: tuple[TaskKind, ...] = (
+    TaskKind("synthesis", "synthesis", "synthesis:Synthesis", "Синтез рычажного механизма", False),
+    TaskKind("machine", "machine", "machine:Machine", "Маховик машины по энергии цикла", False),
+    TaskKind("motion", "motion", "motion:Motion", "Уравнение движения машины во времени", False),
     TaskKind("dynamics", "dynamics", "dynamics:Dynamics", "Динамический анализ и синтез маховика", True),
     TaskKind("forces", "forces", "forces:Forces", "Силовой анализ", True),
     TaskKind("cam", "cam", "cam:Cam", "Синтез кулачкового механизма", False),

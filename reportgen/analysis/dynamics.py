@@ -31,7 +31,7 @@ analysis at ω₁ = const.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from decimal import Decimal, InvalidOperation
 from functools import cached_property
 from pathlib import Path
@@ -43,7 +43,7 @@ import pandas as pd
 from ..case import units as U
 from ..case.reader import Node
 from ..errors import CaseError, did_you_mean
-from .flywheel import DynamicsResult, solve_dynamics
+from .flywheel import DynamicModel, DynamicsResult, exact, flywheel_dims, solve_dynamics
 from .loads import (ColumnEvaluator, Loads, Table1D, com_point, cycle_of, read_loads, read_table,
                     switching_points)
 from .study import true_motion
@@ -52,7 +52,7 @@ __all__ = ["Settings", "ReducedModel", "Dynamics", "Printed", "read_settings", "
 
 METHODS = ("exact", "mertsalov", "wittenbauer")
 DYN_KEYS = ["cycle", "omega_m", "n", "delta", "J_O", "method", "drive", "balance", "flywheel",
-            "points", "printed", "compare"]
+            "points", "printed", "compare", "flywheel_ratio", "J_fly", "fly_mass", "fly_radius"]
 # flywheel constants: key → (dimension or None for a plain number, default)
 FLYWHEEL_KEYS = {
     "rho": (U.DENSITY, 7800.0), "psi_b": (None, 0.2), "psi_h": (None, 0.8),
@@ -94,6 +94,10 @@ class Settings:
     points: int
     printed: tuple[Printed, ...]
     compare: tuple[Path, str] | None
+    # the flywheel's shaft turns u times faster than the crank: J on that shaft = J_доп/u²
+    ratio: float = 1.0
+    # inverse task: the flywheel's J on its shaft is given (J_fly, or m·ρ²); δ is found
+    J_given: float | None = None
 
 
 def _last_digit(text: str) -> tuple[float, float]:
@@ -112,7 +116,8 @@ def read_settings(study) -> Settings:
         raise CaseError("в файле варианта нет раздела [dynamics]", file=str(study.spec.path),
                         key="dynamics", expected="[dynamics] с ключами delta и n (или omega_m)")
     node = study.root.table("dynamics")
-    node.check_keys(DYN_KEYS, required=["delta"])
+    inverse = node.has("J_fly") or node.has("fly_mass") or node.has("fly_radius")
+    node.check_keys(DYN_KEYS, required=[] if inverse else ["delta"])
     params = study.params
     mech = study.mechanism
     if not mech.driver.rotary:
@@ -137,7 +142,10 @@ def read_settings(study) -> Settings:
     else:
         raise node.error("n", "не задана средняя угловая скорость кривошипа",
                          expected="n = \"65 rpm\" или omega_m = \"6.807 rad/s\" (или omega в [driver])")
-    delta = node.quantity("delta", U.DIMENSIONLESS, params, required=True, positive=True)
+    ratio = node.quantity("flywheel_ratio", U.DIMENSIONLESS, params, default=1.0, positive=True)
+    J_given = _given_flywheel(node, params) if inverse else None
+    delta = node.quantity("delta", U.DIMENSIONLESS, params, default=0.1 if inverse else None, required=not inverse,
+                          positive=True)
     if not delta < 1:
         raise node.error("delta", "коэффициент неравномерности хода должен быть меньше 1",
                          expected="δ от 1/150 до 1/5, например delta = 0.11 или \"1/80\"", got=str(node.raw("delta")))
@@ -153,7 +161,7 @@ def read_settings(study) -> Settings:
         if isinstance(raw, dict):
             dn = node.table("drive")
             dn.check_keys(["table", "units"], required=["table"])
-            drive = read_table(dn, "table", U.ANGLE, U.MOMENT, dn.raw("units"))
+            drive = read_table(dn, "table", U.ANGLE, U.MOMENT, dn.raw("units"), params)
         else:
             drive = node.quantity("drive", U.MOMENT, params)
     fw = node.table("flywheel")
@@ -182,7 +190,23 @@ def read_settings(study) -> Settings:
                            expected="путь к файлу .toml относительно этого файла")
         compare = (path, cn.string("title", None) or path.stem)
     return Settings(start, length, w, float(delta), float(J_O), method, balance, drive, kw,
-                    points, printed, compare)
+                    points, printed, compare, float(ratio), J_given)
+
+
+def _given_flywheel(node: Node, params) -> float:
+    """Inverse task: the flywheel's moment of inertia on its own shaft, J_fly or m·ρ²
+    (mass and radius of gyration); δ must not be given as well."""
+    if node.has("delta"):
+        raise node.error("delta", "задан и маховик, и коэффициент неравномерности δ",
+                         expected="либо delta (прямая задача), либо J_fly / fly_mass с fly_radius (обратная)")
+    if node.has("J_fly"):
+        if node.has("fly_mass") or node.has("fly_radius"):
+            raise node.error("J_fly", "момент инерции маховика задан дважды",
+                             expected="либо J_fly, либо fly_mass и fly_radius")
+        return float(node.quantity("J_fly", U.INERTIA, params, required=True, positive=True))
+    m = node.quantity("fly_mass", U.MASS, params, required=True, positive=True)
+    rho = node.quantity("fly_radius", U.LENGTH, params, required=True, positive=True)
+    return float(m * rho * rho)
 
 
 def _read_printed(node: Node) -> tuple[Printed, ...]:
@@ -336,9 +360,22 @@ class Dynamics:
             Mdrive = float(s.drive)
         self._Mdrive = Mdrive
         try:
+            if s.J_given is not None:
+                # inverse task: the exact steady motion with J_I = J_I,const + u²·J_fly gives δ;
+                # the direct task below is then solved for that δ (its exact J_I is the given one)
+                dm = DynamicModel(self.model.J2, self.model.dJ2, self.model.M, self.breaks, a, Phi, self.grid,
+                                  Mdrive)
+                self.inverse = exact(dm, s.omega_m, s.delta, J_I=self.J_I_const + s.ratio ** 2 * s.J_given)
+                self.settings = s = replace(s, delta=float(self.inverse.delta_achieved))
+            else:
+                self.inverse = None
             self.result: DynamicsResult = solve_dynamics(
                 self.model.J2, self.model.dJ2, self.model.M, self.breaks, a, Phi, self.J_I_const,
                 s.omega_m, s.delta, self.grid, s.method, Mdrive, s.flywheel_kw)
+            if s.ratio != 1.0:
+                r = self.result
+                self.result = replace(r, flywheel=flywheel_dims(r.J_flywheel / s.ratio ** 2, r.omega_max * s.ratio,
+                                                                **s.flywheel_kw))
         except ValueError as e:
             if "does not balance" not in str(e):
                 raise
@@ -352,17 +389,22 @@ class Dynamics:
 
     # -------------------------------------------------------------------------- positions
     def _positions(self) -> tuple[np.ndarray, list[str]]:
-        """Report positions over the cycle: the [grid] positions, repeated each 2π for a 4π
-        cycle (numbered on), extra positions only in the first revolution."""
+        """Report positions over the cycle: the [grid] positions, repeated each 2π for a longer
+        cycle (numbered on), only those inside the cycle (a cycle of k·π, k odd, ends within a
+        revolution); extra positions only in the first revolution."""
         g = self.study.grid
-        q, labels = list(g.q), list(g.labels)
-        turns = int(round(self.settings.cycle_length / (2 * math.pi)))
-        regular = [i for i, lab in enumerate(labels) if lab == str(i)]
+        end = self.settings.cycle_start + self.settings.cycle_length * (1 - 1e-12)
+        keep = [i for i, x in enumerate(g.q) if x < end]
+        q, labels = [float(g.q[i]) for i in keep], [g.labels[i] for i in keep]
+        turns = math.ceil(self.settings.cycle_length / (2 * math.pi) - 1e-12)
+        regular = [i for i, lab in enumerate(g.labels) if lab == str(i)]
         nreg = len(regular)
         for t in range(1, turns):
             for i in regular:
-                q.append(g.q[i] + 2 * math.pi * t)
-                labels.append(str(i + t * nreg))
+                x = g.q[i] + 2 * math.pi * t
+                if x < end:
+                    q.append(x)
+                    labels.append(str(i + t * nreg))
         return np.asarray(q, dtype=float), labels
 
     # -------------------------------------------------------------------------- evaluation
@@ -417,6 +459,20 @@ class Dynamics:
         df = pd.DataFrame(out)
         if labels is not None:
             df.insert(0, "pos", labels)
+        return df
+
+    def at(self, q) -> pd.DataFrame:
+        """Dynamics and true-motion columns at arbitrary positions q (for ``export --at``);
+        q is taken modulo the cycle."""
+        q = np.atleast_1d(np.asarray(q, dtype=float))
+        s = self.settings
+        qc = s.cycle_start + np.mod(q - s.cycle_start, s.cycle_length)
+        a, b = self.frame(qc), self.motion_frame(qc)
+        # true velocities and accelerations (with ω(φ), ε(φ)) beside the kinematics' columns
+        b = b.drop(columns=[c for c in ("q", "q_deg", "omega", "eps") if c in a.columns or c.startswith("q")])
+        b = b.rename(columns=lambda c: c if c in ("omega", "eps") else "true_" + c)
+        df = pd.concat([a, b], axis=1)
+        df["q"], df["q_deg"] = q, np.degrees(q)
         return df
 
     def motion_frame(self, q, labels: list[str] | None = None) -> pd.DataFrame:
@@ -528,7 +584,16 @@ class Dynamics:
             "fw_ring_phys_D2": fw.rim_physical.D2, "fw_ring_phys_D1": fw.rim_physical.D1,
             "fw_ring_phys_b": fw.rim_physical.b, "fw_ring_phys_m": fw.rim_physical.m,
             "fw_v_limit": fw.v_limit, "fw_v_exceeds": fw.any_exceeds,
+            # mean powers over the cycle: P = A/t_ц, t_ц = Φ/ω_ср
+            "P_d": Ad * s.omega_m / s.cycle_length, "P_c": Ac * s.omega_m / s.cycle_length,
+            "t_cycle": s.cycle_length / s.omega_m,
+            "fw_ratio": s.ratio, "J_fly_shaft": r.J_flywheel / s.ratio ** 2,
+            "omega_max_shaft": r.omega_max * s.ratio, "omega_min_shaft": r.omega_min * s.ratio,
         }
+        if self.inverse is not None:
+            inv = self.inverse
+            out.update(J_fly_given=s.J_given, delta_inverse=inv.delta_achieved, omega_max_inverse=inv.omega_max,
+                       omega_min_inverse=inv.omega_min, J_I_inverse=inv.J_I)
         return out
 
     # -------------------------------------------------------------------------- comparisons

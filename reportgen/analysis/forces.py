@@ -557,6 +557,10 @@ class Forces:
         return out
 
     # ---------------------------------------------------------------------------- solve
+    def at(self, q) -> pd.DataFrame:
+        """Reactions, balancing moment and checks at arbitrary positions q (``export --at``)."""
+        return self.frame(self.solve(np.atleast_1d(np.asarray(q, dtype=float))))
+
     def solve(self, q, labels: list[str] | None = None) -> Solution:
         """Loads, reactions and checks at the positions q (one kernel call)."""
         q = np.ascontiguousarray(np.atleast_1d(np.asarray(q, dtype=float)))

@@ -240,8 +240,10 @@ def _unit_factor(node: Node, key: str, text: Any, dim: U.Dim) -> float:
     return float(q.value)
 
 
-def read_table(node: Node, key: str, xdim: U.Dim, ydim: U.Dim, units: Any = None) -> Table1D:
-    """Rows [[x, y], …]: numbers (SI, or in ``units = [ux, uy]``) or strings with units."""
+def read_table(node: Node, key: str, xdim: U.Dim, ydim: U.Dim, units: Any = None,
+               names: Mapping[str, Q] | None = None) -> Table1D:
+    """Rows [[x, y], …]: numbers (SI, or in ``units = [ux, uy]``) or strings with units, which
+    may use the case's ``[parameters]`` (``names``): ``["180 deg", "T_e"]``."""
     rows = node.raw(key)
     if not isinstance(rows, list) or len(rows) < 2:
         raise node.error(key, "таблица должна содержать не менее двух строк [x, y]",
@@ -263,7 +265,7 @@ def read_table(node: Node, key: str, xdim: U.Dim, ydim: U.Dim, units: Any = None
             if isinstance(cell, (int, float)) and not isinstance(cell, bool):
                 vals.append(float(cell) * f)
             else:
-                vals.append(node.eval_value(cell, f"{key}[{i}][{j}]", dim, {}))
+                vals.append(node.eval_value(cell, f"{key}[{i}][{j}]", dim, names or {}))
         xs.append(vals[0])
         ys.append(vals[1])
     x, y = np.array(xs), np.array(ys)
@@ -476,10 +478,30 @@ def reduced_moment(loads: Loads, cols) -> dict[str, np.ndarray]:
 
 
 def cycle_of(study) -> tuple[float, float]:
-    """Start and length of the machine cycle: the grid start and [dynamics] cycle = "2pi" | "4pi"."""
+    """Start and length of the machine cycle: the grid start and [dynamics] ``cycle``: k·π
+    ("2pi", "4pi", "3*pi", "1080 deg", any angle that is a whole multiple of π) or a whole
+    number of crank revolutions (``cycle = 3``)."""
     node = study.root.table("dynamics")
-    text = node.string("cycle", "2pi", choices=["2pi", "4pi"])
-    return float(study.grid.start), (2.0 if text == "2pi" else 4.0) * math.pi
+    raw = node.raw("cycle", "2pi")
+    if isinstance(raw, int) and not isinstance(raw, bool):
+        if raw < 1:
+            raise node.error("cycle", "число оборотов за цикл должно быть положительным",
+                             expected="целое число оборотов ≥ 1 или угол k·π", got=str(raw))
+        return float(study.grid.start), 2.0 * math.pi * raw
+    text = raw.strip() if isinstance(raw, str) else raw
+    m = re.fullmatch(r"(\d+)\s*\*?\s*pi", text) if isinstance(text, str) else None
+    if m:
+        k = int(m.group(1))
+    else:
+        x = node.quantity("cycle", U.ANGLE, study.params, positive=True)
+        k = int(round(x / math.pi))
+        if k < 1 or abs(x - k * math.pi) > 1e-9 * max(x, 1.0):
+            raise node.error("cycle", "длина цикла должна быть кратна π",
+                             expected="\"2pi\", \"4pi\", \"3*pi\", \"1080 deg\" или число оборотов (cycle = 3)",
+                             got=str(raw))
+    if k < 1:
+        raise node.error("cycle", "длина цикла должна быть положительной", expected="k·π, k ≥ 1", got=str(raw))
+    return float(study.grid.start), k * math.pi
 
 
 # --------------------------------------------------------------------------------------------
@@ -561,7 +583,7 @@ def _pieces(node: Node, kind: str, params, columns, dim_of, cycle_length: float,
         ph = phase_of(n)
         if n.has("table"):
             of = of_expr(n if n.has("of") else node)
-            tab = read_table(n, "table", of.dim, ydim, n.raw("units", parent_units))
+            tab = read_table(n, "table", of.dim, ydim, n.raw("units", parent_units), params)
             return Piece(name, ph, table=tab, of=of, node=n)
         if n.has(vkey):
             return Piece(name, ph, const=n.quantity(vkey, ydim, params), node=n)

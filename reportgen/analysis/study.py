@@ -360,6 +360,24 @@ class Study:
             out[f.name] = f.value
         for c, v in self.flags.items():
             out[c + "_min"] = v["min"]
+        out.update(self._output_stroke())
+        return out
+
+    def _output_stroke(self) -> dict[str, float]:
+        """Stroke (swing) of the output link, its time-ratio coefficient K and mean speeds of
+        the working (longer) and return strokes (analysis/synthesis.py ``output_extremes``)."""
+        if not self.mechanism.driver.rotary:
+            return {}
+        from .synthesis import output_extremes
+        x = output_extremes(self)
+        if x.get("extremes") != 2:
+            return {}
+        out = {"output": x["column"], "output_stroke": x["stroke"], "output_K": x["K"],
+               "output_q1": x["q1"], "output_q2": x["q2"]}
+        w = self.mechanism.driver.omega
+        if w is not None:
+            out["output_v_work"] = x["stroke"] * w / max(x["phi_a"], x["phi_b"])
+            out["output_v_return"] = x["stroke"] * w / min(x["phi_a"], x["phi_b"])
         return out
 
 

@@ -10,7 +10,8 @@ from typing import Any, Mapping
 from ..errors import CaseError
 from ..registry import LINKAGE_SECTIONS, STANDALONE_SECTIONS, TASK_SECTIONS
 from . import units as U
-from .expr import Q, resolve
+from . import synthesis as SY
+from .expr import Q, free_names, resolve
 from .reader import Node
 
 TOP_KEYS = list(dict.fromkeys(["meta", "parameters", *LINKAGE_SECTIONS, "grid", "sketch", "fit", "outputs",
@@ -45,19 +46,43 @@ class CaseSpec:
         node = self.root.table("parameters")
         raw = dict(node.data)
         raw.update(self.overrides)
-        try:
-            names = resolve(raw)
-        except CaseError as e:
-            raise e.with_context(file=str(self.path), key_prefix="parameters") from None
+        names = self._resolve(raw, {})
         if fixed:
             base = {k: Q(v, names[k].dim) for k, v in fixed.items()}
-            rest = {k: v for k, v in raw.items() if k not in fixed}
-            try:
-                names = resolve(rest, extra_names=base)
-            except CaseError as e:
-                raise e.with_context(file=str(self.path), key_prefix="parameters") from None
+            names = self._resolve({k: v for k, v in raw.items() if k not in fixed}, base)
             names.update(base)
         return names
+
+    def _resolve(self, raw: dict, extra: dict[str, Q]) -> dict[str, Q]:
+        """Resolve parameters; with ``[synthesis]`` first those it needs, then its results
+        (``syn_*`` and aliases), then the parameters that use them."""
+        def run(part, known):
+            try:
+                return resolve(part, extra_names=known)
+            except CaseError as e:
+                raise e.with_context(file=str(self.path), key_prefix="parameters") from None
+
+        if not self.root.has("synthesis"):
+            return run(raw, extra)
+        node = SY.node_of(self.root)
+        outs = SY.output_names(node)
+        for k in outs & set(raw):
+            raise node.error(None, f"псевдоним «{k}» совпадает с параметром из [parameters]",
+                             expected="имя, не занятое в [parameters] (или удалите параметр)")
+        late: set[str] = set()
+        grew = True
+        while grew:
+            grew = False
+            for k, v in raw.items():
+                if k not in late and any(n.startswith("syn_") or n in outs or n in late for n in free_names(v)):
+                    late.add(k)
+                    grew = True
+        early = run({k: v for k, v in raw.items() if k not in late}, extra)
+        known = {**extra, **early}
+        known.update(SY.parameters(node, known))
+        rest = run({k: v for k, v in raw.items() if k in late}, known)
+        out = {**early, **{k: v for k, v in known.items() if k not in extra}, **rest}
+        return out
 
     def gravity(self, names) -> float:
         dyn = self.root.table("loads")

@@ -207,6 +207,15 @@ _SYMBOLS.update({
     "Nm": (1.0, MOMENT), "Нм": (1.0, MOMENT),
     # dimensionless
     "%": (0.01, DIMENSIONLESS),
+    # imperial (US customary) units of published examples, exact by definition (NIST SP 811):
+    # 1 in = 0.0254 m, 1 ft = 12 in, 1 lb = 0.45359237 kg, 1 lbf = 1 lb · 9.80665 m/s²,
+    # 1 slug = 1 lbf·s²/ft, 1 psi = 1 lbf/in², 1 hp = 550 ft·lbf/s
+    "in": (0.0254, LENGTH), "ft": (0.3048, LENGTH), "yd": (0.9144, LENGTH),
+    "lb": (0.45359237, MASS), "lbm": (0.45359237, MASS),
+    "lbf": (0.45359237 * 9.80665, FORCE), "kip": (453.59237 * 9.80665, FORCE),
+    "slug": (0.45359237 * 9.80665 / 0.3048, MASS),
+    "psi": (0.45359237 * 9.80665 / 0.0254 ** 2, PRESSURE),
+    "hp": (550 * 0.3048 * 0.45359237 * 9.80665, POWER),
 })
 
 # Whole-unit aliases (compared after removing spaces, "**" -> "^", superscripts -> "^n").

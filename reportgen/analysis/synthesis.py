@@ -1,0 +1,145 @@
+"""Linkage synthesis by the time-ratio coefficient K (``[synthesis]``) and its check by the engine.
+
+The synthesis is solved when the case's parameters are resolved
+(:mod:`reportgen.case.synthesis`, formulas in :mod:`reportgen.core.synthesis`), so its results
+``syn_*`` size the linkage of the same case.  This analysis lists every solution variant and,
+when the case has a linkage, measures on it what the synthesis was asked for: the extreme
+positions of the output link (roots of its first analog, s′(φ) = 0, by Brent's method on the
+exact position solution), its stroke (or swing) and the time-ratio coefficient
+
+    K = φ_раб / φ_хх,   φ_раб + φ_хх = 2π
+
+(Артоболевский, «Теория механизмов и машин», § 25).
+"""
+from __future__ import annotations
+
+import math
+from functools import cached_property
+
+import numpy as np
+import pandas as pd
+from scipy.optimize import brentq
+
+from ..case import synthesis as SY
+from ..case.printed import read_printed
+from .plans import output_quantity
+
+__all__ = ["Synthesis", "output_extremes"]
+
+
+def output_extremes(study) -> dict:
+    """Extreme positions of the output link over one crank cycle, found exactly:
+    the sign changes of its first analog on the cycle grid, refined by ``brentq`` on
+    :meth:`Study.at`.  Returns the output column, the crank coordinates q₁, q₂ of the extremes,
+    the stroke |s(q₂) − s(q₁)|, the crank angles of the two strokes and K = max/min of them."""
+    s_col, v_col, _, title = output_quantity(study)
+    cyc = study.cycle
+    q = cyc["q"].to_numpy()
+    v = cyc[v_col].to_numpy()
+
+    def f(x: float) -> float:
+        return float(study.at([x])[v_col].iloc[0])
+
+    period = study.grid.length if study.mechanism.driver.rotary else None
+    # nodes of the cycle (the last node repeats the first for a rotary driver); a zero of the
+    # analog at a node (an extreme position at the start of the cycle) is bracketed around it
+    if period:
+        q, v = q[:-1], v[:-1]
+    n = len(q)
+    tiny = 1e-9 * float(np.max(np.abs(v)))
+    roots: list[float] = []
+
+    def add(x: float) -> None:
+        x = float(x)
+        if period:
+            x = q[0] + (x - q[0]) % period
+        if all(abs(x - r) > 1e-9 and (not period or abs(abs(x - r) - period) > 1e-9) for r in roots):
+            roots.append(x)
+
+    last = n if period else n - 1
+    for i in range(last):
+        j = (i + 1) % n
+        a, b = q[i], q[j] + (period if j == 0 else 0.0)
+        if abs(v[i]) <= tiny:
+            h = 0.5 * (b - a)
+            lo, hi = a - h, a + h
+            flo, fhi = f(lo), f(hi)
+            add(brentq(f, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+                if flo * fhi < 0 else a)
+        elif v[i] * v[j] < 0 and abs(v[j]) > tiny:
+            add(brentq(f, a, b, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
+    roots = sorted(roots)
+    if len(roots) != 2:
+        return dict(column=s_col, title=title, extremes=len(roots))
+    q1, q2 = roots
+    s = study.at(np.array(roots))[s_col].to_numpy()
+    d1 = q2 - q1
+    d2 = (period - d1) if period else float("nan")
+    return dict(column=s_col, title=title, extremes=2, q1=q1, q2=q2, s1=float(s[0]), s2=float(s[1]),
+                stroke=abs(float(s[1] - s[0])), phi_a=d1, phi_b=d2,
+                K=max(d1, d2) / min(d1, d2) if period else float("nan"))
+
+
+class Synthesis:
+    """The ``[synthesis]`` task: inputs, all variants, the chosen one and the engine's check."""
+
+    def __init__(self, study):
+        self.study = study
+        self.node = SY.node_of(study.root)
+
+    @cached_property
+    def solved(self) -> tuple[str, dict, list[dict], int]:
+        names = dict(self.study.params)
+        return SY.solve(self.node, names)
+
+    @property
+    def kind(self) -> str:
+        return self.solved[0]
+
+    @property
+    def inputs(self) -> dict:
+        return self.solved[1]
+
+    @property
+    def variants(self) -> list[dict]:
+        return self.solved[2]
+
+    @property
+    def chosen(self) -> dict:
+        _, _, vs, i = self.solved
+        return vs[i]
+
+    @cached_property
+    def check(self) -> dict | None:
+        """What the engine measures on the synthesised linkage (None without a linkage)."""
+        if not self.study.has_linkage:
+            return None
+        return output_extremes(self.study)
+
+    def tables(self) -> dict[str, pd.DataFrame]:
+        df = pd.DataFrame(self.variants)
+        df.insert(0, "chosen", df["variant"] == self.chosen["variant"])
+        return {"synthesis_variants": df}
+
+    @cached_property
+    def printed(self) -> list[dict]:
+        """``[synthesis.printed]`` with the exact values (read here so that ``check`` sees the
+        mistakes ``build`` would)."""
+        return read_printed(self.node.table("printed"), self.chosen, SY.dim_of)
+
+    @cached_property
+    def scalars(self) -> dict[str, float]:
+        self.printed
+        out = {f"syn_{k}": float(v) for k, v in self.chosen.items()}
+        out["syn_variants"] = len(self.variants)
+        chk = self.check
+        if chk and chk.get("extremes") == 2:
+            out.update(check_stroke=chk["stroke"], check_K=chk["K"], check_q1=chk["q1"], check_q2=chk["q2"])
+        return out
+
+    def target_stroke(self) -> float:
+        """The stroke (m) or swing (rad) the synthesis was asked for."""
+        x = self.inputs
+        if self.kind in ("crank_rocker", "slotted_lever"):
+            return self.chosen["psi"]
+        return x["H"]

@@ -1,0 +1,70 @@
+"""Section «Маховик машины по энергии цикла»: ΔE_max (given, C_E·A, loop areas or the
+turning-moment table), the speeds from δ, J = 2ΔE/(ω_max² − ω_min²) = ΔE/(δ·ω_ср²) with
+numbers, or δ from a given flywheel (inverse task), the mean power, the values printed in the
+source beside the exact ones.  ``present(study)``: the case has ``[machine]``."""
+from __future__ import annotations
+
+from ...scenes.machine import EnergyDiagram
+from ...style.numbers import fmt, tex_num
+from ..document import Section, ref
+from .synthesis import printed_table
+
+NEEDS = ("machine",)
+TASK = "определить момент инерции маховика и мощность двигателя по энергии рабочего цикла"
+
+
+def present(study) -> bool:
+    return study.root.has("machine")
+
+
+def _t(x, unit=None, sig=5) -> str:
+    return tex_num(x, sig=sig, unit=unit)
+
+
+def build(study) -> Section:
+    m = study.machine
+    sec = Section("Маховик машины по энергии цикла", "sec-machine")
+    src = {"dE": "задано непосредственно (за время операции энергию отдаёт маховик)",
+           "C_E": "как произведение коэффициента колебания энергии на работу за цикл",
+           "loops": "по площадям петель диаграммы движущего момента над и под линией среднего момента",
+           "moment": "по диаграмме движущего момента M(φ): наибольший размах работы избыточного момента M − M_ср"}
+    sec.paragraph(f"Наибольшее изменение кинетической энергии за цикл ΔE<sub>max</sub> найдено {src[m.source]}: "
+                  f"ΔE<sub>max</sub>&nbsp;=&nbsp;{fmt(m.dE, sig=5)}&nbsp;Дж.")
+    if m.source == "C_E":
+        sec.formula(r"\Delta E_{max} = C_E A", None, _t(m.dE, "Дж"))
+    if m.source in ("loops", "moment"):
+        d = EnergyDiagram().draw(study)
+        sec.figure("Изменение энергии за цикл", d.svg, d.width_mm, id="fig-machine-energy")
+        sec.paragraph(f"Нарастающая работа избыточного момента показана на рисунке {ref('fig-machine-energy')}; "
+                      "ΔE<sub>max</sub> — разность её наибольшего и наименьшего значений.")
+    sec.paragraph("Скорости вала маховика при коэффициенте неравномерности δ "
+                  "(ω<sub>ср</sub> = (ω<sub>max</sub> + ω<sub>min</sub>)/2, δ = (ω<sub>max</sub> − ω<sub>min</sub>)/ω<sub>ср</sub>):")
+    sec.formula(r"\omega_{max} = \omega_{ср}(1 + \delta/2)", None, _t(m.omega_max, "рад/с"))
+    sec.formula(r"\omega_{min} = \omega_{ср}(1 - \delta/2) = \omega_{max}\frac{2 - \delta}{2 + \delta}", None,
+                _t(m.omega_min, "рад/с"))
+    if study.root.table("machine").has("delta"):
+        sec.paragraph("Из теоремы об изменении кинетической энергии между положениями наибольшей и наименьшей скорости "
+                      "(½J(ω<sub>max</sub>² − ω<sub>min</sub>²) = ΔE<sub>max</sub>) момент инерции маховика:")
+        sec.formula(r"J = \frac{2\Delta E_{max}}{\omega_{max}^2 - \omega_{min}^2} = \frac{\Delta E_{max}}{\delta\,\omega_{ср}^2}",
+                    rf"\frac{{2 \cdot {_t(m.dE)}}}{{{_t(m.omega_max)}^2 - {_t(m.omega_min)}^2}}", _t(m.J, "кг·м²"),
+                    label="eq-machine-J")
+    else:
+        sec.paragraph("Задан маховик (обратная задача); коэффициент неравномерности хода:")
+        sec.formula(r"\delta = \frac{\Delta E_{max}}{J\,\omega_{ср}^2}",
+                    rf"\frac{{{_t(m.dE)}}}{{{_t(m.J)} \cdot {_t(m.omega_m)}^2}}", _t(m.delta, sig=4),
+                    label="eq-machine-delta")
+    if m.power is not None:
+        sec.paragraph("Средняя мощность двигателя — работа за цикл, делённая на время цикла:")
+        sec.formula(r"N = \frac{A}{t_ц}", rf"\frac{{{_t(m.work)}}}{{{_t(m.cycle_time)}}}", _t(m.power, "Вт"),
+                    label="eq-machine-N")
+    printed_table(sec, m.printed, "tab-machine-printed")
+    return sec
+
+
+def conclusion_lines(study) -> list[str]:
+    m = study.machine
+    s = (f"Маховик по энергии цикла: ΔE<sub>max</sub>&nbsp;=&nbsp;{fmt(m.dE, sig=4)}&nbsp;Дж, "
+         f"δ&nbsp;=&nbsp;{fmt(m.delta, sig=4)}, J&nbsp;=&nbsp;{fmt(m.J, sig=4)}&nbsp;кг·м²")
+    if m.power is not None:
+        s += f", мощность N&nbsp;=&nbsp;{fmt(m.power, sig=4)}&nbsp;Вт"
+    return [s + "."]

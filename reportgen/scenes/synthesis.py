@@ -1,0 +1,181 @@
+"""The synthesis construction at scale (Артоболевский § 25; Попов, Тимофеев, гл. 2): the extreme
+positions of the output link, the chord seen from the crank centre under θ = 180°·(K − 1)/(K + 1),
+the θ-circle(s), every variant's crank centre (numbered), and for the chosen variant the
+extended and folded crank–coupler lines with the crank circle."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from matplotlib.patches import Arc, Circle
+
+from ..core import synthesis as S
+from .draw import GREY, INK, Canvas
+from .mechanism import Drawing
+
+_FS = 9
+
+
+def _pt(cv: Canvas, p, name: str, dx=1.5, dy=1.5, filled=True, color=INK):
+    cv.ax.add_patch(Circle(p, cv.mm(0.9), fc=color if filled else "white", ec=color, lw=0.9, zorder=5))
+    cv.ax.text(p[0] + cv.mm(dx), p[1] + cv.mm(dy), name, fontsize=_FS, color=color, zorder=6)
+
+
+def _seg(cv: Canvas, p, q, lw=1.4, ls="-", color=INK, z=3):
+    cv.ax.plot([p[0], q[0]], [p[1], q[1]], lw=lw, ls=ls, color=color, zorder=z)
+
+
+def _angle(cv: Canvas, o, p, q, label: str, r_mm=10.0):
+    """An arc at o from the direction o→p to o→q (the smaller angle) labelled."""
+    a1 = math.degrees(math.atan2(p[1] - o[1], p[0] - o[0]))
+    a2 = math.degrees(math.atan2(q[1] - o[1], q[0] - o[0]))
+    if (a2 - a1) % 360 > 180:
+        a1, a2 = a2, a1
+    r = cv.mm(r_mm)
+    cv.ax.add_patch(Arc(o, 2 * r, 2 * r, theta1=a1, theta2=a2 if a2 > a1 else a2 + 360, lw=0.8, color=INK))
+    mid = math.radians(a1 + ((a2 - a1) % 360) / 2)
+    cv.ax.text(o[0] + 1.35 * r * math.cos(mid), o[1] + 1.35 * r * math.sin(mid), label, fontsize=_FS,
+               ha="center", va="center")
+
+
+class SynthesisConstruction:
+    """The construction of the chosen synthesis variant, all variants' centres marked."""
+
+    needs = ()
+
+    def draw(self, study) -> Drawing:
+        sy = study.synthesis
+        kind, v, vs = sy.kind, sy.chosen, sy.variants
+        pts = self._points(kind, v, vs)
+        xs, ys = zip(*pts)
+        cv = Canvas.fit(xs, ys, avail_w=150, avail_h=170, margin_mm=14)
+        getattr(self, "_" + kind)(cv, v, vs)
+        return Drawing(cv.svg(), cv.width_mm, cv.mu)
+
+    # ---------------------------------------------------------------- extents
+    @staticmethod
+    def _points(kind, v, vs):
+        if kind == "slider_crank":
+            out = [(0.0, 0.0), (v["x_C2"], 0.0), (v["x_O"] - v["a"], v["y_O"] - v["a"]),
+                   (v["x_O"] + v["a"], v["y_O"] + v["a"])]
+            for xc, yc, R in S.theta_circles((v["x_C1"], 0.0), (v["x_C2"], 0.0), v["theta"]):
+                if abs(math.hypot(v["x_O"] - xc, v["y_O"] - yc) - R) < 1e-9 * R:
+                    out += [(xc - R, yc - R), (xc + R, yc + R)]
+            return out
+        if kind == "slotted_lever":
+            h = v["theta"] / 2
+            return [(0.0, 0.0), (0.0, v["d"] + v["a"]), (-v["l"] * math.sin(h), v["l"] * math.cos(h)),
+                    (v["l"] * math.sin(h), v["l"] * math.cos(h)), (-v["a"], v["d"]), (v["a"], v["d"])]
+        out = [(0.0, 0.0), (v["x_B1"], v["y_B1"]), (v["x_B2"], v["y_B2"])]
+        out += [(w["x_O"] - w["a"], w["y_O"] - w["a"]) for w in vs] + [(w["x_O"] + w["a"], w["y_O"] + w["a"]) for w in vs]
+        if v["theta"] > 1e-12:
+            for xc, yc, R in S.theta_circles((v["x_B1"], v["y_B1"]), (v["x_B2"], v["y_B2"]), v["theta"]):
+                if any(abs(math.hypot(w["x_O"] - xc, w["y_O"] - yc) - R) < 1e-9 * R for w in vs):
+                    out += [(xc - R, yc - R), (xc + R, yc + R)]
+        if kind == "six_bar":
+            out += [(v["x_C1"], v["path_y"]), (v["x_C2"], v["path_y"])]
+        return out
+
+    # ---------------------------------------------------------------- common parts
+    @staticmethod
+    def _crank(cv, v, far, near, o):
+        """Chosen variant: O–far (a + b), O–near (b − a), the crank circle, θ at O."""
+        _seg(cv, o, far, lw=1.0)
+        _seg(cv, o, near, lw=1.0)
+        cv.ax.add_patch(Circle(o, v["a"], fill=False, ls="--", lw=0.8, ec=INK))
+        _angle(cv, o, far, near, "θ", r_mm=14)
+
+    @staticmethod
+    def _circles(cv, b1, b2, theta, centres):
+        """The θ-circles that carry a variant's crank centre."""
+        if theta <= 1e-12:
+            return
+        for xc, yc, R in S.theta_circles(b1, b2, theta):
+            if any(abs(math.hypot(x - xc, y - yc) - R) < 1e-9 * R for x, y in centres):
+                cv.ax.add_patch(Circle((xc, yc), R, fill=False, ls=":", lw=0.8, ec=GREY))
+
+    @staticmethod
+    def _locus(cv, vs):
+        """The given locus of the crank centre: the circle about the rocker pivot (all
+        centres equally far from it) or the horizontal lines through the centres."""
+        ds = [math.hypot(w["x_O"], w["y_O"]) for w in vs]
+        if max(ds) - min(ds) < 1e-9 * max(ds) and len({round(w["y_O"], 9) for w in vs}) > 1:
+            cv.ax.add_patch(Circle((0.0, 0.0), ds[0], fill=False, ls="-.", lw=0.6, ec=GREY))
+            return
+        xs = [w["x_O"] for w in vs]
+        for y in {round(w["y_O"], 12) for w in vs}:
+            _seg(cv, (min(xs) - cv.mm(8), y), (max(xs) + cv.mm(8), y), lw=0.6, ls="-.", color=GREY)
+
+    # ---------------------------------------------------------------- kinds
+    def _crank_rocker(self, cv, v, vs, rocker="C", lab=("B₁", "B₂")):
+        c0 = (0.0, 0.0)
+        b1, b2 = (v["x_B1"], v["y_B1"]), (v["x_B2"], v["y_B2"])
+        _seg(cv, c0, b1, lw=2.0)
+        _seg(cv, c0, b2, lw=2.0)
+        r = v["c"]
+        a0 = math.degrees(math.atan2(b2[1], b2[0]))
+        cv.ax.add_patch(Arc(c0, 2 * r, 2 * r, theta1=a0, theta2=a0 + math.degrees(v["psi"]), lw=0.8, ls="--", color=INK))
+        _seg(cv, b1, b2, lw=0.8, ls="-.", color=GREY)
+        _angle(cv, c0, b1, b2, "ψ", r_mm=8)
+        self._circles(cv, b1, b2, v["theta"], [(w["x_O"], w["y_O"]) for w in vs])
+        self._locus(cv, vs)
+        for w in vs:
+            if w["variant"] != v["variant"]:
+                _pt(cv, (w["x_O"], w["y_O"]), f"O({w['variant']})", filled=False, color=GREY)
+        o = (v["x_O"], v["y_O"])
+        self._crank(cv, v, (v["x_far"], v["y_far"]), (v["x_near"], v["y_near"]), o)
+        _pt(cv, c0, rocker, dx=1.5, dy=-4)
+        _pt(cv, b1, lab[0], dx=-5, dy=1.5)
+        _pt(cv, b2, lab[1])
+        _pt(cv, o, f"O({v['variant']})", dx=1.5, dy=-4)
+
+    def _six_bar(self, cv, v, vs):
+        self._crank_rocker(cv, v, vs, rocker="O₂", lab=("B₀", "B₁"))
+        y = v["path_y"]
+        c1, c2 = (v["x_C1"], y), (v["x_C2"], y)
+        lo, hi = min(c1[0], c2[0], 0.0), max(c1[0], c2[0])
+        _seg(cv, (lo - cv.mm(5), y), (hi + cv.mm(5), y), lw=0.8, ls="-.", color=INK)
+        _seg(cv, (v["x_B1"], v["y_B1"]), c1, lw=1.4)
+        _seg(cv, (v["x_B2"], v["y_B2"]), c2, lw=1.4)
+        _pt(cv, c1, "C₀", dx=-2, dy=2)
+        _pt(cv, c2, "C₁", dx=1, dy=2)
+        yd = y - cv.mm(9)
+        for c in (c1, c2):
+            _seg(cv, c, (c[0], yd - cv.mm(1.5)), lw=0.5)
+        cv.ax.annotate("", xy=(c2[0], yd), xytext=(c1[0], yd), xycoords="data",
+                       arrowprops=dict(arrowstyle="<->", lw=0.7, shrinkA=0, shrinkB=0))
+        cv.ax.text((c1[0] + c2[0]) / 2, yd + cv.mm(1), "H", fontsize=_FS, ha="center")
+
+    def _slider_crank(self, cv, v, vs):
+        c1, c2 = (v["x_C1"], 0.0), (v["x_C2"], 0.0)
+        o = (v["x_O"], v["y_O"])
+        _seg(cv, (min(0.0, c1[0]) - cv.mm(6), 0.0), (c2[0] + cv.mm(6), 0.0), lw=0.8, ls="-.")
+        self._circles(cv, c1, c2, v["theta"], [o])
+        self._crank(cv, v, c2, c1, o)
+        _seg(cv, o, (o[0], 0.0), lw=0.6, ls="--", color=GREY)
+        cv.ax.text(o[0] - cv.mm(4), o[1] / 2, "e", fontsize=_FS)
+        _pt(cv, c1, "C₁", dx=-2, dy=2)
+        _pt(cv, c2, "C₂", dx=1, dy=2)
+        _pt(cv, o, "O", dx=-4, dy=-4)
+
+    def _slotted_lever(self, cv, v, vs):
+        h = v["theta"] / 2
+        c0, o = (0.0, 0.0), (0.0, v["d"])
+        d1 = (-v["l"] * math.sin(h), v["l"] * math.cos(h))
+        d2 = (v["l"] * math.sin(h), v["l"] * math.cos(h))
+        _seg(cv, c0, d1, lw=2.0)
+        _seg(cv, c0, d2, lw=2.0)
+        _seg(cv, c0, o, lw=0.6, ls="-.", color=GREY)
+        cv.ax.add_patch(Circle(o, v["a"], fill=False, ls="--", lw=0.8, ec=INK))
+        for s in (-1.0, 1.0):
+            a = (s * v["d"] * math.cos(h) * math.sin(h), v["d"] * math.cos(h) ** 2)
+            _seg(cv, o, a, lw=1.0)
+            _pt(cv, a, "A₁" if s < 0 else "A₂", dx=(-5 if s < 0 else 1.5))
+        _angle(cv, c0, d1, d2, "ψ = θ", r_mm=12)
+        _pt(cv, c0, "C", dx=1.5, dy=-4)
+        _pt(cv, o, "O", dx=1.5, dy=1.5)
+        _pt(cv, d1, "D₁", dx=-5)
+        _pt(cv, d2, "D₂")
+        span = np.array([d1, d2])
+        cv.ax.annotate("", xy=tuple(span[1]), xytext=tuple(span[0]),
+                       arrowprops=dict(arrowstyle="<->", lw=0.7, shrinkA=0, shrinkB=0))
