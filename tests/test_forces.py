@@ -42,7 +42,7 @@ ROOT = Path(__file__).resolve().parents[1]
 TOL_EQUILIBRIUM = 1e-9
 TOL_POWER = 1e-10
 EXAMPLES = 15
-SETTINGS = settings(max_examples=EXAMPLES, deadline=None, database=None,
+SETTINGS = settings(max_examples=EXAMPLES, deadline=None, database=None, derandomize=True,
                     suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
 G = 9.81
 

@@ -49,7 +49,7 @@ TOL_CLOSURE = 1e-12
 TOL_AT_CYCLE = 1e-12
 EXAMPLES = 15
 
-SETTINGS = settings(max_examples=EXAMPLES, deadline=None, database=None,
+SETTINGS = settings(max_examples=EXAMPLES, deadline=None, database=None, derandomize=True,
                     suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
 
 # ----------------------------------------------------------------------------- drawing helpers
