@@ -1,0 +1,114 @@
+"""Planetary trains: Willis equations against the direct velocity analysis (pitch-point
+velocities), worksheet 001 problem 2013-5, and the tooth-number selection with all conditions."""
+from __future__ import annotations
+
+from fractions import Fraction
+
+import pytest
+
+from reportgen.analysis.train import TrainModel, Wheel, check_2kh, direct, place_axes, select_2kh, willis
+
+
+def model(wheels, meshes, members, axes, fixed, inp, out, m=1.0):
+    ws = {}
+    for name, z, member, internal, *centre in wheels:
+        ws[name] = Wheel(name, z, member, centre[0] if centre else members[member], internal, m)
+    ax = dict(axes)
+    for w in ws.values():
+        ax.setdefault(w.centre, "0")
+    for a in members.values():
+        ax.setdefault(a, "0")
+    return TrainModel(members, ax, ws, meshes, tuple(fixed), inp, out)
+
+
+def two_kh(z1, z2, z3):
+    return model([("1", z1, "1", False), ("2", z2, "2", False), ("3", z3, "3", True)],
+                 [("1", "2"), ("2", "3")], {"1": "O", "2": "A", "3": "O", "H": "O"}, {"A": "H"},
+                 ["3"], "1", "H")
+
+
+def double_planet(z1, z2, z2b, z3, ring_internal=True):
+    return model([("1", z1, "1", False), ("2", z2, "2", False), ("2'", z2b, "2", False),
+                  ("3", z3, "3", ring_internal)],
+                 [("1", "2"), ("2'", "3")], {"1": "O", "2": "A", "3": "O", "H": "O"}, {"A": "H"},
+                 ["3"], "1", "H")
+
+
+def ws001_2013_5():
+    """Worksheet 001, 2013-5: 1 (z=20) drives ring 2 (z=100) on carrier H2; 2 and sun 5 (22) are
+    one block; planets 6 (26) on carrier H1 roll in ring 7 (74), fixed to H2; H1 carries 4 (20),
+    meshing the fixed central wheel 3 (60).  z4, z7 from coaxiality."""
+    return model([("1", 20, "1", False), ("2", 100, "25", True), ("5", 22, "25", False),
+                  ("6", 26, "6", False), ("7", 74, "H2", True, "B"), ("4", 20, "H1", False),
+                  ("3", 60, "3", False)],
+                 [("1", "2"), ("5", "6"), ("6", "7"), ("4", "3")],
+                 {"1": "O", "3": "O", "H2": "O", "25": "B", "H1": "B", "6": "C"},
+                 {"B": "H2", "C": "H1"}, ["3"], "1", "H2")
+
+
+@pytest.mark.parametrize("build", [
+    lambda: two_kh(17, 34, 85), lambda: two_kh(20, 25, 70), lambda: double_planet(20, 40, 20, 80),
+    lambda: double_planet(18, 30, 24, 72), ws001_2013_5,
+    # 2K-H with two external meshes (David–Brown type): ring replaced by an external wheel
+    lambda: double_planet(40, 20, 21, 39, ring_internal=False),
+])
+def test_willis_equals_direct_velocity_analysis(build):
+    m = build()
+    for fixed, inp in ((m.fixed, m.inp), ((m.inp,), m.out)):
+        wa, wd = willis(m, fixed, inp), direct(m, fixed, inp)
+        for k in wa:
+            assert wa[k] == pytest.approx(wd[k], rel=1e-12, abs=1e-12)
+
+
+def test_textbook_2kh_ratio():
+    m = two_kh(17, 34, 85)
+    assert 1 / willis(m)["H"] == pytest.approx(1 + 85 / 17, rel=1e-14)
+    # any member held: the ring driving the carrier with the sun held, u_3H = 1 + z1/z3
+    w = willis(m, fixed=("1",), inp="3")
+    assert 1 / w["H"] == pytest.approx(1 + 17 / 85, rel=1e-14)
+    # carrier held: u_13 = −z3/z1
+    w = willis(m, fixed=("H",), inp="1")
+    assert 1 / w["3"] == pytest.approx(-85 / 17, rel=1e-14)
+
+
+def test_worksheet_001_2013_5():
+    m = ws001_2013_5()
+    u = 1 / willis(m)["H2"]
+    assert Fraction(u).limit_denominator(1000) == Fraction(731, 11)
+    assert u == pytest.approx(66.4545454545, abs=1e-9)
+    # the worksheet multiplies the rounded 4,364 and prints 66,46
+    assert round(1 - 5 * 4.364 * (-3), 2) == 66.46
+    assert 1 / direct(m)["H2"] == pytest.approx(u, rel=1e-12)
+    _, resid = place_axes(m)
+    assert resid and all(abs(r) < 1e-12 for _, r in resid)      # z4 = 20, z7 = 74 are coaxial
+
+
+def test_selection_conditions_and_textbook_set():
+    ok, bad = select_2kh(6.0, 3, tol=0.0)
+    assert ok[0].z == {"1": 17, "2": 34, "3": 85}
+    assert any(c.z == {"1": 18, "2": 36, "3": 90} for c in ok)
+    for c in ok:
+        z1, z2, z3 = c.z["1"], c.z["2"], c.z["3"]
+        assert z3 == z1 + 2 * z2 and (z1 + z3) % 3 == 0 and c.u == 1 + z3 / z1
+        import math
+        assert math.sin(math.pi / 3) > (z2 + 2) / (z1 + z2) and min(z1, z2) >= 17
+    assert all(c.fails for c in bad)
+
+
+def test_selection_rejects_khurmi_assembly():
+    # Khurmi Ex. 13.9: 14/21/56 with 3 planets violates assembly (and undercut of z = 14)
+    c = check_2kh(14, 21, 56, 3, None, 0.03)
+    assert any("сборки" in f for f in c.fails) and any("подрезание" in f for f in c.fails)
+    c = check_2kh(16, 24, 64, 3, None, 0.03)
+    assert any("сборки" in f for f in c.fails)
+
+
+def test_double_planet_selection_all_conditions():
+    ok, _ = select_2kh(12.0, 3, tol=0.02, double=True, z_max=110, limit=5)
+    assert ok
+    for c in ok:
+        z1, z2, z2b, z3 = c.z["1"], c.z["2"], c.z["2'"], c.z["3"]
+        assert z1 + z2 == z3 - z2b
+        m = double_planet(z1, z2, z2b, z3)
+        assert 1 / willis(m)["H"] == pytest.approx(c.u, rel=1e-12)
+        assert abs(c.u - 12) <= 0.02 * 12
