@@ -29,6 +29,8 @@ class TaskKind:
 KINDS: tuple[TaskKind, ...] = (
     TaskKind("dynamics", "dynamics", "dynamics:Dynamics", "Динамический анализ и синтез маховика", True),
     TaskKind("forces", "forces", "forces:Forces", "Силовой анализ", True),
+    TaskKind("gears", "gears", "gears:Gears", "Синтез эвольвентного зубчатого зацепления", False),
+    TaskKind("train", "train", "train:Train", "Синтез планетарного механизма", False),
 )
 
 BY_NAME: dict[str, TaskKind] = {k.name: k for k in KINDS}

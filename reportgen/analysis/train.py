@@ -295,7 +295,7 @@ def select_2kh(target: float, k: int, *, tol: float = 0.03, double: bool = False
 
 # --------------------------------------------------------------------------------- case reading
 TRAIN_KEYS = ["module", "input", "output", "fixed", "planets", "target", "axes", "member", "wheel",
-              "meshes", "select", "tolerance"]
+              "meshes", "select", "tolerance", "printed"]
 
 
 def read_model(node: Node, names) -> tuple[TrainModel, dict]:
@@ -357,9 +357,11 @@ def read_model(node: Node, names) -> tuple[TrainModel, dict]:
     except ValueError:
         raise node.error("meshes", "центры колёс зацепления не принадлежат одному звену",
                          expected="оси сателлитов на водиле ([train.axes])") from None
-    opts = {"target": node.quantity("target", U.DIMENSIONLESS, names) if node.has("target") else None,
+    printed = {k: float(v) for k, v in node.table("printed").data.items()
+               if isinstance(v, (int, float)) and not isinstance(v, bool)}
+    opts = {"printed": printed, "target": node.quantity("target", U.DIMENSIONLESS, names) if node.has("target") else None,
             "planets": node.integer("planets", 1, minimum=1),
-            "tolerance": node.quantity("tolerance", U.DIMENSIONLESS, names, default=0.03, positive=True)}
+            "tolerance": node.quantity("tolerance", U.DIMENSIONLESS, names, default=0.03, nonnegative=True)}
     if sel.data:
         sel.check_keys(["scheme", "sun", "planet", "planet2", "ring", "z_max", "z_min", "dz_internal"],
                        required=["scheme", "sun", "planet", "ring"])
@@ -404,8 +406,8 @@ class Train:
                             for n, w in model.wheels.items()}
         self.model = model
         try:
-            self.w_willis = willis(model)
-            self.w_direct = direct(model)
+            self.w_willis = {k: (0.0 if abs(v) < 1e-12 else v) for k, v in willis(model).items()}
+            self.w_direct = {k: (0.0 if abs(v) < 1e-12 else v) for k, v in direct(model).items()}
         except ValueError:
             raise CaseError("передаточное отношение не определено: проверьте неподвижные звенья, "
                             "вход и зацепления", file=study.root.file, key="train",

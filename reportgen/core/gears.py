@@ -40,10 +40,10 @@ def inv_inverse(y, tol: float = 4e-16, max_iter: int = 60):
     """α with inv α = y (0 ≤ α < π/2), Newton on f(α) = tg α − α − y, f′ = tg²α.
 
     Start α₀ = (3y)^{1/3} (first term of the series inv α ≈ α³/3), which lies above the root
-    (inv α > α³/3), so Newton decreases monotonically; iterate to machine precision."""
+    (inv α > α³/3), so Newton decreases monotonically; iterate to machine precision.  A negative
+    y (no real working angle: x_Σ too negative) gives NaN."""
     y = np.asarray(y, dtype=float)
-    if np.any(y < 0) or not np.all(np.isfinite(y)):
-        raise ValueError("inv α must be a finite non-negative number")
+    y = np.where(y >= 0, y, np.nan)
     a = np.minimum(np.cbrt(3.0 * y), 1.5)
     for _ in range(max_iter):
         t = np.tan(a)
@@ -51,7 +51,7 @@ def inv_inverse(y, tol: float = 4e-16, max_iter: int = 60):
         d = np.where(t == 0.0, 1.0, t * t)
         step = np.where(t == 0.0, 0.0, f / d)
         a = a - step
-        if np.all(np.abs(step) <= tol * np.maximum(np.abs(a), 1e-300)):
+        if np.all((np.abs(step) <= tol * np.maximum(np.abs(a), 1e-300)) | np.isnan(step)):
             break
     return a
 
@@ -252,7 +252,7 @@ def sliding(geo: PairGeometry, rho1):
     Returns (λ₁, λ₂, v_s/ω₁)."""
     rho1 = np.asarray(rho1, float)
     u = geo.u
-    g = float(geo.g)
+    g = geo.g
     if geo.internal:
         rho2 = rho1 + g
     else:
@@ -260,7 +260,7 @@ def sliding(geo: PairGeometry, rho1):
     with np.errstate(divide="ignore", invalid="ignore"):
         lam1 = 1 - rho2 / (u * rho1)
         lam2 = 1 - u * rho1 / rho2
-    rho_P = float(geo.dw1) / 2 * math.sin(float(geo.alpha_w))
+    rho_P = geo.dw1 / 2 * np.sin(geo.alpha_w)
     vs = (1 + (-1 if geo.internal else 1) / u) * np.abs(rho1 - rho_P)
     return lam1, lam2, vs
 
