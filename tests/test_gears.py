@@ -15,7 +15,8 @@ R = G.Rack()
 
 def test_inverse_involute_machine_precision():
     a = np.linspace(0.15, 1.4, 500)       # pressure angles of practice (8.6° … 80°)
-    assert np.max(np.abs(G.inv_inverse(G.inv(a)) - a) / a) < 4e-15
+    # bounded by the cancellation in tg α − α itself (condition ≈ ε·α/(3 inv α))
+    assert np.max(np.abs(G.inv_inverse(G.inv(a)) - a) / a) < 1e-14
     y = np.geomspace(1e-9, 10, 200)       # the residual is at the rounding level of tg α
     r = G.inv_inverse(y)
     assert np.all(np.abs(G.inv(r) - y) <= 8 * np.finfo(float).eps * np.tan(r))
