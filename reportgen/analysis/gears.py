@@ -106,7 +106,9 @@ class Gears:
         self.s_a_min = node.quantity("s_a_min", U.DIMENSIONLESS, names, default=0.25, nonnegative=True)
         self.eps_min = node.quantity("eps_min", U.DIMENSIONLESS, names, default=1.2, positive=True)
         self.omega1 = node.quantity("omega1", U.ANGULAR_VELOCITY, names, positive=True) if node.has("omega1") else None
-        rng = node.raw("x_range", [-0.6, 1.6])
+        lo = math.floor(10 * min(-0.6, *(float(G.x_min_undercut(z, self.rack)) - 0.1
+                                         for z in (self.z1, self.z2 or self.z1)))) / 10
+        rng = node.raw("x_range", [lo, 1.6])
         if not (isinstance(rng, list) and len(rng) == 2 and all(isinstance(v, (int, float)) for v in rng)
                 and rng[0] < rng[1]):
             raise node.error("x_range", "ожидалась пара чисел [от, до]", expected="[-0.6, 1.6]")
