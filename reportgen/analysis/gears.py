@@ -271,9 +271,9 @@ class Gears:
         return df
 
     def tables(self) -> dict[str, pd.DataFrame]:
-        out = {"geometry": self.wheel_rows()}
+        out = {"gears_geometry": self.wheel_rows()}
         if self.sliding_table is not None:
-            out["sliding"] = self.sliding_table
+            out["gears_sliding"] = self.sliding_table
         return out
 
     @property
@@ -291,4 +291,4 @@ class Gears:
             out[k + "_deg" if k in ("psi", "alpha_y") else k] = math.degrees(v) if k in ("psi", "alpha_y") else v
         if self.xsum_required is not None:
             out["xsum_required"] = self.xsum_required
-        return out
+        return {"gears_" + k: v for k, v in out.items()}

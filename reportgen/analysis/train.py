@@ -435,11 +435,11 @@ class Train:
                                for w in m.wheels.values()])
         omegas = pd.DataFrame([{"member": n, "omega_willis": self.w_willis[n], "omega_direct": self.w_direct[n]}
                                for n in m.members])
-        out = {"wheels": wheels, "omegas": omegas}
+        out = {"train_wheels": wheels, "train_omegas": omegas}
         if self.candidates or self.rejected:
             rows = [{**{f"z{k}": v for k, v in c.z.items()}, "u": c.u, "size": c.size,
                      "ok": c.ok, "reasons": "; ".join(c.fails)} for c in self.candidates + self.rejected]
-            out["candidates"] = pd.DataFrame(rows)
+            out["train_candidates"] = pd.DataFrame(rows)
         return out
 
     @property
@@ -449,4 +449,4 @@ class Train:
         if self.opts["target"] is not None:
             out["u_target"] = self.opts["target"]
             out["u_error_pct"] = (self.ratio - self.opts["target"]) / self.opts["target"] * 100
-        return out
+        return {"train_" + k: float(v) for k, v in out.items()}

@@ -120,7 +120,7 @@ def _willis(sec: Section, tr) -> None:
                     f"{fmt((pr['u'] - tr.ratio) / tr.ratio * 100, sig=2)} %.")
     if tr.opts["target"] is not None:
         s.paragraph(f"Отклонение от заданного <i>u</i> = {fmt(tr.opts['target'], sig=5)}: "
-                    f"{fmt(tr.scalars['u_error_pct'], sig=2)} %.")
+                    f"{fmt(tr.scalars['train_u_error_pct'], sig=2)} %.")
 
 
 def _picture(sec: Section, tr) -> None:
@@ -139,7 +139,7 @@ def _picture(sec: Section, tr) -> None:
     s.paragraph(f"Расхождение графического и аналитического значений: {fmt(d, sig=2)} % (отрезки плана "
                 f"измерены с точностью 0,5 мм). Прямой расчёт по равенству скоростей в полюсах даёт "
                 f"<i>u</i> = {fmt(tr.ratio_direct, sig=10)}, отличие от формулы Виллиса "
-                f"{fmt(tr.scalars['u_discrepancy_pct'], sig=2)} %.")
+                f"{fmt(tr.scalars['train_u_discrepancy_pct'], sig=2)} %.")
 
 
 def conclusion_lines(study) -> list[str]:
