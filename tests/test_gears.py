@@ -100,3 +100,22 @@ def test_sliding_zero_at_pitch_point_and_balanced_choice():
     assert x1 >= float(G.x_min_undercut(12, R)) and float(g.eps) >= 1.2
     assert float(g.sa1) >= 0.25 * 8 and float(g.sa2) >= 0.25 * 8
     assert float(g.rho_p1) >= float(g.rho_l1) and float(g.rho_p2) >= float(g.rho_l2)
+
+
+@pytest.mark.parametrize("z1,z2,x1,x2", [(20, 80, 0.0, 0.0), (18, 60, 0.3, 0.5)])
+def test_internal_pair_contact_ratio_and_centre_distance(z1, z2, x1, x2):
+    g = G.pair_geometry(4.0, z1, z2, x1, x2, R, internal=True)
+    assert float(g.eps) == pytest.approx(float(g.eps_line), rel=1e-13)
+    assert float(g.eps) > 1.0
+    assert G.xsum_from_centre_distance(4.0, z1, z2, AL, float(g.a_w), internal=True) == pytest.approx(x2 - x1, abs=1e-12)
+    assert float(g.dw2 - g.dw1) == pytest.approx(2 * float(g.a_w), rel=1e-14)
+
+
+def test_choice_on_a_required_centre_distance(tmp_path):
+    from reportgen import load_case
+    p = tmp_path / "aw.toml"
+    p.write_text('[gears]\nmodule = "5 mm"\nz1 = 14\nz2 = 35\nx1 = "choose"\nx2 = "choose"\na_w = "125 mm"\n',
+                 encoding="utf-8")
+    gr = load_case(p).gears
+    assert gr.x1 + gr.x2 == pytest.approx(gr.xsum_required, abs=1e-9)
+    assert float(gr.geo.a_w) == pytest.approx(125.0, rel=1e-12)

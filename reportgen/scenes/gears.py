@@ -133,7 +133,12 @@ def rack_drawing(gears):
     z, x = gears.z1, gears.x1
     r = m * z / 2
     al = rack.alpha
-    da = float(gears.geo.da1) if gears.geo is not None else m * (z + 2 * (rack.ha + x))
+    if gears.geo is not None:
+        da = float(gears.geo.da1)
+    elif gears.measure is not None and gears.measure.d_a is not None:
+        da = gears.measure.d_a
+    else:
+        da = m * (z + 2 * (rack.ha + x))
     xo, yo = tooth_outline(m, z, x, rack, da / 2, turn=0.0)
     half = 2.2 * math.pi * m
     ymin, ymax = r - 2.6 * m, r + x * m + 2.6 * m

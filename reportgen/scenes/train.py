@@ -49,9 +49,9 @@ def train_picture(train) -> TrainPicture:
     col = _columns(m)
     ncol = max(col.values()) + 1
     fig = mplstyle.figure(170, 150, layout=None)
-    ax = fig.add_axes((0.04, 0.30, 0.50, 0.68))
-    av = fig.add_axes((0.58, 0.30, 0.40, 0.68), sharey=ax)
-    ap = fig.add_axes((0.58, 0.04, 0.40, 0.20))
+    ax = fig.add_axes((0.08, 0.30, 0.46, 0.64))
+    av = fig.add_axes((0.58, 0.30, 0.40, 0.64), sharey=ax)
+    ap = fig.add_axes((0.58, 0.02, 0.40, 0.18))
     dx = 1.0
     colors = {n: COLORS[i % len(COLORS)] for i, n in enumerate(m.members)}
     ytop = max(y[wh.centre] + wh.m * wh.z / 2 for wh in m.wheels.values())

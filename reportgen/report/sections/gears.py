@@ -88,7 +88,7 @@ def _inverse(sec: Section, gr) -> None:
             for key, val, name in (("d_y", inv["d_y"], "<i>d</i><sub>y</sub>"), ("s", inv["s_chord"], "<i>s</i>"),
                                    ("x", inv["x_chord"], "<i>x</i>")):
                 if key in pr:
-                    parts.append(f"{name} = {fmt(val, sig=7)} (в решении {fmt(pr[key], sig=7)})")
+                    parts.append(f"{name} = {fmt(val, sig=7)} (в решении {pr[key]:g})".replace(".", ","))
             s.paragraph("Сравнение с опубликованным решением: " + "; ".join(parts) + ". Промежуточный "
                         "диаметр <i>d</i><sub>y</sub> решения отличается потому, что там sin ψ<sub>y</sub> "
                         "вычислен по углу, округлённому до 2,579°; окончательные <i>s</i> и <i>x</i> "
@@ -157,13 +157,19 @@ def _sym_html(sym: str) -> Markup:
     return out + Markup("<sub>{}</sub>").format(idx) if idx else out
 
 
+def _cell(v) -> str:
+    """Whole numbers (z, k, round diameters) without trailing zeros, the rest to 6 digits."""
+    v = float(v)
+    return str(int(round(v))) if abs(v - round(v)) < 1e-9 else fmt(v, sig=6)
+
+
 def _table(sec: Section, gr) -> None:
     df = gr.wheel_rows()
     df = df.assign(label=[f"{n}, {u}" if u else n for n, u in zip(df["name"], df["unit"])])
     cols = [Column("label", "Параметр", fmt=str), Column("symbol", "Обозначение", fmt=_sym_html),
-            Column("wheel1", "Колесо 1", sig=6)]
+            Column("wheel1", "Колесо 1", fmt=_cell)]
     if gr.z2 is not None:
-        cols.append(Column("wheel2", "Колесо 2", sig=6))
+        cols.append(Column("wheel2", "Колесо 2", fmt=_cell))
     sec.table("Геометрические параметры колёс", cols, df, id="tab-gears-geo")
 
 

@@ -23,6 +23,11 @@ def present(study) -> bool:
     return study.root.has("train")
 
 
+def _pct(x: float) -> str:
+    """A discrepancy in %, rounding noise (below 10⁻⁹ %) written as 0."""
+    return "0" if abs(x) < 1e-9 else fmt(x, sig=2)
+
+
 def _z(name: str) -> str:
     return rf"z_{{{name}}}"
 
@@ -70,10 +75,10 @@ def _selection(sec: Section, tr) -> None:
     c = tr.candidates[0]
     z1, z2 = c.z["1"], c.z["2"]
     zr = c.z.get("2'", z2)
-    s.formula(
-        Formula(r"\sin\frac{\pi}{k} > \frac{z_2 + 2h_a^*}{z_1 + z_2}",
-                rf"{tex_num(math.sin(math.pi / k), sig=4)} > \frac{{{max(z2, zr)} + 2}}{{{z1} + {z2}}}",
-                tex_num((max(z2, zr) + 2) / (z1 + z2), sig=4)))
+    s.paragraph("Проверка условия соседства для принятого набора:")
+    s.formula(Formula(rf"\sin\frac{{\pi}}{{{k}}} = {tex_num(math.sin(math.pi / k), sig=4)} > "
+                      rf"\frac{{z_2 + 2h_a^*}}{{z_1 + z_2}} = \frac{{{max(z2, zr)} + 2}}{{{z1} + {z2}}} = "
+                      rf"{tex_num((max(z2, zr) + 2) / (z1 + z2), sig=4)}"))
 
 
 def _wheels(sec: Section, tr) -> None:
@@ -120,7 +125,7 @@ def _willis(sec: Section, tr) -> None:
                     f"{fmt((pr['u'] - tr.ratio) / tr.ratio * 100, sig=2)} %.")
     if tr.opts["target"] is not None:
         s.paragraph(f"Отклонение от заданного <i>u</i> = {fmt(tr.opts['target'], sig=5)}: "
-                    f"{fmt(tr.scalars['train_u_error_pct'], sig=2)} %.")
+                    f"{_pct(tr.scalars['train_u_error_pct'])} %.")
 
 
 def _picture(sec: Section, tr) -> None:
@@ -136,10 +141,12 @@ def _picture(sec: Section, tr) -> None:
     s.formula(rf"u^{{граф}}_{{{m.inp}\,{m.out}}} = \frac{{(0{m.inp})}}{{(0{m.out})}}",
               rf"\frac{{{tex_num(si, sig=4)}}}{{{tex_num(so, sig=4)}}}",
               tex_num(pic.u_graph, sig=5) if math.isfinite(pic.u_graph) else r"\infty")
-    s.paragraph(f"Расхождение графического и аналитического значений: {fmt(d, sig=2)} % (отрезки плана "
+    s.paragraph(f"Расхождение графического и аналитического значений: {_pct(d)} % (отрезки плана "
                 f"измерены с точностью 0,5 мм). Прямой расчёт по равенству скоростей в полюсах даёт "
                 f"<i>u</i> = {fmt(tr.ratio_direct, sig=10)}, отличие от формулы Виллиса "
-                f"{fmt(tr.scalars['train_u_discrepancy_pct'], sig=2)} %.")
+                f"{_pct(tr.scalars['train_u_discrepancy_pct'])} %."
+                + (" При большом передаточном отношении отрезок выходного звена на плане мал, и "
+                   "графическая проверка выполняется по ступеням." if abs(tr.ratio) > 20 else ""))
 
 
 def conclusion_lines(study) -> list[str]:
