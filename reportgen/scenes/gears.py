@@ -119,6 +119,22 @@ def mesh_drawing(gears) -> MeshDrawing:
                          (B1, "$B_1$", (-4, 5)), (B2, "$B_2$", (3, 5))):
         ax.plot(*pt, "o", ms=2.5, color=INK)
         ax.annotate(lab, tuple(pt), xytext=off, textcoords="offset points", fontsize=9)
+    # active profiles of the pair of teeth in contact at P: φ(r) = φ_P + inv α_r − inv α_w
+    for c, rb, ra, rho_p, base, col in ((O1, g.db1 / 2, float(g.da1) / 2, float(g.rho_p1), math.pi / 2, RED),
+                                        (O2, g.db2 / 2, float(g.da2) / 2, float(g.rho_p2), 1.5 * math.pi, BLUE)):
+        rr = np.linspace(math.hypot(rb, rho_p), ra, 60)
+        ph = base + G.inv(np.arccos(rb / rr)) - G.inv(alw)
+        ax.plot(c[0] + rr * np.cos(ph), c[1] + rr * np.sin(ph), color=col, lw=2.6, solid_capstyle="butt")
+    # arcs of action on the working circles: gear 1 turns by (ρ_a1 − ρ_p1)/r_b1 = 2π ε_α/z₁
+    rho_P = r_w1 * math.sin(alw)
+    d1, d2 = (rho_P - float(g.rho_p1)) / (g.db1 / 2), (float(g.rho_a1) - rho_P) / (g.db1 / 2)
+    t1 = np.linspace(math.pi / 2 - d2, math.pi / 2 + d1, 80)
+    k = r_w1 / r_w2
+    t2 = np.linspace(1.5 * math.pi - d1 * k, 1.5 * math.pi + d2 * k, 80)
+    ax.plot(r_w1 * np.cos(t1), r_w1 * np.sin(t1), color=RED, lw=1.8, alpha=0.7)
+    ax.plot(r_w2 * np.cos(t2), aw + r_w2 * np.sin(t2), color=BLUE, lw=1.8, alpha=0.7)
+    ax.annotate("дуги зацепления", (r_w1 * math.cos(t1[0]), r_w1 * math.sin(t1[0])), xytext=(4, -12),
+                textcoords="offset points", fontsize=7)
     ax.axvline(0, color=GREY, lw=0.5, ls="-.")
     b1b2 = float(np.hypot(*(B2 - B1))) / cv.mu
     b1b2_read = round(b1b2 * 2) / 2
@@ -234,6 +250,9 @@ def blocking_contour(gears):
     if not geo.internal:
         iso(geo.rho_p2 - geo.rho_l2, 0.0, "#008837", ":", "интерференция (колесо 2)")
     iso(L1 - L2, 0.0, "#e08214", "-.", "$\\lambda_{1max} = \\lambda_{2max}$")
+    cs = ax.contour(X1, X2, np.where(np.isfinite(geo.eps), geo.eps, np.nan), levels=[1.3, 1.4, 1.5, 1.6],
+                    colors=[GREY], linewidths=0.5)
+    ax.clabel(cs, fmt=lambda v: f"ε={v:.1f}".replace(".", ","), fontsize=6)
     x1m = float(G.x_min_undercut(gears.z1, gears.rack))
     ax.axvline(x1m, color=GREY, lw=1.0)
     handles.append(ax.plot([], [], color=GREY, lw=1.0, label="$x_{min}$ (подрезание)")[0])
