@@ -112,3 +112,14 @@ def test_double_planet_selection_all_conditions():
         m = double_planet(z1, z2, z2b, z3)
         assert 1 / willis(m)["H"] == pytest.approx(c.u, rel=1e-12)
         assert abs(c.u - 12) <= 0.02 * 12
+
+
+def test_tooth_numbers_from_coaxiality():
+    from reportgen.analysis.train import solve_coaxial
+    m = ws001_2013_5()
+    for w in ("4", "7"):
+        old = m.wheels[w]
+        m.wheels[w] = Wheel(w, 0, old.member, old.centre, old.internal, old.m)
+    got = {w: z for w, _, _, z in solve_coaxial(m)}
+    assert got == {"4": 20, "7": 74}
+    assert Fraction(1 / willis(m)["H2"]).limit_denominator(1000) == Fraction(731, 11)

@@ -151,6 +151,8 @@ def place_axes(model: TrainModel) -> tuple[dict[str, float], list[tuple[str, str
             if (a, b) in done:
                 continue
             ca, cb = model.wheels[a].centre, model.wheels[b].centre
+            if model.wheels[a].z == 0 or model.wheels[b].z == 0:
+                continue            # a tooth number still to come from coaxiality
             d = dist(a, b)
             if ca in y and cb in y:
                 resid.append((f"{a}–{b}", abs(y[ca] - y[cb]) - d))
@@ -169,6 +171,44 @@ def place_axes(model: TrainModel) -> tuple[dict[str, float], list[tuple[str, str
     for a in model.axes:
         y.setdefault(a, 0.0)
     return y, resid
+
+
+def solve_coaxial(model: TrainModel) -> list[tuple[str, str, float, int]]:
+    """Tooth numbers given as "coaxial" (z = 0 in the model) from the coaxiality of their mesh:
+    the axes are placed through the other meshes, then a = |y_a − y_b| gives
+    z = 2a/m − z_p (external), z_p + 2a/m (the wheel internal), z_p − 2a/m (the partner internal).
+    Fills the model in place; returns (wheel, partner, a, z) in the order solved."""
+    out = []
+    while any(w.z == 0 for w in model.wheels.values()):
+        y, _ = place_axes(model)
+        progress = False
+        for a, b in model.meshes:
+            for w, p in ((a, b), (b, a)):
+                ww, wp = model.wheels[w], model.wheels[p]
+                if ww.z == 0 and wp.z != 0 and ww.centre in y and wp.centre in y:
+                    placed = _placed(model, ww.centre) and _placed(model, wp.centre)
+                    if not placed:
+                        continue
+                    d = abs(y[ww.centre] - y[wp.centre])
+                    n = 2 * d / ww.m
+                    z = wp.z + n if ww.internal else (wp.z - n if wp.internal else n - wp.z)
+                    if abs(z - round(z)) > 1e-9 or round(z) < 5:
+                        raise ValueError(f"wheel {w}: coaxiality gives z = {z}")
+                    model.wheels[w] = Wheel(w, int(round(z)), ww.member, ww.centre, ww.internal, ww.m)
+                    out.append((w, p, d, int(round(z))))
+                    progress = True
+        if not progress:
+            raise ValueError("coaxiality does not determine the tooth numbers")
+    return out
+
+
+def _placed(model: TrainModel, axis: str) -> bool:
+    """Is the axis placed by a mesh of known wheels (or is it the frame's first axis)?"""
+    frame_axes = [a for a, h in model.axes.items() if h == FRAME]
+    if axis == frame_axes[0]:
+        return True
+    return any(model.wheels[a].z and model.wheels[b].z and axis in (model.wheels[a].centre, model.wheels[b].centre)
+               for a, b in model.meshes)
 
 
 def direct(model: TrainModel, fixed=None, inp=None) -> dict[str, float]:
@@ -315,7 +355,7 @@ def read_model(node: Node, names) -> tuple[TrainModel, dict]:
         if name in wheels:
             raise wn.error("name", f"колесо «{name}» задано дважды", expected="уникальные имена колёс")
         zraw = wn.raw("z")
-        z = 0 if zraw == "select" and sel.data else wn.integer("z", minimum=5)
+        z = 0 if (zraw == "select" and sel.data) or zraw == "coaxial" else wn.integer("z", minimum=5)
         member = wn.string("member", name)
         members.setdefault(member, "O")
         m = wn.quantity("module", U.LENGTH, names, positive=True) * 1000.0 if wn.has("module") else m0
@@ -405,6 +445,11 @@ class Train:
             model.wheels = {n: (Wheel(n, mapping.get(n, w.z), w.member, w.centre, w.internal, w.m))
                             for n, w in model.wheels.items()}
         self.model = model
+        try:
+            self.coaxial_solved = solve_coaxial(model)
+        except ValueError:
+            raise CaseError("числа зубьев «coaxial» не определяются из условия соосности", file=study.root.file,
+                            key="train.wheel", expected="зацепление, замыкающее контур осей") from None
         try:
             self.w_willis = {k: (0.0 if abs(v) < 1e-12 else v) for k, v in willis(model).items()}
             self.w_direct = {k: (0.0 if abs(v) < 1e-12 else v) for k, v in direct(model).items()}

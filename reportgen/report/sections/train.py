@@ -89,6 +89,20 @@ def _wheels(sec: Section, tr) -> None:
                                      Column("m", "<i>m</i>", "мм", sig=3), Column("d", "<i>d</i>", "мм", sig=5),
                                      Column("member", "Звено", fmt=str), Column("kind", "Венец", fmt=str)],
               df, id="tab-train-wheels")
+    if tr.coaxial_solved:
+        sec.paragraph("Недостающие числа зубьев найдены из условия соосности: межосевое расстояние "
+                      "<i>a</i> зацепления задано остальными зацеплениями того же контура осей.")
+        forms = []
+        for w, p, d, z in tr.coaxial_solved:
+            ww, wp = m.wheels[w], m.wheels[p]
+            if ww.internal:
+                sym, num = rf"z_{{{p}}} + \frac{{2a}}{{m}}", rf"{wp.z} + \frac{{2 \cdot {tex_num(d, sig=6)}}}{{{tex_num(ww.m, sig=4)}}}"
+            elif wp.internal:
+                sym, num = rf"z_{{{p}}} - \frac{{2a}}{{m}}", rf"{wp.z} - \frac{{2 \cdot {tex_num(d, sig=6)}}}{{{tex_num(ww.m, sig=4)}}}"
+            else:
+                sym, num = rf"\frac{{2a}}{{m}} - z_{{{p}}}", rf"\frac{{2 \cdot {tex_num(d, sig=6)}}}{{{tex_num(ww.m, sig=4)}}} - {wp.z}"
+            forms.append(Formula(rf"z_{{{w}}} = {sym}", num, str(z)))
+        sec.formula(*forms)
     bad = [(n, r) for n, r in tr.coaxiality if abs(r) > 1e-9]
     if tr.coaxiality:
         text = ("Условие соосности выполнено для всех замкнутых контуров осей." if not bad else
