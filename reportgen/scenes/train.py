@@ -74,7 +74,10 @@ def train_picture(train) -> TrainPicture:
             ax.plot([x, x], [yc - r, yc + r], color=c, lw=2.2)
             ax.plot([x - 0.12, x + 0.12], [yc + r] * 2, color=c, lw=1.2)
             ax.plot([x - 0.12, x + 0.12], [yc - r] * 2, color=c, lw=1.2)
-        ax.annotate(name, (x, yc + r), xytext=(-10, 2), textcoords="offset points", fontsize=9, color=c)
+        if wh.internal:
+            ax.annotate(name, (x, yc - r), xytext=(-10, -11), textcoords="offset points", fontsize=9, color=c)
+        else:
+            ax.annotate(name, (x, yc + r), xytext=(-10, 2), textcoords="offset points", fontsize=9, color=c)
     # member shafts and carriers
     for mem, axis in m.members.items():
         xs = [col[n] * dx for n, wh in m.wheels.items() if wh.member == mem and wh.centre == axis]
@@ -124,6 +127,7 @@ def train_picture(train) -> TrainPicture:
         vp = vel(m.wheels[a].member, yp)
         av.plot([0, vp], [yp, yp], color=GREY, lw=0.6)
         av.plot([vp], [yp], "o", ms=3, color=INK)
+        av.annotate(f"$P_{{{a}{b}}}$", (vp, yp), xytext=(4, 2), textcoords="offset points", fontsize=8)
     for a in set(y.values()):
         av.axhline(a, color=GREY, lw=0.4, ls=":")
     av.axvline(0, color=INK, lw=0.8)
