@@ -119,3 +119,10 @@ def test_choice_on_a_required_centre_distance(tmp_path):
     gr = load_case(p).gears
     assert gr.x1 + gr.x2 == pytest.approx(gr.xsum_required, abs=1e-9)
     assert float(gr.geo.a_w) == pytest.approx(125.0, rel=1e-12)
+
+
+@pytest.mark.parametrize("z,k,W", [(17, 2, 4.6663), (20, 3, 7.6604)])
+def test_span_against_the_standard_table(z, k, W):
+    """Common normal W* for m = 1, x = 0 from the handbook tables (ГОСТ 16532-70 прил.)."""
+    assert G.span_teeth(z, 0.0, AL) == k
+    assert float(G.span(1.0, z, 0.0, AL, k)) == pytest.approx(W, abs=6e-5)
