@@ -49,6 +49,8 @@ def admissible(geo: G.PairGeometry, s_a_min, eps_min, X1=None, X2=None):
     if not geo.internal:
         ok &= geo.x2 >= G.x_min_undercut(geo.z2, r) - 1e-12
         ok &= geo.rho_p2 >= geo.rho_l2
+    else:
+        ok &= geo.da2 > geo.db2          # the ring's tip circle outside its base circle (involute exists)
     return ok & np.isfinite(geo.eps)
 
 
@@ -106,8 +108,8 @@ class Gears:
         self.s_a_min = node.quantity("s_a_min", U.DIMENSIONLESS, names, default=0.25, nonnegative=True)
         self.eps_min = node.quantity("eps_min", U.DIMENSIONLESS, names, default=1.2, positive=True)
         self.omega1 = node.quantity("omega1", U.ANGULAR_VELOCITY, names, positive=True) if node.has("omega1") else None
-        lo = math.floor(10 * min(-0.6, *(float(G.x_min_undercut(z, self.rack)) - 0.1
-                                         for z in (self.z1, self.z2 or self.z1)))) / 10
+        ext = (self.z1,) if self.internal or not self.z2 else (self.z1, self.z2)
+        lo = math.floor(10 * min(-0.6, *(float(G.x_min_undercut(z, self.rack)) - 0.1 for z in ext))) / 10
         rng = node.raw("x_range", [lo, 1.6])
         if not (isinstance(rng, list) and len(rng) == 2 and all(isinstance(v, (int, float)) for v in rng)
                 and rng[0] < rng[1]):
@@ -225,9 +227,12 @@ class Gears:
         rows = []
         g = self.geo
 
+        ring_na = {"s_chord", "h_chord", "k", "W", "xmin"} if self.internal else set()
+
         def add(key, name, sym, unit, v1, v2=None):
+            # chordal size, span and the rack undercut limit do not apply to a ring (internal teeth)
             rows.append({"key": key, "name": name, "symbol": sym, "unit": unit, "wheel1": float(v1),
-                         "wheel2": None if v2 is None else float(v2)})
+                         "wheel2": None if v2 is None or key in ring_na else float(v2)})
 
         zs = [self.z1] + ([self.z2] if self.z2 else [])
         xs = [self.x1] + ([self.x2] if self.z2 else [])

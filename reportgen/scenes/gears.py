@@ -198,7 +198,8 @@ def rack_drawing(gears):
 def sliding_diagram(gears):
     """λ₁ and λ₂ along N₁N₂ (from N₁), the active part B₁B₂ marked."""
     g = gears.geo
-    rho = np.linspace(0.02 * float(g.g), 0.98 * float(g.g), 400)
+    hi = float(g.g) if not g.internal else 1.1 * float(g.rho_a1)
+    rho = np.linspace(0.02 * hi, 0.98 * hi, 400)
     l1, l2, _ = G.sliding(g, rho)
     fig = mplstyle.figure(160, 85)
     ax = fig.add_subplot()
@@ -213,7 +214,7 @@ def sliding_diagram(gears):
     ax.axhline(0, color=INK, lw=0.6)
     ax.axhline(1, color=GREY, lw=0.5, ls=":")
     ax.set_ylim(-4, 1.3)
-    ax.set_xlim(0, float(g.g))
+    ax.set_xlim(0, hi)
     ax.set_xlabel("расстояние от $N_1$ вдоль линии зацепления, мм")
     ax.set_ylabel("$\\lambda$")
     ax.legend(loc="lower center")

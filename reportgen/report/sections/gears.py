@@ -147,6 +147,11 @@ def _geometry(sec: Section, gr) -> None:
                   f"{fmt(float(g.rho_l1), sig=4)} мм" + ("" if gr.internal else
                   f"; ρ<sub>p2</sub> = {fmt(float(g.rho_p2), sig=4)} мм, ρ<sub>l2</sub> = {fmt(float(g.rho_l2), sig=4)} мм")
                   + (" — есть" if interf else " — нет (ρ<sub>p</sub> ≥ ρ<sub>l</sub>)"))
+    if gr.internal:
+        okr = float(g.da2) > g.db2
+        checks.append(f"внутреннее колесо: <i>d</i><sub>a2</sub> = {fmt(float(g.da2), sig=6)} мм "
+                      f"{'&gt;' if okr else '≤'} <i>d</i><sub>b2</sub> = {fmt(g.db2, sig=6)} мм — "
+                      f"{'эвольвента у вершины существует' if okr else 'вершина зуба внутри основной окружности'}")
     s.paragraph("Проверки качества зацепления: <ul>" + "".join(f"<li>{c};</li>" for c in checks) + "</ul>")
 
 
