@@ -123,3 +123,65 @@ def test_tooth_numbers_from_coaxiality():
     got = {w: z for w, _, _, z in solve_coaxial(m)}
     assert got == {"4": 20, "7": 74}
     assert Fraction(1 / willis(m)["H2"]).limit_denominator(1000) == Fraction(731, 11)
+
+
+TRAIN_CASES = sorted(p.stem for p in __import__("pathlib").Path(__file__).resolve().parents[1].glob("cases/*.toml")
+                     if "[train]" in p.read_text(encoding="utf-8"))
+
+
+def test_ratio_chain_telescopes():
+    from reportgen.analysis.train import ratio_chain
+    m = ws001_2013_5()
+    w = willis(m)
+    chain = ratio_chain(w, "1", "H2")
+    assert chain[0] == "1" and chain[-1] == "H2" and "3" not in chain
+    mags = [abs(w[n]) for n in chain]
+    assert mags == sorted(mags, reverse=True)
+    prod = 1.0
+    for a, b in zip(chain, chain[1:]):
+        prod *= w[a] / w[b]
+    assert prod == pytest.approx(1 / w["H2"], rel=1e-12)
+
+
+@pytest.mark.parametrize("case", TRAIN_CASES)
+def test_graphical_ratio_by_stages_and_labels(case):
+    """Stage-by-stage plans read to 0,5 mm give the ratio within 2 %; no two labels (nor a label
+    and a title) overlap in the scheme, the velocity picture, the plans."""
+    from pathlib import Path
+
+    from reportgen import load_case
+    from reportgen.scenes.train import READ_MM, stage_plans, text_overlaps, train_picture
+    tr = load_case(Path(__file__).resolve().parents[1] / "cases" / f"{case}.toml").train
+    st = stage_plans(tr)
+    assert abs(st.u_graph - tr.ratio) / abs(tr.ratio) < 0.02
+    for a, b, sa, sb in st.stages:
+        assert sa % READ_MM == 0 and sb % READ_MM == 0 and max(abs(sa), abs(sb)) >= 50
+        assert sa / sb == pytest.approx(tr.w_willis[a] / tr.w_willis[b], rel=0.02)
+    pic = train_picture(tr)
+    for fig in (pic.fig, st.fig):
+        titles = [a.title for a in fig.axes if a.title.get_text()]
+        for ax in fig.axes:
+            assert ax.texts
+            assert text_overlaps(fig, ax.texts + titles) == []
+
+
+@pytest.mark.parametrize("case", TRAIN_CASES)
+def test_scheme_symmetric_about_central_axis(case):
+    """Every line of the scheme has its mirror image about the central axis (planets on both
+    sides, as in the textbook schemes)."""
+    from pathlib import Path
+
+    import numpy as np
+
+    from reportgen import load_case
+    from reportgen.scenes.train import train_picture
+    tr = load_case(Path(__file__).resolve().parents[1] / "cases" / f"{case}.toml").train
+    ax = train_picture(tr).fig.axes[0]
+    lines = [np.round(np.c_[ln.get_xdata(), ln.get_ydata()].astype(float), 6) for ln in ax.lines
+             if len(ln.get_xdata()) == 2 and ln.get_linestyle() == "-"]
+    keys = {tuple(map(tuple, ln)) for ln in lines} | {tuple(map(tuple, ln[::-1])) for ln in lines}
+    for ln in lines:
+        mir = ln * np.array([1.0, -1.0]) + 0.0
+        assert tuple(map(tuple, mir)) in keys
+    off = [w for w in tr.model.wheels.values() if abs(tr.positions[w.centre]) > 1e-9]
+    assert off            # both cases have wheels off the axis, drawn twice

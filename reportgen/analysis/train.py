@@ -39,7 +39,7 @@ from ..case import units as U
 from ..case.reader import Node
 from ..errors import CaseError
 
-__all__ = ["Wheel", "TrainModel", "Train", "willis", "direct", "select_2kh", "Candidate"]
+__all__ = ["Wheel", "TrainModel", "Train", "willis", "direct", "select_2kh", "Candidate", "ratio_chain"]
 
 FRAME = "0"
 
@@ -257,6 +257,18 @@ def pitch_points(model: TrainModel) -> dict[tuple[str, str], float]:
         else:
             out[(a, b)] = ya + math.copysign(wa.m * wa.z / 2, yb - ya)
     return out
+
+
+def ratio_chain(w: dict[str, float], inp: str, out: str) -> list[str]:
+    """Members from the input to the output ordered by |ω| (moving members whose |ω| lies between
+    those of the input and the output).  The ratio is the product of the stage ratios
+    u = Π ω_k/ω_{k+1} along the chain (the product telescopes), each stage ratio being moderate,
+    so each stage's plan of angular velocities can be drawn and read at a useful scale."""
+    a, b = abs(w[inp]), abs(w[out])
+    lo, hi = min(a, b), max(a, b)
+    mid = [n for n, v in w.items() if n not in (inp, out) and abs(v) > 1e-12 and lo < abs(v) < hi]
+    mid.sort(key=lambda n: abs(w[n]), reverse=bool(a > b))
+    return [inp, *mid, out]
 
 
 # ------------------------------------------------------------------------- tooth-number selection

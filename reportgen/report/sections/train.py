@@ -10,7 +10,7 @@ import math
 import pandas as pd
 
 from ...analysis.train import FRAME
-from ...scenes.train import train_picture
+from ...scenes.train import stage_plans, train_picture
 from ...style.numbers import fmt, tex_num
 from ..document import Column, Formula, Section, ref
 
@@ -147,20 +147,30 @@ def _picture(sec: Section, tr) -> None:
     pic = train_picture(tr)
     m = tr.model
     s.paragraph(f"Скорости точек каждого звена распределены по прямой; в полюсах зацепления скорости колёс "
-                f"равны (рисунок {ref('fig-train')}). Прямые из полюса плана угловых скоростей, параллельные "
-                f"линиям скоростей звеньев, отсекают на горизонтали отрезки, пропорциональные угловым скоростям.")
+                f"равны (рисунок {ref('fig-train')}; схема симметрична относительно центральной оси, "
+                f"картина скоростей построена для её верхней половины в том же масштабе). Прямые из полюса "
+                f"плана угловых скоростей, параллельные линиям скоростей звеньев, отсекают на горизонтали "
+                f"отрезки, пропорциональные угловым скоростям.")
     s.figure("Схема механизма, картина линейных скоростей и план угловых скоростей", pic.fig, 170, id="fig-train")
-    si, so = pic.segments_mm[m.inp], pic.segments_mm[m.out]
-    d = (pic.u_graph - tr.ratio) / tr.ratio * 100 if math.isfinite(pic.u_graph) else math.nan
-    s.formula(rf"u^{{граф}}_{{{m.inp}\,{m.out}}} = \frac{{(0{m.inp})}}{{(0{m.out})}}",
-              rf"\frac{{{tex_num(si, sig=4)}}}{{{tex_num(so, sig=4)}}}",
-              tex_num(pic.u_graph, sig=5) if math.isfinite(pic.u_graph) else r"\infty")
-    s.paragraph(f"Расхождение графического и аналитического значений: {_pct(d)} % (отрезки плана "
+    st = stage_plans(tr)
+    d = (st.u_graph - tr.ratio) / tr.ratio * 100
+    s.paragraph(
+        f"На общем плане отрезки звеньев с малой угловой скоростью коротки, и их отношение читается грубо. "
+        f"Поэтому передаточное отношение определяется графически по ступеням: звенья упорядочены по "
+        f"модулю угловой скорости ({' → '.join(a for a, *_ in st.stages)} → {m.out}), и для каждой пары "
+        f"соседних звеньев построен свой план угловых скоростей в своём масштабе (рисунок "
+        f"{ref('fig-train-stages')}); искомое отношение равно произведению отношений ступеней.")
+    s.figure("Планы угловых скоростей по ступеням", st.fig, 170, id="fig-train-stages")
+    forms = [Formula(rf"u_{{{a}\,{b}}} = \frac{{(0{a})}}{{(0{b})}}",
+                     rf"\frac{{{tex_num(sa, digits=1)}}}{{{tex_num(sb, digits=1)}}}", tex_num(sa / sb, sig=5))
+             for a, b, sa, sb in st.stages]
+    s.formula(*forms)
+    prod = r" \cdot ".join(rf"u_{{{a}\,{b}}}" for a, b, *_ in st.stages)
+    s.formula(rf"u^{{граф}}_{{{m.inp}\,{m.out}}} = {prod}", tex_num(st.u_graph, sig=5))
+    s.paragraph(f"Расхождение графического и аналитического значений: {_pct(d)} % (отрезки планов "
                 f"измерены с точностью 0,5 мм). Прямой расчёт по равенству скоростей в полюсах даёт "
                 f"<i>u</i> = {fmt(tr.ratio_direct, sig=10)}, отличие от формулы Виллиса "
-                f"{_pct(tr.scalars['train_u_discrepancy_pct'])} %."
-                + (" При большом передаточном отношении отрезок выходного звена на плане мал, и "
-                   "графическая проверка выполняется по ступеням." if abs(tr.ratio) > 20 else ""))
+                f"{_pct(tr.scalars['train_u_discrepancy_pct'])} %.")
 
 
 def conclusion_lines(study) -> list[str]:
