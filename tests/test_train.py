@@ -185,3 +185,35 @@ def test_scheme_symmetric_about_central_axis(case):
         assert tuple(map(tuple, mir)) in keys
     off = [w for w in tr.model.wheels.values() if abs(tr.positions[w.centre]) > 1e-9]
     assert off            # both cases have wheels off the axis, drawn twice
+
+
+def test_printed_coaxiality_judged():
+    """Worksheet 2013-5 writes z1 − z2 = z4 + z3 (a difference the wrong way round: −80 = 80);
+    the train's own condition is z2 − z1 = z4 + z3; z7 − z6 = z5 + z6 is right."""
+    from reportgen.analysis.train import coaxiality_equations, judge_printed_coaxiality, parse_linear
+    m = ws001_2013_5()
+    eqs = {mesh: (p, c) for mesh, p, c in coaxiality_equations(m)}
+    assert eqs[("4", "3")] == ({"2": 1, "1": -1}, {"4": 1, "3": 1})
+    assert eqs[("6", "7")] == ({"5": 1, "6": 1}, {"7": 1, "6": -1})
+    j = judge_printed_coaxiality(m, "z1 - z2 = z4 + z3")
+    assert not j["ok"] and j["flipped"] and (j["lhs"], j["rhs"]) == (-80, 80)
+    assert judge_printed_coaxiality(m, "z7 − z6 = z5 + z6")["ok"]
+    assert judge_printed_coaxiality(m, "z_{4} + z_3 = z2 - z1")["ok"]
+    assert judge_printed_coaxiality(m, "2z7 - 2z6 = 2z5 + 2z6")["ok"]
+    # 2K-H: z3 − z2 = z1 + z2 (i.e. z3 = z1 + 2z2)
+    (mesh, p, c), = coaxiality_equations(two_kh(17, 34, 85))
+    assert p == {"1": 1, "2": 1} and c == {"3": 1, "2": -1}
+    for bad in ("z1 - z9 = z4", "z1 z2 = z3", "z1 = z2 = z3"):
+        with pytest.raises(ValueError):
+            parse_linear(bad, m.wheels)
+
+
+def test_note_says_where_the_worksheet_coaxiality_is_wrong():
+    from pathlib import Path
+
+    from reportgen import load_case
+    from reportgen.report.sections import train as sec
+    st = load_case(Path(__file__).resolve().parents[1] / "cases" / "ws001_train_2013_5.toml")
+    html = repr(sec.build(st))
+    assert "«z1 - z2 = z4 + z3»" in html and "−80" in html and "обратном порядке" in html
+    assert "z_{2} - z_{1} = z_{4} + z_{3}" in html and "«z7 - z6 = z5 + z6» верно" in html

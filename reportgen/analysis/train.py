@@ -39,7 +39,8 @@ from ..case import units as U
 from ..case.reader import Node
 from ..errors import CaseError
 
-__all__ = ["Wheel", "TrainModel", "Train", "willis", "direct", "select_2kh", "Candidate", "ratio_chain"]
+__all__ = ["Wheel", "TrainModel", "Train", "willis", "direct", "select_2kh", "Candidate", "ratio_chain",
+           "coaxiality_equations", "parse_linear", "judge_printed_coaxiality"]
 
 FRAME = "0"
 
@@ -131,10 +132,23 @@ def willis(model: TrainModel, fixed=None, inp=None) -> dict[str, float]:
     return _solve(rows, rhs, names)
 
 
-def place_axes(model: TrainModel) -> tuple[dict[str, float], list[tuple[str, str, float]]]:
+def _dist_terms(model: TrainModel, a: str, b: str) -> dict[str, float]:
+    """Centre distance of a mesh as a linear form in the tooth numbers, mm per tooth:
+    m(z_a + z_b)/2 external, m(z_int − z_ext)/2 internal."""
+    wa, wb = model.wheels[a], model.wheels[b]
+    if wa.internal or wb.internal:
+        big, small = (a, b) if wa.internal else (b, a)
+        return {big: wa.m / 2, small: -wa.m / 2}
+    return {a: wa.m / 2, b: wa.m / 2}
+
+
+def place_axes(model: TrainModel, loops: list | None = None) -> tuple[dict[str, float], list[tuple[str, str, float]]]:
     """Axis positions on the scheme's line (breadth-first from the frame's first axis): a
     deeper axis is placed above its partner.  Returns positions and the coaxiality residuals
-    (mesh, |Δy| − a) of meshes closing a loop."""
+    (mesh, |Δy| − a) of meshes closing a loop.  With ``loops`` given, it receives for every closing
+    mesh the coaxiality equation as two linear forms in the tooth numbers (mm per tooth):
+    (mesh, path, closing) with path = y_b − y_a along the placing meshes (made positive) and
+    closing = the mesh's own centre distance; the condition is path = closing."""
     def dist(a, b):
         wa, wb = model.wheels[a], model.wheels[b]
         if wa.m != wb.m:
@@ -142,6 +156,7 @@ def place_axes(model: TrainModel) -> tuple[dict[str, float], list[tuple[str, str
         return wa.m * (abs(wa.z - wb.z) if (wa.internal or wb.internal) else wa.z + wb.z) / 2
     frame_axes = [a for a, h in model.axes.items() if h == FRAME]
     y = {frame_axes[0]: 0.0}
+    sym: dict[str, dict[str, float]] = {frame_axes[0]: {}}
     resid = []
     changed = True
     done = set()
@@ -156,21 +171,109 @@ def place_axes(model: TrainModel) -> tuple[dict[str, float], list[tuple[str, str
             d = dist(a, b)
             if ca in y and cb in y:
                 resid.append((f"{a}–{b}", abs(y[ca] - y[cb]) - d))
+                if loops is not None:
+                    sg = 1.0 if y[cb] >= y[ca] else -1.0
+                    path = {w: sg * (sym[cb].get(w, 0.0) - sym[ca].get(w, 0.0))
+                            for w in set(sym[ca]) | set(sym[cb])}
+                    loops.append(((a, b), {w: c for w, c in path.items() if abs(c) > 1e-12},
+                                  _dist_terms(model, a, b)))
                 done.add((a, b)); changed = True
             elif ca in y or cb in y:
                 k, u = (ca, cb) if ca in y else (cb, ca)
                 sgn = 1.0 if model.depth(u) >= model.depth(k) else -1.0
                 y[u] = y[k] + sgn * d
+                sym[u] = dict(sym[k])
+                for w, c in _dist_terms(model, a, b).items():
+                    sym[u][w] = sym[u].get(w, 0.0) + sgn * c
                 done.add((a, b)); changed = True
         if not changed:
             for a in model.axes:
                 if a not in y and model.axes[a] == FRAME:
                     y[a] = max(y.values()) + 1.0  # an unconnected frame axis: never meshes
+                    sym[a] = {}
                     changed = True
                     break
     for a in model.axes:
         y.setdefault(a, 0.0)
     return y, resid
+
+
+def coaxiality_equations(model: TrainModel) -> list[tuple[tuple[str, str], dict[str, Fraction], dict[str, Fraction]]]:
+    """The coaxiality conditions of the train, one per mesh closing a loop of axes, as integer
+    linear forms in the tooth numbers (the common factor m/2 divided out): path = closing."""
+    loops: list = []
+    place_axes(model, loops)
+    out = []
+    for mesh, path, close in loops:
+        unit = min(abs(c) for c in list(path.values()) + list(close.values()))
+        f = lambda t: {w: Fraction(c / unit).limit_denominator(1000) for w, c in t.items()}  # noqa: E731
+        out.append((mesh, f(path), f(close)))
+    return out
+
+
+_TERM = r"([+-]?)(\d*)\*?z_?(?:\{([^{}]+)\}|([A-Za-z0-9'′]+))"
+
+
+def _side(text: str, wheels) -> dict[str, Fraction]:
+    """One side of a printed equation, «z1 − z2», as {wheel: coefficient}."""
+    import re
+    body = text.replace("−", "-").replace(" ", "")
+    pos, form = 0, {}
+    while pos < len(body):
+        mt = re.compile(_TERM).match(body, pos)
+        if not mt or (pos and not mt.group(1)):
+            raise ValueError(f"не разобрано: «{text.strip()}»")
+        sg, k, n1, n2 = mt.groups()
+        n = (n1 or n2).replace("′", "'")
+        if n not in wheels:
+            raise ValueError(f"неизвестное колесо «{n}»")
+        form[n] = form.get(n, Fraction(0)) + (-1 if sg == "-" else 1) * int(k or 1)
+        pos = mt.end()
+    if not form:
+        raise ValueError(f"пустая часть равенства: «{text.strip()}»")
+    return form
+
+
+def parse_linear(text: str, wheels) -> tuple[dict[str, Fraction], dict[str, Fraction]]:
+    """«z1 − z2 = z4 + z3» → (lhs, rhs) as {wheel: coefficient}; ValueError on anything else.
+    Terms are [±][integer] z<name> (z_<name>, z_{<name>} also accepted)."""
+    if text.count("=") != 1:
+        raise ValueError("ожидалось одно равенство")
+    left, right = text.split("=")
+    return _side(left, wheels), _side(right, wheels)
+
+
+def _proportional(a: dict, b: dict) -> bool:
+    if set(a) != set(b) or not a:
+        return False
+    w0 = next(iter(a))
+    r = a[w0] / b[w0]
+    return all(a[w] == r * b[w] for w in a)
+
+
+def judge_printed_coaxiality(model: TrainModel, text: str) -> dict:
+    """Check a printed coaxiality equation against the train's: returns {"ok": bool, "flipped":
+    one side written with the wrong sign (a difference the wrong way round), "lhs"/"rhs": the
+    printed sides' values with the tooth numbers, "correct": (path, closing) of the matching loop
+    or None}."""
+    lhs, rhs = parse_linear(text, model.wheels)
+    form = {w: lhs.get(w, 0) - rhs.get(w, 0) for w in set(lhs) | set(rhs)}
+    form = {w: c for w, c in form.items() if c}
+    val = lambda t: sum(c * model.wheels[w].z for w, c in t.items())  # noqa: E731
+    out = {"ok": False, "flipped": False, "lhs": val(lhs), "rhs": val(rhs), "correct": None}
+    for _, path, close in coaxiality_equations(model):
+        true = {w: path.get(w, 0) - close.get(w, 0) for w in set(path) | set(close)}
+        true = {w: c for w, c in true.items() if c}
+        if set(true) != set(form):
+            continue
+        out["correct"] = (path, close)
+        if _proportional(form, true):
+            out["ok"] = True
+        else:
+            alt = {w: -lhs.get(w, 0) - rhs.get(w, 0) for w in set(lhs) | set(rhs)}
+            out["flipped"] = _proportional({w: c for w, c in alt.items() if c}, true)
+        break
+    return out
 
 
 def solve_coaxial(model: TrainModel) -> list[tuple[str, str, float, int]]:
@@ -411,7 +514,13 @@ def read_model(node: Node, names) -> tuple[TrainModel, dict]:
                          expected="оси сателлитов на водиле ([train.axes])") from None
     printed = {k: float(v) for k, v in node.table("printed").data.items()
                if isinstance(v, (int, float)) and not isinstance(v, bool)}
-    opts = {"printed": printed, "target": node.quantity("target", U.DIMENSIONLESS, names) if node.has("target") else None,
+    eqs = node.table("printed").data.get("coaxiality", [])
+    if isinstance(eqs, str):
+        eqs = [eqs]
+    if not isinstance(eqs, list) or not all(isinstance(e, str) for e in eqs):
+        raise node.error("printed", "coaxiality: ожидался список равенств-строк",
+                         expected='coaxiality = ["z1 - z2 = z4 + z3"]')
+    opts = {"printed": printed, "printed_coaxiality": eqs, "target": node.quantity("target", U.DIMENSIONLESS, names) if node.has("target") else None,
             "planets": node.integer("planets", 1, minimum=1),
             "tolerance": node.quantity("tolerance", U.DIMENSIONLESS, names, default=0.03, nonnegative=True)}
     if sel.data:
@@ -470,6 +579,13 @@ class Train:
                             "вход и зацепления", file=study.root.file, key="train",
                             expected="механизм с одной степенью свободы") from None
         self.positions, self.coaxiality = place_axes(model)
+        self.printed_coaxiality = []
+        for text in self.opts["printed_coaxiality"]:
+            try:
+                self.printed_coaxiality.append((text, judge_printed_coaxiality(model, text)))
+            except ValueError as e:
+                raise CaseError(f"равенство «{text}»: {e}", file=study.root.file, key="train.printed.coaxiality",
+                                expected="z1 - z2 = z4 + z3 (имена колёс из [[train.wheel]])") from None
 
     @property
     def ratio(self) -> float:

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 import pandas as pd
+from markupsafe import Markup
 
 from ...analysis.train import FRAME
 from ...scenes.train import stage_plans, train_picture
@@ -103,11 +104,56 @@ def _wheels(sec: Section, tr) -> None:
                 sym, num = rf"\frac{{2a}}{{m}} - z_{{{p}}}", rf"\frac{{2 \cdot {tex_num(d, sig=6)}}}{{{tex_num(ww.m, sig=4)}}} - {wp.z}"
             forms.append(Formula(rf"z_{{{w}}} = {sym}", num, str(z)))
         sec.formula(*forms)
+    _printed_coaxiality(sec, tr)
     bad = [(n, r) for n, r in tr.coaxiality if abs(r) > 1e-9]
     if tr.coaxiality:
         text = ("Условие соосности выполнено для всех замкнутых контуров осей." if not bad else
                 "Условие соосности нарушено: " + "; ".join(f"зацепление {n}: {fmt(r, sig=3)} мм" for n, r in bad) + ".")
         sec.paragraph(text)
+
+
+def _form(t: dict) -> str:
+    """A linear form in the tooth numbers as TeX, positive terms first: «z_{2} - z_{1}»."""
+    out = ""
+    for w, c in sorted(t.items(), key=lambda wc: wc[1] < 0):
+        k = "" if abs(c) == 1 else str(abs(c))
+        out += (" - " if c < 0 else (" + " if out else "")) + k + _z(w)
+    return out.strip()
+
+
+def _num(v) -> str:
+    """A value of a linear form in tooth numbers (a Fraction): whole numbers as integers."""
+    return fmt(float(v), digits=0) if v == int(v) else fmt(float(v), sig=6)
+
+
+def _printed_coaxiality(sec: Section, tr) -> None:
+    """The published solution's coaxiality equations checked against the train's own."""
+    for text, j in tr.printed_coaxiality:
+        if j["ok"]:
+            sec.paragraph(Markup("Записанное в опубликованном решении условие соосности «{}» верно.").format(text))
+            continue
+        msg = Markup("В опубликованном решении условие соосности записано как «{}»: при подстановке чисел "
+                     "зубьев левая часть равна {}, правая {}.").format(text, _num(j["lhs"]),
+                                                                     _num(j["rhs"]))
+        if j["flipped"]:
+            msg += Markup(" Разность в одной из частей взята в обратном порядке (знак части неверен): "
+                          "межосевое расстояние — величина положительная.")
+        if j["correct"]:
+            msg += Markup(" Верная запись (равенство межосевых расстояний замыкающего контура, модуль сокращён):")
+        sec.paragraph(msg)
+        if j["correct"]:
+            path, close = j["correct"]
+            sec.formula(Formula(rf"{_form(path)} = {_form(close)}"))
+            v = sum(c * tr.model.wheels[w].z for w, c in path.items())
+            pr = tr.opts.get("printed", {})
+            same = [w for w in set(path) | set(close) if f"z{w}" in pr and pr[f"z{w}"] == tr.model.wheels[w].z]
+            tail = ""
+            if same:
+                nums = " − ".join(str(tr.model.wheels[w].z) for w, c in sorted(path.items(), key=lambda wc: wc[1] < 0))
+                tail = (" Напечатанные в решении " + ", ".join(f"z<sub>{w}</sub> = {tr.model.wheels[w].z}" for w in same)
+                        + f" совпадают с найденными: в численной подстановке ({nums}) части взяты в верном порядке, "
+                          "ошибка только в буквенной записи.")
+            sec.paragraph(f"При найденных числах зубьев обе части равны {_num(v)}." + tail)
 
 
 def _willis(sec: Section, tr) -> None:
