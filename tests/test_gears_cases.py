@@ -15,7 +15,7 @@ from reportgen.cli import main
 CASES = Path(__file__).resolve().parents[1] / "cases"
 
 
-@pytest.mark.parametrize("case", ["ws001_gear_2013_4", "ws001_train_2013_5", "gear_pair_shifted",
+@pytest.mark.parametrize("case", ["ws001_gear_2013_4", "ws001_train_2013_5", "gear_pair_shifted", "gear_pair_internal",
                                   "train_2kh_three_planets"])
 def test_check_and_export(case, tmp_path, capsys):
     assert main(["check", str(CASES / f"{case}.toml")]) == 0

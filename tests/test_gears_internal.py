@@ -86,3 +86,15 @@ def test_least_tooth_difference():
         dz = G.dz_min_internal(z1, x1, x2)
         assert penetration(1.0, z1, z1 + dz, x1, x2) < 1e-6
         assert penetration(1.0, z1, z1 + dz - 1, x1, x2) > 1e-3
+
+
+def test_internal_case_note_lists_the_gost_19274_checks():
+    from pathlib import Path
+
+    from reportgen import load_case
+    from reportgen.report.sections import gears as sec
+    st = load_case(Path(__file__).resolve().parents[1] / "cases" / "gear_pair_internal.toml")
+    text = repr(sec.build(st))
+    assert "поправкой Δ = 0,2872" in text and "трохоидальная" in text and "z<sub>2</sub> − z<sub>1</sub> ≥ 7" in text.replace("<i>", "").replace("</i>", "")
+    g = st.gears.geo
+    assert all(float(v) >= -1e-9 for v in G.internal_checks(g).values())

@@ -49,8 +49,9 @@ def admissible(geo: G.PairGeometry, s_a_min, eps_min, X1=None, X2=None):
     if not geo.internal:
         ok &= geo.x2 >= G.x_min_undercut(geo.z2, r) - 1e-12
         ok &= geo.rho_p2 >= geo.rho_l2
-    else:
-        ok &= geo.da2 > geo.db2          # the ring's tip circle outside its base circle (involute exists)
+    else:                                # ГОСТ 19274-73: the ring's tip on its involute, no interference
+        for v in G.internal_checks(geo).values():
+            ok &= v >= -1e-9 * m
     return ok & np.isfinite(geo.eps)
 
 

@@ -148,11 +148,37 @@ def _geometry(sec: Section, gr) -> None:
                   f"; ρ<sub>p2</sub> = {fmt(float(g.rho_p2), sig=4)} мм, ρ<sub>l2</sub> = {fmt(float(g.rho_l2), sig=4)} мм")
                   + (" — есть" if interf else " — нет (ρ<sub>p</sub> ≥ ρ<sub>l</sub>)"))
     if gr.internal:
-        okr = float(g.da2) > g.db2
-        checks.append(f"внутреннее колесо: <i>d</i><sub>a2</sub> = {fmt(float(g.da2), sig=6)} мм "
-                      f"{'&gt;' if okr else '≤'} <i>d</i><sub>b2</sub> = {fmt(g.db2, sig=6)} мм — "
-                      f"{'эвольвента у вершины существует' if okr else 'вершина зуба внутри основной окружности'}")
+        _internal_checks(checks, gr, g)
     s.paragraph("Проверки качества зацепления: <ul>" + "".join(f"<li>{c};</li>" for c in checks) + "</ul>")
+
+
+def _internal_checks(checks: list, gr, g) -> None:
+    """The checks of an internal pair by ГОСТ 19274-73 (margins of ``G.internal_checks``)."""
+    c = {k: float(v) for k, v in G.internal_checks(g).items()}
+    tol = 1e-9 * gr.m
+    dlt = float(G.ring_tip_correction(gr.z2, gr.x2, gr.rack))
+    okr = c["base"] >= -tol
+    checks.append(f"внутреннее колесо: <i>d</i><sub>a2</sub> = <i>d</i><sub>2</sub> − 2(<i>h</i><sub>a</sub><sup>*</sup> − "
+                  f"<i>x</i><sub>2</sub> − Δ)<i>m</i> = {fmt(float(g.da2), sig=6)} мм с поправкой Δ = "
+                  f"{fmt(dlt, sig=4)} (окружность вершин проходит через граничную точку эвольвенты; при "
+                  f"<i>x</i><sub>2</sub> = 0 приближённо Δ = 7,55/<i>z</i><sub>2</sub>), "
+                  f"{'&gt;' if okr else '≤'} <i>d</i><sub>b2</sub> = {fmt(g.db2, sig=6)} мм — "
+                  f"{'эвольвента у вершины существует' if okr else 'вершина зуба внутри основной окружности'}")
+    okp = c["ring_root"] >= -tol
+    checks.append(f"вершина шестерни на эвольвенте колеса: ρ<sub>p2</sub> = {fmt(float(g.rho_p2), sig=4)} мм "
+                  f"{'≤' if okp else '&gt;'} ρ<sub>l2</sub> = {fmt(float(g.rho_l2), sig=4)} мм — "
+                  f"{'интерференции нет' if okp else 'интерференция у ножки колеса'}")
+    okt = c["trochoid"] >= -tol
+    checks.append(f"интерференция вершин (трохоидальная): <i>z</i><sub>1</sub>(inv α<sub>a1</sub> + δ<sub>1</sub>) + "
+                  f"(<i>z</i><sub>2</sub> − <i>z</i><sub>1</sub>) inv α<sub>w</sub> − <i>z</i><sub>2</sub>(inv α<sub>a2</sub> + "
+                  f"δ<sub>2</sub>) = {fmt(c['trochoid'], sig=3)} {'≥' if okt else '&lt;'} 0 — "
+                  f"{'нет' if okt else 'есть'}")
+    dz = G.dz_min_internal(gr.z1, float(gr.x1), float(gr.x2), gr.rack, gr.eps_min)
+    if dz is not None:
+        okz = gr.z2 - gr.z1 >= dz
+        checks.append(f"наименьшая разность чисел зубьев при данных смещениях (все проверки и ε<sub>α</sub> ≥ "
+                      f"{fmt(gr.eps_min)}): <i>z</i><sub>2</sub> − <i>z</i><sub>1</sub> ≥ {dz}; принято "
+                      f"{gr.z2 - gr.z1} — {'выполнено' if okz else 'не выполнено'}")
 
 
 def _sym_html(sym: str) -> Markup:
