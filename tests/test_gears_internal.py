@@ -98,3 +98,27 @@ def test_internal_case_note_lists_the_gost_19274_checks():
     assert "поправкой Δ = 0,2872" in text and "трохоидальная" in text and "z<sub>2</sub> − z<sub>1</sub> ≥ 7" in text.replace("<i>", "").replace("</i>", "")
     g = st.gears.geo
     assert all(float(v) >= -1e-9 for v in G.internal_checks(g).values())
+
+
+def test_internal_mesh_drawing_and_ring_outline():
+    from pathlib import Path
+
+    from reportgen import load_case
+    from reportgen.scenes.gears import internal_mesh_drawing, ring_outline, ring_space_half_angle
+    gr = load_case(Path(__file__).resolve().parents[1] / "cases" / "gear_pair_internal.toml").gears
+    g = gr.geo
+    md = internal_mesh_drawing(gr)
+    # the drawn tip circles cut the line of action where ε_α says (B₁ from the ring, B₂ from the pinion)
+    B1, B2 = np.array(md.B1), np.array(md.B2)
+    assert np.hypot(*(B2 - B1)) / float(g.pb) == pytest.approx(float(g.eps), rel=2e-4)
+    assert abs(md.eps_graph - float(g.eps)) / float(g.eps) < 0.02
+    # the ring's outline: radii between its tip and root circles, the flanks exact involutes
+    ra2, rf2 = float(g.da2) / 2, float(g.df2) / 2
+    x, y = ring_outline(gr.m, gr.z2, gr.x2, gr.rack, ra2, rf2, axis=math.pi / 2)
+    r = np.hypot(x, y)
+    assert r.min() == pytest.approx(ra2, abs=1e-9) and r.max() == pytest.approx(rf2, abs=1e-9)
+    # space width on the pitch circle e = m(π/2 + 2x tg α), on the base circle the involute relation
+    assert ring_space_half_angle(gr.m, gr.z2, gr.x2, R.alpha, g.d2 / 2) * g.d2 == pytest.approx(
+        gr.m * (math.pi / 2 + 2 * gr.x2 * math.tan(R.alpha)), rel=1e-12)
+    assert ring_space_half_angle(gr.m, gr.z2, gr.x2, R.alpha, g.db2 / 2) * g.db2 == pytest.approx(
+        float(G.base_thickness(gr.m, gr.z2, gr.x2, R.alpha)), rel=1e-12)

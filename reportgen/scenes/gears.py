@@ -7,13 +7,14 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from matplotlib.patches import Circle
+from matplotlib.patches import Circle, PathPatch
+from matplotlib.path import Path
 
 from ..core import gears as G
 from ..style import mplstyle
 from .draw import GREY, INK, Canvas
 
-__all__ = ["tooth_outline", "MeshDrawing", "mesh_drawing", "rack_drawing", "sliding_diagram",
+__all__ = ["tooth_outline", "ring_outline", "MeshDrawing", "mesh_drawing", "internal_mesh_drawing", "rack_drawing", "sliding_diagram",
            "blocking_contour", "segment_circle_hits"]
 
 RED, BLUE = "#b2182b", "#1f4e9c"
@@ -32,6 +33,33 @@ def tooth_outline(m, z, x, rack, r_tip, turn=0.0, n=40):
     T = np.concatenate([one_t + k * tau for k in range(z)] + [one_t[:1]])
     phi = math.pi / 2 + turn - T
     return R * np.cos(phi), R * np.sin(phi)
+
+
+def ring_space_half_angle(m, z, x, alpha, r):
+    """Half angular width of a ring's tooth space at the radius r (involute part):
+    η(r) = e/d + inv α − inv α_r, e = m(π/2 + 2x tg α) the space width on the pitch circle
+    (the ring's space is bounded by the same involutes as an external tooth of shift x)."""
+    e = m * (math.pi / 2 + 2 * x * math.tan(alpha))
+    rb = m * z * math.cos(alpha) / 2
+    ar = np.arccos(np.clip(rb / np.asarray(r, float), -1.0, 1.0))
+    return e / (m * z) + float(G.inv(alpha)) - G.inv(ar)
+
+
+def ring_outline(m, z, x, rack, r_tip, r_root, axis=math.pi / 2, n=40):
+    """Closed outline of a ring (internal teeth), a space axis at the polar angle ``axis``: each
+    space is bounded by the two exact involutes from the tip circle r_tip (≥ r_b) to the root
+    circle r_root and the root arc; the teeth end in arcs of the tip circle.  The root fillet of
+    the shaper cutter is not drawn (the case does not give the cutter)."""
+    r = np.linspace(r_tip, r_root, n)
+    eta = ring_space_half_angle(m, z, x, rack.alpha, r)
+    tau = 2 * math.pi / z
+    root = np.linspace(eta[-1], -eta[-1], 8)[1:-1]
+    tip = np.linspace(-eta[0], -(tau - eta[0]), 8)[1:-1]
+    one_r = np.concatenate([r, np.full(root.size, r_root), r[::-1], np.full(tip.size, r_tip)])
+    one_t = np.concatenate([eta, root, -eta[::-1], tip])
+    R = np.concatenate([one_r] * z + [one_r[:1]])
+    T = np.concatenate([one_t - k * tau for k in range(z)] + [one_t[:1]])
+    return R * np.cos(axis + T), R * np.sin(axis + T)
 
 
 def segment_circle_hits(p0, p1, xs, ys):
@@ -140,6 +168,62 @@ def mesh_drawing(gears) -> MeshDrawing:
     b1b2_read = round(b1b2 * 2) / 2
     eps_graph = b1b2_read * cv.mu / g.pb
     return MeshDrawing(cv.fig, cv.mu, cv.width_mm, b1b2_read, eps_graph, tuple(B1), tuple(B2))
+
+
+def internal_mesh_drawing(gears) -> MeshDrawing:
+    """Internal pair: the pinion's centre O₁ at the origin, the ring's centre O₂ below it at the
+    distance a_w, the pitch point P above O₁ (r_w2 = a_w + r_w1).  N₁, N₂ lie on the same side:
+    the line of action N₂N₁P with ρ₂ = ρ₁ + N₁N₂.  A pinion tooth and a ring space have their
+    flanks through P.  B₁ (the ring's tip circle) and B₂ (the pinion's) are the crossings of the
+    drawn tip circles with the line; ε_α graphically = B₁B₂/p_b, B₁B₂ read to 0,5 mm."""
+    g = gears.geo
+    m, rack = gears.m, gears.rack
+    aw, alw = float(g.a_w), float(g.alpha_w)
+    r_w1, r_w2 = float(g.dw1) / 2, float(g.dw2) / 2
+    ra1, ra2, rf2 = float(g.da1) / 2, float(g.da2) / 2, float(g.df2) / 2
+    O1, O2 = np.array([0.0, 0.0]), np.array([0.0, -aw])
+    u = np.array([-math.sin(alw), math.cos(alw)])
+    N1, N2 = O1 + g.db1 / 2 * u, O2 + g.db2 / 2 * u
+    dirn = np.array([math.cos(alw), math.sin(alw)])
+    P = np.array([0.0, r_w1])
+    psi1 = float(G.tooth_thickness(m, g.z1, gears.x1, rack.alpha, 2 * r_w1)) / (2 * r_w1)
+    x1o, y1o = tooth_outline(m, int(g.z1), gears.x1, rack, ra1, turn=psi1 + math.pi / g.z1)
+    eta_w = float(ring_space_half_angle(m, g.z2, gears.x2, rack.alpha, r_w2))
+    x2o, y2o = ring_outline(m, int(g.z2), gears.x2, rack, ra2, rf2, axis=math.pi / 2 + eta_w)
+    y2o = y2o - aw
+    half = max(abs(N1[0] - N2[0]) / 2 + 0.6 * g.p, 1.6 * g.p, (float(g.rho_a1) - float(g.rho_p1)) + g.p)
+    xmin, xmax = -half, half
+    ymin = min(r_w1 - 1.3 * half, float(g.df1) / 2 - 0.5 * m)
+    ymax = rf2 - aw + 0.8 * m
+    cv = Canvas.fit([xmin, xmax], [ymin, ymax], avail_w=160, avail_h=200, margin_mm=4)
+    ax = cv.ax
+    ax.fill(x1o, y1o, color=RED, alpha=0.10, lw=0)
+    ax.plot(x1o, y1o, color=INK, lw=1.0)
+    ax.plot(x2o, y2o, color=INK, lw=1.0)
+    cx, cy = _circle_poly(O2[0], O2[1], rf2 + 3 * m, 720)           # counterclockwise rim
+    verts = np.concatenate([np.column_stack([x2o, y2o]), np.column_stack([cx, cy])])
+    codes = np.full(len(verts), Path.LINETO)
+    codes[0] = codes[len(x2o)] = Path.MOVETO
+    ax.add_patch(PathPatch(Path(verts, codes), color=BLUE, alpha=0.10, lw=0))
+    for c, r, lab in ((O1, ra1, "$d_{a1}$"), (O1, g.d1 / 2, "$d_1$"), (O1, r_w1, "$d_{w1}$"),
+                      (O1, g.db1 / 2, "$d_{b1}$"), (O2, ra2, "$d_{a2}$"), (O2, g.d2 / 2, "$d_2$"),
+                      (O2, r_w2, "$d_{w2}$"), (O2, g.db2 / 2, "$d_{b2}$"), (O2, rf2, "$d_{f2}$")):
+        ls = "-." if lab in ("$d_1$", "$d_2$") else ("--" if "w" in lab else ":")
+        ax.add_patch(Circle(tuple(c), r, fill=False, lw=0.6, ls=ls, color=GREY))
+    far = N1 + (float(g.rho_a1) + 2 * m) * dirn
+    ax.plot([N2[0], far[0]], [N2[1], far[1]], color=INK, lw=0.9)
+    t_b1 = segment_circle_hits(N2, far, *_circle_poly(O2[0], O2[1], ra2))
+    t_b2 = segment_circle_hits(N1, far, *_circle_poly(O1[0], O1[1], ra1))
+    B1 = N2 + t_b1[-1] * (far - N2) if t_b1.size else N1
+    B2 = N1 + t_b2[-1] * (far - N1) if t_b2.size else far
+    ax.plot([B1[0], B2[0]], [B1[1], B2[1]], color=INK, lw=3.0, solid_capstyle="butt")
+    for pt, lab, off in ((N1, "$N_1$", (-12, 2)), (N2, "$N_2$", (-12, 2)), (P, "$P$", (4, -10)),
+                         (B1, "$B_1$", (-4, 5)), (B2, "$B_2$", (3, 5))):
+        ax.plot(*pt, "o", ms=2.5, color=INK)
+        ax.annotate(lab, tuple(pt), xytext=off, textcoords="offset points", fontsize=9)
+    ax.axvline(0, color=GREY, lw=0.5, ls="-.")
+    b1b2_read = round(float(np.hypot(*(B2 - B1))) / cv.mu * 2) / 2
+    return MeshDrawing(cv.fig, cv.mu, cv.width_mm, b1b2_read, b1b2_read * cv.mu / g.pb, tuple(B1), tuple(B2))
 
 
 def rack_drawing(gears):

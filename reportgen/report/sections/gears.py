@@ -47,8 +47,7 @@ def build(study) -> Section:
         _geometry(sec, gr)
         if gr.chosen or gr.node.has("x1"):
             _contour(sec, gr)
-        if not gr.internal:
-            _mesh(sec, gr)
+        _mesh(sec, gr)
         _sliding(sec, gr)
     _table(sec, gr)
     if gr.geo is None or not gr.internal:
@@ -220,7 +219,7 @@ def _contour(sec: Section, gr) -> None:
 
 def _mesh(sec: Section, gr) -> None:
     s = sec.subsection("Картина зацепления", "sec-gears-mesh")
-    md = S.mesh_drawing(gr)
+    md = S.internal_mesh_drawing(gr) if gr.internal else S.mesh_drawing(gr)
     g = gr.geo
     d = (md.eps_graph - float(g.eps)) / float(g.eps) * 100
     s.paragraph(f"Зацепление построено в масштабе μ<sub>l</sub> = {fmt(md.mu / 1000, sig=3)} м/мм "
