@@ -71,18 +71,20 @@ def text_overlaps(fig, texts) -> list[tuple[str, str]]:
 
 
 def declutter(fig, texts, pad_pt: float = 1.0) -> None:
-    """Move annotation labels apart: each label in turn is shifted vertically (up, down, by growing
-    multiples of its height) until its rendered box overlaps none placed before it."""
+    """Move annotation labels apart: each label in turn is tried at growing distances (multiples
+    of its height up and down, of its width right and left) until its rendered box overlaps none
+    placed before it (nor an axes title)."""
     r = _renderer(fig)
     placed = [a.title.get_window_extent(r) for a in fig.axes if a.title.get_text()]
     px = fig.dpi / 72.0
     for t in texts:
         x0, y0 = t.xyann
         bb = t.get_window_extent(r)
-        step = bb.height / px + pad_pt
-        for k in range(60):
-            dy = (k + 1) // 2 * step * (1 if k % 2 else -1) if k else 0.0
-            t.xyann = (x0, y0 + dy)
+        sy, sx = bb.height / px + pad_pt, bb.width / px + pad_pt
+        tries = [(0.0, 0.0)] + [(dx * sx * n, dy * sy * n) for n in range(1, 16)
+                                for dx, dy in ((0, 1), (0, -1), (1, 0), (-1, 0))]
+        for dx, dy in tries:
+            t.xyann = (x0 + dx, y0 + dy)
             bb = t.get_window_extent(r).padded(pad_pt * px / 2)
             if not any(bb.overlaps(q) for q in placed):
                 break
