@@ -13,7 +13,7 @@ from reportgen.core import gears as G
 R = G.Rack()
 
 
-def penetration(m, z1, z2, x1, x2, rack=R, n_theta=600):
+def penetration(m, z1, z2, x1, x2, rack=R, n_theta=240):
     """Largest depth (mm) of the pinion's teeth (involute flanks and tip land) inside the ring's
     teeth over one mesh period, carrier held: pinion points in the ring frame against the ring's
     involute space width at their radius."""
@@ -28,7 +28,7 @@ def penetration(m, z1, z2, x1, x2, rack=R, n_theta=600):
         a = np.arccos(np.clip(rb / r, -1, 1))
         return np.tan(a) - a
 
-    rr = np.linspace(max(rb1, ra2 - aw), ra1, 40)
+    rr = np.linspace(max(rb1, ra2 - aw), ra1, 24)
     psi = s1 / (m * z1) + float(G.inv(al)) - inv_r(rb1, rr)
     pr = np.concatenate([rr, rr, np.full(20, ra1)])
     pp = np.concatenate([psi, -psi, np.linspace(-psi[-1], psi[-1], 20)])
