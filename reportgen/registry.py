@@ -33,6 +33,8 @@ KINDS: tuple[TaskKind, ...] = (
     TaskKind("dynamics", "dynamics", "dynamics:Dynamics", "Динамический анализ и синтез маховика", True),
     TaskKind("forces", "forces", "forces:Forces", "Силовой анализ", True),
     TaskKind("cam", "cam", "cam:Cam", "Синтез кулачкового механизма", False),
+    TaskKind("gears", "gears", "gears:Gears", "Синтез эвольвентного зубчатого зацепления", False),
+    TaskKind("train", "train", "train:Train", "Синтез планетарного механизма", False),
 )
 
 BY_NAME: dict[str, TaskKind] = {k.name: k for k in KINDS}

@@ -1,0 +1,276 @@
+"""Section «Синтез эвольвентного зубчатого зацепления»: the shift from a measured tooth (inverse
+problem), the geometry of the pair (ГОСТ 16532-70) with formulas and numbers, the geometry table,
+the choice of shifts by the blocking contour, the mesh drawn at scale with the graphical ε_α, the
+generating (rack) mesh and the specific sliding diagrams.
+
+``conclusion_lines(study)`` gives the lines of the ЗАКЛЮЧЕНИЕ about the gearing."""
+from __future__ import annotations
+
+import math
+
+from markupsafe import Markup
+
+from ...core import gears as G
+from ...scenes import gears as S
+from ...style.numbers import fmt, tex_num
+from ..document import Column, Formula, Section, ref
+
+NEEDS = ("gears",)
+TASK = "выполнить синтез эвольвентного зубчатого зацепления"
+
+
+def present(study) -> bool:
+    """The section is built when the case has [gears]."""
+    return study.root.has("gears")
+
+
+def _t(x, sig=5, digits=None) -> str:
+    return tex_num(float(x), sig=sig, digits=digits)
+
+
+def _deg(rad) -> str:
+    return tex_num(math.degrees(float(rad)), digits=4) + r"^{\circ}"
+
+
+def build(study) -> Section:
+    gr = study.gears
+    sec = Section("Синтез эвольвентного зубчатого зацепления", "sec-gears")
+    al = gr.rack.alpha
+    sec.paragraph(
+        f"Колёса нарезаются инструментом реечного типа с исходным контуром по ГОСТ 13755-81: "
+        f"α = {fmt(math.degrees(al), sig=4)}°, <i>h</i><sub>a</sub><sup>*</sup> = {fmt(gr.rack.ha)}, "
+        f"<i>c</i><sup>*</sup> = {fmt(gr.rack.c)}, ρ<sub>f</sub><sup>*</sup> = {fmt(gr.rack.rho_f)}; "
+        f"модуль <i>m</i> = {fmt(gr.m)} мм. Расчёт геометрии ведётся по ГОСТ 16532-70.")
+    if gr.inverse:
+        _inverse(sec, gr)
+    if gr.geo is not None:
+        _geometry(sec, gr)
+        if gr.chosen or gr.node.has("x1"):
+            _contour(sec, gr)
+        _mesh(sec, gr)
+        _sliding(sec, gr)
+    _table(sec, gr)
+    if gr.geo is None or not gr.internal:
+        _rack(sec, gr)
+    return sec
+
+
+def _inverse(sec: Section, gr) -> None:
+    s = sec.subsection("Коэффициент смещения по измерениям зуба", "sec-gears-inverse")
+    me, inv = gr.measure, gr.inverse
+    m, al = gr.m, gr.rack.alpha
+    if "x_chord" in inv:
+        d = m * me.z
+        s.paragraph(f"Штангензубомером измерены толщина зуба по хорде s̄<sub>y</sub> = {fmt(me.chord)} мм и "
+                    f"высота до хорды h̄<sub>ay</sub> = {fmt(me.chord_height)} мм; диаметр вершин "
+                    f"<i>d</i><sub>a</sub> = {fmt(me.d_a)} мм, <i>z</i> = {me.z}. Концы хорды лежат на "
+                    f"окружности <i>d</i><sub>y</sub>, для которой <i>d</i><sub>y</sub> cos ψ<sub>y</sub> = "
+                    f"<i>d</i><sub>a</sub> − 2h̄<sub>ay</sub> и <i>d</i><sub>y</sub> sin ψ<sub>y</sub> = "
+                    f"s̄<sub>y</sub> (ψ<sub>y</sub> — половина угловой толщины зуба).")
+        s.formula(
+            Formula(r"\mathrm{tg}\,\psi_y = \frac{\bar s_y}{d_a - 2\bar h_{ay}}",
+                    rf"\frac{{{_t(me.chord)}}}{{{_t(me.d_a)} - 2 \cdot {_t(me.chord_height)}}}",
+                    rf"{_t(math.tan(inv['psi']), 5)};\quad \psi_y = {_t(inv['psi'], 5)}\ \text{{рад}}"),
+            Formula(r"d_y = \sqrt{\bar s_y^2 + (d_a - 2\bar h_{ay})^2}", None, rf"{_t(inv['d_y'], 7)}\ \text{{мм}}"),
+            Formula(r"\cos\alpha_y = \frac{d\cos\alpha}{d_y}",
+                    rf"\frac{{{_t(d)} \cdot \cos {_deg(al)}}}{{{_t(inv['d_y'], 7)}}}",
+                    rf"{_t(math.cos(inv['alpha_y']), 5)};\quad \alpha_y = {_deg(inv['alpha_y'])}"),
+            Formula(r"s = d(\psi_y + \mathrm{inv}\,\alpha_y - \mathrm{inv}\,\alpha)",
+                    rf"{_t(d)}({_t(inv['psi'], 5)} + {_t(G.inv(inv['alpha_y']), 5)} - {_t(G.inv(al), 5)})",
+                    rf"{_t(inv['s_chord'], 5)}\ \text{{мм}}"),
+            Formula(r"x = \frac{s - \pi m/2}{2m\,\mathrm{tg}\,\alpha}",
+                    rf"\frac{{{_t(inv['s_chord'], 5)} - \pi \cdot {_t(m)}/2}}{{2 \cdot {_t(m)} \cdot \mathrm{{tg}}\,{_deg(al)}}}",
+                    rf"{_t(inv['x_chord'], 4)}"))
+        pr = gr.printed
+        if pr:
+            parts = []
+            for key, val, name in (("d_y", inv["d_y"], "<i>d</i><sub>y</sub>"), ("s", inv["s_chord"], "<i>s</i>"),
+                                   ("x", inv["x_chord"], "<i>x</i>")):
+                if key in pr:
+                    parts.append(f"{name} = {fmt(val, sig=7)} (в решении {pr[key]:g})".replace(".", ","))
+            s.paragraph("Сравнение с опубликованным решением: " + "; ".join(parts) + ". Промежуточный "
+                        "диаметр <i>d</i><sub>y</sub> решения отличается потому, что там sin ψ<sub>y</sub> "
+                        "вычислен по углу, округлённому до 2,579°; окончательные <i>s</i> и <i>x</i> "
+                        "совпадают после округления.")
+    if "x_span" in inv:
+        s.formula(r"x = \frac{W/(m\cos\alpha) - \pi(k - 0{,}5) - z\,\mathrm{inv}\,\alpha}{2\,\mathrm{tg}\,\alpha}",
+                  rf"\frac{{{_t(me.span)}/({_t(m)}\cos{_deg(al)}) - \pi({me.k} - 0{{,}}5) - {me.z} \cdot {_t(G.inv(al), 5)}}}"
+                  rf"{{2\,\mathrm{{tg}}\,{_deg(al)}}}", _t(inv["x_span"], 4))
+
+
+def _geometry(sec: Section, gr) -> None:
+    s = sec.subsection("Геометрический расчёт передачи", "sec-gears-geo")
+    g, m, al = gr.geo, gr.m, gr.rack.alpha
+    z1, z2, x1, x2 = gr.z1, gr.z2, gr.x1, gr.x2
+    kind = "внутреннего" if gr.internal else "внешнего"
+    s.paragraph(f"Передача {kind} зацепления: <i>z</i><sub>1</sub> = {z1}, <i>z</i><sub>2</sub> = {z2}, "
+                f"<i>x</i><sub>1</sub> = {fmt(x1, sig=3)}, <i>x</i><sub>2</sub> = {fmt(x2, sig=3)}.")
+    pm = "-" if gr.internal else "+"
+    s.formula(
+        Formula(rf"\mathrm{{inv}}\,\alpha_w = \frac{{2(x_2 {pm} x_1)\,\mathrm{{tg}}\,\alpha}}{{z_2 {pm} z_1}} + \mathrm{{inv}}\,\alpha",
+                rf"\frac{{2({_t(x2, 3)} {pm} {_t(x1, 3)}) \cdot {_t(math.tan(al), 5)}}}{{{z2} {pm} {z1}}} + {_t(G.inv(al), 5)}",
+                _t(G.inv(g.alpha_w), 6)),
+        Formula(r"\alpha_w", None, _deg(g.alpha_w)),
+        Formula(rf"a = \frac{{m(z_2 {pm} z_1)}}{{2}}", rf"\frac{{{_t(m)}({z2} {pm} {z1})}}{{2}}", rf"{_t(g.a)}\ \text{{мм}}"),
+        Formula(r"a_w = \frac{a\cos\alpha}{\cos\alpha_w}", rf"\frac{{{_t(g.a)} \cdot \cos{_deg(al)}}}{{\cos{_deg(g.alpha_w)}}}",
+                rf"{_t(g.a_w, 6)}\ \text{{мм}}"),
+        Formula(r"y = \frac{a_w - a}{m}", None, _t(g.y, 4)),
+        Formula(r"\Delta y = x_1 + x_2 - y", None, _t(g.dy, 4)) if not gr.internal else
+        Formula(r"\Delta y", None, "0"),
+        Formula(r"d_{a1} = d_1 + 2(h_a^* + x_1 - \Delta y)m",
+                rf"{_t(g.d1)} + 2({_t(gr.rack.ha)} + {_t(x1, 3)} - {_t(g.dy, 4)}) \cdot {_t(m)}",
+                rf"{_t(g.da1, 6)}\ \text{{мм}}"),
+        Formula(r"s_a = d_a\left(\frac{s}{d} + \mathrm{inv}\,\alpha - \mathrm{inv}\,\alpha_a\right),\ "
+                r"\cos\alpha_a = \frac{d_b}{d_a}", None,
+                rf"{_t(g.sa1, 4)};\ {_t(g.sa2, 4)}\ \text{{мм}}"),
+    )
+    sign = "-" if gr.internal else "+"
+    s.formula(
+        Formula(rf"\varepsilon_\alpha = \frac{{z_1(\mathrm{{tg}}\,\alpha_{{a1}} - \mathrm{{tg}}\,\alpha_w) {sign} "
+                rf"z_2(\mathrm{{tg}}\,\alpha_{{a2}} - \mathrm{{tg}}\,\alpha_w)}}{{2\pi}}", None, _t(g.eps, 5)),
+        Formula(r"\varepsilon_\alpha = \frac{B_1B_2}{p_b} = \frac{\rho_{a1} - \rho_{p1}}{\pi m \cos\alpha}",
+                rf"\frac{{{_t(g.rho_a1, 5)} - {_t(g.rho_p1, 5)}}}{{{_t(g.pb, 5)}}}", _t(g.eps_line, 5)))
+    checks = []
+    xm1 = float(G.x_min_undercut(z1, gr.rack))
+    checks.append(f"подрезание шестерни: <i>x</i><sub>1</sub> = {fmt(x1, sig=3)} "
+                  f"{'≥' if x1 >= xm1 - 1e-12 else '<'} <i>x</i><sub>1min</sub> = {fmt(xm1, sig=4)} — "
+                  f"{'подрезания нет' if x1 >= xm1 - 1e-12 else 'зуб подрезан'}")
+    for i, sa in ((1, g.sa1), (2, g.sa2)):
+        okk = float(sa) >= gr.s_a_min * m
+        checks.append(f"заострение: <i>s</i><sub>a{i}</sub> = {fmt(float(sa), sig=4)} мм "
+                      f"{'≥' if okk else '<'} {fmt(gr.s_a_min)}<i>m</i> = {fmt(gr.s_a_min * m, sig=4)} мм")
+    okε = float(g.eps) >= gr.eps_min
+    checks.append(f"плавность: ε<sub>α</sub> = {fmt(float(g.eps), sig=4)} {'≥' if okε else '<'} {fmt(gr.eps_min)}")
+    interf = float(g.rho_p1) < float(g.rho_l1) or (not gr.internal and float(g.rho_p2) < float(g.rho_l2))
+    checks.append(f"интерференция: ρ<sub>p1</sub> = {fmt(float(g.rho_p1), sig=4)} мм, ρ<sub>l1</sub> = "
+                  f"{fmt(float(g.rho_l1), sig=4)} мм" + ("" if gr.internal else
+                  f"; ρ<sub>p2</sub> = {fmt(float(g.rho_p2), sig=4)} мм, ρ<sub>l2</sub> = {fmt(float(g.rho_l2), sig=4)} мм")
+                  + (" — есть" if interf else " — нет (ρ<sub>p</sub> ≥ ρ<sub>l</sub>)"))
+    if gr.internal:
+        _internal_checks(checks, gr, g)
+    s.paragraph("Проверки качества зацепления: <ul>" + "".join(f"<li>{c};</li>" for c in checks) + "</ul>")
+
+
+def _internal_checks(checks: list, gr, g) -> None:
+    """The checks of an internal pair by ГОСТ 19274-73 (margins of ``G.internal_checks``)."""
+    c = {k: float(v) for k, v in G.internal_checks(g).items()}
+    tol = 1e-9 * gr.m
+    dlt = float(G.ring_tip_correction(gr.z2, gr.x2, gr.rack))
+    okr = c["base"] >= -tol
+    checks.append(f"внутреннее колесо: <i>d</i><sub>a2</sub> = <i>d</i><sub>2</sub> − 2(<i>h</i><sub>a</sub><sup>*</sup> − "
+                  f"<i>x</i><sub>2</sub> − Δ)<i>m</i> = {fmt(float(g.da2), sig=6)} мм с поправкой Δ = "
+                  f"{fmt(dlt, sig=4)} (окружность вершин проходит через граничную точку эвольвенты; при "
+                  f"<i>x</i><sub>2</sub> = 0 приближённо Δ = 7,55/<i>z</i><sub>2</sub>), "
+                  f"{'&gt;' if okr else '≤'} <i>d</i><sub>b2</sub> = {fmt(g.db2, sig=6)} мм — "
+                  f"{'эвольвента у вершины существует' if okr else 'вершина зуба внутри основной окружности'}")
+    okp = c["ring_root"] >= -tol
+    checks.append(f"вершина шестерни на эвольвенте колеса: ρ<sub>p2</sub> = {fmt(float(g.rho_p2), sig=4)} мм "
+                  f"{'≤' if okp else '&gt;'} ρ<sub>l2</sub> = {fmt(float(g.rho_l2), sig=4)} мм — "
+                  f"{'интерференции нет' if okp else 'интерференция у ножки колеса'}")
+    okt = c["trochoid"] >= -tol
+    checks.append(f"интерференция вершин (трохоидальная): <i>z</i><sub>1</sub>(inv α<sub>a1</sub> + δ<sub>1</sub>) + "
+                  f"(<i>z</i><sub>2</sub> − <i>z</i><sub>1</sub>) inv α<sub>w</sub> − <i>z</i><sub>2</sub>(inv α<sub>a2</sub> + "
+                  f"δ<sub>2</sub>) = {fmt(c['trochoid'], sig=3)} {'≥' if okt else '&lt;'} 0 — "
+                  f"{'нет' if okt else 'есть'}")
+    dz = G.dz_min_internal(gr.z1, float(gr.x1), float(gr.x2), gr.rack, gr.eps_min)
+    if dz is not None:
+        okz = gr.z2 - gr.z1 >= dz
+        checks.append(f"наименьшая разность чисел зубьев при данных смещениях (все проверки и ε<sub>α</sub> ≥ "
+                      f"{fmt(gr.eps_min)}): <i>z</i><sub>2</sub> − <i>z</i><sub>1</sub> ≥ {dz}; принято "
+                      f"{gr.z2 - gr.z1} — {'выполнено' if okz else 'не выполнено'}")
+
+
+def _sym_html(sym: str) -> Markup:
+    """«d_b» → <i>d</i><sub>b</sub> (the program's own symbols, never case text)."""
+    base, _, idx = str(sym).partition("_")
+    out = Markup("<i>{}</i>").format(base)
+    return out + Markup("<sub>{}</sub>").format(idx) if idx else out
+
+
+def _cell(v) -> str:
+    """Whole numbers (z, k, round diameters) without trailing zeros, the rest to 6 digits."""
+    v = float(v)
+    return str(int(round(v))) if abs(v - round(v)) < 1e-9 else fmt(v, sig=6)
+
+
+def _table(sec: Section, gr) -> None:
+    df = gr.wheel_rows()
+    df = df.assign(label=[f"{n}, {u}" if u else n for n, u in zip(df["name"], df["unit"])])
+    cols = [Column("label", "Параметр", fmt=str), Column("symbol", "Обозначение", fmt=_sym_html),
+            Column("wheel1", "Колесо 1", fmt=_cell)]
+    if gr.z2 is not None:
+        cols.append(Column("wheel2", "Колесо 2", fmt=_cell))
+    sec.table("Геометрические параметры колёс", cols, df, id="tab-gears-geo")
+
+
+def _contour(sec: Section, gr) -> None:
+    s = sec.subsection("Выбор коэффициентов смещения", "sec-gears-contour")
+    rule = ("Смещения выбраны программой по правилу: из точек сетки с шагом 0,01 внутри блокирующего "
+            "контура (нет подрезания, нет интерференции, <i>s</i><sub>a</sub> ≥ "
+            f"{fmt(gr.s_a_min)}<i>m</i>, ε<sub>α</sub> ≥ {fmt(gr.eps_min)}) взята точка с наименьшим "
+            "наибольшим удельным скольжением у ножек зубьев, т. е. с выравненным износом "
+            "(λ<sub>1max</sub> ≈ λ<sub>2max</sub>)." if gr.chosen else
+            "Заданная точка (<i>x</i><sub>1</sub>, <i>x</i><sub>2</sub>) показана на блокирующем контуре.")
+    s.paragraph(f"Блокирующий контур передачи <i>z</i><sub>1</sub> = {gr.z1}, <i>z</i><sub>2</sub> = {gr.z2} "
+                f"приведён на рисунке {ref('fig-gears-contour')}. {rule}")
+    s.figure(f"Блокирующий контур <i>z</i><sub>1</sub> = {gr.z1}, <i>z</i><sub>2</sub> = {gr.z2} с выбранной точкой",
+             S.blocking_contour(gr), 160, id="fig-gears-contour")
+
+
+def _mesh(sec: Section, gr) -> None:
+    s = sec.subsection("Картина зацепления", "sec-gears-mesh")
+    md = S.internal_mesh_drawing(gr) if gr.internal else S.mesh_drawing(gr)
+    g = gr.geo
+    d = (md.eps_graph - float(g.eps)) / float(g.eps) * 100
+    s.paragraph(f"Зацепление построено в масштабе μ<sub>l</sub> = {fmt(md.mu / 1000, sig=3)} м/мм "
+                f"(рисунок {ref('fig-gears-mesh')}); профили зубьев шестерни — эвольвенты с переходными кривыми, "
+                "огибаемыми скруглением головки рейки"
+                + ("; впадины колеса с внутренними зубьями ограничены эвольвентами от окружности вершин до "
+                   "окружности впадин (переходная кривая долбяка не показана: долбяк в задании не задан)"
+                   if gr.internal else "")
+                + ". Активная часть линии зацепления B<sub>1</sub>B<sub>2</sub> ограничена окружностями вершин.")
+    s.figure("Картина эвольвентного зацепления", md.fig, md.width_mm, id="fig-gears-mesh")
+    s.formula(r"\varepsilon_\alpha^{граф} = \frac{B_1B_2\,\mu_l}{p_b}",
+              rf"\frac{{{_t(md.B1B2_mm, 4)} \cdot {_t(md.mu, 3)}}}{{{_t(g.pb, 5)}}}", _t(md.eps_graph, 4))
+    s.paragraph(f"Расхождение графического и аналитического значений: {fmt(d, sig=2)} %.")
+
+
+def _sliding(sec: Section, gr) -> None:
+    s = sec.subsection("Удельное скольжение", "sec-gears-sliding")
+    g = gr.geo
+    s.formula(Formula(r"\lambda_1 = 1 - \frac{\rho_2}{u\,\rho_1},\quad \lambda_2 = 1 - \frac{u\,\rho_1}{\rho_2},"
+                      rf"\quad u = \frac{{z_2}}{{z_1}} = {_t(g.u, 5)}"))
+    s.figure("Диаграммы удельного скольжения", S.sliding_diagram(gr), 160, id="fig-gears-sliding")
+    t = gr.sliding_table
+    cols = [Column("rho1", "ρ<sub>1</sub>", "мм", sig=5), Column("rho2", "ρ<sub>2</sub>", "мм", sig=5),
+            Column("lambda1", "λ<sub>1</sub>", sig=4), Column("lambda2", "λ<sub>2</sub>", sig=4)]
+    if "vs" in t:
+        cols.append(Column("vs", "<i>v</i><sub>ск</sub>", "м/с", sig=4))
+    s.table("Удельное скольжение на активной части линии зацепления", cols, t, id="tab-gears-sliding")
+
+
+def _rack(sec: Section, gr) -> None:
+    s = sec.subsection("Станочное зацепление", "sec-gears-rack")
+    fig, w, mu = S.rack_drawing(gr)
+    xm = float(G.x_min_undercut(gr.z1, gr.rack))
+    s.paragraph(f"Колесо 1 нарезается рейкой, смещённой на <i>x</i><sub>1</sub><i>m</i> = {fmt(gr.x1 * gr.m, sig=4)} мм "
+                f"(рисунок {ref('fig-gears-rack')}). Граница подрезания: прямая головок рейки не должна "
+                f"пересекать линию станочного зацепления ниже точки <i>N</i>, что даёт "
+                f"<i>x</i><sub>min</sub> = <i>h</i><sub>a</sub><sup>*</sup> − <i>z</i> sin²α/2 = {fmt(xm, sig=4)}.")
+    s.figure("Станочное зацепление колеса 1 с производящей рейкой", fig, w, id="fig-gears-rack")
+
+
+def conclusion_lines(study) -> list[str]:
+    gr = study.gears
+    out = []
+    if gr.geo is not None:
+        g = gr.geo
+        out.append(f"Спроектирована зубчатая передача <i>z</i><sub>1</sub> = {gr.z1}, <i>z</i><sub>2</sub> = {gr.z2}, "
+                   f"<i>m</i> = {fmt(gr.m)} мм, <i>x</i><sub>1</sub> = {fmt(gr.x1, sig=3)}, <i>x</i><sub>2</sub> = "
+                   f"{fmt(gr.x2, sig=3)}: <i>a</i><sub>w</sub> = {fmt(float(g.a_w), sig=6)} мм, α<sub>w</sub> = "
+                   f"{fmt(math.degrees(float(g.alpha_w)), sig=5)}°, ε<sub>α</sub> = {fmt(float(g.eps), sig=4)}.")
+    if "x_chord" in gr.inverse:
+        out.append(f"По измерениям зубомером коэффициент смещения <i>x</i> = {fmt(gr.inverse['x_chord'], sig=3)}, "
+                   f"делительная толщина зуба <i>s</i> = {fmt(gr.inverse['s_chord'], sig=4)} мм.")
+    return out
+

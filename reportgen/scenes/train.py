@@ -1,0 +1,269 @@
+"""Scenes of the train section: the kinematic scheme in the plane of the axes (radii at scale,
+symmetric about the central axis as in the textbooks: every element off the axis is drawn with its
+mirror image), the velocity picture (картина линейных скоростей) beside it, the plan of angular
+velocities of the whole train, and the stage plans giving the graphical ratio (each stage's plan
+at its own scale, u = product of the stage ratios read off the drawings).  They draw
+``study.train`` results only."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..analysis.train import FRAME, pitch_points, ratio_chain
+from ..style import mplstyle
+from ..style.numbers import fmt
+from .draw import GREY, INK
+
+__all__ = ["TrainPicture", "train_picture", "StagePlans", "stage_plans", "declutter", "text_overlaps"]
+
+COLORS = ["#b2182b", "#1f4e9c", "#008837", "#7b3294", "#e08214", "#4d4d4d", "#01665e", "#8c510a"]
+
+
+PLAN_MM = 140.0            # width of a stage plan's segments on the paper, mm
+READ_MM = 0.5              # a segment is read off the drawing to 0,5 mm
+
+
+@dataclass
+class TrainPicture:
+    fig: object
+    segments_mm: dict      # ω plan of the whole train: member → segment on the paper, mm (to 0,5 mm)
+    mu_l: float            # mm of the mechanism per mm of the paper (scheme)
+
+
+@dataclass
+class StagePlans:
+    fig: object
+    stages: list           # (member a, member b, segment a, segment b) in mm read to 0,5 mm
+    u_graph: float         # product of the stage ratios
+
+
+def _columns(model):
+    """Axial column of every wheel: meshing wheels share a column when one is already placed."""
+    col: dict[str, int] = {}
+    nxt = 0
+    for a, b in model.meshes:
+        if a in col or b in col:
+            c = col.get(a, col.get(b))
+        else:
+            c, nxt = nxt, nxt + 1
+        col.setdefault(a, c)
+        col.setdefault(b, c)
+    for w in model.wheels:
+        if w not in col:
+            col[w], nxt = nxt, nxt + 1
+    return col
+
+
+def _renderer(fig):
+    if not hasattr(fig.canvas, "get_renderer"):
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        FigureCanvasAgg(fig)
+    return fig.canvas.get_renderer()
+
+
+def text_overlaps(fig, texts) -> list[tuple[str, str]]:
+    """Pairs of the given texts whose rendered bounding boxes overlap (display coordinates)."""
+    r = _renderer(fig)
+    boxes = [(t.get_text(), t.get_window_extent(r)) for t in texts if t.get_visible() and t.get_text()]
+    return [(a, c) for i, (a, b) in enumerate(boxes) for c, d in boxes[i + 1:] if b.overlaps(d)]
+
+
+def declutter(fig, texts, pad_pt: float = 1.0) -> None:
+    """Move annotation labels apart: each label in turn is tried at growing distances (multiples
+    of its height up and down, of its width right and left) until its rendered box overlaps none
+    placed before it (nor an axes title)."""
+    r = _renderer(fig)
+    placed = [a.title.get_window_extent(r) for a in fig.axes if a.title.get_text()]
+    px = fig.dpi / 72.0
+    for t in texts:
+        x0, y0 = t.xyann
+        bb = t.get_window_extent(r)
+        sy, sx = bb.height / px + pad_pt, bb.width / px + pad_pt
+        tries = [(0.0, 0.0)] + [(dx * sx * n, dy * sy * n) for n in range(1, 16)
+                                for dx, dy in ((0, 1), (0, -1), (1, 0), (-1, 0))]
+        for dx, dy in tries:
+            t.xyann = (x0 + dx, y0 + dy)
+            bb = t.get_window_extent(r).padded(pad_pt * px / 2)
+            if not any(bb.overlaps(q) for q in placed):
+                break
+        placed.append(bb)
+
+
+def _scheme(ax, m, y, col, colors, dx, labels):
+    """The scheme in the plane of the axes: every element off the central axis (y = 0) is drawn
+    at y and mirrored at −y; labels on the upper image only."""
+    tick = 0.15 * dx
+    for name, wh in m.wheels.items():
+        x, r, c = col[name] * dx, wh.m * wh.z / 2, colors[wh.member]
+        for s in ((1, -1) if abs(y[wh.centre]) > 1e-9 else (1,)):
+            yc = s * y[wh.centre]
+            if wh.internal:
+                for sg in (1, -1):
+                    ax.plot([x - tick, x + tick], [yc + sg * r] * 2, color=c, lw=1.2)
+                    ax.plot([x, x + 0.4 * dx], [yc + sg * r] * 2, color=c, lw=1.6)
+                ax.plot([x + 0.4 * dx] * 2, [yc - r, yc + r], color=c, lw=1.0)
+            else:
+                ax.plot([x, x], [yc - r, yc + r], color=c, lw=2.2)
+                for sg in (1, -1):
+                    ax.plot([x - tick, x + tick], [yc + sg * r] * 2, color=c, lw=1.2)
+            if s == 1 and wh.internal:          # beside the rim's back line, inside the ring
+                labels.append(ax.annotate(name, (x + 0.4 * dx, yc + r), xytext=(3, -11),
+                                          textcoords="offset points", fontsize=9, color=c))
+            elif s == 1:
+                labels.append(ax.annotate(name, (x, yc + r), xytext=(-9, 2), textcoords="offset points",
+                                          fontsize=9, color=c))
+    order = list(m.members)
+    for mem, axis in m.members.items():
+        c = colors[mem]
+        carried = [a for a, h in m.axes.items() if h == mem]
+        xs = [col[n] * dx for n, wh in m.wheels.items() if wh.member == mem and wh.centre == axis]
+        sides = (1, -1) if abs(y[axis]) > 1e-9 else (1,)
+        if carried:
+            x0 = -(0.7 + 0.35 * order.index(mem)) * dx
+            for a in carried:
+                xa = [col[n] * dx for n, wh in m.wheels.items() if wh.centre == a]
+                if not xa:
+                    continue
+                for s in (1, -1):
+                    ax.plot([x0, x0], [s * y[axis], s * y[a]], color=c, lw=1.6)
+                    ax.plot([x0, max(xa) + 0.25 * dx], [s * y[a]] * 2, color=c, lw=1.6)
+            for s in sides:
+                ax.plot([x0 - 0.5 * dx, x0], [s * y[axis]] * 2, color=c, lw=1.6)
+            labels.append(ax.annotate(mem, (x0, y[axis]), xytext=(-14, 3), textcoords="offset points",
+                                      fontsize=9, color=c))
+        elif xs:
+            for s in sides:
+                ax.plot([min(xs) - 0.3 * dx, max(xs) + 0.3 * dx], [s * y[axis]] * 2, color=c, lw=1.6)
+        if mem in m.fixed:
+            ws = [wh for wh in m.wheels.values() if wh.member == mem]
+            for wh in ws:
+                xf, r = col[wh.name] * dx, wh.m * wh.z / 2
+                for s in (1, -1):
+                    yf = s * (abs(y[wh.centre]) + r)
+                    ax.plot([xf + 0.05 * dx, xf + 0.65 * dx], [yf] * 2, color=INK, lw=1.0)
+                    for k in range(4):
+                        x1 = xf + 0.05 * dx + 0.15 * dx * k
+                        ax.plot([x1, x1 + 0.12 * dx], [yf, yf + s * 0.12 * dx], color=INK, lw=0.8)
+
+
+def train_picture(train) -> TrainPicture:
+    """The scheme (radii at scale, symmetric), the velocity picture beside its upper half (same
+    vertical scale) and the plan of angular velocities of the whole train."""
+    m = train.model
+    y = train.positions
+    w = train.w_willis
+    col = _columns(m)
+    ncol = max(col.values()) + 1
+    ext = [abs(y[wh.centre]) + wh.m * wh.z / 2 for wh in m.wheels.values()]
+    R = max(ext)
+    dx = 0.22 * R                                  # axial spacing of the wheel columns
+    colors = {n: COLORS[i % len(COLORS)] for i, n in enumerate(m.members)}
+    fig = mplstyle.figure(170, 160, layout=None)
+    bottom, top = 0.27, 0.95
+    ax = fig.add_axes((0.09, bottom, 0.44, top - bottom))
+    ylo, yhi = -1.12 * R, 1.2 * R
+    labels: list = []
+    _scheme(ax, m, y, col, colors, dx, labels)
+    ax.set_xlim(-(1.4 + 0.35 * len(m.members)) * dx, (ncol + 0.2) * dx)
+    ax.set_ylim(ylo, yhi)
+    ax.set_xticks([])
+    ax.axhline(0, color=GREY, lw=0.5, ls="-.")
+    ax.set_ylabel("расстояние от центральной оси, мм")
+    ax.set_title("Схема механизма", fontsize=10)
+    declutter(fig, labels)
+    # velocity picture: v(y) of every member over its upper image (per unit ω of the input)
+    pp = pitch_points(m)
+    lo_v = min(min(y[wh.centre] - wh.m * wh.z / 2 for wh in m.wheels.values()), 0.0) - 0.06 * R
+    f0 = bottom + (lo_v - ylo) / (yhi - ylo) * (top - bottom)
+    av = fig.add_axes((0.60, f0, 0.38, top - f0))
+    av.set_ylim(lo_v, yhi)
+
+    def vel(mem, at):
+        v = 0.0
+        while mem != FRAME:
+            axy = y[m.members[mem]]
+            v += w[mem] * (at - axy)
+            at = axy
+            mem = m.axes[m.members[mem]]
+        return v
+
+    vlabels = []
+    for mem, axis in m.members.items():
+        ys = [y[wh.centre] + s * wh.m * wh.z / 2 for wh in m.wheels.values() if wh.member == mem for s in (-1, 1)]
+        ys += [y[a] for a, h in m.axes.items() if h == mem] + [y[axis]]
+        yy = np.array([min(ys), max(ys)])
+        vv = [vel(mem, t) for t in yy]
+        av.plot(vv, yy, color=colors[mem], lw=1.4)
+        vlabels.append(av.annotate(mem, (vv[1], yy[1]), xytext=(2, 2), textcoords="offset points",
+                                   fontsize=8, color=colors[mem]))
+    for (a, b), yp in pp.items():
+        vp = vel(m.wheels[a].member, yp)
+        av.plot([0, vp], [yp, yp], color=GREY, lw=0.6)
+        av.plot([vp], [yp], "o", ms=3, color=INK)
+        vlabels.append(av.annotate(f"$P_{{{a}{b}}}$", (vp, yp), xytext=(4, -9), textcoords="offset points",
+                                   fontsize=8))
+    for a in set(y.values()):
+        av.axhline(a, color=GREY, lw=0.4, ls=":")
+    av.axvline(0, color=INK, lw=0.8)
+    av.set_xlabel("$v/\\omega_{вх}$, мм")
+    av.set_title("Картина линейных скоростей", fontsize=10)
+    declutter(fig, vlabels)
+    # plan of angular velocities of the whole train: rays from the pole parallel to the velocity
+    # lines, cut by a base line at the polar distance h; segment ∝ ω.
+    ap = fig.add_axes((0.58, 0.02, 0.40, 0.16))
+    wmax = max(abs(v) for v in w.values()) or 1.0
+    h = 10.0
+    seg = {n: round(60.0 * w[n] / wmax / READ_MM) * READ_MM for n in m.members}
+    plabels = []
+    for n in m.members:
+        ap.plot([0, seg[n]], [h, 0], color=colors[n], lw=1.2)
+        plabels.append(ap.annotate(n, (seg[n], 0), xytext=(0, -10), textcoords="offset points", fontsize=8,
+                                   color=colors[n], ha="center"))
+    ap.axhline(0, color=INK, lw=0.8)
+    ap.plot([0], [h], "o", ms=3, color=INK)
+    plabels.insert(0, ap.annotate("P", (0, h), xytext=(3, 2), textcoords="offset points", fontsize=8))
+    ap.set_xlim(-65, 65)
+    ap.set_ylim(-12, h + 4)
+    ap.axis("off")
+    ap.set_title("План угловых скоростей", fontsize=10)
+    declutter(fig, plabels)
+    return TrainPicture(fig, seg, 1.0)
+
+
+def stage_plans(train) -> StagePlans:
+    """The graphical ratio stage by stage: along the chain of members ordered by |ω|
+    (``ratio_chain``) every pair of neighbours gets its own plan of angular velocities, the two
+    rays from the pole parallel to the members' velocity lines, drawn at the scale that makes the
+    segments span PLAN_MM; the segments are read to READ_MM and u = Π (0a)/(0b)."""
+    m = train.model
+    w = train.w_willis
+    chain = ratio_chain(w, m.inp, m.out)
+    n = len(chain) - 1
+    row = 24.0
+    fig = mplstyle.figure(170, row * n + 4, layout=None)
+    colors = {nm: COLORS[i % len(COLORS)] for i, nm in enumerate(m.members)}
+    stages, u = [], 1.0
+    h = 12.0
+    for i, (a, b) in enumerate(zip(chain, chain[1:])):
+        lo, hi = min(0.0, w[a], w[b]), max(0.0, w[a], w[b])
+        k = PLAN_MM / (hi - lo)
+        sa, sb = (round(k * w[x] / READ_MM) * READ_MM for x in (a, b))
+        x0 = 16.0 - k * lo                          # foot of the pole, mm from the left edge
+        ax = fig.add_axes((0.0, 1 - (i + 1) * row / (row * n + 4), 1.0, row / (row * n + 4)))
+        ax.set_xlim(0, 170)
+        ax.set_ylim(-9, row - 9)
+        ax.axis("off")
+        ax.plot([x0 + min(0, sa, sb) - 4, x0 + max(0, sa, sb) + 4], [0, 0], color=INK, lw=0.8)
+        ax.plot([x0], [h], "o", ms=3, color=INK)
+        texts = [ax.annotate(f"P, ступень {i + 1}: звенья {a} и {b}", (x0, h), xytext=(4, 1),
+                             textcoords="offset points", fontsize=8)]
+        for nm, sg in ((a, sa), (b, sb)):
+            ax.plot([x0, x0 + sg], [h, 0], color=colors[nm], lw=1.2)
+            texts.append(ax.annotate(f"{nm}: {fmt(sg, digits=1)} мм", (x0 + sg, 0), xytext=(0, -9),
+                                     textcoords="offset points", fontsize=8, color=colors[nm], ha="center"))
+        declutter(fig, texts)
+        stages.append((a, b, sa, sb))
+        u *= sa / sb
+    return StagePlans(fig, stages, u)
