@@ -3,13 +3,12 @@ the force reduced to the input link (:mod:`reportgen.core.cross`)."""
 from __future__ import annotations
 
 import math
-from functools import cached_property
 
 import pandas as pd
 
 from ..case import units as U
-from ..case.printed import read_printed
 from ..core import cross as CX
+from .printed_results import PrintedResults
 
 __all__ = ["Cross"]
 
@@ -19,12 +18,10 @@ DIMS = {**{k: U.VELOCITY for k in SPEEDS}, "w3": U.ANGULAR_VELOCITY, "w5": U.ANG
         "F_red": U.FORCE, "l_O1C": U.LENGTH, "l_O2C": U.LENGTH}
 
 
-def dim_of(key: str) -> U.Dim:
-    return DIMS.get(key, U.DIMENSIONLESS)
-
-
-class Cross:
+class Cross(PrintedResults):
     """The cross-slider mechanism of the case at its one position."""
+
+    PREFIX, DIMS = "cross", DIMS
 
     def __init__(self, study):
         self.study = study
@@ -41,19 +38,9 @@ class Cross:
                              expected="0 < angle_O1 < 90°")
         self.r = CX.solve(**self.inputs)
 
-    @cached_property
-    def scalars(self) -> dict:
-        self.printed
-        return self.scalars_raw()
-
-    @cached_property
-    def printed(self) -> list[dict]:
-        vals = {k[len("cross_"):]: v for k, v in self.scalars_raw().items()}
-        return read_printed(self.node.table("printed"), vals, dim_of)
-
-    def scalars_raw(self) -> dict:
+    def results(self) -> dict:
         keys = (*SPEEDS, "w3", "w5", "l_O1C", "l_O2C") + (("F_red",) if self.inputs["M"] else ())
-        return {f"cross_{k}": float(abs(self.r[k])) for k in keys}
+        return {k: abs(self.r[k]) for k in keys}
 
     def tables(self) -> dict[str, pd.DataFrame]:
         r = self.r

@@ -2,21 +2,20 @@
 before and after replacing the higher pairs by links with two lower pairs (:mod:`reportgen.core.dof`)."""
 from __future__ import annotations
 
-from functools import cached_property
-
 import pandas as pd
 
-from ..case import units as U
-from ..case.printed import read_printed
 from ..core import dof as CD
+from .printed_results import PrintedResults
 
 __all__ = ["Dof"]
 
 TYPES = {"R": "вращательная", "P": "поступательная", "H": "высшая"}
 
 
-class Dof:
+class Dof(PrintedResults):
     """Chebyshev's count of the case's structure, before and after the replacement."""
+
+    PREFIX = "dof"
 
     def __init__(self, study):
         self.study = study
@@ -68,21 +67,11 @@ class Dof:
             else:
                 self.names_after += [nm + "₁′", nm + "₂′"]
 
-    @cached_property
-    def scalars(self) -> dict:
-        self.printed
-        return self.scalars_raw()
-
-    @cached_property
-    def printed(self) -> list[dict]:
-        vals = {k[len("dof_"):]: v for k, v in self.scalars_raw().items()}
-        return read_printed(self.node.table("printed"), vals, lambda k: U.DIMENSIONLESS)
-
-    def scalars_raw(self) -> dict:
+    def results(self) -> dict:
         b, a = self.before, self.after
         out = {"n": b["n"], "p5": b["p5"], "p4": b["p4"], "W": b["W"], "q": b["q"], "W_true": b["W_true"],
                "n_after": a["n"], "p5_after": a["p5"], "p4_after": a["p4"], "W_after": a["W"]}
-        return {f"dof_{k}": float(v) for k, v in out.items()}
+        return out
 
     def tables(self) -> dict[str, pd.DataFrame]:
         return {"dof_pairs": pd.DataFrame([{"pair": nm, "i": i, "j": j, "type": t}

@@ -4,13 +4,12 @@ to move when the shaft speeds up slowly (or slows down), and the frictionless sp
 from __future__ import annotations
 
 import math
-from functools import cached_property
 
 import pandas as pd
 
 from ..case import units as U
-from ..case.printed import read_printed
 from ..core import governor as CG
+from .printed_results import PrintedResults
 
 __all__ = ["Governor"]
 
@@ -22,12 +21,10 @@ DIMS = {"omega": U.ANGULAR_VELOCITY, "omega_up": U.ANGULAR_VELOCITY, "omega_down
 SENSE = {"up": 1, "down": -1}
 
 
-def dim_of(key: str) -> U.Dim:
-    return DIMS.get(key, U.DIMENSIONLESS)
-
-
-class Governor:
+class Governor(PrintedResults):
     """The governor of the case, solved for speeding up (+1), slowing down (−1), no friction (0)."""
+
+    PREFIX, DIMS = "governor", DIMS
 
     def __init__(self, study):
         self.study = study
@@ -58,24 +55,14 @@ class Governor:
         self.cases = {s: CG.solve(self.geo, self.Q, self.m, self.g, self.rho, s) for s in (1, 0, -1)}
         self.main = self.cases[SENSE[self.speeding]]
 
-    @cached_property
-    def scalars(self) -> dict:
-        self.printed
-        return self.scalars_raw()
-
-    @cached_property
-    def printed(self) -> list[dict]:
-        vals = {k[len("governor_"):]: v for k, v in self.scalars_raw().items()}
-        return read_printed(self.node.table("printed"), vals, dim_of)
-
-    def scalars_raw(self) -> dict:
+    def results(self) -> dict:
         r = self.main
         out = {"rho": self.rho, "phi_f": self.phi_f, "alpha": r["alpha"], "R": r["R"],
                "P": math.hypot(*r["P"]), "F_i": r["F_i"], "R76": math.hypot(*r["R76"]),
                "R76_angle": r["R76_angle"], "omega": r["omega"], "r_D": r["r_D"],
                "omega_up": self.cases[1]["omega"], "omega_0": self.cases[0]["omega"],
                "omega_down": self.cases[-1]["omega"]}
-        return {f"governor_{k}": float(v) for k, v in out.items()}
+        return out
 
     def tables(self) -> dict[str, pd.DataFrame]:
         rows = []
