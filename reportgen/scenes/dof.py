@@ -29,7 +29,11 @@ def _graph(ax, n, pairs, names, rollers, new, title):
         (x0, y0), (x1, y1) = pos[i], pos[j]
         col = "tab:green" if i in new or j in new or nm.endswith("′") else INK
         ax.plot([x0, x1], [y0, y1], color="tab:red" if t == "H" else col, lw=1.2, ls="--" if t == "H" else "-", zorder=1)
-        ax.text(0.5 * (x0 + x1), 0.5 * (y0 + y1), f"{nm} ({t})", fontsize=_FS - 1, ha="center", va="center",
+        mx, my = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+        if i and j:                      # between moving links: the label outside the arc
+            r = math.hypot(mx, my + 0.45)
+            mx, my = mx * (1 + 0.2 / r), -0.45 + (my + 0.45) * (1 + 0.2 / r)
+        ax.text(mx, my, f"{nm} ({t})", fontsize=_FS - 1, ha="center", va="center",
                 bbox=dict(fc="white", ec="none", pad=0.5), zorder=2)
     for k, (x, y) in pos.items():
         fc = "0.8" if k == 0 else ("#cfe8cf" if k in new else ("#f6d5d5" if k in rollers else "white"))
