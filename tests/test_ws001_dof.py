@@ -52,3 +52,18 @@ def test_dof_case_errors(tmp_path):
         p.write_text(text.replace(old, new), encoding="utf-8")
         with pytest.raises(CaseError, match=msg):
             load_case(p).dof
+
+
+def test_three_olympiad_kinds_in_one_case(tmp_path):
+    """Problems 1, 3 and 7 as the sections of one case: every kind is found and solved."""
+    cases = CASE.parent
+    gov = (cases / "ws001_p7_governor.toml").read_text(encoding="utf-8")
+    cross = (cases / "ws001_p3_cross.toml").read_text(encoding="utf-8")
+    dof = CASE.read_text(encoding="utf-8")
+    text = gov + "\n" + cross[cross.index("[parameters]"):] + "\n" + dof[dof.index("[dof]"):]
+    p = tmp_path / "all.toml"
+    p.write_text(text, encoding="utf-8")
+    st = load_case(p)
+    s = st.all_scalars()
+    assert s["dof_W_after"] == 1 and round(s["governor_omega"], 2) == 20.36
+    assert s["cross_F_red"] == pytest.approx(50 * 3 ** 0.5, rel=1e-14)
