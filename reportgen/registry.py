@@ -29,6 +29,9 @@ class TaskKind:
 KINDS: tuple[TaskKind, ...] = (
     TaskKind("synthesis", "synthesis", "synthesis:Synthesis", "Синтез рычажного механизма", False),
     TaskKind("machine", "machine", "machine:Machine", "Маховик машины по энергии цикла", False),
+    TaskKind("dof", "dof", "dof:Dof", "Число степеней свободы механизма с высшей парой", False),
+    TaskKind("cross", "cross", "cross:Cross", "Скорости механизма с крестовиной и приведённая сила", False),
+    TaskKind("governor", "governor", "governor:Governor", "Центробежный регулятор с трением в шарнирах", False),
     TaskKind("motion", "motion", "motion:Motion", "Уравнение движения машины во времени", False),
     TaskKind("dynamics", "dynamics", "dynamics:Dynamics", "Динамический анализ и синтез маховика", True),
     TaskKind("forces", "forces", "forces:Forces", "Силовой анализ", True),

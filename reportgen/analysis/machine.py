@@ -8,15 +8,14 @@ N = A/t_ц with the work per cycle A and the cycle time t_ц."""
 from __future__ import annotations
 
 import math
-from functools import cached_property
 
 import numpy as np
 import pandas as pd
 
 from ..case import units as U
-from ..case.printed import read_printed
 from ..core import machine as CM
 from .loads import read_table
+from .printed_results import PrintedResults
 
 __all__ = ["Machine"]
 
@@ -27,10 +26,6 @@ DIMS = {"dE": U.ENERGY, "work": U.ENERGY, "omega_m": U.ANGULAR_VELOCITY, "omega_
         "power": U.POWER, "cycle_time": U.TIME, "M_mean": U.MOMENT}
 
 
-def dim_of(key: str) -> U.Dim:
-    return DIMS.get(key, U.DIMENSIONLESS)
-
-
 def _one_of(node, keys, what):
     given = [k for k in keys if node.has(k)]
     if len(given) != 1:
@@ -38,8 +33,10 @@ def _one_of(node, keys, what):
     return given[0]
 
 
-class Machine:
+class Machine(PrintedResults):
     """The energy-only machine of the case."""
+
+    PREFIX, DIMS = "machine", DIMS
 
     def __init__(self, study):
         self.study = study
@@ -116,18 +113,7 @@ class Machine:
                            1.0 / node.quantity("rate", U.FREQUENCY, p, positive=True) if node.has("rate") else None)
         self.power = (self.work / self.cycle_time if self.work is not None and self.cycle_time else None)
 
-    @cached_property
-    def scalars(self) -> dict:
-        """Named results ``machine_*`` (the printed values are checked here too)."""
-        self.printed
-        return self.scalars_raw()
-
-    @cached_property
-    def printed(self) -> list[dict]:
-        vals = {k[len("machine_"):]: v for k, v in self.scalars_raw().items()}
-        return read_printed(self.node.table("printed"), vals, dim_of)
-
-    def scalars_raw(self) -> dict:
+    def results(self) -> dict:
         out = {"dE": self.dE, "delta": self.delta, "omega_m": self.omega_m, "omega_max": self.omega_max,
                "omega_min": self.omega_min, "J": self.J, "J_fly": self.J_fly, "J_O": self.J_O}
         if self.table is not None:
@@ -135,7 +121,7 @@ class Machine:
         for k in ("work", "cycle_time", "power"):
             if getattr(self, k) is not None:
                 out[k] = getattr(self, k)
-        return {f"machine_{k}": v for k, v in out.items()}
+        return out
 
     def tables(self) -> dict[str, pd.DataFrame]:
         if self.table is not None:

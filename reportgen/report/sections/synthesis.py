@@ -173,7 +173,8 @@ def printed_table(sec, printed: list[dict], tid: str, angular=lambda k: False) -
     rows, notes = [], []
     for p in printed:
         ang = angular(p["key"])
-        f = (lambda z, n=5: fmt(math.degrees(z), sig=n) + "°") if ang else (lambda z, n=5: fmt(z, sig=n))
+        f = ((lambda z, n=5: fmt(math.degrees(z), sig=n) + "°") if ang else
+             (lambda z, n=5: str(int(z)) if float(z).is_integer() and abs(z) < 1e6 else fmt(z, sig=n)))
         title = _title_html(p["title"])
         rows.append({"name": title, "printed": f(p["printed"], p["digits"]), "computed": f(p["computed"]),
                      "rel": fmt(100 * (p["printed"] - p["computed"]) / p["computed"], sig=2) + "&nbsp;%"})
