@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .linalg import solve_dense
+from .linalg import lu_factor, lu_solve, solve_dense
 
 # joint kinds
 J_REV = 0
@@ -52,14 +52,14 @@ NEWTON_TOL = 1e-12  # residual tolerance relative to the size of the mechanism
 NEWTON_MAXIT = 30
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _rot(th, px, py):
     c = np.cos(th)
     s = np.sin(th)
     return c * px - s * py, s * px + c * py
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _local(jf, j, which, q):
     """Local point of revolute joint j on its first (which=0) or second (which=1) body at q."""
     if which == 0:
@@ -67,7 +67,7 @@ def _local(jf, j, which, q):
     return jf[j, 2] + q * jf[j, 6], jf[j, 3] + q * jf[j, 7]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _pri(jf, j, q):
     """Guide line point g (on the guide body) and slider point s (on the slider body) of a
     prismatic joint at q (both may move with q when they belong to an actuator's rod)."""
@@ -75,13 +75,18 @@ def _pri(jf, j, q):
             jf[j, 2] + q * jf[j, 8], jf[j, 3] + q * jf[j, 9])
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _glob(pose, b, px, py):
     ux, uy = _rot(pose[b, 2], px, py)
     return pose[b, 0] + ux, pose[b, 1] + uy
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
+def _rcs(c, s, px, py):
+    return c * px - s * py, s * px + c * py
+
+
+@njit(cache=True, error_model="numpy")
 def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma):
     """Rows of joint j: Jacobian blocks (coef[row, 0:3] body i, coef[row, 3:6] body j),
     explicit ∂Φ/∂q and the acceleration term γ (second derivative without x'' terms).
@@ -100,12 +105,16 @@ def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma):
         gam[r] = 0.0
     kind = jt[j]
     if kind == J_REV:
+        ci = np.cos(ti)
+        si = np.sin(ti)
+        cj = np.cos(tj)
+        sj = np.sin(tj)
         pix, piy = _local(jf, j, 0, q)
         pjx, pjy = _local(jf, j, 1, q)
-        uix, uiy = _rot(ti, pix, piy)
-        ujx, ujy = _rot(tj, pjx, pjy)
-        vix, viy = _rot(ti, jf[j, 4], jf[j, 5])
-        vjx, vjy = _rot(tj, jf[j, 6], jf[j, 7])
+        uix, uiy = _rcs(ci, si, pix, piy)
+        ujx, ujy = _rcs(cj, sj, pjx, pjy)
+        vix, viy = _rcs(ci, si, jf[j, 4], jf[j, 5])
+        vjx, vjy = _rcs(cj, sj, jf[j, 6], jf[j, 7])
         coef[0, 0] = 1.0
         coef[0, 2] = -uiy
         coef[1, 1] = 1.0
@@ -121,13 +130,17 @@ def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma):
             gam[1] = -uiy * wi * wi + 2.0 * vix * wi - (-ujy * wj * wj + 2.0 * vjx * wj)
         return 2
     elif kind == J_PRI:
+        ci = np.cos(ti)
+        si = np.sin(ti)
+        cj = np.cos(tj)
+        sj = np.sin(tj)
         gx, gy, sx, sy = _pri(jf, j, q)
         al = jf[j, 4]
-        nx, ny = _rot(ti, -np.sin(al), np.cos(al))
-        agx, agy = _rot(ti, gx, gy)
-        asx, asy = _rot(tj, sx, sy)
-        g1x, g1y = _rot(ti, jf[j, 6], jf[j, 7])
-        s1x, s1y = _rot(tj, jf[j, 8], jf[j, 9])
+        nx, ny = _rcs(ci, si, -np.sin(al), np.cos(al))
+        agx, agy = _rcs(ci, si, gx, gy)
+        asx, asy = _rcs(cj, sj, sx, sy)
+        g1x, g1y = _rcs(ci, si, jf[j, 6], jf[j, 7])
+        s1x, s1y = _rcs(cj, sj, jf[j, 8], jf[j, 9])
         dx = pose[bj, 0] + asx - pose[bi, 0] - agx
         dy = pose[bj, 1] + asy - pose[bi, 1] - agy
         # row 0: relative angle
@@ -157,7 +170,7 @@ def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma):
         return 1
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _joint_residual(jt, jb, jf, j, q, pose, res):
     bi = jb[j, 0]
     bj = jb[j, 1]
@@ -187,21 +200,21 @@ def _joint_residual(jt, jb, jf, j, q, pose, res):
         return 1
 
 
-@njit(cache=True)
-def _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d2, level, mat, rhs, col_of):
+@njit(cache=True, error_model="numpy")
+def _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d2, level, mat, rhs, col_of,
+                  coef, expl, gam, res, with_mat):
     """Assemble the group's linear system at velocity (level=1) or acceleration (level=2)
-    level, or the Newton Jacobian with the residual as right-hand side (level=0).
+    level, or the Newton Jacobian with the residual as right-hand side (level=0); with
+    ``with_mat`` False only the right-hand side (the matrix Φ_x is the same at both levels).
 
-    col_of[b] is the column block of body b in the group or −1 for a known body."""
-    coef = np.zeros((2, 6))
-    expl = np.zeros(2)
-    gam = np.zeros(2)
-    res = np.zeros(2)
+    col_of[b] is the column block of body b in the group or −1 for a known body; coef, expl,
+    gam, res are the caller's scratch arrays (no allocation per position)."""
     n = 3 * nbg
     for r in range(n):
         rhs[r] = 0.0
-        for c in range(n):
-            mat[r, c] = 0.0
+        if with_mat:
+            for c in range(n):
+                mat[r, c] = 0.0
     row = 0
     for k in range(nj):
         j = gj[k]
@@ -216,7 +229,8 @@ def _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d2, level, mat, rhs,
                 for c in range(3):
                     a = coef[r, 3 * side + c]
                     if cb >= 0:
-                        mat[row + r, 3 * cb + c] += a
+                        if with_mat:
+                            mat[row + r, 3 * cb + c] += a
                     elif level == 1:
                         s += a * d1[b, c]
                     elif level == 2:
@@ -231,7 +245,7 @@ def _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d2, level, mat, rhs,
     return row
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _pivot(jf, jb, j, body, q, pose):
     """For revolute joint j attaching ``body`` to an already solved body: the joint's local
     point on ``body`` and its global position (from the solved side)."""
@@ -246,7 +260,7 @@ def _pivot(jf, jb, j, body, q, pose):
     return px, py, gx, gy
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _inner(jf, jb, j, a, q):
     """Local points of the inner revolute joint j on body a and on the other body."""
     if jb[j, 0] == a:
@@ -258,7 +272,7 @@ def _inner(jf, jb, j, a, q):
     return ax, ay, bx, by
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _solve_rrr(jf, jb, spec, sigma, q, pose):
     """ВВВ group: bodies a, b; joint jA (a–known), jB (a–b), jC (b–known)."""
     a = spec[0]
@@ -304,7 +318,7 @@ def _solve_rrr(jf, jb, spec, sigma, q, pose):
     return F_OK, 0.0, sinmu
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _line_of_body(jf, jb, jP, b, q, pose):
     """A body b whose angle is already known and that is tied by prismatic joint jP to a known
     body can only translate along the guide: r_b = r0 + t·u.  Returns (r0x, r0y, ux, uy)."""
@@ -330,7 +344,7 @@ def _line_of_body(jf, jb, jP, b, q, pose):
     return Sx - gx - e * nx, Sy - gy - e * ny, ux, uy
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _angle_from_prismatic(jf, jb, jP, b, pose):
     al = jf[jP, 4]
     if jb[jP, 1] == b:
@@ -338,7 +352,7 @@ def _angle_from_prismatic(jf, jb, jP, b, pose):
     return pose[jb[jP, 1], 2] - al
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _solve_rrp(jf, jb, spec, sigma, q, pose):
     """ВВП group: body a (revolute jA to a known body, revolute jB to b), body b (prismatic jP
     to a known body).  Circle (centre A, radius |AB| on a) meets the line traced by B."""
@@ -377,7 +391,7 @@ def _solve_rrp(jf, jb, spec, sigma, q, pose):
     return F_OK, 0.0, sinmu
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _solve_rpr(jf, jb, spec, sigma, q, pose):
     """ВПВ group: bodies a, b each on a revolute to a known body (jA, jC), joined by the
     prismatic jP.  With G the guide and S the slider body of jP and w = P_S − P_G:
@@ -426,11 +440,13 @@ def _solve_rpr(jf, jb, spec, sigma, q, pose):
     return F_OK, 0.0, sigma * np.sqrt(max(0.0, 1.0 - c * c))
 
 
-@njit(cache=True)
-def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of):
+@njit(cache=True, error_model="numpy")
+def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of, known, mat, rhs):
     """Group whose angles all follow from angle constraints (prismatic joints to known bodies,
-    drives); positions then satisfy linear equations (ПВП, ВПП, the initial link)."""
-    known = np.zeros(nbg, dtype=np.bool_)
+    drives); positions then satisfy linear equations (ПВП, ВПП, the initial link).
+    ``known``, ``mat``, ``rhs`` are the caller's scratch arrays."""
+    for k in range(nbg):
+        known[k] = False
     for it in range(nbg + 1):
         for k in range(nj):
             j = gj[k]
@@ -456,8 +472,10 @@ def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of):
         if not known[k]:
             return F_SINGULAR, 0.0, 0.0
     n = 2 * nbg
-    mat = np.zeros((n, n))
-    rhs = np.zeros(n)
+    for r in range(n):
+        rhs[r] = 0.0
+        for c in range(n):
+            mat[r, c] = 0.0
     row = 0
     for k in range(nj):
         j = gj[k]
@@ -513,14 +531,14 @@ def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of):
     return F_OK, 0.0, quality
 
 
-@njit(cache=True)
-def _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of):
+@njit(cache=True, error_model="numpy")
+def _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
+                  coef, expl, gam, res):
     n = 3 * nbg
-    mat = np.zeros((n, n))
-    rhs = np.zeros(n)
     res_norm = 0.0
     for it in range(NEWTON_MAXIT):
-        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d1, 0, mat, rhs, col_of)
+        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d1, 0, mat, rhs, col_of,
+                      coef, expl, gam, res, True)
         res_norm = 0.0
         for r in range(n):
             res_norm = max(res_norm, abs(rhs[r]))
@@ -536,7 +554,7 @@ def _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of):
     return F_NEWTON, res_norm, 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
                 pose0, size):
     """Positions, first and second analogs of every body over the grid q.
@@ -557,6 +575,12 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
     maxb = gbody.shape[1]
     mat = np.zeros((3 * maxb, 3 * maxb))
     rhs = np.zeros(3 * maxb)
+    perm = np.zeros(3 * maxb, dtype=np.int64)
+    known = np.zeros(maxb, dtype=np.bool_)
+    coef = np.zeros((2, 6))
+    expl = np.zeros(2)
+    gam = np.zeros(2)
+    res = np.zeros(2)
     col_of = -np.ones(nb, dtype=np.int64)
     cur = pose0.copy()
     v = np.zeros((nb, 3))
@@ -578,7 +602,7 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
             elif kind == G_RPR:
                 st, amount, qual = _solve_rpr(jf, jb, gspec[g], gsigma[g], qi, cur)
             elif kind == G_LIN:
-                st, amount, qual = _solve_lin(jt, jb, jf, gj, nj, gb, nbg, qi, cur, col_of)
+                st, amount, qual = _solve_lin(jt, jb, jf, gj, nj, gb, nbg, qi, cur, col_of, known, mat, rhs)
             else:
                 if i > 0:
                     dq = qi - q[i - 1]
@@ -586,7 +610,8 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
                         b = gb[k]
                         for c in range(3):
                             cur[b, c] = pose[i - 1, b, c] + d1[i - 1, b, c] * dq + 0.5 * d2[i - 1, b, c] * dq * dq
-                st, amount, qual = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of)
+                st, amount, qual = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
+                                                 mat, rhs, coef, expl, gam, res)
             if st != F_OK:
                 fail[0] = st
                 fail[1] = i
@@ -594,9 +619,10 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
                 fail[3] = amount
                 return pose, d1, d2, quality, fail
             n = 3 * nbg
-            # first analogs
-            _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 1, mat, rhs, col_of)
-            piv = solve_dense(mat, rhs, n, 0.0)
+            # first analogs: Φ_x x' = −Φ_q (one LU factorisation for both levels)
+            _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 1, mat, rhs, col_of,
+                          coef, expl, gam, res, True)
+            piv = lu_factor(mat, n, perm)
             if kind == G_NEWTON or kind == G_LIN:
                 qual = piv
             if piv < 1e-14:
@@ -605,12 +631,14 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
                 fail[2] = g
                 fail[3] = piv
                 return pose, d1, d2, quality, fail
+            lu_solve(mat, perm, rhs, n)
             for k in range(nbg):
                 for c in range(3):
                     v[gb[k], c] = rhs[3 * k + c]
-            # second analogs
-            _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 2, mat, rhs, col_of)
-            solve_dense(mat, rhs, n, 0.0)
+            # second analogs: Φ_x x'' = −γ
+            _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 2, mat, rhs, col_of,
+                          coef, expl, gam, res, False)
+            lu_solve(mat, perm, rhs, n)
             for k in range(nbg):
                 for c in range(3):
                     acc[gb[k], c] = rhs[3 * k + c]
@@ -625,7 +653,7 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
     return pose, d1, d2, quality, fail
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def points_cycle(pose, d1, d2, q, pbody, ploc):
     """Global position and analogs of points given by body index and local coordinates
     p = p0 + q·p1 (ploc rows: p0x, p0y, p1x, p1y).
