@@ -46,6 +46,11 @@ F_OK = 0
 F_ASSEMBLY = 1
 F_NEWTON = 2
 F_SINGULAR = 3
+F_JUMP = 4          # internal: Newton's correction too large against the predicted step
+
+JUMP_RATIO = 0.5    # allowed Newton correction relative to the predicted step (branch tracking)
+JUMP_ABS = 1e-9     # … plus this fraction of the size of the mechanism
+MAX_HALVINGS = 8
 
 CLAMP = 2e-9        # relative tolerance for a stretched/folded group (rounding, not failure)
 NEWTON_TOL = 1e-12  # residual tolerance relative to the size of the mechanism
@@ -542,16 +547,213 @@ def _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, r
         res_norm = 0.0
         for r in range(n):
             res_norm = max(res_norm, abs(rhs[r]))
-        if res_norm <= NEWTON_TOL * size:
-            return F_OK, 0.0, 1.0
+        converged = res_norm <= NEWTON_TOL * size
         quality = solve_dense(mat, rhs, n, 0.0)
         if quality == 0.0:
+            if converged:
+                return F_OK, 0.0, 1.0
             return F_NEWTON, res_norm, 0.0
         for k in range(nbg):
             b = gb[k]
             for c in range(3):
                 pose[b, c] += rhs[3 * k + c]
+        if converged:
+            # one more step after the tolerance is met: quadratic convergence takes the
+            # residual to rounding level whatever the starting point
+            return F_OK, 0.0, 1.0
     return F_NEWTON, res_norm, 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def _residual_norms(jt, jb, jf, gj, nj, q, pose, res):
+    """(max |Φ| over the group's equations, max gap of its revolute joints in metres)."""
+    rmax = 0.0
+    gap = 0.0
+    for k in range(nj):
+        j = gj[k]
+        nr = _joint_residual(jt, jb, jf, j, q, pose, res)
+        for r in range(nr):
+            rmax = max(rmax, abs(res[r]))
+        if jt[j] == J_REV:
+            gap = max(gap, np.hypot(res[0], res[1]))
+        elif jt[j] == J_PRI:
+            gap = max(gap, abs(res[1]))
+    return rmax, gap
+
+
+@njit(cache=True, error_model="numpy")
+def _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
+               coef, expl, gam, res):
+    """First assembly of a Newton group far from the sketch: Levenberg–Marquardt on the loop
+    equations (Madsen, Nielsen, Tingleff, *Methods for non-linear least squares problems*,
+    2004, alg. 3.16), angles scaled by the size of the mechanism.  Converges to an assembly when
+    one exists in the basin of the sketch, otherwise to the configuration of least squared
+    closure error; returns (status, the largest joint gap there in metres, 1)."""
+    n = 3 * nbg
+    A = np.zeros((n, n))
+    g = np.zeros(n)
+    trial = np.zeros((nbg, 3))
+    lam = 1e-3
+    nu = 2.0
+    for it in range(400):
+        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d1, 0, mat, rhs, col_of,
+                      coef, expl, gam, res, True)
+        f0 = 0.0
+        for r in range(n):
+            f0 += rhs[r] * rhs[r]
+        if np.sqrt(f0) <= NEWTON_TOL * size:
+            return F_OK, 0.0, 1.0
+        # scale the angle columns by the size so that all unknowns are lengths
+        for r in range(n):
+            for c in range(n):
+                if c % 3 == 2:
+                    mat[r, c] /= size
+        dmax = 0.0
+        for r in range(n):
+            s = 0.0
+            for k in range(n):
+                s += mat[k, r] * rhs[k]
+            g[r] = s
+            for c in range(n):
+                s = 0.0
+                for k in range(n):
+                    s += mat[k, r] * mat[k, c]
+                A[r, c] = s
+            dmax = max(dmax, A[r, r])
+        if it == 0:
+            lam = 1e-3 * dmax
+        for r in range(n):
+            A[r, r] += lam
+        for r in range(n):
+            rhs[r] = g[r]
+        if solve_dense(A, rhs, n, 0.0) == 0.0:
+            break
+        for k in range(nbg):
+            b = gb[k]
+            for c in range(3):
+                trial[k, c] = pose[b, c]
+                pose[b, c] += rhs[3 * k + c] / (size if c == 2 else 1.0)
+        f1 = 0.0
+        for k in range(nj):
+            nr = _joint_residual(jt, jb, jf, gj[k], q, pose, res)
+            for r in range(nr):
+                f1 += res[r] * res[r]
+        if f1 < f0:
+            lam = max(lam * 0.3, 1e-30)
+            nu = 2.0
+        else:
+            for k in range(nbg):
+                b = gb[k]
+                for c in range(3):
+                    pose[b, c] = trial[k, c]
+            lam *= nu
+            nu *= 2.0
+            if lam > 1e30:
+                break
+    st, a2, q2 = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
+                               coef, expl, gam, res)
+    if st == F_OK:
+        return F_OK, 0.0, 1.0
+    rmax, gap = _residual_norms(jt, jb, jf, gj, nj, q, pose, res)
+    return F_NEWTON, gap, 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
+                    size, cur, v, acc, pp, pv, pa, qual_row, fail, mat, rhs, perm, known,
+                    coef, expl, gam, res, col_of):
+    """Positions and both analogs of every group at qi.  Newton groups start from the
+    second-order predictor pp + pv·dq + ½ pa·dq² (the state at the previous grid point), or from
+    ``cur`` (the sketch) when ``first``.  Returns False on failure (fail[0], fail[2], fail[3] set;
+    F_JUMP when Newton's correction is large against the predicted step, i.e. it may have left
+    the branch and the caller must refine the step)."""
+    ng = gkind.shape[0]
+    for g in range(ng):
+        nbg = gnb[g]
+        nj = gnj[g]
+        gb = gbody[g]
+        gj = gjoint[g]
+        for k in range(nbg):
+            col_of[gb[k]] = k
+        kind = gkind[g]
+        if kind == G_RRR:
+            st, amount, qual = _solve_rrr(jf, jb, gspec[g], gsigma[g], qi, cur)
+        elif kind == G_RRP:
+            st, amount, qual = _solve_rrp(jf, jb, gspec[g], gsigma[g], qi, cur)
+        elif kind == G_RPR:
+            st, amount, qual = _solve_rpr(jf, jb, gspec[g], gsigma[g], qi, cur)
+        elif kind == G_LIN:
+            st, amount, qual = _solve_lin(jt, jb, jf, gj, nj, gb, nbg, qi, cur, col_of, known, mat, rhs)
+        else:
+            if first:
+                st, amount, qual = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
+                                                 mat, rhs, coef, expl, gam, res)
+                if st != F_OK:
+                    st, amount, qual = _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
+                                                  mat, rhs, coef, expl, gam, res)
+            else:
+                step = 0.0
+                for k in range(nbg):
+                    b = gb[k]
+                    for c in range(3):
+                        dx = pv[b, c] * dq + 0.5 * pa[b, c] * dq * dq
+                        cur[b, c] = pp[b, c] + dx
+                        step = max(step, abs(dx) * (size if c == 2 else 1.0))
+                for k in range(nbg):
+                    b = gb[k]
+                    for c in range(3):
+                        rhs[3 * k + c] = cur[b, c]
+                pred = rhs[:3 * nbg].copy()
+                st, amount, qual = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
+                                                 mat, rhs, coef, expl, gam, res)
+                if st == F_OK:
+                    corr = 0.0
+                    for k in range(nbg):
+                        b = gb[k]
+                        for c in range(3):
+                            corr = max(corr, abs(cur[b, c] - pred[3 * k + c]) * (size if c == 2 else 1.0))
+                    if corr > JUMP_RATIO * step + JUMP_ABS * size:
+                        st = F_JUMP
+                        amount = corr
+                else:
+                    st = F_JUMP
+                    amount = -1.0      # Newton did not converge (not a detected jump)
+        if st != F_OK:
+            fail[0] = st
+            fail[2] = g
+            fail[3] = amount
+            for k in range(nbg):
+                col_of[gb[k]] = -1
+            return False
+        n = 3 * nbg
+        # first analogs: Φ_x x' = −Φ_q (one LU factorisation for both levels)
+        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 1, mat, rhs, col_of,
+                      coef, expl, gam, res, True)
+        piv = lu_factor(mat, n, perm)
+        if kind == G_NEWTON or kind == G_LIN:
+            qual = piv
+        if piv < 1e-14:
+            fail[0] = F_SINGULAR
+            fail[2] = g
+            fail[3] = qual      # transmission measure of a dyad, the pivot measure otherwise
+            for k in range(nbg):
+                col_of[gb[k]] = -1
+            return False
+        lu_solve(mat, perm, rhs, n)
+        for k in range(nbg):
+            for c in range(3):
+                v[gb[k], c] = rhs[3 * k + c]
+        # second analogs: Φ_x x'' = −γ
+        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 2, mat, rhs, col_of,
+                      coef, expl, gam, res, False)
+        lu_solve(mat, perm, rhs, n)
+        for k in range(nbg):
+            for c in range(3):
+                acc[gb[k], c] = rhs[3 * k + c]
+        qual_row[g] = qual
+        for k in range(nbg):
+            col_of[gb[k]] = -1
+    return True
 
 
 @njit(cache=True, error_model="numpy")
@@ -563,6 +765,12 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
     (x, y, θ) of each body's frame and their d/dq, d²/dq²; quality (N, ngroups) a
     singularity indicator per group (sine of the transmission angle for dyads, normalised pivot
     otherwise); fail = [kind, position index, group, amount] of the first failure (kind 0 = none).
+
+    Groups solved by Newton are continued along the grid from the previous position with a
+    second-order predictor; a correction large against the predicted step (a possible jump to
+    another branch) or a failure makes the step refined by bisection (up to 2^MAX_HALVINGS
+    sub-steps, every group re-solved at each sub-step); if that does not resolve it the position
+    is reported singular with the condition measure of the group.
     """
     N = q.shape[0]
     nb = pose0.shape[0]
@@ -585,66 +793,69 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
     cur = pose0.copy()
     v = np.zeros((nb, 3))
     acc = np.zeros((nb, 3))
+    sp = np.zeros((nb, 3))
+    sv = np.zeros((nb, 3))
+    sa = np.zeros((nb, 3))
+    qrow = np.zeros(ng)
+    qfail = 0.0
     for i in range(N):
         qi = q[i]
-        for g in range(ng):
-            nbg = gnb[g]
-            nj = gnj[g]
-            gb = gbody[g]
-            gj = gjoint[g]
-            for k in range(nbg):
-                col_of[gb[k]] = k
-            kind = gkind[g]
-            if kind == G_RRR:
-                st, amount, qual = _solve_rrr(jf, jb, gspec[g], gsigma[g], qi, cur)
-            elif kind == G_RRP:
-                st, amount, qual = _solve_rrp(jf, jb, gspec[g], gsigma[g], qi, cur)
-            elif kind == G_RPR:
-                st, amount, qual = _solve_rpr(jf, jb, gspec[g], gsigma[g], qi, cur)
-            elif kind == G_LIN:
-                st, amount, qual = _solve_lin(jt, jb, jf, gj, nj, gb, nbg, qi, cur, col_of, known, mat, rhs)
-            else:
-                if i > 0:
-                    dq = qi - q[i - 1]
-                    for k in range(nbg):
-                        b = gb[k]
-                        for c in range(3):
-                            cur[b, c] = pose[i - 1, b, c] + d1[i - 1, b, c] * dq + 0.5 * d2[i - 1, b, c] * dq * dq
-                st, amount, qual = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
-                                                 mat, rhs, coef, expl, gam, res)
-            if st != F_OK:
-                fail[0] = st
-                fail[1] = i
-                fail[2] = g
-                fail[3] = amount
-                return pose, d1, d2, quality, fail
-            n = 3 * nbg
-            # first analogs: Φ_x x' = −Φ_q (one LU factorisation for both levels)
-            _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 1, mat, rhs, col_of,
-                          coef, expl, gam, res, True)
-            piv = lu_factor(mat, n, perm)
-            if kind == G_NEWTON or kind == G_LIN:
-                qual = piv
-            if piv < 1e-14:
-                fail[0] = F_SINGULAR
-                fail[1] = i
-                fail[2] = g
-                fail[3] = piv
-                return pose, d1, d2, quality, fail
-            lu_solve(mat, perm, rhs, n)
-            for k in range(nbg):
-                for c in range(3):
-                    v[gb[k], c] = rhs[3 * k + c]
-            # second analogs: Φ_x x'' = −γ
-            _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 2, mat, rhs, col_of,
-                          coef, expl, gam, res, False)
-            lu_solve(mat, perm, rhs, n)
-            for k in range(nbg):
-                for c in range(3):
-                    acc[gb[k], c] = rhs[3 * k + c]
-            quality[i, g] = qual
-            for k in range(nbg):
-                col_of[gb[k]] = -1
+        if i == 0:
+            ok = _solve_position(qi, 0.0, True, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody,
+                                 gnb, size, cur, v, acc, cur, v, acc, quality[i], fail, mat, rhs, perm,
+                                 known, coef, expl, gam, res, col_of)
+        else:
+            ok = _solve_position(qi, qi - q[i - 1], False, jt, jb, jf, gkind, gspec, gsigma, gjoint,
+                                 gnj, gbody, gnb, size, cur, v, acc, pose[i - 1], d1[i - 1], d2[i - 1],
+                                 quality[i], fail, mat, rhs, perm, known, coef, expl, gam, res, col_of)
+            if not ok and fail[0] == F_JUMP:
+                # refine: march from q[i-1] to q[i] in 2, 4, … equal sub-steps
+                for h in range(1, MAX_HALVINGS + 1):
+                    m = 1 << h
+                    h_q = (qi - q[i - 1]) / m
+                    sp[:, :] = pose[i - 1]
+                    sv[:, :] = d1[i - 1]
+                    sa[:, :] = d2[i - 1]
+                    ok = True
+                    for k in range(1, m + 1):
+                        qk = q[i - 1] + k * h_q if k < m else qi
+                        qfail = qk
+                        ok = _solve_position(qk, h_q, False, jt, jb, jf, gkind, gspec, gsigma, gjoint,
+                                             gnj, gbody, gnb, size, cur, v, acc, sp, sv, sa, qrow, fail,
+                                             mat, rhs, perm, known, coef, expl, gam, res, col_of)
+                        if not ok:
+                            break
+                        sp[:, :] = cur
+                        sv[:, :] = v
+                        sa[:, :] = acc
+                    if ok:
+                        quality[i, :] = qrow
+                        fail[:] = 0.0
+                        break
+                    if fail[0] != F_JUMP:
+                        break
+                if not ok and fail[0] == F_JUMP:
+                    g = int(fail[2])
+                    if fail[3] < 0.0:
+                        # Newton fails even on the finest step: least squares from the last
+                        # solved sub-step tells an assembly from a gap (reported in metres)
+                        cur[:, :] = sp
+                        for k in range(gnb[g]):
+                            col_of[gbody[g, k]] = k
+                        st, amount, qual = _solve_lsq(jt, jb, jf, gjoint[g], gnj[g], gbody[g], gnb[g],
+                                                      qfail, cur, v, size, col_of, mat, rhs, coef, expl,
+                                                      gam, res)
+                        for k in range(gnb[g]):
+                            col_of[gbody[g, k]] = -1
+                        fail[0] = F_NEWTON if st != F_OK else F_SINGULAR
+                        fail[3] = amount if st != F_OK else qrow[g]
+                    else:
+                        # the branch cannot be followed through this step: a singular position
+                        fail[0] = F_SINGULAR
+                        fail[3] = qrow[g]
+        if not ok:
+            fail[1] = i
+            return pose, d1, d2, quality, fail
         for b in range(nb):
             for c in range(3):
                 pose[i, b, c] = cur[b, c]
