@@ -221,7 +221,7 @@ def check_failure(model: SolverModel, q: np.ndarray, fail: np.ndarray, labels=No
                             "наилучшем по методу наименьших квадратов положении группы")
     if grp.kind in ("RRR", "RRP"):
         mu = math.degrees(math.asin(min(1.0, abs(amount))))
-        measure = f"угол передачи μ = {mu:.3g}°".replace(".", ",")
+        measure = f"угол передачи μ = {mu:.2f}°".replace(".", ",")
     else:
         measure = f"мера обусловленности матрицы группы {amount:.1e}".replace(".", ",")
     raise AssemblyError(grp.title, pos, 0.0,

@@ -659,6 +659,17 @@ def _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
 
 
 @njit(cache=True, error_model="numpy")
+def _pose_distance(a, b, gb, nbg, size):
+    """Largest difference of the group's body poses (angles times the size: metres)."""
+    d = 0.0
+    for k in range(nbg):
+        bb = gb[k]
+        d = max(d, abs(a[bb, 0] - b[bb, 0]), abs(a[bb, 1] - b[bb, 1]),
+                size * abs(np.arctan2(np.sin(a[bb, 2] - b[bb, 2]), np.cos(a[bb, 2] - b[bb, 2]))))
+    return d
+
+
+@njit(cache=True, error_model="numpy")
 def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
                     size, cur, v, acc, pp, pv, pa, qual_row, fail, mat, rhs, perm, known,
                     coef, expl, gam, res, col_of):
@@ -686,11 +697,21 @@ def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj
             st, amount, qual = _solve_lin(jt, jb, jf, gj, nj, gb, nbg, qi, cur, col_of, known, mat, rhs)
         else:
             if first:
+                # from the sketch: Newton and damped (Levenberg–Marquardt) steps, which stay
+                # near the sketch where a full Newton step may land on another assembly; the
+                # converged assembly nearer to the sketch is taken
+                sketch = cur.copy()
                 st, amount, qual = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
                                                  mat, rhs, coef, expl, gam, res)
-                if st != F_OK:
-                    st, amount, qual = _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
-                                                  mat, rhs, coef, expl, gam, res)
+                newton = cur.copy()
+                cur[:, :] = sketch
+                st2, amount2, qual2 = _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
+                                                 mat, rhs, coef, expl, gam, res)
+                if st == F_OK and (st2 != F_OK or _pose_distance(newton, sketch, gb, nbg, size)
+                                   <= _pose_distance(cur, sketch, gb, nbg, size)):
+                    cur[:, :] = newton
+                else:
+                    st, amount, qual = st2, amount2, qual2
             else:
                 step = 0.0
                 for k in range(nbg):
