@@ -92,15 +92,14 @@ def _rcs(c, s, px, py):
 
 
 @njit(cache=True, error_model="numpy")
-def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma):
+def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma, cs):
     """Rows of joint j: Jacobian blocks (coef[row, 0:3] body i, coef[row, 3:6] body j),
-    explicit ∂Φ/∂q and the acceleration term γ (second derivative without x'' terms).
+    explicit ∂Φ/∂q and the acceleration term γ (second derivative without x'' terms);
+    cs[b] = (cos θ_b, sin θ_b) of the current poses.
 
     Returns the number of rows (2 for revolute and prismatic, 1 for a drive)."""
     bi = jb[j, 0]
     bj = jb[j, 1]
-    ti = pose[bi, 2]
-    tj = pose[bj, 2]
     wi = vel[bi, 2]
     wj = vel[bj, 2]
     for r in range(2):
@@ -110,10 +109,10 @@ def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma):
         gam[r] = 0.0
     kind = jt[j]
     if kind == J_REV:
-        ci = np.cos(ti)
-        si = np.sin(ti)
-        cj = np.cos(tj)
-        sj = np.sin(tj)
+        ci = cs[bi, 0]
+        si = cs[bi, 1]
+        cj = cs[bj, 0]
+        sj = cs[bj, 1]
         pix, piy = _local(jf, j, 0, q)
         pjx, pjy = _local(jf, j, 1, q)
         uix, uiy = _rcs(ci, si, pix, piy)
@@ -135,10 +134,10 @@ def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma):
             gam[1] = -uiy * wi * wi + 2.0 * vix * wi - (-ujy * wj * wj + 2.0 * vjx * wj)
         return 2
     elif kind == J_PRI:
-        ci = np.cos(ti)
-        si = np.sin(ti)
-        cj = np.cos(tj)
-        sj = np.sin(tj)
+        ci = cs[bi, 0]
+        si = cs[bi, 1]
+        cj = cs[bj, 0]
+        sj = cs[bj, 1]
         gx, gy, sx, sy = _pri(jf, j, q)
         al = jf[j, 4]
         nx, ny = _rcs(ci, si, -np.sin(al), np.cos(al))
@@ -206,15 +205,27 @@ def _joint_residual(jt, jb, jf, j, q, pose, res):
 
 
 @njit(cache=True, error_model="numpy")
+def _refresh_cs(cs, pose, gb, nbg):
+    for k in range(nbg):
+        b = gb[k]
+        cs[b, 0] = np.cos(pose[b, 2])
+        cs[b, 1] = np.sin(pose[b, 2])
+
+
+@njit(cache=True, error_model="numpy")
 def _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d2, level, mat, rhs, col_of,
-                  coef, expl, gam, res, with_mat):
+                  coef, expl, gam, res, with_mat, cs):
     """Assemble the group's linear system at velocity (level=1) or acceleration (level=2)
     level, or the Newton Jacobian with the residual as right-hand side (level=0); with
     ``with_mat`` False only the right-hand side (the matrix Φ_x is the same at both levels).
 
     col_of[b] is the column block of body b in the group or −1 for a known body; coef, expl,
-    gam, res are the caller's scratch arrays (no allocation per position)."""
+    gam, res are the caller's scratch arrays (no allocation per position); cs[b] holds
+    (cos θ_b, sin θ_b), refreshed here for the group's bodies at the Newton level (level 0) and
+    by the caller once the positions are solved otherwise."""
     n = 3 * nbg
+    if level == 0:
+        _refresh_cs(cs, pose, gb, nbg)
     for r in range(n):
         rhs[r] = 0.0
         if with_mat:
@@ -223,7 +234,7 @@ def _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d2, level, mat, rhs,
     row = 0
     for k in range(nj):
         j = gj[k]
-        nr = _joint_rows(jt, jb, jf, j, q, pose, d1, coef, expl, gam, level == 2)
+        nr = _joint_rows(jt, jb, jf, j, q, pose, d1, coef, expl, gam, level == 2, cs)
         if level == 0:
             _joint_residual(jt, jb, jf, j, q, pose, res)
         for r in range(nr):
@@ -538,12 +549,12 @@ def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of, known, mat, rhs):
 
 @njit(cache=True, error_model="numpy")
 def _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
-                  coef, expl, gam, res):
+                  coef, expl, gam, res, cs):
     n = 3 * nbg
     res_norm = 0.0
     for it in range(NEWTON_MAXIT):
         _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d1, 0, mat, rhs, col_of,
-                      coef, expl, gam, res, True)
+                      coef, expl, gam, res, True, cs)
         res_norm = 0.0
         for r in range(n):
             res_norm = max(res_norm, abs(rhs[r]))
@@ -583,7 +594,7 @@ def _residual_norms(jt, jb, jf, gj, nj, q, pose, res):
 
 @njit(cache=True, error_model="numpy")
 def _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
-               coef, expl, gam, res):
+               coef, expl, gam, res, cs):
     """First assembly of a Newton group far from the sketch: Levenberg–Marquardt on the loop
     equations (Madsen, Nielsen, Tingleff, *Methods for non-linear least squares problems*,
     2004, alg. 3.16), angles scaled by the size of the mechanism.  Converges to an assembly when
@@ -597,7 +608,7 @@ def _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
     nu = 2.0
     for it in range(400):
         _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d1, 0, mat, rhs, col_of,
-                      coef, expl, gam, res, True)
+                      coef, expl, gam, res, True, cs)
         f0 = 0.0
         for r in range(n):
             f0 += rhs[r] * rhs[r]
@@ -651,7 +662,7 @@ def _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
             if lam > 1e30:
                 break
     st, a2, q2 = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
-                               coef, expl, gam, res)
+                               coef, expl, gam, res, cs)
     if st == F_OK:
         return F_OK, 0.0, 1.0
     rmax, gap = _residual_norms(jt, jb, jf, gj, nj, q, pose, res)
@@ -672,7 +683,7 @@ def _pose_distance(a, b, gb, nbg, size):
 @njit(cache=True, error_model="numpy")
 def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
                     size, cur, v, acc, pp, pv, pa, qual_row, fail, mat, rhs, perm, known,
-                    coef, expl, gam, res, col_of):
+                    coef, expl, gam, res, col_of, cs):
     """Positions and both analogs of every group at qi.  Newton groups start from the
     second-order predictor pp + pv·dq + ½ pa·dq² (the state at the previous grid point), or from
     ``cur`` (the sketch) when ``first``.  Returns False on failure (fail[0], fail[2], fail[3] set;
@@ -702,11 +713,11 @@ def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj
                 # converged assembly nearer to the sketch is taken
                 sketch = cur.copy()
                 st, amount, qual = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
-                                                 mat, rhs, coef, expl, gam, res)
+                                                 mat, rhs, coef, expl, gam, res, cs)
                 newton = cur.copy()
                 cur[:, :] = sketch
                 st2, amount2, qual2 = _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
-                                                 mat, rhs, coef, expl, gam, res)
+                                                 mat, rhs, coef, expl, gam, res, cs)
                 if st == F_OK and (st2 != F_OK or _pose_distance(newton, sketch, gb, nbg, size)
                                    <= _pose_distance(cur, sketch, gb, nbg, size)):
                     cur[:, :] = newton
@@ -726,7 +737,7 @@ def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj
                         rhs[3 * k + c] = cur[b, c]
                 pred = rhs[:3 * nbg].copy()
                 st, amount, qual = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
-                                                 mat, rhs, coef, expl, gam, res)
+                                                 mat, rhs, coef, expl, gam, res, cs)
                 if st == F_OK:
                     corr = 0.0
                     for k in range(nbg):
@@ -747,9 +758,10 @@ def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj
                 col_of[gb[k]] = -1
             return False
         n = 3 * nbg
+        _refresh_cs(cs, cur, gb, nbg)
         # first analogs: Φ_x x' = −Φ_q (one LU factorisation for both levels)
         _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 1, mat, rhs, col_of,
-                      coef, expl, gam, res, True)
+                      coef, expl, gam, res, True, cs)
         piv = lu_factor(mat, n, perm)
         if kind == G_NEWTON or kind == G_LIN:
             qual = piv
@@ -766,7 +778,7 @@ def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj
                 v[gb[k], c] = rhs[3 * k + c]
         # second analogs: Φ_x x'' = −γ
         _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 2, mat, rhs, col_of,
-                      coef, expl, gam, res, False)
+                      coef, expl, gam, res, False, cs)
         lu_solve(mat, perm, rhs, n)
         for k in range(nbg):
             for c in range(3):
@@ -819,16 +831,20 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
     sa = np.zeros((nb, 3))
     qrow = np.zeros(ng)
     qfail = 0.0
+    cs = np.zeros((nb, 2))
+    for b in range(nb):
+        cs[b, 0] = np.cos(pose0[b, 2])
+        cs[b, 1] = np.sin(pose0[b, 2])
     for i in range(N):
         qi = q[i]
         if i == 0:
             ok = _solve_position(qi, 0.0, True, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody,
                                  gnb, size, cur, v, acc, cur, v, acc, quality[i], fail, mat, rhs, perm,
-                                 known, coef, expl, gam, res, col_of)
+                                 known, coef, expl, gam, res, col_of, cs)
         else:
             ok = _solve_position(qi, qi - q[i - 1], False, jt, jb, jf, gkind, gspec, gsigma, gjoint,
                                  gnj, gbody, gnb, size, cur, v, acc, pose[i - 1], d1[i - 1], d2[i - 1],
-                                 quality[i], fail, mat, rhs, perm, known, coef, expl, gam, res, col_of)
+                                 quality[i], fail, mat, rhs, perm, known, coef, expl, gam, res, col_of, cs)
             if not ok and fail[0] == F_JUMP:
                 # refine: march from q[i-1] to q[i] in 2, 4, … equal sub-steps
                 for h in range(1, MAX_HALVINGS + 1):
@@ -843,7 +859,7 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
                         qfail = qk
                         ok = _solve_position(qk, h_q, False, jt, jb, jf, gkind, gspec, gsigma, gjoint,
                                              gnj, gbody, gnb, size, cur, v, acc, sp, sv, sa, qrow, fail,
-                                             mat, rhs, perm, known, coef, expl, gam, res, col_of)
+                                             mat, rhs, perm, known, coef, expl, gam, res, col_of, cs)
                         if not ok:
                             break
                         sp[:, :] = cur
@@ -865,7 +881,7 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
                             col_of[gbody[g, k]] = k
                         st, amount, qual = _solve_lsq(jt, jb, jf, gjoint[g], gnj[g], gbody[g], gnb[g],
                                                       qfail, cur, v, size, col_of, mat, rhs, coef, expl,
-                                                      gam, res)
+                                                      gam, res, cs)
                         for k in range(gnb[g]):
                             col_of[gbody[g, k]] = -1
                         fail[0] = F_NEWTON if st != F_OK else F_SINGULAR
