@@ -24,7 +24,7 @@ with h = 1e-12; its own error < 1e-25).  Methods:
 * with ``--peer PYTHON``: pylinkage's numba path (``step_fast``, ``step_fast_with_kinematics``)
   on the crank-rocker, run by ``bench/work_precision_peer.py`` in that separate environment.
 
-Times are the median of warm calls (the kernels compiled and cached before timing).
+Times are the median CPU time of warm calls (the kernels compiled and cached before timing).
 
 Flywheel: J_I of Мерцалов and Виттенбауэр against the exact periodic solution for δ from 0,01 to
 0,2 (worksheet 000), and the run time of each method.
@@ -56,14 +56,15 @@ KINDS = ("position", "first", "second")
 
 
 def timed(fn, budget: float = 0.6, min_runs: int = 3, max_runs: int = 200):
-    """Median wall time of warm calls of fn (after one warm-up call) and the last result."""
+    """Median CPU time of the process (time.process_time: a shared, loaded machine inflates it
+    less than wall time) over warm calls of fn (after one warm-up call), and the last result."""
     out = fn()
     ts = []
-    t_start = time.perf_counter()
-    while len(ts) < min_runs or (len(ts) < max_runs and time.perf_counter() - t_start < budget):
-        t0 = time.perf_counter()
+    t_start = time.process_time()
+    while len(ts) < min_runs or (len(ts) < max_runs and time.process_time() - t_start < budget):
+        t0 = time.process_time()
         out = fn()
-        ts.append(time.perf_counter() - t0)
+        ts.append(time.process_time() - t0)
     return statistics.median(ts), out
 
 
