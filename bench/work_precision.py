@@ -206,7 +206,7 @@ def plot(rows: list[dict], path: Path) -> None:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 3, figsize=(15, 5), sharey=True)
+    fig, axes = plt.subplots(1, 3, figsize=(18, 5.5), sharey=True)
     markers = {"engine": "o", "newton": "s", "central": "^", "forward": "v", "pylinkage, с аналогами": "x"}
     colors = {c: f"C{i}" for i, (c, _) in enumerate(CASES)}
     for ax, kind, title in zip(axes, ("err_position", "err_first", "err_second"),
@@ -223,7 +223,7 @@ def plot(rows: list[dict], path: Path) -> None:
         ax.set_xlabel("наибольшая погрешность (отнесённая к max(1, |x|))")
         ax.grid(True, which="both", alpha=0.3)
     axes[0].set_ylabel("время на цикл, мс")
-    axes[2].legend(fontsize=6, loc="lower left")
+    axes[2].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0))
     fig.suptitle("Время против погрешности: кинематика за цикл (N = 360, 3600, 36000)")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
