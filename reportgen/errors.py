@@ -133,8 +133,11 @@ class AssemblyError(ReportgenError):
         group = self.group.strip()
         if not group.lower().startswith("групп"):
             group = f"группа Ассура {group}"
-        text = f"Механизм не собирается: {group} в положении {self.position}: " \
-               f"не хватает {_fmt_amount(self.amount)} м"
+        if self.amount > 0:
+            text = f"Механизм не собирается: {group} в положении {self.position}: " \
+                   f"не хватает {_fmt_amount(self.amount)} м"
+        else:   # a singular (dead) position: nothing is short, the group loses its mobility
+            text = f"Особое положение механизма: {group} в положении {self.position}"
         if self.detail:
             text += f" ({self.detail})"
         return text

@@ -180,13 +180,21 @@ def _collect_points(model: SolverModel) -> None:
     model.ploc = np.array(pl, dtype=np.float64).reshape(-1, 4)
 
 
-def run_kernel(model: SolverModel, q: np.ndarray, ngroups: int | None = None, sigma=None):
-    """Call the whole-grid kernel (optionally only the first ``ngroups`` groups)."""
+def run_kernel(model: SolverModel, q: np.ndarray, ngroups: int | None = None, sigma=None, pose0=None):
+    """Call the whole-grid kernel (optionally only the first ``ngroups`` groups; Newton groups
+    start from ``pose0``, by default the sketch)."""
     ng = len(model.groups) if ngroups is None else ngroups
     sig = model.gsigma if sigma is None else sigma
+    p0 = model.pose0 if pose0 is None else np.ascontiguousarray(pose0, dtype=np.float64)
     return K.solve_cycle(np.ascontiguousarray(q, dtype=np.float64), model.jt, model.jb, model.jf,
                          model.gkind[:ng], model.gspec[:ng], sig[:ng], model.gjoint[:ng],
-                         model.gnj[:ng], model.gbody[:ng], model.gnb[:ng], model.pose0, model.size)
+                         model.gnj[:ng], model.gbody[:ng], model.gnb[:ng], p0, model.size)
+
+
+def has_newton(model: SolverModel) -> bool:
+    """Whether some group is solved by Newton (class III and higher): its branch is then defined
+    by continuation along the cycle, not by a closed-form sign."""
+    return bool((model.gkind == K.G_NEWTON).any())
 
 
 def describe_position(model: SolverModel, q: float, index: int | None) -> str:
@@ -208,8 +216,16 @@ def check_failure(model: SolverModel, q: np.ndarray, fail: np.ndarray, labels=No
         detail = ("звенья группы не дотягиваются друг до друга" if amount > 0 else "")
         raise AssemblyError(grp.title, pos, amount, detail)
     if kind == K.F_NEWTON:
-        raise AssemblyError(grp.title, pos, amount, "метод Ньютона не сошёлся (невязка замыкания контура)")
-    raise AssemblyError(grp.title, pos, 0.0, "особое положение: определитель системы группы равен нулю")
+        raise AssemblyError(grp.title, pos, amount,
+                            "замыкание контура невозможно: это наибольший зазор в шарнирах при "
+                            "наилучшем по методу наименьших квадратов положении группы")
+    if grp.kind in ("RRR", "RRP"):
+        mu = math.degrees(math.asin(min(1.0, abs(amount))))
+        measure = f"угол передачи μ = {mu:.2f}°".replace(".", ",")
+    else:
+        measure = f"мера обусловленности матрицы группы {amount:.1e}".replace(".", ",")
+    raise AssemblyError(grp.title, pos, 0.0,
+                        f"определитель системы группы равен нулю, аналоги скоростей не определены; {measure}")
 
 
 def choose_branches(model: SolverModel) -> None:
@@ -266,6 +282,35 @@ def solve(model: SolverModel, q, labels=None, ngroups: int | None = None) -> Kin
     q = np.atleast_1d(np.asarray(q, dtype=np.float64))
     pose, d1, d2, qual, fail = run_kernel(model, q, ngroups)
     check_failure(model, q, fail, labels)
+    pts = K.points_cycle(pose, d1, d2, q, model.pbody, model.ploc)
+    return KinematicsResult(q, pose, d1, d2, qual, pts)
+
+
+def solve_continued(model: SolverModel, q, base: KinematicsResult, period: float | None,
+                    labels=None) -> KinematicsResult:
+    """Positions at arbitrary q on the branch of an already solved grid ``base`` (the cycle):
+    each q is reached from the nearest grid position by the kernel's continuation (Newton from
+    the exact grid pose with its predictor, the step refined if a jump is detected), never by
+    a Newton restarted from the sketch, which may converge to another assembly.  ``period`` is
+    the period of the motion in q (2π for a crank) or None."""
+    q = np.atleast_1d(np.asarray(q, dtype=np.float64))
+    bq = base.q
+    rows = []
+    for i, qt in enumerate(q):
+        shift = 0.0
+        if period:
+            shift = math.floor((qt - bq[0]) / period) * period
+        k = int(np.clip(np.searchsorted(bq, qt - shift), 1, len(bq) - 1))
+        k = k - 1 if abs(bq[k - 1] - (qt - shift)) <= abs(bq[k] - (qt - shift)) else k
+        pair = np.array([bq[k], qt - shift])
+        pose, d1, d2, qual, fail = run_kernel(model, pair, pose0=base.pose[k])
+        check_failure(model, q[i:i + 1], np.array([fail[0], 0.0, fail[2], fail[3]]),
+                      None if labels is None else [labels[i]])
+        rows.append((pose[1], d1[1], d2[1], qual[1]))
+    pose = np.array([r[0] for r in rows])
+    d1 = np.array([r[1] for r in rows])
+    d2 = np.array([r[2] for r in rows])
+    qual = np.array([r[3] for r in rows])
     pts = K.points_cycle(pose, d1, d2, q, model.pbody, model.ploc)
     return KinematicsResult(q, pose, d1, d2, qual, pts)
 

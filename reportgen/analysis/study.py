@@ -284,8 +284,9 @@ class Study:
             return None
         return np.full_like(q, d.omega), np.full_like(q, d.epsilon)
 
-    def _frame(self, q: np.ndarray, labels=None, grid=True) -> pd.DataFrame:
-        res = L.solve(self.model, q, labels)
+    def _frame(self, q: np.ndarray, labels=None, grid=True, res=None) -> pd.DataFrame:
+        if res is None:
+            res = self._solve_on_branch(q, labels) if not grid else L.solve(self.model, q, labels)
         cols = L.columns(self.model, res, grid=grid)
         cols.update(self._extra_angles(cols))
         law = self.motion_law(q)
@@ -332,10 +333,25 @@ class Study:
     def cycle(self) -> pd.DataFrame:
         """The same columns on the fine grid over one cycle (for curves and integrals)."""
         self.computed.add("cycle")
-        return self._frame(self.grid.cycle, grid=True)
+        return self._frame(self.grid.cycle, grid=True, res=self._cycle_solution)
+
+    @cached_property
+    def _cycle_solution(self) -> L.KinematicsResult:
+        return L.solve(self.model, self.grid.cycle)
+
+    def _solve_on_branch(self, q: np.ndarray, labels=None) -> L.KinematicsResult:
+        """Kinematics at single positions.  Closed-form groups keep their sign σ; a mechanism
+        with Newton groups (class III) is continued from the nearest position of the solved
+        cycle, so that every position lies on the cycle's branch (never a Newton restarted from
+        the sketch)."""
+        if not L.has_newton(self.model):
+            return L.solve(self.model, q, labels)
+        period = self.grid.length if self.mechanism.driver.rotary else None
+        return L.solve_continued(self.model, q, self._cycle_solution, period, labels)
 
     def at(self, q) -> pd.DataFrame:
-        """Exact evaluation at the given values of the generalised coordinate (SI)."""
+        """Exact evaluation at the given values of the generalised coordinate (SI), on the
+        branch of the cycle."""
         q = np.atleast_1d(np.asarray(q, dtype=float))
         return self._frame(q, [f"q{i}" for i in range(len(q))], grid=False)
 

@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .linalg import solve_dense
+from .linalg import lu_factor, lu_solve, solve_dense
 
 # joint kinds
 J_REV = 0
@@ -46,20 +46,25 @@ F_OK = 0
 F_ASSEMBLY = 1
 F_NEWTON = 2
 F_SINGULAR = 3
+F_JUMP = 4          # internal: Newton's correction too large against the predicted step
+
+JUMP_RATIO = 0.5    # allowed Newton correction relative to the predicted step (branch tracking)
+JUMP_ABS = 1e-9     # … plus this fraction of the size of the mechanism
+MAX_HALVINGS = 8
 
 CLAMP = 2e-9        # relative tolerance for a stretched/folded group (rounding, not failure)
 NEWTON_TOL = 1e-12  # residual tolerance relative to the size of the mechanism
 NEWTON_MAXIT = 30
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _rot(th, px, py):
     c = np.cos(th)
     s = np.sin(th)
     return c * px - s * py, s * px + c * py
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", inline="always")
 def _local(jf, j, which, q):
     """Local point of revolute joint j on its first (which=0) or second (which=1) body at q."""
     if which == 0:
@@ -67,7 +72,7 @@ def _local(jf, j, which, q):
     return jf[j, 2] + q * jf[j, 6], jf[j, 3] + q * jf[j, 7]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", inline="always")
 def _pri(jf, j, q):
     """Guide line point g (on the guide body) and slider point s (on the slider body) of a
     prismatic joint at q (both may move with q when they belong to an actuator's rod)."""
@@ -75,22 +80,26 @@ def _pri(jf, j, q):
             jf[j, 2] + q * jf[j, 8], jf[j, 3] + q * jf[j, 9])
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _glob(pose, b, px, py):
     ux, uy = _rot(pose[b, 2], px, py)
     return pose[b, 0] + ux, pose[b, 1] + uy
 
 
-@njit(cache=True)
-def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma):
+@njit(cache=True, error_model="numpy", inline="always")
+def _rcs(c, s, px, py):
+    return c * px - s * py, s * px + c * py
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma, cs):
     """Rows of joint j: Jacobian blocks (coef[row, 0:3] body i, coef[row, 3:6] body j),
-    explicit ∂Φ/∂q and the acceleration term γ (second derivative without x'' terms).
+    explicit ∂Φ/∂q and the acceleration term γ (second derivative without x'' terms);
+    cs[b] = (cos θ_b, sin θ_b) of the current poses.
 
     Returns the number of rows (2 for revolute and prismatic, 1 for a drive)."""
     bi = jb[j, 0]
     bj = jb[j, 1]
-    ti = pose[bi, 2]
-    tj = pose[bj, 2]
     wi = vel[bi, 2]
     wj = vel[bj, 2]
     for r in range(2):
@@ -100,12 +109,16 @@ def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma):
         gam[r] = 0.0
     kind = jt[j]
     if kind == J_REV:
+        ci = cs[bi, 0]
+        si = cs[bi, 1]
+        cj = cs[bj, 0]
+        sj = cs[bj, 1]
         pix, piy = _local(jf, j, 0, q)
         pjx, pjy = _local(jf, j, 1, q)
-        uix, uiy = _rot(ti, pix, piy)
-        ujx, ujy = _rot(tj, pjx, pjy)
-        vix, viy = _rot(ti, jf[j, 4], jf[j, 5])
-        vjx, vjy = _rot(tj, jf[j, 6], jf[j, 7])
+        uix, uiy = _rcs(ci, si, pix, piy)
+        ujx, ujy = _rcs(cj, sj, pjx, pjy)
+        vix, viy = _rcs(ci, si, jf[j, 4], jf[j, 5])
+        vjx, vjy = _rcs(cj, sj, jf[j, 6], jf[j, 7])
         coef[0, 0] = 1.0
         coef[0, 2] = -uiy
         coef[1, 1] = 1.0
@@ -121,13 +134,17 @@ def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma):
             gam[1] = -uiy * wi * wi + 2.0 * vix * wi - (-ujy * wj * wj + 2.0 * vjx * wj)
         return 2
     elif kind == J_PRI:
+        ci = cs[bi, 0]
+        si = cs[bi, 1]
+        cj = cs[bj, 0]
+        sj = cs[bj, 1]
         gx, gy, sx, sy = _pri(jf, j, q)
         al = jf[j, 4]
-        nx, ny = _rot(ti, -np.sin(al), np.cos(al))
-        agx, agy = _rot(ti, gx, gy)
-        asx, asy = _rot(tj, sx, sy)
-        g1x, g1y = _rot(ti, jf[j, 6], jf[j, 7])
-        s1x, s1y = _rot(tj, jf[j, 8], jf[j, 9])
+        nx, ny = _rcs(ci, si, -np.sin(al), np.cos(al))
+        agx, agy = _rcs(ci, si, gx, gy)
+        asx, asy = _rcs(cj, sj, sx, sy)
+        g1x, g1y = _rcs(ci, si, jf[j, 6], jf[j, 7])
+        s1x, s1y = _rcs(cj, sj, jf[j, 8], jf[j, 9])
         dx = pose[bj, 0] + asx - pose[bi, 0] - agx
         dy = pose[bj, 1] + asy - pose[bi, 1] - agy
         # row 0: relative angle
@@ -157,7 +174,7 @@ def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma):
         return 1
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _joint_residual(jt, jb, jf, j, q, pose, res):
     bi = jb[j, 0]
     bj = jb[j, 1]
@@ -187,25 +204,37 @@ def _joint_residual(jt, jb, jf, j, q, pose, res):
         return 1
 
 
-@njit(cache=True)
-def _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d2, level, mat, rhs, col_of):
-    """Assemble the group's linear system at velocity (level=1) or acceleration (level=2)
-    level, or the Newton Jacobian with the residual as right-hand side (level=0).
+@njit(cache=True, error_model="numpy", inline="always")
+def _refresh_cs(cs, pose, gb, nbg):
+    for k in range(nbg):
+        b = gb[k]
+        cs[b, 0] = np.cos(pose[b, 2])
+        cs[b, 1] = np.sin(pose[b, 2])
 
-    col_of[b] is the column block of body b in the group or −1 for a known body."""
-    coef = np.zeros((2, 6))
-    expl = np.zeros(2)
-    gam = np.zeros(2)
-    res = np.zeros(2)
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d2, level, mat, rhs, col_of,
+                  coef, expl, gam, res, with_mat, cs):
+    """Assemble the group's linear system at velocity (level=1) or acceleration (level=2)
+    level, or the Newton Jacobian with the residual as right-hand side (level=0); with
+    ``with_mat`` False only the right-hand side (the matrix Φ_x is the same at both levels).
+
+    col_of[b] is the column block of body b in the group or −1 for a known body; coef, expl,
+    gam, res are the caller's scratch arrays (no allocation per position); cs[b] holds
+    (cos θ_b, sin θ_b), refreshed here for the group's bodies at the Newton level (level 0) and
+    by the caller once the positions are solved otherwise."""
     n = 3 * nbg
+    if level == 0:
+        _refresh_cs(cs, pose, gb, nbg)
     for r in range(n):
         rhs[r] = 0.0
-        for c in range(n):
-            mat[r, c] = 0.0
+        if with_mat:
+            for c in range(n):
+                mat[r, c] = 0.0
     row = 0
     for k in range(nj):
         j = gj[k]
-        nr = _joint_rows(jt, jb, jf, j, q, pose, d1, coef, expl, gam, level == 2)
+        nr = _joint_rows(jt, jb, jf, j, q, pose, d1, coef, expl, gam, level == 2, cs)
         if level == 0:
             _joint_residual(jt, jb, jf, j, q, pose, res)
         for r in range(nr):
@@ -216,7 +245,8 @@ def _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d2, level, mat, rhs,
                 for c in range(3):
                     a = coef[r, 3 * side + c]
                     if cb >= 0:
-                        mat[row + r, 3 * cb + c] += a
+                        if with_mat:
+                            mat[row + r, 3 * cb + c] += a
                     elif level == 1:
                         s += a * d1[b, c]
                     elif level == 2:
@@ -231,7 +261,7 @@ def _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d2, level, mat, rhs,
     return row
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _pivot(jf, jb, j, body, q, pose):
     """For revolute joint j attaching ``body`` to an already solved body: the joint's local
     point on ``body`` and its global position (from the solved side)."""
@@ -246,7 +276,7 @@ def _pivot(jf, jb, j, body, q, pose):
     return px, py, gx, gy
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _inner(jf, jb, j, a, q):
     """Local points of the inner revolute joint j on body a and on the other body."""
     if jb[j, 0] == a:
@@ -258,7 +288,7 @@ def _inner(jf, jb, j, a, q):
     return ax, ay, bx, by
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _solve_rrr(jf, jb, spec, sigma, q, pose):
     """ВВВ group: bodies a, b; joint jA (a–known), jB (a–b), jC (b–known)."""
     a = spec[0]
@@ -304,7 +334,7 @@ def _solve_rrr(jf, jb, spec, sigma, q, pose):
     return F_OK, 0.0, sinmu
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _line_of_body(jf, jb, jP, b, q, pose):
     """A body b whose angle is already known and that is tied by prismatic joint jP to a known
     body can only translate along the guide: r_b = r0 + t·u.  Returns (r0x, r0y, ux, uy)."""
@@ -330,7 +360,7 @@ def _line_of_body(jf, jb, jP, b, q, pose):
     return Sx - gx - e * nx, Sy - gy - e * ny, ux, uy
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _angle_from_prismatic(jf, jb, jP, b, pose):
     al = jf[jP, 4]
     if jb[jP, 1] == b:
@@ -338,7 +368,7 @@ def _angle_from_prismatic(jf, jb, jP, b, pose):
     return pose[jb[jP, 1], 2] - al
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _solve_rrp(jf, jb, spec, sigma, q, pose):
     """ВВП group: body a (revolute jA to a known body, revolute jB to b), body b (prismatic jP
     to a known body).  Circle (centre A, radius |AB| on a) meets the line traced by B."""
@@ -377,7 +407,7 @@ def _solve_rrp(jf, jb, spec, sigma, q, pose):
     return F_OK, 0.0, sinmu
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _solve_rpr(jf, jb, spec, sigma, q, pose):
     """ВПВ group: bodies a, b each on a revolute to a known body (jA, jC), joined by the
     prismatic jP.  With G the guide and S the slider body of jP and w = P_S − P_G:
@@ -426,11 +456,13 @@ def _solve_rpr(jf, jb, spec, sigma, q, pose):
     return F_OK, 0.0, sigma * np.sqrt(max(0.0, 1.0 - c * c))
 
 
-@njit(cache=True)
-def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of):
+@njit(cache=True, error_model="numpy", inline="always")
+def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of, known, mat, rhs):
     """Group whose angles all follow from angle constraints (prismatic joints to known bodies,
-    drives); positions then satisfy linear equations (ПВП, ВПП, the initial link)."""
-    known = np.zeros(nbg, dtype=np.bool_)
+    drives); positions then satisfy linear equations (ПВП, ВПП, the initial link).
+    ``known``, ``mat``, ``rhs`` are the caller's scratch arrays."""
+    for k in range(nbg):
+        known[k] = False
     for it in range(nbg + 1):
         for k in range(nj):
             j = gj[k]
@@ -456,8 +488,10 @@ def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of):
         if not known[k]:
             return F_SINGULAR, 0.0, 0.0
     n = 2 * nbg
-    mat = np.zeros((n, n))
-    rhs = np.zeros(n)
+    for r in range(n):
+        rhs[r] = 0.0
+        for c in range(n):
+            mat[r, c] = 0.0
     row = 0
     for k in range(nj):
         j = gj[k]
@@ -513,30 +547,249 @@ def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of):
     return F_OK, 0.0, quality
 
 
-@njit(cache=True)
-def _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of):
+@njit(cache=True, error_model="numpy")
+def _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
+                  coef, expl, gam, res, cs):
     n = 3 * nbg
-    mat = np.zeros((n, n))
-    rhs = np.zeros(n)
     res_norm = 0.0
     for it in range(NEWTON_MAXIT):
-        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d1, 0, mat, rhs, col_of)
+        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d1, 0, mat, rhs, col_of,
+                      coef, expl, gam, res, True, cs)
         res_norm = 0.0
         for r in range(n):
             res_norm = max(res_norm, abs(rhs[r]))
-        if res_norm <= NEWTON_TOL * size:
-            return F_OK, 0.0, 1.0
+        converged = res_norm <= NEWTON_TOL * size
         quality = solve_dense(mat, rhs, n, 0.0)
         if quality == 0.0:
+            if converged:
+                return F_OK, 0.0, 1.0
             return F_NEWTON, res_norm, 0.0
         for k in range(nbg):
             b = gb[k]
             for c in range(3):
                 pose[b, c] += rhs[3 * k + c]
+        if converged:
+            # one more step after the tolerance is met: quadratic convergence takes the
+            # residual to rounding level whatever the starting point
+            return F_OK, 0.0, 1.0
     return F_NEWTON, res_norm, 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
+def _residual_norms(jt, jb, jf, gj, nj, q, pose, res):
+    """(max |Φ| over the group's equations, max gap of its revolute joints in metres)."""
+    rmax = 0.0
+    gap = 0.0
+    for k in range(nj):
+        j = gj[k]
+        nr = _joint_residual(jt, jb, jf, j, q, pose, res)
+        for r in range(nr):
+            rmax = max(rmax, abs(res[r]))
+        if jt[j] == J_REV:
+            gap = max(gap, np.hypot(res[0], res[1]))
+        elif jt[j] == J_PRI:
+            gap = max(gap, abs(res[1]))
+    return rmax, gap
+
+
+@njit(cache=True, error_model="numpy")
+def _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
+               coef, expl, gam, res, cs):
+    """First assembly of a Newton group far from the sketch: Levenberg–Marquardt on the loop
+    equations (Madsen, Nielsen, Tingleff, *Methods for non-linear least squares problems*,
+    2004, alg. 3.16), angles scaled by the size of the mechanism.  Converges to an assembly when
+    one exists in the basin of the sketch, otherwise to the configuration of least squared
+    closure error; returns (status, the largest joint gap there in metres, 1)."""
+    n = 3 * nbg
+    A = np.zeros((n, n))
+    g = np.zeros(n)
+    trial = np.zeros((nbg, 3))
+    lam = 1e-3
+    nu = 2.0
+    for it in range(400):
+        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d1, 0, mat, rhs, col_of,
+                      coef, expl, gam, res, True, cs)
+        f0 = 0.0
+        for r in range(n):
+            f0 += rhs[r] * rhs[r]
+        if np.sqrt(f0) <= NEWTON_TOL * size:
+            return F_OK, 0.0, 1.0
+        # scale the angle columns by the size so that all unknowns are lengths
+        for r in range(n):
+            for c in range(n):
+                if c % 3 == 2:
+                    mat[r, c] /= size
+        dmax = 0.0
+        for r in range(n):
+            s = 0.0
+            for k in range(n):
+                s += mat[k, r] * rhs[k]
+            g[r] = s
+            for c in range(n):
+                s = 0.0
+                for k in range(n):
+                    s += mat[k, r] * mat[k, c]
+                A[r, c] = s
+            dmax = max(dmax, A[r, r])
+        if it == 0:
+            lam = 1e-3 * dmax
+        for r in range(n):
+            A[r, r] += lam
+        for r in range(n):
+            rhs[r] = g[r]
+        if solve_dense(A, rhs, n, 0.0) == 0.0:
+            break
+        for k in range(nbg):
+            b = gb[k]
+            for c in range(3):
+                trial[k, c] = pose[b, c]
+                pose[b, c] += rhs[3 * k + c] / (size if c == 2 else 1.0)
+        f1 = 0.0
+        for k in range(nj):
+            nr = _joint_residual(jt, jb, jf, gj[k], q, pose, res)
+            for r in range(nr):
+                f1 += res[r] * res[r]
+        if f1 < f0:
+            lam = max(lam * 0.3, 1e-30)
+            nu = 2.0
+        else:
+            for k in range(nbg):
+                b = gb[k]
+                for c in range(3):
+                    pose[b, c] = trial[k, c]
+            lam *= nu
+            nu *= 2.0
+            if lam > 1e30:
+                break
+    st, a2, q2 = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
+                               coef, expl, gam, res, cs)
+    if st == F_OK:
+        return F_OK, 0.0, 1.0
+    rmax, gap = _residual_norms(jt, jb, jf, gj, nj, q, pose, res)
+    return F_NEWTON, gap, 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def _pose_distance(a, b, gb, nbg, size):
+    """Largest difference of the group's body poses (angles times the size: metres)."""
+    d = 0.0
+    for k in range(nbg):
+        bb = gb[k]
+        d = max(d, abs(a[bb, 0] - b[bb, 0]), abs(a[bb, 1] - b[bb, 1]),
+                size * abs(np.arctan2(np.sin(a[bb, 2] - b[bb, 2]), np.cos(a[bb, 2] - b[bb, 2]))))
+    return d
+
+
+@njit(cache=True, error_model="numpy")
+def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
+                    size, cur, v, acc, pp, pv, pa, qual_row, fail, mat, rhs, perm, known,
+                    coef, expl, gam, res, col_of, cs):
+    """Positions and both analogs of every group at qi.  Newton groups start from the
+    second-order predictor pp + pv·dq + ½ pa·dq² (the state at the previous grid point), or from
+    ``cur`` (the sketch) when ``first``.  Returns False on failure (fail[0], fail[2], fail[3] set;
+    F_JUMP when Newton's correction is large against the predicted step, i.e. it may have left
+    the branch and the caller must refine the step)."""
+    ng = gkind.shape[0]
+    for g in range(ng):
+        nbg = gnb[g]
+        nj = gnj[g]
+        gb = gbody[g]
+        gj = gjoint[g]
+        for k in range(nbg):
+            col_of[gb[k]] = k
+        kind = gkind[g]
+        if kind == G_RRR:
+            st, amount, qual = _solve_rrr(jf, jb, gspec[g], gsigma[g], qi, cur)
+        elif kind == G_RRP:
+            st, amount, qual = _solve_rrp(jf, jb, gspec[g], gsigma[g], qi, cur)
+        elif kind == G_RPR:
+            st, amount, qual = _solve_rpr(jf, jb, gspec[g], gsigma[g], qi, cur)
+        elif kind == G_LIN:
+            st, amount, qual = _solve_lin(jt, jb, jf, gj, nj, gb, nbg, qi, cur, col_of, known, mat, rhs)
+        else:
+            if first:
+                # from the sketch: Newton and damped (Levenberg–Marquardt) steps, which stay
+                # near the sketch where a full Newton step may land on another assembly; the
+                # converged assembly nearer to the sketch is taken
+                sketch = cur.copy()
+                st, amount, qual = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
+                                                 mat, rhs, coef, expl, gam, res, cs)
+                newton = cur.copy()
+                cur[:, :] = sketch
+                st2, amount2, qual2 = _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
+                                                 mat, rhs, coef, expl, gam, res, cs)
+                if st == F_OK and (st2 != F_OK or _pose_distance(newton, sketch, gb, nbg, size)
+                                   <= _pose_distance(cur, sketch, gb, nbg, size)):
+                    cur[:, :] = newton
+                else:
+                    st, amount, qual = st2, amount2, qual2
+            else:
+                step = 0.0
+                for k in range(nbg):
+                    b = gb[k]
+                    for c in range(3):
+                        dx = pv[b, c] * dq + 0.5 * pa[b, c] * dq * dq
+                        cur[b, c] = pp[b, c] + dx
+                        step = max(step, abs(dx) * (size if c == 2 else 1.0))
+                for k in range(nbg):
+                    b = gb[k]
+                    for c in range(3):
+                        rhs[3 * k + c] = cur[b, c]
+                pred = rhs[:3 * nbg].copy()
+                st, amount, qual = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
+                                                 mat, rhs, coef, expl, gam, res, cs)
+                if st == F_OK:
+                    corr = 0.0
+                    for k in range(nbg):
+                        b = gb[k]
+                        for c in range(3):
+                            corr = max(corr, abs(cur[b, c] - pred[3 * k + c]) * (size if c == 2 else 1.0))
+                    if corr > JUMP_RATIO * step + JUMP_ABS * size:
+                        st = F_JUMP
+                        amount = corr
+                else:
+                    st = F_JUMP
+                    amount = -1.0      # Newton did not converge (not a detected jump)
+        if st != F_OK:
+            fail[0] = st
+            fail[2] = g
+            fail[3] = amount
+            for k in range(nbg):
+                col_of[gb[k]] = -1
+            return False
+        n = 3 * nbg
+        _refresh_cs(cs, cur, gb, nbg)
+        # first analogs: Φ_x x' = −Φ_q (one LU factorisation for both levels)
+        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 1, mat, rhs, col_of,
+                      coef, expl, gam, res, True, cs)
+        piv = lu_factor(mat, n, perm)
+        if kind == G_NEWTON or kind == G_LIN:
+            qual = piv
+        if piv < 1e-14:
+            fail[0] = F_SINGULAR
+            fail[2] = g
+            fail[3] = qual      # transmission measure of a dyad, the pivot measure otherwise
+            for k in range(nbg):
+                col_of[gb[k]] = -1
+            return False
+        lu_solve(mat, perm, rhs, n)
+        for k in range(nbg):
+            for c in range(3):
+                v[gb[k], c] = rhs[3 * k + c]
+        # second analogs: Φ_x x'' = −γ
+        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 2, mat, rhs, col_of,
+                      coef, expl, gam, res, False, cs)
+        lu_solve(mat, perm, rhs, n)
+        for k in range(nbg):
+            for c in range(3):
+                acc[gb[k], c] = rhs[3 * k + c]
+        qual_row[g] = qual
+        for k in range(nbg):
+            col_of[gb[k]] = -1
+    return True
+
+
+@njit(cache=True, error_model="numpy")
 def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
                 pose0, size):
     """Positions, first and second analogs of every body over the grid q.
@@ -545,6 +798,12 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
     (x, y, θ) of each body's frame and their d/dq, d²/dq²; quality (N, ngroups) a
     singularity indicator per group (sine of the transmission angle for dyads, normalised pivot
     otherwise); fail = [kind, position index, group, amount] of the first failure (kind 0 = none).
+
+    Groups solved by Newton are continued along the grid from the previous position with a
+    second-order predictor; a correction large against the predicted step (a possible jump to
+    another branch) or a failure makes the step refined by bisection (up to 2^MAX_HALVINGS
+    sub-steps, every group re-solved at each sub-step); if that does not resolve it the position
+    is reported singular with the condition measure of the group.
     """
     N = q.shape[0]
     nb = pose0.shape[0]
@@ -557,66 +816,83 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
     maxb = gbody.shape[1]
     mat = np.zeros((3 * maxb, 3 * maxb))
     rhs = np.zeros(3 * maxb)
+    perm = np.zeros(3 * maxb, dtype=np.int64)
+    known = np.zeros(maxb, dtype=np.bool_)
+    coef = np.zeros((2, 6))
+    expl = np.zeros(2)
+    gam = np.zeros(2)
+    res = np.zeros(2)
     col_of = -np.ones(nb, dtype=np.int64)
     cur = pose0.copy()
     v = np.zeros((nb, 3))
     acc = np.zeros((nb, 3))
+    sp = np.zeros((nb, 3))
+    sv = np.zeros((nb, 3))
+    sa = np.zeros((nb, 3))
+    qrow = np.zeros(ng)
+    qfail = 0.0
+    cs = np.zeros((nb, 2))
+    for b in range(nb):
+        cs[b, 0] = np.cos(pose0[b, 2])
+        cs[b, 1] = np.sin(pose0[b, 2])
     for i in range(N):
         qi = q[i]
-        for g in range(ng):
-            nbg = gnb[g]
-            nj = gnj[g]
-            gb = gbody[g]
-            gj = gjoint[g]
-            for k in range(nbg):
-                col_of[gb[k]] = k
-            kind = gkind[g]
-            if kind == G_RRR:
-                st, amount, qual = _solve_rrr(jf, jb, gspec[g], gsigma[g], qi, cur)
-            elif kind == G_RRP:
-                st, amount, qual = _solve_rrp(jf, jb, gspec[g], gsigma[g], qi, cur)
-            elif kind == G_RPR:
-                st, amount, qual = _solve_rpr(jf, jb, gspec[g], gsigma[g], qi, cur)
-            elif kind == G_LIN:
-                st, amount, qual = _solve_lin(jt, jb, jf, gj, nj, gb, nbg, qi, cur, col_of)
-            else:
-                if i > 0:
-                    dq = qi - q[i - 1]
-                    for k in range(nbg):
-                        b = gb[k]
-                        for c in range(3):
-                            cur[b, c] = pose[i - 1, b, c] + d1[i - 1, b, c] * dq + 0.5 * d2[i - 1, b, c] * dq * dq
-                st, amount, qual = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of)
-            if st != F_OK:
-                fail[0] = st
-                fail[1] = i
-                fail[2] = g
-                fail[3] = amount
-                return pose, d1, d2, quality, fail
-            n = 3 * nbg
-            # first analogs
-            _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 1, mat, rhs, col_of)
-            piv = solve_dense(mat, rhs, n, 0.0)
-            if kind == G_NEWTON or kind == G_LIN:
-                qual = piv
-            if piv < 1e-14:
-                fail[0] = F_SINGULAR
-                fail[1] = i
-                fail[2] = g
-                fail[3] = piv
-                return pose, d1, d2, quality, fail
-            for k in range(nbg):
-                for c in range(3):
-                    v[gb[k], c] = rhs[3 * k + c]
-            # second analogs
-            _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 2, mat, rhs, col_of)
-            solve_dense(mat, rhs, n, 0.0)
-            for k in range(nbg):
-                for c in range(3):
-                    acc[gb[k], c] = rhs[3 * k + c]
-            quality[i, g] = qual
-            for k in range(nbg):
-                col_of[gb[k]] = -1
+        if i == 0:
+            ok = _solve_position(qi, 0.0, True, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody,
+                                 gnb, size, cur, v, acc, cur, v, acc, quality[i], fail, mat, rhs, perm,
+                                 known, coef, expl, gam, res, col_of, cs)
+        else:
+            ok = _solve_position(qi, qi - q[i - 1], False, jt, jb, jf, gkind, gspec, gsigma, gjoint,
+                                 gnj, gbody, gnb, size, cur, v, acc, pose[i - 1], d1[i - 1], d2[i - 1],
+                                 quality[i], fail, mat, rhs, perm, known, coef, expl, gam, res, col_of, cs)
+            if not ok and fail[0] == F_JUMP:
+                # refine: march from q[i-1] to q[i] in 2, 4, … equal sub-steps
+                for h in range(1, MAX_HALVINGS + 1):
+                    m = 1 << h
+                    h_q = (qi - q[i - 1]) / m
+                    sp[:, :] = pose[i - 1]
+                    sv[:, :] = d1[i - 1]
+                    sa[:, :] = d2[i - 1]
+                    ok = True
+                    for k in range(1, m + 1):
+                        qk = q[i - 1] + k * h_q if k < m else qi
+                        qfail = qk
+                        ok = _solve_position(qk, h_q, False, jt, jb, jf, gkind, gspec, gsigma, gjoint,
+                                             gnj, gbody, gnb, size, cur, v, acc, sp, sv, sa, qrow, fail,
+                                             mat, rhs, perm, known, coef, expl, gam, res, col_of, cs)
+                        if not ok:
+                            break
+                        sp[:, :] = cur
+                        sv[:, :] = v
+                        sa[:, :] = acc
+                    if ok:
+                        quality[i, :] = qrow
+                        fail[:] = 0.0
+                        break
+                    if fail[0] != F_JUMP:
+                        break
+                if not ok and fail[0] == F_JUMP:
+                    g = int(fail[2])
+                    if fail[3] < 0.0:
+                        # Newton fails even on the finest step: least squares from the last
+                        # solved sub-step tells an assembly from a gap (reported in metres)
+                        cur[:, :] = sp
+                        for k in range(gnb[g]):
+                            col_of[gbody[g, k]] = k
+                        st, amount, qual = _solve_lsq(jt, jb, jf, gjoint[g], gnj[g], gbody[g], gnb[g],
+                                                      qfail, cur, v, size, col_of, mat, rhs, coef, expl,
+                                                      gam, res, cs)
+                        for k in range(gnb[g]):
+                            col_of[gbody[g, k]] = -1
+                        fail[0] = F_NEWTON if st != F_OK else F_SINGULAR
+                        fail[3] = amount if st != F_OK else qrow[g]
+                    else:
+                        # the branch cannot be followed through this step: a singular position
+                        fail[0] = F_SINGULAR
+                        fail[3] = qrow[g]
+        if not ok:
+            fail[1] = i
+            return pose, d1, d2, quality, fail
         for b in range(nb):
             for c in range(3):
                 pose[i, b, c] = cur[b, c]
@@ -625,7 +901,7 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
     return pose, d1, d2, quality, fail
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def points_cycle(pose, d1, d2, q, pbody, ploc):
     """Global position and analogs of points given by body index and local coordinates
     p = p0 + q·p1 (ploc rows: p0x, p0y, p1x, p1y).
