@@ -64,7 +64,7 @@ def _rot(th, px, py):
     return c * px - s * py, s * px + c * py
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def _local(jf, j, which, q):
     """Local point of revolute joint j on its first (which=0) or second (which=1) body at q."""
     if which == 0:
@@ -72,7 +72,7 @@ def _local(jf, j, which, q):
     return jf[j, 2] + q * jf[j, 6], jf[j, 3] + q * jf[j, 7]
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def _pri(jf, j, q):
     """Guide line point g (on the guide body) and slider point s (on the slider body) of a
     prismatic joint at q (both may move with q when they belong to an actuator's rod)."""
@@ -86,12 +86,12 @@ def _glob(pose, b, px, py):
     return pose[b, 0] + ux, pose[b, 1] + uy
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def _rcs(c, s, px, py):
     return c * px - s * py, s * px + c * py
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def _joint_rows(jt, jb, jf, j, q, pose, vel, coef, expl, gam, with_gamma, cs):
     """Rows of joint j: Jacobian blocks (coef[row, 0:3] body i, coef[row, 3:6] body j),
     explicit ∂Φ/∂q and the acceleration term γ (second derivative without x'' terms);
@@ -204,7 +204,7 @@ def _joint_residual(jt, jb, jf, j, q, pose, res):
         return 1
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def _refresh_cs(cs, pose, gb, nbg):
     for k in range(nbg):
         b = gb[k]
@@ -212,7 +212,7 @@ def _refresh_cs(cs, pose, gb, nbg):
         cs[b, 1] = np.sin(pose[b, 2])
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d2, level, mat, rhs, col_of,
                   coef, expl, gam, res, with_mat, cs):
     """Assemble the group's linear system at velocity (level=1) or acceleration (level=2)
@@ -456,7 +456,7 @@ def _solve_rpr(jf, jb, spec, sigma, q, pose):
     return F_OK, 0.0, sigma * np.sqrt(max(0.0, 1.0 - c * c))
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of, known, mat, rhs):
     """Group whose angles all follow from angle constraints (prismatic joints to known bodies,
     drives); positions then satisfy linear equations (ПВП, ВПП, the initial link).
