@@ -138,9 +138,11 @@ def forces_results(study) -> list[tuple[str, float, str]]:
     tab = f.table
     row = tab[tab["pos"] == lab].iloc[0]
     out = []
+    links = {"0"} | {l.name for l in study.mechanism.moving}
     for c in tab.columns:
         parts = c.split("_")
-        if len(parts) == 3 and parts[0] == "R" and parts[1] < parts[2]:
+        if (len(parts) == 3 and parts[0] == "R" and parts[1] < parts[2]
+                and parts[1] in links and parts[2] in links and len(parts[1] + parts[2]) <= 4):
             out.append((f"$R_{{{parts[1]}{parts[2]}}}$", float(row[c]), "Н"))
     if "M_bal" in tab.columns:
         out.append((r"$M_{ур}$", float(row["M_bal"]), "Н·м"))
