@@ -29,6 +29,7 @@ class TaskKind:
 KINDS: tuple[TaskKind, ...] = (
     TaskKind("dynamics", "dynamics", "dynamics:Dynamics", "Динамический анализ и синтез маховика", True),
     TaskKind("forces", "forces", "forces:Forces", "Силовой анализ", True),
+    TaskKind("cam", "cam", "cam:Cam", "Синтез кулачкового механизма", False),
 )
 
 BY_NAME: dict[str, TaskKind] = {k.name: k for k in KINDS}

@@ -1,0 +1,375 @@
+"""Section «Синтез кулачкового механизма» of the note (Артоболевский, гл. 24; Попов, Тимофеев,
+гл. 6): the assignment, the laws with the diagrams, the minimum size by the phase portrait, the
+pressure angle, the profile by inversion with its coordinate table, the conclusions."""
+from __future__ import annotations
+
+import math
+
+import pandas as pd
+from markupsafe import Markup
+
+from ...analysis.cam import LAWS
+from ...core import cams as K
+from ...scenes.cam import LawDiagrams, PhasePortrait, PressureAngleGraph, ProfileDrawing, follower_positions
+from ...style.numbers import fmt, tex_num
+from ..document import Column, Formula, Section, ref
+from ..formulas import inline_math
+
+NEEDS = ("cam",)
+TASK = "спроектировать кулачковый механизм: определить основные размеры по допустимым углам давления и построить профиль кулачка"
+
+NORM_TEX = {  # normalised law f(x), x = φ/β
+    "uniform": r"f = x",
+    "cosine": r"f = \frac{1 - \cos \pi x}{2}",
+    "sine": r"f = x - \frac{\sin 2\pi x}{2\pi}",
+    "poly345": r"f = 10x^3 - 15x^4 + 6x^5",
+    "poly4567": r"f = 35x^4 - 84x^5 + 70x^6 - 20x^7",
+    "parabolic": r"f = 2x^2\ (x \le 1/2),\quad f = 1 - 2(1 - x)^2\ (x > 1/2)",
+}
+
+
+X_TEX = r"x = \varphi / \beta"
+X1_TEX = r"x_1 = \nu/(1+\nu)"
+R_TEX = r"r = \sqrt{(r_0 + s)^2 + s^{\prime 2}}"
+
+
+def present(study) -> bool:
+    """The section is built when the case has [cam]."""
+    return study.root.has("cam")
+
+
+def _mm(x, sig=4) -> str:
+    return fmt(x * 1000, sig=sig, unit="мм")
+
+
+def _deg(x, digits=2) -> str:
+    return fmt(math.degrees(x), digits=digits) + "°"
+
+
+def _t(x, sig=4, digits=None, unit=None) -> str:
+    return tex_num(x, sig=sig, digits=digits, unit=unit)
+
+
+def _im(tex: str):
+    return inline_math(tex)
+
+
+def build(study) -> Section:
+    cam = study.cam
+    sec = Section("Синтез кулачкового механизма", "sec-cam")
+    _assignment(sec, cam)
+    _laws(sec, study, cam)
+    _size(sec, study, cam)
+    if cam.contact != "flat":
+        _pressure(sec, study, cam)
+    _profile(sec, study, cam)
+    return sec
+
+
+# ------------------------------------------------------------------------------------------
+def _law_name(ph) -> str:
+    name = LAWS[ph.law][0]
+    if ph.law in ("sine", "parabolic") and ph.nu != 1:
+        name += f", несимметричный (ν&nbsp;=&nbsp;{fmt(ph.nu, sig=4)})"
+    if ph.law == "trapezoidal":
+        name += f" (доля участков нарастания {fmt(ph.ramp, sig=3)})"
+    return name
+
+
+def _assignment(sec, cam) -> None:
+    s = sec.subsection("Исходные данные", "sec-cam-data")
+    kind = "поступательным" if cam.follower == "translating" else "качающимся (коромыслом)"
+    contact = {"knife": "острием", "roller": "роликом", "flat": "плоской тарелкой"}[cam.contact]
+    rot = "против хода часовой стрелки" if cam.k > 0 else "по ходу часовой стрелки"
+    s.paragraph(f"Проектируется кулачковый механизм с {kind} толкателем, контактирующим с кулачком "
+                f"{contact}. Кулачок вращается равномерно {rot}. Исходные данные приведены в таблице "
+                f"{ref('tab-cam-data')}.")
+    rows = []
+    if cam.follower == "translating":
+        rows.append(("Ход толкателя", "h", _mm(cam.h)))
+    else:
+        rows.append(("Угол размаха коромысла", "ψ<sub>max</sub>", _deg(cam.h)))
+        rows.append(("Длина коромысла", "l", _mm(cam.arm)))
+    if cam.omega is not None:
+        rows.append(("Угловая скорость кулачка", "ω", fmt(cam.omega, sig=4, unit="рад/с")
+                     + f" ({fmt(cam.omega * 30 / math.pi, sig=4)} об/мин)"))
+    names = {K.RISE: ("Угол удаления", "φ<sub>у</sub>"), K.DWELL_HIGH: ("Угол дальнего стояния", "φ<sub>дс</sub>"),
+             K.RETURN: ("Угол возвращения", "φ<sub>в</sub>"), K.DWELL_LOW: ("Угол ближнего стояния", "φ<sub>бс</sub>")}
+    for ph in cam.phases:
+        rows.append((*names[ph.kind], _deg(ph.length)))
+    rows.append(("Закон движения на удалении", "—", _law_name(cam.rise)))
+    rows.append(("Закон движения на возвращении", "—", _law_name(cam.ret)))
+    if cam.contact != "flat":
+        rows.append(("Допустимый угол давления на удалении", "[ϑ<sub>у</sub>]", _deg(cam.rise.allowed)))
+        rows.append(("Допустимый угол давления на возвращении", "[ϑ<sub>в</sub>]", _deg(cam.ret.allowed)))
+    else:
+        rows.append(("Наименьший радиус кривизны профиля", "ρ<sub>min</sub>", _mm(cam.rho_min)))
+    if cam.r0_fixed is not None:
+        rows.append(("Заданный радиус основной шайбы", "r<sub>0</sub>", _mm(cam.r0_fixed)))
+    if cam.e_fixed is not None:
+        rows.append(("Заданный эксцентриситет", "e", _mm(cam.e_fixed)))
+    if cam.aw_fixed is not None:
+        rows.append(("Заданное межосевое расстояние", "a<sub>w</sub>", _mm(cam.aw_fixed)))
+        rows.append(("Заданный начальный угол коромысла", "ψ<sub>0</sub>", _deg(cam.psi0_fixed)))
+    if cam.roller_fixed is not None:
+        rows.append(("Радиус ролика", "r<sub>р</sub>", _mm(cam.roller_fixed)))
+    s.table("Исходные данные для синтеза кулачкового механизма",
+            [Column("a", "Величина"), Column("b", "Обозначение", fmt=Markup), Column("c", "Значение", fmt=Markup)],
+            pd.DataFrame(rows, columns=["a", "b", "c"]), id="tab-cam-data")
+
+
+def _laws(sec, study, cam) -> None:
+    s = sec.subsection("Законы движения толкателя", "sec-cam-laws")
+    rocker = cam.follower == "rocker"
+    S, H = (r"\psi", r"\psi_{max}") if rocker else ("s", "h")
+    s.paragraph("Закон движения задан на каждой фазе безразмерной функцией f(x) относительного угла "
+                f"{_im(X_TEX)} (β — угол фазы), f(0)&nbsp;=&nbsp;0, f(1)&nbsp;=&nbsp;1. "
+                "Перемещение толкателя и его аналоги скорости и ускорения на удалении и возвращении:")
+    s.formula(Formula(rf"{S} = {H}\, f(x),\quad {S}^{{\prime}} = \frac{{{H}}}{{\beta}} f^{{\prime}}(x),\quad "
+                      rf"{S}^{{\prime\prime}} = \frac{{{H}}}{{\beta^2}} f^{{\prime\prime}}(x)",
+                      where=[(r"\beta", "угол фазы удаления φ<sub>у</sub> или возвращения φ<sub>в</sub>, рад")],
+                      label="eq-cam-law"),
+              Formula(rf"{S} = {H}\,[1 - f(x)],\quad {S}^{{\prime}} = -\frac{{{H}}}{{\beta}} f^{{\prime}}(x),\quad "
+                      rf"{S}^{{\prime\prime}} = -\frac{{{H}}}{{\beta^2}} f^{{\prime\prime}}(x)", label="eq-cam-law-ret"))
+    fac, unit = (1.0, "") if rocker else (1000.0, "мм")
+    for ph, title in ((cam.rise, "удалении"), (cam.ret, "возвращении")):
+        beta = ph.length
+        g = [ph.start + i * beta / 2000 for i in range(2001)]
+        v = cam.law(g)
+        s1 = max(abs(v[1])) * fac
+        s2 = max(abs(v[2])) * fac
+        hh = cam.h * fac if not rocker else cam.h
+        txt = (f"На {title} — закон {_law_name(ph)}")
+        if ph.law in NORM_TEX and not (ph.law in ("sine", "parabolic") and ph.nu != 1):
+            txt += f": {_im(NORM_TEX[ph.law])}"
+        elif ph.law in ("sine", "parabolic"):
+            txt += (f"; точка перегиба при {_im(X1_TEX)}&nbsp;=&nbsp;{fmt(ph.x1, sig=4)}")
+        s.paragraph(txt + f". Угол фазы β&nbsp;=&nbsp;{_deg(beta)}&nbsp;=&nbsp;{fmt(beta, sig=5)}&nbsp;рад. "
+                    "Наибольшие значения аналогов:")
+        u = r"\ \text{мм}" if not rocker else ""
+        fs = [Formula(rf"|{S}^{{\prime}}|_{{max}}", rf"{_t(hh)}{u} \cdot {_t(s1 * beta / hh, sig=5)} / {_t(beta, sig=5)}",
+                      _t(s1, sig=4) + u),
+              Formula(rf"|{S}^{{\prime\prime}}|_{{max}}",
+                      rf"{_t(hh)}{u} \cdot {_t(s2 * beta * beta / hh, sig=5)} / {_t(beta, sig=5)}^2",
+                      _t(s2, sig=4) + u)]
+        if ph.law == "uniform":
+            fs = fs[:1]
+        s.formula(*fs)
+    hard = [i for i in cam.impacts if i["kind"] == "hard"]
+    soft = [i for i in cam.impacts if i["kind"] == "soft"]
+    if not cam.impacts:
+        s.paragraph("Аналоги скорости и ускорения непрерывны на всём цикле: удары отсутствуют.")
+    if hard:
+        s.paragraph("Аналог скорости терпит разрыв (ускорение бесконечно велико) при φ&nbsp;=&nbsp;"
+                    + ", ".join(_deg(i["phi"], 1) for i in hard) + ": в этих положениях возникают "
+                    "<b>жёсткие удары</b>.")
+    if soft:
+        s.paragraph("Аналог ускорения терпит конечный разрыв при φ&nbsp;=&nbsp;"
+                    + ", ".join(_deg(i["phi"], 1) for i in soft) + ": в этих положениях возникают "
+                    "<b>мягкие удары</b>.")
+    sc = LawDiagrams()
+    fig = sc.draw(study)
+    scales = "; ".join(f"μ<sub>{lab}</sub>&nbsp;=&nbsp;{fmt(mu, sig=3)}&nbsp;{u or 'ед.'}/мм"
+                       for lab, mu, u in sc.scales)
+    s.paragraph(f"Диаграммы аналогов ускорения, скорости и перемещения построены на рисунке {ref('fig-cam-laws')} "
+                f"в масштабах μ<sub>φ</sub>&nbsp;=&nbsp;{fmt(sc.mu_phi, sig=3)}&nbsp;град/мм; {scales}.")
+    s.figure("Диаграммы аналогов ускорения, скорости и перемещения толкателя", fig.svg, fig.width_mm,
+             id="fig-cam-laws")
+    if cam.omega is not None:
+        w = cam.omega
+        g = cam.grid
+        v = cam.law(g)
+        vm, am = max(abs(v[1])) * w, max(abs(v[2])) * w * w
+        vu, au = ("рад/с", "рад/с²") if rocker else ("м/с", "м/с²")
+        s.paragraph("Истинные скорость и ускорение толкателя при ω&nbsp;=&nbsp;const:")
+        s.formula(Formula(r"v_{max} = \omega\,|s^{\prime}|_{max}" if not rocker else r"\omega_{2,max} = \omega\,|\psi^{\prime}|_{max}",
+                          rf"{_t(w)} \cdot {_t(max(abs(v[1])), sig=4)}", _t(vm, sig=4, unit=vu)),
+                  Formula(r"a_{max} = \omega^2 |s^{\prime\prime}|_{max}" if not rocker else r"\varepsilon_{2,max} = \omega^2 |\psi^{\prime\prime}|_{max}",
+                          rf"{_t(w)}^2 \cdot {_t(max(abs(v[2])), sig=4)}", _t(am, sig=4, unit=au)))
+
+
+def _size(sec, study, cam) -> None:
+    s = sec.subsection("Определение основных размеров механизма", "sec-cam-size")
+    syn = cam.synthesis
+    if cam.contact == "flat":
+        m, p, need = cam.flat_min
+        s.paragraph("Для толкателя с плоской тарелкой угол давления постоянен (ϑ&nbsp;=&nbsp;0), а размер кулачка "
+                    "ограничивается условием выпуклости профиля: радиус кривизны профиля")
+        s.formula(Formula(r"\rho = r_0 + s + s^{\prime\prime} \ge \rho_{min}", label="eq-cam-rho"),
+                  Formula(r"r_0 \ge \rho_{min} - (s + s^{\prime\prime})_{min}",
+                          rf"{_t(cam.rho_min * 1000)} - \left({_t(m * 1000)}\right)",
+                          _t(need * 1000, unit="мм")))
+        s.paragraph(f"Наименьшее значение (s&nbsp;+&nbsp;s″) достигается при φ&nbsp;=&nbsp;{_deg(p)}. "
+                    + (f"Принят заданный радиус r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}"
+                       + (" — условие выпуклости выполнено." if syn.r0 >= need - 1e-12 else
+                          " — условие выпуклости <b>не выполнено</b>.")
+                       if syn.governing == "fixed" else f"Принят r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}."))
+        hard = [i for i in cam.impacts if i["kind"] == "hard"]
+        if hard:
+            s.paragraph("В положениях жёсткого удара (φ&nbsp;=&nbsp;" + ", ".join(_deg(i["phi"], 1) for i in hard)
+                        + ") аналог скорости терпит разрыв: точка касания перескакивает по тарелке, и профиль имеет "
+                          "там прямолинейный участок или излом; условие выпуклости проверено между ними.")
+        g = cam.grid
+        v = cam.law(g)
+        s.paragraph("Точка касания тарелки с кулачком смещена от оси толкателя на s′, поэтому ширина тарелки "
+                    "должна быть не меньше")
+        s.formula(Formula(r"b \ge s^{\prime}_{max} - s^{\prime}_{min}",
+                          rf"{_t(v[1].max() * 1000)} - \left({_t(v[1].min() * 1000)}\right)",
+                          _t((v[1].max() - v[1].min()) * 1000, unit="мм")))
+        return
+    if cam.follower == "translating":
+        s.paragraph("Угол давления ϑ — угол между нормалью к профилю в точке контакта и скоростью толкателя. "
+                    "Из плана скоростей обращённого движения")
+        s.formula(Formula(r"\operatorname{tg} \vartheta = \frac{s^{\prime} - e}{s_0 + s},\qquad r_0 = \sqrt{s_0^2 + e^2}",
+                          where=[("e", "эксцентриситет (смещение оси толкателя), мм"),
+                                 ("s_0", "расстояние от центра кулачка до начального положения толкателя вдоль его оси, мм")],
+                          label="eq-cam-theta"))
+        s.paragraph("Условия ϑ&nbsp;≤&nbsp;[ϑ<sub>у</sub>] на удалении и −ϑ&nbsp;≤&nbsp;[ϑ<sub>в</sub>] на возвращении "
+                    "означают, что центр кулачка лежит на фазовом портрете s(s′) ниже лучей, проведённых через каждую "
+                    "точку портрета под допустимыми углами к оси s. Определяющие лучи касаются портрета; точка касания "
+                    "находится как корень уравнения")
+        s.formula(Formula(r"s^{\prime\prime} = s^{\prime} \operatorname{tg}[\vartheta_у]\ \ \text{(удаление)},\qquad "
+                          r"s^{\prime\prime} = -s^{\prime} \operatorname{tg}[\vartheta_в]\ \ \text{(возвращение)}",
+                          label="eq-cam-tangent"))
+        for nm, ph, p in (("у", cam.rise, syn.phi_rise), ("в", cam.ret, syn.phi_return)):
+            v = cam._at(p)
+            s.paragraph(f"Касание на {'удалении' if nm == 'у' else 'возвращении'}: φ&nbsp;=&nbsp;{_deg(p, 3)}, "
+                        f"s&nbsp;=&nbsp;{_mm(v[0])}, s′&nbsp;=&nbsp;{_mm(v[1])}, s″&nbsp;=&nbsp;{_mm(v[2])}.")
+        gov = {"rise": "луч удаления", "return": "луч возвращения",
+               "both": "точка пересечения лучей удаления и возвращения", "fixed": "заданные размеры"}[syn.governing]
+        s.paragraph(f"Наименьший радиус r<sub>0</sub> даёт ближайшая к точке B<sub>0</sub> точка допустимой области "
+                    f"({gov}), рисунок {ref('fig-cam-portrait')}:")
+        s.formula(Formula("e", None, _t(syn.e * 1000, unit="мм")),
+                  Formula("s_0", None, _t(syn.s0 * 1000, unit="мм")),
+                  Formula(r"r_0 = \sqrt{s_0^2 + e^2}", rf"\sqrt{{{_t(syn.s0 * 1000)}^2 + {_t(syn.e * 1000)}^2}}",
+                          _t(syn.r0 * 1000, unit="мм")))
+        s.paragraph(f"Приближённый способ (лучи через точки наибольшего аналога скорости) даёт "
+                    f"r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0_approx)}, e&nbsp;=&nbsp;{_mm(syn.e_approx)}; отличие от точного "
+                    f"решения {fmt((syn.r0_approx / syn.r0 - 1) * 100, digits=2, sign=True)}&nbsp;%: при этих размерах "
+                    "угол давления превысил бы допустимый.")
+    else:
+        s.paragraph("Для коромысла точки фазового портрета D строятся на линии коромысла: от точки B откладывается "
+                    "отрезок, равный аналогу скорости lψ′. Через каждую точку D проводится луч под углом (90° − [ϑ]) "
+                    "к коромыслу; центр кулачка должен лежать по ту сторону всех лучей, где угол давления")
+        s.formula(Formula(r"\operatorname{tg}\vartheta = \frac{l\psi^{\prime} \mp \overline{OB}\cdot\overline{r}}"
+                          r"{\overline{OB}\cdot\overline{u}} \le \operatorname{tg}[\vartheta]",
+                          where=[(r"\overline{r}, \overline{u}", "единичные векторы вдоль коромысла и по скорости точки B"),
+                                 ("l", "длина коромысла, мм")], label="eq-cam-theta-rocker"))
+        s.paragraph("Определяющие лучи касаются портрета; точки касания найдены из условия стационарности "
+                    f"ограничения по углу поворота кулачка, центр O выбран как ближайшая к B<sub>0</sub> точка "
+                    f"допустимой области (рисунок {ref('fig-cam-portrait')}):")
+        s.formula(Formula("a_w", None, _t(syn.a_w * 1000, unit="мм")),
+                  Formula(r"\psi_0", None, _t(math.degrees(syn.psi0), sig=5, unit="°")),
+                  Formula(r"r_0 = \sqrt{a_w^2 + l^2 - 2 a_w l \cos\psi_0}",
+                          rf"\sqrt{{{_t(syn.a_w * 1000)}^2 + {_t(cam.arm * 1000)}^2 - 2 \cdot {_t(syn.a_w * 1000)}"
+                          rf" \cdot {_t(cam.arm * 1000)} \cos {_t(math.degrees(syn.psi0), sig=5)}^\circ}}",
+                          _t(syn.r0 * 1000, unit="мм")))
+        s.paragraph(f"Точки касания: на удалении φ&nbsp;=&nbsp;{_deg(syn.phi_rise, 3)}, на возвращении "
+                    f"φ&nbsp;=&nbsp;{_deg(syn.phi_return, 3)}.")
+        if syn.governing != "fixed":
+            s.paragraph(f"Приближённый способ (лучи через точки наибольшего аналога скорости, штриховые линии) даёт "
+                        f"r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0_approx)}, a<sub>w</sub>&nbsp;=&nbsp;{_mm(syn.a_w_approx)}; "
+                        f"отличие r<sub>0</sub> от точного решения "
+                        f"{fmt((syn.r0_approx / syn.r0 - 1) * 100, digits=2, sign=True)}&nbsp;%.")
+    sc = PhasePortrait()
+    fig = sc.draw(study)
+    s.figure(f"Фазовый портрет, определяющие лучи и область допустимого расположения центра кулачка "
+             f"(μ&nbsp;=&nbsp;{fmt(fig.mu * 1000, sig=3)}&nbsp;мм/мм)", fig.svg, fig.width_mm, id="fig-cam-portrait")
+
+
+def _pressure(sec, study, cam) -> None:
+    s = sec.subsection("Проверка угла давления", "sec-cam-theta")
+    t1, t2 = cam.theta_max
+    s.paragraph(f"Угол давления на всём цикле построен на рисунке {ref('fig-cam-theta')}. Наибольшие значения: "
+                f"на удалении ϑ<sub>max</sub>&nbsp;=&nbsp;{_deg(t1, 3)} при [ϑ<sub>у</sub>]&nbsp;=&nbsp;{_deg(cam.rise.allowed)}, "
+                f"на возвращении |ϑ|<sub>max</sub>&nbsp;=&nbsp;{_deg(t2, 3)} при [ϑ<sub>в</sub>]&nbsp;=&nbsp;{_deg(cam.ret.allowed)}. "
+                + ("Угол давления нигде не превышает допустимого."
+                   if t1 <= cam.rise.allowed + 1e-9 and t2 <= cam.ret.allowed + 1e-9
+                   else "<b>Угол давления превышает допустимый</b>: размеры механизма нужно увеличить."))
+    fig = PressureAngleGraph().draw(study)
+    s.figure("Угол давления за цикл и допустимые значения", fig.svg, fig.width_mm, id="fig-cam-theta")
+
+
+def _profile(sec, study, cam) -> None:
+    s = sec.subsection("Профилирование кулачка", "sec-cam-profile")
+    s.paragraph("Профиль построен методом обращения движения: кулачок неподвижен, а толкатель вместе со стойкой "
+                "вращается вокруг центра O с угловой скоростью −ω. Координаты центрового (теоретического) профиля в "
+                "системе кулачка:")
+    if cam.follower == "translating" and cam.contact != "flat":
+        s.formula(Formula(r"x = e\cos\varphi + (s_0 + s)\sin\varphi,\quad y = -e\sin\varphi + (s_0 + s)\cos\varphi",
+                          label="eq-cam-profile"))
+        if cam.k < 0:
+            s.paragraph("(при вращении по часовой стрелке знаки при sin φ меняются на противоположные).")
+    elif cam.contact == "flat":
+        s.formula(Formula(r"x = s^{\prime}\cos\varphi + (r_0 + s)\sin\varphi,\quad y = -s^{\prime}\sin\varphi + (r_0 + s)\cos\varphi",
+                          label="eq-cam-profile"))
+        s.paragraph("Точка касания смещена по тарелке на s′ от оси толкателя, радиус-вектор профиля "
+                    f"{_im(R_TEX)}, радиус кривизны ρ&nbsp;=&nbsp;r<sub>0</sub>&nbsp;+&nbsp;s&nbsp;+&nbsp;s″.")
+    else:
+        s.formula(Formula(r"\overline{r}_C = R(-\varphi)\,\overline{OB}(\varphi)", label="eq-cam-profile",
+                          where=[(r"R(-\varphi)", "поворот на угол −φ (обращённое движение)"),
+                                 (r"\overline{OB}", "положение центра ролика при неподвижной стойке")]))
+    if cam.contact == "roller":
+        rc = cam.rho_min_centre
+        s.paragraph("Радиус кривизны центрового профиля ρ = |r′|³/(r′ × r″) вычислен по точным производным. "
+                    f"Наименьший радиус кривизны выпуклой части ρ<sub>min</sub>&nbsp;=&nbsp;{_mm(rc)}. Радиус ролика "
+                    "из условий отсутствия заострения и прочности (r<sub>р</sub>&nbsp;≤&nbsp;0,7ρ<sub>min</sub>, "
+                    "r<sub>р</sub>&nbsp;≤&nbsp;0,4r<sub>0</sub>)"
+                    + (f" принят r<sub>р</sub>&nbsp;=&nbsp;{_mm(cam.roller)}." if cam.roller_fixed is None
+                       else f" — задан r<sub>р</sub>&nbsp;=&nbsp;{_mm(cam.roller)}"
+                       + (" (условие выполнено)." if cam.roller < rc else " (<b>условие не выполнено</b>).")))
+        s.paragraph("Рабочий (действительный) профиль — эквидистанта центрового, отстоящая от него на r<sub>р</sub> "
+                    "по нормали: " + str(_im(r"\overline{r} = \overline{r}_C - r_р\,\overline{n}")) + ".")
+    fig = ProfileDrawing()
+    d = fig.draw(study)
+    pos = ", ".join(f"{i}&nbsp;— φ&nbsp;=&nbsp;{_deg(p, 1)}" for i, p in enumerate(follower_positions(cam)))
+    if fig.refused:
+        s.paragraph(f"В заданном масштабе {fig.refused} профиль не помещается на лист формата А4, поэтому принят "
+                    f"наибольший помещающийся стандартный масштаб {fig.scale} (ГОСТ 2.302).")
+    s.paragraph(f"Профиль кулачка вычерчен на рисунке {ref('fig-cam-profile')} в масштабе {fig.scale}; толкатель "
+                f"показан в положениях {pos}. Координаты профиля приведены в таблице {ref('tab-cam-coords')}.")
+    s.figure(f"Профиль кулачка (М {fig.scale})", d.svg, d.width_mm, id="fig-cam-profile")
+    df = cam.profile_table().copy()
+    for c in ("s", "x_c", "y_c", "r_c", "x", "y", "r", "rho_c", "rho"):
+        if c in df:
+            df[c] = df[c] * (1000 if c != "s" or cam.follower == "translating" else 180 / math.pi)
+    df["theta"] = df["theta"] * 180 / math.pi
+    cols = [Column("phi_deg", "φ", "град", digits=1),
+            Column("s", "ψ" if cam.follower == "rocker" else "s", "град" if cam.follower == "rocker" else "мм", digits=3)]
+    if cam.contact != "flat":
+        cols += [Column("x_c", "x<sub>C</sub>", "мм", digits=2), Column("y_c", "y<sub>C</sub>", "мм", digits=2)]
+    if cam.contact != "knife":
+        cols += [Column("x", "x", "мм", digits=2), Column("y", "y", "мм", digits=2)]
+    cols += [Column("r", "r", "мм", digits=2), Column("rho", "ρ", "мм", digits=2)]
+    if cam.contact != "flat":
+        cols.append(Column("theta", "ϑ", "град", digits=2))
+    s.table("Координаты профиля кулачка", cols, df, id="tab-cam-coords",
+            note="x<sub>C</sub>, y<sub>C</sub> — центровой профиль; x, y, r — рабочий профиль; ρ — радиус кривизны "
+                 "рабочего профиля (отрицательный — вогнутый участок)." if cam.contact != "flat" else
+            "r — радиус-вектор профиля; ρ — радиус кривизны профиля.")
+
+
+def conclusion_lines(study) -> list[str]:
+    cam = study.cam
+    syn = cam.synthesis
+    out = []
+    if cam.contact == "flat":
+        out.append(f"Кулачковый механизм с плоским толкателем: радиус основной шайбы r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)} "
+                   f"(по выпуклости профиля требуется не менее {_mm(cam.flat_min[2])}), ширина тарелки не менее "
+                   f"{_mm(cam.scalars['cam_face_width'])}.")
+    elif cam.follower == "translating":
+        out.append(f"Кулачковый механизм: по допустимым углам давления r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}, "
+                   f"e&nbsp;=&nbsp;{_mm(syn.e)}; наибольший угол давления {_deg(cam.theta_max[0], 2)} на удалении и "
+                   f"{_deg(cam.theta_max[1], 2)} на возвращении.")
+    else:
+        out.append(f"Кулачковый механизм с коромыслом: a<sub>w</sub>&nbsp;=&nbsp;{_mm(syn.a_w)}, "
+                   f"ψ<sub>0</sub>&nbsp;=&nbsp;{_deg(syn.psi0)}, r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}; наибольший угол "
+                   f"давления {_deg(cam.theta_max[0], 2)} на удалении и {_deg(cam.theta_max[1], 2)} на возвращении.")
+    if cam.contact == "roller":
+        out.append(f"Радиус ролика r<sub>р</sub>&nbsp;=&nbsp;{_mm(cam.roller)} при наименьшем радиусе кривизны "
+                   f"центрового профиля {_mm(cam.rho_min_centre)}.")
+    hard = sum(1 for i in cam.impacts if i["kind"] == "hard")
+    soft = sum(1 for i in cam.impacts if i["kind"] == "soft")
+    out.append("Удары в кулачковом механизме: " + ("отсутствуют." if not (hard or soft) else
+               f"жёстких — {hard}, мягких — {soft}."))
+    return out
