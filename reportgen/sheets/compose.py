@@ -50,6 +50,8 @@ def scale_text(kind: str | None, mu: float | None) -> str:
         for s in GOST_SCALES:
             if abs(n - s) < 1e-9 * s:
                 return f"М 1:{_num(n)}"
+            if s > 1 and abs(n * s - 1.0) < 1e-9:      # enlargement scales 2:1 … 10:1
+                return f"М {_num(s)}:1"
         return f"$\\mu_l$ = {_num(mu)} м/мм"
     sym, unit = {VELOCITY: ("\\mu_V", "(м/с)/мм"), ACCELERATION: ("\\mu_a", "(м/с²)/мм"),
                  FORCE: ("\\mu_F", "Н/мм")}[kind]
@@ -78,7 +80,7 @@ def layout_sheet(spec: SheetSpec, rendered: list[Rendered], table_rows) -> Sheet
     views = []
     for r in rendered:
         w, h = _size_mm(r.fig)
-        views.append(View(r.spec.key, w, h, r.mu))
+        views.append(View(r.spec.key, w, h, r.mu, priority=r.spec.priority))
     if table_rows:
         tw, th = _table_size(table_rows)
         views.append(View("__table__", tw, th, None, title_h=9.0))

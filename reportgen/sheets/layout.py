@@ -7,8 +7,12 @@ the series of the note's scenes, which holds the ГОСТ 2.302-68 scales), so t
 beside the view stays a round number.  Charts (no μ) may be enlarged by any factor of the series.
 
 Placement is a first-fit, largest view first, on candidate corners (every combination of the
-field's edges and the edges of the views already placed), topmost then leftmost, with a gap between views; the largest common
-enlargement for which every view finds a place is taken.
+field's edges and the edges of the views already placed), topmost then leftmost, with a gap between
+views.  First the largest common enlargement for which every view finds a place is taken; then the
+views grow one by one, each to its next allowed factor, while everything still fits: the main views
+(priority > 1: the plan of positions, the energy–mass diagram, the group drawings, the cam profile)
+first and up to ``priority`` times further than the others, the rest in rounds in their order on the
+sheet.  Every step is a fixed sequence of trials, so the placement is deterministic.
 """
 from __future__ import annotations
 
@@ -16,8 +20,10 @@ import math
 from dataclasses import dataclass
 
 NICE = (1.0, 1.5, 2.0, 2.5, 4.0, 5.0)
-FACTORS = (3.0, 2.5, 2.0, 1.6, 1.5, 1.25, 1.0, 0.8, 0.75, 0.6, 0.5, 0.4)
+FACTORS = (4.0, 3.0, 2.5, 2.0, 1.6, 1.5, 1.25, 1.0, 0.8, 0.75, 0.6, 0.5, 0.4)
 GAP_MM = 12.0
+GROWTH = 1.6          # a view grows at most GROWTH·priority times beyond the common enlargement
+MAX_CHART = 2.0       # a chart (its lettering grows with it) is enlarged at most MAX_CHART·priority
 
 
 @dataclass
@@ -29,6 +35,7 @@ class View:
     height: float
     mu: float | None = None
     title_h: float = 9.0          # room for the view's title and scale above it
+    priority: float = 1.0         # > 1 for the sheet's main view: it is enlarged first and most
 
 
 @dataclass
@@ -72,6 +79,12 @@ def allowed_factor(view: View, target: float) -> float:
     return FACTORS[-1]
 
 
+def next_factor(view: View, f: float) -> float | None:
+    """The smallest factor above ``f`` that keeps the view's scale standard (None at the top)."""
+    up = [g for g in FACTORS if g > f + 1e-12 and (view.mu is None or is_nice(view.mu / g))]
+    return min(up) if up else None
+
+
 def _overlap(a, b, gap=0.0) -> bool:
     return not (a[2] + gap <= b[0] or b[2] + gap <= a[0] or a[3] + gap <= b[1] or b[3] + gap <= a[1])
 
@@ -108,10 +121,40 @@ def _try(views: list[View], factors: list[float], field, keepout) -> list[Placed
 
 
 def place(views: list[View], field, keepout) -> list[Placed]:
-    """Place every view (largest common enlargement first); raise ValueError if none fits."""
+    """Place every view (largest common enlargement, then each view grown while it fits); raise
+    ValueError if none fits."""
     for f in FACTORS:
         factors = [allowed_factor(v, f) for v in views]
         out = _try(views, factors, field, keepout)
         if out is not None:
-            return out
+            return _grow(views, factors, out, f, field, keepout)
     raise ValueError("виды не помещаются на листе")
+
+
+def _grow(views, factors, out, common, field, keepout) -> list[Placed]:
+    """Enlarge the views one step at a time while all of them still fit (see the module doc)."""
+    def cap(v: View) -> float:
+        c = common * GROWTH * v.priority
+        return min(c, MAX_CHART * v.priority) if v.mu is None else c
+
+    def step(order) -> bool:
+        nonlocal factors, out
+        changed = False
+        for i in order:
+            g = next_factor(views[i], factors[i])
+            if g is None or g > cap(views[i]) + 1e-12:
+                continue
+            trial = list(factors)
+            trial[i] = g
+            res = _try(views, trial, field, keepout)
+            if res is not None:
+                factors, out, changed = trial, res, True
+        return changed
+
+    main = [i for i in range(len(views)) if views[i].priority > 1.0]
+    main.sort(key=lambda i: -views[i].priority)
+    while main and step(main):
+        pass
+    while step(range(len(views))):
+        pass
+    return out

@@ -13,9 +13,14 @@ Sheets (the «classical» ordering of the course, domain.md §1.1):
    of forces, works, ΔT, the energy–mass diagram, ω(φ), the flywheel, a table of results.
 3. Силовой анализ (case with ``[forces]``): the mechanism at the chosen position, each Assur group
    with its loads and force polygon, the Жуковский lever, a table of results.
+4. Синтез кулачкового механизма (case with ``[cam]``, after the linkage sheets): the diagrams s″, s′,
+   s; the phase portrait with the tangent rays and the allowed region; the pressure angle over the
+   cycle; the profile at a ГОСТ 2.302 scale with the follower in a few positions; a table of
+   results (r₀, e or a_w and ψ₀, the roller radius, ϑ_max on the rise and the return, ρ_min).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -34,6 +39,7 @@ class ViewSpec:
     draw: Callable                   # study → scene result (a Figure or a drawing with .mu)
     scale: str | None = None         # LENGTH, VELOCITY, ACCELERATION, FORCE or None (a chart)
     mu_attr: str = "mu"
+    priority: float = 1.0            # how much more than the others the view is enlarged (main view > 1)
 
 
 @dataclass
@@ -72,7 +78,8 @@ def kinematics_sheet(study) -> SheetSpec:
     from ..scenes.mechanism import PositionsPlan
     from ..scenes.plans import PlanScene
 
-    views = [ViewSpec("positions", "План положений механизма", PositionsPlan().draw, LENGTH)]
+    views = [ViewSpec("positions", "План положений механизма", PositionsPlan().draw, LENGTH,
+                      priority=2.0)]
     if study.mechanism.driver.omega is not None:   # plans need the true speed of the input link
         lab = chosen_position(study)
         for p in _regular_labels(study):
@@ -91,7 +98,8 @@ def dynamics_sheet(study) -> SheetSpec:
              ViewSpec("moments", "Приведённые моменты сил", MomentCurves().draw),
              ViewSpec("works", "Работы сил", WorkCurves().draw),
              ViewSpec("energy", "Изменение кинетической энергии", EnergyCurves().draw),
-             ViewSpec("wittenbauer", "Диаграмма энергомасс (Виттенбауэра)", WittenbauerDiagram().draw),
+             ViewSpec("wittenbauer", "Диаграмма энергомасс (Виттенбауэра)", WittenbauerDiagram().draw,
+                      priority=2.0),
              ViewSpec("motion", "Закон движения ω(φ), ε(φ)", MotionCurves().draw),
              ViewSpec("flywheel", "Маховик", FlywheelDrawing().draw)]
     return SheetSpec("dynamics", "Динамический анализ и синтез маховика", views, table=dynamics_results)
@@ -107,7 +115,7 @@ def forces_sheet(study) -> SheetSpec:
     views = [ViewSpec("scheme", f"Схема механизма, положение {lab}", KinematicScheme(lab).draw, LENGTH)]
     for gi, g in enumerate(f.model.groups):
         views.append(ViewSpec(f"group{gi}", f"Группа {g.label}: силы и план сил",
-                              GroupForces(lab, gi).draw, LENGTH, mu_attr="mu_l"))
+                              GroupForces(lab, gi).draw, LENGTH, mu_attr="mu_l", priority=1.5))
     views.append(ViewSpec("lever", "Рычаг Жуковского", ZhukovskyLever(lab).draw, VELOCITY))
     return SheetSpec("forces", f"Силовой анализ механизма (положение {lab})", views, table=forces_results)
 
@@ -151,6 +159,49 @@ def forces_results(study) -> list[tuple[str, float, str]]:
     return out
 
 
+def cam_sheet(study) -> SheetSpec:
+    """The cam sheet (domain.md §1.6): the laws, the phase portrait, the pressure angle, the
+    profile at a standard scale with the follower positions and the results in textbook notation."""
+    from ..scenes.cam import LawDiagrams, PhasePortrait, PressureAngleGraph, ProfileDrawing
+
+    views = [ViewSpec("profile", "Профиль кулачка", ProfileDrawing().draw, LENGTH, priority=2.0),
+             ViewSpec("laws", "Диаграммы аналогов ускорения, скорости и перемещения", LawDiagrams().draw),
+             ViewSpec("portrait", "Фазовый портрет и область допустимых положений центра",
+                      PhasePortrait().draw, LENGTH),
+             ViewSpec("pressure", "Угол давления за цикл", PressureAngleGraph().draw)]
+    return SheetSpec("cam", "Синтез кулачкового механизма", views, table=cam_results)
+
+
+def cam_results(study) -> list[tuple[str, float, str]]:
+    """The results of the cam synthesis in textbook notation (lengths in mm, angles in degrees)."""
+    cam = study.cam
+    s = cam.scalars
+    mm, deg = 1000.0, math.degrees(1.0)
+    rows = []
+    if cam.follower == "rocker":
+        rows.append((r"$\psi_{max}$", cam.h * deg, "°"))
+    else:
+        rows.append(("$h$", cam.h * mm, "мм"))
+    rows.append(("$r_0$", s["cam_r0"] * mm, "мм"))
+    if "cam_e" in s:
+        rows.append(("$e$", s["cam_e"] * mm, "мм"))
+    if "cam_a_w" in s:
+        rows += [("$a_w$", s["cam_a_w"] * mm, "мм"), (r"$\psi_0$", s["cam_psi0"] * deg, "°"),
+                 ("$l$", s["cam_arm"] * mm, "мм")]
+    if "cam_roller" in s:
+        rows.append(("$r_р$", s["cam_roller"] * mm, "мм"))
+    if "cam_face_width" in s:
+        rows.append(("ширина тарелки", s["cam_face_width"] * mm, "мм"))
+    if cam.contact != "flat":
+        rows += [(r"$\vartheta_{max}$ (удаление)", s["cam_theta_rise_max"] * deg, "°"),
+                 (r"$[\vartheta_у]$", cam.rise.allowed * deg, "°"),
+                 (r"$\vartheta_{max}$ (возвращение)", s["cam_theta_return_max"] * deg, "°"),
+                 (r"$[\vartheta_в]$", cam.ret.allowed * deg, "°")]
+    rho = s.get("cam_rho_min", s.get("cam_rho_c_min"))
+    rows.append((r"$\rho_{min}$", rho * mm, "мм"))
+    return [r for r in rows if isinstance(r[1], float) and math.isfinite(r[1])]
+
+
 def sheets_for(study) -> list[SheetSpec]:
     """The sheets the case has material for, in the course's order."""
     out = []
@@ -160,4 +211,6 @@ def sheets_for(study) -> list[SheetSpec]:
             out.append(dynamics_sheet(study))
         if study.root.has("forces"):
             out.append(forces_sheet(study))
+    if study.root.has("cam"):
+        out.append(cam_sheet(study))
     return out
