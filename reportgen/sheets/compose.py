@@ -7,7 +7,7 @@ about the time the scenes take and byte-identically (no dates, fixed ids, sorted
 from __future__ import annotations
 
 import io
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
@@ -33,6 +33,8 @@ class SheetLayout:
     placed: list[Placed]
     table_box: tuple[float, float, float, float] | None
     title_boxes: list[tuple[float, float, float, float]]
+    # the titles as drawn: (key, (x0, y0, x1, y1) in mm), measured by the renderer in compose()
+    title_extents: list[tuple[str, tuple[float, float, float, float]]] = field(default_factory=list)
 
 
 def _num(x: float) -> str:
@@ -76,14 +78,38 @@ def _table_size(rows) -> tuple[float, float]:
     return (sum(TABLE_W_MM), TABLE_ROW_MM * (len(rows) + 1))
 
 
+TITLE_FS = 3.5 / 0.7 * PT_PER_MM     # lettering 3,5 mm (ГОСТ 2.304) of the views' titles
+TABLE_TITLE = "Результаты расчёта"
+
+
+def view_title(r: Rendered, mu: float | None) -> str:
+    sc = scale_text(r.spec.scale, mu)
+    return r.spec.title + (f"   {sc}" if sc else "")
+
+
+def _title_widths(texts: list[str], family: str | None) -> list[float]:
+    """Rendered widths (mm) of the title lines, plus a margin of 6 mm (the scale's digits may
+    change with the enlargement)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    fig = Figure(figsize=(F.SHEET_W / MM_PER_IN, F.SHEET_H / MM_PER_IN))
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    out = []
+    for s in texts:
+        t = fig.text(0, 0, s, fontsize=TITLE_FS, fontfamily=family)
+        out.append(t.get_window_extent(renderer).width / fig.dpi * MM_PER_IN + 6.0)
+    return out
+
+
 def layout_sheet(spec: SheetSpec, rendered: list[Rendered], table_rows) -> SheetLayout:
+    from .title import drafting_family
+    widths = _title_widths([view_title(r, r.mu) for r in rendered] + [TABLE_TITLE], drafting_family())
     views = []
-    for r in rendered:
+    for r, tw in zip(rendered, widths):
         w, h = _size_mm(r.fig)
-        views.append(View(r.spec.key, w, h, r.mu, priority=r.spec.priority))
+        views.append(View(r.spec.key, w, h, r.mu, priority=r.spec.priority, title_w=tw))
     if table_rows:
         tw, th = _table_size(table_rows)
-        views.append(View("__table__", tw, th, None, title_h=9.0))
+        views.append(View("__table__", tw, th, None, title_h=9.0, title_w=widths[-1]))
     field = F.field_rect()
     # the sheet's own title line takes the top 12 mm of the field
     field = (field[0], field[1], field[2], field[3] - 12.0)
@@ -95,7 +121,7 @@ def layout_sheet(spec: SheetSpec, rendered: list[Rendered], table_rows) -> Sheet
             table_box = p
         else:
             out.append(p)
-    titles = [(p.x, p.y + p.h, p.x + p.w, p.y + p.h + p.view.title_h) for p in placed]
+    titles = [(p.x - p.dx, p.y + p.h, p.x + p.w + p.dx, p.y + p.h + p.view.title_h) for p in placed]
     return SheetLayout(spec, out, table_box, titles)
 
 
@@ -137,18 +163,23 @@ def _frame_page(layout: SheetLayout, block: F.TitleBlock, rendered: list[Rendere
     texts.append(ax.text((fx0 + fx1) / 2, fy1 - 5.0, layout.spec.title, ha="center", va="center",
                          fontsize=7.0 / 0.7 * PT_PER_MM, fontfamily=family))
     by_key = {r.spec.key: r for r in rendered}
+    titles = []
     for p in layout.placed:
-        r = by_key[p.view.key]
-        title = r.spec.title
-        sc = scale_text(r.spec.scale, p.mu)
-        ax.text(p.x + p.w / 2, p.y + p.h + 4.0, title + (f"   {sc}" if sc else ""), ha="center",
-                va="center", fontsize=3.5 / 0.7 * PT_PER_MM, fontfamily=family)
+        t = ax.text(p.x + p.w / 2, p.y + p.h + 4.0, view_title(by_key[p.view.key], p.mu), ha="center",
+                    va="center", fontsize=TITLE_FS, fontfamily=family)
+        titles.append((p.view.key, t))
     if layout.table_box is not None:
         tb = layout.table_box
-        ax.text(tb.x + tb.w / 2, tb.y + tb.h + 4.0, "Результаты расчёта", ha="center", va="center",
-                fontsize=3.5 / 0.7 * PT_PER_MM, fontfamily=family)
+        t = ax.text(tb.x + tb.w / 2, tb.y + tb.h + 4.0, TABLE_TITLE, ha="center", va="center",
+                    fontsize=TITLE_FS, fontfamily=family)
+        titles.append(("__table__", t))
         _draw_table(ax, tb, table_rows, family)
     F.fit_texts(fig, texts)
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    inv = ax.transData.inverted()
+    layout.title_extents = [(k, tuple(float(v) for v in t.get_window_extent(renderer).transformed(inv).extents))
+                            for k, t in titles]
     return _fig_pdf(fig), fig
 
 

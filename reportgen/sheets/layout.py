@@ -36,6 +36,7 @@ class View:
     mu: float | None = None
     title_h: float = 9.0          # room for the view's title and scale above it
     priority: float = 1.0         # > 1 for the sheet's main view: it is enlarged first and most
+    title_w: float = 0.0          # width of the title line: a narrow view is placed as wide as its title
 
 
 @dataclass
@@ -57,9 +58,18 @@ class Placed:
     def mu(self) -> float | None:
         return None if self.view.mu is None else self.view.mu / self.s
 
+    @property
+    def dx(self) -> float:
+        """Half the excess of the title's width over the drawing's (the title is centred on it)."""
+        return max(0.0, (self.view.title_w - self.w) / 2)
+
     def box(self, with_title: bool = True) -> tuple[float, float, float, float]:
-        top = self.y + self.h + (self.view.title_h if with_title else 0.0)
-        return (self.x, self.y, self.x + self.w, top)
+        """The view's footprint: the drawing, and with the title the strip above it as wide as the
+        wider of the two."""
+        if not with_title:
+            return (self.x, self.y, self.x + self.w, self.y + self.h)
+        top = self.y + self.h + self.view.title_h
+        return (self.x - self.dx, self.y, self.x + self.w + self.dx, top)
 
 
 def is_nice(mu: float) -> bool:
@@ -98,7 +108,8 @@ def _try(views: list[View], factors: list[float], field, keepout) -> list[Placed
     placed: list[Placed] = []
     for i in order:
         v, s = views[i], factors[i]
-        w, h = v.width * s, v.height * s + v.title_h
+        dx = max(0.0, (v.title_w - v.width * s) / 2)
+        w, h = v.width * s + 2 * dx, v.height * s + v.title_h
         xs = [field[0]] + [p.box()[2] + GAP_MM for p in placed] + [field[2] - w]
         tops = [field[3]] + [p.box()[1] - GAP_MM for p in placed] + [field[1] + h]
         cands = [(x, top) for x in xs for top in tops]
@@ -115,7 +126,7 @@ def _try(views: list[View], factors: list[float], field, keepout) -> list[Placed
         if best is None:
             return None
         box = best[1]
-        placed.append(Placed(v, box[0], box[1], s))
+        placed.append(Placed(v, box[0] + dx, box[1], s))
     placed.sort(key=lambda p: views.index(p.view))
     return placed
 
