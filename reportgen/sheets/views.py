@@ -112,7 +112,8 @@ def forces_sheet(study) -> SheetSpec:
 
     f = study.forces
     lab = chosen_position(study) if f.settings.motion != "dynamics" else _forces_position(study)
-    views = [ViewSpec("scheme", f"Схема механизма, положение {lab}", KinematicScheme(lab).draw, LENGTH)]
+    views = [ViewSpec("scheme", f"Схема механизма, положение {lab}", KinematicScheme(lab).draw, LENGTH,
+                      priority=1.5)]
     for gi, g in enumerate(f.model.groups):
         views.append(ViewSpec(f"group{gi}", f"Группа {g.label}: силы и план сил",
                               GroupForces(lab, gi).draw, LENGTH, mu_attr="mu_l", priority=1.5))
