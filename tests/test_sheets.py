@@ -116,6 +116,9 @@ def test_cam_sheet_present_and_last(built):
     assert rows["$r_0$"] == pytest.approx(study.cam.synthesis.r0 * 1000)
     if study.cam.contact == "roller":
         assert rows["$r_р$"] == pytest.approx(study.cam.roller * 1000)
+    if study.cam.scale is not None:     # the scale the case asks for, when the profile fits at it
+        assert scale_text("l", placed["profile"].mu) == "М " + study.cam.scale
+    assert ("portrait" in placed) == (study.cam.contact != "flat")
 
 
 def test_linkage_and_cam_sheets_order(tmp_path):

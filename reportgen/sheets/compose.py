@@ -106,7 +106,7 @@ def layout_sheet(spec: SheetSpec, rendered: list[Rendered], table_rows) -> Sheet
     views = []
     for r, tw in zip(rendered, widths):
         w, h = _size_mm(r.fig)
-        views.append(View(r.spec.key, w, h, r.mu, priority=r.spec.priority, title_w=tw))
+        views.append(View(r.spec.key, w, h, r.mu, priority=r.spec.priority, title_w=tw, mu_only=r.spec.mu_only))
     if table_rows:
         tw, th = _table_size(table_rows)
         views.append(View("__table__", tw, th, None, title_h=9.0, title_w=widths[-1]))
@@ -204,6 +204,19 @@ def compose(layouts: list[tuple[SheetLayout, F.TitleBlock, list[Rendered], list]
     return buf.getvalue()
 
 
+def sheet_scale(rendered: list[Rendered], layout: SheetLayout) -> str:
+    """The scale for the title block (ГОСТ 2.104, графа 6): the one ГОСТ 2.302 scale of the
+    drawn-to-scale views if they share it, else that of the main view (the highest priority)."""
+    texts = [(r.spec.priority, scale_text(r.spec.scale, p.mu)) for r, p in zip(rendered, layout.placed)
+             if r.spec.scale == LENGTH]
+    gost = [(pr, t[2:]) for pr, t in texts if t.startswith("М ")]
+    if not gost:
+        return ""
+    if len({t for _, t in gost}) == 1:
+        return gost[0][1]
+    return max(gost, key=lambda x: x[0])[1]
+
+
 def render_sheets(study) -> tuple[bytes, list[SheetLayout]]:
     """Render every sheet of the study: (PDF bytes, layouts for the checks)."""
     from .title import title_block
@@ -215,9 +228,7 @@ def render_sheets(study) -> tuple[bytes, list[SheetLayout]]:
         rendered = [render_view(v, study) for v in spec.views]
         rows = spec.table(study) if spec.table else []
         layout = layout_sheet(spec, rendered, rows)
-        scales = {scale_text(r.spec.scale, p.mu) for r, p in zip(rendered, layout.placed)}
-        only = scales.pop() if len(scales) == 1 else ""
-        block = title_block(study, spec, i, len(specs), only[2:] if only.startswith("М ") else "")
+        block = title_block(study, spec, i, len(specs), sheet_scale(rendered, layout))
         items.append((layout, block, rendered, rows))
     return compose(items), [it[0] for it in items]
 

@@ -18,7 +18,7 @@ sequence of trials, so the placement is deterministic.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 NICE = (1.0, 1.5, 2.0, 2.5, 4.0, 5.0)
 FACTORS = (4.0, 3.0, 2.5, 2.0, 1.6, 1.5, 1.25, 1.0, 0.8, 0.75, 0.6, 0.5, 0.4)
@@ -39,6 +39,7 @@ class View:
     title_h: float = 9.0          # room for the view's title and scale above it
     priority: float = 1.0         # > 1 for the sheet's main view: it is enlarged first and most
     title_w: float = 0.0          # width of the title line: a narrow view is placed as wide as its title
+    mu_only: float | None = None  # the one scale the view may take (asked by the case), if set
 
 
 @dataclass
@@ -90,6 +91,8 @@ def factors_for(view: View) -> list[float]:
     if view.mu is None:
         return list(FACTORS)
     lo, hi = FACTORS[-1], FACTORS[0]
+    if view.mu_only is not None and lo - 1e-12 <= view.mu / view.mu_only <= hi + 1e-12:
+        return [view.mu / view.mu_only]
     k0 = math.floor(math.log10(view.mu / hi)) - 1
     out = set()
     for k in range(k0, k0 + 4):
@@ -153,7 +156,17 @@ def _try(views: list[View], factors: list[float], field, keepout) -> list[Placed
 
 def place(views: list[View], field, keepout) -> list[Placed]:
     """Place every view (largest common enlargement, then each view grown while it fits); raise
-    ValueError if none fits."""
+    ValueError if none fits.  A scale asked by the case (``mu_only``) is kept when the views fit
+    with it and dropped otherwise."""
+    if any(v.mu_only is not None for v in views):
+        try:
+            return _place(views, field, keepout)
+        except ValueError:
+            views = [replace(v, mu_only=None) for v in views]
+    return _place(views, field, keepout)
+
+
+def _place(views: list[View], field, keepout) -> list[Placed]:
     for f in FACTORS:
         factors = [allowed_factor(v, f) for v in views]
         out = _try(views, factors, field, keepout)

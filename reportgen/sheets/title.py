@@ -1,7 +1,7 @@
 """The title block's fields from ``[meta]`` and the lettering font of the sheets.
 
 Fields (ГОСТ 2.104-2006, форма 1): designation ``[meta] sheet_code`` (a ``{n}`` in it is replaced
-by the sheet number) or «ТММ.КП.<variant>.0n»; name: the topic and the sheet's title; material:
+by the sheet number) or «ТММ.КП.<variant>.0n» («ТММ.КП.0n» without a variant); name: the topic and the sheet's title; material:
 the discipline; organisation: university and group; Разраб. — student, Пров. — supervisor,
 Т.контр. — ``checker``, Н.контр. — ``norm_control``, Утв. — ``approver``; date — ``date`` or
 ``year``.
@@ -37,9 +37,10 @@ def _wrap(text: str, width_chars: int, lines: int) -> str:
 
 def title_block(study, spec, n: int, total: int, scale: str) -> F.TitleBlock:
     m = study.meta
-    variant = m.get("variant") or study.name
+    variant = m.get("variant")
     code = m.get("sheet_code")
-    designation = code.replace("{n}", str(n)) if code else f"ТММ.КП.{variant}.0{n}"
+    designation = (code.replace("{n}", str(n)) if code
+                   else f"ТММ.КП.{variant}.0{n}" if variant else f"ТММ.КП.0{n}")
     org = ", ".join(x for x in (m.get("university", ""), ("гр. " + m["group"]) if m.get("group") else "") if x)
     return F.TitleBlock(
         designation=designation,

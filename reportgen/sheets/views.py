@@ -40,6 +40,7 @@ class ViewSpec:
     scale: str | None = None         # LENGTH, VELOCITY, ACCELERATION, FORCE or None (a chart)
     mu_attr: str = "mu"
     priority: float = 1.0            # how much more than the others the view is enlarged (main view > 1)
+    mu_only: float | None = None     # the scale the case asks for (kept on the sheet if the view fits at it)
 
 
 @dataclass
@@ -165,12 +166,21 @@ def cam_sheet(study) -> SheetSpec:
     profile at a standard scale with the follower positions and the results in textbook notation."""
     from ..scenes.cam import LawDiagrams, PhasePortrait, PressureAngleGraph, ProfileDrawing
 
-    views = [ViewSpec("profile", "Профиль кулачка", ProfileDrawing().draw, LENGTH, priority=2.0),
-             ViewSpec("laws", "Диаграммы аналогов ускорения, скорости и перемещения", LawDiagrams().draw),
-             ViewSpec("portrait", "Фазовый портрет и область допустимых положений центра",
-                      PhasePortrait().draw, LENGTH),
-             ViewSpec("pressure", "Угол давления за цикл", PressureAngleGraph().draw)]
+    asked = study.cam.scale
+    views = [ViewSpec("profile", "Профиль кулачка", ProfileDrawing().draw, LENGTH, priority=2.0,
+                      mu_only=gost_mu(asked) if asked else None),
+             ViewSpec("laws", "Диаграммы аналогов ускорения, скорости и перемещения", LawDiagrams().draw)]
+    if study.cam.contact != "flat":     # a flat face has ϑ ≡ 0: r₀ comes from convexity, not from a portrait
+        views += [ViewSpec("portrait", "Фазовый портрет и область допустимых положений центра",
+                           PhasePortrait().draw, LENGTH),
+                  ViewSpec("pressure", "Угол давления за цикл", PressureAngleGraph().draw)]
     return SheetSpec("cam", "Синтез кулачкового механизма", views, table=cam_results)
+
+
+def gost_mu(name: str) -> float:
+    """The scale factor (m per printed mm) of a ГОСТ 2.302 scale «a:b»: b/a mm of the part per mm."""
+    a, b = (float(x.replace(",", ".")) for x in name.split(":"))
+    return b / a / 1000.0
 
 
 def cam_results(study) -> list[tuple[str, float, str]]:
@@ -184,6 +194,8 @@ def cam_results(study) -> list[tuple[str, float, str]]:
     else:
         rows.append(("$h$", cam.h * mm, "мм"))
     rows.append(("$r_0$", s["cam_r0"] * mm, "мм"))
+    if "cam_r0_min" in s:
+        rows.append((r"$r_{0\,min}$ (выпуклость)", s["cam_r0_min"] * mm, "мм"))
     if "cam_e" in s:
         rows.append(("$e$", s["cam_e"] * mm, "мм"))
     if "cam_a_w" in s:
