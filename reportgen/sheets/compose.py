@@ -79,12 +79,12 @@ def _table_size(rows) -> tuple[float, float]:
 
 
 TITLE_FS = 3.5 / 0.7 * PT_PER_MM     # lettering 3,5 mm (ГОСТ 2.304) of the views' titles
-TABLE_TITLE = "Результаты расчёта"
+TABLE_TITLE = F.lettering("Результаты расчёта")
 
 
 def view_title(r: Rendered, mu: float | None) -> str:
     sc = scale_text(r.spec.scale, mu)
-    return r.spec.title + (f"   {sc}" if sc else "")
+    return F.lettering(r.spec.title + (f"   {sc}" if sc else ""))
 
 
 def _title_widths(texts: list[str], family: str | None) -> list[float]:
@@ -144,9 +144,8 @@ def _draw_table(ax, p: Placed, rows, family) -> None:
     ax.text(x0 + w1 + w2 / 2, top - rh / 2, "Значение", ha="center", va="center", fontsize=fs, fontfamily=family)
     for i, (name, value, unit) in enumerate(rows, start=1):
         y = top - (i + 0.5) * rh
-        ax.text(x0 + 2 * s, y, name, ha="left", va="center", fontsize=fs, fontfamily=family)
-        # osifont has no U+2212: the hyphen-minus stands for the minus sign in the lettering
-        ax.text(x0 + w1 + w2 / 2, y, fmt(value, sig=4).replace("−", "-") + (f" {unit}" if unit else ""), ha="center",
+        ax.text(x0 + 2 * s, y, F.lettering(name), ha="left", va="center", fontsize=fs, fontfamily=family)
+        ax.text(x0 + w1 + w2 / 2, y, F.lettering(fmt(value, sig=4) + (f" {unit}" if unit else "")), ha="center",
                 va="center", fontsize=fs, fontfamily=family)
 
 
@@ -160,7 +159,7 @@ def _frame_page(layout: SheetLayout, block: F.TitleBlock, rendered: list[Rendere
     ax.axis("off")
     texts = F.draw_frame(ax, block, family)
     fx0, fy0, fx1, fy1 = F.field_rect()
-    texts.append(ax.text((fx0 + fx1) / 2, fy1 - 5.0, layout.spec.title, ha="center", va="center",
+    texts.append(ax.text((fx0 + fx1) / 2, fy1 - 5.0, F.lettering(layout.spec.title), ha="center", va="center",
                          fontsize=7.0 / 0.7 * PT_PER_MM, fontfamily=family))
     by_key = {r.spec.key: r for r in rendered}
     titles = []

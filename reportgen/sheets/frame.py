@@ -63,13 +63,19 @@ def _line(ax, x0, y0, x1, y1, main: bool) -> None:
             solid_capstyle="butt", zorder=5)
 
 
+def lettering(s: str) -> str:
+    """Text as osifont can letter it: its «ё» is a blank box in the PDF and it has no U+2212, so
+    «е» (as drafting lettering writes it) and the hyphen-minus stand for them."""
+    return s.replace("ё", "е").replace("Ё", "Е").replace("−", "-")
+
+
 def _text(ax, x, y, s, size_mm, ha="center", va="center", family=None, width_mm=None, **kw):
     """Lettering of height ``size_mm`` (capital height ≈ font size · 0,7 for osifont), shrunk to
     ``width_mm`` = (width, height) of its cell if it would not fit."""
     if not s:
         return None
     fs = size_mm / 0.7 * PT_PER_MM
-    t = ax.text(x, y, s, fontsize=fs, ha=ha, va=va, fontfamily=family, zorder=6, **kw)
+    t = ax.text(x, y, lettering(s), fontsize=fs, ha=ha, va=va, fontfamily=family, zorder=6, **kw)
     if width_mm is not None:
         t._reportgen_fit = width_mm  # read by fit_texts after the first draw
     return t

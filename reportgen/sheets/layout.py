@@ -24,6 +24,7 @@ NICE = (1.0, 1.5, 2.0, 2.5, 4.0, 5.0)
 FACTORS = (4.0, 3.0, 2.5, 2.0, 1.6, 1.5, 1.25, 1.0, 0.8, 0.75, 0.6, 0.5, 0.4)
 GAP_MM = 12.0
 GROWTH = 1.6          # a view grows at most GROWTH·priority times beyond the common enlargement
+                      # (a drawn view at least to its next standard scale)
 SHRINK = 0.75         # the others may shrink to this share of the common enlargement for the main view
 MAX_CHART = 2.0       # a chart (its lettering grows with it) is enlarged at most MAX_CHART·priority
 
@@ -181,7 +182,10 @@ def _grow(views, factors, out, common, field, keepout) -> list[Placed]:
     the common enlargement; then every view one step at a time, in rounds."""
     def cap(v: View) -> float:
         c = common * GROWTH * v.priority
-        return min(c, MAX_CHART * v.priority) if v.mu is None else c
+        if v.mu is None:
+            return min(c, MAX_CHART * v.priority)
+        # a drawn view may always take the next standard scale above the common enlargement
+        return max(c, next_factor(v, common) or c)
 
     main = sorted((i for i in range(len(views)) if views[i].priority > 1.0), key=lambda i: -views[i].priority)
     fixed: set[int] = set()
