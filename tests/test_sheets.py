@@ -160,6 +160,17 @@ def test_views_grow_individually():
     assert [(p.x, p.y, p.s) for p in again] == [(p.x, p.y, p.s) for p in out]
 
 
+def test_group_grows_together():
+    """The views of one group (the velocity plans) take their steps together: equal views of a
+    group end with equal factors, while a lone view beside them may grow on its own."""
+    field = F.field_rect()
+    views = [View("p1", 90.0, 60.0, 0.02, group="v"), View("p2", 90.0, 60.0, 0.02, group="v"),
+             View("p3", 90.0, 60.0, 0.02, group="v"), View("chart", 160.0, 90.0, None)]
+    out = place(views, field, F.block_keepout())
+    assert len({p.s for p in out[:3]}) == 1 and out[0].s > 1.0
+    assert all(is_nice(p.mu) for p in out[:3])
+
+
 def test_rebuild_is_byte_identical():
     study = load_case(CASES / "ws004_slotted_lever.toml")
     a, _ = render_sheets(study)

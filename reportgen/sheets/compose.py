@@ -106,7 +106,8 @@ def layout_sheet(spec: SheetSpec, rendered: list[Rendered], table_rows) -> Sheet
     views = []
     for r, tw in zip(rendered, widths):
         w, h = _size_mm(r.fig)
-        views.append(View(r.spec.key, w, h, r.mu, priority=r.spec.priority, title_w=tw, mu_only=r.spec.mu_only))
+        views.append(View(r.spec.key, w, h, r.mu, priority=r.spec.priority, title_w=tw, mu_only=r.spec.mu_only,
+                          group=r.spec.group))
     if table_rows:
         tw, th = _table_size(table_rows)
         views.append(View("__table__", tw, th, None, title_h=9.0, title_w=widths[-1]))

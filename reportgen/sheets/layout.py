@@ -12,7 +12,8 @@ views.  First the largest common enlargement for which every view finds a place 
 main views (priority > 1: the plan of positions, the energy–mass diagram, the group drawings, the cam
 profile) are enlarged as far as the others still fit (these may step down to ``SHRINK`` of the common
 enlargement), up to ``priority`` times further than the others; then every view grows one step at a
-time, in rounds in its order on the sheet, while everything still fits.  Every step is a fixed
+time, in rounds in its order on the sheet, while everything still fits (the views of one group, the
+velocity plans, take their steps together, so their scales stay alike).  Every step is a fixed
 sequence of trials, so the placement is deterministic.
 """
 from __future__ import annotations
@@ -41,6 +42,7 @@ class View:
     priority: float = 1.0         # > 1 for the sheet's main view: it is enlarged first and most
     title_w: float = 0.0          # width of the title line: a narrow view is placed as wide as its title
     mu_only: float | None = None  # the one scale the view may take (asked by the case), if set
+    group: str | None = None      # views of one group (the velocity plans) grow together, step by step
 
 
 @dataclass
@@ -204,20 +206,30 @@ def _grow(views, factors, out, common, field, keepout) -> list[Placed]:
             if done:
                 break
 
-    def step(order) -> bool:
+    units: list[list[int]] = []          # a view alone, or all the views of its group
+    for i, v in enumerate(views):
+        unit = next((u for u in units if v.group is not None and views[u[0]].group == v.group), None)
+        if unit is None:
+            units.append([i])
+        else:
+            unit.append(i)
+
+    def step() -> bool:
         nonlocal factors, out
         changed = False
-        for i in order:
-            g = next_factor(views[i], factors[i])
-            if g is None or g > cap(views[i]) + 1e-12:
-                continue
+        for unit in units:
             trial = list(factors)
-            trial[i] = g
+            for i in unit:
+                g = next_factor(views[i], factors[i])
+                if g is not None and g <= cap(views[i]) + 1e-12:
+                    trial[i] = g
+            if trial == factors:
+                continue
             res = _try(views, trial, field, keepout)
             if res is not None:
                 factors, out, changed = trial, res, True
         return changed
 
-    while step(range(len(views))):
+    while step():
         pass
     return out

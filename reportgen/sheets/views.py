@@ -41,6 +41,7 @@ class ViewSpec:
     mu_attr: str = "mu"
     priority: float = 1.0            # how much more than the others the view is enlarged (main view > 1)
     mu_only: float | None = None     # the scale the case asks for (kept on the sheet if the view fits at it)
+    group: str | None = None         # views enlarged together (the velocity plans)
 
 
 @dataclass
@@ -85,7 +86,7 @@ def kinematics_sheet(study) -> SheetSpec:
         lab = chosen_position(study)
         for p in _regular_labels(study):
             views.append(ViewSpec(f"v{p}", f"План скоростей, положение {p}",
-                                  PlanScene(p, "velocity").draw, VELOCITY))
+                                  PlanScene(p, "velocity").draw, VELOCITY, group="velocity"))
         views.append(ViewSpec(f"a{lab}", f"План ускорений, положение {lab}",
                               PlanScene(lab, "acceleration").draw, ACCELERATION))
     views.append(ViewSpec("diagrams", "Кинематические диаграммы выходного звена", OutputDiagrams().draw))
