@@ -115,7 +115,7 @@ def test_cam_sheet_present_and_last(built):
     rows = dict((r[0], r[1]) for r in cam_results(study))
     assert rows["$r_0$"] == pytest.approx(study.cam.synthesis.r0 * 1000)
     if study.cam.contact == "roller":
-        assert rows["$r_р$"] == pytest.approx(study.cam.roller * 1000)
+        assert rows[r"$r_{\mathrm{р}}$"] == pytest.approx(study.cam.roller * 1000)
     if study.cam.scale is not None:     # the scale the case asks for, when the profile fits at it
         assert scale_text("l", placed["profile"].mu) == "М " + study.cam.scale
     assert ("portrait" in placed) == (study.cam.contact != "flat")

@@ -203,14 +203,14 @@ def cam_results(study) -> list[tuple[str, float, str]]:
         rows += [("$a_w$", s["cam_a_w"] * mm, "мм"), (r"$\psi_0$", s["cam_psi0"] * deg, "°"),
                  ("$l$", s["cam_arm"] * mm, "мм")]
     if "cam_roller" in s:
-        rows.append(("$r_р$", s["cam_roller"] * mm, "мм"))
+        rows.append((r"$r_{\mathrm{р}}$", s["cam_roller"] * mm, "мм"))
     if "cam_face_width" in s:
         rows.append(("ширина тарелки", s["cam_face_width"] * mm, "мм"))
     if cam.contact != "flat":
         rows += [(r"$\vartheta_{max}$ (удаление)", s["cam_theta_rise_max"] * deg, "°"),
-                 (r"$[\vartheta_у]$", cam.rise.allowed * deg, "°"),
+                 (r"$[\vartheta_{\mathrm{у}}]$", cam.rise.allowed * deg, "°"),
                  (r"$\vartheta_{max}$ (возвращение)", s["cam_theta_return_max"] * deg, "°"),
-                 (r"$[\vartheta_в]$", cam.ret.allowed * deg, "°")]
+                 (r"$[\vartheta_{\mathrm{в}}]$", cam.ret.allowed * deg, "°")]
     rho = s.get("cam_rho_min", s.get("cam_rho_c_min"))
     rows.append((r"$\rho_{min}$", rho * mm, "мм"))
     return [r for r in rows if isinstance(r[1], float) and math.isfinite(r[1])]
