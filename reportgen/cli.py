@@ -65,6 +65,9 @@ def cmd_build(args) -> int:
         files.update(write_key(study, Path(args.output), study.name, formats))
     for kind, path in files.items():
         print(f"{kind.upper()}: {path}")
+    if args.sheets:
+        from .sheets import build_sheets
+        print(f"Чертежи (A1): {build_sheets(study, Path(args.output), study.name)}")
     print(f"Готово за {time.perf_counter() - t0:.1f} с.")
     return 0
 
@@ -138,6 +141,7 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--format", default="pdf,html", help="pdf, html или pdf,html")
     b.add_argument("--sections", help="разделы через запятую: structure,kinematics,dynamics,forces")
     b.add_argument("--key", action="store_true", help="также ключ для преподавателя: <вариант>-key.pdf/.html")
+    b.add_argument("--sheets", action="store_true", help="также листы графической части A1: <вариант>-sheets.pdf")
     b.set_defaults(func=cmd_build)
     bt = sub.add_parser("batch", help="отчёты по всем вариантам группы и манифест")
     bt.add_argument("variants", help="таблица вариантов (.csv, .toml) или папка с файлами вариантов")

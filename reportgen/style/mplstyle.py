@@ -135,10 +135,28 @@ def localize_axes(ax, digits: int | None = None) -> None:
             axis.set_major_formatter(mpl_formatter(digits))
 
 
+# figures serialised while a ``captured()`` block is active (the drawing sheets take the scenes'
+# matplotlib figures themselves, to place them as vector views on an A1 sheet)
+_CAPTURE: list[list[Figure]] = []
+
+
+@contextlib.contextmanager
+def captured():
+    """Collect every figure that :func:`to_svg` serialises inside the block."""
+    sink: list[Figure] = []
+    _CAPTURE.append(sink)
+    try:
+        yield sink
+    finally:
+        _CAPTURE.remove(sink)
+
+
 def to_svg(fig: Figure) -> bytes:
     """The figure as deterministic SVG bytes (glyphs as paths, no date, fixed ids)."""
     for ax in fig.axes:
         localize_axes(ax)
+    for sink in _CAPTURE:
+        sink.append(fig)
     buf = io.BytesIO()
     with matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": SVG_HASHSALT}):
         fig.savefig(buf, format="svg", metadata={"Date": None})

@@ -1,0 +1,234 @@
+"""Composing a drawing sheet: the frame page drawn with matplotlib, the views overlaid as vector
+PDF pages (pypdf), each enlarged by its factor and written with its title and scale.
+
+No WeasyPrint here: a sheet is one matplotlib page plus the views' own PDF pages, so it renders in
+about the time the scenes take and byte-identically (no dates, fixed ids, sorted resources).
+"""
+from __future__ import annotations
+
+import io
+from dataclasses import dataclass, field
+
+from matplotlib.figure import Figure
+from matplotlib.patches import Rectangle
+
+from ..style import mplstyle
+from ..style.numbers import fmt
+from . import frame as F
+from .layout import Placed, View, place
+from .views import ACCELERATION, FORCE, LENGTH, VELOCITY, Rendered, SheetSpec, render_view
+
+MM_PER_IN = 25.4
+PT_PER_MM = 72.0 / 25.4
+GOST_SCALES = (1, 2, 2.5, 4, 5, 10, 15, 20, 25, 40, 50, 75, 100, 200, 400, 500, 800, 1000)
+TABLE_ROW_MM = 8.0
+TABLE_W_MM = (60.0, 45.0)
+
+
+@dataclass
+class SheetLayout:
+    """Where everything went on one sheet (mm, origin at the sheet's lower left corner)."""
+
+    spec: SheetSpec
+    placed: list[Placed]
+    table_box: tuple[float, float, float, float] | None
+    title_boxes: list[tuple[float, float, float, float]]
+    # the titles as drawn: (key, (x0, y0, x1, y1) in mm), measured by the renderer in compose()
+    title_extents: list[tuple[str, tuple[float, float, float, float]]] = field(default_factory=list)
+
+
+def _num(x: float) -> str:
+    """A scale factor as printed: its significant digits only, decimal comma."""
+    return f"{x:.6g}".replace(".", ",").replace("-", "−")
+
+
+def scale_text(kind: str | None, mu: float | None) -> str:
+    """The scale written beside a view: ГОСТ 2.302 «М 1:n» for a mechanism drawn to a standard
+    scale, the scale factor μ otherwise (м/мм, (м/с)/мм, (м/с²)/мм, Н/мм)."""
+    if kind is None or mu is None:
+        return ""
+    if kind == LENGTH:
+        n = mu * 1000.0
+        for s in GOST_SCALES:
+            if abs(n - s) < 1e-9 * s:
+                return f"М 1:{_num(n)}"
+            if s > 1 and abs(n * s - 1.0) < 1e-9:      # enlargement scales 2:1 … 10:1
+                return f"М {_num(s)}:1"
+        return f"$\\mu_l$ = {_num(mu)} м/мм"
+    sym, unit = {VELOCITY: ("\\mu_V", "(м/с)/мм"), ACCELERATION: ("\\mu_a", "(м/с²)/мм"),
+                 FORCE: ("\\mu_F", "Н/мм")}[kind]
+    return f"${sym}$ = {_num(mu)} {unit}"
+
+
+def _fig_pdf(fig: Figure) -> bytes:
+    buf = io.BytesIO()
+    for ax in fig.axes:
+        mplstyle.localize_axes(ax)
+    fig.savefig(buf, format="pdf", metadata={"CreationDate": None, "ModDate": None, "Producer": None,
+                                               "Creator": None})
+    return buf.getvalue()
+
+
+def _size_mm(fig: Figure) -> tuple[float, float]:
+    w, h = fig.get_size_inches()
+    return float(w * MM_PER_IN), float(h * MM_PER_IN)
+
+
+def _table_size(rows) -> tuple[float, float]:
+    return (sum(TABLE_W_MM), TABLE_ROW_MM * (len(rows) + 1))
+
+
+TITLE_FS = 3.5 / 0.7 * PT_PER_MM     # lettering 3,5 mm (ГОСТ 2.304) of the views' titles
+TABLE_TITLE = F.lettering("Результаты расчёта")
+
+
+def view_title(r: Rendered, mu: float | None) -> str:
+    sc = scale_text(r.spec.scale, mu)
+    return F.lettering(r.spec.title + (f"   {sc}" if sc else ""))
+
+
+def _title_widths(texts: list[str], family: str | None) -> list[float]:
+    """Rendered widths (mm) of the title lines, plus a margin of 6 mm (the scale's digits may
+    change with the enlargement)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    fig = Figure(figsize=(F.SHEET_W / MM_PER_IN, F.SHEET_H / MM_PER_IN))
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    out = []
+    for s in texts:
+        t = fig.text(0, 0, s, fontsize=TITLE_FS, fontfamily=family)
+        out.append(t.get_window_extent(renderer).width / fig.dpi * MM_PER_IN + 6.0)
+    return out
+
+
+def layout_sheet(spec: SheetSpec, rendered: list[Rendered], table_rows) -> SheetLayout:
+    from .title import drafting_family
+    widths = _title_widths([view_title(r, r.mu) for r in rendered] + [TABLE_TITLE], drafting_family())
+    views = []
+    for r, tw in zip(rendered, widths):
+        w, h = _size_mm(r.fig)
+        views.append(View(r.spec.key, w, h, r.mu, priority=r.spec.priority, title_w=tw, mu_only=r.spec.mu_only,
+                          group=r.spec.group))
+    if table_rows:
+        tw, th = _table_size(table_rows)
+        views.append(View("__table__", tw, th, None, title_h=9.0, title_w=widths[-1]))
+    field = F.field_rect()
+    # the sheet's own title line takes the top 12 mm of the field
+    field = (field[0], field[1], field[2], field[3] - 12.0)
+    placed = place(views, field, F.block_keepout())
+    table_box = None
+    out = []
+    for p in placed:
+        if p.view.key == "__table__":
+            table_box = p
+        else:
+            out.append(p)
+    titles = [(p.x - p.dx, p.y + p.h, p.x + p.w + p.dx, p.y + p.h + p.view.title_h) for p in placed]
+    return SheetLayout(spec, out, table_box, titles)
+
+
+def _draw_table(ax, p: Placed, rows, family) -> None:
+    """A table of results: quantity and value, thin inner lines, main outline (ГОСТ 2.303)."""
+    s = p.s
+    x0, y0 = p.x, p.y
+    w1, w2 = TABLE_W_MM[0] * s, TABLE_W_MM[1] * s
+    rh = TABLE_ROW_MM * s
+    n = len(rows) + 1
+    top = y0 + n * rh
+    ax.add_patch(Rectangle((x0, y0), w1 + w2, n * rh, fill=False, lw=F.LW_MAIN_MM * PT_PER_MM, ec="black", zorder=5))
+    for i in range(1, n):
+        y = top - i * rh
+        ax.plot([x0, x0 + w1 + w2], [y, y], color="black",
+                lw=(F.LW_MAIN_MM if i == 1 else F.LW_THIN_MM) * PT_PER_MM, zorder=5)
+    ax.plot([x0 + w1, x0 + w1], [y0, top], color="black", lw=F.LW_MAIN_MM * PT_PER_MM, zorder=5)
+    fs = 3.5 / 0.7 * PT_PER_MM * min(s, 1.5)
+    ax.text(x0 + w1 / 2, top - rh / 2, "Величина", ha="center", va="center", fontsize=fs, fontfamily=family)
+    ax.text(x0 + w1 + w2 / 2, top - rh / 2, "Значение", ha="center", va="center", fontsize=fs, fontfamily=family)
+    for i, (name, value, unit) in enumerate(rows, start=1):
+        y = top - (i + 0.5) * rh
+        ax.text(x0 + 2 * s, y, F.lettering(name), ha="left", va="center", fontsize=fs, fontfamily=family)
+        ax.text(x0 + w1 + w2 / 2, y, F.lettering(fmt(value, sig=4) + (f" {unit}" if unit else "")), ha="center",
+                va="center", fontsize=fs, fontfamily=family)
+
+
+def _frame_page(layout: SheetLayout, block: F.TitleBlock, rendered: list[Rendered], table_rows,
+                family: str | None) -> tuple[bytes, Figure]:
+    mplstyle.apply_style()
+    fig = Figure(figsize=(F.SHEET_W / MM_PER_IN, F.SHEET_H / MM_PER_IN))
+    ax = fig.add_axes((0, 0, 1, 1))
+    ax.set_xlim(0, F.SHEET_W)
+    ax.set_ylim(0, F.SHEET_H)
+    ax.axis("off")
+    texts = F.draw_frame(ax, block, family)
+    fx0, fy0, fx1, fy1 = F.field_rect()
+    texts.append(ax.text((fx0 + fx1) / 2, fy1 - 5.0, F.lettering(layout.spec.title), ha="center", va="center",
+                         fontsize=7.0 / 0.7 * PT_PER_MM, fontfamily=family))
+    by_key = {r.spec.key: r for r in rendered}
+    titles = []
+    for p in layout.placed:
+        t = ax.text(p.x + p.w / 2, p.y + p.h + 4.0, view_title(by_key[p.view.key], p.mu), ha="center",
+                    va="center", fontsize=TITLE_FS, fontfamily=family)
+        titles.append((p.view.key, t))
+    if layout.table_box is not None:
+        tb = layout.table_box
+        t = ax.text(tb.x + tb.w / 2, tb.y + tb.h + 4.0, TABLE_TITLE, ha="center", va="center",
+                    fontsize=TITLE_FS, fontfamily=family)
+        titles.append(("__table__", t))
+        _draw_table(ax, tb, table_rows, family)
+    F.fit_texts(fig, texts)
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    inv = ax.transData.inverted()
+    layout.title_extents = [(k, tuple(float(v) for v in t.get_window_extent(renderer).transformed(inv).extents))
+                            for k, t in titles]
+    return _fig_pdf(fig), fig
+
+
+def compose(layouts: list[tuple[SheetLayout, F.TitleBlock, list[Rendered], list]]) -> bytes:
+    """All sheets as one PDF (one A1 page per sheet)."""
+    from pypdf import PdfReader, PdfWriter, Transformation
+
+    from .title import drafting_family
+    family = drafting_family()
+    writer = PdfWriter()
+    for layout, block, rendered, rows in layouts:
+        page_pdf, _ = _frame_page(layout, block, rendered, rows, family)
+        page = writer.add_page(PdfReader(io.BytesIO(page_pdf)).pages[0])
+        by_key = {r.spec.key: r for r in rendered}
+        for p in layout.placed:
+            view = PdfReader(io.BytesIO(_fig_pdf(by_key[p.view.key].fig))).pages[0]
+            op = Transformation().scale(p.s, p.s).translate(p.x * PT_PER_MM, p.y * PT_PER_MM)
+            page.merge_transformed_page(view, op)
+    writer.add_metadata({"/Producer": "reportgen", "/Title": layouts[0][1].name if layouts else ""})
+    buf = io.BytesIO()
+    writer.write(buf)
+    return buf.getvalue()
+
+
+def sheet_scale(rendered: list[Rendered], layout: SheetLayout) -> str:
+    """The scale for the title block (ГОСТ 2.104, графа 6): the one ГОСТ 2.302 scale of the
+    drawn-to-scale views if they share it, else that of the main view (the highest priority)."""
+    texts = [(r.spec.priority, scale_text(r.spec.scale, p.mu)) for r, p in zip(rendered, layout.placed)
+             if r.spec.scale == LENGTH]
+    gost = [(pr, t[2:]) for pr, t in texts if t.startswith("М ")]
+    if not gost:
+        return ""
+    if len({t for _, t in gost}) == 1:
+        return gost[0][1]
+    return max(gost, key=lambda x: x[0])[1]
+
+
+def render_sheets(study) -> tuple[bytes, list[SheetLayout]]:
+    """Render every sheet of the study: (PDF bytes, layouts for the checks)."""
+    from .title import title_block
+    from .views import sheets_for
+
+    specs = sheets_for(study)
+    items = []
+    for i, spec in enumerate(specs, start=1):
+        rendered = [render_view(v, study) for v in spec.views]
+        rows = spec.table(study) if spec.table else []
+        layout = layout_sheet(spec, rendered, rows)
+        block = title_block(study, spec, i, len(specs), sheet_scale(rendered, layout))
+        items.append((layout, block, rendered, rows))
+    return compose(items), [it[0] for it in items]
+

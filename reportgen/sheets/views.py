@@ -1,0 +1,230 @@
+"""What each drawing sheet shows: the views of a student's sheet, taken from the note's scenes.
+
+A sheet is a title and a list of views; a view is a scene drawn for the study plus its title and
+the kind of its scale.  The scenes are the same objects the note uses (one source of truth); the
+sheet takes their matplotlib figures (``mplstyle.captured``) and places them as vector views.
+
+Sheets (the «classical» ordering of the course, domain.md §1.1):
+
+1. Кинематический анализ: the plan of positions with the trajectories, the velocity plan of every
+   report position, the acceleration plan of the chosen position, the kinematic diagrams of the
+   output link.
+2. Динамический анализ и синтез маховика (case with ``[dynamics]``): reduced moments of inertia and
+   of forces, works, ΔT, the energy–mass diagram, ω(φ), the flywheel, a table of results.
+3. Силовой анализ (case with ``[forces]``): the mechanism at the chosen position, each Assur group
+   with its loads and force polygon, the Жуковский lever, a table of results.
+4. Синтез кулачкового механизма (case with ``[cam]``, after the linkage sheets): the diagrams s″, s′,
+   s; the phase portrait with the tangent rays and the allowed region; the pressure angle over the
+   cycle; the profile at a ГОСТ 2.302 scale with the follower in a few positions; a table of
+   results (r₀, e or a_w and ψ₀, the roller radius, ϑ_max on the rise and the return, ρ_min).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable
+
+from matplotlib.figure import Figure
+
+from ..style import mplstyle
+
+# scale kinds: how the scale of a view is written beside it
+LENGTH, VELOCITY, ACCELERATION, FORCE = "l", "v", "a", "F"
+
+
+@dataclass
+class ViewSpec:
+    key: str
+    title: str
+    draw: Callable                   # study → scene result (a Figure or a drawing with .mu)
+    scale: str | None = None         # LENGTH, VELOCITY, ACCELERATION, FORCE or None (a chart)
+    mu_attr: str = "mu"
+    priority: float = 1.0            # how much more than the others the view is enlarged (main view > 1)
+    mu_only: float | None = None     # the scale the case asks for (kept on the sheet if the view fits at it)
+    group: str | None = None         # views enlarged together (the velocity plans)
+
+
+@dataclass
+class SheetSpec:
+    key: str
+    title: str
+    views: list[ViewSpec] = field(default_factory=list)
+    table: Callable | None = None    # study → list of (quantity, value, unit) rows
+
+
+@dataclass
+class Rendered:
+    spec: ViewSpec
+    fig: Figure
+    mu: float | None
+
+
+def render_view(spec: ViewSpec, study) -> Rendered:
+    """Draw the scene and take its matplotlib figure."""
+    with mplstyle.captured() as figs:
+        out = spec.draw(study)
+    fig = out if isinstance(out, Figure) else (figs[-1] if figs else getattr(out, "fig", None))
+    if fig is None:
+        raise RuntimeError(f"сцена «{spec.title}» не дала рисунка")
+    mu = getattr(out, spec.mu_attr, None) if spec.scale else None
+    return Rendered(spec, fig, float(mu) if mu else None)
+
+
+def _regular_labels(study) -> list[str]:
+    return [str(p) for p in study.kinematics["pos"] if not str(p).startswith("д")]
+
+
+def kinematics_sheet(study) -> SheetSpec:
+    from ..report.sections.common import chosen_position
+    from ..scenes.diagrams import OutputDiagrams
+    from ..scenes.mechanism import PositionsPlan
+    from ..scenes.plans import PlanScene
+
+    views = [ViewSpec("positions", "План положений механизма", PositionsPlan().draw, LENGTH,
+                      priority=2.0)]
+    if study.mechanism.driver.omega is not None:   # plans need the true speed of the input link
+        lab = chosen_position(study)
+        for p in _regular_labels(study):
+            views.append(ViewSpec(f"v{p}", f"План скоростей, положение {p}",
+                                  PlanScene(p, "velocity").draw, VELOCITY, group="velocity"))
+        views.append(ViewSpec(f"a{lab}", f"План ускорений, положение {lab}",
+                              PlanScene(lab, "acceleration").draw, ACCELERATION))
+    views.append(ViewSpec("diagrams", "Кинематические диаграммы выходного звена", OutputDiagrams().draw))
+    return SheetSpec("kinematics", "Кинематический анализ рычажного механизма", views)
+
+
+def dynamics_sheet(study) -> SheetSpec:
+    from ..scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, MomentCurves,
+                                   MotionCurves, WittenbauerDiagram, WorkCurves)
+    views = [ViewSpec("inertia", "Приведённый момент инерции", InertiaCurves().draw),
+             ViewSpec("moments", "Приведённые моменты сил", MomentCurves().draw),
+             ViewSpec("works", "Работы сил", WorkCurves().draw),
+             ViewSpec("energy", "Изменение кинетической энергии", EnergyCurves().draw),
+             ViewSpec("wittenbauer", "Диаграмма энергомасс (Виттенбауэра)", WittenbauerDiagram().draw,
+                      priority=2.0),
+             ViewSpec("motion", "Закон движения ω(φ), ε(φ)", MotionCurves().draw),
+             ViewSpec("flywheel", "Маховик", FlywheelDrawing().draw)]
+    return SheetSpec("dynamics", "Динамический анализ и синтез маховика", views, table=dynamics_results)
+
+
+def forces_sheet(study) -> SheetSpec:
+    from ..report.sections.common import chosen_position
+    from ..scenes.forces import GroupForces, ZhukovskyLever
+    from ..scenes.mechanism import KinematicScheme
+
+    f = study.forces
+    lab = chosen_position(study) if f.settings.motion != "dynamics" else _forces_position(study)
+    views = [ViewSpec("scheme", f"Схема механизма, положение {lab}", KinematicScheme(lab).draw, LENGTH,
+                      priority=1.5)]
+    for gi, g in enumerate(f.model.groups):
+        views.append(ViewSpec(f"group{gi}", f"Группа {g.label}: силы и план сил",
+                              GroupForces(lab, gi).draw, LENGTH, mu_attr="mu_l", priority=1.5))
+    views.append(ViewSpec("lever", "Рычаг Жуковского", ZhukovskyLever(lab).draw, VELOCITY))
+    return SheetSpec("forces", f"Силовой анализ механизма (положение {lab})", views, table=forces_results)
+
+
+def _forces_position(study) -> str:
+    from ..report.sections.common import chosen_position
+    labels = list(study.forces.labels)
+    lab = chosen_position(study)
+    return lab if lab in labels else labels[1 if len(labels) > 1 else 0]
+
+
+def dynamics_results(study) -> list[tuple[str, float, str]]:
+    """The key results of the flywheel synthesis, in textbook notation."""
+    s = study.dynamics.scalars
+    rows = [(r"$\delta$", s.get("delta"), ""), (r"$\omega_{ср}$", s.get("omega_m"), "рад/с"),
+            (r"$J_I$ (точное решение)", s.get("J_I_exact"), "кг·м²"),
+            (r"$J_I$ (Мерцалов)", s.get("J_I_mertsalov"), "кг·м²"),
+            (r"$J_I$ (Виттенбауэр)", s.get("J_I_wittenbauer"), "кг·м²"),
+            (r"$J_{мах}$", s.get("J_fly"), "кг·м²"),
+            (r"$\omega_{max}$", s.get("omega_max"), "рад/с"), (r"$\omega_{min}$", s.get("omega_min"), "рад/с")]
+    return [r for r in rows if isinstance(r[1], (int, float))]
+
+
+def forces_results(study) -> list[tuple[str, float, str]]:
+    """Reactions and the balancing moment (or actuator force) at the sheet's position."""
+    f = study.forces
+    lab = _forces_position(study)
+    tab = f.table
+    row = tab[tab["pos"] == lab].iloc[0]
+    out = []
+    links = {"0"} | {l.name for l in study.mechanism.moving}
+    for c in tab.columns:
+        parts = c.split("_")
+        if (len(parts) == 3 and parts[0] == "R" and parts[1] < parts[2]
+                and parts[1] in links and parts[2] in links and len(parts[1] + parts[2]) <= 4):
+            out.append((f"$R_{{{parts[1]}{parts[2]}}}$", float(row[c]), "Н"))
+    if "M_bal" in tab.columns:
+        out.append((r"$M_{ур}$", float(row["M_bal"]), "Н·м"))
+    if "F_act" in tab.columns:
+        out.append((r"$F_{ц}$", float(row["F_act"]), "Н"))
+    return out
+
+
+def cam_sheet(study) -> SheetSpec:
+    """The cam sheet (domain.md §1.6): the laws, the phase portrait, the pressure angle, the
+    profile at a standard scale with the follower positions and the results in textbook notation."""
+    from ..scenes.cam import LawDiagrams, PhasePortrait, PressureAngleGraph, ProfileDrawing
+
+    asked = study.cam.scale
+    views = [ViewSpec("profile", "Профиль кулачка", ProfileDrawing().draw, LENGTH, priority=2.0,
+                      mu_only=gost_mu(asked) if asked else None),
+             ViewSpec("laws", "Диаграммы аналогов ускорения, скорости и перемещения", LawDiagrams().draw)]
+    if study.cam.contact != "flat":     # a flat face has ϑ ≡ 0: r₀ comes from convexity, not from a portrait
+        views += [ViewSpec("portrait", "Фазовый портрет и область допустимых положений центра",
+                           PhasePortrait().draw, LENGTH),
+                  ViewSpec("pressure", "Угол давления за цикл", PressureAngleGraph().draw)]
+    return SheetSpec("cam", "Синтез кулачкового механизма", views, table=cam_results)
+
+
+def gost_mu(name: str) -> float:
+    """The scale factor (m per printed mm) of a ГОСТ 2.302 scale «a:b»: b/a mm of the part per mm."""
+    a, b = (float(x.replace(",", ".")) for x in name.split(":"))
+    return b / a / 1000.0
+
+
+def cam_results(study) -> list[tuple[str, float, str]]:
+    """The results of the cam synthesis in textbook notation (lengths in mm, angles in degrees)."""
+    cam = study.cam
+    s = cam.scalars
+    mm, deg = 1000.0, math.degrees(1.0)
+    rows = []
+    if cam.follower == "rocker":
+        rows.append((r"$\psi_{max}$", cam.h * deg, "°"))
+    else:
+        rows.append(("$h$", cam.h * mm, "мм"))
+    rows.append(("$r_0$", s["cam_r0"] * mm, "мм"))
+    if "cam_r0_min" in s:
+        rows.append((r"$r_{0\,min}$ (выпуклость)", s["cam_r0_min"] * mm, "мм"))
+    if "cam_e" in s:
+        rows.append(("$e$", s["cam_e"] * mm, "мм"))
+    if "cam_a_w" in s:
+        rows += [("$a_w$", s["cam_a_w"] * mm, "мм"), (r"$\psi_0$", s["cam_psi0"] * deg, "°"),
+                 ("$l$", s["cam_arm"] * mm, "мм")]
+    if "cam_roller" in s:
+        rows.append((r"$r_{\mathrm{р}}$", s["cam_roller"] * mm, "мм"))
+    if "cam_face_width" in s:
+        rows.append(("ширина тарелки", s["cam_face_width"] * mm, "мм"))
+    if cam.contact != "flat":
+        rows += [(r"$\vartheta_{max}$ (удаление)", s["cam_theta_rise_max"] * deg, "°"),
+                 (r"$[\vartheta_{\mathrm{у}}]$", cam.rise.allowed * deg, "°"),
+                 (r"$\vartheta_{max}$ (возвращение)", s["cam_theta_return_max"] * deg, "°"),
+                 (r"$[\vartheta_{\mathrm{в}}]$", cam.ret.allowed * deg, "°")]
+    rho = s.get("cam_rho_min", s.get("cam_rho_c_min"))
+    rows.append((r"$\rho_{min}$", rho * mm, "мм"))
+    return [r for r in rows if isinstance(r[1], float) and math.isfinite(r[1])]
+
+
+def sheets_for(study) -> list[SheetSpec]:
+    """The sheets the case has material for, in the course's order."""
+    out = []
+    if study.has_linkage:
+        out.append(kinematics_sheet(study))
+        if study.root.has("dynamics"):
+            out.append(dynamics_sheet(study))
+        if study.root.has("forces"):
+            out.append(forces_sheet(study))
+    if study.root.has("cam"):
+        out.append(cam_sheet(study))
+    return out
