@@ -118,9 +118,10 @@ class Study:
 
     @cached_property
     def meta(self) -> dict:
+        from ..case.text import meta_value
         m = self.root.table("meta")
-        out = {k: str(v) for k, v in m.data.items()}
-        out.update(self.spec.meta_overrides)
+        out = {k: meta_value(v, file=m.file, key=m.key(k)) for k, v in m.data.items()}
+        out.update({k: meta_value(v, file=m.file, key=m.key(k)) for k, v in self.spec.meta_overrides.items()})
         return out
 
     def _build(self, fixed: Mapping[str, float]) -> tuple[dict, Mechanism, Structure, L.SolverModel]:
@@ -268,7 +269,7 @@ class Study:
                 sub = Node(e, node.key(f"extra[{i}]"), node.file)
                 sub.check_keys(["q", "label"], required=["q"])
                 xs.append(sub.quantity("q", self.qdim, names))
-                labels.append(sub.string("label", f"д{i + 1}"))
+                labels.append(sub.name("label", f"д{i + 1}", what="имя положения"))
             else:
                 xs.append(node.eval_value(e, f"extra[{i}]", self.qdim, names))
                 labels.append(f"д{i + 1}")
