@@ -164,7 +164,7 @@ def _check_shared_points(root: Node, holders: dict[str, list[tuple[str, str]]], 
             return x
 
         for j in joints:
-            if j.point == p and all(ln in parent for ln in j.links):
+            if j.kind == "R" and j.point == p and all(ln in parent for ln in j.links):
                 parent[find(j.links[0])] = find(j.links[1])
         roots: dict[str, tuple[str, str]] = {}
         for ln, place in owners:
