@@ -66,7 +66,7 @@ class CaseError(ReportgenError):
         body = _clip(self.message.rstrip(), MAX_ECHO + 100).rstrip(".")
         extra: list[str] = []
         if self.expected and self.expected not in body:
-            extra.append(f"ожидается: {_clip(self.expected, MAX_ECHO + 100)}")
+            extra.append(f"ожидается: {_clip(self.expected, 4 * MAX_ECHO)}")
         if self.got is not None and str(self.got) not in body:
             extra.append(f"получено: {_quoted(_clip(str(self.got), MAX_ECHO))}")
         if extra:

@@ -42,6 +42,7 @@ import pandas as pd
 
 from ..case import units as U
 from ..case.reader import Node
+from ..case.text import inline_html
 from ..errors import CaseError, did_you_mean
 from .flywheel import DynamicsResult, solve_dynamics
 from .loads import (ColumnEvaluator, Loads, Table1D, com_point, cycle_of, read_loads, read_table,
@@ -177,10 +178,10 @@ def read_settings(study) -> Settings:
         path = Path(cn.string("case", required=True))
         if not path.is_absolute():
             path = Path(study.spec.path).parent / path
-        if not path.exists():
-            raise cn.error("case", f"файл варианта для сравнения не найден: {path}",
+        if not path.is_file():
+            raise cn.error("case", f"файл варианта для сравнения не найден или не является файлом: {path}",
                            expected="путь к файлу .toml относительно этого файла")
-        compare = (path, cn.string("title", None) or path.stem)
+        compare = (path, cn.text("title", None) or inline_html(path.stem))
     return Settings(start, length, w, float(delta), float(J_O), method, balance, drive, kw,
                     points, printed, compare)
 
@@ -193,8 +194,8 @@ def _read_printed(node: Node) -> tuple[Printed, ...]:
         if isinstance(raw, dict):
             sub = pn.table(key)
             sub.check_keys(["value", "note", "title"], required=["value"])
-            note = sub.string("note", "") or ""
-            title = sub.string("title", "") or ""
+            note = sub.text("note", "") or ""
+            title = sub.text("title", "") or ""
             raw = sub.raw("value")
         if isinstance(raw, bool) or not isinstance(raw, (str, int, float)):
             raise pn.error(key, "напечатанное значение — число или строка с числом",

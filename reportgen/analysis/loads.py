@@ -576,7 +576,7 @@ def _pieces(node: Node, kind: str, params, columns, dim_of, cycle_length: float,
         for i, sn in enumerate(strokes):
             sn.check_keys(["name", "title", "phase", "table", vkey, "units", "of"],
                           required=["phase"])
-            out.append(piece(sn, sn.string("name", None) or sn.string("title", None) or f"{i + 1}",
+            out.append(piece(sn, sn.text("name", None) or sn.text("title", None) or f"{i + 1}",
                              node.raw("units")))
         out.sort(key=lambda p: p.phase[0])
         for a, b in zip(out, out[1:]):
@@ -649,7 +649,7 @@ def read_loads(study) -> Loads:
             when_list = when_raw if isinstance(when_raw, list) else [when_raw]
             when = [Condition(w, fn, f"when[{j}]" if isinstance(when_raw, list) else "when",
                               params, columns, dim_of) for j, w in enumerate(when_list)]
-            title = fn.string("title", None) or (
+            title = fn.text("title", None) or (
                 f"сила {name} в точке {point} звена {lname}" if kind == "force" else
                 f"момент {name} на звене {lname}")
             if any(ld.name == name for ld in loads):
