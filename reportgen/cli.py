@@ -32,7 +32,7 @@ def cmd_export(args) -> int:
     from .export import export
     study = Study(args.case)
     at = _parse_at(study, args.at) if args.at else None
-    out = Path(args.output) if args.output else Path("output") / study.name
+    out = _out_dir(Path(args.output) if args.output else Path("output") / study.name)
     files = export(study, out, at)
     print(f"Записано файлов: {len(files)} в {out}/")
     return 0
@@ -57,9 +57,12 @@ def cmd_build(args) -> int:
     from .report.render import build_outputs
     t0 = time.perf_counter()
     formats = _formats(args.format)
+    out = _out_dir(Path(args.output))
     study = Study(args.case)
     report = build_report(study, _sections(args.sections))
-    files = build_outputs(report, Path(args.output), study.name, formats)
+    if args.sections is None:
+        _check_finite(study)
+    files = build_outputs(report, out, study.name, formats)
     for kind, path in files.items():
         print(f"{kind.upper()}: {path}")
     print(f"Готово за {time.perf_counter() - t0:.1f} с.")
@@ -69,7 +72,7 @@ def cmd_build(args) -> int:
 def cmd_batch(args) -> int:
     from .batch import read_variants, run_batch
     variants = read_variants(Path(args.variants), Path(args.base) if args.base else None)
-    results = run_batch(variants, Path(args.output), args.jobs, _formats(args.format), _sections(args.sections))
+    results = run_batch(variants, _out_dir(Path(args.output)), args.jobs, _formats(args.format), _sections(args.sections))
     ok = [r for r in results if r.ok]
     bad = [r for r in results if not r.ok]
     print(f"Отчётов построено: {len(ok)} из {len(results)}; манифест: {Path(args.output) / 'manifest.json'}")
@@ -87,7 +90,26 @@ def cmd_check(args) -> int:
     for name in study.tasks():
         study.analysis(name).scalars  # every task reads and checks its section as build and export do
         print(f"Раздел [{name}] проверен.")
+    _check_finite(study)
     return 0
+
+
+def _check_finite(study) -> None:
+    """No NaN/inf in the computed tables and scalars (an overflow is the case's fault)."""
+    from .export import check_finite, tables
+    check_finite(tables(study), study.all_scalars(), str(study.spec.path))
+
+
+def _out_dir(path: Path) -> Path:
+    """The output folder: an existing folder or a path that can be created (no file on the way)."""
+    for p in [path, *path.parents]:
+        if p.exists():
+            if not p.is_dir():
+                raise CaseError("папку вывода нельзя создать: на этом пути находится файл" if p != path
+                                else "путь вывода указывает на файл, а нужна папка",
+                                key="-o", got=str(p), expected="путь к папке")
+            break
+    return path
 
 
 def _check_linkage(study) -> None:
@@ -153,20 +175,42 @@ _PARSER_HOOKS: list = []
 
 
 def main(argv: list[str] | None = None) -> int:
+    import warnings
     parser = build_parser()
     args = parser.parse_args(argv)
+    debug = args.debug or os.environ.get("REPORTGEN_DEBUG")
+    if not debug:
+        # numpy's RuntimeWarnings (with source lines) are not for the user: a non-finite result
+        # is reported as a CaseError by the finiteness checks
+        warnings.simplefilter("ignore", RuntimeWarning)
     try:
         return args.func(args)
     except ReportgenError as e:
         print(f"Ошибка: {e}", file=sys.stderr)
         return 2
+    except RecursionError:
+        if debug:
+            raise
+        print("Ошибка: слишком глубокая вложенность данных варианта (таблиц, массивов или выражений).",
+              file=sys.stderr)
+        return 2
+    except MemoryError:
+        print("Ошибка: недостаточно памяти; уменьшите [grid] positions или cycle_points.", file=sys.stderr)
+        return 2
+    except OSError as e:
+        if debug:
+            raise
+        what = f" «{str(e.filename)[:200]}»" if e.filename else ""
+        reason = e.strerror or str(e)
+        print(f"Ошибка: не удалось прочитать или записать файл{what}: {reason[:300]}.", file=sys.stderr)
+        return 2
     except KeyboardInterrupt:
         print("Прервано.", file=sys.stderr)
         return 130
     except Exception as e:  # a bug, not the user's input
-        if args.debug or os.environ.get("REPORTGEN_DEBUG"):
+        if debug:
             raise
-        print(f"Внутренняя ошибка программы: {type(e).__name__}: {e}\n"
+        print(f"Внутренняя ошибка программы: {type(e).__name__}: {str(e)[:300]}\n"
               "Запустите с --debug и сообщите разработчикам.", file=sys.stderr)
         return 3
 

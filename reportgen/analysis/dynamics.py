@@ -167,7 +167,7 @@ def read_settings(study) -> Settings:
             raise fw.error(k, "отношение внутреннего диаметра обода к наружному должно быть меньше 1",
                            expected=f"0 < {k} < 1", got=str(fw.raw(k)))
     m = len(study.grid.cycle) - 1
-    points = node.integer("points", int(round(m * length / (2 * math.pi))), minimum=72)
+    points = node.integer("points", int(round(m * length / (2 * math.pi))), minimum=72, maximum=100_000)
     # printed values belong to the source of this very case: a batch variant (parameters
     # overridden) is a different machine, so they are not compared there
     printed = _read_printed(node) if not study.spec.overrides else ()

@@ -20,7 +20,7 @@ import pandas as pd
 from ..case import units as U
 from ..case.expr import Q, evaluate
 from ..case.load import CaseSpec, load_spec
-from ..case.reader import Node
+from ..case.reader import MAX_CYCLE_POINTS, MAX_POSITIONS, Node
 from ..errors import CaseError
 from ..mechanism.build import build_mechanism
 from ..mechanism.model import Mechanism
@@ -248,8 +248,8 @@ class Study:
         node.check_keys(["positions", "closed", "extra", "cycle_points", "start"])
         names = self.params
         d = self.mechanism.driver
-        n = node.integer("positions", 12, minimum=2)
-        m = node.integer("cycle_points", 3600, minimum=36)
+        n = node.integer("positions", 12, minimum=2, maximum=MAX_POSITIONS)
+        m = node.integer("cycle_points", 3600, minimum=36, maximum=MAX_CYCLE_POINTS)
         closed = node.boolean("closed", False)
         if d.rotary:
             start = node.quantity("start", U.ANGLE, names, default=0.0)
@@ -261,8 +261,9 @@ class Study:
             q = np.linspace(lo, hi, n)
         labels = [str(i) for i in range(len(q))]
         extra = node.raw("extra", [])
-        if not isinstance(extra, list):
-            raise node.error("extra", "ожидался список дополнительных положений", expected="extra = [\"99.1 deg\"]")
+        if not isinstance(extra, list) or len(extra) > MAX_POSITIONS:
+            raise node.error("extra", "ожидался список дополнительных положений",
+                             expected=f"extra = [\"99.1 deg\"], не более {MAX_POSITIONS} значений")
         xs = []
         for i, e in enumerate(extra):
             if isinstance(e, Mapping):

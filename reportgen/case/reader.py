@@ -16,6 +16,9 @@ from .expr import Q, evaluate
 from .text import MAX_TEXT, check_name, clip, inline_html
 
 
+MAX_POSITIONS = 360  # [grid] positions (and extra): report positions, each with plans and tables
+MAX_CYCLE_POINTS = 36_000  # [grid] cycle_points (0,01° steps); 3600 by default
+MAX_INT = 1_000_000  # any count of a case without its own limit
 MAX_ABS = 1e15  # any value of a case in SI units
 _LIMITS = {tuple(U.LENGTH[:3]): 1e4, tuple(U.MASS[:3]): 1e9}  # lengths up to 10 km, masses up to 10⁶ t
 
@@ -114,7 +117,7 @@ class Node:
         return inline_html(v)
 
     def integer(self, name: str, default: int | None = None, *, minimum: int | None = None,
-                required: bool = False) -> int | None:
+                maximum: int | None = None, required: bool = False) -> int | None:
         v = self.data.get(name)
         if v is None:
             if required:
@@ -124,6 +127,10 @@ class Node:
             raise self.error(name, "ожидалось целое число", expected="целое число, например 12", got=_show(v))
         if minimum is not None and v < minimum:
             raise self.error(name, f"значение {v} меньше допустимого", expected=f"целое число ≥ {minimum}", got=str(v))
+        top = MAX_INT if maximum is None else maximum
+        if v > top:
+            raise self.error(name, f"значение {clip(v, 40)} больше допустимого (ограничение времени и памяти расчёта)",
+                             expected=f"целое число ≤ {top}", got=clip(v, 40))
         return v
 
     def boolean(self, name: str, default: bool) -> bool:

@@ -861,13 +861,13 @@ def write_pdf(report: Report, path) -> Path:
 def build_outputs(report: Report, out_dir, stem: str,
                   formats=("pdf", "html")) -> dict[str, Path]:
     """Write ``out_dir/stem.pdf`` and/or ``out_dir/stem.html``; returns the paths."""
-    out_dir = Path(out_dir)
-    result: dict[str, Path] = {}
+    from .safety import write_together
+    writers = {}
     for f in formats:
         if f == "pdf":
-            result["pdf"] = write_pdf(report, out_dir / f"{stem}.pdf")
+            writers["pdf"] = lambda p: write_pdf(report, p)
         elif f == "html":
-            result["html"] = write_html(report, out_dir / f"{stem}.html")
+            writers["html"] = lambda p: write_html(report, p)
         else:
             raise ValueError(f"Неизвестный формат вывода: {f!r} (допустимы pdf, html)")
-    return result
+    return write_together(Path(out_dir), stem, writers)

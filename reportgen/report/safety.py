@@ -159,3 +159,60 @@ def url_fetcher():
             return super().fetch(url, headers)
 
     return _SafeFetcher(allowed_protocols=("data", "file"), allow_redirects=False)
+
+
+# ---------------------------------------------------------------- outputs of one build
+
+STALE_SECONDS = 600.0  # a hidden temporary file this old belongs to a killed run
+
+
+def clean_stale_temps(out_dir: Path, stem: str | None = None) -> list[Path]:
+    """Remove the hidden temporary files left by killed runs in ``out_dir``: those of ``stem``
+    (any age: this build replaces them) and any other ``.<name>.*.tmp`` older than
+    :data:`STALE_SECONDS`. Returns the removed paths."""
+    import time
+    out_dir = Path(out_dir)
+    removed: list[Path] = []
+    if not out_dir.is_dir():
+        return removed
+    now = time.time()
+    for p in out_dir.glob(".*.tmp"):
+        try:
+            mine = stem is not None and (p.name.startswith(f".{stem}.pdf.") or p.name.startswith(f".{stem}.html."))
+            if p.is_file() and (mine or now - p.stat().st_mtime > STALE_SECONDS):
+                p.unlink()
+                removed.append(p)
+        except OSError:
+            continue
+    return removed
+
+
+def write_together(out_dir: Path, stem: str, writers: dict) -> dict[str, Path]:
+    """Write every format of one build to a hidden temporary file first (``writers[fmt](path)``
+    writes it), then rename them all: the PDF and the HTML of one build replace the old ones
+    together, and a failure (or a kill before the renames) leaves the old pair untouched. Stale
+    temporary files of killed runs are removed first."""
+    import os
+    import tempfile
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    clean_stale_temps(out_dir, stem)
+    temps: dict[str, Path] = {}
+    try:
+        for fmt, write in writers.items():
+            fd, tmp = tempfile.mkstemp(prefix=f".{stem}.{fmt}.", suffix=".tmp", dir=out_dir)
+            os.close(fd)
+            temps[fmt] = Path(tmp)
+            write(Path(tmp))
+        result: dict[str, Path] = {}
+        for fmt, tmp in temps.items():
+            final = out_dir / f"{stem}.{fmt}"
+            os.replace(tmp, final)
+            result[fmt] = final
+        return result
+    finally:
+        for tmp in temps.values():
+            try:
+                tmp.unlink()
+            except FileNotFoundError:
+                pass
