@@ -152,7 +152,8 @@ def _check_shared_points(root: Node, holders: dict[str, list[tuple[str, str]]], 
     only where those links are joined at it: every holder must be connected to the others by
     pairs ([[joints]]) at that very point. Otherwise two different points share a name — e.g. a
     frame point ``H`` beside the slider's moving ``H`` — and one of them would silently replace
-    the other; that is an error naming both places."""
+    the other; that is an error naming both places. (Where no pair at all is at that point, a
+    pair is missing: the structural analysis reports it with Chebyshev's count.)"""
     for p, owners in holders.items():
         if len(owners) < 2:
             continue
@@ -166,6 +167,8 @@ def _check_shared_points(root: Node, holders: dict[str, list[tuple[str, str]]], 
         for j in joints:
             if j.kind == "R" and j.point == p and all(ln in parent for ln in j.links):
                 parent[find(j.links[0])] = find(j.links[1])
+        if not any(j.point == p for j in joints):
+            continue  # no pair at this point at all: the structural analysis reports the missing pair
         roots: dict[str, tuple[str, str]] = {}
         for ln, place in owners:
             roots.setdefault(find(ln), (ln, place))
