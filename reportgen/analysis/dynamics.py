@@ -139,8 +139,8 @@ def read_settings(study) -> Settings:
         raise node.error("n", "не задана средняя угловая скорость кривошипа",
                          expected="n = \"65 rpm\" или omega_m = \"6.807 rad/s\" (или omega в [driver])")
     delta = node.quantity("delta", U.DIMENSIONLESS, params, required=True, positive=True)
-    if not delta < 1:
-        raise node.error("delta", "коэффициент неравномерности хода должен быть меньше 1",
+    if not 1e-4 <= delta < 1:
+        raise node.error("delta", "коэффициент неравномерности хода должен быть не меньше 0,0001 и меньше 1",
                          expected="δ от 1/150 до 1/5, например delta = 0.11 или \"1/80\"", got=str(node.raw("delta")))
     J_O = node.quantity("J_O", U.INERTIA, params, default=0.0, nonnegative=True)
     method = node.string("method", "exact", choices=list(METHODS))
