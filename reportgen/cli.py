@@ -84,6 +84,7 @@ def cmd_batch(args) -> int:
 def cmd_check(args) -> int:
     from .analysis.study import Study
     study = Study(args.case)
+    study.meta  # [meta] values are checked as the note reads them
     print(f"Вариант: {study.name}")
     if study.has_linkage:
         _check_linkage(study)

@@ -104,6 +104,8 @@ def _last_digit(text: str) -> tuple[float, float]:
         d = Decimal(t)
     except InvalidOperation:
         raise ValueError(text) from None
+    if not d.is_finite() or not math.isfinite(float(d)) or abs(d.as_tuple().exponent) > 300:
+        raise ValueError(text)  # "inf", "nan", "1e999": not a printed number
     return float(d), float(Decimal(1).scaleb(d.as_tuple().exponent))
 
 

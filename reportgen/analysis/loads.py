@@ -243,7 +243,7 @@ def _unit_factor(node: Node, key: str, text: Any, dim: U.Dim) -> float:
 def read_table(node: Node, key: str, xdim: U.Dim, ydim: U.Dim, units: Any = None) -> Table1D:
     """Rows [[x, y], …]: numbers (SI, or in ``units = [ux, uy]``) or strings with units."""
     rows = node.raw(key)
-    if not isinstance(rows, list) or len(rows) < 2:
+    if not isinstance(rows, list) or not 2 <= len(rows) <= 100_000:
         raise node.error(key, "таблица должна содержать не менее двух строк [x, y]",
                          expected=f"{key} = [[x1, y1], [x2, y2], …]", got=repr(rows)[:60])
     fx = fy = 1.0
@@ -261,7 +261,8 @@ def read_table(node: Node, key: str, xdim: U.Dim, ydim: U.Dim, units: Any = None
         vals = []
         for j, (cell, dim, f) in enumerate(((r[0], xdim, fx), (r[1], ydim, fy))):
             if isinstance(cell, (int, float)) and not isinstance(cell, bool):
-                vals.append(float(cell) * f)
+                # through eval_value too: a finite number within the range of its kind
+                vals.append(node.eval_value(float(cell) * f, f"{key}[{i}][{j}]", dim, {}))
             else:
                 vals.append(node.eval_value(cell, f"{key}[{i}][{j}]", dim, {}))
         xs.append(vals[0])
