@@ -213,6 +213,13 @@ def _against_row(e: CaseError, v: Variant) -> CaseError:
     for k in v.params:
         if e.key == f"parameters.{k}" or e.key.startswith(f"parameters.{k}.") or e.key.startswith(f"parameters.{k}["):
             return e._copy(file=v.source, key=f"{v.row}.{k}" + e.key[len(f"parameters.{k}"):])
+    # the value is read fine but does not fit where the base case uses it ("0.33 kg" for a length)
+    text = f"{e.message} {e.got or ''}"
+    for k, val in v.params.items():
+        if re.search(rf"(?<![\w.]){re.escape(k)}(?![\w.])", text):
+            where = f"{e.file}: ключ {e.key}" if e.file else f"ключ {e.key}"
+            return CaseError(f"значение «{str(val)[:80]}» не подходит базовому варианту ({where}: {e.message})",
+                             file=v.source, key=f"{v.row}.{k}", expected=e.expected, hint=e.hint)
     return e
 
 
