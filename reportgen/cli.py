@@ -201,9 +201,12 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as e:
         if debug:
             raise
-        what = f" «{str(e.filename)[:200]}»" if e.filename else ""
-        reason = e.strerror or str(e)
-        print(f"Ошибка: не удалось прочитать или записать файл{what}: {reason[:300]}.", file=sys.stderr)
+        if e.filename is None and e.strerror is None:  # e.g. a font named by REPORTGEN_FONT is not installed
+            print(f"Ошибка: {str(e)[:300]}", file=sys.stderr)
+        else:
+            what = f" «{str(e.filename)[:200]}»" if e.filename else ""
+            print(f"Ошибка: не удалось прочитать или записать файл{what}: {(e.strerror or str(e))[:300]}.",
+                  file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("Прервано.", file=sys.stderr)

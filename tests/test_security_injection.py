@@ -150,6 +150,7 @@ def test_the_screen_html_has_no_external_reference(hostile_html):
     ("A = [0, 0], S2", '"M<svg onload=alert(1)>" = [0, 0], A = [0, 0], S2', "links[1].points"),
     ('C = ["X_C", "Y_C"]', 'C = ["X_C", "Y_C"], "<img src=x>" = [0, 0]', "frame.points"),
     ('name = "2"', 'name = "<b>2</b>"', "links[1].name"),
+    ("[parameters]", '[parameters]\n"P<img src=x>" = "1 m"', "parameters.P<img"),
     ('label = "f"', "label = \"f\\\" onload=\\\"alert(1)\"", "grid.extra[0].label"),
 ])
 def test_names_with_markup_are_rejected(tmp_path, capsys, old, new, key):

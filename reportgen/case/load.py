@@ -10,7 +10,7 @@ from typing import Any, Mapping
 from ..errors import CaseError
 from ..registry import LINKAGE_SECTIONS, STANDALONE_SECTIONS, TASK_SECTIONS
 from . import units as U
-from .expr import Q, resolve
+from .expr import _IDENT_RE, Q, resolve
 from .reader import Node
 
 TOP_KEYS = list(dict.fromkeys(["meta", "parameters", *LINKAGE_SECTIONS, "grid", "sketch", "fit", "outputs",
@@ -45,6 +45,12 @@ class CaseSpec:
         node = self.root.table("parameters")
         raw = dict(node.data)
         raw.update(self.overrides)
+        for k in raw:
+            if not _IDENT_RE.fullmatch(str(k)) or len(str(k)) > 40:
+                raise CaseError(f"недопустимое имя параметра «{str(k)[:60]}»", file=str(self.path),
+                                key=f"parameters.{str(k)[:60]}",
+                                expected="имя из букв, цифр и «_», начинающееся с буквы (не длиннее 40 символов), "
+                                         "например l_OA")
         try:
             names = resolve(raw)
         except CaseError as e:
