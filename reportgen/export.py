@@ -19,7 +19,7 @@ def atomic_write(path: Path, data: bytes | str) -> None:
     """Write to a temporary file in the same folder, then rename (never a half-written file)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix="." + path.name + ".", dir=path.parent)
+    fd, tmp = tempfile.mkstemp(prefix="." + path.name + ".", suffix=".tmp", dir=path.parent)
     try:
         with os.fdopen(fd, "wb") as f:
             f.write(data.encode("utf-8") if isinstance(data, str) else data)
@@ -136,6 +136,8 @@ def export(study: Study, out_dir: Path, at: Iterable[float] | None = None) -> li
         raw = study.all_scalars()
     check_finite(tabs, raw, str(study.spec.path))
     scalars = _jsonable(raw)
+    from .report.safety import clean_stale_temps
+    clean_stale_temps(Path(out_dir), names=(*(f"{n}.csv" for n in tabs), "scalars.json"))
     written = []
     for name, df in tabs.items():
         p = Path(out_dir) / f"{name}.csv"

@@ -262,3 +262,14 @@ def test_export_refuses_non_finite_results():
     assert nonfinite(tabs, {"a": 1.0, "b": {"c": math.nan}, "d": "text"}) == ["cycle.x_B", "scalars.b.c"]
     with pytest.raises(CaseError, match="cycle.x_B"):
         check_finite(tabs, {})
+
+
+def test_export_removes_temporaries_of_a_killed_run(tmp_path, capsys):
+    out = tmp_path / "out"
+    out.mkdir()
+    stale = [out / ".cycle.csv.k1ll3d.tmp", out / ".scalars.json.k1ll3d.tmp", out / ".cycle.csv.old"]
+    for p in stale:
+        p.write_text("x" * 100)
+    assert main(["export", str(CASES / "four_bar.toml"), "-o", str(out)]) == 0
+    hidden = sorted(p.name for p in out.iterdir() if p.name.startswith("."))
+    assert hidden == [".cycle.csv.old"]  # not a temporary of ours (no .tmp): left alone

@@ -166,9 +166,10 @@ def url_fetcher():
 STALE_SECONDS = 600.0  # a hidden temporary file this old belongs to a killed run
 
 
-def clean_stale_temps(out_dir: Path, stem: str | None = None) -> list[Path]:
+def clean_stale_temps(out_dir: Path, stem: str | None = None, names: tuple[str, ...] = ()) -> list[Path]:
     """Remove the hidden temporary files left by killed runs in ``out_dir``: those of ``stem``
-    (any age: this build replaces them) and any other ``.<name>.*.tmp`` older than
+    (``.<stem>.pdf.*.tmp``, ``.<stem>.html.*.tmp``) and of the file ``names`` about to be
+    written (``.<name>.*.tmp``), of any age, and any other ``.*.tmp`` older than
     :data:`STALE_SECONDS`. Returns the removed paths."""
     import time
     out_dir = Path(out_dir)
@@ -178,7 +179,8 @@ def clean_stale_temps(out_dir: Path, stem: str | None = None) -> list[Path]:
     now = time.time()
     for p in out_dir.glob(".*.tmp"):
         try:
-            mine = stem is not None and (p.name.startswith(f".{stem}.pdf.") or p.name.startswith(f".{stem}.html."))
+            mine = (stem is not None and (p.name.startswith(f".{stem}.pdf.") or p.name.startswith(f".{stem}.html."))
+                    or any(p.name.startswith(f".{n}.") for n in names))
             if p.is_file() and (mine or now - p.stat().st_mtime > STALE_SECONDS):
                 p.unlink()
                 removed.append(p)
