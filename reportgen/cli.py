@@ -17,6 +17,8 @@ def _parse_at(study, text: str) -> list[float]:
     from .case import units as U
     from .case.expr import evaluate
     vals = []
+    if text.count(",") >= 10_000:
+        raise CaseError("слишком много значений в --at", key="--at", expected="не более 10000 значений")
     for i, part in enumerate(p.strip() for p in text.split(",") if p.strip()):
         try:
             vals.append(float(evaluate(part, study.params, expected=study.qdim, bare_is=study.qdim).value))
@@ -60,8 +62,7 @@ def cmd_build(args) -> int:
     out = _out_dir(Path(args.output))
     study = Study(args.case)
     report = build_report(study, _sections(args.sections))
-    if args.sections is None:
-        _check_finite(study)
+    _check_finite(study, partial=args.sections is not None)
     files = build_outputs(report, out, study.name, formats)
     for kind, path in files.items():
         print(f"{kind.upper()}: {path}")
@@ -95,10 +96,17 @@ def cmd_check(args) -> int:
     return 0
 
 
-def _check_finite(study) -> None:
-    """No NaN/inf in the computed tables and scalars (an overflow is the case's fault)."""
+def _check_finite(study, partial: bool = False) -> None:
+    """No NaN/inf in the computed tables and scalars (an overflow is the case's fault);
+    ``partial``: only what has been computed already (a note of some sections)."""
     from .export import check_finite, tables
-    check_finite(tables(study), study.all_scalars(), str(study.spec.path))
+    from .registry import BY_NAME
+    if not partial:
+        check_finite(tables(study), study.all_scalars(), str(study.spec.path))
+        return
+    tabs = {k: getattr(study, k) for k in ("kinematics", "cycle") if k in study.computed}
+    scalars = {k: study.analysis(k).scalars for k in sorted(study.computed) if k in BY_NAME}
+    check_finite(tabs, scalars, str(study.spec.path))
 
 
 def _out_dir(path: Path) -> Path:
