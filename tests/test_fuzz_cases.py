@@ -8,6 +8,7 @@ derandomized (the same mutants on every run).
 """
 from __future__ import annotations
 
+import copy
 import json
 import math
 import tomllib
@@ -75,7 +76,7 @@ def _mutate(data: dict, draw) -> None:
     kind = draw(st.sampled_from(["replace", "replace", "replace", "delete", "rename", "swap",
                                  "scale", "duplicate"]))
     if kind == "replace":
-        parent[last] = draw(st.sampled_from(POOL))
+        parent[last] = copy.deepcopy(draw(st.sampled_from(POOL)))  # later mutations must not edit POOL
     elif kind == "delete":
         del parent[last]
     elif kind == "rename" and isinstance(parent, dict):
