@@ -7,17 +7,20 @@ atomically; the manifest lists variant, input hash, output files and seconds.
 from __future__ import annotations
 
 import csv
+import io
 import json
 import multiprocessing
 import os
 import sys
 import time
-import tomllib
+import re
+from collections.abc import Mapping
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-from .case.load import load_spec
+from .case.load import load_spec, read_toml
+from .case.text import meta_value
 from .errors import CaseError, ReportgenError
 from .export import atomic_write
 
@@ -30,6 +33,9 @@ class Variant:
     base: Path
     params: dict = field(default_factory=dict)
     meta: dict = field(default_factory=dict)
+    stem: str = ""  # safe file stem of the outputs (set by read_variants)
+    source: str = ""  # the table file the row comes from ("" for a folder of cases)
+    row: str = ""  # where in it: "variant[2]" (TOML) or "строка 4" (CSV)
 
 
 @dataclass
@@ -42,49 +48,134 @@ class Outcome:
     error: str = ""
 
 
+MAX_VARIANTS = 1000  # rows of one table
+MAX_STEM = 80  # characters of an output file name (without the extension)
+_UNSAFE = re.compile(r"[^\w.\-]+")
+
+
+def safe_stem(name: str) -> str:
+    """A file name stem made of ``name``: letters, digits, ``_``, ``-``, ``.`` only (every other
+    run of characters — ``/``, ``\\``, spaces, ``..`` at the start — becomes ``_``), never empty,
+    never hidden, at most :data:`MAX_STEM` characters. So ``sub/../../x`` gives ``sub_.._.._x``: a
+    name can never lead out of the output folder."""
+    stem = _UNSAFE.sub("_", str(name)).lstrip(".") or "_"
+    return stem[:MAX_STEM]
+
+
+def _row_value(v, *, file: str, key: str):
+    """A parameter value of a row: a string or a finite number (arrays, tables, booleans and
+    non-finite numbers are an error against the row)."""
+    import math
+    if isinstance(v, bool) or not isinstance(v, (str, int, float)) or (isinstance(v, float) and not math.isfinite(v)):
+        raise CaseError("значение параметра в таблице вариантов должно быть числом или строкой с единицами",
+                        file=file, key=key, expected="например \"0.33 m\"", got=repr(v)[:80])
+    return v
+
+
 def read_variants(src: Path, base: Path | None) -> list[Variant]:
     src = Path(src)
     if src.is_dir():
         files = sorted(src.glob("*.toml"))
         if not files:
             raise CaseError("в папке нет файлов вариантов .toml", file=str(src))
-        return [Variant(f.stem, f) for f in files]
+        out = [Variant(f.stem, f, stem=safe_stem(f.stem)) for f in files]
+        _check_stems(out, src)
+        return out
     if not src.exists():
         raise CaseError("таблица вариантов не найдена", file=str(src), expected="файл .csv или .toml, или папка с вариантами")
+    if not src.is_file():
+        raise CaseError("таблица вариантов: указан не обычный файл (устройство)", file=str(src),
+                        expected="файл .csv или .toml, или папка с вариантами")
+    where: list[str]
     if src.suffix.lower() == ".toml":
-        try:
-            data = tomllib.loads(src.read_text(encoding="utf-8"))
-        except tomllib.TOMLDecodeError as e:
-            raise CaseError(f"синтаксическая ошибка TOML: {e}", file=str(src)) from None
-        b = base or (src.parent / data["base"] if "base" in data else None)
-        rows = data.get("variant", [])
-        if not isinstance(rows, list):
-            raise CaseError("ожидался массив [[variant]]", file=str(src), key="variant")
-    elif src.suffix.lower() == ".csv":
-        with src.open(encoding="utf-8", newline="") as f:
-            rows = list(csv.DictReader(f))
+        data = read_toml(src, what="таблица вариантов")
         b = base
-        if b is None and rows and "base" in rows[0]:
+        if b is None and "base" in data:
+            if not isinstance(data["base"], str) or not data["base"].strip():
+                raise CaseError("базовый вариант задаётся путём к файлу", file=str(src), key="base",
+                                expected="base = \"ws000_six_bar.toml\"", got=repr(data["base"])[:80])
+            b = src.parent / data["base"]
+        rows = data.get("variant", [])
+        if isinstance(rows, Mapping):
+            rows = [rows]
+        if not isinstance(rows, list):
+            raise CaseError("ожидался массив [[variant]]", file=str(src), key="variant",
+                            expected="[[variant]] name = \"A\" …")
+        for i, row in enumerate(rows):
+            if not isinstance(row, Mapping):
+                raise CaseError("строка таблицы вариантов должна быть таблицей", file=str(src),
+                                key=f"variant[{i}]", expected="[[variant]] name = \"A\", l_OA = \"0.33 m\"",
+                                got=repr(row)[:80])
+        where = [f"variant[{i}]" for i in range(len(rows))]
+    elif src.suffix.lower() == ".csv":
+        try:
+            text = src.read_bytes().decode("utf-8-sig")
+        except UnicodeDecodeError:
+            raise CaseError("таблица вариантов не в кодировке UTF-8", file=str(src),
+                            expected="CSV в UTF-8 (в Excel: «Сохранить как» → «CSV UTF-8»)") from None
+        try:
+            reader = csv.DictReader(io.StringIO(text, newline=""))
+            rows = []
+            for row in reader:
+                if None in row:
+                    raise CaseError("в строке больше значений, чем столбцов в заголовке", file=str(src),
+                                    key=f"строка {reader.line_num}", expected="по одному значению на столбец")
+                rows.append(row)
+                if len(rows) > MAX_VARIANTS:
+                    break
+        except csv.Error as e:
+            raise CaseError(f"ошибка чтения CSV: {e}", file=str(src)) from None
+        lines = [f"строка {i + 2}" for i in range(len(rows))]  # line 1 is the header
+        where = lines
+        b = base
+        if b is None and rows and rows[0].get("base"):
             b = src.parent / rows[0]["base"]
     else:
         raise CaseError("неизвестный формат таблицы вариантов", file=str(src), expected="расширение .csv или .toml")
+    if len(rows) > MAX_VARIANTS:
+        raise CaseError(f"слишком много вариантов в таблице (больше {MAX_VARIANTS})", file=str(src),
+                        expected=f"не более {MAX_VARIANTS} строк")
     if b is None:
         raise CaseError("не указан базовый вариант", file=str(src),
                         expected="ключ base = \"…toml\" в таблице, столбец base в CSV или опция --base")
+    b = Path(b)
+    if not b.is_file():
+        raise CaseError("базовый вариант не найден или не является файлом", file=str(src), key="base",
+                        got=str(b), expected="путь к файлу .toml")
     out = []
     for i, row in enumerate(rows):
         row = {str(k).strip(): v for k, v in row.items() if k is not None}
-        name = str(row.pop("name", row.get("variant", f"{i + 1:02d}")))
+        at = where[i]
+        raw_name = row.pop("name", row.get("variant", f"{i + 1:02d}"))
+        if isinstance(raw_name, bool) or not isinstance(raw_name, (str, int)) or not str(raw_name).strip():
+            raise CaseError("имя варианта должно быть непустой строкой", file=str(src), key=f"{at}.name",
+                            expected="name = \"A\" или столбец variant", got=repr(raw_name)[:80])
+        name = str(raw_name).strip()
         row.pop("base", None)
-        meta = {k: str(v) for k, v in row.items() if k in META_KEYS}
-        meta.setdefault("variant", name)
-        params = {k: v for k, v in row.items() if k not in META_KEYS and v not in ("", None)}
-        out.append(Variant(name, Path(b), params, meta))
+        meta = {k: meta_value(v, file=str(src), key=f"{at}.{k}") for k, v in row.items() if k in META_KEYS}
+        meta.setdefault("variant", meta_value(name, file=str(src), key=f"{at}.name"))
+        params = {k: _row_value(v, file=str(src), key=f"{at}.{k}")
+                  for k, v in row.items() if k not in META_KEYS and v not in ("", None)}
+        v = Variant(name, b, params, meta, source=str(src), row=at)
+        v.stem = safe_stem(_stem(v))
+        out.append(v)
     names = [v.name for v in out]
     dup = {n for n in names if names.count(n) > 1}
     if dup:
-        raise CaseError(f"повторяются имена вариантов: {', '.join(sorted(dup))}", file=str(src))
+        raise CaseError(f"повторяются имена вариантов: {', '.join(sorted(dup))[:200]}", file=str(src))
+    _check_stems(out, src)
     return out
+
+
+def _check_stems(variants: list[Variant], src: Path) -> None:
+    """Two variants whose names give one file name would overwrite each other: an error."""
+    seen: dict[str, str] = {}
+    for v in variants:
+        key = v.stem.lower()  # case-insensitive file systems
+        if key in seen:
+            raise CaseError(f"варианты «{seen[key][:60]}» и «{v.name[:60]}» дают одно имя файла «{v.stem}»",
+                            file=str(src), expected="имена вариантов, различающиеся буквами или цифрами")
+        seen[key] = v.name
 
 
 def _init_worker() -> None:
@@ -94,7 +185,8 @@ def _init_worker() -> None:
     warmup()
 
 
-def run_variant(v: Variant, out_dir: str, formats: tuple[str, ...], sections, key: bool = False) -> Outcome:
+def run_variant(v: Variant, out_dir: str, formats: tuple[str, ...], sections, key: bool = False,
+                sheets: bool = False) -> Outcome:
     t0 = time.perf_counter()
     try:
         from .analysis.study import Study
@@ -104,15 +196,39 @@ def run_variant(v: Variant, out_dir: str, formats: tuple[str, ...], sections, ke
         spec.meta_overrides = dict(v.meta)
         study = Study(spec)
         report = build_report(study, sections)
-        files = build_outputs(report, Path(out_dir), _stem(v), formats)
+        stem = v.stem or safe_stem(_stem(v))
+        files = build_outputs(report, Path(out_dir), stem, formats)
         if key:
             from .report.key import write_key
-            files.update(write_key(study, Path(out_dir), _stem(v), formats))
+            files.update(write_key(study, Path(out_dir), stem, formats))
+        if sheets:
+            from .sheets import build_sheets
+            files["sheets"] = build_sheets(study, Path(out_dir), stem)
         return Outcome(v.name, True, spec.digest(), [str(p) for p in files.values()], time.perf_counter() - t0)
+    except CaseError as e:
+        return Outcome(v.name, False, "", [], time.perf_counter() - t0, str(_against_row(e, v)))
     except ReportgenError as e:
         return Outcome(v.name, False, "", [], time.perf_counter() - t0, str(e))
     except Exception as e:  # one broken variant must not stop the class
         return Outcome(v.name, False, "", [], time.perf_counter() - t0, f"внутренняя ошибка: {type(e).__name__}: {e}")
+
+
+def _against_row(e: CaseError, v: Variant) -> CaseError:
+    """An error in a value the row gives is reported against the row (table file + row),
+    not against the base case."""
+    if not v.source or not e.key:
+        return e
+    for k in v.params:
+        if e.key == f"parameters.{k}" or e.key.startswith(f"parameters.{k}.") or e.key.startswith(f"parameters.{k}["):
+            return e._copy(file=v.source, key=f"{v.row}.{k}" + e.key[len(f"parameters.{k}"):])
+    # the value is read fine but does not fit where the base case uses it ("0.33 kg" for a length)
+    text = f"{e.message} {e.got or ''}"
+    for k, val in v.params.items():
+        if re.search(rf"(?<![\w.]){re.escape(k)}(?![\w.])", text):
+            where = f"{e.file}: ключ {e.key}" if e.file else f"ключ {e.key}"
+            return CaseError(f"значение «{str(val)[:80]}» не подходит базовому варианту ({where}: {e.message})",
+                             file=v.source, key=f"{v.row}.{k}", expected=e.expected, hint=e.hint)
+    return e
 
 
 def _stem(v: Variant) -> str:
@@ -127,7 +243,8 @@ def _progress(total: int):
 
 
 def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
-              formats: tuple[str, ...] = ("pdf", "html"), sections=None, key: bool = False) -> list[Outcome]:
+              formats: tuple[str, ...] = ("pdf", "html"), sections=None, key: bool = False,
+              sheets: bool = False) -> list[Outcome]:
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     jobs = max(1, jobs or os.cpu_count() or 1)
@@ -135,14 +252,14 @@ def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
     results: list[Outcome] = []
     if jobs == 1 or len(variants) == 1:
         for v in variants:
-            results.append(run_variant(v, str(out_dir), formats, sections, key))
+            results.append(run_variant(v, str(out_dir), formats, sections, key, sheets))
             if bar:
                 bar.update()
     else:
         ctx = multiprocessing.get_context("forkserver")
         with ProcessPoolExecutor(max_workers=min(jobs, len(variants)), mp_context=ctx,
                                  initializer=_init_worker) as ex:
-            futs = [ex.submit(run_variant, v, str(out_dir), formats, sections, key) for v in variants]
+            futs = [ex.submit(run_variant, v, str(out_dir), formats, sections, key, sheets) for v in variants]
             for f in as_completed(futs):
                 results.append(f.result())
                 if bar:

@@ -17,6 +17,8 @@ def _parse_at(study, text: str) -> list[float]:
     from .case import units as U
     from .case.expr import evaluate
     vals = []
+    if text.count(",") >= 10_000:
+        raise CaseError("слишком много значений в --at", key="--at", expected="не более 10000 значений")
     for i, part in enumerate(p.strip() for p in text.split(",") if p.strip()):
         try:
             vals.append(float(evaluate(part, study.params, expected=study.qdim, bare_is=study.qdim).value))
@@ -32,7 +34,7 @@ def cmd_export(args) -> int:
     from .export import export
     study = Study(args.case)
     at = _parse_at(study, args.at) if args.at else None
-    out = Path(args.output) if args.output else Path("output") / study.name
+    out = _out_dir(Path(args.output) if args.output else Path("output") / study.name)
     files = export(study, out, at)
     print(f"Записано файлов: {len(files)} в {out}/")
     return 0
@@ -57,17 +59,19 @@ def cmd_build(args) -> int:
     from .report.render import build_outputs
     t0 = time.perf_counter()
     formats = _formats(args.format)
+    out = _out_dir(Path(args.output))
     study = Study(args.case)
     report = build_report(study, _sections(args.sections))
-    files = build_outputs(report, Path(args.output), study.name, formats)
+    _check_finite(study, partial=args.sections is not None)
+    files = build_outputs(report, out, study.name, formats)
     if args.key:
         from .report.key import write_key
-        files.update(write_key(study, Path(args.output), study.name, formats))
+        files.update(write_key(study, out, study.name, formats))
     for kind, path in files.items():
         print(f"{kind.upper()}: {path}")
     if args.sheets:
         from .sheets import build_sheets
-        print(f"Чертежи (A1): {build_sheets(study, Path(args.output), study.name)}")
+        print(f"Чертежи (A1): {build_sheets(study, out, study.name)}")
     print(f"Готово за {time.perf_counter() - t0:.1f} с.")
     return 0
 
@@ -75,8 +79,8 @@ def cmd_build(args) -> int:
 def cmd_batch(args) -> int:
     from .batch import read_variants, run_batch
     variants = read_variants(Path(args.variants), Path(args.base) if args.base else None)
-    results = run_batch(variants, Path(args.output), args.jobs, _formats(args.format), _sections(args.sections),
-                          key=args.key)
+    results = run_batch(variants, _out_dir(Path(args.output)), args.jobs, _formats(args.format), _sections(args.sections),
+                        key=args.key, sheets=args.sheets)
     ok = [r for r in results if r.ok]
     bad = [r for r in results if not r.ok]
     print(f"Отчётов построено: {len(ok)} из {len(results)}; манифест: {Path(args.output) / 'manifest.json'}")
@@ -88,13 +92,40 @@ def cmd_batch(args) -> int:
 def cmd_check(args) -> int:
     from .analysis.study import Study
     study = Study(args.case)
+    study.meta  # [meta] values are checked as the note reads them
     print(f"Вариант: {study.name}")
     if study.has_linkage:
         _check_linkage(study)
     for name in study.tasks():
         study.analysis(name).scalars  # every task reads and checks its section as build and export do
         print(f"Раздел [{name}] проверен.")
+    _check_finite(study)
     return 0
+
+
+def _check_finite(study, partial: bool = False) -> None:
+    """No NaN/inf in the computed tables and scalars (an overflow is the case's fault);
+    ``partial``: only what has been computed already (a note of some sections)."""
+    from .export import check_finite, tables
+    from .registry import BY_NAME
+    if not partial:
+        check_finite(tables(study), study.all_scalars(), str(study.spec.path))
+        return
+    tabs = {k: getattr(study, k) for k in ("kinematics", "cycle") if k in study.computed}
+    scalars = {k: study.analysis(k).scalars for k in sorted(study.computed) if k in BY_NAME}
+    check_finite(tabs, scalars, str(study.spec.path))
+
+
+def _out_dir(path: Path) -> Path:
+    """The output folder: an existing folder or a path that can be created (no file on the way)."""
+    for p in [path, *path.parents]:
+        if p.exists():
+            if not p.is_dir():
+                raise CaseError("папку вывода нельзя создать: на этом пути находится файл" if p != path
+                                else "путь вывода указывает на файл, а нужна папка",
+                                key="-o", got=str(p), expected="путь к папке")
+            break
+    return path
 
 
 def _check_linkage(study) -> None:
@@ -151,6 +182,7 @@ def build_parser() -> argparse.ArgumentParser:
     bt.add_argument("--format", default="pdf,html")
     bt.add_argument("--sections")
     bt.add_argument("--key", action="store_true", help="также ключи для преподавателя (<вариант>-key.pdf/.html)")
+    bt.add_argument("--sheets", action="store_true", help="также листы графической части A1 (<вариант>-sheets.pdf)")
     bt.set_defaults(func=cmd_batch)
     w = sub.add_parser("warmup", help="скомпилировать ядра numba (один раз после установки)")
     w.set_defaults(func=cmd_warmup)
@@ -163,20 +195,45 @@ _PARSER_HOOKS: list = []
 
 
 def main(argv: list[str] | None = None) -> int:
+    import warnings
     parser = build_parser()
     args = parser.parse_args(argv)
+    debug = args.debug or os.environ.get("REPORTGEN_DEBUG")
+    if not debug:
+        # numpy's RuntimeWarnings (with source lines) are not for the user: a non-finite result
+        # is reported as a CaseError by the finiteness checks
+        warnings.simplefilter("ignore", RuntimeWarning)
     try:
         return args.func(args)
     except ReportgenError as e:
         print(f"Ошибка: {e}", file=sys.stderr)
         return 2
+    except RecursionError:
+        if debug:
+            raise
+        print("Ошибка: слишком глубокая вложенность данных варианта (таблиц, массивов или выражений).",
+              file=sys.stderr)
+        return 2
+    except MemoryError:
+        print("Ошибка: недостаточно памяти; уменьшите [grid] positions или cycle_points.", file=sys.stderr)
+        return 2
+    except OSError as e:
+        if debug:
+            raise
+        if e.filename is None and e.strerror is None:  # e.g. a font named by REPORTGEN_FONT is not installed
+            print(f"Ошибка: {str(e)[:300]}", file=sys.stderr)
+        else:
+            what = f" «{str(e.filename)[:200]}»" if e.filename else ""
+            print(f"Ошибка: не удалось прочитать или записать файл{what}: {(e.strerror or str(e))[:300]}.",
+                  file=sys.stderr)
+        return 2
     except KeyboardInterrupt:
         print("Прервано.", file=sys.stderr)
         return 130
     except Exception as e:  # a bug, not the user's input
-        if args.debug or os.environ.get("REPORTGEN_DEBUG"):
+        if debug:
             raise
-        print(f"Внутренняя ошибка программы: {type(e).__name__}: {e}\n"
+        print(f"Внутренняя ошибка программы: {type(e).__name__}: {str(e)[:300]}\n"
               "Запустите с --debug и сообщите разработчикам.", file=sys.stderr)
         return 3
 

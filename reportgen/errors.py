@@ -21,6 +21,15 @@ class ReportgenError(Exception):
     """Base of all errors shown to the user without a traceback; str(e) is the Russian message."""
 
 
+MAX_ECHO = 200  # characters of an input repeated in a message
+
+
+def _clip(text: str, limit: int) -> str:
+    """``text`` cut to ``limit`` characters (``…`` marks the cut): a message never repeats a
+    60-kB input in full."""
+    return text if len(text) <= limit else text[:limit - 1] + "…"
+
+
 def _quoted(text: str) -> str:
     """Wrap ``text`` in «» unless it is already quoted (or is a repr of a container)."""
     t = text.strip()
@@ -51,15 +60,15 @@ class CaseError(ReportgenError):
     def __str__(self) -> str:
         parts: list[str] = []
         if self.file:
-            parts.append(str(self.file))
+            parts.append(_clip(str(self.file), 200))
         if self.key:
-            parts.append(f"ключ {self.key}")
-        body = self.message.rstrip().rstrip(".")
+            parts.append(f"ключ {_clip(str(self.key), 120)}")
+        body = _clip(self.message.rstrip(), MAX_ECHO + 100).rstrip(".")
         extra: list[str] = []
         if self.expected and self.expected not in body:
-            extra.append(f"ожидается: {self.expected}")
+            extra.append(f"ожидается: {_clip(self.expected, 4 * MAX_ECHO)}")
         if self.got is not None and str(self.got) not in body:
-            extra.append(f"получено: {_quoted(str(self.got))}")
+            extra.append(f"получено: {_quoted(_clip(str(self.got), MAX_ECHO))}")
         if extra:
             body = "; ".join([body, *extra]) if body else "; ".join(extra)
         parts.append(body)
@@ -67,7 +76,7 @@ class CaseError(ReportgenError):
         if not text.endswith((".", "?", "!", "…")):
             text += "."
         if self.hint:
-            text += f"\n  Подсказка: {self.hint}"
+            text += f"\n  Подсказка: {_clip(self.hint, MAX_ECHO + 100)}"
         return text
 
     def _copy(self, **changes) -> "CaseError":

@@ -12,13 +12,14 @@ import numpy as np
 import pandas as pd
 
 from .analysis.study import Study
+from .errors import CaseError
 
 
 def atomic_write(path: Path, data: bytes | str) -> None:
     """Write to a temporary file in the same folder, then rename (never a half-written file)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix="." + path.name + ".", dir=path.parent)
+    fd, tmp = tempfile.mkstemp(prefix="." + path.name + ".", suffix=".tmp", dir=path.parent)
     try:
         with os.fdopen(fd, "wb") as f:
             f.write(data.encode("utf-8") if isinstance(data, str) else data)
@@ -88,10 +89,70 @@ def _linkage_tables(study: Study) -> dict[str, pd.DataFrame]:
     }
 
 
+# columns that may stay blank: values the case does not give (a link without a mass)
+OPTIONAL_COLUMNS = {"links": {"mass", "weight", "J_S", "com"}}
+
+
+def nonfinite(tabs: dict[str, pd.DataFrame], scalars: dict | None = None) -> list[str]:
+    """Where a table or a scalar holds NaN, ±inf or a missing value: ``["cycle.omega_3", …]``
+    (empty when everything is finite; :data:`OPTIONAL_COLUMNS` may be blank)."""
+    bad: list[str] = []
+    for name, df in tabs.items():
+        skip = OPTIONAL_COLUMNS.get(name, set())
+        for col in df.columns:
+            if col in skip:
+                continue
+            v = df[col]
+            if v.dtype.kind in "fc":
+                if not np.isfinite(v.to_numpy()).all():
+                    bad.append(f"{name}.{col}")
+            elif v.dtype.kind == "O" and v.map(_bad_cell).any():
+                bad.append(f"{name}.{col}")
+
+    def walk(v, path: str) -> None:
+        if isinstance(v, dict):
+            for k, x in v.items():
+                walk(x, f"{path}.{k}" if path else str(k))
+        elif isinstance(v, (list, tuple)):
+            for i, x in enumerate(v):
+                walk(x, f"{path}[{i}]")
+        elif _bad_cell(v):
+            bad.append(f"scalars.{path}")
+
+    walk(scalars or {}, "")
+    return bad
+
+
+def _bad_cell(v) -> bool:
+    if v is None:
+        return True
+    if isinstance(v, (float, np.floating, complex)):
+        return not np.isfinite(v)
+    return False
+
+
+def check_finite(tabs: dict[str, pd.DataFrame], scalars: dict | None, file: str | None = None) -> None:
+    """A :class:`CaseError` when a result is not a finite number (overflow of a value far out of
+    the usual range): never an ``inf`` or a blank in a CSV, a null in scalars.json, a «nan» in the note."""
+    bad = nonfinite(tabs, scalars)
+    if bad:
+        shown = ", ".join(bad[:5]) + (" …" if len(bad) > 5 else "")
+        raise CaseError(f"расчёт дал бесконечные или неопределённые значения ({shown})", file=file,
+                        expected="величины варианта в обычном для курсового проекта диапазоне",
+                        hint="проверьте размеры, массы, скорости и нагрузки: вероятно, одна из них "
+                             "на много порядков больше или меньше обычной")
+
+
 def export(study: Study, out_dir: Path, at: Iterable[float] | None = None) -> list[Path]:
-    """Compute everything first, then write the files (each atomically)."""
-    tabs = tables(study, at)
-    scalars = _jsonable(study.all_scalars())
+    """Compute everything first (checking that every number is finite), then write the files
+    (each atomically)."""
+    with np.errstate(all="ignore"):
+        tabs = tables(study, at)
+        raw = study.all_scalars()
+    check_finite(tabs, raw, str(study.spec.path))
+    scalars = _jsonable(raw)
+    from .report.safety import clean_stale_temps
+    clean_stale_temps(Path(out_dir), names=(*(f"{n}.csv" for n in tabs), "scalars.json"))
     written = []
     for name, df in tabs.items():
         p = Path(out_dir) / f"{name}.csv"

@@ -42,6 +42,7 @@ import pandas as pd
 
 from ..case import units as U
 from ..case.reader import Node
+from ..case.text import inline_html
 from ..errors import CaseError, did_you_mean
 from .flywheel import DynamicModel, DynamicsResult, exact, flywheel_dims, solve_dynamics
 from .loads import (ColumnEvaluator, Loads, Table1D, com_point, cycle_of, read_loads, read_table,
@@ -107,6 +108,8 @@ def _last_digit(text: str) -> tuple[float, float]:
         d = Decimal(t)
     except InvalidOperation:
         raise ValueError(text) from None
+    if not d.is_finite() or not math.isfinite(float(d)) or abs(d.as_tuple().exponent) > 300:
+        raise ValueError(text)  # "inf", "nan", "1e999": not a printed number
     return float(d), float(Decimal(1).scaleb(d.as_tuple().exponent))
 
 
@@ -146,8 +149,8 @@ def read_settings(study) -> Settings:
     J_given = _given_flywheel(node, params) if inverse else None
     delta = node.quantity("delta", U.DIMENSIONLESS, params, default=0.1 if inverse else None, required=not inverse,
                           positive=True)
-    if not delta < 1:
-        raise node.error("delta", "коэффициент неравномерности хода должен быть меньше 1",
+    if not 1e-4 <= delta < 1:
+        raise node.error("delta", "коэффициент неравномерности хода должен быть не меньше 0,0001 и меньше 1",
                          expected="δ от 1/150 до 1/5, например delta = 0.11 или \"1/80\"", got=str(node.raw("delta")))
     J_O = node.quantity("J_O", U.INERTIA, params, default=0.0, nonnegative=True)
     method = node.string("method", "exact", choices=list(METHODS))
@@ -174,7 +177,7 @@ def read_settings(study) -> Settings:
             raise fw.error(k, "отношение внутреннего диаметра обода к наружному должно быть меньше 1",
                            expected=f"0 < {k} < 1", got=str(fw.raw(k)))
     m = len(study.grid.cycle) - 1
-    points = node.integer("points", int(round(m * length / (2 * math.pi))), minimum=72)
+    points = node.integer("points", int(round(m * length / (2 * math.pi))), minimum=72, maximum=100_000)
     # printed values belong to the source of this very case: a batch variant (parameters
     # overridden) is a different machine, so they are not compared there
     printed = _read_printed(node) if not study.spec.overrides else ()
@@ -185,10 +188,10 @@ def read_settings(study) -> Settings:
         path = Path(cn.string("case", required=True))
         if not path.is_absolute():
             path = Path(study.spec.path).parent / path
-        if not path.exists():
-            raise cn.error("case", f"файл варианта для сравнения не найден: {path}",
+        if not path.is_file():
+            raise cn.error("case", f"файл варианта для сравнения не найден или не является файлом: {path}",
                            expected="путь к файлу .toml относительно этого файла")
-        compare = (path, cn.string("title", None) or path.stem)
+        compare = (path, cn.text("title", None) or inline_html(path.stem))
     return Settings(start, length, w, float(delta), float(J_O), method, balance, drive, kw,
                     points, printed, compare, float(ratio), J_given)
 
@@ -217,8 +220,8 @@ def _read_printed(node: Node) -> tuple[Printed, ...]:
         if isinstance(raw, dict):
             sub = pn.table(key)
             sub.check_keys(["value", "note", "title"], required=["value"])
-            note = sub.string("note", "") or ""
-            title = sub.string("title", "") or ""
+            note = sub.text("note", "") or ""
+            title = sub.text("title", "") or ""
             raw = sub.raw("value")
         if isinstance(raw, bool) or not isinstance(raw, (str, int, float)):
             raise pn.error(key, "напечатанное значение — число или строка с числом",

@@ -235,7 +235,7 @@ def read_settings(study) -> ForceSettings:
                            expected="например 0.2", got=str(cn.raw("min_steered_share")))
         fwd = cn.string("forward", "-x", choices=["-x", "x"])
         carrier = CarrierData(
-            cn.string("title", "") or "", load, point,
+            cn.text("title", "") or "", load, point,
             cn.quantity("rear_axle", U.LENGTH, params, default=0.0),
             -1.0 if fwd == "-x" else 1.0,
             cn.quantity("wheelbase", U.LENGTH, params, required=True, positive=True),

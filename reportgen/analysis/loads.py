@@ -245,7 +245,7 @@ def read_table(node: Node, key: str, xdim: U.Dim, ydim: U.Dim, units: Any = None
     """Rows [[x, y], …]: numbers (SI, or in ``units = [ux, uy]``) or strings with units, which
     may use the case's ``[parameters]`` (``names``): ``["180 deg", "T_e"]``."""
     rows = node.raw(key)
-    if not isinstance(rows, list) or len(rows) < 2:
+    if not isinstance(rows, list) or not 2 <= len(rows) <= 100_000:
         raise node.error(key, "таблица должна содержать не менее двух строк [x, y]",
                          expected=f"{key} = [[x1, y1], [x2, y2], …]", got=repr(rows)[:60])
     fx = fy = 1.0
@@ -263,7 +263,8 @@ def read_table(node: Node, key: str, xdim: U.Dim, ydim: U.Dim, units: Any = None
         vals = []
         for j, (cell, dim, f) in enumerate(((r[0], xdim, fx), (r[1], ydim, fy))):
             if isinstance(cell, (int, float)) and not isinstance(cell, bool):
-                vals.append(float(cell) * f)
+                # through eval_value too: a finite number within the range of its kind
+                vals.append(node.eval_value(float(cell) * f, f"{key}[{i}][{j}]", dim, {}))
             else:
                 vals.append(node.eval_value(cell, f"{key}[{i}][{j}]", dim, names or {}))
         xs.append(vals[0])
@@ -598,7 +599,7 @@ def _pieces(node: Node, kind: str, params, columns, dim_of, cycle_length: float,
         for i, sn in enumerate(strokes):
             sn.check_keys(["name", "title", "phase", "table", vkey, "units", "of"],
                           required=["phase"])
-            out.append(piece(sn, sn.string("name", None) or sn.string("title", None) or f"{i + 1}",
+            out.append(piece(sn, sn.text("name", None) or sn.text("title", None) or f"{i + 1}",
                              node.raw("units")))
         out.sort(key=lambda p: p.phase[0])
         for a, b in zip(out, out[1:]):
@@ -671,7 +672,7 @@ def read_loads(study) -> Loads:
             when_list = when_raw if isinstance(when_raw, list) else [when_raw]
             when = [Condition(w, fn, f"when[{j}]" if isinstance(when_raw, list) else "when",
                               params, columns, dim_of) for j, w in enumerate(when_list)]
-            title = fn.string("title", None) or (
+            title = fn.text("title", None) or (
                 f"сила {name} в точке {point} звена {lname}" if kind == "force" else
                 f"момент {name} на звене {lname}")
             if any(ld.name == name for ld in loads):

@@ -155,7 +155,7 @@ def output_quantity(study) -> tuple[str, str, str, str]:
     chosen = node.string("output")
     if chosen:
         pre, _, name = chosen.partition("_")
-        title = node.string("output_title", chosen)
+        title = node.text("output_title", chosen)
         if chosen not in study.kinematics.columns:
             raise node.error("output", f"нет столбца «{chosen}»",
                              expected="столбец кинематики: s_<пара>, phi_<звено>, x_<точка> или y_<точка>")

@@ -20,7 +20,7 @@ import pandas as pd
 from ..case import units as U
 from ..case.expr import Q, evaluate
 from ..case.load import CaseSpec, load_spec
-from ..case.reader import Node
+from ..case.reader import MAX_CYCLE_POINTS, MAX_POSITIONS, Node
 from ..errors import CaseError
 from ..mechanism.build import build_mechanism
 from ..mechanism.model import Mechanism
@@ -118,9 +118,10 @@ class Study:
 
     @cached_property
     def meta(self) -> dict:
+        from ..case.text import meta_value
         m = self.root.table("meta")
-        out = {k: str(v) for k, v in m.data.items()}
-        out.update(self.spec.meta_overrides)
+        out = {k: meta_value(v, file=m.file, key=m.key(k)) for k, v in m.data.items()}
+        out.update({k: meta_value(v, file=m.file, key=m.key(k)) for k, v in self.spec.meta_overrides.items()})
         return out
 
     def _build(self, fixed: Mapping[str, float]) -> tuple[dict, Mechanism, Structure, L.SolverModel]:
@@ -247,8 +248,8 @@ class Study:
         node.check_keys(["positions", "closed", "extra", "cycle_points", "start"])
         names = self.params
         d = self.mechanism.driver
-        n = node.integer("positions", 12, minimum=2)
-        m = node.integer("cycle_points", 3600, minimum=36)
+        n = node.integer("positions", 12, minimum=2, maximum=MAX_POSITIONS)
+        m = node.integer("cycle_points", 3600, minimum=36, maximum=MAX_CYCLE_POINTS)
         closed = node.boolean("closed", False)
         if d.rotary:
             start = node.quantity("start", U.ANGLE, names, default=0.0)
@@ -260,15 +261,16 @@ class Study:
             q = np.linspace(lo, hi, n)
         labels = [str(i) for i in range(len(q))]
         extra = node.raw("extra", [])
-        if not isinstance(extra, list):
-            raise node.error("extra", "ожидался список дополнительных положений", expected="extra = [\"99.1 deg\"]")
+        if not isinstance(extra, list) or len(extra) > MAX_POSITIONS:
+            raise node.error("extra", "ожидался список дополнительных положений",
+                             expected=f"extra = [\"99.1 deg\"], не более {MAX_POSITIONS} значений")
         xs = []
         for i, e in enumerate(extra):
             if isinstance(e, Mapping):
                 sub = Node(e, node.key(f"extra[{i}]"), node.file)
                 sub.check_keys(["q", "label"], required=["q"])
                 xs.append(sub.quantity("q", self.qdim, names))
-                labels.append(sub.string("label", f"д{i + 1}"))
+                labels.append(sub.name("label", f"д{i + 1}", what="имя положения"))
             else:
                 xs.append(node.eval_value(e, f"extra[{i}]", self.qdim, names))
                 labels.append(f"д{i + 1}")

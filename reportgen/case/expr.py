@@ -682,17 +682,32 @@ class _Parser:
         return ("call", name_tok.val, tuple(args), name_tok.pos)
 
 
+MAX_EXPR = 2000  # characters of one expression
+MAX_NESTING = 64  # levels of parentheses
+
+
 @lru_cache(maxsize=4096)
 def _parse(text: str) -> tuple:
     """Parse ``text`` into an AST; a whole-text bare number becomes ``("const", Q, True)``."""
     stripped = text.strip()
     if not stripped:
         raise CaseError("пустое выражение", expected="число с единицей или выражение, например «0.347 m»")
+    if len(stripped) > MAX_EXPR:
+        raise CaseError(f"слишком длинное выражение ({len(stripped)} символов)",
+                        expected=f"выражение не длиннее {MAX_EXPR} символов", got=stripped[:60] + "…")
     bare = parse_number(stripped)
     if bare is not None:
         return ("const", Q(bare), True)
+    depth = 0
+    for ch in stripped:
+        depth += 1 if ch == "(" else -1 if ch == ")" else 0
+        if depth > MAX_NESTING:
+            raise CaseError("слишком глубокая вложенность скобок в выражении",
+                            expected=f"не более {MAX_NESTING} уровней скобок", got=stripped[:60] + "…")
     try:
         return _Parser(stripped).parse()
+    except RecursionError:
+        raise _too_deep(stripped) from None
     except CaseError as err:
         # "0.45 kg m^2" (a unit with spaces) is a valid quantity although not a valid expression
         try:
@@ -815,10 +830,18 @@ def evaluate(text: str | float | int, names: Mapping[str, Q], *, expected: Dim |
         elif node[0] == "const":
             q = Q(node[1].value, node[1].dim)
         else:
-            q = _eval(node, names, text.strip())
+            try:
+                q = _eval(node, names, text.strip())
+            except RecursionError:
+                raise _too_deep(text) from None
     else:
         raise CaseError("ожидалось число или строка с выражением", got=repr(text))
 
+    v = q.value
+    if isinstance(v, (int, float, np.integer, np.floating)) and not math.isfinite(v):
+        shown = _show(text).strip() if not isinstance(text, Q) else repr(text)
+        raise CaseError("значение не является конечным числом (бесконечность или nan)",
+                        expected="конечное число", got=shown[:200])
     if expected is not None:
         if not check_dim(q.dim, expected):
             shown = _show(text).strip() if not isinstance(text, Q) else repr(text)
@@ -851,8 +874,16 @@ def _names_in(text: Any) -> set[str]:
     if not isinstance(text, str):
         return set()
     out: set[str] = set()
-    _collect(_parse(text), out)
+    try:
+        _collect(_parse(text), out)
+    except RecursionError:
+        raise _too_deep(text) from None
     return out
+
+
+def _too_deep(text: str) -> CaseError:
+    return CaseError("слишком сложное выражение (глубокая вложенность)",
+                     expected="более простое выражение", got=text.strip()[:60] + "…")
 
 
 def free_names(text: Any) -> set[str]:

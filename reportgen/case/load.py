@@ -11,7 +11,7 @@ from ..errors import CaseError
 from ..registry import LINKAGE_SECTIONS, STANDALONE_SECTIONS, TASK_SECTIONS
 from . import units as U
 from . import synthesis as SY
-from .expr import Q, free_names, resolve
+from .expr import _IDENT_RE, Q, free_names, resolve
 from .reader import Node
 
 TOP_KEYS = list(dict.fromkeys(["meta", "parameters", *LINKAGE_SECTIONS, "grid", "sketch", "fit", "outputs",
@@ -46,6 +46,12 @@ class CaseSpec:
         node = self.root.table("parameters")
         raw = dict(node.data)
         raw.update(self.overrides)
+        for k in raw:
+            if not _IDENT_RE.fullmatch(str(k)) or len(str(k)) > 40:
+                raise CaseError(f"недопустимое имя параметра «{str(k)[:60]}»", file=str(self.path),
+                                key=f"parameters.{str(k)[:60]}",
+                                expected="имя из букв, цифр и «_», начинающееся с буквы (не длиннее 40 символов), "
+                                         "например l_OA")
         names = self._resolve(raw, {})
         if fixed:
             base = {k: Q(v, names[k].dim) for k, v in fixed.items()}
@@ -100,18 +106,60 @@ def _flat(d, prefix=""):
         yield (prefix, repr(d))
 
 
-def load_spec(path: str | Path, overrides: Mapping[str, Any] | None = None) -> CaseSpec:
+MAX_CASE_BYTES = 4 * 1024 * 1024  # a case file is a few kilobytes
+MAX_DEPTH = 16  # nesting of tables and arrays in a case file
+
+
+def read_toml(path: Path, *, what: str = "файл варианта") -> dict:
+    """Parse a TOML file of the user (case, batch table) into a dict: every failure (missing
+    file, a directory or a device, not UTF-8, too large, syntax, too deeply nested) is a
+    :class:`CaseError`."""
     path = Path(path)
     if not path.exists():
-        raise CaseError("файл варианта не найден", file=str(path),
+        raise CaseError(f"{what} не найден", file=str(path),
                         expected="путь к файлу .toml (например, cases/ws000_six_bar.toml)")
+    if not path.is_file():
+        raise CaseError(f"{what}: указан не обычный файл (папка или устройство)", file=str(path),
+                        expected="путь к файлу .toml")
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
+        size = path.stat().st_size
+        if size > MAX_CASE_BYTES:
+            raise CaseError(f"{what} слишком большой ({size} байт)", file=str(path),
+                            expected=f"не более {MAX_CASE_BYTES // 1024 // 1024} МБ")
+        text = path.read_bytes().decode("utf-8")
     except UnicodeDecodeError:
         raise CaseError("файл не в кодировке UTF-8", file=str(path), expected="текст TOML в UTF-8") from None
+    except OSError as e:
+        raise CaseError(f"не удалось прочитать файл: {e.strerror or e}", file=str(path)) from None
+    try:
+        data = tomllib.loads(text)
+    except RecursionError:
+        raise CaseError("слишком глубокая вложенность таблиц или массивов", file=str(path),
+                        expected=f"не более {MAX_DEPTH} уровней") from None
     except tomllib.TOMLDecodeError as e:
         raise CaseError(f"синтаксическая ошибка TOML: {e}", file=str(path),
                         expected="корректный TOML (строки в кавычках, [разделы], key = value)") from None
+    _check_depth(data, str(path))
+    return data
+
+
+def _check_depth(data, file: str) -> None:
+    """Reject nesting deeper than :data:`MAX_DEPTH` (iteratively: no recursion on the input)."""
+    stack = [(data, 0)]
+    while stack:
+        v, d = stack.pop()
+        if d > MAX_DEPTH:
+            raise CaseError("слишком глубокая вложенность таблиц или массивов", file=file,
+                            expected=f"не более {MAX_DEPTH} уровней")
+        if isinstance(v, Mapping):
+            stack.extend((x, d + 1) for x in v.values())
+        elif isinstance(v, list):
+            stack.extend((x, d + 1) for x in v)
+
+
+def load_spec(path: str | Path, overrides: Mapping[str, Any] | None = None) -> CaseSpec:
+    path = Path(path)
+    data = read_toml(path, what="файл варианта")
     spec = CaseSpec(path, data, dict(overrides or {}))
     root = spec.root
     has_linkage = any(root.has(k) for k in LINKAGE_SECTIONS)

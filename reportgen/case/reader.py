@@ -8,9 +8,19 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Iterable, Mapping
 
+from markupsafe import Markup
+
 from ..errors import CaseError, did_you_mean
 from . import units as U
 from .expr import Q, evaluate
+from .text import MAX_TEXT, check_name, clip, inline_html
+
+
+MAX_POSITIONS = 360  # [grid] positions (and extra): report positions, each with plans and tables
+MAX_CYCLE_POINTS = 36_000  # [grid] cycle_points (0,01° steps); 3600 by default
+MAX_INT = 1_000_000  # any count of a case without its own limit
+MAX_ABS = 1e15  # any value of a case in SI units
+_LIMITS = {tuple(U.LENGTH[:3]): 1e4, tuple(U.MASS[:3]): 1e9}  # lengths up to 10 km, masses up to 10⁶ t
 
 
 @dataclass
@@ -83,8 +93,31 @@ class Node:
                                  hint=did_you_mean(v, choices))
         return v
 
+    def name(self, name: str, default: str | None = None, *, required: bool = False,
+              what: str = "имя") -> str | None:
+        """A name (point, link, joint, label) checked against the safe pattern of
+        :func:`reportgen.case.text.check_name`."""
+        v = self.data.get(name)
+        if v is None:
+            if required:
+                raise self.error(name, f"не задан обязательный ключ «{name}»", expected="строка")
+            return default
+        if isinstance(v, float) and not isinstance(v, bool):
+            v = self.string(name)
+        return check_name(v, file=self.file, key=self.key(name), what=what)
+
+    def text(self, name: str, default: str | None = None) -> Markup | None:
+        """Free text (a title, a note) as safe HTML (:func:`reportgen.case.text.inline_html`)."""
+        v = self.string(name, default)
+        if v is None:
+            return None
+        if len(v) > MAX_TEXT:
+            raise self.error(name, f"слишком длинный текст ({len(v)} символов)",
+                             expected=f"не более {MAX_TEXT} символов", got=clip(v, 60))
+        return inline_html(v)
+
     def integer(self, name: str, default: int | None = None, *, minimum: int | None = None,
-                required: bool = False) -> int | None:
+                maximum: int | None = None, required: bool = False) -> int | None:
         v = self.data.get(name)
         if v is None:
             if required:
@@ -94,6 +127,10 @@ class Node:
             raise self.error(name, "ожидалось целое число", expected="целое число, например 12", got=_show(v))
         if minimum is not None and v < minimum:
             raise self.error(name, f"значение {v} меньше допустимого", expected=f"целое число ≥ {minimum}", got=str(v))
+        top = MAX_INT if maximum is None else maximum
+        if v > top:
+            raise self.error(name, f"значение {clip(v, 40)} больше допустимого (ограничение времени и памяти расчёта)",
+                             expected=f"целое число ≤ {top}", got=clip(v, 40))
         return v
 
     def boolean(self, name: str, default: bool) -> bool:
@@ -122,6 +159,11 @@ class Node:
         except CaseError as e:
             raise e.with_context(file=self.file, key_prefix=self.key(name)) from None
         x = float(qv.value)
+        limit = _LIMITS.get(tuple(dim[:3]), MAX_ABS)
+        if not abs(x) <= limit:
+            raise self.error(name, "значение вне разумного диапазона",
+                             expected=f"{U.dim_name(dim)} по модулю не больше {limit:g} (в единицах СИ)",
+                             got=_show(v))
         if positive and not x > 0:
             raise self.error(name, "значение должно быть положительным",
                              expected=f"{U.dim_name(dim)} > 0", got=_show(v))

@@ -7,6 +7,7 @@ from typing import Mapping
 from ..case import units as U
 from ..case.expr import Q
 from ..case.reader import Node
+from ..case.text import check_name
 from ..errors import CaseError, did_you_mean
 from .model import FRAME, Driver, Joint, Link, Mechanism
 
@@ -22,24 +23,28 @@ def build_mechanism(root: Node, names: Mapping[str, Q], g: float) -> Mechanism:
     frame_node.check_keys(["points"])
     frame = Link(FRAME, "стойка")
     pts = frame_node.table("points")
+    holders: dict[str, list[tuple[str, str]]] = {}  # point name -> [(link, where it is defined)]
     for pname, v in pts.data.items():
-        frame.points[str(pname)] = pts.vector(str(pname), v, U.LENGTH, names)
+        pname = check_name(pname, file=pts.file, key=pts.key(str(pname)), what="имя точки")
+        frame.points[pname] = pts.vector(pname, v, U.LENGTH, names)
+        holders[pname] = [(FRAME, f"[frame] points.{pname} (стойка)")]
     links = [frame]
     deferred = []
     qdim = U.LENGTH if root.table("driver").raw("type") == "actuator" else U.ANGLE
     seen = {FRAME}
     for ln in root.tables("links"):
         ln.check_keys(LINK_KEYS, required=["name", "points"])
-        name = ln.string("name", required=True)
+        name = ln.name("name", required=True, what="имя звена")
         if name in seen:
             raise ln.error("name", f"звено «{name}» описано дважды", expected="уникальное имя звена")
         seen.add(name)
-        link = Link(name, ln.string("title", "") or "")
+        link = Link(name, ln.text("title", "") or "")
         pn = ln.table("points", required=True)
         if not pn.data:
             raise pn.error(None, "у звена нет ни одной точки", expected="points = { A = [0, 0], B = [\"0.3 m\", 0] }")
         for pname, v in pn.data.items():
-            pname = str(pname)
+            pname = check_name(pname, file=pn.file, key=pn.key(str(pname)), what="имя точки")
+            holders.setdefault(pname, []).append((name, f"{pn.key(pname)} (звено «{name}»)"))
             if isinstance(v, Mapping):
                 sub = Node(v, pn.key(pname), pn.file)
                 if "offset" in v:
@@ -99,7 +104,7 @@ def build_mechanism(root: Node, names: Mapping[str, Q], g: float) -> Mechanism:
                 raise jn.error("links", "пара соединяет звено само с собой", expected="два разных звена")
             need_point(jn, "point", la, point)
             need_point(jn, "point", lb, point)
-            name = jn.string("name", point)
+            name = jn.name("name", point, what="имя пары")
             joints.append(Joint("R", (a, b), point, name))
         else:
             for k in ("guide", "slider", "line"):
@@ -132,13 +137,47 @@ def build_mechanism(root: Node, names: Mapping[str, Q], g: float) -> Mechanism:
                     lp = line.vector("through", thr, U.LENGTH, names)
                 ang = line.quantity("angle", U.ANGLE, names, default=0.0)
             offset = jn.quantity("offset", U.LENGTH, names, default=0.0)
-            name = jn.string("name", f"{slider.name}{guide.name}")
+            name = jn.name("name", f"{slider.name}{guide.name}", what="имя пары")
             joints.append(Joint("P", (guide.name, slider.name), point, name, lp, ang, offset))
 
+    _check_shared_points(root, holders, joints)
     driver = _read_driver(root, names, by_name, joints, need_link, need_point)
     mech = Mechanism(links, joints, driver, deferred=deferred)
     _read_sketch(root, names, mech)
     return mech
+
+
+def _check_shared_points(root: Node, holders: dict[str, list[tuple[str, str]]], joints: list[Joint]) -> None:
+    """A point name held by several links (the frame included) is one point of the mechanism
+    only where those links are joined at it: every holder must be connected to the others by
+    pairs ([[joints]]) at that very point. Otherwise two different points share a name — e.g. a
+    frame point ``H`` beside the slider's moving ``H`` — and one of them would silently replace
+    the other; that is an error naming both places. (Where no pair at all is at that point, a
+    pair is missing: the structural analysis reports it with Chebyshev's count.)"""
+    for p, owners in holders.items():
+        if len(owners) < 2:
+            continue
+        parent = {ln: ln for ln, _ in owners}
+
+        def find(x: str) -> str:
+            while parent[x] != x:
+                x = parent[x]
+            return x
+
+        for j in joints:
+            if j.kind == "R" and j.point == p and all(ln in parent for ln in j.links):
+                parent[find(j.links[0])] = find(j.links[1])
+        if not any(j.point == p for j in joints):
+            continue  # no pair at this point at all: the structural analysis reports the missing pair
+        roots: dict[str, tuple[str, str]] = {}
+        for ln, place in owners:
+            roots.setdefault(find(ln), (ln, place))
+        if len(roots) > 1:
+            (_, first), (_, second) = list(roots.values())[:2]
+            raise CaseError(f"точка «{p}» задана в двух местах, не соединённых парой в этой точке: "
+                            f"{first} и {second}", file=root.file, key=second.split(" ")[0],
+                            expected="разные имена для разных точек; общая точка двух звеньев "
+                                     "соединяется парой [[joints]] с point = \"" + p + "\"")
 
 
 def _read_driver(root, names, by_name, joints, need_link, need_point) -> Driver:

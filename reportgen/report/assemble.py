@@ -89,9 +89,11 @@ REPORT_KEYS = ["position", "output", "output_title", "options"]
 
 def build_report(study, sections: Iterable[str] | None = None, options: dict | None = None) -> Report:
     from .render import DEFAULT_OPTIONS
+    from .safety import validate_options
     node = study.root.table("report")
     node.check_keys(REPORT_KEYS)
     node.table("options").check_keys(list(DEFAULT_OPTIONS))
+    validate_options(node.table("options").data, file=node.file)
     names = chosen_sections(study, sections)
     built = [SECTIONS[n][0].build(study) for n in names]
     meta = dict(study.meta)

@@ -126,11 +126,8 @@ MIN_PART_ROWS = 3  # fewest rows of a table left on a page before «Продол
 
 def resolve_options(options: dict | None) -> dict:
     """Defaults + overrides; unknown keys are an error (they are usually typos)."""
-    options = dict(options or {})
-    unknown = sorted(set(options) - set(DEFAULT_OPTIONS))
-    if unknown:
-        raise ValueError("Неизвестные параметры оформления: " + ", ".join(unknown)
-                         + ". Допустимые: " + ", ".join(sorted(DEFAULT_OPTIONS)))
+    from .safety import validate_options
+    options = validate_options(options)  # types and ranges: CaseError
     o = dict(DEFAULT_OPTIONS)
     if options.get("eskd_frame"):
         o.update(ESKD_MARGINS)
@@ -791,6 +788,9 @@ def _layout(report: Report, font_config):
     """Lay out the print HTML, splitting tables until stable. Returns the document."""
     from weasyprint import HTML
 
+    from .safety import url_fetcher
+
+    fetcher = url_fetcher()
     image_cache: dict = {}  # parsed images (figures, formulas) shared by the passes
     wlog = logging.getLogger("weasyprint")
     if not any(isinstance(f, _QuietFontTools) for f in wlog.filters):
@@ -812,7 +812,7 @@ def _layout(report: Report, font_config):
                 splits = {k: list(v) for k, v in known.items()}
                 html, _builder = _render(report, for_print=True, splits=splits)
         t1 = time.perf_counter()
-        document = HTML(string=html, base_url=str(TEMPLATES_DIR)).render(
+        document = HTML(string=html, base_url=str(TEMPLATES_DIR), url_fetcher=fetcher).render(
             font_config=font_config, cache=image_cache)
         t2 = time.perf_counter()
         stats.passes += 1
@@ -861,13 +861,13 @@ def write_pdf(report: Report, path) -> Path:
 def build_outputs(report: Report, out_dir, stem: str,
                   formats=("pdf", "html")) -> dict[str, Path]:
     """Write ``out_dir/stem.pdf`` and/or ``out_dir/stem.html``; returns the paths."""
-    out_dir = Path(out_dir)
-    result: dict[str, Path] = {}
+    from .safety import write_together
+    writers = {}
     for f in formats:
         if f == "pdf":
-            result["pdf"] = write_pdf(report, out_dir / f"{stem}.pdf")
+            writers["pdf"] = lambda p: write_pdf(report, p)
         elif f == "html":
-            result["html"] = write_html(report, out_dir / f"{stem}.html")
+            writers["html"] = lambda p: write_html(report, p)
         else:
             raise ValueError(f"Неизвестный формат вывода: {f!r} (допустимы pdf, html)")
-    return result
+    return write_together(Path(out_dir), stem, writers)
