@@ -503,7 +503,8 @@ def _dimensions(sec, study, d) -> None:
         # equal kinetic energy on both shafts: J_shaft·(u·ω)²/2 = J_доп·ω²/2 (Артоболевский [1], приведение масс)
         sym = r"J_{\text{м}}"
         s.paragraph(f"Маховик устанавливается на другом валу; передаточное отношение от него к кривошипу "
-                    f"u&nbsp;=&nbsp;ω<sub>м</sub>/ω<sub>1</sub>&nbsp;=&nbsp;{_ratio(u)}. Из равенства кинетических энергий J<sub>м</sub>(uω)²/2&nbsp;=&nbsp;J<sub>доп</sub>ω²/2 "
+                    f"u&nbsp;=&nbsp;ω<sub>м</sub>/ω<sub>1</sub>&nbsp;=&nbsp;{_ratio(u)}. Из равенства кинетических энергий "
+                    "маховика на его валу и приведённого к кривошипу, J<sub>м</sub>(uω)²&nbsp;=&nbsp;J<sub>доп</sub>ω², "
                     "момент инерции маховика на его валу:")
         s.formula(Formula(rf"{sym} = \frac{{J_{{\text{{доп}}}}}}{{u^2}}",
                           rf"\frac{{{_t(d.result.J_flywheel, sig=6)}}}{{{_ratio(u)}^2}}",
