@@ -101,6 +101,11 @@ def _per(n: int, most: int = MAX_COLS) -> int:
     return max(1, math.ceil(n / parts))
 
 
+def _ratio(u: float) -> str:
+    """A gear ratio as the case gives it: «15», «2,5»."""
+    return fmt(u, digits=0) if float(u).is_integer() else fmt(u, sig=4)
+
+
 def _c(x) -> str:
     """LaTeX of an empirical constant as written (0.437, 6123): shortest representation."""
     return tex_num(x, sig=len(repr(float(x)).replace("-", "").replace(".", "").lstrip("0").rstrip("0")) or 1)
@@ -488,16 +493,28 @@ def _dimensions(sec, study, d) -> None:
     s = sec.subsection("Размеры маховика", "sec-dyn-dims")
     fw = d.result.flywheel
     kw = d.settings.flywheel_kw
-    J = d.result.J_flywheel
+    u = d.settings.ratio
+    J = d.result.J_flywheel / u ** 2
     if not fw.needed:
         s.paragraph("Маховик не требуется.")
         return
+    sym = r"J_{\text{доп}}"
+    if u != 1.0:
+        # equal kinetic energy on both shafts: J_shaft·(u·ω)²/2 = J_доп·ω²/2 (Артоболевский [1], приведение масс)
+        sym = r"J_{\text{м}}"
+        s.paragraph(f"Маховик устанавливается на другом валу; передаточное отношение от него к кривошипу "
+                    f"u&nbsp;=&nbsp;ω<sub>м</sub>/ω<sub>1</sub>&nbsp;=&nbsp;{_ratio(u)}. Из равенства кинетических энергий "
+                    "маховика на его валу и приведённого к кривошипу, J<sub>м</sub>(uω)²&nbsp;=&nbsp;J<sub>доп</sub>ω², "
+                    "момент инерции маховика на его валу:")
+        s.formula(Formula(rf"{sym} = \frac{{J_{{\text{{доп}}}}}}{{u^2}}",
+                          rf"\frac{{{_t(d.result.J_flywheel, sig=6)}}}{{{_ratio(u)}^2}}",
+                          _t(J, sig=5, unit="кг·м²"), label="eq-Jshaft"))
     r5 = rf"\sqrt[5]{{{_t(J, sig=6)}}}"
     s.paragraph("Маховик в виде обода со спицами и ступицей (эмпирические зависимости курсового пособия, "
                 f"ψ<sub>b</sub>&nbsp;=&nbsp;{fmt(kw['psi_b'], sig=3)}, ψ<sub>h</sub>&nbsp;=&nbsp;{fmt(kw['psi_h'], sig=3)}, "
                 f"ρ&nbsp;=&nbsp;{fmt(kw['rho'], sig=4)}&nbsp;кг/м³):")
     rim, disk = fw.rim, fw.disk
-    s.formula(Formula(rf"D_2 = {_c(kw['rim_coef'])} \sqrt[5]{{J_{{\text{{доп}}}}}}", rf"{_c(kw['rim_coef'])} \cdot {r5}",
+    s.formula(Formula(rf"D_2 = {_c(kw['rim_coef'])} \sqrt[5]{{{sym}}}", rf"{_c(kw['rim_coef'])} \cdot {r5}",
                       _t(rim.D2, digits=3, unit="м")),
               Formula(rf"D_1 = {_c(kw['rim_inner_ratio'])}\, D_2", None, _t(rim.D1, digits=3, unit="м")),
               Formula(rf"b = {_c(kw['rim_width_ratio'])}\, D_2", None, _t(rim.b, digits=3, unit="м")),
@@ -505,7 +522,7 @@ def _dimensions(sec, study, d) -> None:
                       rf"{_c(kw['rim_mass_coef'])} \cdot \left( {_t(rim.D2, digits=3)}^2 - {_t(rim.D1, digits=3)}^2 \right) \cdot {_t(rim.b, digits=3)}",
                       _t(rim.m, sig=4, unit="кг")))
     s.paragraph("Маховик в виде сплошного диска:")
-    s.formula(Formula(rf"D = {_c(kw['disk_coef'])} \sqrt[5]{{J_{{\text{{доп}}}}}}", rf"{_c(kw['disk_coef'])} \cdot {r5}",
+    s.formula(Formula(rf"D = {_c(kw['disk_coef'])} \sqrt[5]{{{sym}}}", rf"{_c(kw['disk_coef'])} \cdot {r5}",
                       _t(disk.D, digits=3, unit="м")),
               Formula(rf"b = {_c(kw['disk_width_ratio'])}\, D", None, _t(disk.b, digits=3, unit="м")),
               Formula(rf"m = {_c(kw['disk_mass_coef'])}\, D^3", rf"{_c(kw['disk_mass_coef'])} \cdot {_t(disk.D, digits=3)}^3",
@@ -649,7 +666,10 @@ def conclusion_lines(study) -> list[str]:
                f"{fmt(r.dev_wittenbauer_pct, digits=3, sign=True)}&nbsp;%.")
     fw = r.flywheel
     if fw.needed:
-        out.append(f"Момент инерции маховика J<sub>доп</sub>&nbsp;=&nbsp;{fmt(r.J_flywheel, sig=5)}&nbsp;кг·м²: обод "
+        u = d.settings.ratio
+        shaft = ("" if u == 1.0 else f"; на валу маховика (u&nbsp;=&nbsp;{_ratio(u)} к кривошипу) "
+                 f"J<sub>м</sub>&nbsp;=&nbsp;J<sub>доп</sub>/u²&nbsp;=&nbsp;{fmt(r.J_flywheel / u ** 2, sig=5)}&nbsp;кг·м²")
+        out.append(f"Момент инерции маховика J<sub>доп</sub>&nbsp;=&nbsp;{fmt(r.J_flywheel, sig=5)}&nbsp;кг·м²{shaft}: обод "
                    f"D<sub>2</sub>&nbsp;=&nbsp;{fmt(fw.rim.D2, digits=3)}&nbsp;м, b&nbsp;=&nbsp;{fmt(fw.rim.b, digits=3)}&nbsp;м, "
                    f"m&nbsp;=&nbsp;{fmt(fw.rim.m, sig=4)}&nbsp;кг или диск D&nbsp;=&nbsp;{fmt(fw.disk.D, digits=3)}&nbsp;м, "
                    f"m&nbsp;=&nbsp;{fmt(fw.disk.m, sig=4)}&nbsp;кг"
