@@ -132,6 +132,70 @@ def bench_pdf_vs_plain() -> dict:
             "plain_pages": plain_pages, "ratio": round(t_note / t_plain, 2)}
 
 
+def _fmt(x: float) -> str:
+    return f"{x:.2f}".replace(".", ",")
+
+
+def write_doc(res: dict) -> Path:
+    """docs/performance.md from the recorded figures (Russian, each with its command)."""
+    m = res["machine"]
+    rows = []
+
+    def row(name, key, value, target, command):
+        ok = "да" if value <= target else "нет"
+        rows.append(f"| {name} | {_fmt(value)} с | ≤ {_fmt(target)} с | {ok} | `{command}` |")
+
+    if "help" in res:
+        row("`reportgen --help` (медиана 5)", "help", res["help"]["median_s"], TARGETS["help"], res["help"]["command"])
+    if "export" in res:
+        row("`reportgen export` ws000 (медиана 3)", "export", res["export"]["median_s"], TARGETS["export"],
+            res["export"]["command"])
+    if "build" in res:
+        row("`reportgen build` ws000, PDF и HTML, тёплый (медиана 3)", "build", res["build"]["median_s"],
+            TARGETS["build"], res["build"]["command"])
+    if "first" in res:
+        row("первая сборка с пустым кэшем", "first", res["first"]["wall_s"], TARGETS["first"],
+            res["first"]["command"])
+    if "batch" in res:
+        b = res["batch"]
+        row(f"пакет из {b['variants']} вариантов, 2 процесса", "batch", b["wall_s"], TARGETS["batch"], b["command"])
+    lines = [
+        "# Производительность",
+        "",
+        "Все цифры ниже измерены командой `make bench` (`python bench/bench_cli.py`; результаты в",
+        "`bench/results/cli.json`), каждая команда запускается в новом процессе `python -m reportgen.cli`,",
+        "как её запускает пользователь. Поэтапные времена внутри процесса: `python bench/bench_build.py`",
+        "(`bench/results/build.json`).",
+        "",
+        f"Машина: {m['nproc']} ядра, {m['cpu']}, ОЗУ {_fmt(m['ram_gb'])} ГБ; Python {m['python']},",
+        f"WeasyPrint {m['weasyprint']}; {m['platform']}. Дата замера: {res.get('date', '')}.",
+        f"Средняя загрузка (load average 1/5/15 мин) до замера: {res['load_average_before']}, после: "
+        f"{res['load_average_after']}."
+        + (" **Замер сделан под нагрузкой** (машину делили другие процессы): времена завышены."
+           if max(res["load_average_before"][0], res["load_average_after"][0]) > (m["nproc"] or 1) else ""),
+        "",
+        "| Что | Время | Цель | Достигнута | Команда |",
+        "|---|---|---|---|---|",
+        *rows,
+    ]
+    if "batch" in res and res["batch"].get("workers"):
+        peaks = ", ".join(f"{_fmt(w['peak_rss_mb'])} МБ ({w['variants']} вар.)" for w in res["batch"]["workers"])
+        lines += ["", f"Пиковая память рабочих процессов пакета (из `manifest.json`, поле `workers`): {peaks}."]
+    if "pdf" in res:
+        p = res["pdf"]
+        lines += ["", "PDF записки ws000 против WeasyPrint на простом документе того же объёма (только текст, те же",
+                  "шрифты и поля; вёрстка + запись, точки разрыва таблиц известны):",
+                  f"{p['note_pages']} стр. записки — {_fmt(p['note_pdf_s'])} с, {p['plain_pages']} стр. текста — "
+                  f"{_fmt(p['plain_pdf_s'])} с; отношение {_fmt(p['ratio'])} (цель ≤ {_fmt(TARGETS['pdf_ratio'])}). "
+                  f"Команда: `{p['command']}`."]
+    if res.get("notes"):
+        lines += ["", *res["notes"]]
+    lines.append("")
+    dest = ROOT / "docs" / "performance.md"
+    dest.write_text("\n".join(lines), encoding="utf-8")
+    return dest
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--only", default=",".join(PARTS), help="что мерить: " + ",".join(PARTS))
@@ -172,7 +236,7 @@ def main(argv=None) -> None:
     dest.parent.mkdir(parents=True, exist_ok=True)
     dest.write_text(json.dumps(res, ensure_ascii=False, indent=2) + "\n", encoding="utf-8")
     print(json.dumps({k: v for k, v in res.items() if k != "machine"}, ensure_ascii=False, indent=1))
-    print(f"результаты: {dest}")
+    print(f"результаты: {dest}; отчёт: {write_doc(res)}")
 
 
 if __name__ == "__main__":

@@ -222,6 +222,18 @@ def _missing(v) -> bool:
         return True
 
 
+def _print_fonts(svg: bytes | str) -> bytes | str:
+    """The text of a matplotlib figure (``<text>`` in the report's serif family, see
+    ``mplstyle.to_svg``) set in the ``@font-face`` family of the print stylesheet, so that
+    WeasyPrint draws it with the very file it embeds for the running text (one font in the
+    PDF) instead of asking fontconfig for the family by name."""
+    family = fonts.find_serif().name
+    old, new = f"font-family: '{family}'", f"font-family: '{fonts.CSS_FAMILY}'"
+    if isinstance(svg, str):
+        return svg.replace(old, new)
+    return bytes(svg).replace(old.encode(), new.encode())
+
+
 def _is_number(v) -> bool:
     return isinstance(v, _numbers.Real) and not isinstance(v, bool)
 
@@ -349,7 +361,7 @@ class _Builder:
 
             src = "data:image/png;base64," + base64.b64encode(bytes(data)).decode("ascii")
         else:
-            src = data_uri(data)
+            src = data_uri(_print_fonts(data) if self.for_print else data)
         width = min(float(fig.width_mm), self.o["text_width_mm"])
         return _FigureView(fid, src, width, self.caption("figure_word", number, fig.caption))
 
@@ -845,11 +857,25 @@ def _next_splits(document, splits: dict[str, list[int]],
     return result if changed else None
 
 
+_IMAGE_CACHE: dict = {}
+_IMAGE_CACHE_MAX = 2000
+
+
+def _image_cache() -> dict:
+    """WeasyPrint's cache of parsed images, kept by the process: shared by the layout passes
+    and by every report the process builds (a batch worker meets the same formulas in every
+    variant). Images are ``data:`` URLs, so a key is the content itself; WeasyPrint names an
+    image in the PDF by the md5 of its URL, so sharing changes no byte of the output."""
+    if len(_IMAGE_CACHE) > _IMAGE_CACHE_MAX:
+        _IMAGE_CACHE.clear()
+    return _IMAGE_CACHE
+
+
 def _layout(report: Report, font_config):
     """Lay out the print HTML, splitting tables until stable. Returns the document."""
     from weasyprint import HTML
 
-    image_cache: dict = {}  # parsed images (figures, formulas) shared by the passes
+    image_cache = _image_cache()
     wlog = logging.getLogger("weasyprint")
     if not any(isinstance(f, _QuietFontTools) for f in wlog.filters):
         wlog.addFilter(_QuietFontTools())
