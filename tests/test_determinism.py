@@ -34,3 +34,19 @@ def test_first_build_with_an_empty_cache_equals_the_next(tmp_path):
     second = _build(tmp_path / "b", cache)
     for kind in ("pdf", "html"):
         assert first[kind] == second[kind], kind
+
+
+def test_split_points_are_keyed_by_what_the_layout_reads():
+    """The remembered split points of a report are found again when only the drawing inside
+    a figure differs (the layout reads an SVG's size, not its content), not when its size does."""
+    from reportgen.report import render
+    from reportgen.report.formulas import data_uri
+
+    def html(text: str, height: str = "5pt") -> str:
+        svg = (f'<svg xmlns="http://www.w3.org/2000/svg" width="10pt" height="{height}" '
+               f'viewBox="0 0 10 5"><text>{text}</text></svg>')
+        return f'<p><img src="{data_uri(svg)}"> текст</p>'
+
+    assert render._split_key(html("a")) == render._split_key(html("b"))
+    assert render._split_key(html("a")) != render._split_key(html("a", "6pt"))
+    assert render._split_key(html("a")) != render._split_key(html("a").replace("текст", "текст 2"))

@@ -737,13 +737,29 @@ _SPLIT_MEMO: dict[str, dict[str, list[int]]] = {}  # sha256 of the unsplit print
 _SPLIT_CACHE_VERSION = 1
 
 
+_DATA_SVG = re.compile(r"data:image/svg\+xml;base64,([A-Za-z0-9+/=]+)")
+_SVG_ROOT = re.compile(rb"<svg\b[^>]*>")
+_SVG_SIZE = re.compile(rb'\s(width|height|viewBox)="([^"]*)"')
+
+
+def _svg_size(m: re.Match) -> str:
+    """An SVG image in the key by what the layout reads of it: its root's width, height
+    and viewBox (the drawing inside does not move a line of the page)."""
+    import base64
+
+    root = _SVG_ROOT.search(base64.b64decode(m.group(1)))
+    size = dict(_SVG_SIZE.findall(root.group(0))) if root else {}
+    return "svg:" + "|".join(size.get(k, b"").decode("ascii", "replace")
+                             for k in (b"width", b"height", b"viewBox"))
+
+
 def _split_key(html: str) -> str:
-    """Key of the split points: the unsplit print HTML (it names the font files) and the
-    WeasyPrint version (which lays it out)."""
+    """Key of the split points: the unsplit print HTML (it names the font files) with every
+    SVG image reduced to its size, and the WeasyPrint version (which lays it out)."""
     import weasyprint
 
     h = hashlib.sha256(f"{_SPLIT_CACHE_VERSION}|{weasyprint.__version__}|".encode())
-    h.update(html.encode("utf-8"))
+    h.update(_DATA_SVG.sub(_svg_size, html).encode("utf-8"))
     return h.hexdigest()
 
 
