@@ -201,10 +201,14 @@ def main(argv=None) -> None:
     ap.add_argument("--only", default=",".join(PARTS), help="что мерить: " + ",".join(PARTS))
     ap.add_argument("--batch-variants", type=int, default=30)
     ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--doc-only", action="store_true", help="только пересобрать docs/performance.md из JSON")
     a = ap.parse_args(argv)
     parts = [p.strip() for p in a.only.split(",") if p.strip()]
     dest = ROOT / "bench" / "results" / "cli.json"
     res = json.loads(dest.read_text(encoding="utf-8")) if dest.exists() else {}
+    if a.doc_only:
+        print(write_doc(res))
+        return
     res["machine"] = machine()
     res["load_average_before"] = [round(x, 2) for x in os.getloadavg()]
     with tempfile.TemporaryDirectory() as d:

@@ -417,9 +417,7 @@ def test_matplotlib_svg_is_deterministic_with_comma_ticks():
 
     fig, a = make()
     _, b = make()
-    assert a == b and b"<dc:date>" not in a
-    # text as text in the report's family (WeasyPrint draws it with the font, not path by path)
-    assert b"<text" in a and f"font-family: '{fonts.find_serif().name}'".encode() in a
+    assert a == b and b"<dc:date>" not in a and b"<text" not in a
     assert b'width="283.464567pt"' in a  # 100 mm
     ax = fig.axes[0]
     labels = ax.yaxis.get_major_formatter().format_ticks([-1.0, -0.5, 0.0, 0.5, 1.0])

@@ -222,18 +222,6 @@ def _missing(v) -> bool:
         return True
 
 
-def _print_fonts(svg: bytes | str) -> bytes | str:
-    """The text of a matplotlib figure (``<text>`` in the report's serif family, see
-    ``mplstyle.to_svg``) set in the ``@font-face`` family of the print stylesheet, so that
-    WeasyPrint draws it with the very file it embeds for the running text (one font in the
-    PDF) instead of asking fontconfig for the family by name."""
-    family = fonts.find_serif().name
-    old, new = f"font-family: '{family}'", f"font-family: '{fonts.CSS_FAMILY}'"
-    if isinstance(svg, str):
-        return svg.replace(old, new)
-    return bytes(svg).replace(old.encode(), new.encode())
-
-
 def _is_number(v) -> bool:
     return isinstance(v, _numbers.Real) and not isinstance(v, bool)
 
@@ -361,7 +349,7 @@ class _Builder:
 
             src = "data:image/png;base64," + base64.b64encode(bytes(data)).decode("ascii")
         else:
-            src = data_uri(_print_fonts(data) if self.for_print else data)
+            src = data_uri(data)
         width = min(float(fig.width_mm), self.o["text_width_mm"])
         return _FigureView(fid, src, width, self.caption("figure_word", number, fig.caption))
 

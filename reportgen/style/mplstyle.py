@@ -96,7 +96,7 @@ def style_rc() -> dict:
         "axes.facecolor": "white",
         "savefig.facecolor": "white",
         "figure.dpi": 100,
-        "svg.fonttype": "none",  # text as <text>: see to_svg
+        "svg.fonttype": "path",
         "svg.hashsalt": SVG_HASHSALT,
         "svg.image_inline": True,
         "path.simplify": True,
@@ -136,17 +136,10 @@ def localize_axes(ax, digits: int | None = None) -> None:
 
 
 def to_svg(fig: Figure) -> bytes:
-    """The figure as deterministic SVG bytes (text as text, no date, fixed ids).
-
-    Text is written as ``<text>`` in the report's serif family (``font.serif``: the same
-    Liberation Serif file WeasyPrint embeds, then DejaVu Serif, then serif), not as glyph
-    outlines: WeasyPrint parses and re-draws an SVG path by path in ``write_pdf``, and the
-    outlines of every tick label and inscription made most of the paths of a note's figures
-    (ws000: PDF writing about 3 times faster, layout about 2 times, see docs/performance.md).
-    """
+    """The figure as deterministic SVG bytes (glyphs as paths, no date, fixed ids)."""
     for ax in fig.axes:
         localize_axes(ax)
     buf = io.BytesIO()
-    with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": SVG_HASHSALT}):
+    with matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": SVG_HASHSALT}):
         fig.savefig(buf, format="svg", metadata={"Date": None})
     return buf.getvalue()
