@@ -13,7 +13,7 @@ test: setup
 	$(BIN)/python -m pytest
 
 bench: setup
-	$(BIN)/python bench/bench_build.py
+	$(BIN)/python bench/bench_cli.py
 
 setup: $(VENV)/.installed
 

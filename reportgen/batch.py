@@ -46,6 +46,8 @@ class Outcome:
     files: list[str] = field(default_factory=list)
     seconds: float = 0.0
     error: str = ""
+    worker: int = 0  # process id of the worker that built it
+    peak_rss_mb: float = 0.0  # that worker's peak memory after this variant
 
 
 MAX_VARIANTS = 1000  # rows of one table
@@ -179,10 +181,25 @@ def _check_stems(variants: list[Variant], src: Path) -> None:
 
 
 def _init_worker() -> None:
-    """Warm-up in each worker: heavy imports and numba kernels from the on-disk cache."""
-    import weasyprint  # noqa: F401
+    """Warm-up, once per worker process (the pool keeps its workers for the whole class):
+    heavy imports, numba kernels from the on-disk cache, the report's fonts registered with
+    matplotlib and loaded by WeasyPrint, the templates compiled. Every variant a worker
+    builds afterwards reuses them, and the parsed formula images (see ``render._layout``)."""
+    from .report import assemble  # noqa: F401  (sections, formulas, ziamath)
+    from .report import render
+    from .style import mplstyle
     from .warmup import warmup
+    mplstyle.apply_style()
+    render._font_config()
+    render._get_env()
     warmup()
+
+
+def _peak_rss_mb() -> float:
+    """Peak resident memory of this process so far, MB (Linux reports KB, macOS bytes)."""
+    import resource
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    return round(peak / (1024 * 1024 if sys.platform == "darwin" else 1024), 1)
 
 
 def run_variant(v: Variant, out_dir: str, formats: tuple[str, ...], sections, key: bool = False,
@@ -204,13 +221,16 @@ def run_variant(v: Variant, out_dir: str, formats: tuple[str, ...], sections, ke
         if sheets:
             from .sheets import build_sheets
             files["sheets"] = build_sheets(study, Path(out_dir), stem)
-        return Outcome(v.name, True, spec.digest(), [str(p) for p in files.values()], time.perf_counter() - t0)
+        out = Outcome(v.name, True, spec.digest(), [str(p) for p in files.values()], time.perf_counter() - t0)
     except CaseError as e:
-        return Outcome(v.name, False, "", [], time.perf_counter() - t0, str(_against_row(e, v)))
+        out = Outcome(v.name, False, "", [], time.perf_counter() - t0, str(_against_row(e, v)))
     except ReportgenError as e:
-        return Outcome(v.name, False, "", [], time.perf_counter() - t0, str(e))
+        out = Outcome(v.name, False, "", [], time.perf_counter() - t0, str(e))
     except Exception as e:  # one broken variant must not stop the class
-        return Outcome(v.name, False, "", [], time.perf_counter() - t0, f"внутренняя ошибка: {type(e).__name__}: {e}")
+        out = Outcome(v.name, False, "", [], time.perf_counter() - t0, f"внутренняя ошибка: {type(e).__name__}: {e}")
+    out.worker = os.getpid()
+    out.peak_rss_mb = _peak_rss_mb()
+    return out
 
 
 def _against_row(e: CaseError, v: Variant) -> CaseError:
@@ -256,6 +276,8 @@ def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
             if bar:
                 bar.update()
     else:
+        # Workers are started once and kept for the whole class (no max_tasks_per_child):
+        # the warm-up in _init_worker is paid once per worker, not once per variant.
         ctx = multiprocessing.get_context("forkserver")
         with ProcessPoolExecutor(max_workers=min(jobs, len(variants)), mp_context=ctx,
                                  initializer=_init_worker) as ex:
@@ -268,7 +290,12 @@ def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
         bar.close()
     order = {v.name: i for i, v in enumerate(variants)}
     results.sort(key=lambda r: order[r.variant])
+    peaks: dict[int, float] = {}
+    for r in results:
+        peaks[r.worker] = max(peaks.get(r.worker, 0.0), r.peak_rss_mb)
     manifest = {"tool": "reportgen", "variants": [asdict(r) for r in results],
-                "ok": sum(r.ok for r in results), "failed": sum(not r.ok for r in results)}
+                "ok": sum(r.ok for r in results), "failed": sum(not r.ok for r in results),
+                "workers": [{"pid": pid, "variants": sum(r.worker == pid for r in results),
+                             "peak_rss_mb": peak} for pid, peak in sorted(peaks.items())]}
     atomic_write(out_dir / "manifest.json", json.dumps(manifest, ensure_ascii=False, indent=2) + "\n")
     return results

@@ -27,14 +27,20 @@ table of contents come from CSS ``target-counter`` (print only).
    passes. Cell borders are drawn inside the cells so that a row takes the
    same height at the end of a part as before a page break.
 
-Split points are remembered per unsplit HTML (sha256), so laying out the same
-report again takes one pass.
+Split points are remembered per unsplit HTML (sha256), in the process and in the
+cache folder (``<cache>/splits``), so laying out the same report again, in the
+same process or in a later ``reportgen build``, takes one pass.
+
+A PDF is byte-identical from build to build: the subset fonts are stamped with
+a fixed date (:func:`_fixed_font_timestamp`).
 """
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import html as _html
+import json
 import logging
 import numbers as _numbers
 import os
@@ -51,6 +57,7 @@ from markupsafe import Markup, escape
 
 from ..style import fonts
 from .document import Column, Figure, FormulaBlock, Paragraph, Report, Section, Table
+from .formulas import _cache_dir as _formula_cache_dir
 from .formulas import Formula, data_uri, formula_images, inline_math, where_rows
 from ..style.numbers import DASH, fmt
 
@@ -712,6 +719,73 @@ _ROW_ANCHOR = re.compile(r"^(.+)__r(\d+)$")
 _SPLIT_MEMO: dict[str, dict[str, list[int]]] = {}  # sha256 of the unsplit print HTML -> splits
 
 
+_SPLIT_CACHE_VERSION = 1
+
+
+_DATA_SVG = re.compile(r"data:image/svg\+xml;base64,([A-Za-z0-9+/=]+)")
+_SVG_ROOT = re.compile(rb"<svg\b[^>]*>")
+_SVG_SIZE = re.compile(rb'\s(width|height|viewBox)="([^"]*)"')
+
+
+def _svg_size(m: re.Match) -> str:
+    """An SVG image in the key by what the layout reads of it: its root's width, height
+    and viewBox (the drawing inside does not move a line of the page)."""
+    import base64
+
+    root = _SVG_ROOT.search(base64.b64decode(m.group(1)))
+    size = dict(_SVG_SIZE.findall(root.group(0))) if root else {}
+    return "svg:" + "|".join(size.get(k, b"").decode("ascii", "replace")
+                             for k in (b"width", b"height", b"viewBox"))
+
+
+def _split_key(html: str) -> str:
+    """Key of the split points: the unsplit print HTML (it names the font files) with every
+    SVG image reduced to its size, and the WeasyPrint version (which lays it out)."""
+    import weasyprint
+
+    h = hashlib.sha256(f"{_SPLIT_CACHE_VERSION}|{weasyprint.__version__}|".encode())
+    h.update(_DATA_SVG.sub(_svg_size, html).encode("utf-8"))
+    return h.hexdigest()
+
+
+def _split_file(key: str) -> Path | None:
+    """``<cache>/splits/<key>.json`` in the cache folder of the formulas (REPORTGEN_CACHE or
+    XDG_CACHE_HOME/reportgen; none when the cache is off)."""
+    d = _formula_cache_dir()
+    return None if d is None else d.parent / "splits" / f"{key}.json"
+
+
+def _recall_splits(key: str) -> dict[str, list[int]] | None:
+    """Split points found for this HTML before, in this process or (the CLI) an earlier one.
+
+    They only save layout passes: the layout made with them is checked as any other, so a
+    stale or damaged entry costs a pass, never a wrong page."""
+    known = _SPLIT_MEMO.get(key)
+    if known is None:
+        path = _split_file(key)
+        try:
+            data = json.loads(path.read_text(encoding="utf-8")) if path else None
+        except (OSError, ValueError):
+            data = None
+        if isinstance(data, dict) and all(
+                isinstance(v, list) and all(isinstance(i, int) for i in v) for v in data.values()):
+            known = data
+    return {k: list(v) for k, v in known.items()} if known else None
+
+
+def _remember_splits(key: str, splits: dict[str, list[int]]) -> None:
+    if len(_SPLIT_MEMO) >= 64:
+        _SPLIT_MEMO.pop(next(iter(_SPLIT_MEMO)))
+    _SPLIT_MEMO[key] = {k: list(v) for k, v in splits.items()}
+    path = _split_file(key)
+    if path is None:
+        return
+    try:
+        _atomic_write(path, json.dumps(_SPLIT_MEMO[key], sort_keys=True).encode("utf-8"))
+    except OSError:
+        pass  # a read-only cache folder is no reason to fail a report
+
+
 def _page_rows(document) -> dict[str, dict[int, int]]:
     """``{table id: {row index: page index}}`` from the laid-out document."""
     out: dict[str, dict[int, int]] = {}
@@ -784,6 +858,20 @@ def _next_splits(document, splits: dict[str, list[int]],
     return result if changed else None
 
 
+_IMAGE_CACHE: dict = {}
+_IMAGE_CACHE_MAX = 2000
+
+
+def _image_cache() -> dict:
+    """WeasyPrint's cache of parsed images, kept by the process: shared by the layout passes
+    and by every report the process builds (a batch worker meets the same formulas in every
+    variant). Images are ``data:`` URLs, so a key is the content itself; WeasyPrint names an
+    image in the PDF by the md5 of its URL, so sharing changes no byte of the output."""
+    if len(_IMAGE_CACHE) > _IMAGE_CACHE_MAX:
+        _IMAGE_CACHE.clear()
+    return _IMAGE_CACHE
+
+
 def _layout(report: Report, font_config):
     """Lay out the print HTML, splitting tables until stable. Returns the document."""
     from weasyprint import HTML
@@ -791,7 +879,7 @@ def _layout(report: Report, font_config):
     from .safety import url_fetcher
 
     fetcher = url_fetcher()
-    image_cache: dict = {}  # parsed images (figures, formulas) shared by the passes
+    image_cache = _image_cache()  # parsed images (figures, formulas) shared by the passes and the process
     wlog = logging.getLogger("weasyprint")
     if not any(isinstance(f, _QuietFontTools) for f in wlog.filters):
         wlog.addFilter(_QuietFontTools())
@@ -806,8 +894,8 @@ def _layout(report: Report, font_config):
             # The same report laid out again (batch re-runs, determinism checks)
             # starts from the split points found last time; the final layout
             # is verified below all the same.
-            key = hashlib.sha256(html.encode("utf-8")).hexdigest()
-            known = _SPLIT_MEMO.get(key)
+            key = _split_key(html)
+            known = _recall_splits(key)
             if known:
                 splits = {k: list(v) for k, v in known.items()}
                 html, _builder = _render(report, for_print=True, splits=splits)
@@ -825,9 +913,7 @@ def _layout(report: Report, font_config):
     else:
         log.warning("Разбиение таблиц не сошлось за %d проходов", MAX_PASSES)
     if key is not None and splits:
-        if len(_SPLIT_MEMO) >= 64:
-            _SPLIT_MEMO.pop(next(iter(_SPLIT_MEMO)))
-        _SPLIT_MEMO[key] = {k: list(v) for k, v in splits.items()}
+        _remember_splits(key, splits)
     stats.pages = len(document.pages)
     stats.splits = splits
     return document, stats
@@ -847,12 +933,33 @@ def _font_config():
     return _FONT_CONFIG
 
 
+# fontTools stamps the ``head.modified`` field of every font subset it writes with the
+# current time unless SOURCE_DATE_EPOCH is set (reproducible-builds.org); WeasyPrint subsets
+# with fontTools when HarfBuzz-Subset is missing, so without a fixed stamp two PDFs of the
+# same report differ in their embedded fonts. A date given by the user is kept.
+PDF_SOURCE_DATE_EPOCH = "0"
+
+
+@contextlib.contextmanager
+def _fixed_font_timestamp():
+    """``SOURCE_DATE_EPOCH`` set for the duration of ``write_pdf`` (restored after)."""
+    if "SOURCE_DATE_EPOCH" in os.environ:
+        yield
+        return
+    os.environ["SOURCE_DATE_EPOCH"] = PDF_SOURCE_DATE_EPOCH
+    try:
+        yield
+    finally:
+        os.environ.pop("SOURCE_DATE_EPOCH", None)
+
+
 def write_pdf(report: Report, path) -> Path:
     """Write the PDF atomically (WeasyPrint; «Продолжение таблицы» in passes)."""
     global last_stats
     document, stats = _layout(report, _font_config())
     t0 = time.perf_counter()
-    pdf = document.write_pdf()
+    with _fixed_font_timestamp():
+        pdf = document.write_pdf()
     stats.seconds_pdf = time.perf_counter() - t0
     last_stats = stats
     return _atomic_write(Path(path), pdf)

@@ -1,0 +1,247 @@
+"""Wall-clock figures of the commands a user runs, as issue #15 states its targets.
+
+Usage (from the repository root; ``make bench`` runs it)::
+
+    python bench/bench_cli.py            # everything (about 10 minutes on 2 cores)
+    python bench/bench_cli.py --only help,export,build,first,pdf
+    python bench/bench_cli.py --batch-variants 10   # a smaller class
+
+Writes ``bench/results/cli.json`` and ``docs/performance.md``. Every command runs in a fresh
+interpreter (``python -m reportgen.cli …`` with this checkout first on ``sys.path``), so the
+figures include imports, numba's on-disk cache and the fonts, as a user sees them.
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import os
+import platform
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+CASE = "cases/ws000_six_bar.toml"
+CLASS = "cases/class_six_bar.csv"
+PARTS = ("help", "export", "build", "first", "batch", "pdf")
+TARGETS = {"help": 0.5, "export": 2.0, "build": 8.0, "first": 15.0, "batch": 120.0, "pdf_ratio": 1.3}
+
+
+def machine() -> dict:
+    cpu = ""
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        cpu = platform.processor()
+    ram = 0.0
+    try:
+        for line in Path("/proc/meminfo").read_text().splitlines():
+            if line.startswith("MemTotal"):
+                ram = round(int(line.split()[1]) / 1024 ** 2, 1)
+    except OSError:
+        pass
+    import weasyprint
+    return {"nproc": os.cpu_count(), "cpu": cpu, "ram_gb": ram, "python": platform.python_version(),
+            "platform": platform.platform(), "weasyprint": weasyprint.__version__}
+
+
+def _env(**extra) -> dict:
+    env = dict(os.environ, PYTHONPATH=str(ROOT), CI="1")
+    env.update(extra)
+    return env
+
+
+def run(args: list[str], **env) -> float:
+    """Wall seconds of ``python -m reportgen.cli ARGS`` (exit code 0 or 1 accepted: a batch
+    with a failing variant exits 1)."""
+    t0 = time.perf_counter()
+    p = subprocess.run([sys.executable, "-m", "reportgen.cli", *args], cwd=ROOT, env=_env(**env),
+                       capture_output=True, text=True)
+    dt = time.perf_counter() - t0
+    if p.returncode not in (0, 1):
+        raise SystemExit(f"reportgen {' '.join(args)} failed:\n{p.stderr}")
+    return dt
+
+
+def median_of(n: int, args: list[str], **env) -> dict:
+    times = [run(args, **env) for _ in range(n)]
+    return {"median_s": round(statistics.median(times), 2), "runs_s": [round(t, 2) for t in times]}
+
+
+def bench_batch(tmp: Path, n: int) -> dict:
+    with open(ROOT / CLASS, encoding="utf-8", newline="") as f:
+        rows = list(csv.DictReader(f))
+    good = [r for r in rows if r.get("variant", r.get("name")) != "31"][:n]  # 31 cannot assemble
+    table = tmp / "class.csv"
+    with table.open("w", encoding="utf-8", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(good)
+    out = tmp / "batch"
+    args = ["batch", str(table), "--base", str(ROOT / CASE), "-o", str(out), "--jobs", "2"]
+    dt = run(args)
+    m = json.loads((out / "manifest.json").read_text(encoding="utf-8"))
+    return {"variants": len(good), "ok": m["ok"], "wall_s": round(dt, 1), "jobs": 2,
+            "per_variant_s": round(dt / max(1, len(good)), 2),
+            "workers": m.get("workers", []),
+            "command": f"reportgen batch <первые {len(good)} строк {CLASS}> --base {CASE} -o out --jobs 2"}
+
+
+def bench_pdf_vs_plain() -> dict:
+    """ws000's PDF (layout + write, split points known) against WeasyPrint on a plain
+    document of the same page count (running text only; same fonts, page setup, CSS)."""
+    sys.path.insert(0, str(ROOT))
+    from reportgen.analysis.study import Study
+    from reportgen.report import render
+    from reportgen.report.assemble import build_report
+    from reportgen.report.document import Report, Section
+
+    def timed(report, path) -> tuple[float, int]:
+        render.write_pdf(report, path)  # the first layout finds the split points
+        render.write_pdf(report, path)
+        st = render.last_stats
+        return st.seconds_layout + st.seconds_pdf, st.pages
+
+    def plain(n_par: int) -> Report:
+        text = ("Механизм раскладывается на начальный механизм и группы Ассура; для каждой группы "
+                "записываются уравнения замкнутого векторного контура и решаются в замкнутом виде. ") * 3
+        sections = []
+        for k in range(max(1, n_par // 20)):
+            s = Section(f"Раздел {k + 1}", f"s{k}")
+            for _ in range(20):
+                s.paragraph(text)
+            sections.append(s)
+        return Report(meta={}, assignment=[], introduction=[], sections=sections, conclusion=[],
+                      references=[], options={"title_page": False, "assignment_page": False})
+
+    with tempfile.TemporaryDirectory() as d:
+        report = build_report(Study(ROOT / CASE))
+        t_note, pages = timed(report, Path(d) / "note.pdf")
+        _, p20 = timed(plain(20), Path(d) / "probe.pdf")
+        n = max(20, round(20 * pages / p20 / 20) * 20)
+        t_plain, plain_pages = timed(plain(n), Path(d) / "plain.pdf")
+    return {"note_pdf_s": round(t_note, 2), "note_pages": pages, "plain_pdf_s": round(t_plain, 2),
+            "plain_pages": plain_pages, "ratio": round(t_note / t_plain, 2)}
+
+
+def _fmt(x: float) -> str:
+    return f"{x:.2f}".replace(".", ",")
+
+
+def write_doc(res: dict) -> Path:
+    """docs/performance.md from the recorded figures (Russian, each with its command)."""
+    m = res["machine"]
+    rows = []
+
+    def row(name, key, value, target, command):
+        ok = "да" if value <= target else "нет"
+        rows.append(f"| {name} | {_fmt(value)} с | ≤ {_fmt(target)} с | {ok} | `{command}` |")
+
+    if "help" in res:
+        row("`reportgen --help` (медиана 5)", "help", res["help"]["median_s"], TARGETS["help"], res["help"]["command"])
+    if "export" in res:
+        row("`reportgen export` ws000 (медиана 3)", "export", res["export"]["median_s"], TARGETS["export"],
+            res["export"]["command"])
+    if "build" in res:
+        row("`reportgen build` ws000, PDF и HTML, тёплый (медиана 3)", "build", res["build"]["median_s"],
+            TARGETS["build"], res["build"]["command"])
+    if "first" in res:
+        row("первая сборка с пустым кэшем", "first", res["first"]["wall_s"], TARGETS["first"],
+            res["first"]["command"])
+    if "batch" in res:
+        b = res["batch"]
+        row(f"пакет из {b['variants']} вариантов, 2 процесса", "batch", b["wall_s"], TARGETS["batch"], b["command"])
+    lines = [
+        "# Производительность",
+        "",
+        "Все цифры ниже измерены командой `make bench` (`python bench/bench_cli.py`; результаты в",
+        "`bench/results/cli.json`), каждая команда запускается в новом процессе `python -m reportgen.cli`,",
+        "как её запускает пользователь. Поэтапные времена внутри процесса: `python bench/bench_build.py`",
+        "(`bench/results/build.json`).",
+        "",
+        f"Машина: {m['nproc']} ядра, {m['cpu']}, ОЗУ {_fmt(m['ram_gb'])} ГБ; Python {m['python']},",
+        f"WeasyPrint {m['weasyprint']}; {m['platform']}. Дата замера: {res.get('date', '')}.",
+        f"Средняя загрузка (load average 1/5/15 мин) до замера: {res['load_average_before']}, после: "
+        f"{res['load_average_after']}."
+        + (" **Замер сделан под нагрузкой** (машину делили другие процессы): времена завышены."
+           if max(res["load_average_before"][0], res["load_average_after"][0]) > (m["nproc"] or 1) else ""),
+        "",
+        "| Что | Время | Цель | Достигнута | Команда |",
+        "|---|---|---|---|---|",
+        *rows,
+    ]
+    if "batch" in res and res["batch"].get("workers"):
+        peaks = ", ".join(f"{_fmt(w['peak_rss_mb'])} МБ ({w['variants']} вар.)" for w in res["batch"]["workers"])
+        lines += ["", f"Пиковая память рабочих процессов пакета (из `manifest.json`, поле `workers`): {peaks}."]
+    if "pdf" in res:
+        p = res["pdf"]
+        lines += ["", "PDF записки ws000 против WeasyPrint на простом документе того же объёма (только текст, те же",
+                  "шрифты и поля; вёрстка + запись, точки разрыва таблиц известны):",
+                  f"{p['note_pages']} стр. записки — {_fmt(p['note_pdf_s'])} с, {p['plain_pages']} стр. текста — "
+                  f"{_fmt(p['plain_pdf_s'])} с; отношение {_fmt(p['ratio'])} (цель ≤ {_fmt(TARGETS['pdf_ratio'])}). "
+                  f"Команда: `{p['command']}`."]
+    if res.get("notes"):
+        lines += ["", *res["notes"]]
+    lines.append("")
+    dest = ROOT / "docs" / "performance.md"
+    dest.write_text("\n".join(lines), encoding="utf-8")
+    return dest
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--only", default=",".join(PARTS), help="что мерить: " + ",".join(PARTS))
+    ap.add_argument("--batch-variants", type=int, default=30)
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--doc-only", action="store_true", help="только пересобрать docs/performance.md из JSON")
+    a = ap.parse_args(argv)
+    parts = [p.strip() for p in a.only.split(",") if p.strip()]
+    dest = ROOT / "bench" / "results" / "cli.json"
+    res = json.loads(dest.read_text(encoding="utf-8")) if dest.exists() else {}
+    if a.doc_only:
+        print(write_doc(res))
+        return
+    res["machine"] = machine()
+    res["load_average_before"] = [round(x, 2) for x in os.getloadavg()]
+    with tempfile.TemporaryDirectory() as d:
+        tmp = Path(d)
+        build = ["build", CASE, "--format", "pdf,html", "-o", str(tmp / "out")]
+        if "help" in parts:
+            run(["--help"])
+            res["help"] = median_of(5, ["--help"]) | {"command": "reportgen --help"}
+        if "export" in parts:
+            run(["export", CASE, "-o", str(tmp / "exp")])
+            res["export"] = median_of(a.runs, ["export", CASE, "-o", str(tmp / "exp")]) | {
+                "command": f"reportgen export {CASE}"}
+        if "build" in parts:
+            run(build)  # warm: numba cache, formulas, split points, matplotlib font list
+            res["build"] = median_of(a.runs, build) | {
+                "command": f"reportgen build {CASE} --format pdf,html"}
+        if "first" in parts:
+            cache = tmp / "empty-cache"
+            cache.mkdir()
+            res["first"] = {"wall_s": round(run(build, XDG_CACHE_HOME=str(cache)), 2),
+                            "command": f"XDG_CACHE_HOME=$(mktemp -d) reportgen build {CASE} --format pdf,html"}
+            shutil.rmtree(cache, ignore_errors=True)
+        if "batch" in parts:
+            res["batch"] = bench_batch(tmp, a.batch_variants)
+        if "pdf" in parts:
+            res["pdf"] = bench_pdf_vs_plain() | {"command": "python bench/bench_cli.py --only pdf"}
+    res["load_average_after"] = [round(x, 2) for x in os.getloadavg()]
+    res["date"] = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+    dest.parent.mkdir(parents=True, exist_ok=True)
+    dest.write_text(json.dumps(res, ensure_ascii=False, indent=2) + "\n", encoding="utf-8")
+    print(json.dumps({k: v for k, v in res.items() if k != "machine"}, ensure_ascii=False, indent=1))
+    print(f"результаты: {dest}; отчёт: {write_doc(res)}")
+
+
+if __name__ == "__main__":
+    main()
