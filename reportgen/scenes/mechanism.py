@@ -171,7 +171,8 @@ class AssurGroups:
         parts = []
         for g in groups:
             links = self._links(study, g)
-            pts = {p for ln in links for p in mech.link(ln).points}
+            # sorted: the same drawing whatever the hash seed
+            pts = sorted({p for ln in sorted(links) for p in mech.link(ln).points})
             xs = [float(row[f"x_{p}"]) for p in pts]
             ys = [float(row[f"y_{p}"]) for p in pts]
             parts.append((g, links, pts, min(xs), max(xs), min(ys), max(ys)))
