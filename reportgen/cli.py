@@ -144,6 +144,12 @@ def _check_linkage(study) -> None:
             import math
             print(f"Внимание: угол передачи в группе {name[3:]} падает до {math.degrees(fl['min']):.1f}° (< 40°)",
                   file=sys.stderr)
+    for name, fl in study.guide_flags.items():
+        if fl["singular"]:
+            a, b = fl["points"]
+            print(f"Внимание: группа {name} проходит особое положение: шарнир {b} проходит через ось "
+                  f"кулисы {a} (наименьшее расстояние {fl['min']:.3g} м), аналог угловой скорости кулисы "
+                  "неограниченно растёт", file=sys.stderr)
     print("Проверка пройдена: механизм собирается во всех положениях цикла.")
 
 

@@ -188,16 +188,17 @@ def check_position(study, row, t, static: bool) -> tuple[float, float]:
     reacts = pair_loads(study, t)
     size = mech.size()
     worst = 0.0
+    # residuals relative to the largest load or reaction of the whole mechanism: a link that
+    # carries only round-off (1e-16 N) must not be judged relative to its own round-off
+    scale = max((max(float(np.hypot(*f)), abs(m) / size) for _, _, f, m in loads + reacts), default=0.0)
     for l in mech.moving:
         F = np.zeros(2)
         M = 0.0
-        scale = 0.0
         for link, p, f, m in loads + reacts:
             if link != l.name:
                 continue
             F += f
             M += m + (_cross(_vec(row, "", p), f) if p is not None else 0.0)
-            scale = max(scale, float(np.hypot(*f)), abs(m) / size)
         if scale == 0.0:
             continue
         worst = max(worst, float(np.hypot(*F)) / scale, abs(M) / (scale * size))

@@ -277,7 +277,14 @@ class Gears:
         return df
 
     def tables(self) -> dict[str, pd.DataFrame]:
-        out = {"gears_geometry": self.wheel_rows()}
+        # exported per wheel: a quantity that does not apply (one wheel measured, a ring's chord
+        # and span) is absent, never a blank cell
+        rows = self.wheel_rows()
+        geo = rows.melt(id_vars=["key", "name", "symbol", "unit"], value_vars=["wheel1", "wheel2"],
+                        var_name="wheel", value_name="value").dropna(subset=["value"])
+        geo["wheel"] = geo["wheel"].str[-1].astype(int)
+        geo["value"] = geo["value"].astype(float)
+        out = {"gears_geometry": geo.reset_index(drop=True)}
         if self.sliding_table is not None:
             out["gears_sliding"] = self.sliding_table
         return out

@@ -97,7 +97,9 @@ class ColumnEvaluator:
             self._cache.move_to_end(key)
             return hit
         self.calls += 1
-        res = L.solve(self.model, q)
+        # on the branch of the cycle (a class III group is continued from the solved cycle, the
+        # same kinematics as Study.at and the report positions)
+        res = self.study._solve_on_branch(q)
         cols = L.columns(self.model, res, grid=False)
         cols.update(self.study._extra_angles(cols))
         self._cache[key] = cols

@@ -371,6 +371,34 @@ class Study:
         return out
 
     @cached_property
+    def guide_flags(self) -> dict:
+        """ВПВ groups (a slider on a rotating guide, кулиса): the distance between the guide's pivot
+        and the slider's pin over the cycle.  It is the group's transmission measure: the guide's
+        angular velocity analog is ω′ = (slider pin's velocity across the guide)/ρ, unbounded as
+        ρ → 0, where the pin passes through the guide's pivot (особое положение).  ``singular`` when
+        min ρ < 10⁻⁶ of the mechanism's size."""
+        out = {}
+        cyc = None
+        mech = self.mechanism
+        for g in self.structure.groups:
+            if g.kind != "RPR":
+                continue
+            rev = [mech.joints[j] for j in g.joints if mech.joints[j].kind == "R"]
+            pri = [mech.joints[j] for j in g.joints if mech.joints[j].kind == "P"]
+            if len(rev) != 2 or len(pri) != 1:
+                continue
+            guide = pri[0].links[0]
+            rev.sort(key=lambda j: guide not in j.links)   # the guide's pivot first, then the pin
+            if cyc is None:
+                cyc = self.cycle
+            a, b = rev[0].point, rev[1].point
+            rho = np.hypot(cyc["x_" + a] - cyc["x_" + b], cyc["y_" + a] - cyc["y_" + b]).to_numpy()
+            i = int(np.argmin(rho))
+            out["_".join(g.links)] = dict(min=float(rho[i]), q_min=float(cyc["q"].iloc[i]), points=(a, b),
+                                          singular=bool(rho[i] < 1e-6 * self.model.size))
+        return out
+
+    @cached_property
     def scalars(self) -> dict[str, float]:
         st = self.structure
         out: dict[str, Any] = {"W": st.W, "n": st.n, "p5": st.p5, "p4": st.p4, "mech_class": st.mech_class}
