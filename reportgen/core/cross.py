@@ -32,7 +32,8 @@ def solve(v_A: float, gamma: float, l_O1B: float, l_O1O2: float, alpha: float, M
     B = -l_O1B * uC
     uB = -uC
     v1 = v_A * (math.cos(gamma) * uB + math.sin(gamma) * _perp(uB))
-    w3 = float(np.cross(B - O1, v1)) / l_O1B ** 2
+    r = B - O1
+    w3 = float(r[0] * v1[1] - r[1] * v1[0]) / l_O1B ** 2   # (r × v)_z / r²
     vB3 = w3 * _perp(B - O1)
     vB3B2 = vB3 - v1
     w5 = w3
