@@ -23,7 +23,8 @@ CAM_CASES = ["cam_translating_roller", "cam_rocker_roller", "ws001_cam_2013_2"]
 
 
 @pytest.fixture(scope="module", params=["ws000_six_bar", "ws002_tractor_hitch", "ws004_slotted_lever",
-                                         "slider_crank"] + CAM_CASES)
+                                         "slider_crank", "gear_pair_shifted", "gear_pair_internal",
+                                         "train_2kh_three_planets"] + CAM_CASES)
 def built(request):
     study = load_case(CASES / f"{request.param}.toml")
     pdf, layouts = render_sheets(study)

@@ -227,4 +227,77 @@ def sheets_for(study) -> list[SheetSpec]:
             out.append(forces_sheet(study))
     if study.root.has("cam"):
         out.append(cam_sheet(study))
+    if study.root.has("gears") and study.gears.geo is not None:   # a pair (not one measured wheel)
+        out.append(gears_sheet(study))
+    if study.root.has("train"):
+        out.append(train_sheet(study))
     return out
+
+
+@dataclass
+class _Scaled:
+    """A gear or train scene's figure with its scale in m per printed mm (the scenes give mm/mm)."""
+
+    fig: Figure
+    mu: float | None
+
+
+def _per_mm(fig, mu_mm: float) -> _Scaled:
+    from .layout import is_nice
+    mu = mu_mm / 1000.0
+    return _Scaled(fig, mu if is_nice(mu) else None)
+
+
+def gears_sheet(study) -> SheetSpec:
+    """The gear sheet (domain.md §1.7): the mesh at a standard scale (the main view), the
+    generating rack mesh, the specific sliding diagrams, the blocking contour, the results."""
+    from ..scenes import gears as S
+    g = study.gears
+
+    def mesh(_):
+        md = S.internal_mesh_drawing(g) if g.internal else S.mesh_drawing(g)
+        return _per_mm(md.fig, md.mu)
+
+    def rack(_):
+        fig, _w, mu = S.rack_drawing(g)
+        return _per_mm(fig, mu)
+
+    views = [ViewSpec("mesh", "Картина зацепления", mesh, LENGTH, priority=2.0),
+             ViewSpec("rack", "Станочное зацепление колеса 1", rack, LENGTH),
+             ViewSpec("sliding", "Диаграммы удельного скольжения", lambda _: S.sliding_diagram(g)),
+             ViewSpec("contour", "Блокирующий контур", lambda _: S.blocking_contour(g))]
+    return SheetSpec("gears", "Синтез эвольвентного зубчатого зацепления", views, table=gears_results)
+
+
+def gears_results(study) -> list[tuple[str, float, str]]:
+    g = study.gears
+    s = g.scalars
+    rows = [("$m$", s.get("gears_m"), "мм"), ("$z_1$", float(g.z1), ""), ("$z_2$", float(g.z2), ""),
+            ("$x_1$", s.get("gears_x1"), ""), ("$x_2$", s.get("gears_x2"), ""),
+            (r"$\alpha_w$", s.get("gears_alpha_w_deg"), "°"), ("$a_w$", s.get("gears_a_w"), "мм"),
+            (r"$\varepsilon_\alpha$", s.get("gears_eps_alpha"), "")]
+    return [r for r in rows if isinstance(r[1], (int, float))]
+
+
+def train_sheet(study) -> SheetSpec:
+    """The planetary train sheet (domain.md §1.8): the scheme with the velocity picture and the
+    angular-velocity plan (the main view), the stage plans, the results."""
+    from ..scenes.train import stage_plans, train_picture
+    tr = study.train
+
+    def picture(_):
+        pic = train_picture(tr)
+        return _per_mm(pic.fig, pic.mu_l)
+
+    views = [ViewSpec("picture", "Схема механизма, картина скоростей и план угловых скоростей", picture,
+                      LENGTH, priority=2.0),
+             ViewSpec("stages", "Планы угловых скоростей по ступеням", lambda _: stage_plans(tr).fig)]
+    return SheetSpec("train", "Синтез планетарного механизма", views, table=train_results)
+
+
+def train_results(study) -> list[tuple[str, float, str]]:
+    s = study.train.scalars
+    rows = [("$u$ (формула Виллиса)", s.get("train_u"), ""), ("$u$ (план скоростей)", s.get("train_u_direct"), "")]
+    if "train_u_target" in s:
+        rows.append(("$u$ заданное", s["train_u_target"], ""))
+    return [r for r in rows if isinstance(r[1], (int, float))]
