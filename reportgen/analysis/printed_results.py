@@ -3,6 +3,7 @@
 the results by :func:`reportgen.case.printed.read_printed`)."""
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from functools import cached_property
 
 from ..case import units as U
@@ -11,7 +12,7 @@ from ..case.printed import read_printed
 __all__ = ["PrintedResults"]
 
 
-class PrintedResults:
+class PrintedResults(ABC):
     """Mixin: the class sets ``PREFIX`` and ``DIMS`` (key → dimension, default dimensionless),
     ``self.node`` (its case section) and defines ``results()`` → dict of plain numbers."""
 
@@ -22,8 +23,9 @@ class PrintedResults:
     def dim_of(cls, key: str) -> U.Dim:
         return cls.DIMS.get(key, U.DIMENSIONLESS)
 
+    @abstractmethod
     def results(self) -> dict:
-        raise NotImplementedError
+        """The named results of the task as plain numbers (SI)."""
 
     def scalars_raw(self) -> dict:
         return {f"{self.PREFIX}_{k}": float(v) for k, v in self.results().items()}

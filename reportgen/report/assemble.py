@@ -12,11 +12,10 @@ import re
 from typing import Iterable
 
 import pandas as pd
-from markupsafe import Markup
 
 from ..registry import KINDS
 from ..style.numbers import fmt
-from .document import Column, Paragraph, Report, Table, ref
+from .document import Column, Paragraph, Report, Table
 from .russian import param_symbol, param_title, plural
 from .sections import kinematics as sec_kin
 from .sections import structure as sec_struct
@@ -55,12 +54,12 @@ REFERENCES = [
 ]
 
 
-def _typeset(ref: str) -> str:
+def _typeset(entry: str) -> str:
     """Non-breaking spaces in a reference (ГОСТ 7.0.100 entry): between initials and before the
     surname («И.\u00a0И.\u00a0Артоболевский»), in «640\u00a0с.» and «ГОСТ\u00a02.770»."""
-    ref = re.sub(r"\b([А-ЯЁA-Z]\.) (?=[А-ЯЁA-Z])", "\\1\u00a0", ref)
-    ref = re.sub(r"(\d+) с\.", "\\1\u00a0с.", ref)
-    return re.sub(r"ГОСТ (\d)", "ГОСТ\u00a0\\1", ref)
+    entry = re.sub(r"\b([А-ЯЁA-Z]\.) (?=[А-ЯЁA-Z])", "\\1\u00a0", entry)
+    entry = re.sub(r"(\d+) с\.", "\\1\u00a0с.", entry)
+    return re.sub(r"ГОСТ (\d)", "ГОСТ\u00a0\\1", entry)
 
 
 REFERENCES = [_typeset(r) for r in REFERENCES]

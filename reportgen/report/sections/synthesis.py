@@ -12,6 +12,7 @@ import pandas as pd
 from markupsafe import Markup, escape
 
 from ...case import synthesis as SY
+from ...case.text import inline_html
 from ...scenes.synthesis import SynthesisConstruction
 from ...style.numbers import fmt, tex_num
 from ..document import Column, Section, ref
@@ -52,12 +53,6 @@ def _val(k: str, x: float) -> str:
 
 def _t(x, sig=5) -> str:
     return tex_num(x, sig=sig)
-
-
-def _title_html(text: str) -> Markup:
-    """A title from the case: escaped, only <sub>…</sub> kept."""
-    s = str(escape(text)).replace("&lt;sub&gt;", "<sub>").replace("&lt;/sub&gt;", "</sub>")
-    return Markup(s)
 
 
 def build(study) -> Section:
@@ -175,7 +170,7 @@ def printed_table(sec, printed: list[dict], tid: str, angular=lambda k: False) -
         ang = angular(p["key"])
         f = ((lambda z, n=5: fmt(math.degrees(z), sig=n) + "°") if ang else
              (lambda z, n=5: str(int(z)) if float(z).is_integer() and abs(z) < 1e6 else fmt(z, sig=n)))
-        title = _title_html(p["title"])
+        title = inline_html(p["title"])
         rows.append({"name": title, "printed": f(p["printed"], p["digits"]), "computed": f(p["computed"]),
                      "rel": fmt(100 * (p["printed"] - p["computed"]) / p["computed"], sig=2) + "&nbsp;%"})
         if p["note"]:
