@@ -123,7 +123,7 @@ class Cam:
     def _read(self, node, names) -> None:
         node.check_keys(["follower", "contact", "rotation", "speed", "stroke", "swing", "arm",
                          "far_dwell", "rise", "return", "r0", "e", "a_w", "psi0", "roller",
-                         "rho_min", "step", "scale", "title"], required=["rise", "return"])
+                         "rho_min", "step", "scale", "title", "face_offset"], required=["rise", "return"])
         self.follower = node.string("follower", "translating", choices=["translating", "rocker"])
         self.contact = node.string("contact", "roller", choices=["knife", "roller", "flat"])
         self.k = 1 if node.string("rotation", "ccw", choices=["ccw", "cw"]) == "ccw" else -1
@@ -141,15 +141,24 @@ class Cam:
                 raise node.error("stroke", "у коромысла задаётся угол размаха, а не ход",
                                  expected="swing = \"20 deg\" и arm = \"100 mm\"")
             self.h = node.quantity("swing", U.ANGLE, names, required=True, positive=True)
-            self.arm = node.quantity("arm", U.LENGTH, names, required=True, positive=True)
+            if self.contact == "flat":
+                if node.has("arm"):
+                    raise node.error("arm", "у коромысла с плоской тарелкой длина плеча не задаётся: рабочая "
+                                            "длина тарелки находится по крайним точкам касания",
+                                     expected="face_offset — смещение плоскости тарелки от оси качания")
+                self.arm = 0.0
+            else:
+                self.arm = node.quantity("arm", U.LENGTH, names, required=True, positive=True)
             if self.h >= math.pi / 2:
                 raise node.error("swing", "слишком большой угол размаха коромысла", expected="угол < 90°")
-            if self.contact == "flat":
-                raise node.error("contact", "плоский толкатель поддерживается только для поступательного",
-                                 expected="knife или roller для коромысла")
             if node.has("e"):
                 raise node.error("e", "эксцентриситет задаётся только для поступательного толкателя",
                                  expected="a_w и psi0 для коромысла")
+        self.flat_rocker = self.follower == "rocker" and self.contact == "flat"
+        if node.has("face_offset") and not self.flat_rocker:
+            raise node.error("face_offset", "смещение тарелки задаётся только для коромысла с плоской тарелкой",
+                             expected="follower = \"rocker\" и contact = \"flat\"")
+        self.face_offset = node.quantity("face_offset", U.LENGTH, names, default=0.0, nonnegative=True)
         if self.contact == "flat" and (node.has("e") or node.has("roller")):
             key = "e" if node.has("e") else "roller"
             raise node.error(key, "у плоского толкателя нет смещения и ролика",
@@ -170,7 +179,7 @@ class Cam:
         self.e_fixed = node.quantity("e", U.LENGTH, names)
         self.aw_fixed = node.quantity("a_w", U.LENGTH, names, positive=True)
         self.psi0_fixed = node.quantity("psi0", U.ANGLE, names, positive=True)
-        if (self.aw_fixed is None) != (self.psi0_fixed is None):
+        if (self.aw_fixed is None) != (self.psi0_fixed is None) and not self.flat_rocker:
             raise node.error("a_w" if self.aw_fixed is None else "psi0",
                              "межосевое расстояние и начальный угол коромысла задаются вместе",
                              expected="оба ключа a_w и psi0 или ни одного")
@@ -298,9 +307,14 @@ class Cam:
                 out.append({"phi": p % (2 * math.pi), "kind": "soft", "jump": d2})
         return out
 
-    def phase_extreme(self, ph: Phase, fun, dfun, sign: float = 1.0) -> tuple[float, float]:
+    def phase_extreme(self, ph: Phase, fun, dfun, sign: float = 1.0, vec: bool = False) -> tuple[float, float]:
         """max of sign·fun over the phase: end values (one-sided) and the roots of dfun in each
-        piece, bracketed on a grid and found by Brent's method (not by sampling)."""
+        piece, bracketed on a grid and found by Brent's method (not by sampling).  With ``vec``
+        fun and dfun take an array of angles (one kernel call for the whole bracketing grid)."""
+        if vec:
+            fv, dv = fun, dfun
+            fun = lambda p, sd: float(fv(np.array([p]), sd)[0])      # noqa: E731
+            dfun = lambda p, sd: float(dv(np.array([p]), sd)[0])     # noqa: E731
         best = (-math.inf, math.nan)
         b = self.breaks(ph)
         for a0, a1 in zip(b, b[1:]):
@@ -311,7 +325,7 @@ class Cam:
                 if v > best[0]:
                     best = (v, p)
             g = np.linspace(a0, a1, 65)
-            d = np.array([sign * dfun(x, 1) for x in g])
+            d = sign * np.asarray(dv(g, 1)) if vec else np.array([sign * dfun(x, 1) for x in g])
             for i in range(len(g) - 1):
                 if d[i] > 0 >= d[i + 1]:
                     r = brentq(lambda x: sign * dfun(x, 1), g[i], g[i + 1], xtol=1e-15, rtol=1e-15, maxiter=200)
@@ -383,6 +397,8 @@ class Cam:
 
     @cached_property
     def synthesis(self) -> Synthesis:
+        if self.flat_rocker:
+            return self._synth_flat_rocker()
         if self.contact == "flat":
             return self._synth_flat()
         if self.follower == "translating":
@@ -527,6 +543,148 @@ class Cam:
         return Synthesis(r0=r0, a_w=a_w, psi0=psi0, O=np.asarray(O, dtype=float), phi_rise=p1, phi_return=p2,
                          governing=gov)
 
+    # ------------------------------------------------------------------ flat-faced rocker
+    # Frame of the pivot A (origin), the arm line along x at the start, turned by ψ = s(φ) with
+    # r = (cos ψ, sin ψ) along the face and u = Jr; cam centre O = a_w(cos ψ₀, −sin ψ₀) (ψ₀ — the
+    # angle between AO and the face at the start).  The face is the line X·u = −d (d — its offset
+    # from the pivot towards the cam).  Derivation (the definitions of Артоболевский И. И., «Теория
+    # механизмов и машин», гл. 24, and Левитский Н. И., «Теория механизмов и машин», гл. 18: the
+    # profile is the envelope of the follower's positions in the inverted motion, the pressure angle
+    # is the angle between the common normal and the velocity of the follower's point of contact):
+    #
+    # * in the cam frame the face has the normal n = R(−kφ)u, turning at dθ/dφ = ψ′ − k = −kq,
+    #   q = 1 − kψ′, at the distance p = a_w sin(ψ₀ + ψ) − d from O (the support function);
+    # * the envelope point is K = p n + (dp/dθ) dn/dθ; its distance from the foot F of the
+    #   perpendicular from A along the face is μ = a_w cos(ψ₀ + ψ)/q.  Second formulation (Kennedy):
+    #   the common normal passes through the relative instant centre P₁₂ on AO with
+    #   AP₁₂ = a_w/q (ω₁·OP₁₂ = ω₂·AP₁₂), and K is the foot of the perpendicular from P₁₂;
+    # * radius of curvature ρ = p + d²p/dθ² = a_w G − d with
+    #   G = sin(ψ₀ + ψ)(1 − ψ′²/q²) + cos(ψ₀ + ψ) ψ″/q³ (convex: ρ > 0);
+    # * the point K of the rocker moves along J(K − A) = μu + d r, the force acts along u:
+    #   tg ϑ = d/μ (ϑ ≡ 0 when the face passes through the pivot).
+    def _fr(self, phi, side, psi0):
+        s, s1, s2, s3 = self.law(phi, side)
+        return s, s1, s2, s3, 1.0 - self.k * s1, np.cos(psi0 + s), np.sin(psi0 + s)
+
+    def fr_G(self, phi, side, psi0):
+        """ρ = a_w G − d of the flat-faced rocker's profile: G and dG/dφ (exact, with ψ‴)."""
+        s, s1, s2, s3, q, c, sn = self._fr(phi, side, psi0)
+        k = self.k
+        A, B = 1.0 - s1 ** 2 / q ** 2, s2 / q ** 3
+        dA = -2.0 * s1 * s2 / q ** 2 - 2.0 * k * s1 ** 2 * s2 / q ** 3
+        dB = s3 / q ** 3 + 3.0 * k * s2 ** 2 / q ** 4
+        return sn * A + c * B, c * s1 * A + sn * dA - sn * s1 * B + c * dB
+
+    def fr_m(self, phi, side, psi0):
+        """μ = a_w m, the contact point's distance along the face from F: m = cos(ψ₀ + ψ)/q, dm/dφ."""
+        s, s1, s2, s3, q, c, sn = self._fr(phi, side, psi0)
+        return c / q, (-sn * s1 * q + self.k * c * s2) / q ** 2
+
+    def _fr_ext(self, fn, psi0, sign: float = -1.0, phases=None) -> tuple[float, float]:
+        """The exact minimum (sign −1) or maximum of fn over the cycle (or over ``phases``) with
+        the dwells, where fn is constant, and the cam angle of it."""
+        best = (-math.inf, math.nan)      # the largest sign·fn
+        for ph in phases or self.phases:
+            if ph.length <= 0:
+                continue
+            if ph.law:
+                v, p = self.phase_extreme(ph, lambda x, sd: fn(x, sd, psi0)[0], lambda x, sd: fn(x, sd, psi0)[1],
+                                          sign=sign, vec=True)
+            else:
+                v, p = sign * float(fn(np.array([ph.start]), 1, psi0)[0][0]), ph.start
+            if v > best[0]:
+                best = (v, p)
+        return sign * best[0], best[1]
+
+    def fr_need(self, psi0: float) -> dict:
+        """Centre distances a_w required at ψ₀: by convexity ρ ≥ ρ_min, a ≥ (ρ_min + d)/G_min, and by
+        the allowed pressure angles (if the face is offset and [ϑ] given), a ≥ d/(tg[ϑ] m_min)."""
+        d = self.face_offset
+        G, pG = self._fr_ext(self.fr_G, psi0)
+        out = {"psi0": psi0, "G": G, "phi_G": pG, "a_conv": (self.rho_min + d) / G if G > 0 else math.inf,
+               "a_press": 0.0}
+        for nm, ph in (("rise", self.rise), ("return", self.ret)):
+            m, pm = self._fr_ext(self.fr_m, psi0, phases=[ph])
+            out["m_" + nm], out["phi_" + nm] = m, pm
+            if d > 0 and ph.allowed > 0:
+                out["a_press"] = max(out["a_press"], d / (math.tan(ph.allowed) * m) if m > 0 else math.inf)
+        out["a"] = max(out["a_conv"], out["a_press"])
+        return out
+
+    def _synth_flat_rocker(self) -> Synthesis:
+        d, node = self.face_offset, self.node
+        hi = math.pi / 2 - self.h
+        kmax = max(self.phase_extreme(ph, lambda p, sd: self.k * self._at(p, sd)[1],
+                                      lambda p, sd: self.k * self._at(p, sd)[2])[0] for ph in (self.rise, self.ret))
+        if kmax >= 1.0:
+            raise node.error("swing", "угловая скорость коромысла достигает скорости кулачка (|ψ′| ≥ 1): "
+                                      "тарелка не поворачивается относительно кулачка, огибающая вырождается",
+                             expected="больший угол фазы или меньший размах коромысла")
+        if self.psi0_fixed is not None and not self.psi0_fixed < hi:
+            raise node.error("psi0", "начальный угол коромысла слишком велик: точка касания уходит за ось качания",
+                             expected=f"ψ0 + ψmax < 90°, т. е. ψ0 < {math.degrees(hi):.4g}°")
+        grid = np.linspace(0.0, hi, 49)[1:-1]
+        if self.psi0_fixed is not None:
+            psi0 = self.psi0_fixed
+            need = self.fr_need(psi0)
+            if self.aw_fixed is not None:
+                a, gov = self.aw_fixed, "fixed"
+            else:
+                if not math.isfinite(need["a"]):
+                    raise node.error("psi0", "при заданном ψ0 профиль не может быть выпуклым ни при каком a_w",
+                                     expected="больший начальный угол ψ0")
+                a = need["a"]
+                gov = "convexity" if need["a_conv"] >= need["a_press"] else "pressure"
+        elif self.aw_fixed is not None:
+            a = self.aw_fixed
+
+            def F(x):
+                G = self._fr_ext(self.fr_G, x)[0]
+                return a * G - d - self.rho_min
+            v = [F(x) for x in grid]
+            i = next((j for j in range(len(v) - 1) if v[j] < 0 <= v[j + 1]), None)
+            if i is None:
+                raise node.error("a_w", "при заданном a_w профиль не может быть выпуклым ни при каком ψ0",
+                                 expected="большее межосевое расстояние")
+            psi0 = brentq(F, grid[i], grid[i + 1], xtol=1e-15, rtol=1e-15, maxiter=200)
+            need, gov = self.fr_need(psi0), "convexity"
+        else:
+            if not (d > 0 and self.rise.allowed > 0 and self.ret.allowed > 0):
+                raise node.error("psi0", "для коромысла с плоской тарелкой размеры по одному условию выпуклости "
+                                         "не определяются: r0 убывает до вырождения (касание у оси качания)",
+                                 expected="psi0 или a_w, либо face_offset > 0 вместе с допустимыми углами "
+                                          "давления allowed на удалении и возвращении")
+            psi0, need, gov = self._fr_optimum(grid)
+            a = need["a"]
+        r0 = a * math.sin(psi0) - d
+        if not r0 > 0:
+            raise node.error("a_w", "радиус основной шайбы получается неположительным",
+                             expected="a_w·sin ψ0 больше смещения тарелки")
+        self.fr = need
+        return Synthesis(r0=r0, a_w=a, psi0=psi0, O=self._rocker_O(a, psi0), governing=gov,
+                         phi_rise=need["phi_rise"], phi_return=need["phi_return"])
+
+    def _fr_optimum(self, grid) -> tuple[float, dict, str]:
+        """ψ₀ of the least r₀ = a(ψ₀) sin ψ₀ − d, a = max(a_conv, a_press): bracketed on a grid of ψ₀,
+        Brent's minimisation; at the crossing of the two conditions (the usual optimum: a_conv falls
+        and a_press grows with ψ₀) polished as the root of a_conv − a_press."""
+        d = self.face_offset
+
+        def r0(x):
+            return self.fr_need(x)["a"] * math.sin(x) - d
+        v = np.array([r0(x) for x in grid])
+        i = int(np.argmin(v))
+        lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]
+        res = minimize_scalar(r0, bounds=(lo, hi), method="bounded", options={"xatol": 1e-13})
+        x = float(res.x)
+        n = self.fr_need(x)
+        gov = "convexity" if n["a_conv"] >= n["a_press"] else "pressure"
+        diff = lambda y: (lambda m: m["a_conv"] - m["a_press"])(self.fr_need(y))   # noqa: E731
+        if abs(n["a_conv"] - n["a_press"]) <= 1e-6 * n["a"] and diff(lo) > 0 > diff(hi):
+            x = brentq(diff, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=200)
+            n, gov = self.fr_need(x), "both"
+        return x, n, gov
+
     # ------------------------------------------------------------------ geometry over the cycle
     def frames(self, phi) -> dict[str, np.ndarray]:
         """Follower point P, P′, P″ in the fixed frame with the cam centre at the origin, the
@@ -535,6 +693,7 @@ class Cam:
         s, s1, s2, s3 = self.law(phi)
         syn = self.synthesis
         n = phi.size
+        extra = {}
         if self.follower == "translating":
             u = np.tile([0.0, 1.0], (n, 1))
             r = np.tile([1.0, 0.0], (n, 1))
@@ -548,18 +707,37 @@ class Cam:
                 P2 = np.column_stack([np.zeros(n), s2])
             v1 = s1
         else:
-            L = self.arm
             r = np.column_stack([np.cos(s), np.sin(s)])
             u = np.column_stack([-np.sin(s), np.cos(s)])
-            P = L * r - syn.O
-            P1 = L * s1[:, None] * u
-            P2 = L * (s2[:, None] * u - (s1 ** 2)[:, None] * r)
-            v1 = L * s1
-        return dict(phi=phi, s=s, s1=s1, s2=s2, s3=s3, P=P, P1=P1, P2=P2, u=u, r=r, v1=v1)
+            if self.flat_rocker:
+                # contact point K = A + μr − d u (A at the origin), μ = a_w cos(ψ₀ + ψ)/q and its
+                # exact derivatives: μ′ = a_w N/q², μ″ = a_w (N′q + 2kNψ″)/q³
+                k, d, a = self.k, self.face_offset, syn.a_w
+                q, c, sn = 1.0 - k * s1, np.cos(syn.psi0 + s), np.sin(syn.psi0 + s)
+                N = -sn * s1 * q + k * c * s2
+                N1 = -c * s1 ** 2 * q - sn * s2 * q + k * c * s3
+                mu = a * c / q
+                mu1 = a * N / q ** 2
+                mu2 = a * (N1 * q + 2.0 * k * N * s2) / q ** 3
+                P = mu[:, None] * r - d * u - syn.O
+                P1 = (mu1 + d * s1)[:, None] * r + (mu * s1)[:, None] * u
+                P2 = (mu2 - mu * s1 ** 2 + d * s2)[:, None] * r + (2 * mu1 * s1 + mu * s2 + d * s1 ** 2)[:, None] * u
+                v1 = mu * s1
+                extra = {"mu": mu}
+            else:
+                L = self.arm
+                P = L * r - syn.O
+                P1 = L * s1[:, None] * u
+                P2 = L * (s2[:, None] * u - (s1 ** 2)[:, None] * r)
+                v1 = L * s1
+        return dict(phi=phi, s=s, s1=s1, s2=s2, s3=s3, P=P, P1=P1, P2=P2, u=u, r=r, v1=v1, **extra)
 
     def pressure_angle(self, phi) -> np.ndarray:
-        """ϑ(φ), rad: tg ϑ = (v′ − k w·r)/(w·u) (zero for a flat face)."""
+        """ϑ(φ), rad: tg ϑ = (v′ − k w·r)/(w·u); flat-faced rocker tg ϑ = d/μ; zero for a flat
+        translating follower."""
         f = self.frames(phi)
+        if self.flat_rocker:
+            return np.arctan2(np.full_like(f["mu"], self.face_offset), f["mu"])
         if self.contact == "flat":
             return np.zeros_like(f["phi"])
         wr = np.einsum("ij,ij->i", f["P"], f["r"])
@@ -584,7 +762,9 @@ class Cam:
         C, C1, C2 = rot(P), rot(P1 - k * J(P)), rot(P2 - 2 * k * J(P1) - P)
         sp = np.hypot(C1[:, 0], C1[:, 1])
         cross = C1[:, 0] * C2[:, 1] - C1[:, 1] * C2[:, 0]
-        if self.contact == "flat":
+        if self.flat_rocker:   # the support function: ρ = p + d²p/dθ² = a_w G − d
+            rho = self.synthesis.a_w * self.fr_G(phi, 1, self.synthesis.psi0)[0] - self.face_offset
+        elif self.contact == "flat":
             # C′ = kρ t with t = R(−kφ)(1, 0) along the face: the sign survives a cusp (ρ < 0)
             rho = k * (C1[:, 0] * c - C1[:, 1] * sn)
         else:
@@ -679,6 +859,10 @@ class Cam:
     @cached_property
     def theta_max(self) -> tuple[float, float]:
         """Largest pressure angle on the rise (signed, ϑ) and on the return (−ϑ), exact maxima."""
+        if self.flat_rocker:   # |ϑ| = arctg(d/μ) is largest where μ is least on the phase
+            a = self.synthesis.a_w
+            return (math.atan2(self.face_offset, a * self.fr["m_rise"]),
+                    math.atan2(self.face_offset, a * self.fr["m_return"]))
         if self.contact == "flat":
             return 0.0, 0.0
         O = self._O_synth
@@ -699,6 +883,15 @@ class Cam:
         return out[0], out[1]
 
     @cached_property
+    def face(self) -> tuple[float, float]:
+        """Flat-faced rocker: the least and the largest distance μ of the contact point along the
+        face from the foot F of the perpendicular from the pivot (exact extremes over the cycle)."""
+        syn = self.synthesis
+        lo = self._fr_ext(self.fr_m, syn.psi0, sign=-1.0)[0]
+        hi = self._fr_ext(self.fr_m, syn.psi0, sign=1.0)[0]
+        return syn.a_w * lo, syn.a_w * hi
+
+    @cached_property
     def _O_synth(self) -> np.ndarray:
         syn = self.synthesis
         if self.follower == "translating":
@@ -711,14 +904,22 @@ class Cam:
         out = {"cam_r0": syn.r0, "cam_stroke": self.h}
         if self.follower == "translating" and self.contact != "flat":
             out.update(cam_e=syn.e, cam_s0=syn.s0, cam_r0_approx=syn.r0_approx, cam_e_approx=syn.e_approx)
-        if self.follower == "rocker":
+        if self.flat_rocker:
+            fr, face = self.fr, self.face
+            out.update(cam_a_w=syn.a_w, cam_psi0=syn.psi0, cam_face_offset=self.face_offset,
+                       cam_a_w_min=fr["a"], cam_r0_min=fr["a"] * math.sin(syn.psi0) - self.face_offset,
+                       cam_face_min=face[0], cam_face_max=face[1], cam_face_width=face[1] - face[0],
+                       cam_rho_min=syn.a_w * fr["G"] - self.face_offset)
+        elif self.follower == "rocker":
             out.update(cam_a_w=syn.a_w, cam_psi0=syn.psi0, cam_arm=self.arm)
             if syn.governing != "fixed":
                 out.update(cam_r0_approx=syn.r0_approx, cam_a_w_approx=syn.a_w_approx)
         th1, th2 = self.theta_max
         out.update(cam_theta_rise_max=th1, cam_theta_return_max=th2)
         prof = self.profile(self.grid)
-        if self.contact == "flat":
+        if self.flat_rocker:
+            pass
+        elif self.contact == "flat":
             s, s1 = self.law(self.grid)[:2]
             out.update(cam_face_width=float(s1.max() - s1.min()), cam_rho_min=float(prof["rho"].min()),
                        cam_r0_min=self.flat_min[2])
