@@ -12,7 +12,7 @@ from ..style import mplstyle
 from .draw import GREY, INK, LIGHT, Canvas, nice_scale
 from .mechanism import Drawing
 
-__all__ = ["LawDiagrams", "PhasePortrait", "PressureAngleGraph", "ProfileDrawing", "gost_scale",
+__all__ = ["LawDiagrams", "PhasePortrait", "FlatRockerSize", "PressureAngleGraph", "ProfileDrawing", "gost_scale",
            "follower_positions"]
 
 _NEEDS = ("cam",)
@@ -204,13 +204,17 @@ class PhasePortrait:
 
 
 def _flat_hull(cam, g, W) -> np.ndarray:
-    """The cam of a flat-faced follower is the intersection of the half-planes n(φ)·X ≤ r₀ + s(φ)
-    bounded by the face in every position; the envelope points outside it (a swallowtail where s′
-    jumps backwards) are not on the real profile and are left out of the drawing."""
-    s = cam.law(g)[0]
+    """The cam of a flat-faced follower is the intersection of the half-planes n(φ)·X ≤ p(φ)
+    bounded by the face in every position (n = R(−kφ)u the face's normal in the cam frame, p = P·u
+    its distance from O: r₀ + s for a translating face, a_w sin(ψ₀ + ψ) − d for a rocker); the
+    envelope points outside it (a swallowtail where the contact jumps backwards) are not on the
+    real profile and are left out of the drawing."""
+    f = cam.frames(g)
     k = cam.k
-    n = np.column_stack([np.sin(k * g), np.cos(k * g)])          # R(−kφ)(0, 1)
-    lim = cam.synthesis.r0 + s
+    c, sn = np.cos(k * g), np.sin(k * g)
+    u = f["u"]
+    n = np.column_stack([c * u[:, 0] + sn * u[:, 1], -sn * u[:, 0] + c * u[:, 1]])   # R(−kφ)u
+    lim = np.einsum("ij,ij->i", f["P"], u)
     viol = (W @ n.T - lim[None, :]).max(axis=1)
     return W[viol <= 1e-9 * cam.synthesis.r0]
 
@@ -229,6 +233,42 @@ def _clip(poly: np.ndarray, n: np.ndarray, c: float) -> np.ndarray:
     return np.array(out)
 
 
+class FlatRockerSize:
+    """Flat-faced rocker: the centre distance a_w required at each initial angle ψ₀ by the convexity
+    of the profile (ρ ≥ ρ_min) and by the allowed pressure angles (tg ϑ = d/μ ≤ tg[ϑ]), the region
+    of allowed (ψ₀, a_w) above both (hatched) and the accepted point."""
+
+    needs = _NEEDS
+
+    def draw(self, study) -> Drawing:
+        cam = study.cam
+        syn = cam.synthesis
+        x = np.linspace(0.0, math.pi / 2 - cam.h, 91)[1:-1]
+        need = [cam.fr_need(v) for v in x]
+        top = 2.5 * max(syn.a_w, cam.fr["a"]) * 1000
+        ac = np.array([n["a_conv"] for n in need]) * 1000
+        ap = np.array([n["a_press"] for n in need]) * 1000
+        fig = mplstyle.figure(160, 90)
+        ax = fig.add_subplot()
+        X = np.degrees(x)
+        ax.fill_between(X, np.minimum(np.maximum(ac, ap), top), top, facecolor=LIGHT, edgecolor=GREY,
+                        hatch="///", lw=0.0)
+        ax.plot(X, np.where(ac < 2 * top, ac, np.inf), color=INK, lw=1.3, label="выпуклость: ρ ≥ ρ$_{min}$")
+        if ap.max() > 0:
+            ax.plot(X, np.where(ap < 2 * top, ap, np.inf), color=INK, lw=1.3, ls="--",
+                    label="угол давления: ϑ ≤ [ϑ]")
+        ax.plot(math.degrees(syn.psi0), syn.a_w * 1000, "o", color=INK, ms=5, zorder=5)
+        ax.annotate("$a_w$, $\\psi_0$", (math.degrees(syn.psi0), syn.a_w * 1000), xytext=(6, 6),
+                    textcoords="offset points", fontsize=10)
+        ax.set_xlim(0, math.degrees(math.pi / 2 - cam.h))
+        ax.set_ylim(0, top)
+        ax.set_xlabel("ψ$_0$, град")
+        ax.set_ylabel("a$_w$, мм")
+        mplstyle.localize_axes(ax)
+        ax.legend(loc="upper center", fontsize=9)
+        return Drawing(mplstyle.to_svg(fig), 160, 0.0)
+
+
 class PressureAngleGraph:
     """ϑ(φ) over the cycle with the allowed angles on the rise and on the return."""
 
@@ -242,10 +282,14 @@ class PressureAngleGraph:
         ax = fig.add_subplot()
         ax.plot(np.degrees(g), th, color=INK, lw=1.3, label="ϑ")
         r, v = cam.rise, cam.ret
-        ax.plot([0, math.degrees(r.length)], [math.degrees(r.allowed)] * 2, color=INK, lw=1.0, ls="--",
-                label="допустимый угол")
-        ax.plot([math.degrees(v.start), math.degrees(v.start + v.length)], [-math.degrees(v.allowed)] * 2,
-                color=INK, lw=1.0, ls="--")
+        # a flat-faced rocker has ϑ = arctg(d/μ) > 0 on both phases: both limits above the axis
+        sg = 1.0 if cam.flat_rocker else -1.0
+        lab = "допустимый угол"
+        for ph, y in ((r, math.degrees(r.allowed)), (v, sg * math.degrees(v.allowed))):
+            if ph.allowed > 0:
+                ax.plot([math.degrees(ph.start), math.degrees(ph.start + ph.length)], [y] * 2, color=INK,
+                        lw=1.0, ls="--", label=lab)
+                lab = None
         ax.axhline(0, color=GREY, lw=0.6)
         ax.set_xlim(0, 360)
         ax.set_xticks(np.arange(0, 361, 30))
@@ -333,6 +377,19 @@ class ProfileDrawing:
                 L = 0.4 * syn.r0 + rr
                 lines.append(rot(np.array([P + rr * u, P + (rr + L) * u])))
                 label = rot(P + (rr + L) * u)[0]
+        elif cam.flat_rocker:
+            # the face from a little before the nearest to a little past the farthest contact point,
+            # the arm A–F (F the foot of the perpendicular from the pivot A on the face)
+            A = -syn.O
+            F = A - cam.face_offset * u
+            lo, hi = cam.face
+            m = 0.15 * (hi - lo)
+            end = F + (hi + m) * r
+            lines.append(rot(np.array([F + (lo - m) * r, end])))
+            if full:
+                lines.append(rot(np.array([A, F, F + (lo - m) * r])))
+                circles.append((rot(A)[0], 0.02 * syn.a_w))
+            label = rot(end)[0]
         else:
             A = -syn.O
             if full:   # the whole arm with its pivot A in the first position, a piece of it in the others

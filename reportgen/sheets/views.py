@@ -165,13 +165,19 @@ def forces_results(study) -> list[tuple[str, float, str]]:
 def cam_sheet(study) -> SheetSpec:
     """The cam sheet (domain.md §1.6): the laws, the phase portrait, the pressure angle, the
     profile at a standard scale with the follower positions and the results in textbook notation."""
-    from ..scenes.cam import LawDiagrams, PhasePortrait, PressureAngleGraph, ProfileDrawing
+    from ..scenes.cam import FlatRockerSize, LawDiagrams, PhasePortrait, PressureAngleGraph, ProfileDrawing
 
-    asked = study.cam.scale
+    cam = study.cam
+    asked = cam.scale
     views = [ViewSpec("profile", "Профиль кулачка", ProfileDrawing().draw, LENGTH, priority=2.0,
                       mu_only=gost_mu(asked) if asked else None),
              ViewSpec("laws", "Диаграммы аналогов ускорения, скорости и перемещения", LawDiagrams().draw)]
-    if study.cam.contact != "flat":     # a flat face has ϑ ≡ 0: r₀ comes from convexity, not from a portrait
+    if cam.flat_rocker:     # a_w, ψ₀ from convexity (and ϑ = arctg(d/μ) when the face is offset)
+        views.append(ViewSpec("size", "Межосевое расстояние по условиям выпуклости и угла давления",
+                              FlatRockerSize().draw))
+        if cam.face_offset > 0:
+            views.append(ViewSpec("pressure", "Угол давления за цикл", PressureAngleGraph().draw))
+    elif cam.contact != "flat":     # a flat translating face has ϑ ≡ 0: r₀ comes from convexity
         views += [ViewSpec("portrait", "Фазовый портрет и область допустимых положений центра",
                            PhasePortrait().draw, LENGTH),
                   ViewSpec("pressure", "Угол давления за цикл", PressureAngleGraph().draw)]
@@ -196,17 +202,26 @@ def cam_results(study) -> list[tuple[str, float, str]]:
         rows.append(("$h$", cam.h * mm, "мм"))
     rows.append(("$r_0$", s["cam_r0"] * mm, "мм"))
     if "cam_r0_min" in s:
-        rows.append((r"$r_{0\,min}$ (выпуклость)", s["cam_r0_min"] * mm, "мм"))
+        rows.append((r"$r_{0\,min}$" if cam.flat_rocker else r"$r_{0\,min}$ (выпуклость)", s["cam_r0_min"] * mm, "мм"))
     if "cam_e" in s:
         rows.append(("$e$", s["cam_e"] * mm, "мм"))
     if "cam_a_w" in s:
-        rows += [("$a_w$", s["cam_a_w"] * mm, "мм"), (r"$\psi_0$", s["cam_psi0"] * deg, "°"),
-                 ("$l$", s["cam_arm"] * mm, "мм")]
+        rows += [("$a_w$", s["cam_a_w"] * mm, "мм"), (r"$\psi_0$", s["cam_psi0"] * deg, "°")]
+    if "cam_arm" in s:
+        rows.append(("$l$", s["cam_arm"] * mm, "мм"))
+    if "cam_face_offset" in s:
+        rows += [("$d$", s["cam_face_offset"] * mm, "мм"), (r"$\mu_{min}$", s["cam_face_min"] * mm, "мм"),
+                 (r"$\mu_{max}$", s["cam_face_max"] * mm, "мм")]
     if "cam_roller" in s:
         rows.append((r"$r_{\mathrm{р}}$", s["cam_roller"] * mm, "мм"))
     if "cam_face_width" in s:
-        rows.append(("ширина тарелки", s["cam_face_width"] * mm, "мм"))
-    if cam.contact != "flat":
+        rows.append(("длина тарелки" if cam.flat_rocker else "ширина тарелки", s["cam_face_width"] * mm, "мм"))
+    if cam.flat_rocker and cam.face_offset > 0:
+        rows += [(r"$\vartheta_{max}$ (удаление)", s["cam_theta_rise_max"] * deg, "°"),
+                 (r"$\vartheta_{max}$ (возвращение)", s["cam_theta_return_max"] * deg, "°")]
+        rows += [(f"$[\\vartheta_{{\\mathrm{{{c}}}}}]$", ph.allowed * deg, "°")
+                 for c, ph in (("у", cam.rise), ("в", cam.ret)) if ph.allowed > 0]
+    elif cam.contact != "flat":
         rows += [(r"$\vartheta_{max}$ (удаление)", s["cam_theta_rise_max"] * deg, "°"),
                  (r"$[\vartheta_{\mathrm{у}}]$", cam.rise.allowed * deg, "°"),
                  (r"$\vartheta_{max}$ (возвращение)", s["cam_theta_return_max"] * deg, "°"),

@@ -10,7 +10,8 @@ from markupsafe import Markup
 
 from ...analysis.cam import LAWS
 from ...core import cams as K
-from ...scenes.cam import LawDiagrams, PhasePortrait, PressureAngleGraph, ProfileDrawing, follower_positions
+from ...scenes.cam import (FlatRockerSize, LawDiagrams, PhasePortrait, PressureAngleGraph, ProfileDrawing,
+                           follower_positions)
 from ...style.numbers import fmt, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
@@ -60,7 +61,7 @@ def build(study) -> Section:
     _assignment(sec, cam)
     _laws(sec, study, cam)
     _size(sec, study, cam)
-    if cam.contact != "flat":
+    if cam.contact != "flat" or (cam.flat_rocker and cam.face_offset > 0):
         _pressure(sec, study, cam)
     _profile(sec, study, cam)
     return sec
@@ -89,7 +90,10 @@ def _assignment(sec, cam) -> None:
         rows.append(("Ход толкателя", "h", _mm(cam.h)))
     else:
         rows.append(("Угол размаха коромысла", "ψ<sub>max</sub>", _deg(cam.h)))
-        rows.append(("Длина коромысла", "l", _mm(cam.arm)))
+        if cam.flat_rocker:
+            rows.append(("Смещение плоскости тарелки от оси качания", "d", _mm(cam.face_offset)))
+        else:
+            rows.append(("Длина коромысла", "l", _mm(cam.arm)))
     if cam.omega is not None:
         rows.append(("Угловая скорость кулачка", "ω", fmt(cam.omega, sig=4, unit="рад/с")
                      + f" ({fmt(cam.omega * 30 / math.pi, sig=4)} об/мин)"))
@@ -99,10 +103,11 @@ def _assignment(sec, cam) -> None:
         rows.append((*names[ph.kind], _deg(ph.length)))
     rows.append(("Закон движения на удалении", "—", _law_name(cam.rise)))
     rows.append(("Закон движения на возвращении", "—", _law_name(cam.ret)))
-    if cam.contact != "flat":
-        rows.append(("Допустимый угол давления на удалении", "[ϑ<sub>у</sub>]", _deg(cam.rise.allowed)))
-        rows.append(("Допустимый угол давления на возвращении", "[ϑ<sub>в</sub>]", _deg(cam.ret.allowed)))
-    else:
+    if cam.contact != "flat" or (cam.flat_rocker and cam.face_offset > 0):
+        for ph, nm, sym in ((cam.rise, "удалении", "у"), (cam.ret, "возвращении", "в")):
+            if ph.allowed > 0:
+                rows.append((f"Допустимый угол давления на {nm}", f"[ϑ<sub>{sym}</sub>]", _deg(ph.allowed)))
+    if cam.contact == "flat":
         rows.append(("Наименьший радиус кривизны профиля", "ρ<sub>min</sub>", _mm(cam.rho_min)))
     if cam.r0_fixed is not None:
         rows.append(("Заданный радиус основной шайбы", "r<sub>0</sub>", _mm(cam.r0_fixed)))
@@ -110,6 +115,7 @@ def _assignment(sec, cam) -> None:
         rows.append(("Заданный эксцентриситет", "e", _mm(cam.e_fixed)))
     if cam.aw_fixed is not None:
         rows.append(("Заданное межосевое расстояние", "a<sub>w</sub>", _mm(cam.aw_fixed)))
+    if cam.psi0_fixed is not None:
         rows.append(("Заданный начальный угол коромысла", "ψ<sub>0</sub>", _deg(cam.psi0_fixed)))
     if cam.roller_fixed is not None:
         rows.append(("Радиус ролика", "r<sub>р</sub>", _mm(cam.roller_fixed)))
@@ -191,6 +197,9 @@ def _laws(sec, study, cam) -> None:
 def _size(sec, study, cam) -> None:
     s = sec.subsection("Определение основных размеров механизма", "sec-cam-size")
     syn = cam.synthesis
+    if cam.flat_rocker:
+        _size_flat_rocker(s, study, cam)
+        return
     if cam.contact == "flat":
         m, p, need = cam.flat_min
         s.paragraph("Для толкателя с плоской тарелкой угол давления постоянен (ϑ&nbsp;=&nbsp;0), а размер кулачка "
@@ -277,9 +286,117 @@ def _size(sec, study, cam) -> None:
              f"(μ&nbsp;=&nbsp;{fmt(fig.mu * 1000, sig=3)}&nbsp;мм/мм)", fig.svg, fig.width_mm, id="fig-cam-portrait")
 
 
+def _q_tex(cam) -> str:
+    """q = 1 − kψ′ with the sign of this cam's rotation."""
+    return r"1 - \psi^{\prime}" if cam.k > 0 else r"1 + \psi^{\prime}"
+
+
+def _size_flat_rocker(s, study, cam) -> None:
+    """The flat-faced rocker: envelope, contact point, curvature, pressure angle, a_w and ψ₀."""
+    syn, fr, d = cam.synthesis, cam.fr, cam.face_offset
+    q = _q_tex(cam)
+    rot = "против" if cam.k > 0 else "по ходу"
+    s.paragraph("Тарелка коромысла — прямая, отстоящая от оси качания A на d; при ψ&nbsp;=&nbsp;0 она образует угол "
+                "ψ<sub>0</sub> с линией центров AO (a<sub>w</sub>&nbsp;=&nbsp;AO). В обращённом движении кулачок "
+                "неподвижен, а тарелка занимает последовательные положения; профиль кулачка — их огибающая. "
+                "Расстояние от центра кулачка до тарелки")
+    s.formula(Formula(r"p = a_w \sin(\psi_0 + \psi) - d", label="eq-cam-flat-p"))
+    s.paragraph(f"Кулачок вращается {rot} хода часовой стрелки, тарелка поворачивается относительно него с угловой "
+                f"скоростью ω({_im(q)}). По теореме о трёх мгновенных центрах общая нормаль в точке касания K "
+                "проходит через мгновенный центр относительного вращения P<sub>12</sub> на линии центров, "
+                f"AP<sub>12</sub>&nbsp;=&nbsp;a<sub>w</sub>/({_im(q)}); K — основание перпендикуляра, опущенного из "
+                "P<sub>12</sub> на тарелку. Расстояние точки касания вдоль тарелки от основания F перпендикуляра, "
+                "опущенного на тарелку из оси A:")
+    s.formula(Formula(rf"\mu = \frac{{a_w \cos(\psi_0 + \psi)}}{{{q}}}", label="eq-cam-flat-mu"))
+    s.paragraph("Радиус кривизны огибающей равен p&nbsp;+&nbsp;d²p/dθ² (θ — угол нормали тарелки в системе кулачка, "
+                f"dθ/dφ&nbsp;=&nbsp;−({_im(q)})):")
+    s.formula(Formula(rf"\rho = a_w G - d,\qquad G = \sin(\psi_0 + \psi)\left[1 - \frac{{\psi^{{\prime 2}}}}"
+                      rf"{{({q})^2}}\right] + \frac{{\cos(\psi_0 + \psi)\,\psi^{{\prime\prime}}}}{{({q})^3}}",
+                      label="eq-cam-flat-rho"))
+    s.paragraph("Профиль выпуклый, если ρ&nbsp;≥&nbsp;ρ<sub>min</sub> на всём цикле; так как ρ линейно зависит от "
+                "a<sub>w</sub>, при данном ψ<sub>0</sub>")
+    s.formula(Formula(r"a_w \ge \frac{\rho_{min} + d}{G_{min}}", label="eq-cam-flat-conv"))
+    s.paragraph("Сила действует по нормали к тарелке, а точка K коромысла движется перпендикулярно AK, поэтому угол "
+                "давления")
+    s.formula(Formula(r"\operatorname{tg}\vartheta = \frac{d}{\mu}", label="eq-cam-flat-theta"))
+    if d > 0:
+        s.paragraph("Угол давления растёт по мере приближения точки касания к оси качания; условие "
+                    "ϑ&nbsp;≤&nbsp;[ϑ] даёт второе ограничение")
+        s.formula(Formula(r"a_w \ge \frac{d}{\operatorname{tg}[\vartheta]\,"
+                          r"\left[\cos(\psi_0 + \psi)/(" + q + r")\right]_{min}}", label="eq-cam-flat-press"))
+    else:
+        s.paragraph("Тарелка проходит через ось качания (d&nbsp;=&nbsp;0), поэтому угол давления равен нулю во всех "
+                    "положениях, а размеры ограничиваются только выпуклостью профиля.")
+    G, pG = fr["G"], fr["phi_G"]
+    psi0 = syn.psi0
+    s.paragraph(f"Наименьшее значение G при ψ<sub>0</sub>&nbsp;=&nbsp;{_deg(psi0, 3)} найдено из условия "
+                f"dG/dφ&nbsp;=&nbsp;0 (с аналогом ψ‴): G<sub>min</sub>&nbsp;=&nbsp;{fmt(G, sig=5)} при "
+                f"φ&nbsp;=&nbsp;{_deg(pG, 3)}.")
+    fs = [Formula(r"a_{w,\rho}", rf"\frac{{{_t(cam.rho_min * 1000)} + {_t(d * 1000)}}}{{{_t(G, sig=5)}}}",
+                  _t(fr["a_conv"] * 1000, unit="мм"))]
+    if fr["a_press"] > 0:
+        for nm, ph in (("rise", cam.rise), ("return", cam.ret)):
+            if ph.allowed > 0:
+                sym = "у" if nm == "rise" else "в"
+                fs.append(Formula(rf"a_{{w,\vartheta {sym}}}",
+                                  rf"\frac{{{_t(d * 1000)}}}{{\operatorname{{tg}}\,{_t(math.degrees(ph.allowed), sig=4)}^\circ"
+                                  rf"\cdot {_t(fr['m_' + nm], sig=5)}}}",
+                                  _t(d / (math.tan(ph.allowed) * fr["m_" + nm]) * 1000, unit="мм")))
+    s.formula(*fs)
+    if cam.psi0_fixed is None and cam.aw_fixed is None:
+        how = ("в точке пересечения двух границ; ψ<sub>0</sub> найден как корень уравнения "
+               "a<sub>w,ρ</sub>(ψ<sub>0</sub>)&nbsp;=&nbsp;a<sub>w,ϑ</sub>(ψ<sub>0</sub>)" if syn.governing == "both" else
+               "на границе допустимой области; ψ<sub>0</sub> найден минимизацией r<sub>0</sub>(ψ<sub>0</sub>) "
+               "методом Брента")
+        s.paragraph("С ростом ψ<sub>0</sub> условие выпуклости допускает меньшее a<sub>w</sub>, а условие угла давления "
+                    "требует большего (точка касания приближается к оси качания). Радиус основной шайбы "
+                    "r<sub>0</sub>&nbsp;=&nbsp;a<sub>w</sub>&nbsp;sin&nbsp;ψ<sub>0</sub>&nbsp;−&nbsp;d наименьший "
+                    f"{how} (рисунок {ref('fig-cam-flat-size')}).")
+    elif cam.aw_fixed is not None and cam.psi0_fixed is None:
+        s.paragraph(f"При заданном a<sub>w</sub> наименьший r<sub>0</sub> даёт наименьший ψ<sub>0</sub>, при котором "
+                    f"профиль выпуклый: корень уравнения a<sub>w</sub>G<sub>min</sub>(ψ<sub>0</sub>)&nbsp;−&nbsp;d&nbsp;=&nbsp;"
+                    f"ρ<sub>min</sub> (рисунок {ref('fig-cam-flat-size')}).")
+    elif syn.governing == "fixed":
+        ok = syn.a_w >= fr["a"] * (1 - 1e-12)
+        s.paragraph(f"Заданное a<sub>w</sub>&nbsp;=&nbsp;{_mm(syn.a_w)} "
+                    + ("не меньше требуемого: условия выполнены." if ok else "<b>меньше требуемого</b>: "
+                       + ("профиль невыпуклый или угол давления превышает допустимый." if d > 0
+                          else "профиль невыпуклый.")))
+    else:
+        s.paragraph(f"При заданном ψ<sub>0</sub> принято наибольшее из требуемых значений (рисунок "
+                    f"{ref('fig-cam-flat-size')}).")
+    s.formula(Formula("a_w", None, _t(syn.a_w * 1000, unit="мм")),
+              Formula(r"\psi_0", None, _t(math.degrees(psi0), sig=5, unit="°")),
+              Formula(r"r_0 = a_w \sin\psi_0 - d",
+                      rf"{_t(syn.a_w * 1000)} \sin {_t(math.degrees(psi0), sig=5)}^\circ - {_t(d * 1000)}",
+                      _t(syn.r0 * 1000, unit="мм")))
+    lo, hi = cam.face
+    s.paragraph(f"Точка касания перемещается по тарелке от μ<sub>min</sub>&nbsp;=&nbsp;{_mm(lo)} до "
+                f"μ<sub>max</sub>&nbsp;=&nbsp;{_mm(hi)} (точные экстремумы μ за цикл); рабочая длина тарелки не меньше "
+                f"μ<sub>max</sub>&nbsp;−&nbsp;μ<sub>min</sub>&nbsp;=&nbsp;{_mm(hi - lo)}.")
+    fig = FlatRockerSize().draw(study)
+    s.figure("Межосевое расстояние, требуемое условием выпуклости профиля"
+             + (" и допустимым углом давления," if fr["a_press"] > 0 else ",")
+             + " в зависимости от начального угла коромысла", fig.svg, fig.width_mm, id="fig-cam-flat-size")
+
+
 def _pressure(sec, study, cam) -> None:
     s = sec.subsection("Проверка угла давления", "sec-cam-theta")
     t1, t2 = cam.theta_max
+    if cam.flat_rocker:
+        lim = [(t, ph) for t, ph in ((t1, cam.rise), (t2, cam.ret))]
+        ok = all(t <= ph.allowed + 1e-9 for t, ph in lim if ph.allowed > 0)
+        s.paragraph(f"Угол давления ϑ&nbsp;=&nbsp;arctg(d/μ) на всём цикле построен на рисунке {ref('fig-cam-theta')}. "
+                    "Он наибольший там, где точка касания ближе всего к оси качания: на удалении "
+                    f"ϑ<sub>max</sub>&nbsp;=&nbsp;{_deg(t1, 3)}, на возвращении ϑ<sub>max</sub>&nbsp;=&nbsp;{_deg(t2, 3)}"
+                    + ("".join(f", [ϑ<sub>{sym}</sub>]&nbsp;=&nbsp;{_deg(ph.allowed)}" for sym, ph in
+                               (("у", cam.rise), ("в", cam.ret)) if ph.allowed > 0))
+                    + ". " + ("" if not any(ph.allowed > 0 for ph in (cam.rise, cam.ret)) else
+                              "Угол давления нигде не превышает допустимого." if ok else
+                              "<b>Угол давления превышает допустимый</b>: размеры механизма нужно увеличить."))
+        fig = PressureAngleGraph().draw(study)
+        s.figure("Угол давления за цикл", fig.svg, fig.width_mm, id="fig-cam-theta")
+        return
     s.paragraph(f"Угол давления на всём цикле построен на рисунке {ref('fig-cam-theta')}. Наибольшие значения: "
                 f"на удалении ϑ<sub>max</sub>&nbsp;=&nbsp;{_deg(t1, 3)} при [ϑ<sub>у</sub>]&nbsp;=&nbsp;{_deg(cam.rise.allowed)}, "
                 f"на возвращении |ϑ|<sub>max</sub>&nbsp;=&nbsp;{_deg(t2, 3)} при [ϑ<sub>в</sub>]&nbsp;=&nbsp;{_deg(cam.ret.allowed)}. "
@@ -300,6 +417,13 @@ def _profile(sec, study, cam) -> None:
                           label="eq-cam-profile"))
         if cam.k < 0:
             s.paragraph("(при вращении по часовой стрелке знаки при sin φ меняются на противоположные).")
+    elif cam.flat_rocker:
+        s.formula(Formula(r"\overline{OK} = \overline{OA} + \mu\,\overline{r} - d\,\overline{u},\qquad "
+                          r"\overline{r}_K = R(-\varphi)\,\overline{OK}", label="eq-cam-profile",
+                          where=[(r"\overline{r}, \overline{u}", "единичные векторы вдоль тарелки и по нормали к ней"),
+                                 (r"R(-\varphi)", "поворот на угол −φ (обращённое движение)")]))
+        s.paragraph("Профиль — точная огибающая положений тарелки (не ломаная): точки касания найдены в замкнутом виде "
+                    f"по формуле {ref('eq-cam-flat-mu')}, радиус кривизны — по формуле {ref('eq-cam-flat-rho')}.")
     elif cam.contact == "flat":
         s.formula(Formula(r"x = s^{\prime}\cos\varphi + (r_0 + s)\sin\varphi,\quad y = -s^{\prime}\sin\varphi + (r_0 + s)\cos\varphi",
                           label="eq-cam-profile"))
@@ -341,7 +465,7 @@ def _profile(sec, study, cam) -> None:
     if cam.contact != "knife":
         cols += [Column("x", "x", "мм", digits=2), Column("y", "y", "мм", digits=2)]
     cols += [Column("r", "r", "мм", digits=2), Column("rho", "ρ", "мм", digits=2)]
-    if cam.contact != "flat":
+    if cam.contact != "flat" or cam.flat_rocker:
         cols.append(Column("theta", "ϑ", "град", digits=2))
     s.table("Координаты профиля кулачка", cols, df, id="tab-cam-coords",
             note="x<sub>C</sub>, y<sub>C</sub> — центровой профиль; x, y, r — рабочий профиль; ρ — радиус кривизны "
@@ -353,7 +477,14 @@ def conclusion_lines(study) -> list[str]:
     cam = study.cam
     syn = cam.synthesis
     out = []
-    if cam.contact == "flat":
+    if cam.flat_rocker:
+        out.append(f"Кулачковый механизм с коромыслом с плоской тарелкой: a<sub>w</sub>&nbsp;=&nbsp;{_mm(syn.a_w)}, "
+                   f"ψ<sub>0</sub>&nbsp;=&nbsp;{_deg(syn.psi0)}, r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}; рабочая длина "
+                   f"тарелки не менее {_mm(cam.face[1] - cam.face[0])}"
+                   + (f"; наибольший угол давления {_deg(cam.theta_max[0], 2)} на удалении и "
+                      f"{_deg(cam.theta_max[1], 2)} на возвращении." if cam.face_offset > 0 else
+                      "; угол давления равен нулю (тарелка проходит через ось качания)."))
+    elif cam.contact == "flat":
         out.append(f"Кулачковый механизм с плоским толкателем: радиус основной шайбы r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)} "
                    f"(по выпуклости профиля требуется не менее {_mm(cam.flat_min[2])}), ширина тарелки не менее "
                    f"{_mm(cam.scalars['cam_face_width'])}.")
