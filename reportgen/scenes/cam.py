@@ -258,8 +258,8 @@ class FlatRockerSize:
             ax.plot(X, np.where(ap < 2 * top, ap, np.inf), color=INK, lw=1.3, ls="--",
                     label="угол давления: ϑ ≤ [ϑ]")
         ax.plot(math.degrees(syn.psi0), syn.a_w * 1000, "o", color=INK, ms=5, zorder=5)
-        ax.annotate("$a_w$, $\\psi_0$", (math.degrees(syn.psi0), syn.a_w * 1000), xytext=(6, 6),
-                    textcoords="offset points", fontsize=10)
+        ax.annotate("$a_w$, $\\psi_0$", (math.degrees(syn.psi0), syn.a_w * 1000), xytext=(-8, -4),
+                    textcoords="offset points", fontsize=10, ha="right", va="top")
         ax.set_xlim(0, math.degrees(math.pi / 2 - cam.h))
         ax.set_ylim(0, top)
         ax.set_xlabel("ψ$_0$, град")
@@ -333,6 +333,10 @@ class ProfileDrawing:
         if cam.contact != "flat":
             ax.plot(C[:, 0], C[:, 1], color=INK, lw=0.7, ls="-.", zorder=3)
         ax.add_patch(Circle((0, 0), syn.r0, fill=False, color=GREY, lw=0.6, ls="--", zorder=3))
+        if cam.flat_rocker:   # the arc of the pivot's positions in the inverted motion (radius a_w)
+            a0 = math.atan2(-syn.O[1], -syn.O[0])
+            arc = a0 - k * np.linspace(0.0, max(follower_positions(cam)), 60)
+            ax.plot(syn.a_w * np.cos(arc), syn.a_w * np.sin(arc), color=GREY, lw=0.6, ls="-.", zorder=3)
         ax.plot(0, 0, "o", color=INK, ms=4, zorder=6)
         ax.annotate("O", (0, 0), xytext=(-12, -12), textcoords="offset points", fontsize=10)
         for i, seg in enumerate(fol):
@@ -386,9 +390,8 @@ class ProfileDrawing:
             m = 0.15 * (hi - lo)
             end = F + (hi + m) * r
             lines.append(rot(np.array([F + (lo - m) * r, end])))
-            if full:
-                lines.append(rot(np.array([A, F, F + (lo - m) * r])))
-                circles.append((rot(A)[0], 0.02 * syn.a_w))
+            lines.append(rot(np.array([A, F, F + (lo - m) * r])))
+            circles.append((rot(A)[0], 0.02 * syn.a_w))
             label = rot(end)[0]
         else:
             A = -syn.O
