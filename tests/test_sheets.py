@@ -19,7 +19,7 @@ CASES = Path(__file__).resolve().parents[1] / "cases"
 PT_PER_MM = 72 / 25.4
 
 
-CAM_CASES = ["cam_translating_roller", "cam_rocker_roller", "ws001_cam_2013_2"]
+CAM_CASES = ["cam_translating_roller", "cam_rocker_roller", "ws001_cam_2013_2", "cam_rocker_flat"]
 
 
 @pytest.fixture(scope="module", params=["ws000_six_bar", "ws002_tractor_hitch", "ws004_slotted_lever",
@@ -120,6 +120,7 @@ def test_cam_sheet_present_and_last(built):
     if study.cam.scale is not None:     # the scale the case asks for, when the profile fits at it
         assert scale_text("l", placed["profile"].mu) == "М " + study.cam.scale
     assert ("portrait" in placed) == (study.cam.contact != "flat")
+    assert ("size" in placed) == study.cam.flat_rocker
 
 
 def test_linkage_and_cam_sheets_order(tmp_path):
