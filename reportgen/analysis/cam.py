@@ -19,6 +19,9 @@ Method (Артоболевский И. И., «Теория механизмов 
   nearest to B₀ in closed form; for a rocker the region is found by SLSQP on the exact
   constraint maxima and polished by Newton on the contact conditions;
 * flat-faced translating follower: ρ = r₀ + s + s″ ≥ ρ_min, face width s′_max − s′_min;
+* flat-faced rocker (the face offset d from the pivot): the profile is the envelope of the face
+  lines, contact at μ = a_w cos(ψ₀ + ψ)/(1 − kψ′) along the face, ρ = a_w G − d, tg ϑ = d/μ;
+  a_w and ψ₀ from ρ ≥ ρ_min and ϑ ≤ [ϑ] (see the block before :meth:`Cam.fr_G`);
 * profile by inversion C(φ) = R(−kφ) B(φ) with analytic C′, C″; the working profile of a roller
   is the exact offset C − r_р n along the unit normal of the centre profile.
 """
@@ -548,7 +551,7 @@ class Cam:
     # r = (cos ψ, sin ψ) along the face and u = Jr; cam centre O = a_w(cos ψ₀, −sin ψ₀) (ψ₀ — the
     # angle between AO and the face at the start).  The face is the line X·u = −d (d — its offset
     # from the pivot towards the cam).  Derivation (the definitions of Артоболевский И. И., «Теория
-    # механизмов и машин», гл. 24, and Левитский Н. И., «Теория механизмов и машин», гл. 18: the
+    # механизмов и машин», гл. 24, and Фролов К. В. (ред.), «Теория механизмов и машин», 1987: the
     # profile is the envelope of the follower's positions in the inverted motion, the pressure angle
     # is the angle between the common normal and the velocity of the follower's point of contact):
     #

@@ -302,7 +302,7 @@ def _size_flat_rocker(s, study, cam) -> None:
                 "Расстояние от центра кулачка до тарелки")
     s.formula(Formula(r"p = a_w \sin(\psi_0 + \psi) - d", label="eq-cam-flat-p"))
     s.paragraph(f"Кулачок вращается {rot} хода часовой стрелки, тарелка поворачивается относительно него с угловой "
-                f"скоростью ω({_im(q)}). По теореме о трёх мгновенных центрах общая нормаль в точке касания K "
+                f"скоростью ω({_im(q)}). По теореме о трёх мгновенных центрах [1] общая нормаль в точке касания K "
                 "проходит через мгновенный центр относительного вращения P<sub>12</sub> на линии центров, "
                 f"AP<sub>12</sub>&nbsp;=&nbsp;a<sub>w</sub>/({_im(q)}); K — основание перпендикуляра, опущенного из "
                 "P<sub>12</sub> на тарелку. Расстояние точки касания вдоль тарелки от основания F перпендикуляра, "
@@ -316,8 +316,8 @@ def _size_flat_rocker(s, study, cam) -> None:
     s.paragraph("Профиль выпуклый, если ρ&nbsp;≥&nbsp;ρ<sub>min</sub> на всём цикле; так как ρ линейно зависит от "
                 "a<sub>w</sub>, при данном ψ<sub>0</sub>")
     s.formula(Formula(r"a_w \ge \frac{\rho_{min} + d}{G_{min}}", label="eq-cam-flat-conv"))
-    s.paragraph("Сила действует по нормали к тарелке, а точка K коромысла движется перпендикулярно AK, поэтому угол "
-                "давления")
+    s.paragraph("Угол давления — угол между нормалью к профилю в точке контакта и скоростью точки толкателя [1, 3]. "
+                "Сила действует по нормали к тарелке, а точка K коромысла движется перпендикулярно AK, поэтому")
     s.formula(Formula(r"\operatorname{tg}\vartheta = \frac{d}{\mu}", label="eq-cam-flat-theta"))
     if d > 0:
         s.paragraph("Угол давления растёт по мере приближения точки касания к оси качания; условие "
@@ -410,8 +410,9 @@ def _pressure(sec, study, cam) -> None:
 def _profile(sec, study, cam) -> None:
     s = sec.subsection("Профилирование кулачка", "sec-cam-profile")
     s.paragraph("Профиль построен методом обращения движения: кулачок неподвижен, а толкатель вместе со стойкой "
-                "вращается вокруг центра O с угловой скоростью −ω. Координаты центрового (теоретического) профиля в "
-                "системе кулачка:")
+                "вращается вокруг центра O с угловой скоростью −ω. "
+                + ("Профиль — огибающая положений тарелки; координаты точек касания в системе кулачка:"
+                   if cam.contact == "flat" else "Координаты центрового (теоретического) профиля в системе кулачка:"))
     if cam.follower == "translating" and cam.contact != "flat":
         s.formula(Formula(r"x = e\cos\varphi + (s_0 + s)\sin\varphi,\quad y = -e\sin\varphi + (s_0 + s)\cos\varphi",
                           label="eq-cam-profile"))
@@ -465,12 +466,13 @@ def _profile(sec, study, cam) -> None:
     if cam.contact != "knife":
         cols += [Column("x", "x", "мм", digits=2), Column("y", "y", "мм", digits=2)]
     cols += [Column("r", "r", "мм", digits=2), Column("rho", "ρ", "мм", digits=2)]
-    if cam.contact != "flat" or cam.flat_rocker:
+    if cam.contact != "flat" or (cam.flat_rocker and cam.face_offset > 0):
         cols.append(Column("theta", "ϑ", "град", digits=2))
     s.table("Координаты профиля кулачка", cols, df, id="tab-cam-coords",
             note="x<sub>C</sub>, y<sub>C</sub> — центровой профиль; x, y, r — рабочий профиль; ρ — радиус кривизны "
                  "рабочего профиля (отрицательный — вогнутый участок)." if cam.contact != "flat" else
-            "r — радиус-вектор профиля; ρ — радиус кривизны профиля.")
+            "x, y — точки касания тарелки с профилем; r — радиус-вектор профиля; ρ — радиус кривизны профиля"
+            + ("; ϑ — угол давления." if cam.flat_rocker and cam.face_offset > 0 else "."))
 
 
 def conclusion_lines(study) -> list[str]:
