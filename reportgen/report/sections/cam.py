@@ -291,6 +291,17 @@ def _q_tex(cam) -> str:
     return r"1 - \psi^{\prime}" if cam.k > 0 else r"1 + \psi^{\prime}"
 
 
+def _flat_rocker_failures(cam) -> list[str]:
+    """What a given a_w of a flat-faced rocker fails: convexity, the allowed pressure angle."""
+    a, fr = cam.synthesis.a_w, cam.fr
+    out = []
+    if a < fr["a_conv"] * (1 - 1e-12):
+        out.append("профиль невыпуклый (ρ&nbsp;&lt;&nbsp;ρ<sub>min</sub>)")
+    if a < fr["a_press"] * (1 - 1e-12):
+        out.append("угол давления превышает допустимый")
+    return out
+
+
 def _size_flat_rocker(s, study, cam) -> None:
     """The flat-faced rocker: envelope, contact point, curvature, pressure angle, a_w and ψ₀."""
     syn, fr, d = cam.synthesis, cam.fr, cam.face_offset
@@ -357,13 +368,15 @@ def _size_flat_rocker(s, study, cam) -> None:
                     f"профиль выпуклый: корень уравнения a<sub>w</sub>G<sub>min</sub>(ψ<sub>0</sub>)&nbsp;−&nbsp;d&nbsp;=&nbsp;"
                     f"ρ<sub>min</sub> (рисунок {ref('fig-cam-flat-size')}).")
     elif syn.governing == "fixed":
-        ok = syn.a_w >= fr["a"] * (1 - 1e-12)
+        bad = _flat_rocker_failures(cam)
         s.paragraph(f"Заданное a<sub>w</sub>&nbsp;=&nbsp;{_mm(syn.a_w)} "
-                    + ("не меньше требуемого: условия выполнены." if ok else "<b>меньше требуемого</b>: "
-                       + ("профиль невыпуклый или угол давления превышает допустимый." if d > 0
-                          else "профиль невыпуклый.")))
-    else:
+                    + ("не меньше требуемого: условия выполнены." if not bad else
+                       "<b>меньше требуемого</b>: " + " и ".join(bad) + "."))
+    elif fr["a_press"] > 0:
         s.paragraph(f"При заданном ψ<sub>0</sub> принято наибольшее из требуемых значений (рисунок "
+                    f"{ref('fig-cam-flat-size')}).")
+    else:
+        s.paragraph(f"При заданном ψ<sub>0</sub> принято a<sub>w</sub>&nbsp;=&nbsp;a<sub>w,ρ</sub> (рисунок "
                     f"{ref('fig-cam-flat-size')}).")
     s.formula(Formula("a_w", None, _t(syn.a_w * 1000, unit="мм")),
               Formula(r"\psi_0", None, _t(math.degrees(psi0), sig=5, unit="°")),
@@ -486,6 +499,9 @@ def conclusion_lines(study) -> list[str]:
                    + (f"; наибольший угол давления {_deg(cam.theta_max[0], 2)} на удалении и "
                       f"{_deg(cam.theta_max[1], 2)} на возвращении." if cam.face_offset > 0 else
                       "; угол давления равен нулю (тарелка проходит через ось качания)."))
+        bad = _flat_rocker_failures(cam)
+        if bad:
+            out.append("При заданных размерах " + " и ".join(bad) + ": межосевое расстояние нужно увеличить.")
     elif cam.contact == "flat":
         out.append(f"Кулачковый механизм с плоским толкателем: радиус основной шайбы r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)} "
                    f"(по выпуклости профиля требуется не менее {_mm(cam.flat_min[2])}), ширина тарелки не менее "
