@@ -300,3 +300,23 @@ def test_note_section_and_export(tmp_path, case_cam):
         assert np.isfinite(df.to_numpy(dtype=float)).all()
     assert {"x", "y", "r", "rho", "theta"} <= set(tabs["cam_profile"].columns)
     assert all(math.isfinite(v) for v in case_cam.scalars.values())
+
+
+def test_large_centre_distance_tends_to_the_translating_flat_follower(tmp_path):
+    """A rocker with a far pivot (a_w → ∞, ψ = s/a_w, ψ₀ → 0) is a translating flat follower: the
+    textbook ρ = r₀ + s + s″ (Артоболевский, гл. 24) and the contact offset s′ along the face are
+    approached with an error falling as 1/a_w."""
+    h, r0 = 0.04, 0.04
+    errs = []
+    for a in (100.0, 1000.0):
+        psi0 = math.asin(r0 / a)
+        head = f'a_w = "{a!r} m"\npsi0 = "{psi0!r} rad"'
+        body = flat(head, allowed=("", "")).replace('swing = "20 deg"', f'swing = "{h / a!r} rad"')
+        c = make(tmp_path, body, f"a{int(a)}.toml").cam
+        g = np.linspace(0, 2 * math.pi, 721)
+        s, s1, s2, _ = c.law(g)
+        rho = c.profile(g)["rho"]
+        off = c.frames(g)["mu"] - a * np.cos(psi0 + s)        # from the foot of the perpendicular from O
+        errs.append((np.abs(rho - (r0 + a * s + a * s2)).max(), np.abs(off - c.k * a * s1).max()))
+    assert errs[1][0] < 1e-5 and errs[1][1] < 1e-5
+    assert 7 < errs[0][0] / errs[1][0] < 13 and 7 < errs[0][1] / errs[1][1] < 13
