@@ -130,7 +130,8 @@ def _laws(sec, study, cam) -> None:
     S, H = (r"\psi", r"\psi_{max}") if rocker else ("s", "h")
     s.paragraph("Закон движения задан на каждой фазе безразмерной функцией f(x) относительного угла "
                 f"{_im(X_TEX)} (β — угол фазы), f(0)&nbsp;=&nbsp;0, f(1)&nbsp;=&nbsp;1. "
-                "Перемещение толкателя и его аналоги скорости и ускорения на удалении и возвращении:")
+                + ("Угол поворота коромысла" if rocker else "Перемещение толкателя")
+                + " и его аналоги скорости и ускорения на удалении и возвращении:")
     s.formula(Formula(rf"{S} = {H}\, f(x),\quad {S}^{{\prime}} = \frac{{{H}}}{{\beta}} f^{{\prime}}(x),\quad "
                       rf"{S}^{{\prime\prime}} = \frac{{{H}}}{{\beta^2}} f^{{\prime\prime}}(x)",
                       where=[(r"\beta", "угол фазы удаления φ<sub>у</sub> или возвращения φ<sub>в</sub>, рад")],
@@ -179,7 +180,8 @@ def _laws(sec, study, cam) -> None:
                        for lab, mu, u in sc.scales)
     s.paragraph(f"Диаграммы аналогов ускорения, скорости и перемещения построены на рисунке {ref('fig-cam-laws')} "
                 f"в масштабах μ<sub>φ</sub>&nbsp;=&nbsp;{fmt(sc.mu_phi, sig=3)}&nbsp;град/мм; {scales}.")
-    s.figure("Диаграммы аналогов ускорения, скорости и перемещения толкателя", fig.svg, fig.width_mm,
+    s.figure("Диаграммы аналогов ускорения, скорости и " + ("угла поворота коромысла" if rocker else
+                                                            "перемещения толкателя"), fig.svg, fig.width_mm,
              id="fig-cam-laws")
     if cam.omega is not None:
         w = cam.omega
@@ -187,7 +189,8 @@ def _laws(sec, study, cam) -> None:
         v = cam.law(g)
         vm, am = max(abs(v[1])) * w, max(abs(v[2])) * w * w
         vu, au = ("рад/с", "рад/с²") if rocker else ("м/с", "м/с²")
-        s.paragraph("Истинные скорость и ускорение толкателя при ω&nbsp;=&nbsp;const:")
+        s.paragraph("Истинные " + ("угловые скорость и ускорение коромысла" if rocker else
+                                   "скорость и ускорение толкателя") + " при ω&nbsp;=&nbsp;const:")
         s.formula(Formula(r"v_{max} = \omega\,|s^{\prime}|_{max}" if not rocker else r"\omega_{2,max} = \omega\,|\psi^{\prime}|_{max}",
                           rf"{_t(w)} \cdot {_t(max(abs(v[1])), sig=4)}", _t(vm, sig=4, unit=vu)),
                   Formula(r"a_{max} = \omega^2 |s^{\prime\prime}|_{max}" if not rocker else r"\varepsilon_{2,max} = \omega^2 |\psi^{\prime\prime}|_{max}",
