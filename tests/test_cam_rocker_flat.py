@@ -320,3 +320,14 @@ def test_large_centre_distance_tends_to_the_translating_flat_follower(tmp_path):
         errs.append((np.abs(rho - (r0 + a * s + a * s2)).max(), np.abs(off - c.k * a * s1).max()))
     assert errs[1][0] < 1e-5 and errs[1][1] < 1e-5
     assert 7 < errs[0][0] / errs[1][0] < 13 and 7 < errs[0][1] / errs[1][1] < 13
+
+
+def test_no_convex_profile_at_any_psi0_is_case_error(tmp_path):
+    """A short rise turning the rocker with the cam (q = 1 − ψ′ small) admits no convex profile at
+    any ψ₀: a clear error, never an infinite a_w; the other sense of rotation works."""
+    body = flat('face_offset = "10 mm"').replace('angle = "100 deg"', 'angle = "60 deg"', 1)
+    with pytest.raises(CaseError) as e:
+        make(tmp_path, body).cam.synthesis
+    assert "swing" in str(e.value)
+    c = make(tmp_path, body.replace('rotation = "ccw"', 'rotation = "cw"'), "cw.toml").cam
+    assert math.isfinite(c.synthesis.a_w) and c.scalars["cam_rho_min"] == pytest.approx(c.rho_min, abs=1e-12)

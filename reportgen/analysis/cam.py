@@ -659,6 +659,9 @@ class Cam:
                                           "давления allowed на удалении и возвращении")
             psi0, need, gov = self._fr_optimum(grid)
             a = need["a"]
+            if not math.isfinite(a):
+                raise node.error("swing", "профиль не может быть выпуклым ни при каком начальном угле коромысла",
+                                 expected="больший угол фазы, меньший размах, меньший ρmin или другое направление вращения кулачка")
         r0 = a * math.sin(psi0) - d
         if not r0 > 0:
             raise node.error("a_w", "радиус основной шайбы получается неположительным",
