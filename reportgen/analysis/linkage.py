@@ -114,8 +114,14 @@ def assemble(mech: Mechanism, st: Structure) -> SolverModel:
         gnb[gi] = len(bs)
         for b in bs:
             model.body_group[b] = gi
-        if g.solver in ("RRR", "RRP", "RPR"):
+        if g.order == 2 and len(bs) == 2:
+            # a dyad (any kind): closed-form position for ВВВ, ВВП, ВПВ, analogs by its 2×2 system
             gspec[gi, :5] = _dyad_spec(g, model, bidx)
+            gspec[gi, 5] = K.A_DYAD
+        elif len(bs) == 1 and sum(1 if model.jt[j] == K.J_DRV else 2 for j in js) == 3:
+            gspec[gi, 5] = K.A_SINGLE
+        else:
+            gspec[gi, 5] = K.A_DENSE
     model.groups = groups
     model.gkind, model.gspec, model.gjoint, model.gbody = gkind, gspec, gjoint, gbody
     model.gnj, model.gnb = gnj, gnb

@@ -41,6 +41,12 @@ G_RRP = 2      # ВВП: circle–line
 G_RPR = 3      # ВПВ: rotating guide
 G_NEWTON = 4   # anything else (class III and higher)
 
+# analog solvers (gspec[g, 5]): the group's dense system, a dyad by a 2×2 system, one body by 3×3
+A_DENSE = 0
+A_DYAD = 1
+A_SINGLE = 2
+FAST_MIN = 1e-8     # below this conditioning measure the dense path (LU) judges and solves
+
 # failure kinds reported by the kernel
 F_OK = 0
 F_ASSEMBLY = 1
@@ -681,6 +687,180 @@ def _pose_distance(a, b, gb, nbg, size):
 
 
 @njit(cache=True, error_model="numpy")
+def _general_analogs(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, mat, rhs, perm, col_of,
+                     coef, expl, gam, res, cs, kind, qual, g, qual_row, fail):
+    """Analogs of any group from its dense linear systems Φ_x x' = −Φ_q and Φ_x x'' = −γ (one
+    LU factorisation for both levels).  Stores the pivot measure in qual_row[g] for Newton and
+    linear groups; returns False (fail set, F_SINGULAR) when the matrix is singular."""
+    n = 3 * nbg
+    _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 1, mat, rhs, col_of,
+                  coef, expl, gam, res, True, cs)
+    piv = lu_factor(mat, n, perm)
+    if kind == G_NEWTON or kind == G_LIN:
+        qual = piv
+    if piv < 1e-14:
+        fail[0] = F_SINGULAR
+        fail[2] = g
+        fail[3] = qual      # transmission measure of a dyad, the pivot measure otherwise
+        for k in range(nbg):
+            col_of[gb[k]] = -1
+        return False
+    lu_solve(mat, perm, rhs, n)
+    for k in range(nbg):
+        for c in range(3):
+            v[gb[k], c] = rhs[3 * k + c]
+    _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 2, mat, rhs, col_of,
+                  coef, expl, gam, res, False, cs)
+    lu_solve(mat, perm, rhs, n)
+    for k in range(nbg):
+        for c in range(3):
+            acc[gb[k], c] = rhs[3 * k + c]
+    qual_row[g] = qual
+    return True
+
+
+@njit(cache=True, error_model="numpy")
+def _body_affine(jt, jb, jf, j, body, q, pose, v, x, level, coef, expl, gam, cs):
+    """The two rows of the external joint j tie ``body`` to a known body: its analog
+    (x′ at level 1, x″ at level 2) is x_b = c + λ·s with s = C₀ × C₁ spanning the null space of
+    the body's 2×3 block C and c = Cᵀ(CCᵀ)⁻¹h the least-norm solution of C c = h
+    (h = −(known block · known analog + explicit/γ term)).  Returns (c, s) as six floats."""
+    _joint_rows(jt, jb, jf, j, q, pose, v, coef, expl, gam, level == 2, cs)
+    side = 0 if jb[j, 0] == body else 1
+    k = jb[j, 1 - side]
+    o = 3 * side
+    ko = 3 - o
+    t0 = gam[0] if level == 2 else expl[0]
+    t1 = gam[1] if level == 2 else expl[1]
+    h0 = -(t0 + coef[0, ko] * x[k, 0] + coef[0, ko + 1] * x[k, 1] + coef[0, ko + 2] * x[k, 2])
+    h1 = -(t1 + coef[1, ko] * x[k, 0] + coef[1, ko + 1] * x[k, 1] + coef[1, ko + 2] * x[k, 2])
+    a0 = coef[0, o]
+    a1 = coef[0, o + 1]
+    a2 = coef[0, o + 2]
+    b0 = coef[1, o]
+    b1 = coef[1, o + 1]
+    b2 = coef[1, o + 2]
+    g00 = a0 * a0 + a1 * a1 + a2 * a2
+    g01 = a0 * b0 + a1 * b1 + a2 * b2
+    g11 = b0 * b0 + b1 * b1 + b2 * b2
+    dg = g00 * g11 - g01 * g01
+    y0 = (h0 * g11 - g01 * h1) / dg
+    y1 = (g00 * h1 - g01 * h0) / dg
+    return (y0 * a0 + y1 * b0, y0 * a1 + y1 * b1, y0 * a2 + y1 * b2,
+            a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0)
+
+
+@njit(cache=True, error_model="numpy")
+def _dyad_analogs(jt, jb, jf, spec, q, pose, v, acc, coef, expl, gam, cs):
+    """First and second analogs of a dyad (any of ВВВ, ВВП, ВПВ, ПВП, ВПП) without its 6×6
+    system: each body's analog is affine in one scalar (:func:`_body_affine`: θ′ of a body on
+    a revolute, the sliding rate of a body on a guide), and the two rows of the inner joint give
+    a 2×2 system in those scalars, solved by Cramer's rule (Артоболевский, «Теория механизмов
+    и машин», §§ 3.5–3.8: the vector equation of the group's inner pair projected on two axes).
+    spec = (a, b, external joint of a, inner joint, external joint of b).
+
+    Returns the sine of the angle between the columns of the 2×2 matrix (1 for a well
+    conditioned group, 0 at a singular position); the caller falls back to the general dense
+    path when it is small, so singular positions are judged as before."""
+    a = spec[0]
+    b = spec[1]
+    jA = spec[2]
+    jI = spec[3]
+    jB = spec[4]
+    sa = 0 if jb[jI, 0] == a else 1
+    oa = 3 * sa
+    ob = 3 - oa
+    meas = 1.0
+    for level in range(1, 3):
+        x = v if level == 1 else acc
+        ca0, ca1, ca2, sa0, sa1, sa2 = _body_affine(jt, jb, jf, jA, a, q, pose, v, x, level, coef, expl, gam, cs)
+        cb0, cb1, cb2, sb0, sb1, sb2 = _body_affine(jt, jb, jf, jB, b, q, pose, v, x, level, coef, expl, gam, cs)
+        _joint_rows(jt, jb, jf, jI, q, pose, v, coef, expl, gam, level == 2, cs)
+        t0 = gam[0] if level == 2 else expl[0]
+        t1 = gam[1] if level == 2 else expl[1]
+        m00 = coef[0, oa] * sa0 + coef[0, oa + 1] * sa1 + coef[0, oa + 2] * sa2
+        m10 = coef[1, oa] * sa0 + coef[1, oa + 1] * sa1 + coef[1, oa + 2] * sa2
+        m01 = coef[0, ob] * sb0 + coef[0, ob + 1] * sb1 + coef[0, ob + 2] * sb2
+        m11 = coef[1, ob] * sb0 + coef[1, ob + 1] * sb1 + coef[1, ob + 2] * sb2
+        r0 = -(t0 + coef[0, oa] * ca0 + coef[0, oa + 1] * ca1 + coef[0, oa + 2] * ca2
+               + coef[0, ob] * cb0 + coef[0, ob + 1] * cb1 + coef[0, ob + 2] * cb2)
+        r1 = -(t1 + coef[1, oa] * ca0 + coef[1, oa + 1] * ca1 + coef[1, oa + 2] * ca2
+               + coef[1, ob] * cb0 + coef[1, ob + 1] * cb1 + coef[1, ob + 2] * cb2)
+        det = m00 * m11 - m01 * m10
+        if level == 1:
+            na = np.hypot(m00, m10)
+            nb = np.hypot(m01, m11)
+            if na == 0.0 or nb == 0.0:
+                return 0.0
+            meas = abs(det) / (na * nb)
+            if meas < FAST_MIN:
+                return meas
+        la = (r0 * m11 - m01 * r1) / det
+        lb = (m00 * r1 - m10 * r0) / det
+        x[a, 0] = ca0 + la * sa0
+        x[a, 1] = ca1 + la * sa1
+        x[a, 2] = ca2 + la * sa2
+        x[b, 0] = cb0 + lb * sb0
+        x[b, 1] = cb1 + lb * sb1
+        x[b, 2] = cb2 + lb * sb2
+    return meas
+
+
+@njit(cache=True, error_model="numpy")
+def _single_analogs(jt, jb, jf, gj, nj, body, q, pose, v, acc, coef, expl, gam, cs, mat, rhs):
+    """First and second analogs of a one-body group with three equations (the initial link: a
+    revolute or prismatic pair to a known body and the drive) by Cramer's rule on its 3×3
+    system.  Returns |det| divided by the product of the row norms (Hadamard's ratio, 0 at a
+    singular matrix); the caller falls back to the dense path when it is small."""
+    meas = 1.0
+    for level in range(1, 3):
+        x = v if level == 1 else acc
+        row = 0
+        for kk in range(nj):
+            j = gj[kk]
+            nr = _joint_rows(jt, jb, jf, j, q, pose, v, coef, expl, gam, level == 2, cs)
+            side = 0 if jb[j, 0] == body else 1
+            k = jb[j, 1 - side]
+            o = 3 * side
+            ko = 3 - o
+            for r in range(nr):
+                if row >= 3:
+                    return 0.0
+                t = gam[r] if level == 2 else expl[r]
+                mat[row, 0] = coef[r, o]
+                mat[row, 1] = coef[r, o + 1]
+                mat[row, 2] = coef[r, o + 2]
+                rhs[row] = -(t + coef[r, ko] * x[k, 0] + coef[r, ko + 1] * x[k, 1] + coef[r, ko + 2] * x[k, 2])
+                row += 1
+        if row != 3:
+            return 0.0
+        c00 = mat[1, 1] * mat[2, 2] - mat[1, 2] * mat[2, 1]
+        c01 = mat[1, 2] * mat[2, 0] - mat[1, 0] * mat[2, 2]
+        c02 = mat[1, 0] * mat[2, 1] - mat[1, 1] * mat[2, 0]
+        det = mat[0, 0] * c00 + mat[0, 1] * c01 + mat[0, 2] * c02
+        if level == 1:
+            h = 1.0
+            for r in range(3):
+                h *= np.sqrt(mat[r, 0] * mat[r, 0] + mat[r, 1] * mat[r, 1] + mat[r, 2] * mat[r, 2])
+            if h == 0.0:
+                return 0.0
+            meas = abs(det) / h
+            if meas < FAST_MIN:
+                return meas
+        b0 = rhs[0]
+        b1 = rhs[1]
+        b2 = rhs[2]
+        # Cramer's rule: x_c = det(M with column c replaced by b) / det
+        x[body, 0] = (b0 * c00 + mat[0, 1] * (mat[1, 2] * b2 - b1 * mat[2, 2])
+                      + mat[0, 2] * (b1 * mat[2, 1] - mat[1, 1] * b2)) / det
+        x[body, 1] = (mat[0, 0] * (b1 * mat[2, 2] - mat[1, 2] * b2) + b0 * c01
+                      + mat[0, 2] * (mat[1, 0] * b2 - b1 * mat[2, 0])) / det
+        x[body, 2] = (mat[0, 0] * (mat[1, 1] * b2 - b1 * mat[2, 1])
+                      + mat[0, 1] * (b1 * mat[2, 0] - mat[1, 0] * b2) + b0 * c02) / det
+    return meas
+
+
+@njit(cache=True, error_model="numpy")
 def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
                     size, cur, v, acc, pp, pv, pa, qual_row, fail, mat, rhs, perm, known,
                     coef, expl, gam, res, col_of, cs):
@@ -757,32 +937,21 @@ def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj
             for k in range(nbg):
                 col_of[gb[k]] = -1
             return False
-        n = 3 * nbg
         _refresh_cs(cs, cur, gb, nbg)
-        # first analogs: Φ_x x' = −Φ_q (one LU factorisation for both levels)
-        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 1, mat, rhs, col_of,
-                      coef, expl, gam, res, True, cs)
-        piv = lu_factor(mat, n, perm)
-        if kind == G_NEWTON or kind == G_LIN:
-            qual = piv
-        if piv < 1e-14:
-            fail[0] = F_SINGULAR
-            fail[2] = g
-            fail[3] = qual      # transmission measure of a dyad, the pivot measure otherwise
-            for k in range(nbg):
-                col_of[gb[k]] = -1
+        fast = gspec[g, 5]
+        meas = -1.0
+        if fast == A_DYAD:
+            meas = _dyad_analogs(jt, jb, jf, gspec[g], qi, cur, v, acc, coef, expl, gam, cs)
+        elif fast == A_SINGLE:
+            meas = _single_analogs(jt, jb, jf, gj, nj, gb[0], qi, cur, v, acc, coef, expl, gam, cs, mat, rhs)
+        if meas >= FAST_MIN:
+            if kind == G_NEWTON or kind == G_LIN:
+                qual = meas
+        elif not _general_analogs(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, mat, rhs, perm, col_of,
+                                  coef, expl, gam, res, cs, kind, qual, g, qual_row, fail):
             return False
-        lu_solve(mat, perm, rhs, n)
-        for k in range(nbg):
-            for c in range(3):
-                v[gb[k], c] = rhs[3 * k + c]
-        # second analogs: Φ_x x'' = −γ
-        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 2, mat, rhs, col_of,
-                      coef, expl, gam, res, False, cs)
-        lu_solve(mat, perm, rhs, n)
-        for k in range(nbg):
-            for c in range(3):
-                acc[gb[k], c] = rhs[3 * k + c]
+        elif kind == G_NEWTON or kind == G_LIN:
+            qual = qual_row[g]
         qual_row[g] = qual
         for k in range(nbg):
             col_of[gb[k]] = -1
