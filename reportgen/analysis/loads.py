@@ -97,14 +97,37 @@ class ColumnEvaluator:
             self._cache.move_to_end(key)
             return hit
         self.calls += 1
-        # on the branch of the cycle (a class III group is continued from the solved cycle, the
-        # same kinematics as Study.at and the report positions)
-        res = self.study._solve_on_branch(q)
-        cols = L.columns(self.model, res, grid=False)
+        cols = self._columns(q)
         cols.update(self.study._extra_angles(cols))
         self._cache[key] = cols
         if len(self._cache) > self._size:
             self._cache.popitem(last=False)
+        return cols
+
+    def _columns(self, q: np.ndarray) -> dict[str, np.ndarray]:
+        """Columns of L.columns at q: points of the solved cycle grid are taken from it (the
+        columns are element-wise, so a grid point gives the same numbers), the others solved on
+        the branch of the cycle (a class III group is continued from the solved cycle, the same
+        kinematics as Study.at and the report positions)."""
+        gq = self.study.grid.cycle
+        idx = np.minimum(np.searchsorted(gq, q), gq.size - 1)
+        hit = gq[idx] == q
+        nhit = int(np.count_nonzero(hit))
+        if nhit == 0:
+            return L.columns(self.model, self.study._solve_on_branch(q), grid=False)
+        grid = self.study._cycle_columns
+        if nhit == q.size:
+            cols = {k: v[idx] for k, v in grid.items()}
+            cols["q"] = q.copy()
+            return cols
+        miss = ~hit
+        rest = L.columns(self.model, self.study._solve_on_branch(q[miss]), grid=False)
+        cols = {}
+        for k, v in rest.items():
+            c = np.empty(q.size)
+            c[miss] = v
+            c[hit] = grid[k][idx[hit]]
+            cols[k] = c
         return cols
 
     def names(self) -> list[str]:
