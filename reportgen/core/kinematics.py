@@ -788,9 +788,14 @@ def _dyad_analogs(jt, jb, jf, a, b, jA, jI, jB, q, pose, v, acc, coef, expl, gam
     Returns the sine of the angle between the columns of the 2×2 matrix (1 for a well
     conditioned group, 0 at a singular position); the caller falls back to the general dense
     path when it is below FAST_MIN, so singular positions are judged as before."""
-    meas = _dyad_level(jt, jb, jf, a, b, jA, jI, jB, q, pose, v, v, 1, coef, expl, gam, cs)
-    if meas >= FAST_MIN:
-        _dyad_level(jt, jb, jf, a, b, jA, jI, jB, q, pose, v, acc, 2, coef, expl, gam, cs)
+    meas = 1.0
+    for level in range(1, 3):      # a run-time level: one compiled specialisation
+        x = v if level == 1 else acc
+        m = _dyad_level(jt, jb, jf, a, b, jA, jI, jB, q, pose, v, x, level, coef, expl, gam, cs)
+        if level == 1:
+            meas = m
+            if meas < FAST_MIN:
+                break
     return meas
 
 
@@ -849,9 +854,14 @@ def _single_analogs(jt, jb, jf, gjoint, g, nj, body, q, pose, v, acc, coef, expl
     revolute or prismatic pair to a known body and the drive) by Cramer's rule on its 3×3
     system.  Returns |det| divided by the product of the row norms (Hadamard's ratio, 0 at a
     singular matrix); the caller falls back to the dense path when it is below FAST_MIN."""
-    meas = _single_level(jt, jb, jf, gjoint, g, nj, body, q, pose, v, v, 1, coef, expl, gam, cs, mat, rhs)
-    if meas >= FAST_MIN:
-        _single_level(jt, jb, jf, gjoint, g, nj, body, q, pose, v, acc, 2, coef, expl, gam, cs, mat, rhs)
+    meas = 1.0
+    for level in range(1, 3):      # a run-time level: one compiled specialisation
+        x = v if level == 1 else acc
+        m = _single_level(jt, jb, jf, gjoint, g, nj, body, q, pose, v, x, level, coef, expl, gam, cs, mat, rhs)
+        if level == 1:
+            meas = m
+            if meas < FAST_MIN:
+                break
     return meas
 
 
@@ -1009,61 +1019,61 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
     for b in range(nb):
         cs[b, 0] = np.cos(pose0[b, 2])
         cs[b, 1] = np.sin(pose0[b, 2])
+    # the arguments of every _solve_position call have the same (non-literal) types, so that it
+    # is compiled once: a literal True/0 would compile a second and third specialisation
+    never = N < 0
+    zero = N - N
     for i in range(N):
         qi = q[i]
-        if i == 0:
-            ok = _solve_position(qi, 0.0, True, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody,
-                                 gnb, size, cur, v, acc, pose, d1, d2, 0, quality, i, fail, mat, rhs, perm,
-                                 known, coef, expl, gam, res, col_of, cs)
-        else:
-            ok = _solve_position(qi, qi - q[i - 1], False, jt, jb, jf, gkind, gspec, gsigma, gjoint,
-                                 gnj, gbody, gnb, size, cur, v, acc, pose, d1, d2, i - 1,
-                                 quality, i, fail, mat, rhs, perm, known, coef, expl, gam, res, col_of, cs)
+        ip = i - 1 if i > 0 else i
+        ok = _solve_position(qi, qi - q[ip], i == 0, jt, jb, jf, gkind, gspec, gsigma, gjoint,
+                             gnj, gbody, gnb, size, cur, v, acc, pose, d1, d2, ip,
+                             quality, i, fail, mat, rhs, perm, known, coef, expl, gam, res, col_of, cs)
+        if i > 0 and not ok and fail[0] == F_JUMP:
+            # refine: march from q[i-1] to q[i] in 2, 4, … equal sub-steps
+            for h in range(1, MAX_HALVINGS + 1):
+                m = 1 << h
+                h_q = (qi - q[i - 1]) / m
+                sp[0] = pose[i - 1]
+                sv[0] = d1[i - 1]
+                sa[0] = d2[i - 1]
+                ok = True
+                for k in range(1, m + 1):
+                    qk = q[i - 1] + k * h_q if k < m else qi
+                    qfail = qk
+                    ok = _solve_position(qk, h_q, never, jt, jb, jf, gkind, gspec, gsigma, gjoint,
+                                         gnj, gbody, gnb, size, cur, v, acc, sp, sv, sa, zero, qrow, zero, fail,
+                                         mat, rhs, perm, known, coef, expl, gam, res, col_of, cs)
+                    if not ok:
+                        break
+                    sp[0] = cur
+                    sv[0] = v
+                    sa[0] = acc
+                if ok:
+                    quality[i, :] = qrow[0]
+                    fail[:] = 0.0
+                    break
+                if fail[0] != F_JUMP:
+                    break
             if not ok and fail[0] == F_JUMP:
-                # refine: march from q[i-1] to q[i] in 2, 4, … equal sub-steps
-                for h in range(1, MAX_HALVINGS + 1):
-                    m = 1 << h
-                    h_q = (qi - q[i - 1]) / m
-                    sp[0] = pose[i - 1]
-                    sv[0] = d1[i - 1]
-                    sa[0] = d2[i - 1]
-                    ok = True
-                    for k in range(1, m + 1):
-                        qk = q[i - 1] + k * h_q if k < m else qi
-                        qfail = qk
-                        ok = _solve_position(qk, h_q, False, jt, jb, jf, gkind, gspec, gsigma, gjoint,
-                                             gnj, gbody, gnb, size, cur, v, acc, sp, sv, sa, 0, qrow, 0, fail,
-                                             mat, rhs, perm, known, coef, expl, gam, res, col_of, cs)
-                        if not ok:
-                            break
-                        sp[0] = cur
-                        sv[0] = v
-                        sa[0] = acc
-                    if ok:
-                        quality[i, :] = qrow[0]
-                        fail[:] = 0.0
-                        break
-                    if fail[0] != F_JUMP:
-                        break
-                if not ok and fail[0] == F_JUMP:
-                    g = int(fail[2])
-                    if fail[3] < 0.0:
-                        # Newton fails even on the finest step: least squares from the last
-                        # solved sub-step tells an assembly from a gap (reported in metres)
-                        cur[:, :] = sp[0]
-                        for k in range(gnb[g]):
-                            col_of[gbody[g, k]] = k
-                        st, amount, qual = _solve_lsq(jt, jb, jf, gjoint[g], gnj[g], gbody[g], gnb[g],
-                                                      qfail, cur, v, size, col_of, mat, rhs, coef, expl,
-                                                      gam, res, cs)
-                        for k in range(gnb[g]):
-                            col_of[gbody[g, k]] = -1
-                        fail[0] = F_NEWTON if st != F_OK else F_SINGULAR
-                        fail[3] = amount if st != F_OK else qrow[0, g]
-                    else:
-                        # the branch cannot be followed through this step: a singular position
-                        fail[0] = F_SINGULAR
-                        fail[3] = qrow[0, g]
+                g = int(fail[2])
+                if fail[3] < 0.0:
+                    # Newton fails even on the finest step: least squares from the last
+                    # solved sub-step tells an assembly from a gap (reported in metres)
+                    cur[:, :] = sp[0]
+                    for k in range(gnb[g]):
+                        col_of[gbody[g, k]] = k
+                    st, amount, qual = _solve_lsq(jt, jb, jf, gjoint[g], gnj[g], gbody[g], gnb[g],
+                                                  qfail, cur, v, size, col_of, mat, rhs, coef, expl,
+                                                  gam, res, cs)
+                    for k in range(gnb[g]):
+                        col_of[gbody[g, k]] = -1
+                    fail[0] = F_NEWTON if st != F_OK else F_SINGULAR
+                    fail[3] = amount if st != F_OK else qrow[0, g]
+                else:
+                    # the branch cannot be followed through this step: a singular position
+                    fail[0] = F_SINGULAR
+                    fail[3] = qrow[0, g]
         if not ok:
             fail[1] = i
             return pose, d1, d2, quality, fail
