@@ -704,7 +704,7 @@ def _general_analogs(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, mat, rhs, per
     return True
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _body_affine(jt, jb, jf, j, body, q, pose, v, x, level, coef, expl, gam, cs):
     """The two rows of the external joint j tie ``body`` to a known body: its analog
     (x′ at level 1, x″ at level 2) is x_b = c + λ·s with s = C₀ × C₁ spanning the null space of
@@ -735,7 +735,7 @@ def _body_affine(jt, jb, jf, j, body, q, pose, v, x, level, coef, expl, gam, cs)
             a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _dyad_level(jt, jb, jf, a, b, jA, jI, jB, q, pose, v, x, level, coef, expl, gam, cs):
     """One level of :func:`_dyad_analogs` (x = v at level 1, the second analogs at level 2).
     At level 1 returns the conditioning measure and leaves x untouched when it is below
@@ -799,7 +799,7 @@ def _dyad_analogs(jt, jb, jf, a, b, jA, jI, jB, q, pose, v, acc, coef, expl, gam
     return meas
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _single_level(jt, jb, jf, gjoint, g, nj, body, q, pose, v, x, level, coef, expl, gam, cs, mat, rhs):
     """One level of :func:`_single_analogs` (x = v at level 1, the second analogs at level 2)."""
     row = 0
