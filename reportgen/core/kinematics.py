@@ -44,7 +44,7 @@ G_NEWTON = 4   # anything else (class III and higher)
 # analog solvers (gspec[g, 5]): the group's dense system, a dyad by a 2×2 system, one body by 3×3
 A_DENSE = 0
 A_DYAD = 1
-A_SINGLE = 2
+A_SINGLE = 2       # the initial link: a revolute and the drive (position in closed form too)
 FAST_MIN = 1e-8     # below this conditioning measure the dense path (LU) judges and solves
 
 # failure kinds reported by the kernel
@@ -445,6 +445,27 @@ def _solve_rpr(jf, jb, a, b, jA, jP, jC, sigma, q, pose):
     pose[S, 0] = PSx - ux
     pose[S, 1] = PSy - uy
     return F_OK, 0.0, sigma * np.sqrt(max(0.0, 1.0 - c * c))
+
+
+@njit(cache=True, error_model="numpy")
+def _solve_crank(jt, jb, jf, gjoint, g, nj, body, q, pose):
+    """The initial link (one body on a revolute to a known body, its angle set by the drive)
+    in closed form: θ = θ_known ± (c0 + c1·q), then r = P − A(θ)·p with P the pivot's global
+    position and p its local point on the body."""
+    jr = gjoint[g, 0]
+    jd = gjoint[g, 1]
+    if jt[jr] != J_REV:
+        jr, jd = jd, jr
+    bi = jb[jd, 0]
+    bj = jb[jd, 1]
+    off = jf[jd, 0] + jf[jd, 1] * q
+    th = pose[bi, 2] + off if bj == body else pose[bj, 2] - off
+    pose[body, 2] = th
+    px, py, gx, gy = _pivot(jf, jb, jr, body, q, pose)
+    ux, uy = _rot(th, px, py)
+    pose[body, 0] = gx - ux
+    pose[body, 1] = gy - uy
+    return F_OK, 0.0, 1.0
 
 
 @njit(cache=True, error_model="numpy")
@@ -894,6 +915,8 @@ def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj
             st, amount, qual = _solve_rrp(jf, jb, s0, s1, s2, s3, s4, gsigma[g], qi, cur)
         elif kind == G_RPR:
             st, amount, qual = _solve_rpr(jf, jb, s0, s1, s2, s3, s4, gsigma[g], qi, cur)
+        elif kind == G_LIN and gspec[g, 5] == A_SINGLE:
+            st, amount, qual = _solve_crank(jt, jb, jf, gjoint, g, nj, gbody[g, 0], qi, cur)
         elif kind == G_LIN:
             st, amount, qual = _solve_lin(jt, jb, jf, gjoint, nj, gbody, g, nbg, qi, cur, col_of, known, mat, rhs)
         else:
