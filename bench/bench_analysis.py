@@ -5,6 +5,9 @@ cases/ws000_six_bar.toml).  For each case:
 
 * the whole-grid kernel ``analysis.linkage.run_kernel`` on the cycle grid (positions, first and
   second analogs): median and minimum CPU time (``time.process_time``) of N warm calls;
+* the same kernel with every group on the dense path (the group's Φ_x assembled and LU-solved,
+  ``gspec[:, 5] = 0``) against the structured path (dyads by 2×2, the initial link by 3×3),
+  alternated in one process: minimum CPU time of N calls each;
 * the whole numerical analysis of a fresh Study (kinematics, the cycle, every task of the case —
   dynamics with the flywheel, forces — with all their tables and scalars): median CPU time of 5
   fresh Studies after one warm-up, and the time of each stage; the number of kernel calls and of
@@ -37,6 +40,28 @@ def kernel_times(case: str, repeat: int) -> tuple[float, float, int]:
         L.run_kernel(model, q)
         ts.append(time.process_time() - t0)
     return statistics.median(ts), min(ts), len(q)
+
+
+def analog_paths(case: str, repeat: int) -> tuple[float, float]:
+    """(structured, dense) minimum CPU time of the kernel, calls alternated in one process."""
+    from reportgen.analysis import linkage as L
+    from reportgen.analysis.study import Study
+    s = Study(ROOT / case)
+    model, q = s.model, s.grid.cycle
+    fast = model.gspec.copy()
+    dense = fast.copy()
+    dense[:, 5] = 0
+    best = {0: [], 1: []}
+    try:
+        for _ in range(repeat):
+            for k, spec in ((0, fast), (1, dense)):
+                model.gspec = spec
+                t0 = time.process_time()
+                L.run_kernel(model, q)
+                best[k].append(time.process_time() - t0)
+    finally:
+        model.gspec = fast
+    return min(best[0]), min(best[1])
 
 
 def analysis_stages(case: str) -> tuple[dict[str, float], int, int]:
@@ -85,6 +110,9 @@ def main(argv=None) -> None:
         med, best, n = kernel_times(case, args.repeat)
         print(f"{case}: kernel over {n} positions (positions + both analogs), CPU: "
               f"median {med * 1e3:.2f} ms, min {best * 1e3:.2f} ms ({med / n * 1e9:.0f} ns a position)")
+        fast, dense = analog_paths(case, args.repeat)
+        print(f"  analogs: structured path {fast * 1e3:.2f} ms, dense LU path {dense * 1e3:.2f} ms "
+              f"(minimum CPU time, {args.repeat} alternated calls each)")
         analysis_stages(case)          # warm every stage once
         runs = [analysis_stages(case) for _ in range(5)]
         st = [r[0] for r in runs]
