@@ -43,7 +43,7 @@ import numpy as np
 from ..case import units as U
 from ..case.expr import Q, evaluate, free_names
 from ..case.reader import Node
-from ..errors import CaseError, did_you_mean
+from ..errors import AssemblyError, CaseError, did_you_mean
 from . import linkage as L
 
 __all__ = [
@@ -113,9 +113,14 @@ class ColumnEvaluator:
         idx = np.minimum(np.searchsorted(gq, q), gq.size - 1)
         hit = gq[idx] == q
         nhit = int(np.count_nonzero(hit))
-        if nhit == 0:
+        grid = None
+        if nhit:
+            try:
+                grid = self.study._cycle_columns
+            except AssemblyError:       # the whole cycle does not assemble: the points alone
+                grid = None
+        if grid is None:
             return L.columns(self.model, self.study._solve_on_branch(q), grid=False)
-        grid = self.study._cycle_columns
         if nhit == q.size:
             cols = {k: v[idx] for k, v in grid.items()}
             cols["q"] = q.copy()
