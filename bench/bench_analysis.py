@@ -8,6 +8,8 @@ cases/ws000_six_bar.toml).  For each case:
 * the same kernel with every group on the dense path (the group's Φ_x assembled and LU-solved,
   ``gspec[:, 5] = 0``) against the structured path (dyads by 2×2, the initial link by 3×3),
   alternated in one process: minimum CPU time of N calls each;
+* the kernel solving only the first k groups, k = 0 … number of groups (the cost of the loop
+  itself and of each group in order);
 * the whole numerical analysis of a fresh Study (kinematics, the cycle, every task of the case —
   dynamics with the flywheel, forces — with all their tables and scalars): median CPU time of 5
   fresh Studies after one warm-up, and the time of each stage; the number of kernel calls and of
@@ -40,6 +42,24 @@ def kernel_times(case: str, repeat: int) -> tuple[float, float, int]:
         L.run_kernel(model, q)
         ts.append(time.process_time() - t0)
     return statistics.median(ts), min(ts), len(q)
+
+
+def group_costs(case: str, repeat: int) -> list[float]:
+    """Minimum CPU time of the kernel solving only the first k groups, k = 0 … all."""
+    from reportgen.analysis import linkage as L
+    from reportgen.analysis.study import Study
+    s = Study(ROOT / case)
+    model, q = s.model, s.grid.cycle
+    out = []
+    for k in range(len(model.groups) + 1):
+        L.run_kernel(model, q, k)
+        ts = []
+        for _ in range(repeat):
+            t0 = time.process_time()
+            L.run_kernel(model, q, k)
+            ts.append(time.process_time() - t0)
+        out.append(min(ts))
+    return out
 
 
 def analog_paths(case: str, repeat: int) -> tuple[float, float]:
@@ -113,6 +133,9 @@ def main(argv=None) -> None:
         fast, dense = analog_paths(case, args.repeat)
         print(f"  analogs: structured path {fast * 1e3:.2f} ms, dense LU path {dense * 1e3:.2f} ms "
               f"(minimum CPU time, {args.repeat} alternated calls each)")
+        gc = group_costs(case, max(20, args.repeat // 4))
+        print("  kernel with the first k groups (minimum CPU time): "
+              + ", ".join(f"k = {k}: {t * 1e3:.2f} ms" for k, t in enumerate(gc)))
         analysis_stages(case)          # warm every stage once
         runs = [analysis_stages(case) for _ in range(5)]
         st = [r[0] for r in runs]
