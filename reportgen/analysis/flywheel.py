@@ -221,20 +221,28 @@ class DynamicModel:
         half = 0.5 * (r - base)
         mid = 0.5 * (r + base)
         n, q = r.size, self._order
-        pts = np.empty(n * (q + 1))
-        pts[: n * q] = (mid[:, None] + half[:, None] * self._t).ravel()
-        pts[n * q:] = r
+        # a point on a node needs no quadrature (its integral from the node is 0): the
+        # Gauss–Legendre points are placed only for the others (on the cycle grid, none)
+        inner = np.flatnonzero(half != 0.0)
+        m = inner.size
+        hin = half[inner]
+        pts = np.empty(m * q + n)
+        pts[: m * q] = (mid[inner, None] + hin[:, None] * self._t).ravel()
+        pts[m * q:] = r
         mv = self._call(self._M, pts)
-        A = self._Ac_vals[i] + k * self.Ac_total + half * (mv[: n * q].reshape(n, q) @ self._w)
-        Ms = mv[n * q:]
+        A = self._Ac_vals[i] + k * self.Ac_total
+        if m:
+            A[inner] += hin * (mv[: m * q].reshape(m, q) @ self._w)
+        Ms = mv[m * q:]
         if self._Ad_vals is None:
             A = A + self.Md_const * (r - self.a) + k * self.Ad_total
             Ms = Ms + self.Md_const
         else:
             dv = self._call(self._Mdrive, pts)
-            A = A + self._Ad_vals[i] + k * self.Ad_total \
-                + half * (dv[: n * q].reshape(n, q) @ self._w)
-            Ms = Ms + dv[n * q:]
+            A = A + self._Ad_vals[i] + k * self.Ad_total
+            if m:
+                A[inner] += hin * (dv[: m * q].reshape(m, q) @ self._w)
+            Ms = Ms + dv[m * q:]
         if self._has_J:
             J = self._call(self._J2, r)
             dJ = self._call(self._dJ2, r)

@@ -43,9 +43,13 @@ class SolverModel:
     pbody: np.ndarray | None = None
     ploc: np.ndarray | None = None
     body_group: dict[int, int] = field(default_factory=dict)
+    _body_index: dict[str, int] = field(default_factory=dict, repr=False)
 
     def body(self, link: str) -> int:
-        return self.bodies.index(solver_bodies(self.mech)[link])
+        b = self._body_index.get(link)
+        if b is None:
+            b = self._body_index[link] = self.bodies.index(solver_bodies(self.mech)[link])
+        return b
 
     def local_point(self, link: str, p: str) -> tuple[float, float, float, float]:
         """Local coordinates p0, p1 (p = p0 + q·p1) of point p of a link in its solver body."""
@@ -114,8 +118,14 @@ def assemble(mech: Mechanism, st: Structure) -> SolverModel:
         gnb[gi] = len(bs)
         for b in bs:
             model.body_group[b] = gi
-        if g.solver in ("RRR", "RRP", "RPR"):
+        if g.order == 2 and len(bs) == 2:
+            # a dyad (any kind): closed-form position for ВВВ, ВВП, ВПВ, analogs by its 2×2 system
             gspec[gi, :5] = _dyad_spec(g, model, bidx)
+            gspec[gi, 5] = K.A_DYAD
+        elif len(bs) == 1 and sorted(model.jt[j] for j in js) == [K.J_REV, K.J_DRV]:
+            gspec[gi, 5] = K.A_SINGLE
+        else:
+            gspec[gi, 5] = K.A_DENSE
     model.groups = groups
     model.gkind, model.gspec, model.gjoint, model.gbody = gkind, gspec, gjoint, gbody
     model.gnj, model.gnb = gnj, gnb
@@ -327,10 +337,10 @@ def columns(model: SolverModel, res: KinematicsResult, grid: bool = True) -> dic
     out: dict[str, np.ndarray] = {"q": q}
     if mech.driver.rotary:
         out["q_deg"] = np.degrees(q)
+    P = np.ascontiguousarray(res.points.transpose(1, 2, 0))    # one copy; a column is a row of it
     for k, p in enumerate(model.point_names):
-        P = res.points[:, k, :]
         for c, pre in enumerate(("x_", "y_", "vqx_", "vqy_", "aqx_", "aqy_")):
-            out[pre + p] = P[:, c].copy()
+            out[pre + p] = P[k, c]
     for link in mech.moving:
         b = model.body(link.name)
         th = res.pose[:, b, 2]

@@ -43,7 +43,7 @@ import numpy as np
 from ..case import units as U
 from ..case.expr import Q, evaluate, free_names
 from ..case.reader import Node
-from ..errors import CaseError, did_you_mean
+from ..errors import AssemblyError, CaseError, did_you_mean
 from . import linkage as L
 
 __all__ = [
@@ -97,14 +97,42 @@ class ColumnEvaluator:
             self._cache.move_to_end(key)
             return hit
         self.calls += 1
-        # on the branch of the cycle (a class III group is continued from the solved cycle, the
-        # same kinematics as Study.at and the report positions)
-        res = self.study._solve_on_branch(q)
-        cols = L.columns(self.model, res, grid=False)
+        cols = self._columns(q)
         cols.update(self.study._extra_angles(cols))
         self._cache[key] = cols
         if len(self._cache) > self._size:
             self._cache.popitem(last=False)
+        return cols
+
+    def _columns(self, q: np.ndarray) -> dict[str, np.ndarray]:
+        """Columns of L.columns at q: points of the solved cycle grid are taken from it (the
+        columns are element-wise, so a grid point gives the same numbers), the others solved on
+        the branch of the cycle (a class III group is continued from the solved cycle, the same
+        kinematics as Study.at and the report positions)."""
+        gq = self.study.grid.cycle
+        idx = np.minimum(np.searchsorted(gq, q), gq.size - 1)
+        hit = gq[idx] == q
+        nhit = int(np.count_nonzero(hit))
+        grid = None
+        if nhit:
+            try:
+                grid = self.study._cycle_columns
+            except AssemblyError:       # the whole cycle does not assemble: the points alone
+                grid = None
+        if grid is None:
+            return L.columns(self.model, self.study._solve_on_branch(q), grid=False)
+        if nhit == q.size:
+            cols = {k: v[idx] for k, v in grid.items()}
+            cols["q"] = q.copy()
+            return cols
+        miss = ~hit
+        rest = L.columns(self.model, self.study._solve_on_branch(q[miss]), grid=False)
+        cols = {}
+        for k, v in rest.items():
+            c = np.empty(q.size)
+            c[miss] = v
+            c[hit] = grid[k][idx[hit]]
+            cols[k] = c
         return cols
 
     def names(self) -> list[str]:

@@ -341,6 +341,12 @@ class Study:
     def _cycle_solution(self) -> L.KinematicsResult:
         return L.solve(self.model, self.grid.cycle)
 
+    @cached_property
+    def _cycle_columns(self) -> dict[str, np.ndarray]:
+        """The kinematic columns of single positions (angles not unwrapped) on the cycle grid:
+        evaluations at grid points are taken from here (loads.ColumnEvaluator)."""
+        return L.columns(self.model, self._cycle_solution, grid=False)
+
     def _solve_on_branch(self, q: np.ndarray, labels=None) -> L.KinematicsResult:
         """Kinematics at single positions.  Closed-form groups keep their sign σ; a mechanism
         with Newton groups (class III) is continued from the nearest position of the solved

@@ -41,6 +41,12 @@ G_RRP = 2      # ВВП: circle–line
 G_RPR = 3      # ВПВ: rotating guide
 G_NEWTON = 4   # anything else (class III and higher)
 
+# analog solvers (gspec[g, 5]): the group's dense system, a dyad by a 2×2 system, one body by 3×3
+A_DENSE = 0
+A_DYAD = 1
+A_SINGLE = 2       # the initial link: a revolute and the drive (position in closed form too)
+FAST_MIN = 1e-8     # below this conditioning measure the dense path (LU) judges and solves
+
 # failure kinds reported by the kernel
 F_OK = 0
 F_ASSEMBLY = 1
@@ -289,13 +295,8 @@ def _inner(jf, jb, j, a, q):
 
 
 @njit(cache=True, error_model="numpy")
-def _solve_rrr(jf, jb, spec, sigma, q, pose):
+def _solve_rrr(jf, jb, a, b, jA, jB, jC, sigma, q, pose):
     """ВВВ group: bodies a, b; joint jA (a–known), jB (a–b), jC (b–known)."""
-    a = spec[0]
-    b = spec[1]
-    jA = spec[2]
-    jB = spec[3]
-    jC = spec[4]
     pax, pay, Ax, Ay = _pivot(jf, jb, jA, a, q, pose)
     pcx, pcy, Cx, Cy = _pivot(jf, jb, jC, b, q, pose)
     pbax, pbay, pbbx, pbby = _inner(jf, jb, jB, a, q)
@@ -369,14 +370,9 @@ def _angle_from_prismatic(jf, jb, jP, b, pose):
 
 
 @njit(cache=True, error_model="numpy")
-def _solve_rrp(jf, jb, spec, sigma, q, pose):
+def _solve_rrp(jf, jb, a, b, jA, jB, jP, sigma, q, pose):
     """ВВП group: body a (revolute jA to a known body, revolute jB to b), body b (prismatic jP
     to a known body).  Circle (centre A, radius |AB| on a) meets the line traced by B."""
-    a = spec[0]
-    b = spec[1]
-    jA = spec[2]
-    jB = spec[3]
-    jP = spec[4]
     pose[b, 2] = _angle_from_prismatic(jf, jb, jP, b, pose)
     pax, pay, Ax, Ay = _pivot(jf, jb, jA, a, q, pose)
     pbax, pbay, pbbx, pbby = _inner(jf, jb, jB, a, q)
@@ -408,15 +404,10 @@ def _solve_rrp(jf, jb, spec, sigma, q, pose):
 
 
 @njit(cache=True, error_model="numpy")
-def _solve_rpr(jf, jb, spec, sigma, q, pose):
+def _solve_rpr(jf, jb, a, b, jA, jP, jC, sigma, q, pose):
     """ВПВ group: bodies a, b each on a revolute to a known body (jA, jC), joined by the
     prismatic jP.  With G the guide and S the slider body of jP and w = P_S − P_G:
     |w| cos(θ_G + β − ψ) = K  ⇒  θ_G = ψ − β + σ·acos(K/|w|)."""
-    a = spec[0]
-    b = spec[1]
-    jA = spec[2]
-    jP = spec[3]
-    jC = spec[4]
     G = jb[jP, 0]
     S = jb[jP, 1]
     jG = jA if G == a else jC
@@ -457,7 +448,28 @@ def _solve_rpr(jf, jb, spec, sigma, q, pose):
 
 
 @njit(cache=True, error_model="numpy")
-def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of, known, mat, rhs):
+def _solve_crank(jt, jb, jf, gjoint, g, nj, body, q, pose):
+    """The initial link (one body on a revolute to a known body, its angle set by the drive)
+    in closed form: θ = θ_known ± (c0 + c1·q), then r = P − A(θ)·p with P the pivot's global
+    position and p its local point on the body."""
+    jr = gjoint[g, 0]
+    jd = gjoint[g, 1]
+    if jt[jr] != J_REV:
+        jr, jd = jd, jr
+    bi = jb[jd, 0]
+    bj = jb[jd, 1]
+    off = jf[jd, 0] + jf[jd, 1] * q
+    th = pose[bi, 2] + off if bj == body else pose[bj, 2] - off
+    pose[body, 2] = th
+    px, py, gx, gy = _pivot(jf, jb, jr, body, q, pose)
+    ux, uy = _rot(th, px, py)
+    pose[body, 0] = gx - ux
+    pose[body, 1] = gy - uy
+    return F_OK, 0.0, 1.0
+
+
+@njit(cache=True, error_model="numpy")
+def _solve_lin(jt, jb, jf, gjoint, nj, gbody, g, nbg, q, pose, col_of, known, mat, rhs):
     """Group whose angles all follow from angle constraints (prismatic joints to known bodies,
     drives); positions then satisfy linear equations (ПВП, ВПП, the initial link).
     ``known``, ``mat``, ``rhs`` are the caller's scratch arrays."""
@@ -465,7 +477,7 @@ def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of, known, mat, rhs):
         known[k] = False
     for it in range(nbg + 1):
         for k in range(nj):
-            j = gj[k]
+            j = gjoint[g, k]
             if jt[j] == J_REV:
                 continue
             bi = jb[j, 0]
@@ -494,7 +506,7 @@ def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of, known, mat, rhs):
             mat[r, c] = 0.0
     row = 0
     for k in range(nj):
-        j = gj[k]
+        j = gjoint[g, k]
         bi = jb[j, 0]
         bj = jb[j, 1]
         ci = col_of[bi]
@@ -541,7 +553,7 @@ def _solve_lin(jt, jb, jf, gj, nj, gb, nbg, q, pose, col_of, known, mat, rhs):
     if quality < 1e-13:
         return F_SINGULAR, 0.0, quality
     for k in range(nbg):
-        b = gb[k]
+        b = gbody[g, k]
         pose[b, 0] = rhs[2 * k]
         pose[b, 1] = rhs[2 * k + 1]
     return F_OK, 0.0, quality
@@ -681,32 +693,235 @@ def _pose_distance(a, b, gb, nbg, size):
 
 
 @njit(cache=True, error_model="numpy")
+def _general_analogs(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, mat, rhs, perm, col_of,
+                     coef, expl, gam, res, cs, kind, qual, g, qarr, iq, fail):
+    """Analogs of any group from its dense linear systems Φ_x x' = −Φ_q and Φ_x x'' = −γ (one
+    LU factorisation for both levels).  Stores the pivot measure in qarr[iq, g] for Newton and
+    linear groups; returns False (fail set, F_SINGULAR) when the matrix is singular."""
+    n = 3 * nbg
+    _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 1, mat, rhs, col_of,
+                  coef, expl, gam, res, True, cs)
+    piv = lu_factor(mat, n, perm)
+    if kind == G_NEWTON or kind == G_LIN:
+        qual = piv
+    if piv < 1e-14:
+        fail[0] = F_SINGULAR
+        fail[2] = g
+        fail[3] = qual      # transmission measure of a dyad, the pivot measure otherwise
+        for k in range(nbg):
+            col_of[gb[k]] = -1
+        return False
+    lu_solve(mat, perm, rhs, n)
+    for k in range(nbg):
+        for c in range(3):
+            v[gb[k], c] = rhs[3 * k + c]
+    _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 2, mat, rhs, col_of,
+                  coef, expl, gam, res, False, cs)
+    lu_solve(mat, perm, rhs, n)
+    for k in range(nbg):
+        for c in range(3):
+            acc[gb[k], c] = rhs[3 * k + c]
+    qarr[iq, g] = qual
+    return True
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _body_affine(jt, jb, jf, j, body, q, pose, v, x, level, coef, expl, gam, cs):
+    """The two rows of the external joint j tie ``body`` to a known body: its analog
+    (x′ at level 1, x″ at level 2) is x_b = c + λ·s with s = C₀ × C₁ spanning the null space of
+    the body's 2×3 block C and c = Cᵀ(CCᵀ)⁻¹h the least-norm solution of C c = h
+    (h = −(known block · known analog + explicit/γ term)).  Returns (c, s) as six floats."""
+    _joint_rows(jt, jb, jf, j, q, pose, v, coef, expl, gam, level == 2, cs)
+    side = 0 if jb[j, 0] == body else 1
+    k = jb[j, 1 - side]
+    o = 3 * side
+    ko = 3 - o
+    t0 = gam[0] if level == 2 else expl[0]
+    t1 = gam[1] if level == 2 else expl[1]
+    h0 = -(t0 + coef[0, ko] * x[k, 0] + coef[0, ko + 1] * x[k, 1] + coef[0, ko + 2] * x[k, 2])
+    h1 = -(t1 + coef[1, ko] * x[k, 0] + coef[1, ko + 1] * x[k, 1] + coef[1, ko + 2] * x[k, 2])
+    a0 = coef[0, o]
+    a1 = coef[0, o + 1]
+    a2 = coef[0, o + 2]
+    b0 = coef[1, o]
+    b1 = coef[1, o + 1]
+    b2 = coef[1, o + 2]
+    g00 = a0 * a0 + a1 * a1 + a2 * a2
+    g01 = a0 * b0 + a1 * b1 + a2 * b2
+    g11 = b0 * b0 + b1 * b1 + b2 * b2
+    dg = g00 * g11 - g01 * g01
+    y0 = (h0 * g11 - g01 * h1) / dg
+    y1 = (g00 * h1 - g01 * h0) / dg
+    return (y0 * a0 + y1 * b0, y0 * a1 + y1 * b1, y0 * a2 + y1 * b2,
+            a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0)
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _dyad_level(jt, jb, jf, a, b, jA, jI, jB, q, pose, v, x, level, coef, expl, gam, cs):
+    """One level of :func:`_dyad_analogs` (x = v at level 1, the second analogs at level 2).
+    At level 1 returns the conditioning measure and leaves x untouched when it is below
+    FAST_MIN."""
+    ca0, ca1, ca2, sa0, sa1, sa2 = _body_affine(jt, jb, jf, jA, a, q, pose, v, x, level, coef, expl, gam, cs)
+    cb0, cb1, cb2, sb0, sb1, sb2 = _body_affine(jt, jb, jf, jB, b, q, pose, v, x, level, coef, expl, gam, cs)
+    _joint_rows(jt, jb, jf, jI, q, pose, v, coef, expl, gam, level == 2, cs)
+    oa = 0 if jb[jI, 0] == a else 3
+    ob = 3 - oa
+    t0 = gam[0] if level == 2 else expl[0]
+    t1 = gam[1] if level == 2 else expl[1]
+    m00 = coef[0, oa] * sa0 + coef[0, oa + 1] * sa1 + coef[0, oa + 2] * sa2
+    m10 = coef[1, oa] * sa0 + coef[1, oa + 1] * sa1 + coef[1, oa + 2] * sa2
+    m01 = coef[0, ob] * sb0 + coef[0, ob + 1] * sb1 + coef[0, ob + 2] * sb2
+    m11 = coef[1, ob] * sb0 + coef[1, ob + 1] * sb1 + coef[1, ob + 2] * sb2
+    r0 = -(t0 + coef[0, oa] * ca0 + coef[0, oa + 1] * ca1 + coef[0, oa + 2] * ca2
+           + coef[0, ob] * cb0 + coef[0, ob + 1] * cb1 + coef[0, ob + 2] * cb2)
+    r1 = -(t1 + coef[1, oa] * ca0 + coef[1, oa + 1] * ca1 + coef[1, oa + 2] * ca2
+           + coef[1, ob] * cb0 + coef[1, ob + 1] * cb1 + coef[1, ob + 2] * cb2)
+    det = m00 * m11 - m01 * m10
+    meas = 1.0
+    if level == 1:
+        na = np.hypot(m00, m10)
+        nb = np.hypot(m01, m11)
+        if na == 0.0 or nb == 0.0:
+            return 0.0
+        meas = abs(det) / (na * nb)
+        if meas < FAST_MIN:
+            return meas
+    la = (r0 * m11 - m01 * r1) / det
+    lb = (m00 * r1 - m10 * r0) / det
+    x[a, 0] = ca0 + la * sa0
+    x[a, 1] = ca1 + la * sa1
+    x[a, 2] = ca2 + la * sa2
+    x[b, 0] = cb0 + lb * sb0
+    x[b, 1] = cb1 + lb * sb1
+    x[b, 2] = cb2 + lb * sb2
+    return meas
+
+
+@njit(cache=True, error_model="numpy")
+def _dyad_analogs(jt, jb, jf, a, b, jA, jI, jB, q, pose, v, acc, coef, expl, gam, cs):
+    """First and second analogs of a dyad (any of ВВВ, ВВП, ВПВ, ПВП, ВПП) without its 6×6
+    system: each body's analog is affine in one scalar (:func:`_body_affine`: θ′ of a body on
+    a revolute, the sliding rate of a body on a guide), and the two rows of the inner joint give
+    a 2×2 system in those scalars, solved by Cramer's rule (Артоболевский, «Теория механизмов
+    и машин», §§ 3.5–3.8: the vector equation of the group's inner pair projected on two axes).
+    a, b: the bodies; jA, jB: their external joints; jI: the inner joint.
+
+    Returns the sine of the angle between the columns of the 2×2 matrix (1 for a well
+    conditioned group, 0 at a singular position); the caller falls back to the general dense
+    path when it is below FAST_MIN, so singular positions are judged as before."""
+    meas = 1.0
+    for level in range(1, 3):      # a run-time level: one compiled specialisation
+        x = v if level == 1 else acc
+        m = _dyad_level(jt, jb, jf, a, b, jA, jI, jB, q, pose, v, x, level, coef, expl, gam, cs)
+        if level == 1:
+            meas = m
+            if meas < FAST_MIN:
+                break
+    return meas
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _single_level(jt, jb, jf, gjoint, g, nj, body, q, pose, v, x, level, coef, expl, gam, cs, mat, rhs):
+    """One level of :func:`_single_analogs` (x = v at level 1, the second analogs at level 2)."""
+    row = 0
+    for kk in range(nj):
+        j = gjoint[g, kk]
+        nr = _joint_rows(jt, jb, jf, j, q, pose, v, coef, expl, gam, level == 2, cs)
+        side = 0 if jb[j, 0] == body else 1
+        k = jb[j, 1 - side]
+        o = 3 * side
+        ko = 3 - o
+        for r in range(nr):
+            if row >= 3:
+                return 0.0
+            t = gam[r] if level == 2 else expl[r]
+            mat[row, 0] = coef[r, o]
+            mat[row, 1] = coef[r, o + 1]
+            mat[row, 2] = coef[r, o + 2]
+            rhs[row] = -(t + coef[r, ko] * x[k, 0] + coef[r, ko + 1] * x[k, 1] + coef[r, ko + 2] * x[k, 2])
+            row += 1
+    if row != 3:
+        return 0.0
+    c00 = mat[1, 1] * mat[2, 2] - mat[1, 2] * mat[2, 1]
+    c01 = mat[1, 2] * mat[2, 0] - mat[1, 0] * mat[2, 2]
+    c02 = mat[1, 0] * mat[2, 1] - mat[1, 1] * mat[2, 0]
+    det = mat[0, 0] * c00 + mat[0, 1] * c01 + mat[0, 2] * c02
+    meas = 1.0
+    if level == 1:
+        h = 1.0
+        for r in range(3):
+            h *= np.sqrt(mat[r, 0] * mat[r, 0] + mat[r, 1] * mat[r, 1] + mat[r, 2] * mat[r, 2])
+        if h == 0.0:
+            return 0.0
+        meas = abs(det) / h
+        if meas < FAST_MIN:
+            return meas
+    b0 = rhs[0]
+    b1 = rhs[1]
+    b2 = rhs[2]
+    # Cramer's rule: x_c = det(M with column c replaced by b) / det
+    x[body, 0] = (b0 * c00 + mat[0, 1] * (mat[1, 2] * b2 - b1 * mat[2, 2])
+                  + mat[0, 2] * (b1 * mat[2, 1] - mat[1, 1] * b2)) / det
+    x[body, 1] = (mat[0, 0] * (b1 * mat[2, 2] - mat[1, 2] * b2) + b0 * c01
+                  + mat[0, 2] * (mat[1, 0] * b2 - b1 * mat[2, 0])) / det
+    x[body, 2] = (mat[0, 0] * (mat[1, 1] * b2 - b1 * mat[2, 1])
+                  + mat[0, 1] * (b1 * mat[2, 0] - mat[1, 0] * b2) + b0 * c02) / det
+    return meas
+
+
+@njit(cache=True, error_model="numpy")
+def _single_analogs(jt, jb, jf, gjoint, g, nj, body, q, pose, v, acc, coef, expl, gam, cs, mat, rhs):
+    """First and second analogs of a one-body group with three equations (the initial link: a
+    revolute or prismatic pair to a known body and the drive) by Cramer's rule on its 3×3
+    system.  Returns |det| divided by the product of the row norms (Hadamard's ratio, 0 at a
+    singular matrix); the caller falls back to the dense path when it is below FAST_MIN."""
+    meas = 1.0
+    for level in range(1, 3):      # a run-time level: one compiled specialisation
+        x = v if level == 1 else acc
+        m = _single_level(jt, jb, jf, gjoint, g, nj, body, q, pose, v, x, level, coef, expl, gam, cs, mat, rhs)
+        if level == 1:
+            meas = m
+            if meas < FAST_MIN:
+                break
+    return meas
+
+
+@njit(cache=True, error_model="numpy")
 def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
-                    size, cur, v, acc, pp, pv, pa, qual_row, fail, mat, rhs, perm, known,
+                    size, cur, v, acc, pp, pv, pa, ip, qarr, iq, fail, mat, rhs, perm, known,
                     coef, expl, gam, res, col_of, cs):
     """Positions and both analogs of every group at qi.  Newton groups start from the
-    second-order predictor pp + pv·dq + ½ pa·dq² (the state at the previous grid point), or from
+    second-order predictor pp + pv·dq + ½ pa·dq² (the state pp[ip], pv[ip], pa[ip] at the previous
+    grid point), or from
     ``cur`` (the sketch) when ``first``.  Returns False on failure (fail[0], fail[2], fail[3] set;
     F_JUMP when Newton's correction is large against the predicted step, i.e. it may have left
-    the branch and the caller must refine the step)."""
+    the branch and the caller must refine the step).  The groups' quality measures go to
+    qarr[iq]."""
     ng = gkind.shape[0]
     for g in range(ng):
         nbg = gnb[g]
         nj = gnj[g]
-        gb = gbody[g]
-        gj = gjoint[g]
         for k in range(nbg):
-            col_of[gb[k]] = k
+            col_of[gbody[g, k]] = k
         kind = gkind[g]
+        s0 = gspec[g, 0]
+        s1 = gspec[g, 1]
+        s2 = gspec[g, 2]
+        s3 = gspec[g, 3]
+        s4 = gspec[g, 4]
         if kind == G_RRR:
-            st, amount, qual = _solve_rrr(jf, jb, gspec[g], gsigma[g], qi, cur)
+            st, amount, qual = _solve_rrr(jf, jb, s0, s1, s2, s3, s4, gsigma[g], qi, cur)
         elif kind == G_RRP:
-            st, amount, qual = _solve_rrp(jf, jb, gspec[g], gsigma[g], qi, cur)
+            st, amount, qual = _solve_rrp(jf, jb, s0, s1, s2, s3, s4, gsigma[g], qi, cur)
         elif kind == G_RPR:
-            st, amount, qual = _solve_rpr(jf, jb, gspec[g], gsigma[g], qi, cur)
+            st, amount, qual = _solve_rpr(jf, jb, s0, s1, s2, s3, s4, gsigma[g], qi, cur)
+        elif kind == G_LIN and gspec[g, 5] == A_SINGLE:
+            st, amount, qual = _solve_crank(jt, jb, jf, gjoint, g, nj, gbody[g, 0], qi, cur)
         elif kind == G_LIN:
-            st, amount, qual = _solve_lin(jt, jb, jf, gj, nj, gb, nbg, qi, cur, col_of, known, mat, rhs)
+            st, amount, qual = _solve_lin(jt, jb, jf, gjoint, nj, gbody, g, nbg, qi, cur, col_of, known, mat, rhs)
         else:
+            gb = gbody[g]
+            gj = gjoint[g]
             if first:
                 # from the sketch: Newton and damped (Levenberg–Marquardt) steps, which stay
                 # near the sketch where a full Newton step may land on another assembly; the
@@ -728,8 +943,8 @@ def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj
                 for k in range(nbg):
                     b = gb[k]
                     for c in range(3):
-                        dx = pv[b, c] * dq + 0.5 * pa[b, c] * dq * dq
-                        cur[b, c] = pp[b, c] + dx
+                        dx = pv[ip, b, c] * dq + 0.5 * pa[ip, b, c] * dq * dq
+                        cur[b, c] = pp[ip, b, c] + dx
                         step = max(step, abs(dx) * (size if c == 2 else 1.0))
                 for k in range(nbg):
                     b = gb[k]
@@ -755,37 +970,29 @@ def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj
             fail[2] = g
             fail[3] = amount
             for k in range(nbg):
-                col_of[gb[k]] = -1
+                col_of[gbody[g, k]] = -1
             return False
-        n = 3 * nbg
-        _refresh_cs(cs, cur, gb, nbg)
-        # first analogs: Φ_x x' = −Φ_q (one LU factorisation for both levels)
-        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 1, mat, rhs, col_of,
-                      coef, expl, gam, res, True, cs)
-        piv = lu_factor(mat, n, perm)
-        if kind == G_NEWTON or kind == G_LIN:
-            qual = piv
-        if piv < 1e-14:
-            fail[0] = F_SINGULAR
-            fail[2] = g
-            fail[3] = qual      # transmission measure of a dyad, the pivot measure otherwise
-            for k in range(nbg):
-                col_of[gb[k]] = -1
+        for k in range(nbg):
+            b = gbody[g, k]
+            cs[b, 0] = np.cos(cur[b, 2])
+            cs[b, 1] = np.sin(cur[b, 2])
+        fast = gspec[g, 5]
+        meas = -1.0
+        if fast == A_DYAD:
+            meas = _dyad_analogs(jt, jb, jf, s0, s1, s2, s3, s4, qi, cur, v, acc, coef, expl, gam, cs)
+        elif fast == A_SINGLE:
+            meas = _single_analogs(jt, jb, jf, gjoint, g, nj, gbody[g, 0], qi, cur, v, acc, coef, expl, gam, cs, mat, rhs)
+        if meas >= FAST_MIN:
+            if kind == G_NEWTON or kind == G_LIN:
+                qual = meas
+        elif not _general_analogs(jt, jb, jf, gjoint[g], nj, gbody[g], nbg, qi, cur, v, acc, mat, rhs, perm, col_of,
+                                  coef, expl, gam, res, cs, kind, qual, g, qarr, iq, fail):
             return False
-        lu_solve(mat, perm, rhs, n)
+        elif kind == G_NEWTON or kind == G_LIN:
+            qual = qarr[iq, g]
+        qarr[iq, g] = qual
         for k in range(nbg):
-            for c in range(3):
-                v[gb[k], c] = rhs[3 * k + c]
-        # second analogs: Φ_x x'' = −γ
-        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, 2, mat, rhs, col_of,
-                      coef, expl, gam, res, False, cs)
-        lu_solve(mat, perm, rhs, n)
-        for k in range(nbg):
-            for c in range(3):
-                acc[gb[k], c] = rhs[3 * k + c]
-        qual_row[g] = qual
-        for k in range(nbg):
-            col_of[gb[k]] = -1
+            col_of[gbody[g, k]] = -1
     return True
 
 
@@ -826,70 +1033,70 @@ def solve_cycle(q, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
     cur = pose0.copy()
     v = np.zeros((nb, 3))
     acc = np.zeros((nb, 3))
-    sp = np.zeros((nb, 3))
-    sv = np.zeros((nb, 3))
-    sa = np.zeros((nb, 3))
-    qrow = np.zeros(ng)
+    sp = np.zeros((1, nb, 3))
+    sv = np.zeros((1, nb, 3))
+    sa = np.zeros((1, nb, 3))
+    qrow = np.zeros((1, ng))
     qfail = 0.0
     cs = np.zeros((nb, 2))
     for b in range(nb):
         cs[b, 0] = np.cos(pose0[b, 2])
         cs[b, 1] = np.sin(pose0[b, 2])
+    # the arguments of every _solve_position call have the same (non-literal) types, so that it
+    # is compiled once: a literal True/0 would compile a second and third specialisation
+    never = N < 0
+    zero = N - N
     for i in range(N):
         qi = q[i]
-        if i == 0:
-            ok = _solve_position(qi, 0.0, True, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody,
-                                 gnb, size, cur, v, acc, cur, v, acc, quality[i], fail, mat, rhs, perm,
-                                 known, coef, expl, gam, res, col_of, cs)
-        else:
-            ok = _solve_position(qi, qi - q[i - 1], False, jt, jb, jf, gkind, gspec, gsigma, gjoint,
-                                 gnj, gbody, gnb, size, cur, v, acc, pose[i - 1], d1[i - 1], d2[i - 1],
-                                 quality[i], fail, mat, rhs, perm, known, coef, expl, gam, res, col_of, cs)
+        ip = i - 1 if i > 0 else i
+        ok = _solve_position(qi, qi - q[ip], i == 0, jt, jb, jf, gkind, gspec, gsigma, gjoint,
+                             gnj, gbody, gnb, size, cur, v, acc, pose, d1, d2, ip,
+                             quality, i, fail, mat, rhs, perm, known, coef, expl, gam, res, col_of, cs)
+        if i > 0 and not ok and fail[0] == F_JUMP:
+            # refine: march from q[i-1] to q[i] in 2, 4, … equal sub-steps
+            for h in range(1, MAX_HALVINGS + 1):
+                m = 1 << h
+                h_q = (qi - q[i - 1]) / m
+                sp[0] = pose[i - 1]
+                sv[0] = d1[i - 1]
+                sa[0] = d2[i - 1]
+                ok = True
+                for k in range(1, m + 1):
+                    qk = q[i - 1] + k * h_q if k < m else qi
+                    qfail = qk
+                    ok = _solve_position(qk, h_q, never, jt, jb, jf, gkind, gspec, gsigma, gjoint,
+                                         gnj, gbody, gnb, size, cur, v, acc, sp, sv, sa, zero, qrow, zero, fail,
+                                         mat, rhs, perm, known, coef, expl, gam, res, col_of, cs)
+                    if not ok:
+                        break
+                    sp[0] = cur
+                    sv[0] = v
+                    sa[0] = acc
+                if ok:
+                    quality[i, :] = qrow[0]
+                    fail[:] = 0.0
+                    break
+                if fail[0] != F_JUMP:
+                    break
             if not ok and fail[0] == F_JUMP:
-                # refine: march from q[i-1] to q[i] in 2, 4, … equal sub-steps
-                for h in range(1, MAX_HALVINGS + 1):
-                    m = 1 << h
-                    h_q = (qi - q[i - 1]) / m
-                    sp[:, :] = pose[i - 1]
-                    sv[:, :] = d1[i - 1]
-                    sa[:, :] = d2[i - 1]
-                    ok = True
-                    for k in range(1, m + 1):
-                        qk = q[i - 1] + k * h_q if k < m else qi
-                        qfail = qk
-                        ok = _solve_position(qk, h_q, False, jt, jb, jf, gkind, gspec, gsigma, gjoint,
-                                             gnj, gbody, gnb, size, cur, v, acc, sp, sv, sa, qrow, fail,
-                                             mat, rhs, perm, known, coef, expl, gam, res, col_of, cs)
-                        if not ok:
-                            break
-                        sp[:, :] = cur
-                        sv[:, :] = v
-                        sa[:, :] = acc
-                    if ok:
-                        quality[i, :] = qrow
-                        fail[:] = 0.0
-                        break
-                    if fail[0] != F_JUMP:
-                        break
-                if not ok and fail[0] == F_JUMP:
-                    g = int(fail[2])
-                    if fail[3] < 0.0:
-                        # Newton fails even on the finest step: least squares from the last
-                        # solved sub-step tells an assembly from a gap (reported in metres)
-                        cur[:, :] = sp
-                        for k in range(gnb[g]):
-                            col_of[gbody[g, k]] = k
-                        st, amount, qual = _solve_lsq(jt, jb, jf, gjoint[g], gnj[g], gbody[g], gnb[g],
-                                                      qfail, cur, v, size, col_of, mat, rhs, coef, expl,
-                                                      gam, res, cs)
-                        for k in range(gnb[g]):
-                            col_of[gbody[g, k]] = -1
-                        fail[0] = F_NEWTON if st != F_OK else F_SINGULAR
-                        fail[3] = amount if st != F_OK else qrow[g]
-                    else:
-                        # the branch cannot be followed through this step: a singular position
-                        fail[0] = F_SINGULAR
-                        fail[3] = qrow[g]
+                g = int(fail[2])
+                if fail[3] < 0.0:
+                    # Newton fails even on the finest step: least squares from the last
+                    # solved sub-step tells an assembly from a gap (reported in metres)
+                    cur[:, :] = sp[0]
+                    for k in range(gnb[g]):
+                        col_of[gbody[g, k]] = k
+                    st, amount, qual = _solve_lsq(jt, jb, jf, gjoint[g], gnj[g], gbody[g], gnb[g],
+                                                  qfail, cur, v, size, col_of, mat, rhs, coef, expl,
+                                                  gam, res, cs)
+                    for k in range(gnb[g]):
+                        col_of[gbody[g, k]] = -1
+                    fail[0] = F_NEWTON if st != F_OK else F_SINGULAR
+                    fail[3] = amount if st != F_OK else qrow[0, g]
+                else:
+                    # the branch cannot be followed through this step: a singular position
+                    fail[0] = F_SINGULAR
+                    fail[3] = qrow[0, g]
         if not ok:
             fail[1] = i
             return pose, d1, d2, quality, fail

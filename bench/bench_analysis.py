@@ -1,0 +1,150 @@
+"""CPU time of the kinematics kernel and of the whole numerical analysis of a case (warm process).
+
+Usage: ``.venv/bin/python bench/bench_analysis.py [CASE …] [--repeat N]`` (default case:
+cases/ws000_six_bar.toml).  For each case:
+
+* the whole-grid kernel ``analysis.linkage.run_kernel`` on the cycle grid (positions, first and
+  second analogs): median and minimum CPU time (``time.process_time``) of N warm calls;
+* the same kernel with every group on the dense path (the group's Φ_x assembled and LU-solved,
+  ``gspec[:, 5] = 0``) against the structured path (dyads by 2×2, the initial link by 3×3),
+  alternated in one process: minimum CPU time of N calls each;
+* the kernel solving only the first k groups, k = 0 … number of groups (the cost of the loop
+  itself and of each group in order);
+* the whole numerical analysis of a fresh Study (kinematics, the cycle, every task of the case —
+  dynamics with the flywheel, forces — with all their tables and scalars): median CPU time of 5
+  fresh Studies after one warm-up, and the time of each stage; the number of kernel calls and of
+  positions they solved.
+
+CPU time is used because the machine is shared: a loaded machine inflates wall time several
+times, CPU time much less.  Never part of the tests.
+"""
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+
+def kernel_times(case: str, repeat: int) -> tuple[float, float, int]:
+    from reportgen.analysis import linkage as L
+    from reportgen.analysis.study import Study
+    s = Study(ROOT / case)
+    model, q = s.model, s.grid.cycle
+    L.run_kernel(model, q)
+    ts = []
+    for _ in range(repeat):
+        t0 = time.process_time()
+        L.run_kernel(model, q)
+        ts.append(time.process_time() - t0)
+    return statistics.median(ts), min(ts), len(q)
+
+
+def group_costs(case: str, repeat: int) -> list[float]:
+    """Minimum CPU time of the kernel solving only the first k groups, k = 0 … all."""
+    from reportgen.analysis import linkage as L
+    from reportgen.analysis.study import Study
+    s = Study(ROOT / case)
+    model, q = s.model, s.grid.cycle
+    out = []
+    for k in range(len(model.groups) + 1):
+        L.run_kernel(model, q, k)
+        ts = []
+        for _ in range(repeat):
+            t0 = time.process_time()
+            L.run_kernel(model, q, k)
+            ts.append(time.process_time() - t0)
+        out.append(min(ts))
+    return out
+
+
+def analog_paths(case: str, repeat: int) -> tuple[float, float]:
+    """(structured, dense) minimum CPU time of the kernel, calls alternated in one process."""
+    from reportgen.analysis import linkage as L
+    from reportgen.analysis.study import Study
+    s = Study(ROOT / case)
+    model, q = s.model, s.grid.cycle
+    fast = model.gspec.copy()
+    dense = fast.copy()
+    dense[:, 5] = 0
+    best = {0: [], 1: []}
+    try:
+        for _ in range(repeat):
+            for k, spec in ((0, fast), (1, dense)):
+                model.gspec = spec
+                t0 = time.process_time()
+                L.run_kernel(model, q)
+                best[k].append(time.process_time() - t0)
+    finally:
+        model.gspec = fast
+    return min(best[0]), min(best[1])
+
+
+def analysis_stages(case: str) -> tuple[dict[str, float], int, int]:
+    """CPU time of each stage of a fresh Study, the number of kernel calls and positions."""
+    from reportgen.analysis import linkage as L
+    from reportgen.analysis.study import Study
+    calls = [0, 0]
+    orig = L.run_kernel
+
+    def counted(model, q, *a, **k):
+        calls[0] += 1
+        calls[1] += len(q)
+        return orig(model, q, *a, **k)
+
+    L.run_kernel = counted
+    try:
+        s = Study(ROOT / case)
+        out = {}
+        t0 = time.process_time()
+        s.model
+        out["model"] = time.process_time() - t0
+        for name in ("kinematics", "cycle"):
+            t = time.process_time()
+            getattr(s, name)
+            out[name] = time.process_time() - t
+        for name in s.tasks():
+            t = time.process_time()
+            a = s.analysis(name)
+            a.tables()
+            a.scalars
+            out[name] = time.process_time() - t
+        out["total"] = time.process_time() - t0
+    finally:
+        L.run_kernel = orig
+    return out, calls[0], calls[1]
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("cases", nargs="*", default=["cases/ws000_six_bar.toml"])
+    ap.add_argument("--repeat", type=int, default=200)
+    args = ap.parse_args(argv)
+    import os
+    print(f"load average before: {os.getloadavg()[0]:.2f}")
+    for case in args.cases:
+        med, best, n = kernel_times(case, args.repeat)
+        print(f"{case}: kernel over {n} positions (positions + both analogs), CPU: "
+              f"median {med * 1e3:.2f} ms, min {best * 1e3:.2f} ms ({med / n * 1e9:.0f} ns a position)")
+        fast, dense = analog_paths(case, args.repeat)
+        print(f"  analogs: structured path {fast * 1e3:.2f} ms, dense LU path {dense * 1e3:.2f} ms "
+              f"(minimum CPU time, {args.repeat} alternated calls each)")
+        gc = group_costs(case, max(20, args.repeat // 4))
+        print("  kernel with the first k groups (minimum CPU time): "
+              + ", ".join(f"k = {k}: {t * 1e3:.2f} ms" for k, t in enumerate(gc)))
+        analysis_stages(case)          # warm every stage once
+        runs = [analysis_stages(case) for _ in range(5)]
+        st = [r[0] for r in runs]
+        med = {k: statistics.median(x[k] for x in st) for k in st[0]}
+        print(f"  whole analysis of a fresh Study, CPU (median of 5): {med['total'] * 1e3:.0f} ms; "
+              f"{runs[0][1]} kernel calls over {runs[0][2]} positions")
+        print("  stages: " + ", ".join(f"{k} {v * 1e3:.1f} ms" for k, v in med.items() if k != "total"))
+    print(f"load average after: {os.getloadavg()[0]:.2f}")
+
+
+if __name__ == "__main__":
+    main()
