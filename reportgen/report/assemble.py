@@ -12,6 +12,7 @@ import re
 from typing import Iterable
 
 import pandas as pd
+from markupsafe import Markup, escape
 
 from ..registry import KINDS
 from ..style.numbers import fmt
@@ -142,17 +143,27 @@ def _given_parameters(study) -> list:
     out = []
     rows = []
     raw = study.root.table("parameters").data
+    texts = study.spec.parameter_texts()
     fitted = {f.name for f in study.fits}
     for name, q in study.params.items():
         if name not in raw or name in fitted:
             continue
         v, unit = value_with_unit(q)
-        rows.append({"title": param_title(name), "name": name, "value": v, "unit": unit})
+        title, symbol = texts.get(name, (None, None))
+        rows.append({"title": title or param_title(name), "name": symbol or param_symbol(name), "value": v,
+                     "unit": unit})
     if rows:
-        out.append(Table("Исходные данные", [Column("title", "Параметр"), Column("name", "Обозначение", fmt=param_symbol),
+        out.append(Table("Исходные данные", [Column("title", "Параметр", fmt=_cell_html),
+                                             Column("name", "Обозначение", fmt=_cell_html),
                                              Column("value", "Значение", fmt=_as_written), Column("unit", "Единица")],
                          pd.DataFrame(rows), id="tab-given"))
     return out
+
+
+def _cell_html(x) -> Markup:
+    """A cell already made safe HTML (a case title or symbol through ``inline_html``, or the
+    derived symbol); plain derived titles are escaped."""
+    return x if isinstance(x, Markup) else escape(x)
 
 
 def _as_written(x) -> str:

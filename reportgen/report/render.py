@@ -517,6 +517,11 @@ _UNIT_SLASH = re.compile(r"([^\s<>]+)(" + _NB + r")([^\s<>&/]+/[^\s<>&]+)")
 _UNIT_SLASH_BARE = re.compile(r"(" + _NB + r"[^\s<>&/]+/[^\s<>&]+)")
 _NBSP_BEFORE_IMG = re.compile(_NB + r"(<img\b[^>]*>)")
 _NBSP_BEFORE_TAG = re.compile(_NB + r"(<(?:a|span|i|b|em|strong)\b[^>]*>)")
+# a compound unit («Н·м», «кг·м²», «Н·с/м») with the number before it, and initials with the
+# surname («Н. И. Мерцалов», «Мерцалов Н. И.»): never broken across lines
+_UNIT_DOT = re.compile(r"(?:[-−+]?\d[\d,.]*(?:" + _NB + r"|\s))?[A-Za-zА-Яа-яЁё]+(?:²|³)?(?:·[A-Za-zА-Яа-яЁё]+(?:²|³)?)+")
+_INITIALS = re.compile(r"\b([А-ЯЁ]\.)[ \u00a0]?([А-ЯЁ]\.)?[ \u00a0]([А-ЯЁ][а-яё]+)"
+                       r"|\b([А-ЯЁ][а-яё]+)[ \u00a0]([А-ЯЁ]\.)[ \u00a0]?([А-ЯЁ]\.)?(?![а-яё])")
 _SUP_PLAIN = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺", "0123456789\u2212+")
 
 
@@ -559,6 +564,9 @@ def _typography(html: str) -> str:
 
         text = _UNIT_SLASH.sub(r'<span class="nobr">\1 \3</span>', text)
         text = _UNIT_SLASH_BARE.sub(r'<span class="nobr">\1</span>', text)
+        text = _UNIT_DOT.sub(lambda m: '<span class="nobr">' + re.sub(r"\s", "\u00a0", m.group(0)) + "</span>"
+                             if "<span" not in m.group(0) else m.group(0), text)
+        text = _INITIALS.sub(lambda m: re.sub(r"\s", "\u00a0", m.group(0)), text)
         return _SUP_RUN.sub(repl, text)
 
     # A no-break space right before an inline element («=&nbsp;<img>»,

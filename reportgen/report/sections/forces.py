@@ -302,6 +302,8 @@ def _groups(sec: Section, study, f, lab: str) -> None:
         s.figure(f"{'Начальный механизм' if act is not None else 'Группа'} {g.label}: схема нагружения (μ<sub>l</sub> = {mu_text(draw.mu)} м/мм, стрелки сил "
                  f"без масштаба) и план сил (μ<sub>F</sub> = {mu_text(draw.mu_F)} Н/мм)",
                  draw.svg, draw.width_mm, id=gid)
+        if draw.constructed:
+            s.paragraph(_construction_text(draw, gid))
         rows = []
         det = f.details(lab)
         for k in g.pairs:
@@ -323,6 +325,28 @@ def _groups(sec: Section, study, f, lab: str) -> None:
             _crank_moment(s, study, f, lab, g, det)
 
 
+_DIGITS = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
+
+
+def _construction_text(draw, gid: str) -> str:
+    """How the polygon of the group was constructed and what was read off it, against the exact
+    solution of the group's equations."""
+    found = "; ".join(f"{sub('R', c.label[1:].translate(_DIGITS))}&nbsp;=&nbsp;{fmt(c.graphic, sig=4)}&nbsp;Н (аналитически "
+                      f"{fmt(c.exact, sig=5)}&nbsp;Н, расхождение {fmt(c.dev_pct, digits=2, sign=True)}&nbsp;%)"
+                      for c in draw.constructed)
+    if len(draw.constructed) == 1:
+        how = ("Известные силы отложены в масштабе μ<sub>F</sub> (длины округлены до 0,5&nbsp;мм); "
+               "замыкающая сторона плана сил — искомая реакция, её длина измерена на чертеже")
+    else:
+        how = ("Известные силы и касательные составляющие реакций <i>R</i><sup>τ</sup> (из уравнений моментов "
+               "сил каждого звена относительно внутреннего шарнира) отложены в масштабе μ<sub>F</sub> "
+               "с длинами, округлёнными до 0,5&nbsp;мм; через начало и конец цепи проведены линии известных "
+               "направлений (нормальная составляющая <i>R</i><sup>n</sup> — вдоль звена, реакция "
+               "поступательной пары — перпендикулярно направляющей); точка их пересечения замыкает "
+               "план, реакции измерены на чертеже")
+    return f"{how} (рисунок {ref(gid)}): {found}."
+
+
 def _unknown_text(p) -> str:
     if p.kind == KS.K_REV:
         return f"{_R(p.name)} (2 составляющие)"
@@ -335,10 +359,11 @@ def _unknown_text(p) -> str:
 
 def _prismatic_text(p, pv) -> str:
     if p.kind == KS.K_PRI:
-        return (f"N = {fmt(pv['N'], sig=5)} Н, M = {fmt(pv['Mp'], sig=4)} Н·м, "
-                f"h = {fmt(pv['Mp'] / pv['N'] if pv['N'] else 0.0, sig=4)} м")
+        return (f"N\u00a0=\u00a0{fmt(pv['N'], sig=5)}\u00a0Н, M\u00a0=\u00a0{fmt(pv['Mp'], sig=4)}\u00a0Н·м, "
+                f"h\u00a0=\u00a0{fmt(pv['Mp'] / pv['N'] if pv['N'] else 0.0, sig=4)}\u00a0м")
     if p.kind == KS.K_ACT:
-        return f"F = {fmt(pv['F'], sig=6)} Н, N = {fmt(pv['N'], sig=4)} Н, M = {fmt(pv['Mp'], sig=4)} Н·м"
+        return (f"F\u00a0=\u00a0{fmt(pv['F'], sig=6)}\u00a0Н, N\u00a0=\u00a0{fmt(pv['N'], sig=4)}\u00a0Н, "
+                f"M\u00a0=\u00a0{fmt(pv['Mp'], sig=4)}\u00a0Н·м")
     return ""
 
 
