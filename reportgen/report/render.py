@@ -145,6 +145,9 @@ def resolve_options(options: dict | None) -> dict:
     o["dash"] = dash
     o["text_width_mm"] = PAGE_W_MM - o["margin_left_mm"] - o["margin_right_mm"]
     o["text_height_mm"] = PAGE_H_MM - o["margin_top_mm"] - o["margin_bottom_mm"]
+    # a landscape page is bound on its top edge: the portrait margins turned by 90° (left → top)
+    o["landscape_text_width_mm"] = PAGE_H_MM - o["margin_top_mm"] - o["margin_bottom_mm"]
+    o["landscape_text_height_mm"] = PAGE_W_MM - o["margin_left_mm"] - o["margin_right_mm"]
     o["toc_depth"] = max(1, min(3, int(o["toc_depth"])))
     return o
 
@@ -187,6 +190,7 @@ class _FigureView:
     src: str
     width_mm: float
     caption: Markup
+    landscape: bool = False
 
 
 @dataclass
@@ -347,8 +351,10 @@ class _Builder:
             src = "data:image/png;base64," + base64.b64encode(bytes(data)).decode("ascii")
         else:
             src = data_uri(data)
-        width = min(float(fig.width_mm), self.o["text_width_mm"])
-        return _FigureView(fid, src, width, self.caption("figure_word", number, fig.caption))
+        limit = self.o["landscape_text_width_mm"] if fig.landscape and self.for_print else self.o["text_width_mm"]
+        width = min(float(fig.width_mm), limit)
+        return _FigureView(fid, src, width, self.caption("figure_word", number, fig.caption),
+                           fig.landscape and self.for_print)
 
     def header_cell(self, col: Column) -> Markup:
         head = inline_math(col.header) if col.latex else Markup(col.header)

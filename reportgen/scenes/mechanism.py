@@ -17,6 +17,12 @@ class Drawing:
     svg: bytes
     width_mm: float
     mu: float            # scale factor μ (units per printed mm)
+    landscape: bool = False   # drawn for a landscape page (wider than the portrait text width)
+
+
+# a landscape A4 page (ГОСТ 7.32 margins turned with the sheet): text 257 × 165 mm, less the caption
+LANDSCAPE_W, LANDSCAPE_H = 257.0, 140.0
+LANDSCAPE_GAIN = 1.5     # a drawing goes landscape when that enlarges it at least this much
 
 
 def _row(study, label: str):
@@ -60,7 +66,11 @@ class PositionsPlan:
         for p in coms:
             xs += list(cyc[f"x_{p}"])
             ys += list(cyc[f"y_{p}"])
-        cv = Canvas.fit(xs, ys, avail_w=155, avail_h=190, margin_mm=12, gost=True)
+        wide = dict(avail_w=LANDSCAPE_W, avail_h=LANDSCAPE_H - 24, margin_mm=12, gost=True, page_w=LANDSCAPE_W)
+        landscape = (Canvas.scale(xs, ys, avail_w=155, avail_h=190, margin_mm=12, gost=True)
+                     >= LANDSCAPE_GAIN * Canvas.scale(xs, ys, **wide))
+        cv = (Canvas.fit(xs, ys, **wide) if landscape
+              else Canvas.fit(xs, ys, avail_w=155, avail_h=190, margin_mm=12, gost=True))
         for p in coms:
             cv.ax.plot(cyc[f"x_{p}"], cyc[f"y_{p}"], ls=(0, (5, 3)), lw=0.7, color=INK, zorder=2)
         tip = _tracer_point(study)
@@ -100,7 +110,7 @@ class PositionsPlan:
                 groups.append((x, y, [str(row["pos"])]))
         for x, y, names in groups:
             cv.labels.add(x, y, ", ".join(names), prefer=(x - cx, y - cy), fontsize=8)
-        return Drawing(cv.svg(), cv.width_mm, cv.mu)
+        return Drawing(cv.svg(), cv.width_mm, cv.mu, landscape)
 
 
 def _marked(p: str, mark: str) -> str:

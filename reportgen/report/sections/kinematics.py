@@ -74,7 +74,8 @@ def build(study) -> Section:
         s1.paragraph(f"План положений построен для {ncount} значений длины гидроцилиндра от "
                      f"{fmt(lo, digits=3)} до {fmt(hi, digits=3)}&nbsp;м; масштаб {mu_l}&nbsp;=&nbsp;"
                      f"{mu_text(plan.mu)}&nbsp;м/мм (рисунок {ref('fig-positions')}).")
-    s1.figure("План положений механизма и траектории центров масс", plan.svg, plan.width_mm, id="fig-positions")
+    s1.figure("План положений механизма и траектории центров масс", plan.svg, plan.width_mm, id="fig-positions",
+              landscape=plan.landscape)
     if study.fits:
         s1.paragraph("Неизвестные размеры подобраны из условий задания (решение уравнений с точностью 10⁻¹²):")
         fdf = pd.DataFrame([{"name": f.name, "cond": f.condition, "at": f.at, "value": f.value} for f in study.fits])
