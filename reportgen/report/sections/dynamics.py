@@ -12,6 +12,7 @@ import numpy as np
 import pandas as pd
 from markupsafe import Markup
 
+from ...analysis.dynamics import DELTA_RANGES
 from ...scenes.draw import gost_ratio
 from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, MomentCurves,
                                 MotionCurves, WittenbauerDiagram, WorkCurves)
@@ -39,6 +40,7 @@ TEX = {
     "mert_ext": r"M_{\Sigma} = \frac{1}{2} J_{II}^{\prime} \omega_{\text{ср}}^2",
     "exact_ext": r"M_{\Sigma} = \frac{1}{2} J_{II}^{\prime} \omega^2",
     "vrim": r"v = \omega_{max} D/2",
+    "vrim_u": r"v = u\,\omega_{max} D/2",
     "v": r"v = \omega x^{\prime}",
     "a": r"a = \omega^2 x^{\prime\prime} + \varepsilon x^{\prime}",
     "wk": r"\omega_k = \omega \varphi_k^{\prime}",
@@ -539,7 +541,7 @@ def _dimensions(sec, study, d) -> None:
          "b": fw.rim_physical.b, "m": fw.rim_physical.m, "u": fw.rim_physical.v_rim},
     ]
     s.paragraph(f"Варианты маховика сопоставлены в таблице {ref('tab-dyn-fw')}; окружная скорость обода "
-                f"{_im('vrim')} сравнивается с допускаемой "
+                f"{_im('vrim_u') if u != 1.0 else _im('vrim')} сравнивается с допускаемой "
                 f"[v]&nbsp;=&nbsp;{fmt(fw.v_limit, sig=3)}&nbsp;м/с.")
     s.table("Размеры и масса маховика", [
         Column("v", "Вариант"), Column("D", "<i>D</i>", "м", digits=3), Column("d", "<i>D</i><sub>1</sub>", "м", digits=3),
@@ -645,6 +647,26 @@ def comparison_block(sec, study) -> None:
 # --------------------------------------------------------------------------------------------
 # ЗАКЛЮЧЕНИЕ
 # --------------------------------------------------------------------------------------------
+def _delta_judgement(st) -> list[str]:
+    """δ of the case against the recommended range for its kind of machine (Артоболевский [1])."""
+    if st.machine is None:
+        return []
+    name, lo, hi = DELTA_RANGES[st.machine]
+    rng = (f"для машин этого типа ({name}) рекомендуется δ&nbsp;=&nbsp;1/{round(1 / hi)}…1/{round(1 / lo)} "
+           f"({fmt(lo, sig=2)}…{fmt(hi, sig=2)}) [1]")
+    d = st.delta
+    if d > hi * (1 + 1e-9):
+        verdict = ("заданный δ больше рекомендуемого: ход машины менее равномерен, чем принято для таких машин; "
+                   "при δ из рекомендуемого диапазона маховик был бы в "
+                   f"{fmt(d / hi, sig=2)} раза больше (J<sub>I</sub> обратно пропорционален δ)")
+    elif d < lo * (1 - 1e-9):
+        verdict = ("заданный δ меньше рекомендуемого: маховик больше, чем требуется для таких машин; "
+                   f"при δ&nbsp;=&nbsp;{fmt(lo, sig=2)} он был бы в {fmt(lo / d, sig=2)} раза меньше")
+    else:
+        verdict = "заданный δ в этом диапазоне"
+    return [f"Коэффициент неравномерности хода δ&nbsp;=&nbsp;{fmt(d, sig=3)}: {rng}; {verdict}."]
+
+
 def conclusion_lines(study) -> list[str]:
     """HTML lines about the dynamics for the ЗАКЛЮЧЕНИЕ (assemble._conclusion)."""
     d = study.dynamics
@@ -664,6 +686,7 @@ def conclusion_lines(study) -> list[str]:
                f"точное значение {fmt(r.J_I_exact, sig=6)}&nbsp;кг·м², метод Мерцалова даёт отклонение "
                f"{fmt(r.dev_mertsalov_pct, digits=3, sign=True)}&nbsp;%, метод Виттенбауэра "
                f"{fmt(r.dev_wittenbauer_pct, digits=3, sign=True)}&nbsp;%.")
+    out += _delta_judgement(st)
     fw = r.flywheel
     if fw.needed:
         u = d.settings.ratio
@@ -673,8 +696,17 @@ def conclusion_lines(study) -> list[str]:
                    f"D<sub>2</sub>&nbsp;=&nbsp;{fmt(fw.rim.D2, digits=3)}&nbsp;м, b&nbsp;=&nbsp;{fmt(fw.rim.b, digits=3)}&nbsp;м, "
                    f"m&nbsp;=&nbsp;{fmt(fw.rim.m, sig=4)}&nbsp;кг или диск D&nbsp;=&nbsp;{fmt(fw.disk.D, digits=3)}&nbsp;м, "
                    f"m&nbsp;=&nbsp;{fmt(fw.disk.m, sig=4)}&nbsp;кг"
-                   + ("; окружная скорость обода превышает допускаемую." if fw.any_exceeds else "."))
-        if min(fw.rim.m, fw.disk.m) > 500:
+                   + ".")
+        v = max(fw.rim.v_rim, fw.disk.v_rim)
+        if math.isfinite(v):
+            formula = ("u·ω<sub>max</sub>·D/2 (маховик на валу, вращающемся в u раз быстрее кривошипа)"
+                       if u != 1.0 else "ω<sub>max</sub>·D/2")
+            verdict = (f"превышает допускаемую [v]&nbsp;=&nbsp;{fmt(fw.v_limit, sig=3)}&nbsp;м/с: обод следует "
+                       "сделать меньшего диаметра и большей ширины или стальным" if fw.any_exceeds else
+                       f"не превышает допускаемой [v]&nbsp;=&nbsp;{fmt(fw.v_limit, sig=3)}&nbsp;м/с")
+            out.append(f"Наибольшая окружная скорость обода v&nbsp;=&nbsp;{formula}&nbsp;=&nbsp;"
+                       f"{fmt(v, sig=3)}&nbsp;м/с {verdict}.")
+        if u == 1.0 and min(fw.rim.m, fw.disk.m) > 500:
             out.append(f"Маховик массой {fmt(min(fw.rim.m, fw.disk.m) / 1000, digits=1)}&nbsp;т на валу кривошипа "
                        "громоздок. Его целесообразно установить на быстроходный вал (вал двигателя): при "
                        "передаточном отношении u от этого вала к кривошипу требуемый момент инерции "
