@@ -20,7 +20,7 @@ from .document import Column, Paragraph, Report, Table
 from .russian import param_symbol, param_title, plural
 from .sections import kinematics as sec_kin
 from .sections import structure as sec_struct
-from .sections.common import value_with_unit
+from .sections.common import as_written, value_with_unit
 
 
 def _has_linkage(study) -> bool:
@@ -112,6 +112,8 @@ def _assignment(study, names) -> list:
     out += _given_parameters(study)
     if study.has_linkage:
         out += _linkage_data(study)
+    # the data of the other tasks (cam, gears, train, dynamics, …) as their sections state them
+    out += [Paragraph(SECTIONS[n][0].given(study)) for n in names if hasattr(SECTIONS[n][0], "given")]
     return out
 
 
@@ -155,7 +157,7 @@ def _given_parameters(study) -> list:
     if rows:
         out.append(Table("Исходные данные", [Column("title", "Параметр", fmt=_cell_html),
                                              Column("name", "Обозначение", fmt=_cell_html),
-                                             Column("value", "Значение", fmt=_as_written), Column("unit", "Единица")],
+                                             Column("value", "Значение", fmt=as_written), Column("unit", "Единица")],
                          pd.DataFrame(rows), id="tab-given"))
     return out
 
@@ -164,12 +166,6 @@ def _cell_html(x) -> Markup:
     """A cell already made safe HTML (a case title or symbol through ``inline_html``, or the
     derived symbol); plain derived titles are escaped."""
     return x if isinstance(x, Markup) else escape(x)
-
-
-def _as_written(x) -> str:
-    """A given value as the case writes it (shortest representation, no padding zeros)."""
-    t = f"{float(x):.10g}"
-    return fmt(float(t), digits=len(t.split(".")[1]) if "." in t and "e" not in t else 0, sig=None)
 
 
 def _linkage_data(study) -> list:

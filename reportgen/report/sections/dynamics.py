@@ -13,6 +13,7 @@ import pandas as pd
 from markupsafe import Markup
 
 from ...analysis.dynamics import DELTA_RANGES
+from ...case.text import inline_html
 from ...scenes.draw import gost_ratio
 from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, MomentCurves,
                                 MotionCurves, WittenbauerDiagram, WorkCurves)
@@ -20,7 +21,7 @@ from ...style.numbers import fmt, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import condition_text
-from .common import MAX_COLS, chosen_position, chunked_tables, sub, tex_point, pos_fmt, pos_no
+from .common import MAX_COLS, as_written, chosen_position, chunked_tables, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle", "dynamics")
 
@@ -104,8 +105,52 @@ def _per(n: int, most: int = MAX_COLS) -> int:
 
 
 def _ratio(u: float) -> str:
-    """A gear ratio as the case gives it: «15», «2,5»."""
-    return fmt(u, digits=0) if float(u).is_integer() else fmt(u, sig=4)
+    """A gear ratio as the case gives it: «15», «2,5» (a computed 6,0000000001 → «6»)."""
+    return as_written(round(float(u), 6))
+
+
+def drive_chain(study) -> str | None:
+    """The drive of the crank in words with the ratios, when the case gives the flywheel's shaft
+    ratio u and the gear pair and/or the planetary train of the drive whose ratios multiply to u:
+    «электродвигатель → планетарный редуктор (u = 6) → зубчатая передача (u = 2,5) → кривошип».
+    The stage whose given input speed is the crank's speed times its ratio drives the crank."""
+    st = study.dynamics.settings
+    u = st.ratio
+    stages = []
+    if study.root.has("train"):
+        tr = study.train
+        stages.append(("планетарный редуктор", abs(tr.ratio), None))
+    if study.root.has("gears") and study.gears.z2 and not study.gears.internal:
+        gr = study.gears
+        stages.append((f"зубчатая передача <i>z</i><sub>1</sub>&nbsp;=&nbsp;{gr.z1}, "
+                       f"<i>z</i><sub>2</sub>&nbsp;=&nbsp;{gr.z2}", gr.z2 / gr.z1, gr.omega1))
+    if u == 1.0 or not stages or abs(math.prod(x[1] for x in stages) / u - 1) > 1e-6:
+        return None
+    w = st.omega_m
+    stages.sort(key=lambda x: x[2] is not None and abs(x[2] / (w * x[1]) - 1) < 1e-3)   # the crank's stage last
+    rpm = 30 / math.pi
+    chain = " → ".join([f"электродвигатель (n<sub>дв</sub>&nbsp;=&nbsp;{fmt(w * u * rpm, sig=4)}&nbsp;об/мин)"]
+                       + [f"{name} (u&nbsp;=&nbsp;{_ratio(r)})" for name, r, _ in stages]
+                       + [f"кривошип (n<sub>1</sub>&nbsp;=&nbsp;{fmt(w * rpm, sig=4)}&nbsp;об/мин)"])
+    prod = "·".join(_ratio(r) for _, r, _ in stages)
+    total = f"u&nbsp;=&nbsp;{prod}&nbsp;=&nbsp;{_ratio(u)}" if len(stages) > 1 else f"u&nbsp;=&nbsp;{_ratio(u)}"
+    return (f"Привод кривошипа: {chain}; общее передаточное отношение от вала двигателя к кривошипу {total}. "
+            "Маховик устанавливается на валу двигателя.")
+
+
+def given(study) -> str:
+    """The machine's dynamic data in one sentence for the assignment page."""
+    st = study.dynamics.settings
+    text = (f"Динамика машины: средняя частота вращения кривошипа {fmt(st.omega_m * 30 / math.pi, sig=4)}&nbsp;об/мин, "
+            f"коэффициент неравномерности хода δ&nbsp;=&nbsp;{as_written(st.delta)}")
+    if st.J_O:
+        text += f", приведённый момент инерции ротора и передачи J<sub>O</sub>&nbsp;=&nbsp;{fmt(st.J_O, sig=4)}&nbsp;кг·м²"
+    work = [ld for ld in study.dynamics.loads.loads if ld.kind != "weight"]
+    if work:
+        text += "; нагрузки: " + ", ".join(inline_html(ld.title or ld.name) for ld in work)
+    text += "."
+    chain = drive_chain(study)
+    return text + (" " + chain if chain else "")
 
 
 def _c(x) -> str:
@@ -652,8 +697,8 @@ def _delta_judgement(st) -> list[str]:
     if st.machine is None:
         return []
     name, lo, hi = DELTA_RANGES[st.machine]
-    rng = (f"для машин этого типа ({name}) рекомендуется δ&nbsp;=&nbsp;1/{round(1 / hi)}…1/{round(1 / lo)} "
-           f"({fmt(lo, sig=2)}…{fmt(hi, sig=2)}) [1]")
+    rng = (f"для машин этого типа ({name}) рекомендуется δ&nbsp;=&nbsp;{as_written(round(lo, 4))}…"
+           f"{as_written(round(hi, 4))} (1/{round(1 / lo)}…1/{round(1 / hi)}) [1]")
     d = st.delta
     if d > hi * (1 + 1e-9):
         verdict = ("заданный δ больше рекомендуемого: ход машины менее равномерен, чем принято для таких машин; "
@@ -664,7 +709,7 @@ def _delta_judgement(st) -> list[str]:
                    f"при δ&nbsp;=&nbsp;{fmt(lo, sig=2)} он был бы в {fmt(lo / d, sig=2)} раза меньше")
     else:
         verdict = "заданный δ в этом диапазоне"
-    return [f"Коэффициент неравномерности хода δ&nbsp;=&nbsp;{fmt(d, sig=3)}: {rng}; {verdict}."]
+    return [f"Коэффициент неравномерности хода δ&nbsp;=&nbsp;{as_written(d)}: {rng}; {verdict}."]
 
 
 def conclusion_lines(study) -> list[str]:
@@ -681,7 +726,7 @@ def conclusion_lines(study) -> list[str]:
     else:
         out.append(f"Работа движущих сил за цикл A<sub>д</sub>&nbsp;=&nbsp;{fmt(sc['A_d'], sig=5)}&nbsp;Дж; "
                    f"постоянный приведённый момент сопротивления M<sub>с</sub>&nbsp;=&nbsp;{fmt(sc['M_c'], sig=5)}&nbsp;Н·м.")
-    out.append(f"Для δ&nbsp;=&nbsp;{fmt(st.delta, sig=4)} при ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(st.omega_m, digits=3)}&nbsp;рад/с "
+    out.append(f"Для δ&nbsp;=&nbsp;{as_written(st.delta)} при ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(st.omega_m, digits=3)}&nbsp;рад/с "
                f"требуется J<sub>I</sub>&nbsp;=&nbsp;{fmt(r.J_I, sig=5)}&nbsp;кг·м² ({METHOD_RU[st.method]}); "
                f"точное значение {fmt(r.J_I_exact, sig=6)}&nbsp;кг·м², метод Мерцалова даёт отклонение "
                f"{fmt(r.dev_mertsalov_pct, digits=3, sign=True)}&nbsp;%, метод Виттенбауэра "

@@ -13,6 +13,7 @@ from markupsafe import Markup
 from ...analysis.train import FRAME
 from ...scenes.train import stage_plans, train_picture
 from ...style.numbers import fmt, tex_num
+from .common import as_written
 from ..document import Column, Formula, Section, ref
 
 NEEDS = ("train",)
@@ -31,6 +32,20 @@ def _pct(x: float) -> str:
 
 def _z(name: str) -> str:
     return rf"z_{{{name}}}"
+
+
+def given(study) -> str:
+    """The planetary train's data in one sentence for the assignment page."""
+    tr = study.train
+    m = tr.model
+    text = (f"Планетарный механизм: входное звено {m.inp}, выходное {m.out}, неподвижное "
+            f"{', '.join(m.fixed) or '—'}")
+    if tr.candidates:
+        text += (f"; передаточное отношение <i>u</i>&nbsp;=&nbsp;{as_written(tr.opts['target'])}, число сателлитов "
+                 f"<i>k</i>&nbsp;=&nbsp;{tr.opts['planets']}; числа зубьев подбираются")
+    else:
+        text += "; числа зубьев колёс заданы"
+    return text + "."
 
 
 def build(study) -> Section:
