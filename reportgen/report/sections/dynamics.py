@@ -549,6 +549,9 @@ def _dimensions(sec, study, d) -> None:
     if u != 1.0:
         # equal kinetic energy on both shafts: J_shaft·(u·ω)²/2 = J_доп·ω²/2 (Артоболевский [1], приведение масс)
         sym = r"J_{\text{м}}"
+        chain = drive_chain(study)
+        if chain:
+            s.paragraph(chain)
         s.paragraph(f"Маховик устанавливается на другом валу; передаточное отношение от него к кривошипу "
                     f"u&nbsp;=&nbsp;ω<sub>м</sub>/ω<sub>1</sub>&nbsp;=&nbsp;{_ratio(u)}. Из равенства кинетических энергий "
                     "маховика на его валу и приведённого к кривошипу, J<sub>м</sub>(uω)²&nbsp;=&nbsp;J<sub>доп</sub>ω², "
