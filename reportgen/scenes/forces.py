@@ -277,7 +277,7 @@ class GroupForces:
             nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
             cv.labels.add(mid[0], mid[1], math_label(lab), prefer=nrm, fontsize=10, color=BLUE)
         ax.plot([poly[0, 0]], [poly[0, 1]], "o", ms=2.5, color=INK)
-        return GroupDrawing(cv.svg(), cv.width_mm, mu_l, mu_F, seq + closing, constructed)
+        return GroupDrawing(cv.svg(), cv.width_mm, mu_l, mu_F=mu_F, vectors=seq + closing, constructed=constructed)
 
 
 def _unit(v) -> np.ndarray:
@@ -468,6 +468,7 @@ class LeverDrawing(Drawing):
                                         # as measured on the drawing (to 0,5 mm)
     graphic: float = 0.0                # the balancing force found on the drawing: −Σ F·h / h_ур
     arm_exact_mm: float = 0.0
+    forces_turned: bool = False         # the plan unturned, the forces turned by 90° clockwise
 
 
 class ZhukovskyLever:
@@ -532,7 +533,16 @@ class ZhukovskyLever:
             bal = [("F" + d.rod.translate(SUBSCRIPT), rot[d.end], F * u, True),
                    ("F" + d.link.translate(SUBSCRIPT), pc, -F * u, True)]
         tips = np.array([[0.0, 0.0]] + [list(v) for v in rot.values()] + [list(it[1]) for it in items + bal])
-        cv = Canvas.fit(tips[:, 0], tips[:, 1], avail_w=150, avail_h=170, margin_mm=16)
+        # a plan turned into a tall, narrow lever is turned back: the plan as drawn with every force
+        # turned by 90° clockwise instead — the same moments about the pole (Артоболевский [1])
+        turned = bool(np.ptp(tips[:, 1]) > 1.3 * np.ptp(tips[:, 0]))
+        if turned:
+            back = lambda v: np.array([v[1], -v[0]])  # noqa: E731 - rotation by −90°
+            rot = {k: back(v) for k, v in rot.items()}
+            items = [(lab, back(pt), back(F), b) for lab, pt, F, b in items]
+            bal = [(lab, back(pt), back(F), b) for lab, pt, F, b in bal]
+            tips = np.array([[t[1], -t[0]] for t in tips])
+        cv = Canvas.fit(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16)
         ax = cv.ax
         for seg in plan.segments:
             p0 = np.zeros(2) if seg.start == "p" else rot[seg.start]
@@ -566,7 +576,8 @@ class ZhukovskyLever:
         loads_ = table[~table["balancing"].astype(bool)]
         total = float(loads_["Fh"].sum())
         graph = -total / arm_read if abs(arm_read) > 0 else 0.0
-        return LeverDrawing(cv.svg(), cv.width_mm, cv.mu, table, analog, arm_read, graph, arm_mm)
+        return LeverDrawing(cv.svg(), cv.width_mm, cv.mu, moments=table, analog=analog, arm_mm=arm_read,
+                            graphic=graph, arm_exact_mm=arm_mm, forces_turned=turned)
 
 
 def _points(mech) -> list[str]:

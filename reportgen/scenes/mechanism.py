@@ -2,7 +2,7 @@
 positions with the trajectories of the centres of mass, and the Assur groups drawn apart."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -17,7 +17,9 @@ class Drawing:
     svg: bytes
     width_mm: float
     mu: float            # scale factor μ (units per printed mm)
-    landscape: bool = False   # drawn for a landscape page (wider than the portrait text width)
+    # drawn for a landscape page (wider than the portrait text width); keyword-only so that the
+    # subclasses' positional fields stay where they are
+    landscape: bool = field(default=False, kw_only=True)
 
 
 # a landscape A4 page (ГОСТ 7.32 margins turned with the sheet): text 257 × 165 mm, less the caption
@@ -110,7 +112,7 @@ class PositionsPlan:
                 groups.append((x, y, [str(row["pos"])]))
         for x, y, names in groups:
             cv.labels.add(x, y, ", ".join(names), prefer=(x - cx, y - cy), fontsize=8)
-        return Drawing(cv.svg(), cv.width_mm, cv.mu, landscape)
+        return Drawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape)
 
 
 def _marked(p: str, mark: str) -> str:

@@ -470,9 +470,17 @@ def _balance(sec: Section, study, f, lab: str) -> None:
                           label="eq-frc-power"))
     lever = ZhukovskyLever(lab).draw(study)
     plan = "аналогов скоростей" if lever.analog else "скоростей"
-    s.paragraph(f"Рычаг Н.&nbsp;Е.&nbsp;Жуковского — план {plan}, повёрнутый на 90° против часовой стрелки "
-                f"(рисунок {ref('fig-frc-lever')}); силы приложены в одноимённых точках плана, моменты заменены "
-                "парами сил на двух точках звена. Сумма моментов всех сил относительно полюса p равна нулю:")
+    if lever.forces_turned:
+        how = (f"Рычаг Н.&nbsp;Е.&nbsp;Жуковского — план {plan}, повёрнутый на 90°; повёрнутый план получился "
+               "бы высоким и узким, поэтому план оставлен без поворота, а все силы повёрнуты на 90° по часовой "
+               "стрелке, что даёт те же моменты относительно полюса (рисунок "
+               f"{ref('fig-frc-lever')}); силы приложены в одноимённых точках плана, моменты заменены парами сил "
+               "на двух точках звена. Сумма моментов всех сил относительно полюса p равна нулю:")
+    else:
+        how = (f"Рычаг Н.&nbsp;Е.&nbsp;Жуковского — план {plan}, повёрнутый на 90° против часовой стрелки "
+               f"(рисунок {ref('fig-frc-lever')}); силы приложены в одноимённых точках плана, моменты заменены "
+               "парами сил на двух точках звена. Сумма моментов всех сил относительно полюса p равна нулю:")
+    s.paragraph(how)
     if rot:
         pin = tex_point(_pin(mech))
         s.formula(Formula(rf"F_{{ур}} h_{{{pin.lower()}}} + \sum_i F_i h_i = 0", label="eq-frc-lever"))
@@ -488,7 +496,8 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     mt["Fh"] = np.sign(mt["Fh"].to_numpy(float)) * F_r * h_r
     arm = round(abs(float(lever.arm_mm)), 1) * (1.0 if lever.arm_mm >= 0 else -1.0)
     mu_unit = "м·с⁻¹/мм" if not lever.analog else ("м/мм" if rot else "мм⁻¹")
-    s.figure(f"Рычаг Жуковского для положения {pos_no(study, lab)} (μ<sub>v</sub> = {mu_text(lever.mu)} {mu_unit})",
+    turned = ", силы повёрнуты на 90° по часовой стрелке" if lever.forces_turned else ""
+    s.figure(f"Рычаг Жуковского для положения {pos_no(study, lab)} (μ<sub>v</sub> = {mu_text(lever.mu)} {mu_unit}{turned})",
              lever.svg, lever.width_mm, id="fig-frc-lever")
     loads = mt[~mt["balancing"].astype(bool)]
     s.table(f"Моменты сил относительно полюса рычага Жуковского (положение {pos_no(study, lab)})", [
