@@ -283,6 +283,7 @@ def _groups(sec: Section, study, f, lab: str) -> None:
                 "определяющий точку её приложения). Реакции со стороны групп, рассчитанных ранее, известны. "
                 "Система линейных уравнений группы решается точно; векторные уравнения сил проверяются "
                 "построением планов сил в масштабе μ<sub>F</sub> (замкнутые многоугольники).")
+    told: set[int] = set()      # the kinds of construction already described in full
     for gi, g in enumerate(f.model.groups):
         draw = GroupForces(lab, gi).draw(study)
         ext, moments, internal = group_vectors(study, lab, gi)
@@ -303,7 +304,8 @@ def _groups(sec: Section, study, f, lab: str) -> None:
                  f"без масштаба) и план сил (μ<sub>F</sub> = {mu_text(draw.mu_F)} Н/мм)",
                  draw.svg, draw.width_mm, id=gid)
         if draw.constructed:
-            s.paragraph(_construction_text(draw, gid))
+            s.paragraph(_construction_text(draw, gid, told))
+            told |= {len(draw.constructed)}
         rows = []
         det = f.details(lab)
         for k in g.pairs:
@@ -328,13 +330,15 @@ def _groups(sec: Section, study, f, lab: str) -> None:
 _DIGITS = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
 
 
-def _construction_text(draw, gid: str) -> str:
-    """How the polygon of the group was constructed and what was read off it, against the exact
-    solution of the group's equations."""
+def _construction_text(draw, gid: str, told: set[int]) -> str:
+    """How the polygon of the group was constructed (in full the first time, then by reference)
+    and what was read off it, against the exact solution of the group's equations."""
     found = "; ".join(f"{sub('R', c.label[1:].translate(_DIGITS))}&nbsp;=&nbsp;{fmt(c.graphic, sig=4)}&nbsp;Н (аналитически "
                       f"{fmt(c.exact, sig=5)}&nbsp;Н, расхождение {fmt(c.dev_pct, digits=2, sign=True)}&nbsp;%)"
                       for c in draw.constructed)
-    if len(draw.constructed) == 1:
+    if len(draw.constructed) in told:
+        how = "План сил построен так же, реакции измерены на чертеже"
+    elif len(draw.constructed) == 1:
         how = ("Известные силы отложены в масштабе μ<sub>F</sub> (длины округлены до 0,5&nbsp;мм); "
                "замыкающая сторона плана сил — искомая реакция, её длина измерена на чертеже")
     else:

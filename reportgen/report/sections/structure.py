@@ -35,6 +35,10 @@ def build(study) -> Section:
              ldf, id="tab-links")
     pdf = pd.DataFrame(st.pairs)
     pdf["klass"] = pdf["klass"].astype(str)
+    # pairs named by their point, a prismatic pair marked «(П)» as in the incidence table (no
+    # program names such as «50»)
+    pdf["name"] = [(f"{r.point} (П)" if r.point != "—" else f"{r.links} (П)") if r.kind.startswith("поступательная")
+                   else r.name for r in pdf.itertuples()]
     s1.table("Кинематические пары", [Column("name", "Обозначение"), Column("links", "Звенья"),
                                      Column("kind", "Вид пары"), Column("klass", "Класс"),
                                      Column("level", "Низшая/высшая")], pdf, id="tab-pairs")
