@@ -213,6 +213,10 @@ def _introduction(study, names, built) -> list:
         method = (" Расчёты выполнены аналитически по точным формулам; графические построения выполнены в "
                   "масштабе и сопоставлены с аналитическими результатами.")
     parts.append(Paragraph(f"В пояснительной записке выполнены: {what}.{mech}{method}"))
+    if "dynamics" in names:
+        chain = SECTIONS["dynamics"][0].drive_chain(study)
+        if chain:
+            parts.append(Paragraph(chain))
     return parts
 
 

@@ -28,7 +28,10 @@ def build(study) -> Section:
     sec.figure("Кинематическая схема механизма", scheme.svg, scheme.width_mm, id="fig-scheme")
 
     s1 = sec.subsection("Звенья и кинематические пары", "sec-links-pairs")
-    ldf = pd.DataFrame([{"n": l.name, "title": l.title or "—", "motion": st.link_motion[l.name]} for l in links])
+    # the kind of motion; its parenthesised generic name («коромысло, кулиса») only for an untitled link
+    ldf = pd.DataFrame([{"n": l.name, "title": l.title or "—",
+                         "motion": st.link_motion[l.name].split(" (")[0] if l.title else st.link_motion[l.name]}
+                        for l in links])
     s1.paragraph(f"Звенья механизма и виды их движения перечислены в таблице {ref('tab-links')}, "
                  f"кинематические пары — в таблице {ref('tab-pairs')}.")
     s1.table("Звенья механизма", [Column("n", "Номер"), Column("title", "Название"), Column("motion", "Вид движения")],
