@@ -7,7 +7,7 @@ from markupsafe import Markup
 from ...scenes.mechanism import AssurGroups, KinematicScheme
 from ..document import Column, Section, ref
 from ..formulas import inline_math
-from ..russian import expr_html
+from ..russian import expr_html, plural
 from .common import chosen_position
 
 NEEDS = ("structure", "kinematics")
@@ -24,7 +24,8 @@ def build(study) -> Section:
     sec.paragraph(
         f"Кинематическая схема механизма в положении {pos} приведена на рисунке {ref('fig-scheme')} "
         f"(масштаб {mu_l}&nbsp;=&nbsp;{_mu(scheme.mu)}&nbsp;м/мм). Механизм состоит из стойки 0 и "
-        f"{len(links)} подвижных звеньев, соединённых {st.p5} низшими кинематическими парами.")
+        f"{plural(len(links), 'подвижного звена', 'подвижных звеньев', 'подвижных звеньев')}, соединённых "
+        f"{plural(st.p5, 'низшей кинематической парой', 'низшими кинематическими парами', 'низшими кинематическими парами')}.")
     sec.figure("Кинематическая схема механизма", scheme.svg, scheme.width_mm, id="fig-scheme")
 
     s1 = sec.subsection("Звенья и кинематические пары", "sec-links-pairs")

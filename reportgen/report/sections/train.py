@@ -14,6 +14,7 @@ from ...analysis.train import FRAME
 from ...scenes.train import stage_plans, train_picture
 from ...style.numbers import fmt, tex_num
 from .common import as_written
+from ..russian import plural
 from ..document import Column, Formula, Section, ref
 
 NEEDS = ("train",)
@@ -54,7 +55,8 @@ def build(study) -> Section:
     sec = Section("Синтез планетарного механизма", "sec-train")
     fixed = ", ".join(m.fixed) or "нет"
     sec.paragraph(f"Входное звено — {m.inp}, выходное — {m.out}, неподвижные звенья: {fixed}. "
-                  f"Механизм состоит из {len(m.wheels)} колёс и {len(m.members)} подвижных звеньев; "
+                  f"Механизм состоит из {plural(len(m.wheels), 'колеса', 'колёс', 'колёс')} и "
+                  f"{plural(len(m.members), 'подвижного звена', 'подвижных звеньев', 'подвижных звеньев')}; "
                   f"зацеплений {len(m.meshes)}.")
     if tr.candidates:
         _selection(sec, tr)
