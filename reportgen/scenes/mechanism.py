@@ -180,9 +180,20 @@ class AssurGroups:
         mech = study.mechanism
         row = _row(study, self.label)
         groups = study.structure.groups
+        units = [(g.label + (" " + g.kind_ru if g.kind_ru else ""), self._links(study, g)) for g in groups]
+        d = mech.driver
+        if d.kind == "actuator":
+            # the cylinder, the rod and the link it drives form one initial mechanism with the driving
+            # prismatic pair inside (as the note's structural table and formula say)
+            ic = next((i for i, (_, ls) in enumerate(units) if d.link in ls), None)
+            ir = next((i for i, (_, ls) in enumerate(units) if d.rod in ls), None)
+            if ic is not None and ir is not None and ic != ir:
+                order = list(dict.fromkeys([d.link, d.rod] + [l for i in (ic, ir) for g in [groups[i]]
+                                                                  for l in g.links]))
+                merged = ("(" + ",".join(order) + ")", units[ic][1] | units[ir][1])
+                units = [merged] + [u for i, u in enumerate(units) if i not in (ic, ir)]
         parts = []
-        for g in groups:
-            links = self._links(study, g)
+        for g, links in units:
             # sorted: the same drawing whatever the hash seed
             pts = sorted({p for ln in sorted(links) for p in mech.link(ln).points})
             xs = [float(row[f"x_{p}"]) for p in pts]
@@ -216,6 +227,5 @@ class AssurGroups:
                 if j.kind == "R" and set(j.links) & links and not set(j.links) <= links | {FRAME}:
                     x, y = float(r[f"x_{j.point}"]), float(r[f"y_{j.point}"])
                     cv.ax.add_patch(Circle((x, y), cv.mm(1.3), facecolor=INK, edgecolor=INK, zorder=6))
-            cv.labels.add(xc, -height / 2 - cv.mm(4), g.label + (" " + g.kind_ru if g.kind_ru else ""),
-                          prefer=(0, -1), fontsize=10)
+            cv.labels.add(xc, -height / 2 - cv.mm(4), g, prefer=(0, -1), fontsize=10)
         return Drawing(cv.svg(), cv.width_mm, mu)
