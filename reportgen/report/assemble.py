@@ -113,8 +113,14 @@ def _assignment(study, names) -> list:
     if study.has_linkage:
         out += _linkage_data(study)
     # the data of the other tasks (cam, gears, train, dynamics, …) as their sections state them
-    out += [Paragraph(SECTIONS[n][0].given(study)) for n in names if hasattr(SECTIONS[n][0], "given")]
+    out += [_given_paragraph(SECTIONS[n][0].given(study)) for n in names if hasattr(SECTIONS[n][0], "given")]
     return out
+
+
+def _given_paragraph(html: str) -> Paragraph:
+    """A sentence of given data on the assignment page, set compactly like its tables (so that the
+    assignment with its signature lines stays on one page where it can)."""
+    return Paragraph(f'<p class="as-given">{html}</p>')
 
 
 _TASKS = {"structure": "выполнить структурный анализ механизма",
@@ -186,11 +192,11 @@ def _linkage_data(study) -> list:
         if d.omega:
             text += (f", угловая скорость ω<sub>1</sub>&nbsp;=&nbsp;{fmt(d.omega, digits=3)}&nbsp;рад/с "
                      f"(n<sub>1</sub>&nbsp;=&nbsp;{fmt(d.omega * 30 / math.pi, sig=4)}&nbsp;об/мин)")
-        out.append(Paragraph(text + "."))
+        out.append(_given_paragraph(text + "."))
     else:
         lo, hi = d.q_range
-        out.append(Paragraph(f"Ведущее звено — гидроцилиндр {d.link}–{d.rod}; длина изменяется от "
-                             f"{fmt(lo, digits=3)} до {fmt(hi, digits=3)}&nbsp;м."))
+        out.append(_given_paragraph(f"Ведущее звено — гидроцилиндр {d.link}–{d.rod}; длина изменяется от "
+                                    f"{fmt(lo, digits=3)} до {fmt(hi, digits=3)}&nbsp;м."))
     return out
 
 
