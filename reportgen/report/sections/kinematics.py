@@ -98,8 +98,10 @@ def build(study) -> Section:
     for l in _links(study):
         kd = k.copy()
         angle_cols.append(Column(f"phi_{l.name}", sub("φ", l.name), "град", fmt=_deg))
-    for j in mech.prismatic:
-        angle_cols.append(Column(f"s_{j.name}", sub("s", j.point), "м", digits=4))   # s_H, not the pair's name
+    points = [j.point for j in mech.prismatic]
+    for j in mech.prismatic:          # s_H by the slider's point, not the pair's name (unless shared)
+        angle_cols.append(Column(f"s_{j.name}", sub("s", j.point if points.count(j.point) == 1 else j.name),
+                                 "м", digits=4))
     for c in k.columns:
         if c.startswith("phi_") and c[4:] not in [l.name for l in mech.links]:
             angle_cols.append(Column(c, sub("φ", c[4:]), "град", fmt=_deg))
