@@ -113,7 +113,11 @@ def _assignment(study, names) -> list:
     if study.has_linkage:
         out += _linkage_data(study)
     # the data of the other tasks (cam, gears, train, dynamics, …) as their sections state them
-    out += [_given_paragraph(SECTIONS[n][0].given(study)) for n in names if hasattr(SECTIONS[n][0], "given")]
+    given = [SECTIONS[n][0].given(study) for n in names if hasattr(SECTIONS[n][0], "given")]
+    if given and study.has_linkage and isinstance(out[-1], Paragraph) and 'class="as-given"' in out[-1].html:
+        # the driver's sentence and the other data in one compact paragraph (fewer half-empty lines)
+        given[0] = out.pop().html.removeprefix('<p class="as-given">').removesuffix("</p>") + " " + given[0]
+    out += [_given_paragraph(g) for g in given]
     return out
 
 
