@@ -105,3 +105,18 @@ def test_page_fill(note):
     for p in pages(pdf):
         if "исполнению" in p["text"]:
             assert "ЗАДАНИЕ" in p["text"]
+
+
+UNIT = r"(?:Н·м|Н·мм|кг·м²|кг|мм|м/с²?|м|Н|рад/с²?|об/мин|Дж|Вт|МПа|Па)"
+
+
+def test_no_line_break_inside_a_number_unit_pair(note):
+    """Units are never split from their number or inside themselves («Н·|м», «12,5|Н·м»)."""
+    _, text = note
+    lines = [ln.strip() for ln in text.splitlines()]
+    for prev, nxt in zip(lines, lines[1:]):
+        assert not prev.endswith("·"), prev
+        if re.search(r"\d$", prev):
+            assert not re.match(UNIT + r"(?![\wа-яё])", nxt), (prev, nxt)
+    # initials stay with the surname
+    assert not re.search(r"\b[А-ЯЁ]\.\s*\n", text.replace("Рис.", ""))

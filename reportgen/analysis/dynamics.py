@@ -53,7 +53,20 @@ __all__ = ["Settings", "ReducedModel", "Dynamics", "Printed", "read_settings", "
 
 METHODS = ("exact", "mertsalov", "wittenbauer")
 DYN_KEYS = ["cycle", "omega_m", "n", "delta", "J_O", "method", "drive", "balance", "flywheel",
-            "points", "printed", "compare", "flywheel_ratio", "J_fly", "fly_mass", "fly_radius"]
+            "points", "printed", "compare", "flywheel_ratio", "J_fly", "fly_mass", "fly_radius", "machine"]
+
+# recommended coefficients of speed fluctuation by kind of machine (Артоболевский И. И., «Теория
+# механизмов и машин», 1988, гл. «Регулирование хода машин», таблица значений δ):
+# key → (Russian name, δ_min, δ_max)
+DELTA_RANGES = {
+    "crusher": ("дробилки", 1 / 20, 1 / 5),
+    "press": ("прессы и ножницы", 1 / 20, 1 / 7),
+    "pump": ("насосы", 1 / 30, 1 / 5),
+    "machine_tool": ("металлорежущие станки", 1 / 50, 1 / 20),
+    "compressor": ("компрессоры", 1 / 100, 1 / 50),
+    "engine": ("двигатели внутреннего сгорания", 1 / 150, 1 / 80),
+    "generator": ("электрические генераторы", 1 / 300, 1 / 100),
+}
 # flywheel constants: key → (dimension or None for a plain number, default)
 FLYWHEEL_KEYS = {
     "rho": (U.DENSITY, 7800.0), "psi_b": (None, 0.2), "psi_h": (None, 0.8),
@@ -99,6 +112,7 @@ class Settings:
     ratio: float = 1.0
     # inverse task: the flywheel's J on its shaft is given (J_fly, or m·ρ²); δ is found
     J_given: float | None = None
+    machine: str | None = None        # kind of machine (a key of DELTA_RANGES) for the judgement of δ
 
 
 def _last_digit(text: str) -> tuple[float, float]:
@@ -192,8 +206,9 @@ def read_settings(study) -> Settings:
             raise cn.error("case", f"файл варианта для сравнения не найден или не является файлом: {path}",
                            expected="путь к файлу .toml относительно этого файла")
         compare = (path, cn.text("title", None) or inline_html(path.stem))
+    machine = node.string("machine", None, choices=list(DELTA_RANGES))
     return Settings(start, length, w, float(delta), float(J_O), method, balance, drive, kw,
-                    points, printed, compare, float(ratio), J_given)
+                    points, printed, compare, float(ratio), J_given, machine)
 
 
 def _given_flywheel(node: Node, params) -> float:

@@ -7,12 +7,15 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
+from markupsafe import Markup
+
 from ..errors import CaseError
 from ..registry import LINKAGE_SECTIONS, STANDALONE_SECTIONS, TASK_SECTIONS
 from . import units as U
 from . import synthesis as SY
 from .expr import _IDENT_RE, Q, free_names, resolve
 from .reader import Node
+from .text import MAX_TEXT, clip, inline_html
 
 TOP_KEYS = list(dict.fromkeys(["meta", "parameters", *LINKAGE_SECTIONS, "grid", "sketch", "fit", "outputs",
                                 "loads", "report", "carrier", "actuator", *TASK_SECTIONS]))
@@ -44,7 +47,7 @@ class CaseSpec:
         """Evaluate [parameters] (with overrides) to SI; ``fixed`` replaces the named parameters
         by values (used by fitting) keeping their dimensions."""
         node = self.root.table("parameters")
-        raw = dict(node.data)
+        raw = {k: self._param_value(k, v) for k, v in node.data.items()}
         raw.update(self.overrides)
         for k in raw:
             if not _IDENT_RE.fullmatch(str(k)) or len(str(k)) > 40:
@@ -58,6 +61,38 @@ class CaseSpec:
             names = self._resolve({k: v for k, v in raw.items() if k not in fixed}, base)
             names.update(base)
         return names
+
+    _PARAM_KEYS = ("value", "title", "symbol")
+
+    def _param_value(self, name, v):
+        """The expression of a parameter written plainly (``l_OA = "0.1 m"``) or as a table with
+        its Russian title and textbook symbol (``l_OA = { value = "0.1 m", title = "длина
+        кривошипа", symbol = "l<sub>OA</sub>" }``)."""
+        if not isinstance(v, Mapping):
+            return v
+        key = f"parameters.{str(name)[:60]}"
+        extra = [k for k in v if k not in self._PARAM_KEYS]
+        if extra or "value" not in v:
+            raise CaseError(f"параметр «{str(name)[:60]}» задан таблицей без значения или с лишним ключом"
+                            + (f" «{str(extra[0])[:40]}»" if extra else ""), file=str(self.path), key=key,
+                            expected='{ value = "0.1 m", title = "длина кривошипа", symbol = "l<sub>OA</sub>" } '
+                                     "(title и symbol необязательны)")
+        for k in ("title", "symbol"):
+            if k in v and (not isinstance(v[k], str) or len(v[k]) > MAX_TEXT):
+                raise CaseError(f"«{k}» параметра «{str(name)[:60]}» должно быть строкой", file=str(self.path),
+                                key=f"{key}.{k}", expected=f"строка до {MAX_TEXT} символов",
+                                got=clip(repr(v[k]), 60))
+        return v["value"]
+
+    def parameter_texts(self) -> dict[str, tuple[Markup | None, Markup | None]]:
+        """name → (Russian title, symbol) as safe HTML (escaped, inline whitelist) for the
+        parameters written as tables; None where the case gives none."""
+        out = {}
+        for k, v in self.root.table("parameters").data.items():
+            if isinstance(v, Mapping):
+                self._param_value(k, v)
+                out[k] = tuple(inline_html(v[t]) if v.get(t) else None for t in ("title", "symbol"))
+        return out
 
     def _resolve(self, raw: dict, extra: dict[str, Q]) -> dict[str, Q]:
         """Resolve parameters; with ``[synthesis]`` first those it needs, then its results

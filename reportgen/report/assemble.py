@@ -12,6 +12,7 @@ import re
 from typing import Iterable
 
 import pandas as pd
+from markupsafe import Markup, escape
 
 from ..registry import KINDS
 from ..style.numbers import fmt
@@ -19,7 +20,7 @@ from .document import Column, Paragraph, Report, Table
 from .russian import param_symbol, param_title, plural
 from .sections import kinematics as sec_kin
 from .sections import structure as sec_struct
-from .sections.common import value_with_unit
+from .sections.common import as_written, value_with_unit
 
 
 def _has_linkage(study) -> bool:
@@ -111,7 +112,19 @@ def _assignment(study, names) -> list:
     out += _given_parameters(study)
     if study.has_linkage:
         out += _linkage_data(study)
+    # the data of the other tasks (cam, gears, train, dynamics, …) as their sections state them
+    given = [SECTIONS[n][0].given(study) for n in names if hasattr(SECTIONS[n][0], "given")]
+    if given and study.has_linkage and isinstance(out[-1], Paragraph) and 'class="as-given"' in out[-1].html:
+        # the driver's sentence and the other data in one compact paragraph (fewer half-empty lines)
+        given[0] = out.pop().html.removeprefix('<p class="as-given">').removesuffix("</p>") + " " + given[0]
+    out += [_given_paragraph(g) for g in given]
     return out
+
+
+def _given_paragraph(html: str) -> Paragraph:
+    """A sentence of given data on the assignment page, set compactly like its tables (so that the
+    assignment with its signature lines stays on one page where it can)."""
+    return Paragraph(f'<p class="as-given">{html}</p>')
 
 
 _TASKS = {"structure": "выполнить структурный анализ механизма",
@@ -142,23 +155,27 @@ def _given_parameters(study) -> list:
     out = []
     rows = []
     raw = study.root.table("parameters").data
+    texts = study.spec.parameter_texts()
     fitted = {f.name for f in study.fits}
     for name, q in study.params.items():
         if name not in raw or name in fitted:
             continue
         v, unit = value_with_unit(q)
-        rows.append({"title": param_title(name), "name": name, "value": v, "unit": unit})
+        title, symbol = texts.get(name, (None, None))
+        rows.append({"title": title or param_title(name), "name": symbol or param_symbol(name), "value": v,
+                     "unit": unit})
     if rows:
-        out.append(Table("Исходные данные", [Column("title", "Параметр"), Column("name", "Обозначение", fmt=param_symbol),
-                                             Column("value", "Значение", fmt=_as_written), Column("unit", "Единица")],
+        out.append(Table("Исходные данные", [Column("title", "Параметр", fmt=_cell_html),
+                                             Column("name", "Обозначение", fmt=_cell_html),
+                                             Column("value", "Значение", fmt=as_written), Column("unit", "Единица")],
                          pd.DataFrame(rows), id="tab-given"))
     return out
 
 
-def _as_written(x) -> str:
-    """A given value as the case writes it (shortest representation, no padding zeros)."""
-    t = f"{float(x):.10g}"
-    return fmt(float(t), digits=len(t.split(".")[1]) if "." in t and "e" not in t else 0, sig=None)
+def _cell_html(x) -> Markup:
+    """A cell already made safe HTML (a case title or symbol through ``inline_html``, or the
+    derived symbol); plain derived titles are escaped."""
+    return x if isinstance(x, Markup) else escape(x)
 
 
 def _linkage_data(study) -> list:
@@ -179,11 +196,11 @@ def _linkage_data(study) -> list:
         if d.omega:
             text += (f", угловая скорость ω<sub>1</sub>&nbsp;=&nbsp;{fmt(d.omega, digits=3)}&nbsp;рад/с "
                      f"(n<sub>1</sub>&nbsp;=&nbsp;{fmt(d.omega * 30 / math.pi, sig=4)}&nbsp;об/мин)")
-        out.append(Paragraph(text + "."))
+        out.append(_given_paragraph(text + "."))
     else:
         lo, hi = d.q_range
-        out.append(Paragraph(f"Ведущее звено — гидроцилиндр {d.link}–{d.rod}; длина изменяется от "
-                             f"{fmt(lo, digits=3)} до {fmt(hi, digits=3)}&nbsp;м."))
+        out.append(_given_paragraph(f"Ведущее звено — гидроцилиндр {d.link}–{d.rod}; длина изменяется от "
+                                    f"{fmt(lo, digits=3)} до {fmt(hi, digits=3)}&nbsp;м."))
     return out
 
 
@@ -206,6 +223,10 @@ def _introduction(study, names, built) -> list:
         method = (" Расчёты выполнены аналитически по точным формулам; графические построения выполнены в "
                   "масштабе и сопоставлены с аналитическими результатами.")
     parts.append(Paragraph(f"В пояснительной записке выполнены: {what}.{mech}{method}"))
+    if "dynamics" in names:
+        chain = SECTIONS["dynamics"][0].drive_chain(study)
+        if chain:
+            parts.append(Paragraph(chain))
     return parts
 
 

@@ -85,6 +85,7 @@ class Figure:
     svg: bytes | str
     width_mm: float = 160
     id: str | None = None
+    landscape: bool = False  # on a page of its own turned to landscape (ГОСТ 7.32: a wide figure)
 
 
 @dataclass
@@ -120,13 +121,15 @@ class Section:
     def paragraph(self, html: str) -> Paragraph:
         return self.add(Paragraph(html))
 
-    def figure(self, caption: str, svg, width_mm: float = 160, id: str | None = None) -> Figure:
-        """Add a figure; ``svg`` may also be a matplotlib ``Figure`` (converted here)."""
+    def figure(self, caption: str, svg, width_mm: float = 160, id: str | None = None,
+               landscape: bool = False) -> Figure:
+        """Add a figure; ``svg`` may also be a matplotlib ``Figure`` (converted here);
+        ``landscape``: on its own landscape page, up to the landscape text width."""
         if hasattr(svg, "savefig"):
             from ..style.mplstyle import to_svg
 
             svg = to_svg(svg)
-        return self.add(Figure(caption, svg, width_mm, id))
+        return self.add(Figure(caption, svg, width_mm, id, landscape))
 
     def table(self, caption: str, columns: list[Column], data, id: str | None = None,
               **kw) -> Table:

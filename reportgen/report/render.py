@@ -145,6 +145,9 @@ def resolve_options(options: dict | None) -> dict:
     o["dash"] = dash
     o["text_width_mm"] = PAGE_W_MM - o["margin_left_mm"] - o["margin_right_mm"]
     o["text_height_mm"] = PAGE_H_MM - o["margin_top_mm"] - o["margin_bottom_mm"]
+    # a landscape page is bound on its top edge: the portrait margins turned by 90° (left → top)
+    o["landscape_text_width_mm"] = PAGE_H_MM - o["margin_top_mm"] - o["margin_bottom_mm"]
+    o["landscape_text_height_mm"] = PAGE_W_MM - o["margin_left_mm"] - o["margin_right_mm"]
     o["toc_depth"] = max(1, min(3, int(o["toc_depth"])))
     return o
 
@@ -187,6 +190,7 @@ class _FigureView:
     src: str
     width_mm: float
     caption: Markup
+    landscape: bool = False
 
 
 @dataclass
@@ -347,8 +351,10 @@ class _Builder:
             src = "data:image/png;base64," + base64.b64encode(bytes(data)).decode("ascii")
         else:
             src = data_uri(data)
-        width = min(float(fig.width_mm), self.o["text_width_mm"])
-        return _FigureView(fid, src, width, self.caption("figure_word", number, fig.caption))
+        limit = self.o["landscape_text_width_mm"] if fig.landscape and self.for_print else self.o["text_width_mm"]
+        width = min(float(fig.width_mm), limit)
+        return _FigureView(fid, src, width, self.caption("figure_word", number, fig.caption),
+                           fig.landscape and self.for_print)
 
     def header_cell(self, col: Column) -> Markup:
         head = inline_math(col.header) if col.latex else Markup(col.header)
@@ -517,6 +523,13 @@ _UNIT_SLASH = re.compile(r"([^\s<>]+)(" + _NB + r")([^\s<>&/]+/[^\s<>&]+)")
 _UNIT_SLASH_BARE = re.compile(r"(" + _NB + r"[^\s<>&/]+/[^\s<>&]+)")
 _NBSP_BEFORE_IMG = re.compile(_NB + r"(<img\b[^>]*>)")
 _NBSP_BEFORE_TAG = re.compile(_NB + r"(<(?:a|span|i|b|em|strong)\b[^>]*>)")
+# a compound unit («Н·м», «кг·м²», «Н·с/м») with the number before it, and initials with the
+# surname («Н. И. Мерцалов», «Мерцалов Н. И.»): never broken across lines
+_UNIT_DOT = re.compile(r"(?:[-−+]?\d[\d,.]*(?:" + _NB + r"|\s))?[A-Za-zА-Яа-яЁё]+(?:²|³)?(?:·[A-Za-zА-Яа-яЁё]+(?:²|³)?)+")
+_NUM_UNIT = re.compile(r"(\d) (?=(?:Н·мм|Н·м|Н/мм|Н|кг·м²|кг/м³|кг|мм|м/мм|м/с²|м/с|м|рад/с²|рад/с|рад|об/мин|"
+                       r"Дж|МПа|кПа|Па|кВт|Вт|с|%|°)(?![\wА-Яа-яЁё]))")
+_INITIALS = re.compile(r"\b([А-ЯЁ]\.)(?!\d)[ \u00a0]?([А-ЯЁ]\.)?[ \u00a0]([А-ЯЁ][а-яё]+)"
+                       r"|\b([А-ЯЁ][а-яё]+)[ \u00a0]([А-ЯЁ]\.)(?![\dа-яё])[ \u00a0]?([А-ЯЁ]\.)?(?![\dа-яё])")
 _SUP_PLAIN = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺", "0123456789\u2212+")
 
 
@@ -557,8 +570,12 @@ def _typography(html: str) -> str:
                 return run
             return "<sup>" + run.translate(_SUP_PLAIN) + "</sup>"
 
+        text = _NUM_UNIT.sub("\\1\u00a0", text)   # «8 мм» written with a plain space
         text = _UNIT_SLASH.sub(r'<span class="nobr">\1 \3</span>', text)
         text = _UNIT_SLASH_BARE.sub(r'<span class="nobr">\1</span>', text)
+        text = _UNIT_DOT.sub(lambda m: '<span class="nobr">' + re.sub(r"\s", "\u00a0", m.group(0)) + "</span>"
+                             if "<span" not in m.group(0) else m.group(0), text)
+        text = _INITIALS.sub(lambda m: re.sub(r"\s", "\u00a0", m.group(0)), text)
         return _SUP_RUN.sub(repl, text)
 
     # A no-break space right before an inline element («=&nbsp;<img>»,

@@ -87,15 +87,21 @@ class Canvas:
         return x * self.mu
 
     @classmethod
-    def fit(cls, xs, ys, avail_w=150.0, avail_h=190.0, margin_mm=8.0, gost=False):
+    def fit(cls, xs, ys, avail_w=150.0, avail_h=190.0, margin_mm=8.0, gost=False, page_w=165.0):
         """The canvas of the smallest standard scale holding the points (``gost``: a ГОСТ 2.302
-        scale for a drawing of the mechanism in metres, else a round μ of a plan)."""
+        scale for a drawing of the mechanism in metres, else a round μ of a plan) within the
+        text width ``page_w`` (257 mm on a landscape page)."""
         xs, ys = np.asarray(xs, float), np.asarray(ys, float)
-        xmin, xmax, ymin, ymax = xs.min(), xs.max(), ys.min(), ys.max()
+        mu = cls.scale(xs, ys, avail_w, avail_h, margin_mm, gost, page_w)
+        return cls(xs.min(), xs.max(), ys.min(), ys.max(), mu, margin_mm, max_w=page_w)
+
+    @staticmethod
+    def scale(xs, ys, avail_w=150.0, avail_h=190.0, margin_mm=8.0, gost=False, page_w=165.0) -> float:
+        """The μ :meth:`fit` would choose (no figure made)."""
+        xs, ys = np.asarray(xs, float), np.asarray(ys, float)
         pick = gost_scale if gost else nice_scale
-        avail_w = min(avail_w, 165.0 - 2 * margin_mm)
-        mu = max(pick(xmax - xmin, avail_w), pick(ymax - ymin, avail_h))
-        return cls(xmin, xmax, ymin, ymax, mu, margin_mm)
+        avail_w = min(avail_w, page_w - 2 * margin_mm)
+        return max(pick(np.ptp(xs), avail_w), pick(np.ptp(ys), avail_h))
 
     def svg(self) -> bytes:
         """The drawing as SVG, after the registered labels are placed clear of everything."""

@@ -14,7 +14,7 @@ import pandas as pd
 from matplotlib.patches import Arc
 
 from ..analysis.forces import crank_pin, lever_points
-from ..analysis.plans import READ_MM, velocity_plan
+from ..analysis.plans import READ_MM, drawn, velocity_plan
 from ..core import kinetostatics as KS
 from ..style import mplstyle
 from ..style.numbers import fmt
@@ -74,12 +74,29 @@ class Vector:
     role: str              # "load", "known", "unknown", "internal"
     link: str = ""         # the link the force acts on
     other: str = ""        # internal reaction: the link that exerts it
+    kind: int = -1         # reaction: the pair kind (kinetostatics K_REV, K_PRI, …)
+    tex: str = ""          # mathtext label when it is not math_label(label) (components R^n, R^τ)
+
+
+@dataclass
+class Constructed:
+    """A reaction found on the force polygon: its magnitude read off the drawing (to READ_MM)
+    against the analytic one."""
+
+    label: str
+    graphic: float
+    exact: float
+
+    @property
+    def dev_pct(self) -> float:
+        return (self.graphic - self.exact) / self.exact * 100.0 if self.exact else 0.0
 
 
 @dataclass
 class GroupDrawing(Drawing):
     mu_F: float = 0.0
     vectors: list[Vector] = field(default_factory=list)
+    constructed: list[Constructed] = field(default_factory=list)   # reactions found by construction
 
 
 def group_vectors(study, label: str, gi: int) -> tuple[list[Vector], list[dict], list[Vector]]:
@@ -110,11 +127,13 @@ def group_vectors(study, label: str, gi: int) -> tuple[list[Vector], list[dict],
         F = np.array([pv["Rx"], pv["Ry"]])
         at = (pv["x"], pv["y"])
         if p.a in links and p.b in links:
-            internal.append(Vector(pair_label(p.a, p.b), F, at, "internal", p.b, p.a))
+            internal.append(Vector(pair_label(p.a, p.b), F, at, "internal", p.b, p.a, kind=p.kind))
         elif p.b in links:
-            ext.append(Vector(pair_label(p.a, p.b), F, at, "unknown" if k in unknown else "known", p.b))
+            ext.append(Vector(pair_label(p.a, p.b), F, at, "unknown" if k in unknown else "known", p.b,
+                              kind=p.kind))
         elif p.a in links:
-            ext.append(Vector(pair_label(p.b, p.a), -F, at, "unknown" if k in unknown else "known", p.a))
+            ext.append(Vector(pair_label(p.b, p.a), -F, at, "unknown" if k in unknown else "known", p.a,
+                              kind=p.kind))
     order = {"load": 0, "known": 1, "unknown": 2}
     ext.sort(key=lambda v: order[v.role])
     return ext, moments, internal
@@ -181,6 +200,14 @@ class GroupForces:
         cum = np.cumsum([np.zeros(2)] + [v.F for v in seq], axis=0)
         pext = max(np.ptp(cum[:, 0]), np.ptp(cum[:, 1]), 1e-9)
         mu_F = nice_scale(pext, 62.0)
+        built = construct_polygon(seq, internal, mu_F)
+        if built is not None:
+            seq, constructed = built
+            count = {l: sum(1 for v in seq if v.link == l) for l in g.links}
+            order = list(dict.fromkeys(v.link for v in seq))
+            cum = np.cumsum([np.zeros(2)] + [v.F for v in seq], axis=0)
+        else:
+            constructed = []
         k = mu_l / mu_F                                   # force → data units of the canvas
         x0 = allx.max() + cv_gap(mu_l) - cum[:, 0].min() * k
         y0 = (ally.max() + ally.min()) / 2 - (cum[:, 1].max() + cum[:, 1].min()) / 2 * k
@@ -225,7 +252,9 @@ class GroupForces:
             d = b - a
             nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
             if not inset or i not in inset["tiny"]:
-                cv.labels.add(mid[0], mid[1], math_label(v.label), prefer=nrm, fontsize=10, color=color)
+                cv.labels.add(mid[0], mid[1], v.tex or math_label(v.label), prefer=nrm, fontsize=10, color=color)
+        if len(constructed) == 2:
+            _direction_lines(ax, seq, poly)
         if inset:
             _draw_inset(cv, seq, inset)
         # internal reactions: a cut between the first links of the order and the rest crossed by
@@ -248,7 +277,108 @@ class GroupForces:
             nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
             cv.labels.add(mid[0], mid[1], math_label(lab), prefer=nrm, fontsize=10, color=BLUE)
         ax.plot([poly[0, 0]], [poly[0, 1]], "o", ms=2.5, color=INK)
-        return GroupDrawing(cv.svg(), cv.width_mm, mu_l, mu_F, seq + closing)
+        return GroupDrawing(cv.svg(), cv.width_mm, mu_l, mu_F=mu_F, vectors=seq + closing, constructed=constructed)
+
+
+def _unit(v) -> np.ndarray:
+    n = float(np.hypot(*v))
+    return np.asarray(v, dtype=float) / n if n > 0 else np.zeros(2)
+
+
+def _component_tex(label: str, sup: str) -> str:
+    """R₁₂ with a superscript n or τ in mathtext: $R^{n}_{12}$."""
+    text = label.translate(UNSUB)
+    return "$" + text[0] + "^{" + sup + "}_{" + text[1:] + "}$"
+
+
+def construct_polygon(seq: list[Vector], internal: list[Vector], mu_F: float):
+    """The force polygon of a group constructed as the graphical method does it (Артоболевский [1],
+    гл. «Кинетостатика»; Попов–Тимофеев [2]): each unknown reaction of an outer pair has a known
+    line — a revolute pair of a link joined to the rest of the group by a revolute pair splits
+    into R^τ ⊥ the link (from the moments of the link about the inner pair, analytic) and R^n
+    along the link (direction known); a prismatic pair gives R ⊥ the guide. The known forces and
+    the R^τ are laid off head to tail, each rounded to READ_MM on the drawing; the two unknown
+    directions drawn through the ends of the chain intersect in the polygon's vertex, and the
+    reactions are read off the drawing to READ_MM.
+
+    Returns (the polygon as drawn: R^n₁, R^τ₁, the known forces link by link, R^τ₂, R^n₂;
+    the reactions read off it) or None where the group has no such pair of lines (one unknown
+    outer reaction, both on one link, a prismatic inner pair, parallel lines)."""
+    unknown = [v for v in seq if v.role == "unknown"]
+
+    def drawn_vec(F) -> np.ndarray:
+        # a side shorter than TINY_MM is laid off on the enlarged inset, where its rounding error
+        # is m times smaller: it is kept at its length
+        n = float(np.hypot(*F))
+        return np.asarray(F, dtype=float) if n / mu_F < TINY_MM else _unit(F) * drawn(n, mu_F)
+
+    if len(unknown) == 1 and not internal:      # one link (the crank): the closing side of the polygon
+        u = unknown[0]
+        chain = [Vector(v.label, drawn_vec(v.F), v.at, v.role, v.link, v.other, v.kind, v.tex)
+                 for v in seq if v.role != "unknown"]
+        if not chain:
+            return None
+        C = np.sum([v.F for v in chain], axis=0)
+        return chain + [Vector(u.label, -C, u.at, "unknown", u.link, kind=u.kind)], [
+            Constructed(u.label, drawn(float(np.hypot(*C)), mu_F), float(np.hypot(*u.F)))]
+    if len(unknown) != 2 or unknown[0].link == unknown[1].link:
+        return None
+    dirs = []
+    for v in unknown:
+        if v.kind == KS.K_PRI:
+            d = _unit(v.F)                       # the normal of the guide (no friction)
+        elif v.kind == KS.K_REV:
+            inner = [w for w in internal if v.link in (w.link, w.other)]
+            if len(inner) != 1 or inner[0].kind != KS.K_REV:
+                return None
+            d = _unit(np.subtract(inner[0].at, v.at))
+        else:
+            return None
+        if not d.any():
+            return None
+        dirs.append(d)
+    if abs(dirs[0][0] * dirs[1][1] - dirs[0][1] * dirs[1][0]) < 0.05:   # lines closer than 3° to parallel
+        return None
+
+    (u1, u2), (d1, d2) = unknown, dirs
+    t1, t2 = u1.F - (u1.F @ d1) * d1, u2.F - (u2.F @ d2) * d2
+    known = [v for v in seq if v.role != "unknown"]
+    middle = sorted(known, key=lambda v: (v.link != u1.link, v.link == u2.link))
+    chain = []
+    if float(np.hypot(*t1)) > 1e-9 * float(np.hypot(*u1.F)):
+        chain.append(Vector(u1.label, drawn_vec(t1), u1.at, "known", u1.link, kind=u1.kind,
+                            tex=_component_tex(u1.label, r"\tau")))
+    chain += [Vector(v.label, drawn_vec(v.F), v.at, v.role, v.link, v.other, v.kind, v.tex) for v in middle]
+    if float(np.hypot(*t2)) > 1e-9 * float(np.hypot(*u2.F)):
+        chain.append(Vector(u2.label, drawn_vec(t2), u2.at, "known", u2.link, kind=u2.kind,
+                            tex=_component_tex(u2.label, r"\tau")))
+    C = np.sum([v.F for v in chain], axis=0) if chain else np.zeros(2)
+    lam = np.linalg.solve(np.column_stack([d1, d2]), -C)     # λ₁d₁ + C + λ₂d₂ = 0
+    n1, n2 = lam[0] * d1, lam[1] * d2
+    sup = ["n" if v.kind == KS.K_REV else None for v in unknown]
+    first = Vector(u1.label, n1, u1.at, "unknown", u1.link, kind=u1.kind,
+                   tex=_component_tex(u1.label, "n") if sup[0] and chain and chain[0].label == u1.label else "")
+    last = Vector(u2.label, n2, u2.at, "unknown", u2.link, kind=u2.kind,
+                  tex=_component_tex(u2.label, "n") if sup[1] and chain and chain[-1].label == u2.label else "")
+    R1 = n1 + (chain[0].F if chain and chain[0].label == u1.label else 0.0)
+    R2 = n2 + (chain[-1].F if chain and chain[-1].label == u2.label else 0.0)
+    found = [Constructed(u.label, drawn(float(np.hypot(*R)), mu_F), float(np.hypot(*u.F)))
+             for u, R in ((u1, R1), (u2, R2))]
+    return [first] + chain + [last], found
+
+
+def _direction_lines(ax, seq: list[Vector], poly: np.ndarray) -> None:
+    """The two lines of known direction through the ends of the chain, thin dash-dot beyond
+    the vertex where they intersect (the construction left visible on the drawing)."""
+    for i in (0, len(seq) - 1):
+        a, b = poly[i], poly[i + 1]
+        d = b - a
+        n = float(np.hypot(*d))
+        if n == 0:
+            continue
+        ext = d / n * max(n * 0.25, float(np.ptp(poly[:, 0])) * 0.08)
+        ax.plot([a[0] - ext[0], b[0] + ext[0]], [a[1] - ext[1], b[1] + ext[1]], color=GREY, lw=0.5,
+                ls=(0, (8, 2, 1, 2)), zorder=3)
 
 
 TINY_MM = 5.0          # a polygon side shorter than this is repeated enlarged in an inset
@@ -320,7 +450,7 @@ def _draw_inset(cv, seq, inset) -> None:
             arrow(cv.ax, a[0], a[1], b[0], b[1], color=color, lw=1.1, zorder=6)
             d = b - a
             nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
-            cv.labels.add((a[0] + b[0]) / 2, (a[1] + b[1]) / 2, math_label(v.label), prefer=nrm, fontsize=10,
+            cv.labels.add((a[0] + b[0]) / 2, (a[1] + b[1]) / 2, v.tex or math_label(v.label), prefer=nrm, fontsize=10,
                           color=color)
         cv.labels.add((x0 + x1) / 2, y0, f"×{part['m']:.0f}", prefer=(0, -1), fontsize=8)
 
@@ -338,6 +468,7 @@ class LeverDrawing(Drawing):
                                         # as measured on the drawing (to 0,5 mm)
     graphic: float = 0.0                # the balancing force found on the drawing: −Σ F·h / h_ур
     arm_exact_mm: float = 0.0
+    forces_turned: bool = False         # the plan unturned, the forces turned by 90° clockwise
 
 
 class ZhukovskyLever:
@@ -402,7 +533,16 @@ class ZhukovskyLever:
             bal = [("F" + d.rod.translate(SUBSCRIPT), rot[d.end], F * u, True),
                    ("F" + d.link.translate(SUBSCRIPT), pc, -F * u, True)]
         tips = np.array([[0.0, 0.0]] + [list(v) for v in rot.values()] + [list(it[1]) for it in items + bal])
-        cv = Canvas.fit(tips[:, 0], tips[:, 1], avail_w=150, avail_h=170, margin_mm=16)
+        # a plan turned into a tall, narrow lever is turned back: the plan as drawn with every force
+        # turned by 90° clockwise instead — the same moments about the pole (Артоболевский [1])
+        turned = bool(np.ptp(tips[:, 1]) > 1.3 * np.ptp(tips[:, 0]))
+        if turned:
+            back = lambda v: np.array([v[1], -v[0]])  # noqa: E731 - rotation by −90°
+            rot = {k: back(v) for k, v in rot.items()}
+            items = [(lab, back(pt), back(F), b) for lab, pt, F, b in items]
+            bal = [(lab, back(pt), back(F), b) for lab, pt, F, b in bal]
+            tips = np.array([[t[1], -t[0]] for t in tips])
+        cv = Canvas.fit(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16)
         ax = cv.ax
         for seg in plan.segments:
             p0 = np.zeros(2) if seg.start == "p" else rot[seg.start]
@@ -436,7 +576,8 @@ class ZhukovskyLever:
         loads_ = table[~table["balancing"].astype(bool)]
         total = float(loads_["Fh"].sum())
         graph = -total / arm_read if abs(arm_read) > 0 else 0.0
-        return LeverDrawing(cv.svg(), cv.width_mm, cv.mu, table, analog, arm_read, graph, arm_mm)
+        return LeverDrawing(cv.svg(), cv.width_mm, cv.mu, moments=table, analog=analog, arm_mm=arm_read,
+                            graphic=graph, arm_exact_mm=arm_mm, forces_turned=turned)
 
 
 def _points(mech) -> list[str]:

@@ -2,7 +2,7 @@
 positions with the trajectories of the centres of mass, and the Assur groups drawn apart."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -17,6 +17,14 @@ class Drawing:
     svg: bytes
     width_mm: float
     mu: float            # scale factor μ (units per printed mm)
+    # drawn for a landscape page (wider than the portrait text width); keyword-only so that the
+    # subclasses' positional fields stay where they are
+    landscape: bool = field(default=False, kw_only=True)
+
+
+# a landscape A4 page (ГОСТ 7.32 margins turned with the sheet): text 257 × 165 mm, less the caption
+LANDSCAPE_W, LANDSCAPE_H = 257.0, 140.0
+LANDSCAPE_GAIN = 1.5     # a drawing goes landscape when that enlarges it at least this much
 
 
 def _row(study, label: str):
@@ -60,7 +68,11 @@ class PositionsPlan:
         for p in coms:
             xs += list(cyc[f"x_{p}"])
             ys += list(cyc[f"y_{p}"])
-        cv = Canvas.fit(xs, ys, avail_w=155, avail_h=190, margin_mm=12, gost=True)
+        wide = dict(avail_w=LANDSCAPE_W, avail_h=LANDSCAPE_H - 24, margin_mm=12, gost=True, page_w=LANDSCAPE_W)
+        landscape = (Canvas.scale(xs, ys, avail_w=155, avail_h=190, margin_mm=12, gost=True)
+                     >= LANDSCAPE_GAIN * Canvas.scale(xs, ys, **wide))
+        cv = (Canvas.fit(xs, ys, **wide) if landscape
+              else Canvas.fit(xs, ys, avail_w=155, avail_h=190, margin_mm=12, gost=True))
         for p in coms:
             cv.ax.plot(cyc[f"x_{p}"], cyc[f"y_{p}"], ls=(0, (5, 3)), lw=0.7, color=INK, zorder=2)
         tip = _tracer_point(study)
@@ -100,7 +112,7 @@ class PositionsPlan:
                 groups.append((x, y, [str(row["pos"])]))
         for x, y, names in groups:
             cv.labels.add(x, y, ", ".join(names), prefer=(x - cx, y - cy), fontsize=8)
-        return Drawing(cv.svg(), cv.width_mm, cv.mu)
+        return Drawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape)
 
 
 def _marked(p: str, mark: str) -> str:
@@ -168,9 +180,20 @@ class AssurGroups:
         mech = study.mechanism
         row = _row(study, self.label)
         groups = study.structure.groups
+        units = [(g.label + (" " + g.kind_ru if g.kind_ru else ""), self._links(study, g)) for g in groups]
+        d = mech.driver
+        if d.kind == "actuator":
+            # the cylinder, the rod and the link it drives form one initial mechanism with the driving
+            # prismatic pair inside (as the note's structural table and formula say)
+            ic = next((i for i, (_, ls) in enumerate(units) if d.link in ls), None)
+            ir = next((i for i, (_, ls) in enumerate(units) if d.rod in ls), None)
+            if ic is not None and ir is not None and ic != ir:
+                order = list(dict.fromkeys([d.link, d.rod] + [l for i in (ic, ir) for g in [groups[i]]
+                                                                  for l in g.links]))
+                merged = ("(" + ",".join(order) + ")", units[ic][1] | units[ir][1])
+                units = [merged] + [u for i, u in enumerate(units) if i not in (ic, ir)]
         parts = []
-        for g in groups:
-            links = self._links(study, g)
+        for g, links in units:
             # sorted: the same drawing whatever the hash seed
             pts = sorted({p for ln in sorted(links) for p in mech.link(ln).points})
             xs = [float(row[f"x_{p}"]) for p in pts]
@@ -204,6 +227,5 @@ class AssurGroups:
                 if j.kind == "R" and set(j.links) & links and not set(j.links) <= links | {FRAME}:
                     x, y = float(r[f"x_{j.point}"]), float(r[f"y_{j.point}"])
                     cv.ax.add_patch(Circle((x, y), cv.mm(1.3), facecolor=INK, edgecolor=INK, zorder=6))
-            cv.labels.add(xc, -height / 2 - cv.mm(4), g.label + (" " + g.kind_ru if g.kind_ru else ""),
-                          prefer=(0, -1), fontsize=10)
+            cv.labels.add(xc, -height / 2 - cv.mm(4), g, prefer=(0, -1), fontsize=10)
         return Drawing(cv.svg(), cv.width_mm, mu)

@@ -13,6 +13,7 @@ from ...core import cams as K
 from ...scenes.cam import (FlatRockerSize, LawDiagrams, PhasePortrait, PressureAngleGraph, ProfileDrawing,
                            follower_positions)
 from ...style.numbers import fmt, tex_num
+from .common import as_written
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 
@@ -37,6 +38,25 @@ R_TEX = r"r = \sqrt{(r_0 + s)^2 + s^{\prime 2}}"
 def present(study) -> bool:
     """The section is built when the case has [cam]."""
     return study.root.has("cam")
+
+
+def given(study) -> str:
+    """The cam's data in one sentence for the assignment page."""
+    cam = study.cam
+    kind = "поступательным" if cam.follower == "translating" else "качающимся"
+    contact = {"knife": "острием", "roller": "роликом", "flat": "плоской тарелкой"}[cam.contact]
+    stroke = (f"ход толкателя h&nbsp;=&nbsp;{as_written(round(cam.h * 1000, 6))}&nbsp;мм" if cam.follower == "translating"
+              else f"угол размаха коромысла ψ<sub>max</sub>&nbsp;=&nbsp;{_deg(cam.h)}, длина {_mm(cam.arm)}")
+    names = {K.RISE: "удаления", K.DWELL_HIGH: "дальнего стояния", K.RETURN: "возвращения",
+             K.DWELL_LOW: "ближнего стояния"}
+    angles = ", ".join(f"{names[ph.kind]} {_deg(ph.length, 0)}" for ph in cam.phases)
+    text = (f"Кулачковый механизм с {kind} толкателем и {contact}: {stroke}; фазовые углы {angles}; "
+            f"законы движения толкателя: на удалении — {_law_name(cam.rise)}, на возвращении — {_law_name(cam.ret)}")
+    if cam.contact != "flat":
+        text += (f"; допустимые углы давления {_deg(cam.rise.allowed, 0)} и {_deg(cam.ret.allowed, 0)}")
+    if cam.omega is not None:
+        text += f"; частота вращения кулачка {fmt(cam.omega * 30 / math.pi, sig=4)}&nbsp;об/мин"
+    return text + "."
 
 
 def _mm(x, sig=4) -> str:

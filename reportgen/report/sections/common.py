@@ -6,6 +6,7 @@ import math
 import pandas as pd
 
 from ...case import units as U
+from ...style.numbers import fmt
 from ..document import Column, Section
 from ..russian import position_names
 
@@ -91,3 +92,10 @@ def value_with_unit(q) -> tuple[float, str]:
     if dim[:3] == (0, 0, 0):
         return v, "—"
     return v, UNIT_RU.get(dim, U.format_dim(dim))
+
+
+def as_written(x) -> str:
+    """A given value as the case writes it (shortest representation, no padding zeros):
+    0.11 → «0,11», 8.0 → «8», 20.0000001 → «20»."""
+    t = f"{float(x):.10g}"
+    return fmt(float(t), digits=len(t.split(".")[1]) if "." in t and "e" not in t else 0, sig=None)

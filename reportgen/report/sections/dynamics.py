@@ -12,6 +12,8 @@ import numpy as np
 import pandas as pd
 from markupsafe import Markup
 
+from ...analysis.dynamics import DELTA_RANGES
+from ...case.text import inline_html
 from ...scenes.draw import gost_ratio
 from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, MomentCurves,
                                 MotionCurves, WittenbauerDiagram, WorkCurves)
@@ -19,7 +21,7 @@ from ...style.numbers import fmt, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import condition_text
-from .common import MAX_COLS, chosen_position, chunked_tables, sub, tex_point, pos_fmt, pos_no
+from .common import MAX_COLS, as_written, chosen_position, chunked_tables, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle", "dynamics")
 
@@ -39,6 +41,7 @@ TEX = {
     "mert_ext": r"M_{\Sigma} = \frac{1}{2} J_{II}^{\prime} \omega_{\text{ср}}^2",
     "exact_ext": r"M_{\Sigma} = \frac{1}{2} J_{II}^{\prime} \omega^2",
     "vrim": r"v = \omega_{max} D/2",
+    "vrim_u": r"v = u\,\omega_{max} D/2",
     "v": r"v = \omega x^{\prime}",
     "a": r"a = \omega^2 x^{\prime\prime} + \varepsilon x^{\prime}",
     "wk": r"\omega_k = \omega \varphi_k^{\prime}",
@@ -102,8 +105,52 @@ def _per(n: int, most: int = MAX_COLS) -> int:
 
 
 def _ratio(u: float) -> str:
-    """A gear ratio as the case gives it: «15», «2,5»."""
-    return fmt(u, digits=0) if float(u).is_integer() else fmt(u, sig=4)
+    """A gear ratio as the case gives it: «15», «2,5» (a computed 6,0000000001 → «6»)."""
+    return as_written(round(float(u), 6))
+
+
+def drive_chain(study) -> str | None:
+    """The drive of the crank in words with the ratios, when the case gives the flywheel's shaft
+    ratio u and the gear pair and/or the planetary train of the drive whose ratios multiply to u:
+    «электродвигатель → планетарный редуктор (u = 6) → зубчатая передача (u = 2,5) → кривошип».
+    The stage whose given input speed is the crank's speed times its ratio drives the crank."""
+    st = study.dynamics.settings
+    u = st.ratio
+    stages = []
+    if study.root.has("train"):
+        tr = study.train
+        stages.append(("планетарный редуктор", abs(tr.ratio), None))
+    if study.root.has("gears") and study.gears.z2 and not study.gears.internal:
+        gr = study.gears
+        stages.append((f"зубчатая передача <i>z</i><sub>1</sub>&nbsp;=&nbsp;{gr.z1}, "
+                       f"<i>z</i><sub>2</sub>&nbsp;=&nbsp;{gr.z2}", gr.z2 / gr.z1, gr.omega1))
+    if u == 1.0 or not stages or abs(math.prod(x[1] for x in stages) / u - 1) > 1e-6:
+        return None
+    w = st.omega_m
+    stages.sort(key=lambda x: x[2] is not None and abs(x[2] / (w * x[1]) - 1) < 1e-3)   # the crank's stage last
+    rpm = 30 / math.pi
+    chain = " → ".join([f"электродвигатель (n<sub>дв</sub>&nbsp;=&nbsp;{fmt(w * u * rpm, sig=4)}&nbsp;об/мин)"]
+                       + [f"{name} (u&nbsp;=&nbsp;{_ratio(r)})" for name, r, _ in stages]
+                       + [f"кривошип (n<sub>1</sub>&nbsp;=&nbsp;{fmt(w * rpm, sig=4)}&nbsp;об/мин)"])
+    prod = "·".join(_ratio(r) for _, r, _ in stages)
+    total = f"u&nbsp;=&nbsp;{prod}&nbsp;=&nbsp;{_ratio(u)}" if len(stages) > 1 else f"u&nbsp;=&nbsp;{_ratio(u)}"
+    return (f"Привод кривошипа: {chain}; общее передаточное отношение от вала двигателя к кривошипу {total}. "
+            "Маховик устанавливается на валу двигателя.")
+
+
+def given(study) -> str:
+    """The machine's dynamic data in one sentence for the assignment page."""
+    st = study.dynamics.settings
+    text = (f"Динамика машины: средняя частота вращения кривошипа {fmt(st.omega_m * 30 / math.pi, sig=4)}&nbsp;об/мин, "
+            f"коэффициент неравномерности хода δ&nbsp;=&nbsp;{as_written(st.delta)}")
+    if st.J_O:
+        text += f", приведённый момент инерции ротора и передачи J<sub>O</sub>&nbsp;=&nbsp;{fmt(st.J_O, sig=4)}&nbsp;кг·м²"
+    work = [ld for ld in study.dynamics.loads.loads if ld.kind != "weight"]
+    if work:
+        text += "; нагрузки: " + ", ".join(inline_html(ld.title or ld.name) for ld in work)
+    text += "."
+    chain = drive_chain(study)
+    return text + (" " + chain if chain else "")
 
 
 def _c(x) -> str:
@@ -502,6 +549,9 @@ def _dimensions(sec, study, d) -> None:
     if u != 1.0:
         # equal kinetic energy on both shafts: J_shaft·(u·ω)²/2 = J_доп·ω²/2 (Артоболевский [1], приведение масс)
         sym = r"J_{\text{м}}"
+        chain = drive_chain(study)
+        if chain:
+            s.paragraph(chain)
         s.paragraph(f"Маховик устанавливается на другом валу; передаточное отношение от него к кривошипу "
                     f"u&nbsp;=&nbsp;ω<sub>м</sub>/ω<sub>1</sub>&nbsp;=&nbsp;{_ratio(u)}. Из равенства кинетических энергий "
                     "маховика на его валу и приведённого к кривошипу, J<sub>м</sub>(uω)²&nbsp;=&nbsp;J<sub>доп</sub>ω², "
@@ -539,7 +589,7 @@ def _dimensions(sec, study, d) -> None:
          "b": fw.rim_physical.b, "m": fw.rim_physical.m, "u": fw.rim_physical.v_rim},
     ]
     s.paragraph(f"Варианты маховика сопоставлены в таблице {ref('tab-dyn-fw')}; окружная скорость обода "
-                f"{_im('vrim')} сравнивается с допускаемой "
+                f"{_im('vrim_u') if u != 1.0 else _im('vrim')} сравнивается с допускаемой "
                 f"[v]&nbsp;=&nbsp;{fmt(fw.v_limit, sig=3)}&nbsp;м/с.")
     s.table("Размеры и масса маховика", [
         Column("v", "Вариант"), Column("D", "<i>D</i>", "м", digits=3), Column("d", "<i>D</i><sub>1</sub>", "м", digits=3),
@@ -645,6 +695,26 @@ def comparison_block(sec, study) -> None:
 # --------------------------------------------------------------------------------------------
 # ЗАКЛЮЧЕНИЕ
 # --------------------------------------------------------------------------------------------
+def _delta_judgement(st) -> list[str]:
+    """δ of the case against the recommended range for its kind of machine (Артоболевский [1])."""
+    if st.machine is None:
+        return []
+    name, lo, hi = DELTA_RANGES[st.machine]
+    rng = (f"для машин этого типа ({name}) рекомендуется δ&nbsp;=&nbsp;{as_written(round(lo, 4))}…"
+           f"{as_written(round(hi, 4))} (1/{round(1 / lo)}…1/{round(1 / hi)}) [1]")
+    d = st.delta
+    if d > hi * (1 + 1e-9):
+        verdict = ("заданный δ больше рекомендуемого: ход машины менее равномерен, чем принято для таких машин; "
+                   "при δ из рекомендуемого диапазона маховик был бы в "
+                   f"{fmt(d / hi, sig=2)} раза больше (J<sub>I</sub> обратно пропорционален δ)")
+    elif d < lo * (1 - 1e-9):
+        verdict = ("заданный δ меньше рекомендуемого: маховик больше, чем требуется для таких машин; "
+                   f"при δ&nbsp;=&nbsp;{fmt(lo, sig=2)} он был бы в {fmt(lo / d, sig=2)} раза меньше")
+    else:
+        verdict = "заданный δ в этом диапазоне"
+    return [f"Коэффициент неравномерности хода δ&nbsp;=&nbsp;{as_written(d)}: {rng}; {verdict}."]
+
+
 def conclusion_lines(study) -> list[str]:
     """HTML lines about the dynamics for the ЗАКЛЮЧЕНИЕ (assemble._conclusion)."""
     d = study.dynamics
@@ -659,11 +729,12 @@ def conclusion_lines(study) -> list[str]:
     else:
         out.append(f"Работа движущих сил за цикл A<sub>д</sub>&nbsp;=&nbsp;{fmt(sc['A_d'], sig=5)}&nbsp;Дж; "
                    f"постоянный приведённый момент сопротивления M<sub>с</sub>&nbsp;=&nbsp;{fmt(sc['M_c'], sig=5)}&nbsp;Н·м.")
-    out.append(f"Для δ&nbsp;=&nbsp;{fmt(st.delta, sig=4)} при ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(st.omega_m, digits=3)}&nbsp;рад/с "
+    out.append(f"Для δ&nbsp;=&nbsp;{as_written(st.delta)} при ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(st.omega_m, digits=3)}&nbsp;рад/с "
                f"требуется J<sub>I</sub>&nbsp;=&nbsp;{fmt(r.J_I, sig=5)}&nbsp;кг·м² ({METHOD_RU[st.method]}); "
                f"точное значение {fmt(r.J_I_exact, sig=6)}&nbsp;кг·м², метод Мерцалова даёт отклонение "
                f"{fmt(r.dev_mertsalov_pct, digits=3, sign=True)}&nbsp;%, метод Виттенбауэра "
                f"{fmt(r.dev_wittenbauer_pct, digits=3, sign=True)}&nbsp;%.")
+    out += _delta_judgement(st)
     fw = r.flywheel
     if fw.needed:
         u = d.settings.ratio
@@ -673,8 +744,17 @@ def conclusion_lines(study) -> list[str]:
                    f"D<sub>2</sub>&nbsp;=&nbsp;{fmt(fw.rim.D2, digits=3)}&nbsp;м, b&nbsp;=&nbsp;{fmt(fw.rim.b, digits=3)}&nbsp;м, "
                    f"m&nbsp;=&nbsp;{fmt(fw.rim.m, sig=4)}&nbsp;кг или диск D&nbsp;=&nbsp;{fmt(fw.disk.D, digits=3)}&nbsp;м, "
                    f"m&nbsp;=&nbsp;{fmt(fw.disk.m, sig=4)}&nbsp;кг"
-                   + ("; окружная скорость обода превышает допускаемую." if fw.any_exceeds else "."))
-        if min(fw.rim.m, fw.disk.m) > 500:
+                   + ".")
+        v = max(fw.rim.v_rim, fw.disk.v_rim)
+        if math.isfinite(v):
+            formula = ("u·ω<sub>max</sub>·D/2 (маховик на валу, вращающемся в u раз быстрее кривошипа)"
+                       if u != 1.0 else "ω<sub>max</sub>·D/2")
+            verdict = (f"превышает допускаемую [v]&nbsp;=&nbsp;{fmt(fw.v_limit, sig=3)}&nbsp;м/с: обод следует "
+                       "сделать меньшего диаметра и большей ширины или стальным" if fw.any_exceeds else
+                       f"не превышает допускаемой [v]&nbsp;=&nbsp;{fmt(fw.v_limit, sig=3)}&nbsp;м/с")
+            out.append(f"Наибольшая окружная скорость обода v&nbsp;=&nbsp;{formula}&nbsp;=&nbsp;"
+                       f"{fmt(v, sig=3)}&nbsp;м/с {verdict}.")
+        if u == 1.0 and min(fw.rim.m, fw.disk.m) > 500:
             out.append(f"Маховик массой {fmt(min(fw.rim.m, fw.disk.m) / 1000, digits=1)}&nbsp;т на валу кривошипа "
                        "громоздок. Его целесообразно установить на быстроходный вал (вал двигателя): при "
                        "передаточном отношении u от этого вала к кривошипу требуемый момент инерции "

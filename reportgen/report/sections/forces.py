@@ -283,6 +283,7 @@ def _groups(sec: Section, study, f, lab: str) -> None:
                 "определяющий точку её приложения). Реакции со стороны групп, рассчитанных ранее, известны. "
                 "Система линейных уравнений группы решается точно; векторные уравнения сил проверяются "
                 "построением планов сил в масштабе μ<sub>F</sub> (замкнутые многоугольники).")
+    told: set[int] = set()      # the kinds of construction already described in full
     for gi, g in enumerate(f.model.groups):
         draw = GroupForces(lab, gi).draw(study)
         ext, moments, internal = group_vectors(study, lab, gi)
@@ -302,6 +303,9 @@ def _groups(sec: Section, study, f, lab: str) -> None:
         s.figure(f"{'Начальный механизм' if act is not None else 'Группа'} {g.label}: схема нагружения (μ<sub>l</sub> = {mu_text(draw.mu)} м/мм, стрелки сил "
                  f"без масштаба) и план сил (μ<sub>F</sub> = {mu_text(draw.mu_F)} Н/мм)",
                  draw.svg, draw.width_mm, id=gid)
+        if draw.constructed:
+            s.paragraph(_construction_text(draw, gid, told))
+            told |= {len(draw.constructed)}
         rows = []
         det = f.details(lab)
         for k in g.pairs:
@@ -323,6 +327,30 @@ def _groups(sec: Section, study, f, lab: str) -> None:
             _crank_moment(s, study, f, lab, g, det)
 
 
+_DIGITS = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
+
+
+def _construction_text(draw, gid: str, told: set[int]) -> str:
+    """How the polygon of the group was constructed (in full the first time, then by reference)
+    and what was read off it, against the exact solution of the group's equations."""
+    found = "; ".join(f"{sub('R', c.label[1:].translate(_DIGITS))}&nbsp;=&nbsp;{fmt(c.graphic, sig=4)}&nbsp;Н (аналитически "
+                      f"{fmt(c.exact, sig=5)}&nbsp;Н, расхождение {fmt(c.dev_pct, digits=2, sign=True)}&nbsp;%)"
+                      for c in draw.constructed)
+    if len(draw.constructed) in told:
+        how = "План сил построен так же, реакции измерены на чертеже"
+    elif len(draw.constructed) == 1:
+        how = ("Известные силы отложены в масштабе μ<sub>F</sub> (длины округлены до 0,5&nbsp;мм); "
+               "замыкающая сторона плана сил — искомая реакция, её длина измерена на чертеже")
+    else:
+        how = ("Известные силы и касательные составляющие реакций <i>R</i><sup>τ</sup> (из уравнений моментов "
+               "сил каждого звена относительно внутреннего шарнира) отложены в масштабе μ<sub>F</sub> "
+               "с длинами, округлёнными до 0,5&nbsp;мм; через начало и конец цепи проведены линии известных "
+               "направлений (нормальная составляющая <i>R</i><sup>n</sup> — вдоль звена, реакция "
+               "поступательной пары — перпендикулярно направляющей); точка их пересечения замыкает "
+               "план, реакции измерены на чертеже")
+    return f"{how} (рисунок {ref(gid)}): {found}."
+
+
 def _unknown_text(p) -> str:
     if p.kind == KS.K_REV:
         return f"{_R(p.name)} (2 составляющие)"
@@ -335,10 +363,11 @@ def _unknown_text(p) -> str:
 
 def _prismatic_text(p, pv) -> str:
     if p.kind == KS.K_PRI:
-        return (f"N = {fmt(pv['N'], sig=5)} Н, M = {fmt(pv['Mp'], sig=4)} Н·м, "
-                f"h = {fmt(pv['Mp'] / pv['N'] if pv['N'] else 0.0, sig=4)} м")
+        return (f"N\u00a0=\u00a0{fmt(pv['N'], sig=5)}\u00a0Н, M\u00a0=\u00a0{fmt(pv['Mp'], sig=4)}\u00a0Н·м, "
+                f"h\u00a0=\u00a0{fmt(pv['Mp'] / pv['N'] if pv['N'] else 0.0, sig=4)}\u00a0м")
     if p.kind == KS.K_ACT:
-        return f"F = {fmt(pv['F'], sig=6)} Н, N = {fmt(pv['N'], sig=4)} Н, M = {fmt(pv['Mp'], sig=4)} Н·м"
+        return (f"F\u00a0=\u00a0{fmt(pv['F'], sig=6)}\u00a0Н, N\u00a0=\u00a0{fmt(pv['N'], sig=4)}\u00a0Н, "
+                f"M\u00a0=\u00a0{fmt(pv['Mp'], sig=4)}\u00a0Н·м")
     return ""
 
 
@@ -445,9 +474,17 @@ def _balance(sec: Section, study, f, lab: str) -> None:
                           label="eq-frc-power"))
     lever = ZhukovskyLever(lab).draw(study)
     plan = "аналогов скоростей" if lever.analog else "скоростей"
-    s.paragraph(f"Рычаг Н.&nbsp;Е.&nbsp;Жуковского — план {plan}, повёрнутый на 90° против часовой стрелки "
-                f"(рисунок {ref('fig-frc-lever')}); силы приложены в одноимённых точках плана, моменты заменены "
-                "парами сил на двух точках звена. Сумма моментов всех сил относительно полюса p равна нулю:")
+    if lever.forces_turned:
+        how = (f"Рычаг Н.&nbsp;Е.&nbsp;Жуковского — план {plan}, повёрнутый на 90°; повёрнутый план получился "
+               "бы высоким и узким, поэтому план оставлен без поворота, а все силы повёрнуты на 90° по часовой "
+               "стрелке, что даёт те же моменты относительно полюса (рисунок "
+               f"{ref('fig-frc-lever')}); силы приложены в одноимённых точках плана, моменты заменены парами сил "
+               "на двух точках звена. Сумма моментов всех сил относительно полюса p равна нулю:")
+    else:
+        how = (f"Рычаг Н.&nbsp;Е.&nbsp;Жуковского — план {plan}, повёрнутый на 90° против часовой стрелки "
+               f"(рисунок {ref('fig-frc-lever')}); силы приложены в одноимённых точках плана, моменты заменены "
+               "парами сил на двух точках звена. Сумма моментов всех сил относительно полюса p равна нулю:")
+    s.paragraph(how)
     if rot:
         pin = tex_point(_pin(mech))
         s.formula(Formula(rf"F_{{ур}} h_{{{pin.lower()}}} + \sum_i F_i h_i = 0", label="eq-frc-lever"))
@@ -463,7 +500,8 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     mt["Fh"] = np.sign(mt["Fh"].to_numpy(float)) * F_r * h_r
     arm = round(abs(float(lever.arm_mm)), 1) * (1.0 if lever.arm_mm >= 0 else -1.0)
     mu_unit = "м·с⁻¹/мм" if not lever.analog else ("м/мм" if rot else "мм⁻¹")
-    s.figure(f"Рычаг Жуковского для положения {pos_no(study, lab)} (μ<sub>v</sub> = {mu_text(lever.mu)} {mu_unit})",
+    turned = ", силы повёрнуты на 90° по часовой стрелке" if lever.forces_turned else ""
+    s.figure(f"Рычаг Жуковского для положения {pos_no(study, lab)} (μ<sub>v</sub> = {mu_text(lever.mu)} {mu_unit}{turned})",
              lever.svg, lever.width_mm, id="fig-frc-lever")
     loads = mt[~mt["balancing"].astype(bool)]
     s.table(f"Моменты сил относительно полюса рычага Жуковского (положение {pos_no(study, lab)})", [

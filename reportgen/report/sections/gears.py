@@ -13,6 +13,7 @@ from markupsafe import Markup
 from ...core import gears as G
 from ...scenes import gears as S
 from ...style.numbers import fmt, tex_num
+from .common import as_written
 from ..document import Column, Formula, Section, ref
 
 NEEDS = ("gears",)
@@ -30,6 +31,20 @@ def _t(x, sig=5, digits=None) -> str:
 
 def _deg(rad) -> str:
     return tex_num(math.degrees(float(rad)), digits=4) + r"^{\circ}"
+
+
+def given(study) -> str:
+    """The gear pair's data in one sentence for the assignment page."""
+    gr = study.gears
+    text = (f"Зубчатая передача{' внутреннего зацепления' if gr.internal else ''}: модуль "
+            f"<i>m</i>&nbsp;=&nbsp;{as_written(gr.m)}&nbsp;мм, числа зубьев <i>z</i><sub>1</sub>&nbsp;=&nbsp;{gr.z1}")
+    if gr.z2:
+        text += (f", <i>z</i><sub>2</sub>&nbsp;=&nbsp;{gr.z2} (передаточное отношение "
+                 f"<i>u</i><sub>12</sub>&nbsp;=&nbsp;{as_written(round(gr.z2 / gr.z1, 4))})")
+    text += f"; исходный контур по ГОСТ&nbsp;13755-81 (α&nbsp;=&nbsp;{as_written(round(math.degrees(gr.rack.alpha), 6))}°)"
+    if gr.omega1 is not None:
+        text += f"; частота вращения шестерни {fmt(gr.omega1 * 30 / math.pi, sig=4)}&nbsp;об/мин"
+    return text + "."
 
 
 def build(study) -> Section:

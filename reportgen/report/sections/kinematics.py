@@ -74,7 +74,10 @@ def build(study) -> Section:
         s1.paragraph(f"План положений построен для {ncount} значений длины гидроцилиндра от "
                      f"{fmt(lo, digits=3)} до {fmt(hi, digits=3)}&nbsp;м; масштаб {mu_l}&nbsp;=&nbsp;"
                      f"{mu_text(plan.mu)}&nbsp;м/мм (рисунок {ref('fig-positions')}).")
-    s1.figure("План положений механизма и траектории центров масс", plan.svg, plan.width_mm, id="fig-positions")
+    fig = s1.figure("План положений механизма и траектории центров масс", plan.svg, plan.width_mm,
+                    id="fig-positions", landscape=plan.landscape)
+    if plan.landscape:      # its own page follows the first table of coordinates (not a near-empty page)
+        s1.children.remove(fig)
     if study.fits:
         s1.paragraph("Неизвестные размеры подобраны из условий задания (решение уравнений с точностью 10⁻¹²):")
         fdf = pd.DataFrame([{"name": f.name, "cond": f.condition, "at": f.at, "value": f.value} for f in study.fits])
@@ -88,12 +91,17 @@ def build(study) -> Section:
         cols += [Column(f"x_{p}", f"<i>x</i><sub>{p}</sub>", "м", digits=3),
                  Column(f"y_{p}", f"<i>y</i><sub>{p}</sub>", "м", digits=3)]
     ids = chunked_tables(s1, "Координаты точек механизма", k, cols, lead, "tab-coords")
+    if plan.landscape:
+        first = next(i for i, b in enumerate(s1.children) if getattr(b, "id", None) == ids[0])
+        s1.children.insert(first + 1, fig)
     angle_cols = []
     for l in _links(study):
         kd = k.copy()
         angle_cols.append(Column(f"phi_{l.name}", sub("φ", l.name), "град", fmt=_deg))
-    for j in mech.prismatic:
-        angle_cols.append(Column(f"s_{j.name}", sub("s", j.name), "м", digits=4))
+    points = [j.point for j in mech.prismatic]
+    for j in mech.prismatic:          # s_H by the slider's point, not the pair's name (unless shared)
+        angle_cols.append(Column(f"s_{j.name}", sub("s", j.point if points.count(j.point) == 1 else j.name),
+                                 "м", digits=4))
     for c in k.columns:
         if c.startswith("phi_") and c[4:] not in [l.name for l in mech.links]:
             angle_cols.append(Column(c, sub("φ", c[4:]), "град", fmt=_deg))

@@ -7,7 +7,7 @@ from markupsafe import Markup
 from ...scenes.mechanism import AssurGroups, KinematicScheme
 from ..document import Column, Section, ref
 from ..formulas import inline_math
-from ..russian import expr_html
+from ..russian import expr_html, plural
 from .common import chosen_position
 
 NEEDS = ("structure", "kinematics")
@@ -24,17 +24,25 @@ def build(study) -> Section:
     sec.paragraph(
         f"Кинематическая схема механизма в положении {pos} приведена на рисунке {ref('fig-scheme')} "
         f"(масштаб {mu_l}&nbsp;=&nbsp;{_mu(scheme.mu)}&nbsp;м/мм). Механизм состоит из стойки 0 и "
-        f"{len(links)} подвижных звеньев, соединённых {st.p5} низшими кинематическими парами.")
+        f"{plural(len(links), 'подвижного звена', 'подвижных звеньев', 'подвижных звеньев')}, соединённых "
+        f"{plural(st.p5, 'низшей кинематической парой', 'низшими кинематическими парами', 'низшими кинематическими парами')}.")
     sec.figure("Кинематическая схема механизма", scheme.svg, scheme.width_mm, id="fig-scheme")
 
     s1 = sec.subsection("Звенья и кинематические пары", "sec-links-pairs")
-    ldf = pd.DataFrame([{"n": l.name, "title": l.title or "—", "motion": st.link_motion[l.name]} for l in links])
+    # the kind of motion; its parenthesised generic name («коромысло, кулиса») only for an untitled link
+    ldf = pd.DataFrame([{"n": l.name, "title": l.title or "—",
+                         "motion": st.link_motion[l.name].split(" (")[0] if l.title else st.link_motion[l.name]}
+                        for l in links])
     s1.paragraph(f"Звенья механизма и виды их движения перечислены в таблице {ref('tab-links')}, "
                  f"кинематические пары — в таблице {ref('tab-pairs')}.")
     s1.table("Звенья механизма", [Column("n", "Номер"), Column("title", "Название"), Column("motion", "Вид движения")],
              ldf, id="tab-links")
     pdf = pd.DataFrame(st.pairs)
     pdf["klass"] = pdf["klass"].astype(str)
+    # pairs named by their point, a prismatic pair marked «(П)» as in the incidence table (no
+    # program names such as «50»)
+    pdf["name"] = [(f"{r.point} (П)" if r.point != "—" else f"{r.links} (П)") if r.kind.startswith("поступательная")
+                   else r.name for r in pdf.itertuples()]
     s1.table("Кинематические пары", [Column("name", "Обозначение"), Column("links", "Звенья"),
                                      Column("kind", "Вид пары"), Column("klass", "Класс"),
                                      Column("level", "Низшая/высшая")], pdf, id="tab-pairs")

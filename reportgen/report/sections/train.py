@@ -13,6 +13,8 @@ from markupsafe import Markup
 from ...analysis.train import FRAME
 from ...scenes.train import stage_plans, train_picture
 from ...style.numbers import fmt, tex_num
+from .common import as_written
+from ..russian import plural
 from ..document import Column, Formula, Section, ref
 
 NEEDS = ("train",)
@@ -33,13 +35,28 @@ def _z(name: str) -> str:
     return rf"z_{{{name}}}"
 
 
+def given(study) -> str:
+    """The planetary train's data in one sentence for the assignment page."""
+    tr = study.train
+    m = tr.model
+    text = (f"Планетарный механизм: входное звено {m.inp}, выходное {m.out}, неподвижное "
+            f"{', '.join(m.fixed) or '—'}")
+    if tr.candidates:
+        text += (f"; передаточное отношение <i>u</i>&nbsp;=&nbsp;{as_written(tr.opts['target'])}, число сателлитов "
+                 f"<i>k</i>&nbsp;=&nbsp;{tr.opts['planets']}; числа зубьев подбираются")
+    else:
+        text += "; числа зубьев колёс заданы"
+    return text + "."
+
+
 def build(study) -> Section:
     tr = study.train
     m = tr.model
     sec = Section("Синтез планетарного механизма", "sec-train")
     fixed = ", ".join(m.fixed) or "нет"
     sec.paragraph(f"Входное звено — {m.inp}, выходное — {m.out}, неподвижные звенья: {fixed}. "
-                  f"Механизм состоит из {len(m.wheels)} колёс и {len(m.members)} подвижных звеньев; "
+                  f"Механизм состоит из {plural(len(m.wheels), 'колеса', 'колёс', 'колёс')} и "
+                  f"{plural(len(m.members), 'подвижного звена', 'подвижных звеньев', 'подвижных звеньев')}; "
                   f"зацеплений {len(m.meshes)}.")
     if tr.candidates:
         _selection(sec, tr)

@@ -1,0 +1,194 @@
+"""Issue 9, the teacher's review: force polygons constructed by intersection, the Жуковский lever
+laid out readable, landscape pages, units and initials never split, parameter titles and symbols
+from the case, the assignment with every task's data and the drive chain, δ against the
+recommended range."""
+import re
+import subprocess
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from conftest import CASES
+from reportgen import load_case
+from reportgen.errors import CaseError
+
+
+@pytest.fixture(scope="module")
+def corrected():
+    return load_case(CASES / "ws000_six_bar_corrected.toml")
+
+
+@pytest.fixture(scope="module")
+def slider():
+    return load_case(CASES / "slider_crank.toml")
+
+
+def _position(st):
+    from reportgen.report.sections.common import chosen_position
+    lab = chosen_position(st)
+    return lab if lab in st.forces.labels else st.forces.labels[1]
+
+
+# --------------------------------------------------------------------------------------------
+# force polygons constructed as the graphical method does it
+# --------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("name", ["corrected", "slider"])
+def test_polygon_by_intersection_exact_lengths_give_the_analytic_reactions(name, request):
+    """With lengths not rounded (μ_F tiny) the intersection of the two known lines reproduces the
+    reactions of the exact solution of the group's equations: a second formulation."""
+    from reportgen.scenes.forces import construct_polygon, group_vectors
+    st = request.getfixturevalue(name)
+    lab = _position(st)
+    n = 0
+    for gi in range(len(st.forces.model.groups)):
+        ext, _, internal = group_vectors(st, lab, gi)
+        built = construct_polygon(ext, internal, 1e-9)
+        if built is None:
+            continue
+        seq, found = built
+        n += 1
+        scale = max(float(np.hypot(*v.F)) for v in ext)
+        assert np.hypot(*np.sum([v.F for v in seq], axis=0)) < 1e-9 * scale      # the polygon closes
+        for c in found:
+            assert abs(c.graphic - c.exact) < 1e-6 * scale, c
+    assert n >= 2
+
+
+@pytest.mark.parametrize("name", ["corrected", "slider"])
+def test_polygon_at_scale_is_a_real_graphical_solution(name, request):
+    """Drawn at μ_F with every length rounded to 0,5 mm the reactions read off the drawing differ
+    from the analytic ones, by no more than the drawing's accuracy (a few per cent), and the
+    drawing reports them."""
+    from reportgen.scenes.forces import GroupForces
+    st = request.getfixturevalue(name)
+    lab = _position(st)
+    found = [c for gi in range(len(st.forces.model.groups)) for c in GroupForces(lab, gi).draw(st).constructed]
+    assert len(found) >= 3
+    assert all(abs(c.dev_pct) < 3.0 for c in found)
+    assert any(c.graphic != c.exact for c in found)
+
+
+def test_note_states_the_construction_beside_the_polygon(corrected):
+    from reportgen.report.sections import forces
+    sec = forces.build(corrected)
+    text = " ".join(str(getattr(b, "html", "")) for s in sec.children if hasattr(s, "children") for b in s.children)
+    assert "точка их пересечения замыкает план" in text
+    assert "расхождение" in text
+
+
+# --------------------------------------------------------------------------------------------
+# Жуковский's lever readable at print scale
+# --------------------------------------------------------------------------------------------
+def test_lever_turned_back_when_tall_and_moments_unchanged(corrected):
+    from reportgen.scenes.forces import ZhukovskyLever
+    lab = _position(corrected)
+    lever = ZhukovskyLever(lab).draw(corrected)
+    assert lever.forces_turned
+    assert lever.width_mm > 120          # not the 3 cm column of the turned plan
+    row = corrected.forces.row(lab)
+    exact = float(row["F_bal_zhukovsky"])
+    assert abs(lever.graphic - exact) / abs(exact) < 0.03
+
+
+# --------------------------------------------------------------------------------------------
+# landscape pages
+# --------------------------------------------------------------------------------------------
+def test_wide_figure_on_a_landscape_page_with_page_numbers(tmp_path):
+    from reportgen.report.document import Report, Section
+    from reportgen.report.render import write_pdf
+    svg = ('<svg xmlns="http://www.w3.org/2000/svg" width="240mm" height="100mm" viewBox="0 0 240 100">'
+           '<rect x="1" y="1" width="238" height="98" fill="none" stroke="#000"/></svg>')
+    sec = Section("Проба", "sec-p")
+    sec.paragraph("Текст до рисунка. " * 40)
+    sec.figure("Широкий рисунок", svg, 240, id="fig-wide", landscape=True)
+    sec.paragraph("Текст после рисунка. " * 40)
+    rep = Report(meta={}, assignment=[], introduction=[], sections=[sec], conclusion=[], references=[],
+                 options={"title_page": False, "assignment_page": False})
+    pdf = tmp_path / "p.pdf"
+    write_pdf(rep, pdf)
+    info = subprocess.run(["pdfinfo", "-f", "1", "-l", "9", str(pdf)], capture_output=True, text=True).stdout
+    sizes = re.findall(r"Page\s+(\d+) size:\s+([\d.]+) x ([\d.]+)", info)
+    land = [int(n) for n, w, h in sizes if float(w) > float(h)]
+    assert len(land) == 1 and 1 < land[0] < len(sizes)           # one landscape page between portrait ones
+    page = subprocess.run(["pdftotext", "-f", str(land[0]), "-l", str(land[0]), str(pdf), "-"],
+                          capture_output=True, text=True).stdout
+    assert "Рисунок 1.1" in page and "Текст" not in page          # the figure alone on its page
+    assert re.search(rf"(^|\s){land[0]}\s*$", page.strip())          # numbered in sequence
+
+
+def test_plan_of_positions_goes_landscape_only_when_it_gains():
+    from reportgen.scenes.mechanism import LANDSCAPE_GAIN, PositionsPlan
+    from reportgen.scenes.draw import GOST_K
+    wide = PositionsPlan().draw(load_case(CASES / "ws000_six_bar_corrected.toml"))
+    narrow = PositionsPlan().draw(load_case(CASES / "slider_crank.toml"))
+    assert wide.landscape and 165 < wide.width_mm <= 257
+    assert not narrow.landscape and narrow.width_mm <= 165
+    assert any(abs(wide.mu * 1000 - k) < 1e-9 for k in GOST_K)       # still a ГОСТ 2.302 scale
+    assert LANDSCAPE_GAIN >= 1.5
+
+
+# --------------------------------------------------------------------------------------------
+# units and initials on one line
+# --------------------------------------------------------------------------------------------
+def test_typography_keeps_compound_units_and_initials_together():
+    from reportgen.report.render import _typography
+    out = _typography("<p>M = 12,5&nbsp;Н·м, J = 3 кг·м², Н. И. Мерцалова, Мерцалов Н. И., по оси x.</p>")
+    assert '<span class="nobr">12,5&nbsp;Н·м</span>' in out
+    assert '<span class="nobr">3\u00a0кг·м²</span>' in out
+    assert "Н.\u00a0И.\u00a0Мерцалова" in out and "Мерцалов\u00a0Н.\u00a0И." in out
+
+
+# --------------------------------------------------------------------------------------------
+# [parameters] with title and symbol
+# --------------------------------------------------------------------------------------------
+def _with_params(tmp_path, block: str):
+    text = (CASES / "slider_crank.toml").read_text(encoding="utf-8")
+    text = text.replace('l_OA = "0.1 m"', block, 1)
+    p = tmp_path / "case.toml"
+    p.write_text(text, encoding="utf-8")
+    return p
+
+
+def test_parameter_title_and_symbol_in_the_assignment(tmp_path):
+    from reportgen.report.assemble import _given_parameters
+    p = _with_params(tmp_path, 'l_OA = { value = "0.1 m", title = "длина кривошипа <script>", '
+                               'symbol = "<i>l</i><sub>1</sub>" }')
+    st = load_case(p)
+    assert abs(st.params["l_OA"].value - 0.1) < 1e-15
+    tab = _given_parameters(st)[0]
+    row = tab.data.iloc[0]
+    assert str(row["title"]) == "длина кривошипа &lt;script&gt;"
+    assert str(row["name"]) == "<i>l</i><sub>1</sub>"
+    other = tab.data.iloc[1]                    # a plain parameter keeps the derived name
+    assert "длина" in str(other["title"])
+
+
+@pytest.mark.parametrize("block", ['l_OA = { title = "длина" }', 'l_OA = { value = "0.1 m", colour = "red" }',
+                                   'l_OA = { value = "0.1 m", title = 5 }'])
+def test_parameter_table_errors(tmp_path, block):
+    with pytest.raises(CaseError) as e:
+        load_case(_with_params(tmp_path, block)).params
+    assert "l_OA" in str(e.value)
+
+
+# --------------------------------------------------------------------------------------------
+# the assignment, the drive chain, δ against the textbook range
+# --------------------------------------------------------------------------------------------
+def test_course_project_assignment_and_drive_chain():
+    from reportgen.report.assemble import _assignment, chosen_sections
+    st = load_case(CASES / "course_project.toml")
+    text = " ".join(str(getattr(b, "html", "")) for b in _assignment(st, chosen_sections(st, None)))
+    for want in ("Кулачковый механизм", "Зубчатая передача", "Планетарный механизм", "δ&nbsp;=&nbsp;0,11",
+                 "электродвигатель", "планетарный редуктор (u&nbsp;=&nbsp;6) → зубчатая передача",
+                 "u&nbsp;=&nbsp;6·2,5&nbsp;=&nbsp;15", "на валу двигателя"):
+        assert want in text, want
+
+
+@pytest.mark.parametrize("delta, want", [(0.11, "больше рекомендуемого"), (0.03, "в этом диапазоне"),
+                                         (0.01, "меньше рекомендуемого")])
+def test_delta_against_the_recommended_range(delta, want):
+    from reportgen.report.sections.dynamics import _delta_judgement
+    line = _delta_judgement(SimpleNamespace(machine="machine_tool", delta=delta))[0]
+    assert want in line and "[1]" in line
+    assert _delta_judgement(SimpleNamespace(machine=None, delta=delta)) == []
