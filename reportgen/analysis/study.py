@@ -251,11 +251,16 @@ class Study:
         n = node.integer("positions", 12, minimum=2, maximum=MAX_POSITIONS)
         m = node.integer("cycle_points", 3600, minimum=36, maximum=MAX_CYCLE_POINTS)
         closed = node.boolean("closed", False)
-        if d.rotary:
+        if d.periodic:
             start = node.quantity("start", U.ANGLE, names, default=0.0)
             length = 2 * math.pi
             q = start + length * np.arange(n + (1 if closed else 0)) / n
         else:
+            # an actuator's stroke or an input rocker's swing: positions from one end of the range
+            # to the other, both ends included (the return stroke passes the same positions)
+            if node.has("start"):
+                raise node.error("start", "начало цикла задаётся только кривошипу",
+                                 expected="для качающегося звена и гидроцилиндра положения идут по [driver] range")
             lo, hi = d.q_range
             start, length = lo, hi - lo
             q = np.linspace(lo, hi, n)
@@ -348,7 +353,7 @@ class Study:
         the sketch)."""
         if not L.has_newton(self.model):
             return L.solve(self.model, q, labels)
-        period = self.grid.length if self.mechanism.driver.rotary else None
+        period = self.grid.length if self.mechanism.driver.periodic else None
         return L.solve_continued(self.model, q, self._cycle_solution, period, labels)
 
     def at(self, q) -> pd.DataFrame:
@@ -400,10 +405,7 @@ class Study:
 
     @cached_property
     def scalars(self) -> dict[str, float]:
-        st = self.structure
-        out: dict[str, Any] = {"W": st.W, "n": st.n, "p5": st.p5, "p4": st.p4, "mech_class": st.mech_class}
-        for f in self.fits:
-            out[f.name] = f.value
+        out = dict(self.structure_scalars)
         for c, v in self.flags.items():
             out[c + "_min"] = v["min"]
         out.update(self._output_stroke())
@@ -412,7 +414,7 @@ class Study:
     def _output_stroke(self) -> dict[str, float]:
         """Stroke (swing) of the output link, its time-ratio coefficient K and mean speeds of
         the working (longer) and return strokes (analysis/synthesis.py ``output_extremes``)."""
-        if not self.mechanism.driver.rotary:
+        if not self.mechanism.driver.periodic:
             return {}
         from .synthesis import output_extremes
         x = output_extremes(self)
@@ -428,19 +430,38 @@ class Study:
 
 
     # ------------------------------------------------------------- export
-    def extra_tables(self) -> dict[str, pd.DataFrame]:
-        """Tables beyond kinematics and structure: fits, then each task analysis of the case."""
+    def _tasks_for(self, positions_only: bool) -> list[str]:
+        """The case's tasks; ``positions_only``: those that need no linkage (a linkage task, such
+        as dynamics, works over the cycle)."""
+        return [n for n in self.tasks() if not (positions_only and BY_NAME[n].linkage)]
+
+    def extra_tables(self, positions_only: bool = False) -> dict[str, pd.DataFrame]:
+        """Tables beyond kinematics and structure: fits, then each task analysis of the case
+        (``positions_only``: without the linkage tasks, which need the cycle)."""
         out = {}
         if self.fits:
             out["fits"] = pd.DataFrame([{"name": f.name, "value": f.value, "condition": f.condition,
                                          "at": f.at, "residual": f.residual} for f in self.fits])
-        for name in self.tasks():
+        for name in self._tasks_for(positions_only):
             out.update(self.analysis(name).tables())
         return out
 
-    def all_scalars(self) -> dict:
-        out = dict(self.scalars) if self.has_linkage else {}
-        for name in self.tasks():
+    @property
+    def structure_scalars(self) -> dict[str, Any]:
+        """W, n, p₅, p₄, the class and the fitted parameters: nothing solved over the cycle."""
+        st = self.structure
+        out: dict[str, Any] = {"W": st.W, "n": st.n, "p5": st.p5, "p4": st.p4, "mech_class": st.mech_class}
+        for f in self.fits:
+            out[f.name] = f.value
+        return out
+
+    def all_scalars(self, positions_only: bool = False) -> dict:
+        """Every scalar of the case; ``positions_only`` (``export --at``): only those that need
+        no solution over the cycle."""
+        out = {}
+        if self.has_linkage:
+            out.update(self.structure_scalars if positions_only else self.scalars)
+        for name in self._tasks_for(positions_only):
             out.update(self.analysis(name).scalars)
         return out
 

@@ -40,7 +40,7 @@ def output_extremes(study) -> dict:
     def f(x: float) -> float:
         return float(study.at([x])[v_col].iloc[0])
 
-    period = study.grid.length if study.mechanism.driver.rotary else None
+    period = study.grid.length if study.mechanism.driver.periodic else None
     # nodes of the cycle (the last node repeats the first for a rotary driver); a zero of the
     # analog at a node (an extreme position at the start of the cycle) is bracketed around it
     if period:
