@@ -476,13 +476,7 @@ def zhukovsky(loads: list[LoadItem], cols, mech) -> dict[str, np.ndarray]:
 
 def crank_pin(mech) -> str:
     """The crank's point joined to the next link (the crank pin A)."""
-    d = mech.driver
-    crank = mech.link(d.link)
-    joined = {j.point for j in mech.joints if d.link in j.links and FRAME not in j.links}
-    for p in crank.points:
-        if p != d.center and p in joined:
-            return p
-    return [p for p in crank.points if p != d.center][0]
+    return mech.crank_pin()
 
 
 # --------------------------------------------------------------------------------------------

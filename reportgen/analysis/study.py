@@ -414,7 +414,10 @@ class Study:
     def _output_stroke(self) -> dict[str, float]:
         """Stroke (swing) of the output link, its time-ratio coefficient K and mean speeds of
         the working (longer) and return strokes (analysis/synthesis.py ``output_extremes``)."""
-        if not self.mechanism.driver.periodic:
+        d = self.mechanism.driver
+        if d.swing:
+            return self._swing_scalars()
+        if not d.periodic:
             return {}
         from .synthesis import output_extremes
         x = output_extremes(self)
@@ -428,6 +431,21 @@ class Study:
             out["output_v_return"] = x["stroke"] * w / min(x["phi_a"], x["phi_b"])
         return out
 
+
+    def _swing_scalars(self) -> dict[str, float]:
+        """An input rocker: the swing q_max − q_min, the output's range over it (with its interior
+        reversals), the time of one stroke t = (q_max − q_min)/ω₁ and K = 1 (both strokes at the
+        same |ω₁| take the same time)."""
+        from .synthesis import swing_output
+        d = self.mechanism.driver
+        x = swing_output(self)
+        out = {"swing": d.q_range[1] - d.q_range[0], "output": x["column"], "output_stroke": x["stroke"],
+               "output_reversals": len(x["reversals"]), "output_K": 1.0}
+        for i, r in enumerate(x["reversals"]):
+            out[f"output_q_reversal_{i + 1}"] = r
+        if d.omega is not None:
+            out["t_stroke"] = out["swing"] / d.omega
+        return out
 
     # ------------------------------------------------------------- export
     def _tasks_for(self, positions_only: bool) -> list[str]:

@@ -196,6 +196,9 @@ def _read_driver(root, names, by_name, joints, need_link, need_point) -> Driver:
         need_point(dn, "center", link, center)
         direction = dn.string("direction", "ccw", choices=["ccw", "cw"])
         q_range = _swing_range(dn, names) if kind == "rocker" else None
+        if kind == "rocker" and dn.has("epsilon"):
+            raise dn.error("epsilon", "качающееся входное звено движется с постоянной по модулю угловой скоростью "
+                                      "(прямой ход +ω, обратный −ω)", expected="omega без epsilon")
         if kind == "crank" and dn.has("range"):
             raise dn.error("range", "диапазон задаётся качающемуся входному звену, кривошип делает полные обороты",
                            expected="type = \"rocker\" с range = [\"-30 deg\", \"30 deg\"] или кривошип без range")

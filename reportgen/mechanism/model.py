@@ -113,6 +113,18 @@ class Mechanism:
                 owner.setdefault(p, l.name)
         return owner
 
+    def crank_pin(self) -> str:
+        """The rotating input link's point joined to the next link (the crank pin A); a point
+        of the input link other than its pivot (a centre of mass) is never taken for it when a
+        joint is there."""
+        d = self.driver
+        crank = self.link(d.link)
+        joined = {j.point for j in self.joints if d.link in j.links and FRAME not in j.links}
+        for p in crank.points:
+            if p != d.center and p in joined:
+                return p
+        return [p for p in crank.points if p != d.center][0]
+
     @property
     def prismatic(self) -> list[Joint]:
         return [j for j in self.joints if j.kind == "P"]

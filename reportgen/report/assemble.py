@@ -19,7 +19,7 @@ from .document import Column, Paragraph, Report, Table
 from .russian import param_symbol, param_title, plural
 from .sections import kinematics as sec_kin
 from .sections import structure as sec_struct
-from .sections.common import value_with_unit
+from .sections.common import swing_text, value_with_unit
 
 
 def _has_linkage(study) -> bool:
@@ -172,7 +172,14 @@ def _linkage_data(study) -> list:
             Column("G", "Вес", "Н", sig=4), Column("J", "<i>J</i><sub>S</sub>", "кг·м²", sig=4)],
             pd.DataFrame(lrows), id="tab-masses"))
     d = mech.driver
-    if d.rotary:
+    if d.swing:
+        text = (f"Ведущее звено — входное коромысло {d.link}, качающееся в диапазоне {swing_text(d)}: "
+                f"прямой ход — {'по часовой стрелке' if d.direction < 0 else 'против часовой стрелки'} "
+                f"от первого крайнего положения ко второму, обратный ход — в обратном направлении")
+        if d.omega:
+            text += f"; угловая скорость по модулю постоянна, ω<sub>1</sub>&nbsp;=&nbsp;{fmt(d.omega, digits=3)}&nbsp;рад/с"
+        out.append(Paragraph(text + "."))
+    elif d.rotary:
         text = (f"Ведущее звено — кривошип {d.link}; начальный угол φ<sub>0</sub>&nbsp;=&nbsp;"
                 f"{fmt(math.degrees(d.phi0), digits=3)}°, вращение "
                 f"{'по часовой стрелке' if d.direction < 0 else 'против часовой стрелки'}")
