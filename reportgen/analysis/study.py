@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import importlib
 import math
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -21,7 +22,7 @@ from ..case import units as U
 from ..case.expr import Q, evaluate
 from ..case.load import CaseSpec, load_spec
 from ..case.reader import MAX_CYCLE_POINTS, MAX_POSITIONS, Node
-from ..errors import CaseError
+from ..errors import AssemblyError, CaseError
 from ..mechanism.build import build_mechanism
 from ..mechanism.model import Mechanism
 from ..mechanism.structure import Structure, analyse
@@ -334,7 +335,8 @@ class Study:
         """Positions, analogs and true velocities/accelerations at the report positions."""
         self.computed.add("kinematics")
         g = self.grid
-        return self._frame(g.q, g.labels, grid=False)
+        with _cycle_hint():
+            return self._frame(g.q, g.labels, grid=False)
 
     @cached_property
     def cycle(self) -> pd.DataFrame:
@@ -344,7 +346,8 @@ class Study:
 
     @cached_property
     def _cycle_solution(self) -> L.KinematicsResult:
-        return L.solve(self.model, self.grid.cycle)
+        with _cycle_hint():
+            return L.solve(self.model, self.grid.cycle)
 
     def _solve_on_branch(self, q: np.ndarray, labels=None) -> L.KinematicsResult:
         """Kinematics at single positions.  Closed-form groups keep their sign σ; a mechanism
@@ -482,6 +485,24 @@ class Study:
         for name in self._tasks_for(positions_only):
             out.update(self.analysis(name).scalars)
         return out
+
+
+CYCLE_HINT = ("Отчёт, проверка и полный экспорт требуют сборки во всех положениях цикла. Механизм, "
+              "собирающийся лишь в части оборота, рассчитывается в отдельных положениях: reportgen export "
+              "ВАРИАНТ --at \"0 deg\"; входное звено, качающееся в части оборота, задаётся в [driver] как "
+              "type = \"rocker\" с range = [\"φ_min\", \"φ_max\"]")
+
+
+@contextmanager
+def _cycle_hint():
+    """An assembly failure over the report positions or the cycle says how to analyse the
+    mechanism where it does assemble."""
+    try:
+        yield
+    except AssemblyError as e:
+        if e.amount > 0 and not e.hint:
+            raise AssemblyError(e.group, e.position, e.amount, e.detail, CYCLE_HINT) from None
+        raise
 
 
 def true_motion(cols, mech: Mechanism, w: np.ndarray, e: np.ndarray) -> dict[str, np.ndarray]:
