@@ -66,6 +66,16 @@ REFERENCES = [_typeset(r) for r in REFERENCES]
 
 
 def chosen_sections(study, names: Iterable[str] | None) -> list[str]:
+    """The note's sections: ``--sections``, else ``[report] sections`` of the case, else every
+    section the case has."""
+    if not names and study.root.table("report").has("sections"):
+        node = study.root.table("report")
+        raw = node.raw("sections")
+        ok = [n for n in ORDER if n in SECTIONS]
+        if not (isinstance(raw, list) and raw and all(isinstance(x, str) and x in SECTIONS for x in raw)):
+            raise node.error("sections", "ожидался список разделов записки", expected="sections = [\"dof\"]; разделы: "
+                             + ", ".join(ok), got=repr(raw)[:200])
+        return [n for n in ORDER if n in raw]
     if names:
         unknown = [n for n in names if n not in SECTIONS]
         if unknown:
@@ -83,7 +93,7 @@ def needs(study, names: Iterable[str] | None = None) -> set[str]:
     return out
 
 
-REPORT_KEYS = ["position", "output", "output_title", "options"]
+REPORT_KEYS = ["position", "output", "output_title", "options", "sections"]
 
 
 def build_report(study, sections: Iterable[str] | None = None, options: dict | None = None) -> Report:
@@ -130,6 +140,8 @@ def _assignment_tasks(study, names) -> list[str]:
     out = []
     for n in names:
         text = getattr(SECTIONS[n][0], "TASK", None) or _TASKS.get(n)
+        if callable(text):          # a clause depending on what the case asks
+            text = text(study)
         if n == "kinematics" and study.mechanism.driver.omega is None:
             text = ("выполнить кинематический анализ (план положений, аналоги скоростей и ускорений, "
                     "кинематические диаграммы)")
