@@ -62,6 +62,13 @@ def input_word(driver, case: str = "nom") -> str:
     return words[case][1 if driver.swing else 0]
 
 
+def q_degrees(study, q: float) -> float:
+    """An input angle as the note prints it: a crank's angle from the cycle's start, an input
+    rocker's own angle φ (its range is given in these angles)."""
+    d = study.mechanism.driver
+    return math.degrees(q) if d.swing else math.degrees(q - study.grid.start)
+
+
 def swing_text(driver) -> str:
     """«φ = 25…85° (размах 60°)» of an input rocker."""
     from ...style.numbers import fmt

@@ -25,7 +25,7 @@ from ...style.numbers import fmt, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import plural
-from .common import chosen_position, chunked_tables, input_word, q_header, sub, tex_point, pos_fmt, pos_no
+from .common import chosen_position, chunked_tables, input_word, q_degrees, q_header, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle", "forces")
 
@@ -574,7 +574,7 @@ def _cycle(sec: Section, study, f) -> None:
             continue
         q = sc[f"q_R_{p.name}_max"]
         rows.append({"pair": _R(shown_key(f, p)), "R": sc[f"R_{p.name}_max"],
-                     "q": math.degrees(q - study.grid.start) if f.rotary else q})
+                     "q": q_degrees(study, q) if f.rotary else q})
     qkey, qhead, qunit, qfmt = q_header(study)
     main = "M_bal" if f.rotary else "F_act"
     s.paragraph(f"Модули реакций во всех парах и {'уравновешивающий момент' if f.rotary else 'усилие гидроцилиндра'} "
@@ -709,7 +709,7 @@ def conclusion_lines(study) -> list[str]:
     out = []
     big = max((p for p in f.model.pairs if p.kind != KS.K_MOM), key=lambda p: sc[f"R_{p.name}_max"])
     q = sc[f"q_R_{big.name}_max"]
-    where = (f"φ&nbsp;=&nbsp;{fmt(math.degrees(q - study.grid.start), digits=1)}°" if f.rotary
+    where = (f"φ&nbsp;=&nbsp;{fmt(q_degrees(study, q), digits=1)}°" if f.rotary
              else f"S&nbsp;=&nbsp;{fmt(q, digits=3)}&nbsp;м")
     out.append(f"Силовой расчёт выполнен по группам Ассура; наибольшая реакция — в паре {big.a}–{big.b}: "
                f"{fmt(sc[f'R_{big.name}_max'], sig=5)}&nbsp;Н при {where}.")
