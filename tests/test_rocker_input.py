@@ -178,3 +178,14 @@ def test_at_without_the_cycle(tmp_path, capsys):
         assert "Traceback" not in err
     with pytest.raises(AssemblyError):
         Study(p).cycle
+
+
+def test_at_outside_the_swing_is_refused(tmp_path, capsys):
+    assert main(["export", str(ROCKER), "-o", str(tmp_path / "x"), "--at", "40 deg,95 deg"]) == 2
+    err = capsys.readouterr().err
+    assert "--at[1]" in err and "вне диапазона качания" in err and "85°" in err
+    assert main(["export", str(ROCKER), "-o", str(tmp_path / "y"), "--at", "40 deg"]) == 0
+    at = pd.read_csv(tmp_path / "y" / "at.csv")
+    assert at["x_B"].iloc[0] == pytest.approx(float(closed_form_B(np.array([math.radians(40)]))[0][0]), abs=1e-13)
+    # forces at the position too (the force analysis of the case evaluates itself there)
+    assert "M_bal" in at.columns
