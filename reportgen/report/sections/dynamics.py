@@ -46,6 +46,14 @@ TEX = {
 }
 
 
+def TASK(study) -> str:
+    """The assignment clause: the flywheel from δ (direct task) or δ from the given flywheel."""
+    if study.dynamics.inverse is not None:
+        return ("определить закон движения машины и коэффициент неравномерности хода при заданном маховике "
+                "(обратная задача)")
+    return "определить закон движения машины и рассчитать маховик по заданному коэффициенту неравномерности хода"
+
+
 def _im(key: str):
     """Inline math of a named LaTeX snippet (f-string expressions cannot hold backslashes)."""
     return inline_math(TEX[key])
@@ -386,7 +394,20 @@ def _flywheel(sec, study, d) -> None:
     r = d.result
     me, wi, ex = r.mertsalov, r.wittenbauer, r.exact
     w, dl = st.omega_m, st.delta
-    s.paragraph(f"Требуемый коэффициент неравномерности хода δ&nbsp;=&nbsp;{fmt(dl, sig=4)} при средней угловой "
+    if d.inverse is not None:
+        inv, u = d.inverse, st.ratio
+        shaft = (f"на валу, вращающемся в u&nbsp;=&nbsp;{fmt(u, sig=4)} раза быстрее кривошипа; приведённый к валу "
+                 f"кривошипа момент инерции маховика u²J&nbsp;=&nbsp;{fmt(u * u * st.J_given, sig=5)}&nbsp;кг·м²"
+                 if u != 1 else "на валу кривошипа")
+        s.paragraph(f"<b>Обратная задача.</b> Маховик задан: момент инерции J&nbsp;=&nbsp;{fmt(st.J_given, sig=5)}&nbsp;кг·м² "
+                    f"{shaft}. С постоянной частью приведённого момента инерции {inline_math('J_I')} без маховика "
+                    f"({fmt(d.J_I_const, sig=5)}&nbsp;кг·м²) {inline_math('J_I')}&nbsp;=&nbsp;{fmt(inv.J_I, sig=5)}&nbsp;кг·м². "
+                    f"Точное установившееся движение машины с этим моментом инерции (периодическое решение уравнения "
+                    f"движения в форме энергий за цикл) даёт ω<sub>max</sub>&nbsp;=&nbsp;{fmt(inv.omega_max, sig=5)}&nbsp;рад/с, "
+                    f"ω<sub>min</sub>&nbsp;=&nbsp;{fmt(inv.omega_min, sig=5)}&nbsp;рад/с и коэффициент неравномерности хода "
+                    f"δ&nbsp;=&nbsp;(ω<sub>max</sub>&nbsp;−&nbsp;ω<sub>min</sub>)/ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(dl, sig=4)}. "
+                    "Для проверки ниже решена прямая задача с этим δ: точный способ возвращает заданный маховик.")
+    s.paragraph(f"{'Найденный' if d.inverse is not None else 'Требуемый'} коэффициент неравномерности хода δ&nbsp;=&nbsp;{fmt(dl, sig=4)} при средней угловой "
                 f"скорости ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(w, digits=3)}&nbsp;рад/с "
                 f"(n&nbsp;=&nbsp;{fmt(w * 30 / math.pi, digits=1)}&nbsp;об/мин); "
                 f"{_im('delta')}, "
