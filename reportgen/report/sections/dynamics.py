@@ -18,7 +18,7 @@ from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, Mo
 from ...style.numbers import fmt, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
-from ..russian import condition_text
+from ..russian import condition_text, plural
 from .common import MAX_COLS, chosen_position, chunked_tables, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle", "dynamics")
@@ -83,8 +83,30 @@ def _tx(text: str) -> str:
     return r"\text{" + text + "}"
 
 
+def _cycle_k(study) -> int:
+    """The cycle length Φ = k·π of the dynamics (k ≥ 1, any whole number)."""
+    return max(1, round(study.dynamics.settings.cycle_length / math.pi))
+
+
 def _cycle_tex(study) -> str:
-    return r"2\pi" if study.dynamics.settings.cycle_length < 7 else r"4\pi"
+    k = _cycle_k(study)
+    return r"\pi" if k == 1 else rf"{k}\pi"
+
+
+def _cycle_words(study) -> str:
+    """«один оборот кривошипа, Φ = 2π», «один двойной оборот …, Φ = 4π», «три оборота …, Φ = 6π»,
+    «1,5 оборота …, Φ = 3π»."""
+    k = _cycle_k(study)
+    Phi = "π" if k == 1 else f"{k}π"
+    if k == 2:
+        turns = "один оборот"
+    elif k == 4:
+        turns = "один двойной оборот"
+    elif k % 2 == 0:
+        turns = plural(k // 2, "оборот", "оборота", "оборотов")
+    else:
+        turns = f"{fmt(k / 2, digits=1)} оборота"
+    return f"{turns} кривошипа, Φ&nbsp;=&nbsp;{Phi}"
 
 
 def _h(sym: str, idx: str) -> str:
@@ -161,8 +183,7 @@ def _model(sec: Section, study, d) -> None:
         f"{Jpr} и приведённым моментом сил {Mpr}. Первая группа звеньев (ротор двигателя, передачи, "
         f"кривошип и маховик) имеет постоянный приведённый момент инерции {inline_math('J_I')}; "
         f"вторая группа (звенья рычажного механизма) — переменный {_im('J2')}. "
-        f"Цикл установившегося движения — один {'оборот' if st.cycle_length < 7 else 'двойной оборот'} "
-        f"кривошипа, Φ&nbsp;=&nbsp;{'2π' if st.cycle_length < 7 else '4π'}.")
+        f"Цикл установившегося движения — {_cycle_words(study)}.")
     s.paragraph("Уравнение движения машины в энергетической и дифференциальной формах "
                 "(уравнение Лагранжа второго рода для звена приведения):")
     s.formula(Formula(r"\frac{J_{\text{пр}}(\varphi)\,\omega^2}{2} - \frac{J_{\text{пр}}(\varphi_0)\,\omega_0^2}{2}"
