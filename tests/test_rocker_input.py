@@ -118,6 +118,7 @@ def test_forces_over_the_swing(rocker):
     (('type = "rocker"', 'type = "crank"'), "driver.range"),
     (('omega = "2 rad/s"', 'omega = "2 rad/s"\nepsilon = "1 rad/s^2"'), "driver.epsilon"),
     (('positions = 7', 'positions = 7\nstart = "10 deg"'), "grid.start"),
+    (('positions = 7', 'positions = 7\nextra = ["90 deg"]'), "grid.extra[0]"),
 ])
 def test_bad_swing_input(tmp_path, change, key):
     text = ROCKER.read_text(encoding="utf-8")

@@ -280,6 +280,12 @@ class Study:
             else:
                 xs.append(node.eval_value(e, f"extra[{i}]", self.qdim, names))
                 labels.append(f"д{i + 1}")
+        if d.swing:
+            for i, x in enumerate(xs):
+                if not d.q_range[0] - 1e-12 <= x <= d.q_range[1] + 1e-12:
+                    raise node.error(f"extra[{i}]", "дополнительное положение вне диапазона качания входного звена",
+                                     expected=f"угол от {math.degrees(d.q_range[0]):.6g}° до "
+                                              f"{math.degrees(d.q_range[1]):.6g}°")
         q = np.concatenate([q, np.array(xs, dtype=float)])
         cycle = start + length * np.arange(m + 1) / m
         return Grid(q, labels, cycle, start, length)
