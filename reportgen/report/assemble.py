@@ -12,6 +12,7 @@ import re
 from typing import Iterable
 
 import pandas as pd
+from markupsafe import Markup, escape
 
 from ..registry import KINDS
 from ..style.numbers import fmt
@@ -159,12 +160,24 @@ def _given_parameters(study) -> list:
         if name not in raw or name in fitted:
             continue
         v, unit = value_with_unit(q)
-        rows.append({"title": param_title(name), "name": name, "value": v, "unit": unit})
+        text = raw[name] if isinstance(raw[name], str) else ""
+        rows.append({"title": param_title(name), "name": name, "value": v, "unit": unit,
+                     "given": text[:60] if _imperial(text) else ""})
     if rows:
-        out.append(Table("Исходные данные", [Column("title", "Параметр"), Column("name", "Обозначение", fmt=param_symbol),
-                                             Column("value", "Значение", fmt=_as_written), Column("unit", "Единица")],
-                         pd.DataFrame(rows), id="tab-given"))
+        cols = [Column("title", "Параметр"), Column("name", "Обозначение", fmt=param_symbol),
+                Column("value", "Значение", fmt=_as_written), Column("unit", "Единица")]
+        if any(r["given"] for r in rows):      # a published example in inches, pounds: as it was given
+            cols.append(Column("given", "Задано", fmt=lambda s: Markup(escape(s.replace("*", "·")))))
+        out.append(Table("Исходные данные", cols, pd.DataFrame(rows), id="tab-given"))
     return out
+
+
+_IMPERIAL = {"in", "ft", "yd", "lb", "lbm", "lbf", "kip", "slug", "psi", "hp"}
+
+
+def _imperial(text: str) -> bool:
+    """A value written in British (US customary) units (``"2 in"``, ``"250 lbf"``)."""
+    return any(t in _IMPERIAL for t in re.findall(r"[A-Za-z]+", text))
 
 
 def _as_written(x) -> str:
