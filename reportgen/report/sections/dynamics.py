@@ -417,7 +417,7 @@ def _flywheel(sec, study, d) -> None:
     w, dl = st.omega_m, st.delta
     if d.inverse is not None:
         inv, u = d.inverse, st.ratio
-        shaft = (f"на валу, вращающемся в u&nbsp;=&nbsp;{fmt(u, sig=4)} раза быстрее кривошипа; приведённый к валу "
+        shaft = (f"на валу, вращающемся в u&nbsp;=&nbsp;{_ratio(u)} раза быстрее кривошипа; приведённый к валу "
                  f"кривошипа момент инерции маховика u²J&nbsp;=&nbsp;{fmt(u * u * st.J_given, sig=5)}&nbsp;кг·м²"
                  if u != 1 else "на валу кривошипа")
         s.paragraph(f"<b>Обратная задача.</b> Маховик задан: момент инерции J&nbsp;=&nbsp;{fmt(st.J_given, sig=5)}&nbsp;кг·м² "
