@@ -26,6 +26,14 @@ def _parse_at(study, text: str) -> list[float]:
             raise CaseError(f"значение «{part}» в --at: {e.message}", key=f"--at[{i}]") from None
     if not vals:
         raise CaseError("пустой список --at", key="--at", expected="значения через запятую, например --at \"30 deg,99.1 deg\"")
+    d = study.mechanism.driver if study.has_linkage else None
+    if d is not None and d.swing:
+        import math
+        lo, hi = d.q_range
+        for i, v in enumerate(vals):
+            if not lo - 1e-12 <= v <= hi + 1e-12:
+                raise CaseError(f"положение {math.degrees(v):.6g}° вне диапазона качания входного звена",
+                                key=f"--at[{i}]", expected=f"угол от {math.degrees(lo):.6g}° до {math.degrees(hi):.6g}°")
     return vals
 
 

@@ -131,11 +131,12 @@ def _fmt_amount(x: float) -> str:
 class AssemblyError(ReportgenError):
     """A group of the mechanism cannot be assembled."""
 
-    def __init__(self, group: str, position: str, amount: float, detail: str = ""):
+    def __init__(self, group: str, position: str, amount: float, detail: str = "", hint: str = ""):
         self.group = group
         self.position = position
         self.amount = float(amount)
         self.detail = detail
+        self.hint = hint
         super().__init__(str(self))
 
     def __str__(self) -> str:
@@ -149,10 +150,12 @@ class AssemblyError(ReportgenError):
             text = f"Особое положение механизма: {group} в положении {self.position}"
         if self.detail:
             text += f" ({self.detail})"
+        if self.hint:
+            text += f". {self.hint}"
         return text
 
     def __reduce__(self):
-        return (type(self), (self.group, self.position, self.amount, self.detail))
+        return (type(self), (self.group, self.position, self.amount, self.detail, self.hint))
 
 
 class StructureError(ReportgenError):

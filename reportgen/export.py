@@ -49,13 +49,21 @@ def _jsonable(v):
 
 
 def tables(study: Study, at: Iterable[float] | None = None) -> dict[str, pd.DataFrame]:
-    """All tables of the study (computing what they need): the linkage's, then each task's."""
+    """All tables of the study (computing what they need): the linkage's, then each task's.
+
+    With ``at`` (``export --at``) only the tables of single positions: ``at`` itself, the
+    structure tables and the tasks that need no linkage; the report positions and the cycle are
+    not solved (a mechanism that assembles at the requested positions but not over the whole
+    cycle is analysed there; a task column of ``at`` that needs the cycle, dynamics, solves it)."""
     out: dict[str, pd.DataFrame] = {}
+    if at is not None and study.has_linkage:
+        out.update(_structure_tables(study))
+        out.update(study.extra_tables(positions_only=True))
+        out["at"] = _at_table(study, list(at))
+        return out
     if study.has_linkage:
         out.update(_linkage_tables(study))
     out.update(study.extra_tables())
-    if at is not None and study.has_linkage:
-        out["at"] = _at_table(study, list(at))
     return out
 
 
@@ -75,10 +83,13 @@ def _at_table(study: Study, q: list[float]) -> pd.DataFrame:
 
 
 def _linkage_tables(study: Study) -> dict[str, pd.DataFrame]:
+    return {"kinematics": study.kinematics, "cycle": study.cycle, **_structure_tables(study)}
+
+
+def _structure_tables(study: Study) -> dict[str, pd.DataFrame]:
+    """Links, pairs and Assur groups (no kinematics solved)."""
     st = study.structure
     return {
-        "kinematics": study.kinematics,
-        "cycle": study.cycle,
         "links": pd.DataFrame([{"link": l.name, "title": l.title, "motion": st.link_motion[l.name],
                                 "mass": l.mass, "weight": l.weight, "J_S": l.J_S, "com": l.com}
                                for l in study.mechanism.moving]),
@@ -148,7 +159,7 @@ def export(study: Study, out_dir: Path, at: Iterable[float] | None = None) -> li
     (each atomically)."""
     with np.errstate(all="ignore"):
         tabs = tables(study, at)
-        raw = study.all_scalars()
+        raw = study.all_scalars(positions_only=at is not None)
     check_finite(tabs, raw, str(study.spec.path))
     scalars = _jsonable(raw)
     from .report.safety import clean_stale_temps

@@ -137,6 +137,12 @@ def read_settings(study) -> Settings:
     node.check_keys(DYN_KEYS, required=[] if inverse else ["delta"])
     params = study.params
     mech = study.mechanism
+    if mech.driver.swing:
+        raise node.error(None, "динамический анализ с маховиком выполняется для машины с кривошипом: качающееся "
+                               "входное звено в крайних положениях останавливается (ω₁ = 0) и меняет направление, "
+                               "установившегося движения с периодом в оборот нет, маховик на нём не применяется",
+                         expected="[driver] type = \"crank\"; для качающегося звена — силовой расчёт при постоянной "
+                                  "скорости ([forces] motion = \"constant\" или mode = \"static\")")
     if not mech.driver.rotary:
         raise node.error(None, "динамический анализ выполняется для машины с кривошипом (звено приведения — кривошип)",
                          expected="[driver] type = \"crank\"")

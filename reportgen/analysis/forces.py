@@ -304,7 +304,7 @@ def build_model(mech, st) -> ForceModel:
         names[key] = k
         kind = KS.K_REV if j.kind == "R" else KS.K_PRI
         pairs.append(Pair(kind, a, b, key, j.point, k, j.angle if j.kind == "P" else 0.0))
-    if d.kind == "crank":
+    if d.rotary:
         pairs.append(Pair(KS.K_MOM, FRAME, d.link, "drive", d.center, -1))
     else:
         pairs.append(Pair(KS.K_ACT, d.link, d.rod, f"{d.link}_{d.rod}", d.end, -1, 0.0, d.center))
@@ -316,7 +316,7 @@ def build_model(mech, st) -> ForceModel:
         if not gl:
             continue
         pj = list(g.joints)
-        if d.kind == "crank" and g.klass == 1:
+        if d.rotary and g.klass == 1:
             pj.append(drive)
         if d.kind == "actuator" and d.link in gl:
             pj.append(drive)
@@ -476,13 +476,7 @@ def zhukovsky(loads: list[LoadItem], cols, mech) -> dict[str, np.ndarray]:
 
 def crank_pin(mech) -> str:
     """The crank's point joined to the next link (the crank pin A)."""
-    d = mech.driver
-    crank = mech.link(d.link)
-    joined = {j.point for j in mech.joints if d.link in j.links and FRAME not in j.links}
-    for p in crank.points:
-        if p != d.center and p in joined:
-            return p
-    return [p for p in crank.points if p != d.center][0]
+    return mech.crank_pin()
 
 
 # --------------------------------------------------------------------------------------------

@@ -89,7 +89,7 @@ def assemble(mech: Mechanism, st: Structure) -> SolverModel:
             rows_b.append((bidx[body_of[a]], bidx[body_of[b]]))
             rows_f.append([g[0], g[1], s[0], s[1], j.angle, j.offset, g[2], g[3], s[2], s[3]])
     drive_index = None
-    if mech.driver.kind == "crank":
+    if mech.driver.rotary:
         drive_index = len(rows_t)
         rows_t.append(K.J_DRV)
         rows_b.append((0, bidx[mech.driver.link]))
@@ -275,7 +275,7 @@ def choose_branches(model: SolverModel) -> None:
 
 
 def default_q0(mech: Mechanism) -> float:
-    return 0.0 if mech.driver.rotary else mech.driver.q_range[0]
+    return 0.0 if mech.driver.periodic else mech.driver.q_range[0]
 
 
 @dataclass

@@ -323,8 +323,7 @@ def construct_velocity(row: pd.Series, study, mu: float) -> tuple[pd.Series, Pla
     d = mech.driver
     w1 = float(row["w_" + d.link])
     if d.rotary:
-        crank = mech.link(d.link)
-        tip = [p for p in crank.points if p != d.center][0]
+        tip = mech.crank_pin()
         l = float(np.hypot(*(_vec(row, "", tip) - _vec(row, "", d.center))))
         w1 = np.sign(w1) * drawn(abs(w1) * l, mu) / l
 
@@ -367,8 +366,7 @@ def construct_acceleration(row: pd.Series, vrow: pd.Series, omegas: dict[str, fl
     d = mech.driver
     e1 = float(row["e_" + d.link])
     if d.rotary:
-        crank = mech.link(d.link)
-        tip = [p for p in crank.points if p != d.center][0]
+        tip = mech.crank_pin()
         l = float(np.hypot(*(_vec(row, "", tip) - _vec(row, "", d.center))))
         e1 = np.sign(e1) * drawn(abs(e1) * l, mu) / l
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import importlib
 import math
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -21,7 +22,7 @@ from ..case import units as U
 from ..case.expr import Q, evaluate
 from ..case.load import CaseSpec, load_spec
 from ..case.reader import MAX_CYCLE_POINTS, MAX_POSITIONS, Node
-from ..errors import CaseError
+from ..errors import AssemblyError, CaseError
 from ..mechanism.build import build_mechanism
 from ..mechanism.model import Mechanism
 from ..mechanism.structure import Structure, analyse
@@ -251,11 +252,16 @@ class Study:
         n = node.integer("positions", 12, minimum=2, maximum=MAX_POSITIONS)
         m = node.integer("cycle_points", 3600, minimum=36, maximum=MAX_CYCLE_POINTS)
         closed = node.boolean("closed", False)
-        if d.rotary:
+        if d.periodic:
             start = node.quantity("start", U.ANGLE, names, default=0.0)
             length = 2 * math.pi
             q = start + length * np.arange(n + (1 if closed else 0)) / n
         else:
+            # an actuator's stroke or an input rocker's swing: positions from one end of the range
+            # to the other, both ends included (the return stroke passes the same positions)
+            if node.has("start"):
+                raise node.error("start", "начало цикла задаётся только кривошипу",
+                                 expected="для качающегося звена и гидроцилиндра положения идут по [driver] range")
             lo, hi = d.q_range
             start, length = lo, hi - lo
             q = np.linspace(lo, hi, n)
@@ -274,6 +280,12 @@ class Study:
             else:
                 xs.append(node.eval_value(e, f"extra[{i}]", self.qdim, names))
                 labels.append(f"д{i + 1}")
+        if d.swing:
+            for i, x in enumerate(xs):
+                if not d.q_range[0] - 1e-12 <= x <= d.q_range[1] + 1e-12:
+                    raise node.error(f"extra[{i}]", "дополнительное положение вне диапазона качания входного звена",
+                                     expected=f"угол от {math.degrees(d.q_range[0]):.6g}° до "
+                                              f"{math.degrees(d.q_range[1]):.6g}°")
         q = np.concatenate([q, np.array(xs, dtype=float)])
         cycle = start + length * np.arange(m + 1) / m
         return Grid(q, labels, cycle, start, length)
@@ -329,7 +341,8 @@ class Study:
         """Positions, analogs and true velocities/accelerations at the report positions."""
         self.computed.add("kinematics")
         g = self.grid
-        return self._frame(g.q, g.labels, grid=False)
+        with _cycle_hint():
+            return self._frame(g.q, g.labels, grid=False)
 
     @cached_property
     def cycle(self) -> pd.DataFrame:
@@ -339,7 +352,8 @@ class Study:
 
     @cached_property
     def _cycle_solution(self) -> L.KinematicsResult:
-        return L.solve(self.model, self.grid.cycle)
+        with _cycle_hint():
+            return L.solve(self.model, self.grid.cycle)
 
     @cached_property
     def _cycle_columns(self) -> dict[str, np.ndarray]:
@@ -354,7 +368,7 @@ class Study:
         the sketch)."""
         if not L.has_newton(self.model):
             return L.solve(self.model, q, labels)
-        period = self.grid.length if self.mechanism.driver.rotary else None
+        period = self.grid.length if self.mechanism.driver.periodic else None
         return L.solve_continued(self.model, q, self._cycle_solution, period, labels)
 
     def at(self, q) -> pd.DataFrame:
@@ -406,10 +420,7 @@ class Study:
 
     @cached_property
     def scalars(self) -> dict[str, float]:
-        st = self.structure
-        out: dict[str, Any] = {"W": st.W, "n": st.n, "p5": st.p5, "p4": st.p4, "mech_class": st.mech_class}
-        for f in self.fits:
-            out[f.name] = f.value
+        out = dict(self.structure_scalars)
         for c, v in self.flags.items():
             out[c + "_min"] = v["min"]
         out.update(self._output_stroke())
@@ -418,7 +429,10 @@ class Study:
     def _output_stroke(self) -> dict[str, float]:
         """Stroke (swing) of the output link, its time-ratio coefficient K and mean speeds of
         the working (longer) and return strokes (analysis/synthesis.py ``output_extremes``)."""
-        if not self.mechanism.driver.rotary:
+        d = self.mechanism.driver
+        if d.swing:
+            return self._swing_scalars()
+        if not d.periodic:
             return {}
         from .synthesis import output_extremes
         x = output_extremes(self)
@@ -433,22 +447,74 @@ class Study:
         return out
 
 
+    def _swing_scalars(self) -> dict[str, float]:
+        """An input rocker: the swing q_max − q_min, the output's range over it (with its interior
+        reversals), the time of one stroke t = (q_max − q_min)/ω₁ and K = 1 (both strokes at the
+        same |ω₁| take the same time)."""
+        from .synthesis import swing_output
+        d = self.mechanism.driver
+        x = swing_output(self)
+        out = {"swing": d.q_range[1] - d.q_range[0], "output": x["column"], "output_stroke": x["stroke"],
+               "output_reversals": len(x["reversals"]), "output_K": 1.0}
+        for i, r in enumerate(x["reversals"]):
+            out[f"output_q_reversal_{i + 1}"] = r
+        if d.omega is not None:
+            out["t_stroke"] = out["swing"] / d.omega
+        return out
+
     # ------------------------------------------------------------- export
-    def extra_tables(self) -> dict[str, pd.DataFrame]:
-        """Tables beyond kinematics and structure: fits, then each task analysis of the case."""
+    def _tasks_for(self, positions_only: bool) -> list[str]:
+        """The case's tasks; ``positions_only``: those that need no linkage (a linkage task, such
+        as dynamics, works over the cycle)."""
+        return [n for n in self.tasks() if not (positions_only and BY_NAME[n].linkage)]
+
+    def extra_tables(self, positions_only: bool = False) -> dict[str, pd.DataFrame]:
+        """Tables beyond kinematics and structure: fits, then each task analysis of the case
+        (``positions_only``: without the linkage tasks, which need the cycle)."""
         out = {}
         if self.fits:
             out["fits"] = pd.DataFrame([{"name": f.name, "value": f.value, "condition": f.condition,
                                          "at": f.at, "residual": f.residual} for f in self.fits])
-        for name in self.tasks():
+        for name in self._tasks_for(positions_only):
             out.update(self.analysis(name).tables())
         return out
 
-    def all_scalars(self) -> dict:
-        out = dict(self.scalars) if self.has_linkage else {}
-        for name in self.tasks():
+    @property
+    def structure_scalars(self) -> dict[str, Any]:
+        """W, n, p₅, p₄, the class and the fitted parameters: nothing solved over the cycle."""
+        st = self.structure
+        out: dict[str, Any] = {"W": st.W, "n": st.n, "p5": st.p5, "p4": st.p4, "mech_class": st.mech_class}
+        for f in self.fits:
+            out[f.name] = f.value
+        return out
+
+    def all_scalars(self, positions_only: bool = False) -> dict:
+        """Every scalar of the case; ``positions_only`` (``export --at``): only those that need
+        no solution over the cycle."""
+        out = {}
+        if self.has_linkage:
+            out.update(self.structure_scalars if positions_only else self.scalars)
+        for name in self._tasks_for(positions_only):
             out.update(self.analysis(name).scalars)
         return out
+
+
+CYCLE_HINT = ("Отчёт, проверка и полный экспорт требуют сборки во всех положениях цикла. Механизм, "
+              "собирающийся лишь в части оборота, рассчитывается в отдельных положениях: reportgen export "
+              "ВАРИАНТ --at \"0 deg\"; входное звено, качающееся в части оборота, задаётся в [driver] как "
+              "type = \"rocker\" с range = [\"φ_min\", \"φ_max\"]")
+
+
+@contextmanager
+def _cycle_hint():
+    """An assembly failure over the report positions or the cycle says how to analyse the
+    mechanism where it does assemble."""
+    try:
+        yield
+    except AssemblyError as e:
+        if e.amount > 0 and not e.hint:
+            raise AssemblyError(e.group, e.position, e.amount, e.detail, CYCLE_HINT) from None
+        raise
 
 
 def true_motion(cols, mech: Mechanism, w: np.ndarray, e: np.ndarray) -> dict[str, np.ndarray]:

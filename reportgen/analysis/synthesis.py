@@ -24,7 +24,7 @@ from ..case import synthesis as SY
 from ..case.printed import read_printed
 from .plans import output_quantity
 
-__all__ = ["Synthesis", "output_extremes"]
+__all__ = ["Synthesis", "output_extremes", "swing_output"]
 
 
 def output_extremes(study) -> dict:
@@ -33,6 +33,37 @@ def output_extremes(study) -> dict:
     :meth:`Study.at`.  Returns the output column, the crank coordinates q₁, q₂ of the extremes,
     the stroke |s(q₂) − s(q₁)|, the crank angles of the two strokes and K = max/min of them."""
     s_col, v_col, _, title = output_quantity(study)
+    period = study.grid.length if study.mechanism.driver.periodic else None
+    roots = analog_roots(study, v_col)
+    if len(roots) != 2:
+        return dict(column=s_col, title=title, extremes=len(roots))
+    q1, q2 = roots
+    s = study.at(np.array(roots))[s_col].to_numpy()
+    d1 = q2 - q1
+    d2 = (period - d1) if period else float("nan")
+    return dict(column=s_col, title=title, extremes=2, q1=q1, q2=q2, s1=float(s[0]), s2=float(s[1]),
+                stroke=abs(float(s[1] - s[0])), phi_a=d1, phi_b=d2,
+                K=max(d1, d2) / min(d1, d2) if period else float("nan"))
+
+
+def swing_output(study) -> dict:
+    """The output link over the swing of an input rocker (or the stroke of an actuator): its
+    value at both ends of the range and at every interior reversal (a root of its first analog,
+    where the output stops and turns back while the input keeps moving), and its range
+    s_max − s_min over the swing, taken from these exact values."""
+    s_col, v_col, _, title = output_quantity(study)
+    lo, hi = study.mechanism.driver.q_range
+    roots = analog_roots(study, v_col)
+    inner = [r for r in roots if lo < r < hi]
+    qs = np.array([lo, *inner, hi])
+    s = study.at(qs)[s_col].to_numpy()
+    return dict(column=s_col, title=title, q=qs, s=s, reversals=inner,
+                stroke=float(s.max() - s.min()), s_first=float(s[0]), s_last=float(s[-1]))
+
+
+def analog_roots(study, v_col: str) -> list[float]:
+    """The zeros of the first analog ``v_col`` over the cycle grid (sign changes refined by
+    Brent's method on :meth:`Study.at`; a zero at a node is bracketed around it)."""
     cyc = study.cycle
     q = cyc["q"].to_numpy()
     v = cyc[v_col].to_numpy()
@@ -40,7 +71,7 @@ def output_extremes(study) -> dict:
     def f(x: float) -> float:
         return float(study.at([x])[v_col].iloc[0])
 
-    period = study.grid.length if study.mechanism.driver.rotary else None
+    period = study.grid.length if study.mechanism.driver.periodic else None
     # nodes of the cycle (the last node repeats the first for a rotary driver); a zero of the
     # analog at a node (an extreme position at the start of the cycle) is bracketed around it
     if period:
@@ -61,6 +92,9 @@ def output_extremes(study) -> dict:
         j = (i + 1) % n
         a, b = q[i], q[j] + (period if j == 0 else 0.0)
         if abs(v[i]) <= tiny:
+            if not period and i == 0:     # at the end of a range: the end itself
+                add(a)
+                continue
             h = 0.5 * (b - a)
             lo, hi = a - h, a + h
             flo, fhi = f(lo), f(hi)
@@ -68,16 +102,7 @@ def output_extremes(study) -> dict:
                 if flo * fhi < 0 else a)
         elif v[i] * v[j] < 0 and abs(v[j]) > tiny:
             add(brentq(f, a, b, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
-    roots = sorted(roots)
-    if len(roots) != 2:
-        return dict(column=s_col, title=title, extremes=len(roots))
-    q1, q2 = roots
-    s = study.at(np.array(roots))[s_col].to_numpy()
-    d1 = q2 - q1
-    d2 = (period - d1) if period else float("nan")
-    return dict(column=s_col, title=title, extremes=2, q1=q1, q2=q2, s1=float(s[0]), s2=float(s[1]),
-                stroke=abs(float(s[1] - s[0])), phi_a=d1, phi_b=d2,
-                K=max(d1, d2) / min(d1, d2) if period else float("nan"))
+    return sorted(roots)
 
 
 class Synthesis:

@@ -183,8 +183,8 @@ def _check_shared_points(root: Node, holders: dict[str, list[tuple[str, str]]], 
 def _read_driver(root, names, by_name, joints, need_link, need_point) -> Driver:
     dn = root.table("driver", required=True)
     dn.check_keys(DRIVER_KEYS, required=["type"])
-    kind = dn.string("type", required=True, choices=["crank", "actuator"])
-    if kind == "crank":
+    kind = dn.string("type", required=True, choices=["crank", "rocker", "actuator"])
+    if kind in ("crank", "rocker"):
         link = need_link(dn, "link", dn.string("link", required=True))
         center = dn.string("center")
         if center is None:
@@ -195,7 +195,14 @@ def _read_driver(root, names, by_name, joints, need_link, need_point) -> Driver:
             center = cands[0]
         need_point(dn, "center", link, center)
         direction = dn.string("direction", "ccw", choices=["ccw", "cw"])
-        return Driver("crank", link.name, center=center,
+        q_range = _swing_range(dn, names) if kind == "rocker" else None
+        if kind == "rocker" and dn.has("epsilon"):
+            raise dn.error("epsilon", "качающееся входное звено движется с постоянной по модулю угловой скоростью "
+                                      "(прямой ход +ω, обратный −ω)", expected="omega без epsilon")
+        if kind == "crank" and dn.has("range"):
+            raise dn.error("range", "диапазон задаётся качающемуся входному звену, кривошип делает полные обороты",
+                           expected="type = \"rocker\" с range = [\"-30 deg\", \"30 deg\"] или кривошип без range")
+        return Driver(kind, link.name, center=center, q_range=q_range,
                       phi0=dn.quantity("phi0", U.ANGLE, names, default=0.0),
                       direction=1 if direction == "ccw" else -1,
                       omega=dn.quantity("omega", U.ANGULAR_VELOCITY, names, positive=True),
@@ -223,6 +230,24 @@ def _read_driver(root, names, by_name, joints, need_link, need_point) -> Driver:
     return Driver("actuator", cyl.name, center=base, rod=rod.name, end=end, q_range=(lo, hi),
                   omega=dn.quantity("speed", U.VELOCITY, names, positive=True),
                   epsilon=dn.quantity("acceleration", U.ACCELERATION, names, default=0.0))
+
+
+def _swing_range(dn, names) -> tuple[float, float]:
+    """``range = [q_min, q_max]`` of an input rocker: angles of the generalised coordinate q, the
+    swing 0 < q_max − q_min < 360°."""
+    rng = dn.raw("range")
+    example = "range = [\"-30 deg\", \"30 deg\"]"
+    if not (isinstance(rng, list) and len(rng) == 2):
+        raise dn.error("range", "для качающегося входного звена нужен диапазон угла качания",
+                       expected=example + " (углы обобщённой координаты q: крайние положения звена)")
+    lo = dn.eval_value(rng[0], "range[0]", U.ANGLE, names)
+    hi = dn.eval_value(rng[1], "range[1]", U.ANGLE, names)
+    if not hi > lo:
+        raise dn.error("range", "верхняя граница угла качания не больше нижней", expected=example + ", q_max > q_min")
+    if hi - lo >= 2 * math.pi:
+        raise dn.error("range", "размах качания не меньше полного оборота",
+                       expected="размах q_max − q_min < 360°; полные обороты — type = \"crank\"")
+    return lo, hi
 
 
 def _read_sketch(root: Node, names, mech: Mechanism) -> None:

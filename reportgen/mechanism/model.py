@@ -56,8 +56,8 @@ class Joint:
 
 @dataclass
 class Driver:
-    kind: str                       # "crank" or "actuator"
-    link: str                       # crank link, or the cylinder
+    kind: str                       # "crank", "rocker" (an input link swung over q_range) or "actuator"
+    link: str                       # crank (or input rocker) link, or the cylinder
     center: str = ""                # crank: pivot point on the frame side; actuator: base pivot
     phi0: float = 0.0               # crank angle at q = 0
     direction: int = 1              # +1 counter-clockwise, −1 clockwise
@@ -69,7 +69,19 @@ class Driver:
 
     @property
     def rotary(self) -> bool:
+        """The input link turns about a frame pivot (q an angle): a crank or a swinging rocker."""
+        return self.kind in ("crank", "rocker")
+
+    @property
+    def periodic(self) -> bool:
+        """Full revolutions (the motion repeats after 2π of q): only a crank.  A swinging input
+        (rocker) and an actuator move over their range q_range forth and back."""
         return self.kind == "crank"
+
+    @property
+    def swing(self) -> bool:
+        """An input rocker driven over the range q_range (качающееся входное звено)."""
+        return self.kind == "rocker"
 
 
 @dataclass
@@ -100,6 +112,18 @@ class Mechanism:
             for p in l.points:
                 owner.setdefault(p, l.name)
         return owner
+
+    def crank_pin(self) -> str:
+        """The rotating input link's point joined to the next link (the crank pin A); a point
+        of the input link other than its pivot (a centre of mass) is never taken for it when a
+        joint is there."""
+        d = self.driver
+        crank = self.link(d.link)
+        joined = {j.point for j in self.joints if d.link in j.links and FRAME not in j.links}
+        for p in crank.points:
+            if p != d.center and p in joined:
+                return p
+        return [p for p in crank.points if p != d.center][0]
 
     @property
     def prismatic(self) -> list[Joint]:

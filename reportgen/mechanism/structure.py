@@ -21,7 +21,8 @@ DYAD_ORDER = {"RRR": 1, "RRP": 2, "RPR": 3, "PRP": 4, "RPP": 5}
 MOTION = {"crank": "вращательное (кривошип)", "rocker": "качательное (коромысло, кулиса)",
           "coupler": "плоскопараллельное (шатун)", "slider": "поступательное (ползун)",
           "cylinder": "качательное (гидроцилиндр)", "rod": "плоскопараллельное (шток)",
-          "block": "плоскопараллельное (камень кулисы)"}
+          "block": "плоскопараллельное (камень кулисы)",
+          "input_rocker": "качательное (входное коромысло)"}
 
 
 @dataclass
@@ -128,7 +129,7 @@ def analyse(mech: Mechanism) -> Structure:
     groups: list[Group] = []
     # the initial mechanism
     first = drv.link
-    if drv.kind == "crank":
+    if drv.rotary:
         init_j = [k for k, (a, b) in enumerate(sj) if {a, b} == {first, FRAME}]
         groups.append(Group([first], [first], init_j, external=init_j, klass=1, order=1, solver="LIN"))
         known.add(first)
@@ -228,6 +229,8 @@ def _link_motion(mech: Mechanism, groups) -> dict[str, str]:
             out[l.name] = MOTION["rod"]
         elif mech.driver.kind == "crank" and l.name == mech.driver.link:
             out[l.name] = MOTION["crank"]
+        elif mech.driver.kind == "rocker" and l.name == mech.driver.link:
+            out[l.name] = MOTION["input_rocker"]
         elif any(j.kind == "P" and j.links[1] == l.name and j.links[0] == FRAME for j in on_frame):
             out[l.name] = MOTION["slider"]
         elif any(j.kind == "R" for j in on_frame):

@@ -20,7 +20,7 @@ from .document import Column, Paragraph, Report, Table
 from .russian import param_symbol, param_title, plural
 from .sections import kinematics as sec_kin
 from .sections import structure as sec_struct
-from .sections.common import as_written, value_with_unit
+from .sections.common import as_written, swing_text, value_with_unit
 
 
 def _has_linkage(study) -> bool:
@@ -67,6 +67,16 @@ REFERENCES = [_typeset(r) for r in REFERENCES]
 
 
 def chosen_sections(study, names: Iterable[str] | None) -> list[str]:
+    """The note's sections: ``--sections``, else ``[report] sections`` of the case, else every
+    section the case has."""
+    if not names and study.root.table("report").has("sections"):
+        node = study.root.table("report")
+        raw = node.raw("sections")
+        ok = [n for n in ORDER if n in SECTIONS]
+        if not (isinstance(raw, list) and raw and all(isinstance(x, str) and x in SECTIONS for x in raw)):
+            raise node.error("sections", "ожидался список разделов записки", expected="sections = [\"dof\"]; разделы: "
+                             + ", ".join(ok), got=repr(raw)[:200])
+        return [n for n in ORDER if n in raw]
     if names:
         unknown = [n for n in names if n not in SECTIONS]
         if unknown:
@@ -84,7 +94,7 @@ def needs(study, names: Iterable[str] | None = None) -> set[str]:
     return out
 
 
-REPORT_KEYS = ["position", "output", "output_title", "options"]
+REPORT_KEYS = ["position", "output", "output_title", "options", "sections"]
 
 
 def build_report(study, sections: Iterable[str] | None = None, options: dict | None = None) -> Report:
@@ -143,6 +153,8 @@ def _assignment_tasks(study, names) -> list[str]:
     out = []
     for n in names:
         text = getattr(SECTIONS[n][0], "TASK", None) or _TASKS.get(n)
+        if callable(text):          # a clause depending on what the case asks
+            text = text(study)
         if n == "kinematics" and study.mechanism.driver.omega is None:
             text = ("выполнить кинематический анализ (план положений, аналоги скоростей и ускорений, "
                     "кинематические диаграммы)")
@@ -162,13 +174,15 @@ def _given_parameters(study) -> list:
             continue
         v, unit = value_with_unit(q)
         title, symbol = texts.get(name, (None, None))
+        text = raw[name] if isinstance(raw[name], str) else ""
         rows.append({"title": title or param_title(name), "name": symbol or param_symbol(name), "value": v,
-                     "unit": unit})
+                     "unit": unit, "given": text[:60] if _imperial(text) else ""})
     if rows:
-        out.append(Table("Исходные данные", [Column("title", "Параметр", fmt=_cell_html),
-                                             Column("name", "Обозначение", fmt=_cell_html),
-                                             Column("value", "Значение", fmt=as_written), Column("unit", "Единица")],
-                         pd.DataFrame(rows), id="tab-given"))
+        cols = [Column("title", "Параметр", fmt=_cell_html), Column("name", "Обозначение", fmt=_cell_html),
+                Column("value", "Значение", fmt=as_written), Column("unit", "Единица")]
+        if any(r["given"] for r in rows):      # a published example in inches, pounds: as it was given
+            cols.append(Column("given", "Задано", fmt=lambda s: Markup(escape(s.replace("*", "·")))))
+        out.append(Table("Исходные данные", cols, pd.DataFrame(rows), id="tab-given"))
     return out
 
 
@@ -176,6 +190,14 @@ def _cell_html(x) -> Markup:
     """A cell already made safe HTML (a case title or symbol through ``inline_html``, or the
     derived symbol); plain derived titles are escaped."""
     return x if isinstance(x, Markup) else escape(x)
+
+
+_IMPERIAL = {"in", "ft", "yd", "lb", "lbm", "lbf", "kip", "slug", "psi", "hp"}
+
+
+def _imperial(text: str) -> bool:
+    """A value written in British (US customary) units (``"2 in"``, ``"250 lbf"``)."""
+    return any(t in _IMPERIAL for t in re.findall(r"[A-Za-z]+", text))
 
 
 def _linkage_data(study) -> list:
@@ -189,7 +211,14 @@ def _linkage_data(study) -> list:
             Column("G", "Вес", "Н", sig=4), Column("J", "<i>J</i><sub>S</sub>", "кг·м²", sig=4)],
             pd.DataFrame(lrows), id="tab-masses"))
     d = mech.driver
-    if d.rotary:
+    if d.swing:
+        text = (f"Ведущее звено — входное коромысло {d.link}, качающееся в диапазоне {swing_text(d)}: "
+                f"прямой ход — {'по часовой стрелке' if d.direction < 0 else 'против часовой стрелки'} "
+                f"от первого крайнего положения ко второму, обратный ход — в обратном направлении")
+        if d.omega:
+            text += f"; угловая скорость по модулю постоянна, ω<sub>1</sub>&nbsp;=&nbsp;{fmt(d.omega, digits=3)}&nbsp;рад/с"
+        out.append(Paragraph(text + "."))
+    elif d.rotary:
         text = (f"Ведущее звено — кривошип {d.link}; начальный угол φ<sub>0</sub>&nbsp;=&nbsp;"
                 f"{fmt(math.degrees(d.phi0), digits=3)}°, вращение "
                 f"{'по часовой стрелке' if d.direction < 0 else 'против часовой стрелки'}")

@@ -11,9 +11,31 @@ from .draw import SUBSCRIPT
 from .mechanism import Drawing
 
 
+def q_axis(study, q: np.ndarray) -> np.ndarray:
+    """Abscissa of a curve over the cycle: the crank angle from the cycle's start, the input
+    rocker's own angle φ over its swing (degrees), or the actuator's length (mm)."""
+    d = study.mechanism.driver
+    if d.swing:
+        return np.degrees(q)
+    if d.rotary:
+        return np.degrees(q - study.grid.start)
+    return q * 1e3
+
+
+def angle_ticks(ax, x: np.ndarray, step: float) -> None:
+    """Angle axis in whole steps over the curve's range (0…360° for a crank's turn, the swing of
+    an input rocker)."""
+    lo, hi = step * math.floor(float(np.min(x)) / step + 1e-9), step * math.ceil(float(np.max(x)) / step - 1e-9)
+    ax.set_xticks(np.arange(lo, hi + 0.5 * step, step))
+    ax.set_xlim(lo, hi)
+
+
 def _xaxis(study, cyc):
-    if study.mechanism.driver.rotary:
-        return np.degrees(cyc["q"].to_numpy() - study.grid.start), "φ, град", 30
+    d = study.mechanism.driver
+    if d.swing:
+        return q_axis(study, cyc["q"].to_numpy()), "φ, град", 10
+    if d.rotary:
+        return q_axis(study, cyc["q"].to_numpy()), "φ, град", 30
     return cyc["q"].to_numpy() * 1e3, "S, мм", None
 
 
@@ -49,7 +71,7 @@ class OutputDiagrams:
         axs = fig.subplots(3, 1, sharex=True)
         kin = study.kinematics
         kq = kin["q"].to_numpy()
-        kx = np.degrees(kq - study.grid.start) if study.mechanism.driver.rotary else kq * 1e3
+        kx = q_axis(study, kq)
         for ax, y, lab in zip(axs, (s, np.asarray(v), np.asarray(a)), units):
             ax.plot(x, y, lw=1.3)
             ax.axhline(0, color="0.3", lw=0.6)
@@ -59,8 +81,7 @@ class OutputDiagrams:
                 ax.plot(kx, yi, "o", ms=3)
         axs[-1].set_xlabel(xlabel)
         if step:
-            axs[-1].set_xticks(np.arange(0, 361, step))
-            axs[-1].set_xlim(0, 360)
+            angle_ticks(axs[-1], x, step)
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 
@@ -89,6 +110,5 @@ class AnalogCurves:
         ax.set_ylabel("аналог угловой скорости")
         ax.legend(ncols=4, fontsize=9, loc="best")
         if step:
-            ax.set_xticks(np.arange(0, 361, step))
-            ax.set_xlim(0, 360)
+            angle_ticks(ax, x, step)
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)

@@ -60,3 +60,50 @@ class DofGraphs:
         _graph(bx, d.n_after, d.pairs_after, names_after, [], d.new_links + d.rollers,
                f"после замены: W = {d.after['W']}")
         return Drawing(mplstyle.to_svg(fig), 165, 0.0)
+
+
+class ZeroSpeedScene:
+    """The output part of the mechanism at the first position where the output stops while the
+    slotted link moves: the links drawn to a ГОСТ 2.302 scale, OM dashed, the slot ML, the right
+    angle at M, and the velocity V̄_M1 ⊥ OM with the block's relative velocity V̄_M6M1 = −V̄_M1
+    along the slot (arrows of equal length, per unit ω₁ at an arbitrary scale)."""
+
+    needs = ("dof",)
+
+    def draw(self, study) -> Drawing:
+        import numpy as np
+
+        from .draw import Canvas, arrow, draw_mechanism, mechanism_points
+        d = study.dof
+        zs, z = d.zero_spec, d.zero
+        mech = study.mechanism
+        row = study.at([float(z["q"].iloc[0])]).iloc[0]
+        xs, ys = mechanism_points(mech, [row])
+        M, L, O = zs["point"], zs["line"], zs["pivot"]
+        slider = zs["joint"].links[1]
+        m = np.array([row["x_" + M], row["y_" + M]])
+        lpt = np.array([row["x_" + L], row["y_" + L]])
+        o = np.array([row["x_" + O], row["y_" + O]])
+        om = float(np.linalg.norm(m - o))
+        v1 = np.array([z["vqx_M1"].iloc[0], z["vqy_M1"].iloc[0]])
+        v1 = v1 / float(np.linalg.norm(v1)) * 0.6 * om
+        ends = [m + v1, m - v1]
+        xs += [p[0] for p in ends]
+        ys += [p[1] for p in ends]
+        cv = Canvas.fit(xs, ys, avail_w=140, avail_h=120, margin_mm=14, gost=True)
+        draw_mechanism(cv, mech, row, color=INK, lw=1.4, zorder=3)
+        ax = cv.ax
+        ax.plot([o[0], m[0]], [o[1], m[1]], ls=(0, (5, 3)), lw=0.9, color=INK, zorder=6)
+        # right-angle mark at M between MO and ML
+        u = (o - m) / om
+        w = (lpt - m) / float(np.linalg.norm(lpt - m))
+        r = cv.mm(6.0)
+        sq = [m + r * u, m + r * (u + w), m + r * w]
+        ax.plot([p[0] for p in sq], [p[1] for p in sq], lw=0.9, color=INK, zorder=6)
+        arrow(ax, m[0], m[1], *(m + v1), color="tab:blue", lw=1.3, zorder=5)
+        arrow(ax, m[0], m[1], *(m - v1), color="tab:red", lw=1.3, zorder=5)
+        k = zs["link"]
+        cv.labels.add(*(m + v1), f"$V_{{{M}{k}}}$", prefer=tuple(v1 / np.linalg.norm(v1)), color="tab:blue", fontsize=10)
+        cv.labels.add(*(m - v1), f"$V_{{{M}{slider}{M}{k}}}$", prefer=tuple(-v1 / np.linalg.norm(v1)), color="tab:red",
+                      fontsize=10)
+        return Drawing(cv.svg(), cv.width_mm, cv.mu)

@@ -593,6 +593,8 @@ def _points(mech) -> list[str]:
 # Curves over the cycle
 # --------------------------------------------------------------------------------------------
 def _x(study, df):
+    if study.mechanism.driver.swing:
+        return np.degrees(df["q"].to_numpy()), "φ, град", 10
     if study.mechanism.driver.rotary:
         return np.degrees(df["q"].to_numpy() - study.grid.start), "φ, град", 30
     return df["q"].to_numpy(), "S, м", None
@@ -634,8 +636,8 @@ class ReactionCurves:
         ax2.set_ylabel(lab)
         ax2.set_xlabel(xlabel)
         if step:
-            ax2.set_xticks(np.arange(0, 361, step))
-            ax2.set_xlim(0, 360)
+            from .diagrams import angle_ticks
+            angle_ticks(ax2, x, step)
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 

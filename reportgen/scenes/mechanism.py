@@ -77,7 +77,12 @@ class PositionsPlan:
             cv.ax.plot(cyc[f"x_{p}"], cyc[f"y_{p}"], ls=(0, (5, 3)), lw=0.7, color=INK, zorder=2)
         tip = _tracer_point(study)
         cx, cy = _centre(study, rows)
-        if mech.driver.rotary:
+        if mech.driver.swing:
+            # the input rocker's tip moves on an arc between the extreme positions of the swing
+            r = float(np.hypot(rows[0][f"x_{tip}"] - cx, rows[0][f"y_{tip}"] - cy))
+            th = np.unwrap(np.arctan2(cyc[f"y_{tip}"].to_numpy() - cy, cyc[f"x_{tip}"].to_numpy() - cx))
+            cv.ax.plot(cx + r * np.cos(th), cy + r * np.sin(th), lw=0.6, color=INK, zorder=1)
+        elif mech.driver.rotary:
             r = float(np.hypot(rows[0][f"x_{tip}"] - cx, rows[0][f"y_{tip}"] - cy))
             cv.ax.add_patch(Circle((cx, cy), r, fill=False, lw=0.6, color=INK, zorder=1))
         for i, row in enumerate(rows[1:], start=1):
@@ -147,8 +152,7 @@ def _output_point(study, s_col: str) -> str:
 def _tracer_point(study) -> str:
     d = study.mechanism.driver
     if d.rotary:
-        link = study.mechanism.link(d.link)
-        return [p for p in link.points if p != d.center][0]
+        return study.mechanism.crank_pin()
     return d.end
 
 

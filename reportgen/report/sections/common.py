@@ -55,6 +55,28 @@ def pos_fmt(study):
     return lambda lab: names.get(str(lab), str(lab))
 
 
+def input_word(driver, case: str = "nom") -> str:
+    """The rotating input link in a Russian case: «кривошип» or, for an input link swung over a
+    range, «входное коромысло» (nom, gen, dat)."""
+    words = {"nom": ("кривошип", "входное коромысло"), "gen": ("кривошипа", "входного коромысла"),
+             "dat": ("кривошипу", "входному коромыслу")}
+    return words[case][1 if driver.swing else 0]
+
+
+def q_degrees(study, q: float) -> float:
+    """An input angle as the note prints it: a crank's angle from the cycle's start, an input
+    rocker's own angle φ (its range is given in these angles)."""
+    d = study.mechanism.driver
+    return math.degrees(q) if d.swing else math.degrees(q - study.grid.start)
+
+
+def swing_text(driver) -> str:
+    """«φ = 25…85° (размах 60°)» of an input rocker."""
+    from ...style.numbers import fmt
+    lo, hi = (math.degrees(x) for x in driver.q_range)
+    return f"φ&nbsp;=&nbsp;{fmt(lo, digits=1)}…{fmt(hi, digits=1)}° (размах {fmt(hi - lo, digits=1)}°)"
+
+
 def q_header(study) -> tuple[str, str, str, dict]:
     """Column key, header and unit of the generalised coordinate for tables."""
     if study.mechanism.driver.rotary:

@@ -4,15 +4,29 @@ link with two lower pairs, the formula after it, the structure graphs; printed v
 ``present``: ``[dof]``."""
 from __future__ import annotations
 
+import math
+
 import pandas as pd
 from markupsafe import Markup
 
-from ...scenes.dof import DofGraphs
+from ...scenes.dof import DofGraphs, ZeroSpeedScene
+from ...scenes.draw import gost_ratio
+from ...style.numbers import fmt
 from ..document import Column, Section, ref
+from .common import swing_text
 from .synthesis import printed_table
 
 NEEDS = ("dof",)
-TASK = "определить число степеней свободы механизма до и после замены высшей пары низшими"
+
+
+def TASK(study) -> str:
+    """The assignment clause: W before and after the replacement, and (``[dof.zero_speed]``) the
+    position where the output stops."""
+    text = "заменить высшую пару низшими и определить число степеней свободы механизма до и после замены"
+    zs = study.dof.zero_spec
+    if zs is not None:
+        text += f"; определить положение звеньев, при котором скорость выходного звена ({zs['output']}) равна нулю"
+    return text
 
 
 def present(study) -> bool:
@@ -48,11 +62,74 @@ def build(study) -> Section:
     sec.paragraph(f"Связи звеньев до и после замены показаны на рисунке {ref('fig-dof')}; число степеней свободы "
                   f"после замены W = {a['W']} совпадает с числом степеней свободы исходного механизма без "
                   f"пассивных W − q = {b['W_true']}: замена структурно эквивалентна.")
-    printed_table(sec, d.printed, "tab-dof-printed")
+    if d.zero is not None:
+        _zero_speed(sec, study)
+    printed_table(sec, d.printed, "tab-dof-printed", angular=lambda k: k in ("angle_OML", "zero_q"))
     return sec
+
+
+def _zero_speed(sec: Section, study) -> None:
+    """Question 3: the positions where the output stops (vector equation, criterion ML ⊥ MO, the
+    positions found from the exact kinematics, the criterion measured there, the drawing)."""
+    d = study.dof
+    z, zs = d.zero, d.zero_spec
+    drv = study.mechanism.driver
+    M, L, O, k = zs["point"], zs["line"], zs["pivot"], zs["link"]
+    j = zs["joint"]
+    slider = j.links[1]
+    s = sec.subsection("Положение звеньев, при котором скорость выходного звена равна нулю", "sec-dof-zero")
+    s.paragraph(Markup("Выходное звено — {} — шарнирно связано в точке {} с камнем {}, который скользит по прямолинейной "
+                       "прорези {}{} звена {}, вращающегося вокруг оси {}. Скорость точки {} выходного звена по теореме "
+                       "сложения скоростей:").format(zs["output"], M, slider, M, L, k, O, M))
+    s.formula(rf"\vec V_{{{M}}} = \vec V_{{{M}{k}}} + \vec V_{{{M}{slider}{M}{k}}}", label="eq-dof-zero-vec",
+              where=[(rf"\vec V_{{{M}{k}}} = \vec\omega_{{{k}}} \times \overline{{{O}{M}}}",
+                      f"скорость точки звена {k}, совпадающей с {M}; перпендикулярна {O}{M}"),
+                     (rf"\vec V_{{{M}{slider}{M}{k}}}", f"скорость камня относительно звена {k}; параллельна прорези {M}{L}")])
+    s.paragraph(Markup("Проецируя равенство на нормаль к прорези (относительная скорость на неё не проецируется), "
+                       "получаем, что {} = 0 (выходное звено движется поперёк прорези), когда либо ω<sub>{}</sub> = 0, "
+                       "либо скорость {} параллельна прорези, то есть {}{}&nbsp;⊥&nbsp;{}{}: камень находится в основании "
+                       "перпендикуляра, опущенного из оси {} на прорезь, и {} = −{}.")
+                .format(Markup("<i>V</i><sub>{}</sub>").format(M), k, Markup("<i>V</i><sub>{}{}</sub>").format(M, k),
+                        M, L, M, O, O, Markup("<i>V</i><sub>{}{}</sub>").format(M, k),
+                        Markup("<i>V</i><sub>{}{}{}{}</sub>").format(M, slider, M, k)))
+    if drv.swing:
+        s.paragraph(Markup("Звено {} качается в диапазоне {}; в его крайних положениях ω<sub>{}</sub> = 0 и выходное "
+                           "звено также останавливается (вместе с ведущим).").format(k, Markup(swing_text(drv)), k))
+    if not len(z):
+        s.paragraph(f"В рассматриваемом диапазоне движения звена {k} положения с {M}{L}&nbsp;⊥&nbsp;{M}{O} нет.")
+        return
+    s.paragraph(Markup("Положения с {}&nbsp;=&nbsp;0 при ω<sub>{}</sub>&nbsp;≠&nbsp;0 найдены независимо от этого условия — "
+                       "как корни первой передаточной функции выходного звена <i>S</i>′(φ<sub>{}</sub>) = 0 по точному "
+                       "решению о положениях (метод Брента); в них измерены угол между {}{} и {}{} и расстояния "
+                       "(таблица {}, рисунок {}).").format(Markup("<i>V</i><sub>{}</sub>").format(M), k, k, M, L, M, O,
+                                                            Markup(ref("tab-dof-zero")), Markup(ref("fig-dof-zero"))))
+    df = z.assign(q_deg=z["q_deg"], ang=[math.degrees(a) for a in z["angle_OML"]])
+    s.table("Положения остановки выходного звена", [
+        Column("q_deg", f"φ<sub>{k}</sub>", "град", digits=4),
+        Column("s", "<i>S</i>", "м", digits=5),
+        Column("ang", f"∠{O}{M}{L}", "град", digits=9),
+        Column("OM", f"|{O}{M}|", "м", digits=6),
+        Column("h", f"расстояние от {O} до прорези", "м", digits=6)], df, id="tab-dof-zero")
+    r = z.iloc[0]
+    s.paragraph(Markup("Угол {}{}{} = {}°, |{}{}| совпадает с расстоянием от оси {} до прорези: условие решения "
+                       "{}{}&nbsp;⊥&nbsp;{}{} подтверждается точным расчётом. Ответ на вопрос 3 (рисунок {}): камень {} — "
+                       "в основании перпендикуляра из {} на прорезь, φ<sub>{}</sub> = {}°.")
+                .format(O, M, L, fmt(math.degrees(r["angle_OML"]), digits=9), O, M, O, M, L, M, O,
+                        Markup(ref("fig-dof-zero")), slider, O, k, fmt(r["q_deg"], digits=3)))
+    g = ZeroSpeedScene().draw(study)
+    s.figure(Markup("Положение остановки выходного звена: {}{}&nbsp;⊥&nbsp;{}{}, скорость {} равна и противоположна "
+                    "относительной скорости камня; масштаб {}").format(
+        M, L, M, O, Markup("<i>V</i><sub>{}{}</sub>").format(M, k), gost_ratio(g.mu)), g.svg, g.width_mm, id="fig-dof-zero")
 
 
 def conclusion_lines(study) -> list[str]:
     d = study.dof
-    return [f"Механизм с высшей парой: W&nbsp;=&nbsp;{d.before['W']} по формуле Чебышева (в том числе "
-            f"{d.before['q']} пассивная), после замены высшей пары W&nbsp;=&nbsp;{d.after['W']}."]
+    out = [f"Механизм с высшей парой: W&nbsp;=&nbsp;{d.before['W']} по формуле Чебышева (в том числе "
+           f"{d.before['q']} пассивная), после замены высшей пары W&nbsp;=&nbsp;{d.after['W']}."]
+    if d.zero is not None and len(d.zero):
+        zs, r = d.zero_spec, d.zero.iloc[0]
+        out.append(f"Выходное звено останавливается при движущемся звене {zs['link']}, когда "
+                   f"{zs['point']}{zs['line']}&nbsp;⊥&nbsp;{zs['point']}{zs['pivot']} "
+                   f"(φ<sub>{zs['link']}</sub>&nbsp;=&nbsp;{fmt(r['q_deg'], digits=3)}°; угол "
+                   f"{fmt(math.degrees(r['angle_OML']), digits=9)}°).")
+    return out

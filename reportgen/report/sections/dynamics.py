@@ -20,7 +20,7 @@ from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, Mo
 from ...style.numbers import fmt, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
-from ..russian import condition_text
+from ..russian import condition_text, plural
 from .common import MAX_COLS, as_written, chosen_position, chunked_tables, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle", "dynamics")
@@ -47,6 +47,14 @@ TEX = {
     "wk": r"\omega_k = \omega \varphi_k^{\prime}",
     "ek": r"\varepsilon_k = \omega^2 \varphi_k^{\prime\prime} + \varepsilon \varphi_k^{\prime}",
 }
+
+
+def TASK(study) -> str:
+    """The assignment clause: the flywheel from δ (direct task) or δ from the given flywheel."""
+    if study.dynamics.inverse is not None:
+        return ("определить закон движения машины и коэффициент неравномерности хода при заданном маховике "
+                "(обратная задача)")
+    return "определить закон движения машины и рассчитать маховик по заданному коэффициенту неравномерности хода"
 
 
 def _im(key: str):
@@ -78,8 +86,30 @@ def _tx(text: str) -> str:
     return r"\text{" + text + "}"
 
 
+def _cycle_k(study) -> int:
+    """The cycle length Φ = k·π of the dynamics (k ≥ 1, any whole number)."""
+    return max(1, round(study.dynamics.settings.cycle_length / math.pi))
+
+
 def _cycle_tex(study) -> str:
-    return r"2\pi" if study.dynamics.settings.cycle_length < 7 else r"4\pi"
+    k = _cycle_k(study)
+    return r"\pi" if k == 1 else rf"{k}\pi"
+
+
+def _cycle_words(study) -> str:
+    """«один оборот кривошипа, Φ = 2π», «один двойной оборот …, Φ = 4π», «три оборота …, Φ = 6π»,
+    «1,5 оборота …, Φ = 3π»."""
+    k = _cycle_k(study)
+    Phi = "π" if k == 1 else f"{k}π"
+    if k == 2:
+        turns = "один оборот"
+    elif k == 4:
+        turns = "один двойной оборот"
+    elif k % 2 == 0:
+        turns = plural(k // 2, "оборот", "оборота", "оборотов")
+    else:
+        turns = f"{fmt(k / 2, digits=1)} оборота"
+    return f"{turns} кривошипа, Φ&nbsp;=&nbsp;{Phi}"
 
 
 def _h(sym: str, idx: str) -> str:
@@ -200,8 +230,7 @@ def _model(sec: Section, study, d) -> None:
         f"{Jpr} и приведённым моментом сил {Mpr}. Первая группа звеньев (ротор двигателя, передачи, "
         f"кривошип и маховик) имеет постоянный приведённый момент инерции {inline_math('J_I')}; "
         f"вторая группа (звенья рычажного механизма) — переменный {_im('J2')}. "
-        f"Цикл установившегося движения — один {'оборот' if st.cycle_length < 7 else 'двойной оборот'} "
-        f"кривошипа, Φ&nbsp;=&nbsp;{'2π' if st.cycle_length < 7 else '4π'}.")
+        f"Цикл установившегося движения — {_cycle_words(study)}.")
     s.paragraph("Уравнение движения машины в энергетической и дифференциальной формах "
                 "(уравнение Лагранжа второго рода для звена приведения):")
     s.formula(Formula(r"\frac{J_{\text{пр}}(\varphi)\,\omega^2}{2} - \frac{J_{\text{пр}}(\varphi_0)\,\omega_0^2}{2}"
@@ -433,7 +462,20 @@ def _flywheel(sec, study, d) -> None:
     r = d.result
     me, wi, ex = r.mertsalov, r.wittenbauer, r.exact
     w, dl = st.omega_m, st.delta
-    s.paragraph(f"Требуемый коэффициент неравномерности хода δ&nbsp;=&nbsp;{fmt(dl, sig=4)} при средней угловой "
+    if d.inverse is not None:
+        inv, u = d.inverse, st.ratio
+        shaft = (f"на валу, вращающемся в u&nbsp;=&nbsp;{_ratio(u)} раза быстрее кривошипа; приведённый к валу "
+                 f"кривошипа момент инерции маховика u²J&nbsp;=&nbsp;{fmt(u * u * st.J_given, sig=5)}&nbsp;кг·м²"
+                 if u != 1 else "на валу кривошипа")
+        s.paragraph(f"<b>Обратная задача.</b> Маховик задан: момент инерции J&nbsp;=&nbsp;{fmt(st.J_given, sig=5)}&nbsp;кг·м² "
+                    f"{shaft}. С постоянной частью приведённого момента инерции {inline_math('J_I')} без маховика "
+                    f"({fmt(d.J_I_const, sig=5)}&nbsp;кг·м²) {inline_math('J_I')}&nbsp;=&nbsp;{fmt(inv.J_I, sig=5)}&nbsp;кг·м². "
+                    f"Точное установившееся движение машины с этим моментом инерции (периодическое решение уравнения "
+                    f"движения в форме энергий за цикл) даёт ω<sub>max</sub>&nbsp;=&nbsp;{fmt(inv.omega_max, sig=5)}&nbsp;рад/с, "
+                    f"ω<sub>min</sub>&nbsp;=&nbsp;{fmt(inv.omega_min, sig=5)}&nbsp;рад/с и коэффициент неравномерности хода "
+                    f"δ&nbsp;=&nbsp;(ω<sub>max</sub>&nbsp;−&nbsp;ω<sub>min</sub>)/ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(dl, sig=4)}. "
+                    "Для проверки ниже решена прямая задача с этим δ: точный способ возвращает заданный маховик.")
+    s.paragraph(f"{'Найденный' if d.inverse is not None else 'Требуемый'} коэффициент неравномерности хода δ&nbsp;=&nbsp;{fmt(dl, sig=4)} при средней угловой "
                 f"скорости ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(w, digits=3)}&nbsp;рад/с "
                 f"(n&nbsp;=&nbsp;{fmt(w * 30 / math.pi, digits=1)}&nbsp;об/мин); "
                 f"{_im('delta')}, "

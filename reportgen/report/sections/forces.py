@@ -25,7 +25,7 @@ from ...style.numbers import fmt, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import plural
-from .common import chosen_position, chunked_tables, q_header, sub, tex_point, pos_fmt, pos_no
+from .common import chosen_position, chunked_tables, input_word, q_degrees, q_header, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle", "forces")
 
@@ -405,8 +405,8 @@ def _crank_moment(s: Section, study, f, lab, g, det) -> None:
             sym.append(rf"(x_{{{P}}} - x_{{{O}}}) {_load_tex(ld, 'y')} - (y_{{{P}}} - y_{{{O}}}) {_load_tex(ld, 'x')}")
             num.append(rf"{_t(dx)} \cdot {_t(ld['Fy'])} - {_t(dy)} \cdot {_t(ld['Fx'])}")
     Mb = float(f.row(lab)["M_bal"])
-    s.paragraph(f"Уравновешивающий момент {sub('M', 'ур')} (момент, который нужно приложить к кривошипу {d.link}, "
-                f"против часовой стрелки — плюс) — из уравнения моментов сил, действующих на кривошип, "
+    s.paragraph(f"Уравновешивающий момент {sub('M', 'ур')} (момент, который нужно приложить к {input_word(d, 'dat')} {d.link}, "
+                f"против часовой стрелки — плюс) — из уравнения моментов сил, действующих на {input_word(d)}, "
                 f"относительно оси {d.center}:")
     s.formula(Formula(r"M_{ур} = -\left[" + " + ".join(sym) + r"\right]",
                       r"-\left[" + " + ".join(num) + r"\right]", _t(Mb, sig=5, unit="Н·м"), label="eq-frc-Mbal"))
@@ -464,7 +464,7 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     if rot:
         s.formula(Formula(r"M_{ур} \varphi_1^{\prime} + \sum_i \left( F_{ix} x_i^{\prime} + F_{iy} y_i^{\prime} \right)"
                           r" + \sum_k M_k \varphi_k^{\prime} = 0",
-                          where=[(r"\varphi_1^{\prime} = \pm 1", f"аналог угловой скорости кривошипа "
+                          where=[(r"\varphi_1^{\prime} = \pm 1", f"аналог угловой скорости {input_word(d, 'gen')} "
                                                                  f"({'−1: вращение по часовой стрелке' if d.direction < 0 else '+1'})")],
                           label="eq-frc-power"))
     else:
@@ -612,7 +612,7 @@ def _cycle(sec: Section, study, f) -> None:
             continue
         q = sc[f"q_R_{p.name}_max"]
         rows.append({"pair": _R(shown_key(f, p)), "R": sc[f"R_{p.name}_max"],
-                     "q": math.degrees(q - study.grid.start) if f.rotary else q})
+                     "q": q_degrees(study, q) if f.rotary else q})
     qkey, qhead, qunit, qfmt = q_header(study)
     main = "M_bal" if f.rotary else "F_act"
     s.paragraph(f"Модули реакций во всех парах и {'уравновешивающий момент' if f.rotary else 'усилие гидроцилиндра'} "
@@ -620,7 +620,7 @@ def _cycle(sec: Section, study, f) -> None:
                 f"{ref('tab-frc-max')}. {'Наибольший по модулю уравновешивающий момент' if f.rotary else 'Наибольшее по модулю усилие'} — "
                 f"{fmt(sc[main + '_absmax'], sig=5)}&nbsp;{'Н·м' if f.rotary else 'Н'}.")
     s.figure("Реакции в кинематических парах и " + ("уравновешивающий момент" if f.rotary else "усилие гидроцилиндра")
-             + (" за цикл" if f.rotary else " по ходу гидроцилиндра"), fig.svg, fig.width_mm, id="fig-frc-cycle")
+             + (" в диапазоне качания входного звена" if study.mechanism.driver.swing else " за цикл" if f.rotary else " по ходу гидроцилиндра"), fig.svg, fig.width_mm, id="fig-frc-cycle")
     s.table("Наибольшие реакции в кинематических парах", [
         Column("pair", "Реакция", fmt=lambda v: Markup(v)),
         Column("R", "<i>R</i><sub>max</sub>", "Н", sig=5), Column("q", qhead, qunit, **qfmt)],
@@ -747,7 +747,7 @@ def conclusion_lines(study) -> list[str]:
     out = []
     big = max((p for p in f.model.pairs if p.kind != KS.K_MOM), key=lambda p: sc[f"R_{p.name}_max"])
     q = sc[f"q_R_{big.name}_max"]
-    where = (f"φ&nbsp;=&nbsp;{fmt(math.degrees(q - study.grid.start), digits=1)}°" if f.rotary
+    where = (f"φ&nbsp;=&nbsp;{fmt(q_degrees(study, q), digits=1)}°" if f.rotary
              else f"S&nbsp;=&nbsp;{fmt(q, digits=3)}&nbsp;м")
     out.append(f"Силовой расчёт выполнен по группам Ассура; наибольшая реакция — в паре {big.a}–{big.b}: "
                f"{fmt(sc[f'R_{big.name}_max'], sig=5)}&nbsp;Н при {where}.")

@@ -20,7 +20,8 @@ from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import expr_html
 from . import vectors
-from .common import chosen_position, chunked_tables, html_point, q_header, sub, tex_point, pos_fmt, pos_no
+from .common import (chosen_position, chunked_tables, html_point, input_word, pos_fmt, pos_no, q_header, sub,
+                     swing_text, tex_point)
 
 NEEDS = ("kinematics", "cycle")
 
@@ -63,7 +64,13 @@ def build(study) -> Section:
     w1_m = inline_math(r"\omega_1")
     v_m = inline_math(r"v = \omega_1 x^{\prime}")
     a_m = inline_math(r"a = \omega_1^2 x^{\prime\prime} + \varepsilon_1 x^{\prime}")
-    if rotary:
+    if mech.driver.swing:
+        s1.paragraph(f"План положений построен для {ncount} положений входного коромысла {mech.driver.link} в "
+                     f"диапазоне его качания {swing_text(mech.driver)}, от одного крайнего положения до другого; "
+                     f"на обратном ходе звенья проходят те же положения в обратном порядке. "
+                     f"Масштаб {mu_l}&nbsp;=&nbsp;{mu_text(plan.mu)}&nbsp;м/мм ({gost_ratio(plan.mu)}). Штриховыми линиями показаны "
+                     f"траектории центров масс звеньев (рисунок {ref('fig-positions')}).")
+    elif rotary:
         s1.paragraph(f"План положений построен для {ncount} положений кривошипа, начиная с положения "
                      f"{phi0_m}&nbsp;=&nbsp;{fmt(math.degrees(mech.driver.phi0), digits=1)}°, "
                      f"при вращении {'по часовой стрелке' if mech.driver.direction < 0 else 'против часовой стрелки'}. "
@@ -128,13 +135,17 @@ def build(study) -> Section:
                   Column(f"vqy_{p}", f"<i>y′</i><sub>{p}</sub>", None, digits=4)]
     chunked_tables(s2, "Аналоги скоростей точек", k, vcols, lead, "tab-vq")
     curves = AnalogCurves().draw(study)
-    s2.figure("Аналоги угловых скоростей звеньев за цикл", curves.svg, curves.width_mm, id="fig-analogs")
+    s2.figure("Аналоги угловых скоростей звеньев " + ("в диапазоне качания входного звена" if mech.driver.swing
+                                                       else "за цикл"), curves.svg, curves.width_mm, id="fig-analogs")
 
     # ----- true velocities
     if w_known:
         s3 = sec.subsection("Скорости и ускорения точек и звеньев", "sec-true")
         w1 = mech.driver.omega
-        if rotary:
+        if mech.driver.swing:
+            s3.paragraph(f"Входное коромысло качается с постоянной по модулю угловой скоростью "
+                         f"{w1_m}&nbsp;=&nbsp;{fmt(w1, digits=3)}&nbsp;рад/с; значения в таблицах — для прямого хода.")
+        elif rotary:
             s3.paragraph(f"Кривошип вращается равномерно с угловой скоростью "
                          f"{w1_m}&nbsp;=&nbsp;{fmt(w1, digits=3)}&nbsp;рад/с.")
         tv = [Column(f"v_{p}", sub("V", p), "м/с", digits=3) for p in pts]
@@ -184,7 +195,9 @@ def build(study) -> Section:
     else:
         s5.paragraph(f"Выходное звено — {title}; ход H&nbsp;=&nbsp;{fmt(stroke, digits=4)}&nbsp;м "
                      f"(рисунок {ref('fig-diagrams')}).")
-    if rotary:
+    if mech.driver.swing:
+        s5.paragraph(swing_strokes_text(study))
+    elif rotary:
         i_max, i_min = int(np.argmax(s)), int(np.argmin(s))
         th = abs(math.degrees(cyc["q"].iloc[i_max] - cyc["q"].iloc[i_min]))
         work = min(th, 360 - th)
@@ -212,6 +225,33 @@ def _deg(x) -> str:
     return fmt(math.degrees(float(x)), digits=2)
 
 
+def swing_strokes_text(study) -> str:
+    """The forward and return strokes of an input rocker: the output's reversals inside the swing,
+    the time of a stroke, why the tables show the forward stroke only, and K = 1."""
+    d = study.mechanism.driver
+    sc = study.scalars
+    parts = []
+    revs = [sc[f"output_q_reversal_{i + 1}"] for i in range(sc["output_reversals"])]
+    if revs:
+        where = ", ".join(f"{fmt(math.degrees(r), digits=2)}°" for r in revs)
+        parts.append(f"Внутри диапазона качания выходное звено останавливается и меняет направление движения "
+                     f"при φ&nbsp;=&nbsp;{where} (первая передаточная функция обращается в нуль; найдено "
+                     f"решением уравнения по точному положению механизма), поэтому его размах за ход больше "
+                     f"разности значений в крайних положениях входного звена.")
+    parts.append("Цикл состоит из прямого и обратного ходов входного звена. Положения звеньев и аналоги скоростей и "
+                 "ускорений зависят только от угла φ и на обоих ходах одинаковы; при обратном ходе с той же по модулю "
+                 "угловой скоростью (ω<sub>1</sub> заменяется на −ω<sub>1</sub>) скорости всех точек и звеньев "
+                 "v&nbsp;=&nbsp;ω<sub>1</sub>x′ меняют знак, а ускорения a&nbsp;=&nbsp;ω<sub>1</sub><sup>2</sup>x″ не меняются. "
+                 "Поэтому таблицы и диаграммы приведены для прямого хода. В крайних положениях скорость входного "
+                 "звена меняет знак мгновенно (принятая идеализация привода); действительный привод разгоняет и "
+                 "тормозит звено за конечное время, что добавляет силы инерции вблизи крайних положений.")
+    if d.omega is not None:
+        parts.append(f"Время одного хода t&nbsp;=&nbsp;(φ<sub>max</sub>&nbsp;−&nbsp;φ<sub>min</sub>)/ω<sub>1</sub>&nbsp;=&nbsp;"
+                     f"{fmt(sc['t_stroke'], sig=4)}&nbsp;с, время цикла {fmt(2 * sc['t_stroke'], sig=4)}&nbsp;с; прямой и "
+                     "обратный ходы длятся одинаково, коэффициент изменения средней скорости K&nbsp;=&nbsp;1.")
+    return " ".join(parts)
+
+
 def _vec_name(name: str) -> Markup:
     """V_BA → V<sub>BA</sub>; a^n_BA → a<sup>n</sup><sub>BA</sub>."""
     if "^" in name:
@@ -229,14 +269,14 @@ def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
     fs = []
     if d.rotary:
         crank = mech.link(d.link)
-        tip = [p for p in crank.points if p != d.center][0]
+        tip = mech.crank_pin()
         l = math.hypot(*np.subtract(crank.points[tip], crank.points[d.center]))
         w1 = d.omega
         T, C = tex_point(tip), tex_point(d.center)
         fs.append(Formula(rf"V_{{{T}}} = \omega_1 l_{{{C}{T}}}", rf"{tex_num(w1, digits=3)} \cdot {tex_num(l, digits=4)}",
                           tex_num(w1 * l, digits=3, unit="м/с"),
-                          where=[(r"\omega_1", "угловая скорость кривошипа, рад/с"),
-                                 (rf"l_{{{C}{T}}}", "длина кривошипа, м")]))
+                          where=[(r"\omega_1", f"угловая скорость {input_word(d, 'gen')}, рад/с"),
+                                 (rf"l_{{{C}{T}}}", f"длина {input_word(d, 'gen')}, м")]))
         fs.append(Formula(rf"a_{{{T}}} = \omega_1^2 l_{{{C}{T}}}", rf"{tex_num(w1, digits=3)}^2 \cdot {tex_num(l, digits=4)}",
                           tex_num(w1 * w1 * l, digits=3, unit="м/с²")))
     vseg = {s.name: s for s in vplan.plan.segments}

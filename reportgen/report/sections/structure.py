@@ -8,7 +8,7 @@ from ...scenes.mechanism import AssurGroups, KinematicScheme
 from ..document import Column, Section, ref
 from ..formulas import inline_math
 from ..russian import expr_html, plural
-from .common import chosen_position
+from .common import chosen_position, input_word
 
 NEEDS = ("structure", "kinematics")
 
@@ -52,7 +52,7 @@ def build(study) -> Section:
     s2.formula(r"W = 3n - 2p_5 - p_4", rf"3 \cdot {st.n} - 2 \cdot {st.p5} - {st.p4}", str(st.W),
                where=[("n", "число подвижных звеньев"), ("p_5", "число низших (одноподвижных) пар"),
                       ("p_4", "число высших пар")], label="eq-chebyshev")
-    driver = ("кривошипа " + mech.driver.link) if mech.driver.rotary else \
+    driver = (input_word(mech.driver, "gen") + " " + mech.driver.link) if mech.driver.rotary else \
         f"гидроцилиндра (звенья {mech.driver.link} и {mech.driver.rod}, поступательная ведущая пара)"
     s2.paragraph(f"W&nbsp;=&nbsp;{st.W}: для определённости движения достаточно одного ведущего звена — {driver}. "
                  "Пассивных связей и лишних степеней свободы нет.")
