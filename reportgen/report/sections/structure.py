@@ -8,7 +8,7 @@ from ...scenes.mechanism import AssurGroups, KinematicScheme
 from ..document import Column, Section, ref
 from ..formulas import inline_math
 from ..russian import expr_html, plural
-from .common import chosen_position, input_word
+from .common import input_word
 
 NEEDS = ("structure", "kinematics")
 
