@@ -184,9 +184,10 @@ class ComplexStepKinematics:
         Xc = np.empty((COARSE + 1, self.n))
         Vc = np.empty_like(Xc)
         x = self.newton(X0.astype(float), qc[:1])
-        for i in range(COARSE + 1):
-            if i:
-                x = self.newton(x + (qc[i] - qc[i - 1]) * v, qc[i:i + 1])
+        v = self.tangent(x, qc[:1])
+        Xc[0], Vc[0] = x[0], v[0]
+        for i in range(1, COARSE + 1):
+            x = self.newton(x + (qc[i] - qc[i - 1]) * v, qc[i:i + 1])
             v = self.tangent(x, qc[i:i + 1])
             Xc[i], Vc[i] = x[0], v[0]
         k = np.clip(np.searchsorted(qc, q, side="right") - 1, 0, COARSE - 1)

@@ -133,7 +133,7 @@ class MotionODE:
         h = self.h[:, None]
         i, k = np.nonzero(d0 * d1 < 0)
         if i.size:
-            w0, w1, a0, a1, hh = w[i, k], w[i + 1, k], d0[i, k] * h[i, 0], d1[i, k] * h[i, 0], h[i, 0]
+            w0, w1, a0, a1 = w[i, k], w[i + 1, k], d0[i, k] * h[i, 0], d1[i, k] * h[i, 0]
             # p(t) = h00 w0 + h10 a0 + h01 w1 + h11 a1; p'(t) = A t² + B t + C
             A = 6 * w0 + 3 * a0 - 6 * w1 + 3 * a1
             B = -6 * w0 - 4 * a0 + 6 * w1 - 2 * a1
@@ -283,7 +283,7 @@ def integral_rows() -> list[dict]:
 def main(argv=None) -> None:
     import argparse
     sys.path.insert(0, str(ROOT / "bench"))
-    from work_precision import OUT, write_csv
+    from work_precision import OUT, write_csv  # noqa: E402  (bench/ on the path)
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true")
     args = ap.parse_args(argv)
