@@ -12,7 +12,7 @@ the equation of motion in differential form (Лагранж; Артоболев�
 integrated by the classical Runge–Kutta method of order 4 on a uniform grid of every interval
 between the switching points of the loads (the right-hand side is smooth inside), n = 40 000 steps
 per cycle, and again with 2n steps: the difference estimates the reference's own error (printed
-in the CSV).  M_Σ, J_II and J_II′ are the engine's reduced model (``study.dynamics.model``; what is
+in the CSV: J_I and ω on the common nodes).  M_Σ, J_II and J_II′ are the engine's reduced model (``study.dynamics.model``; what is
 checked is the flywheel step, not the reduction).  Extremes of ω are located on each step by the
 cubic Hermite interpolant of ω and ω′ (error O(h⁴)).  Periodic shooting: (J_I, ω(φ_a)) solve
 (ω_max − ω_min)/ω_ср = δ and (ω_max + ω_min)/2 = ω_ср by Newton's method with a finite-difference
@@ -99,13 +99,16 @@ class MotionODE:
     """The equation of motion on a fixed RK4 grid split at the switching points of the loads; the
     stage values at a step's ends are the one-sided limits from inside the step."""
 
-    def __init__(self, model, steps: int):
+    def __init__(self, model, steps: int, refine: int = 1):
+        """``steps`` per cycle (each interval between switches gets its share, at least 2);
+        ``refine`` multiplies the steps of every interval (refine = 2: the nodes of refine = 1
+        are the even nodes, for the Runge estimate)."""
         self.model = model
         a, L = model.a, model.L
         self.cuts = np.concatenate(([a], model.breaks, [a + L]))
         lo, hi = [], []
         for x0, x1 in zip(self.cuts[:-1], self.cuts[1:]):
-            k = max(2, int(math.ceil(steps * (x1 - x0) / L)))
+            k = refine * max(2, int(math.ceil(steps * (x1 - x0) / L)))
             t = np.linspace(x0, x1, k + 1)
             lo.append(t[:-1])
             hi.append(t[1:])
@@ -190,7 +193,7 @@ def dynamics_rows(quick: bool = False) -> list[dict]:
         wm = dyn.settings.omega_m
         t0 = time.process_time()
         ode = MotionODE(model, STEPS)
-        ode2 = MotionODE(model, 2 * STEPS)
+        ode2 = MotionODE(model, STEPS, refine=2)
         print(f"{title}: ODE grids in {time.process_time() - t0:.1f} s CPU", flush=True)
         # comparison points: every 10th node, not at a switching point (ε jumps there)
         sel = np.arange(0, ode.phi.size - 1, 10)

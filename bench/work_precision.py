@@ -289,9 +289,20 @@ def _e(x: float) -> str:
     return "—" if not math.isfinite(x) else f"{x:.1e}"
 
 
+def machine(load_start: tuple[float, ...]) -> str:
+    """One line: cores, Python, numba, the load average at the start and at the end of the run."""
+    import os
+    import platform
+    import numba
+    end = os.getloadavg()
+    return (f"Машина: {os.cpu_count()} ядра, Python {platform.python_version()}, numba {numba.__version__}, "
+            f"numpy {np.__version__}; средняя загрузка (1 мин) в начале {load_start[0]:.1f}, "
+            f"в конце {end[0]:.1f}; время — процессорное время процесса, медиана прогретых вызовов.")
+
+
 def markdown(rows: list[dict], dyn: list[dict], integ: list[dict], sections_md: str,
-             peer_failed: dict[str, str]) -> str:
-    lines = ["# Время против погрешности (bench/work_precision.py)", "",
+             peer_failed: dict[str, str], machine_line: str = "") -> str:
+    lines = ["# Время против погрешности (bench/work_precision.py)", "", machine_line, "",
              "## Кинематика за цикл", "",
              "| механизм | N | метод | время на цикл, мс ЦП | нс на положение | положения | 1-е аналоги | 2-е аналоги |",
              "|---|---:|---|---:|---:|---:|---:|---:|"]
@@ -328,6 +339,8 @@ def main(argv=None) -> None:
     g.add_argument("--peer", metavar="PYTHON", help="python of an existing venv with the peers")
     ap.add_argument("--no-sections", action="store_true", help="без замера разделов записки")
     args = ap.parse_args(argv)
+    import os
+    load_start = os.getloadavg()
     OUT.mkdir(parents=True, exist_ok=True)
     import dynamics_precision
     rows = kinematics_rows(args.quick)
@@ -350,7 +363,8 @@ def main(argv=None) -> None:
         sec = bench_sections.rows(ROOT / bench_sections.DEFAULT_CASE, 3, False)
         bench_sections.write(sec, OUT / "sections.csv")
         sections_md = bench_sections.markdown(sec, bench_sections.DEFAULT_CASE)
-    (OUT / "work_precision.md").write_text(markdown(rows, dyn, integ, sections_md, failed), encoding="utf-8")
+    (OUT / "work_precision.md").write_text(markdown(rows, dyn, integ, sections_md, failed, machine(load_start)),
+                                         encoding="utf-8")
     print(f"written: {OUT}")
 
 
