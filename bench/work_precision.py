@@ -210,6 +210,19 @@ def peer_rows(python: str, quick: bool) -> list[dict]:
     return rows
 
 
+def read_csv(path: Path) -> list[dict]:
+    """Rows of a CSV written by :func:`write_csv`, numbers converted back."""
+    def conv(v: str):
+        for t in (int, float):
+            try:
+                return t(v)
+            except ValueError:
+                pass
+        return v
+    with path.open(encoding="utf-8") as f:
+        return [{k: conv(v) for k, v in r.items()} for r in csv.DictReader(f)]
+
+
 def write_csv(path: Path, rows: list[dict]) -> None:
     with path.open("w", newline="", encoding="utf-8") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
@@ -338,31 +351,53 @@ def main(argv=None) -> None:
                    help="create output/bench/peer-venv with pylinkage, numba, mechanism (and try pyslvs)")
     g.add_argument("--peer", metavar="PYTHON", help="python of an existing venv with the peers")
     ap.add_argument("--no-sections", action="store_true", help="без замера разделов записки")
+    ap.add_argument("--only", metavar="ЧАСТИ",
+                    help="пересчитать только эти части (kinematics,dynamics,sections через запятую); "
+                         "остальные таблицы берутся из CSV прошлого прогона в output/bench/")
     args = ap.parse_args(argv)
+    parts = set(args.only.split(",")) if args.only else {"kinematics", "dynamics", "sections"}
+    if args.no_sections:
+        parts.discard("sections")
     import os
     load_start = os.getloadavg()
     OUT.mkdir(parents=True, exist_ok=True)
+    import bench_sections
     import dynamics_precision
-    rows = kinematics_rows(args.quick)
     failed: dict[str, str] = {}
-    python = args.peer
-    if args.peers:
-        python, failed = make_peer_venv()
-    if python:
-        rows += peer_rows(python, args.quick)
-    write_csv(OUT / "work_precision.csv", rows)
+    if "kinematics" in parts:
+        rows = kinematics_rows(args.quick)
+        python = args.peer
+        if args.peers:
+            python, failed = make_peer_venv()
+        if python:
+            rows += peer_rows(python, args.quick)
+        write_csv(OUT / "work_precision.csv", rows)
+    else:
+        rows = read_csv(OUT / "work_precision.csv")
     plot(rows, OUT / "work_precision.png")
-    dyn = dynamics_precision.dynamics_rows(args.quick)
-    write_csv(OUT / "dynamics_precision.csv", dyn)
-    integ = dynamics_precision.integral_rows()
-    write_csv(OUT / "cycle_integrals.csv", integ)
+    if "dynamics" in parts:
+        dyn = dynamics_precision.dynamics_rows(args.quick)
+        write_csv(OUT / "dynamics_precision.csv", dyn)
+        integ = dynamics_precision.integral_rows()
+        write_csv(OUT / "cycle_integrals.csv", integ)
+    else:
+        dyn, integ = read_csv(OUT / "dynamics_precision.csv"), read_csv(OUT / "cycle_integrals.csv")
     plot_dynamics(dyn, integ, OUT / "dynamics_precision.png")
-    sections_md = ""
-    if not args.no_sections:
-        import bench_sections
+    sec = []
+    if "sections" in parts:
         sec = bench_sections.rows(ROOT / bench_sections.DEFAULT_CASE, 3, False)
         bench_sections.write(sec, OUT / "sections.csv")
-        sections_md = bench_sections.markdown(sec, bench_sections.DEFAULT_CASE)
+    elif not args.no_sections and (OUT / "sections.csv").exists():
+        sec = read_csv(OUT / "sections.csv")
+    sections_md = bench_sections.markdown(sec, bench_sections.DEFAULT_CASE) if sec else ""
+    if sections_md:
+        (OUT / "sections.md").write_text(sections_md, encoding="utf-8")
+    import json
+    failed_file = OUT / "peers_failed.json"
+    if "kinematics" in parts and args.peers:
+        failed_file.write_text(json.dumps(failed, ensure_ascii=False), encoding="utf-8")
+    elif "kinematics" not in parts and failed_file.exists():
+        failed = json.loads(failed_file.read_text(encoding="utf-8"))
     (OUT / "work_precision.md").write_text(markdown(rows, dyn, integ, sections_md, failed, machine(load_start)),
                                          encoding="utf-8")
     print(f"written: {OUT}")
