@@ -2,7 +2,8 @@
 
 Usage: ``.venv/bin/python bench/bench_sections.py [CASE] [--runs 3] [--pdf]``
 (default case cases/ws000_six_bar_corrected.toml; also run by ``bench/work_precision.py``);
-writes ``output/bench/sections.csv`` and prints a table.
+writes ``output/bench/sections.csv`` and ``sections.md`` (with ``--pdf``: ``sections_pdf.*``) and
+prints a table.
 
 For each choice of sections (the CLI's ``--sections``): structure+kinematics; + dynamics;
 + dynamics + forces; every section of the case.  In one warm process (numba kernels compiled,
@@ -127,8 +128,9 @@ def main(argv=None) -> list[dict]:
     args = ap.parse_args(argv)
     OUT.mkdir(parents=True, exist_ok=True)
     r = rows(ROOT / args.case, args.runs, args.pdf)
-    write(r, OUT / "sections.csv")
-    (OUT / "sections.md").write_text(markdown(r, args.case), encoding="utf-8")
+    stem = "sections_pdf" if args.pdf else "sections"
+    write(r, OUT / f"{stem}.csv")
+    (OUT / f"{stem}.md").write_text(markdown(r, args.case), encoding="utf-8")
     return r
 
 
