@@ -43,7 +43,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 CASES = [("лист 000 (исправленный)", "cases/ws000_six_bar_corrected.toml"),
-         ("кривошипный пресс", "cases/crank_press.toml")]
+         ("кривошипный пресс", "cases/crank_press.toml"),
+         ("четырёхтактный двигатель (цикл 4π)", "cases/engine_four_stroke.toml")]
 DELTAS = (0.01, 0.02, 0.05, 0.1, 0.2)
 STEPS = 40_000
 ORDERS = (1, 2, 3, 4, 6, 8, 12)
