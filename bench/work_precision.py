@@ -27,8 +27,8 @@ mechanism, N = 360, 3 600, 36 000 positions per cycle.  Errors are the maximum s
 * ``forward`` — forward differences x′ ≈ (x₊ − x)/h, x″ ≈ (x₊₊ − 2x₊ + x)/h²;
 * peers in a separate virtual environment (``--peers`` creates ``output/bench/peer-venv`` and
   installs them there; ``--peer PYTHON`` uses an existing one): pylinkage's numba path and the
-  package ``mechanism`` on the crank-rocker (``bench/work_precision_peer.py``); pyslvs is tried
-  and its pip error recorded.
+  package ``mechanism`` on the slider-crank and the crank-rocker (``bench/work_precision_peer.py``);
+  pyslvs is tried and its pip error recorded.
 
 Times are the median CPU time (``time.process_time``) of warm calls (kernels compiled before).
 Dynamics: ``bench/dynamics_precision.py``; sections of a note: ``bench/bench_sections.py``.
@@ -176,37 +176,45 @@ def make_peer_venv() -> tuple[str, dict[str, str]]:
     return str(py), failed
 
 
+PEER_CASES = [("кривошипно-ползунный", "cases/slider_crank.toml", "slider_crank"),
+              ("кривошипно-коромысловый", "cases/four_bar.toml", "four_bar")]
+
+
 def peer_rows(python: str, quick: bool) -> list[dict]:
-    """Peers on the crank-rocker, run by bench/work_precision_peer.py in their own virtual
-    environment; errors of point B (the peers' output joint), rows j ↔ q_j = 2πj/N."""
+    """Peers on the slider-crank and the crank-rocker, run by bench/work_precision_peer.py in
+    their own virtual environment; errors of point B (the peers' output joint), rows j ↔
+    q_j = 2πj/N."""
     import json
     import subprocess
     from reportgen.analysis.study import Study
-    s = Study(ROOT / "cases/four_bar.toml")
-    qref = s.grid.start + s.grid.length * np.arange(NREF) / NREF
-    rx, rv, ra = reference(s, qref, ["B"])
     rows = []
-    for package in PEERS:
-        for N in (NS[:2] if quick else NS):
-            try:
-                res = subprocess.run([python, str(ROOT / "bench/work_precision_peer.py"), str(N), package],
-                                     capture_output=True, text=True, timeout=3600, check=True)
-            except (OSError, subprocess.SubprocessError) as e:
-                print(f"{package}: not measured ({e})", flush=True)
-                break
-            out = json.loads(res.stdout)
-            idx = np.arange(NREF) * (N // NREF)
-            B, vB, aB = (np.asarray(out[k])[idx] for k in ("B", "vB", "aB"))
-            errs = [scaled_error(a, r) for a, r in zip((B, vB, aB), (rx, rv, ra))]
-            for label, key, with_analogs in ((f"{package}, положения", "time_positions", False),
-                                             (f"{package}, с аналогами", "time_with_kinematics", True)):
-                t = out[key]
-                rows.append(dict(case="кривошипно-коромысловый", N=N, method=label, time_ms=t * 1e3,
-                                 ns_per_position=t / N * 1e9, err_position=errs[0],
-                                 err_first=errs[1] if with_analogs else float("nan"),
-                                 err_second=errs[2] if with_analogs else float("nan")))
-            print(f"  N={N:6d} {package:10s} {out['time_with_kinematics'] * 1e3:10.3f} ms  errors "
-                  f"{errs[0]:.1e} {errs[1]:.1e} {errs[2]:.1e}", flush=True)
+    for title, path, mech in PEER_CASES:
+        s = Study(ROOT / path)
+        if abs(s.grid.start) > 1e-15 or abs(s.grid.length - 2 * math.pi) > 1e-12:
+            raise ValueError(f"{path}: the peers are sampled at q = 2πj/N")
+        qref = s.grid.start + s.grid.length * np.arange(NREF) / NREF
+        rx, rv, ra = reference(s, qref, ["B"])
+        for package in PEERS:
+            for N in (NS[:2] if quick else NS):
+                try:
+                    res = subprocess.run([python, str(ROOT / "bench/work_precision_peer.py"), str(N), package, mech],
+                                         capture_output=True, text=True, timeout=3600, check=True)
+                except (OSError, subprocess.SubprocessError) as e:
+                    print(f"{package}: not measured ({e})", flush=True)
+                    break
+                out = json.loads(res.stdout)
+                idx = np.arange(NREF) * (N // NREF)
+                B, vB, aB = (np.asarray(out[k])[idx] for k in ("B", "vB", "aB"))
+                errs = [scaled_error(a, r) for a, r in zip((B, vB, aB), (rx, rv, ra))]
+                for label, key, with_analogs in ((f"{package}, положения", "time_positions", False),
+                                                 (f"{package}, с аналогами", "time_with_kinematics", True)):
+                    t = out[key]
+                    rows.append(dict(case=title, N=N, method=label, time_ms=t * 1e3,
+                                     ns_per_position=t / N * 1e9, err_position=errs[0],
+                                     err_first=errs[1] if with_analogs else float("nan"),
+                                     err_second=errs[2] if with_analogs else float("nan")))
+                print(f"  {title}: N={N:6d} {package:10s} {out['time_with_kinematics'] * 1e3:10.3f} ms  errors "
+                      f"{errs[0]:.1e} {errs[1]:.1e} {errs[2]:.1e}", flush=True)
     return rows
 
 
@@ -230,6 +238,7 @@ def write_csv(path: Path, rows: list[dict]) -> None:
         w.writerows(rows)
 
 
+METHODS = ("engine", "newton", "complex", "central", "forward")
 METHOD_STYLE = {"engine": "o", "newton": "s", "complex": "D", "central": "^", "forward": "v",
                 "pylinkage, с аналогами": "x", "mechanism, с аналогами": "+"}
 
@@ -352,10 +361,10 @@ def main(argv=None) -> None:
     g.add_argument("--peer", metavar="PYTHON", help="python of an existing venv with the peers")
     ap.add_argument("--no-sections", action="store_true", help="без замера разделов записки")
     ap.add_argument("--only", metavar="ЧАСТИ",
-                    help="пересчитать только эти части (kinematics,dynamics,sections через запятую); "
+                    help="пересчитать только эти части (kinematics,peers,dynamics,sections через запятую); "
                          "остальные таблицы берутся из CSV прошлого прогона в output/bench/")
     args = ap.parse_args(argv)
-    parts = set(args.only.split(",")) if args.only else {"kinematics", "dynamics", "sections"}
+    parts = set(args.only.split(",")) if args.only else {"kinematics", "peers", "dynamics", "sections"}
     if args.no_sections:
         parts.discard("sections")
     import os
@@ -364,16 +373,18 @@ def main(argv=None) -> None:
     import bench_sections
     import dynamics_precision
     failed: dict[str, str] = {}
+    old = read_csv(OUT / "work_precision.csv") if (OUT / "work_precision.csv").exists() else []
+    own = [r for r in old if r["method"] in METHODS]
+    peers = [r for r in old if r["method"] not in METHODS]
     if "kinematics" in parts:
-        rows = kinematics_rows(args.quick)
-        python = args.peer
-        if args.peers:
-            python, failed = make_peer_venv()
-        if python:
-            rows += peer_rows(python, args.quick)
-        write_csv(OUT / "work_precision.csv", rows)
-    else:
-        rows = read_csv(OUT / "work_precision.csv")
+        own = kinematics_rows(args.quick)
+    python = args.peer
+    if "peers" in parts and args.peers:
+        python, failed = make_peer_venv()
+    if "peers" in parts:
+        peers = peer_rows(python, args.quick) if python else []
+    rows = own + peers
+    write_csv(OUT / "work_precision.csv", rows)
     plot(rows, OUT / "work_precision.png")
     if "dynamics" in parts:
         dyn = dynamics_precision.dynamics_rows(args.quick)
@@ -394,9 +405,9 @@ def main(argv=None) -> None:
         (OUT / "sections.md").write_text(sections_md, encoding="utf-8")
     import json
     failed_file = OUT / "peers_failed.json"
-    if "kinematics" in parts and args.peers:
+    if "peers" in parts and args.peers:
         failed_file.write_text(json.dumps(failed, ensure_ascii=False), encoding="utf-8")
-    elif "kinematics" not in parts and failed_file.exists():
+    elif "peers" not in parts and failed_file.exists():
         failed = json.loads(failed_file.read_text(encoding="utf-8"))
     (OUT / "work_precision.md").write_text(markdown(rows, dyn, integ, sections_md, failed, machine(load_start)),
                                          encoding="utf-8")
