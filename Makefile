@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 CASE   ?= cases/ws000_six_bar_corrected.toml
 
-.PHONY: report test setup bench clean
+.PHONY: report test setup bench bench-precision clean
 
 report: setup
 	$(BIN)/reportgen build $(CASE)
@@ -14,6 +14,10 @@ test: setup
 
 bench: setup
 	$(BIN)/python bench/bench_cli.py
+
+# время против погрешности (кинематика, аналоги-пакеты в output/bench/peer-venv, динамика, разделы)
+bench-precision: setup
+	$(BIN)/python bench/work_precision.py --peers
 
 setup: $(VENV)/.installed
 
