@@ -7,6 +7,7 @@ about the time the scenes take and byte-identically (no dates, fixed ids, sorted
 from __future__ import annotations
 
 import io
+import math
 from dataclasses import dataclass, field
 
 from matplotlib.figure import Figure
@@ -15,7 +16,7 @@ from matplotlib.patches import Rectangle
 from ..style import mplstyle
 from ..style.numbers import fmt
 from . import frame as F
-from .layout import Placed, View, place
+from .layout import Block, Placed, View, block, place
 from .views import ACCELERATION, FORCE, LENGTH, VELOCITY, Rendered, SheetSpec, render_view
 
 MM_PER_IN = 25.4
@@ -35,6 +36,17 @@ class SheetLayout:
     title_boxes: list[tuple[float, float, float, float]]
     # the titles as drawn: (key, (x0, y0, x1, y1) in mm), measured by the renderer in compose()
     title_extents: list[tuple[str, tuple[float, float, float, float]]] = field(default_factory=list)
+    # the views of the groups (velocity plans …) as placed inside their blocks, and the common
+    # scale each group takes on the sheet
+    cells: list[Placed] = field(default_factory=list)
+    group_mu: dict[str, float] = field(default_factory=dict)
+    # the captions of the cells as drawn: (key, extents in mm)
+    caption_extents: list[tuple[str, tuple[float, float, float, float]]] = field(default_factory=list)
+
+    def drawings(self) -> list[Placed]:
+        """Every view whose own drawing is on the sheet: the single views and the cells of the
+        blocks (not the blocks themselves)."""
+        return [p for p in self.placed if not p.view.key.startswith(GROUP)] + self.cells
 
 
 def _num(x: float) -> str:
@@ -83,8 +95,16 @@ TABLE_TITLE = F.lettering("Результаты расчёта")
 
 
 def view_title(r: Rendered, mu: float | None) -> str:
-    sc = scale_text(r.spec.scale, mu)
-    return F.lettering(r.spec.title + (f"   {sc}" if sc else ""))
+    return _title(r.spec.title, r.spec.scale, mu)
+
+
+def _title(title: str, kind: str | None, mu: float | None) -> str:
+    sc = scale_text(kind, mu)
+    return F.lettering(title + (f"   {sc}" if sc else ""))
+
+
+GROUP = "group:"
+CAPTION_FS = TITLE_FS          # the captions of the cells of a block (the position numbers)
 
 
 def _title_widths(texts: list[str], family: str | None) -> list[float]:
@@ -101,29 +121,80 @@ def _title_widths(texts: list[str], family: str | None) -> list[float]:
 
 
 def layout_sheet(spec: SheetSpec, rendered: list[Rendered], table_rows) -> SheetLayout:
+    """Place the views, the blocks of the groups and the table.  A group's block is tried with
+    rows of several widths; the arrangement that covers most of the field (then lets the group
+    grow most) is kept."""
     from .title import drafting_family
-    widths = _title_widths([view_title(r, r.mu) for r in rendered] + [TABLE_TITLE], drafting_family())
+    family = drafting_family()
+    singles = [r for r in rendered if r.spec.group is None or r.spec.group not in spec.groups]
+    members = {g: [r for r in rendered if r.spec.group == g] for g in spec.groups}
+    members = {g: m for g, m in members.items() if m}
+    gtitles = {g: _title(spec.groups[g].title, spec.groups[g].scale, m[0].mu) for g, m in members.items()}
+    widths = _title_widths([view_title(r, r.mu) for r in singles] + [gtitles[g] for g in members] + [TABLE_TITLE],
+                           family)
     views = []
-    for r, tw in zip(rendered, widths):
+    for r, tw in zip(singles, widths):
         w, h = _size_mm(r.fig)
         views.append(View(r.spec.key, w, h, r.mu, priority=r.spec.priority, title_w=tw, mu_only=r.spec.mu_only,
-                          group=r.spec.group))
+                          group=r.spec.group, min_s=r.spec.min_s, max_s=r.spec.max_s))
     if table_rows:
         tw, th = _table_size(table_rows)
-        views.append(View("__table__", tw, th, None, title_h=9.0, title_w=widths[-1]))
+        views.append(View("__table__", tw, th, None, title_h=9.0, title_w=widths[-1], min_s=0.8, max_s=1.25))
     field = F.field_rect()
     # the sheet's own title line takes the top 12 mm of the field
     field = (field[0], field[1], field[2], field[3] - 12.0)
-    placed = place(views, field, F.block_keepout())
+    keepout = F.block_keepout()
+    gviews = {}
+    for g, m in members.items():
+        caps = [w - 6.0 for w in _title_widths([F.lettering(r.spec.title) for r in m], family)]
+        mv = [View(r.spec.key, *_size_mm(r.fig), r.mu, min_s=r.spec.min_s, max_s=r.spec.max_s) for r in m]
+        # the caption keeps its size while the cell shrinks to min_s: the cell is made wide enough
+        capw = [c / mv[0].min_s for c in caps]
+        cw = [max(v.width, c) for v, c in zip(mv, capw)]
+        lo, hi = max(cw), sum(cw) + 4.0 * len(cw)
+        tries = sorted({lo} | ({lo + (hi - lo) * k / 10 for k in range(1, 11)} if len(mv) > 1 else set()))
+        gviews[g] = [block(GROUP + g, mv, w, widths[len(singles) + list(members).index(g)], capw,
+                           spec.groups[g].priority) for w in tries]
+    blocks: dict[str, Block] = {}
+    placed = None
+    for g in members:                      # the groups one after the other, the best arrangement each
+        best = None
+        for b in gviews[g]:
+            trial = views + [blocks[h].view for h in blocks] + [b.view]
+            try:
+                res = place(trial, field, keepout)
+            except ValueError:
+                continue
+            s_g = next(p.s for p in res if p.view.key == b.view.key)
+            cover = sum(p.w * p.h for p in res)
+            if best is None or (cover, s_g) > best[0]:
+                best = ((cover, s_g), b, res)
+        if best is None:
+            raise ValueError("виды не помещаются на листе")
+        blocks[g] = best[1]
+        placed = best[2]
+    if placed is None:
+        placed = place(views, field, keepout)
     table_box = None
-    out = []
+    out, cells, group_mu = [], [], {}
     for p in placed:
         if p.view.key == "__table__":
             table_box = p
-        else:
-            out.append(p)
+            continue
+        out.append(p)
+        if p.view.key.startswith(GROUP):
+            g = p.view.key[len(GROUP):]
+            group_mu[g] = p.mu
+            for v, cx, cy in blocks[g].cells:
+                cells.append(Placed(v, p.x + cx * p.s, p.y + cy * p.s, p.s))
     titles = [(p.x - p.dx, p.y + p.h, p.x + p.w + p.dx, p.y + p.h + p.view.title_h) for p in placed]
-    return SheetLayout(spec, out, table_box, titles)
+    return SheetLayout(spec, out, table_box, titles, cells=cells, group_mu=group_mu)
+
+
+def caption_xy(c: Placed) -> tuple[float, float]:
+    """Where the caption of a cell is centred: in the strip above the cell's drawing."""
+    from .layout import CAPTION_MM
+    return c.x + c.w / 2, c.y + c.h + CAPTION_MM * c.s / 2
 
 
 def _draw_table(ax, p: Placed, rows, family) -> None:
@@ -165,9 +236,19 @@ def _frame_page(layout: SheetLayout, block: F.TitleBlock, rendered: list[Rendere
     by_key = {r.spec.key: r for r in rendered}
     titles = []
     for p in layout.placed:
-        t = ax.text(p.x + p.w / 2, p.y + p.h + 4.0, view_title(by_key[p.view.key], p.mu), ha="center",
-                    va="center", fontsize=TITLE_FS, fontfamily=family)
+        if p.view.key.startswith(GROUP):
+            g = layout.spec.groups[p.view.key[len(GROUP):]]
+            text = _title(g.title, g.scale, p.mu)
+        else:
+            text = view_title(by_key[p.view.key], p.mu)
+        t = ax.text(p.x + p.w / 2, p.y + p.h + 4.0, text, ha="center", va="center", fontsize=TITLE_FS,
+                    fontfamily=family)
         titles.append((p.view.key, t))
+    captions = []
+    for c in layout.cells:
+        x, y = caption_xy(c)
+        captions.append((c.view.key, ax.text(x, y, F.lettering(by_key[c.view.key].spec.title), ha="center",
+                                             va="center", fontsize=CAPTION_FS, fontfamily=family)))
     if layout.table_box is not None:
         tb = layout.table_box
         t = ax.text(tb.x + tb.w / 2, tb.y + tb.h + 4.0, TABLE_TITLE, ha="center", va="center",
@@ -180,6 +261,8 @@ def _frame_page(layout: SheetLayout, block: F.TitleBlock, rendered: list[Rendere
     inv = ax.transData.inverted()
     layout.title_extents = [(k, tuple(float(v) for v in t.get_window_extent(renderer).transformed(inv).extents))
                             for k, t in titles]
+    layout.caption_extents = [(k, tuple(float(v) for v in t.get_window_extent(renderer).transformed(inv).extents))
+                              for k, t in captions]
     return _fig_pdf(fig), fig
 
 
@@ -194,7 +277,7 @@ def compose(layouts: list[tuple[SheetLayout, F.TitleBlock, list[Rendered], list]
         page_pdf, _ = _frame_page(layout, block, rendered, rows, family)
         page = writer.add_page(PdfReader(io.BytesIO(page_pdf)).pages[0])
         by_key = {r.spec.key: r for r in rendered}
-        for p in layout.placed:
+        for p in layout.drawings():
             view = PdfReader(io.BytesIO(_fig_pdf(by_key[p.view.key].fig))).pages[0]
             op = Transformation().scale(p.s, p.s).translate(p.x * PT_PER_MM, p.y * PT_PER_MM)
             page.merge_transformed_page(view, op)
@@ -207,14 +290,33 @@ def compose(layouts: list[tuple[SheetLayout, F.TitleBlock, list[Rendered], list]
 def sheet_scale(rendered: list[Rendered], layout: SheetLayout) -> str:
     """The scale for the title block (ГОСТ 2.104, графа 6): the one ГОСТ 2.302 scale of the
     drawn-to-scale views if they share it, else that of the main view (the highest priority)."""
-    texts = [(r.spec.priority, scale_text(r.spec.scale, p.mu)) for r, p in zip(rendered, layout.placed)
-             if r.spec.scale == LENGTH]
+    by_key = {r.spec.key: r for r in rendered}
+    texts = [(by_key[p.view.key].spec.priority, scale_text(LENGTH, p.mu)) for p in layout.placed
+             if p.view.key in by_key and by_key[p.view.key].spec.scale == LENGTH]
     gost = [(pr, t[2:]) for pr, t in texts if t.startswith("М ")]
     if not gost:
         return ""
     if len({t for _, t in gost}) == 1:
         return gost[0][1]
     return max(gost, key=lambda x: x[0])[1]
+
+
+def redrawn(spec: SheetSpec, rendered: list[Rendered], layout: SheetLayout) -> tuple[SheetSpec, set[str]]:
+    """The sheet with every view that can be redrawn (``ViewSpec.redraw``) and took another scale
+    on the sheet drawn at that scale and fixed at it (enlargement 1), and the keys of those views.
+    The views of a group take the group's scale."""
+    from dataclasses import replace
+    scale = {p.view.key: p for p in layout.placed}
+    mus = dict(layout.group_mu)
+    views, again = [], set()
+    for v, r in zip(spec.views, rendered):
+        mu = mus.get(v.group) if v.group in spec.groups else (scale[v.key].mu if v.key in scale else None)
+        if v.redraw is not None and mu is not None and r.mu is not None and not math.isclose(mu, r.mu):
+            mu = float(f"{mu:.10g}")
+            v = replace(v, draw=v.redraw(mu, mus), min_s=1.0, max_s=1.0, redraw=None)
+            again.add(v.key)
+        views.append(v)
+    return replace(spec, views=views), again
 
 
 def render_sheets(study) -> tuple[bytes, list[SheetLayout]]:
@@ -228,6 +330,12 @@ def render_sheets(study) -> tuple[bytes, list[SheetLayout]]:
         rendered = [render_view(v, study) for v in spec.views]
         rows = spec.table(study) if spec.table else []
         layout = layout_sheet(spec, rendered, rows)
+        for _ in range(3):         # a view fixed at its scale may let another one grow: redraw that too
+            spec, again = redrawn(spec, rendered, layout)
+            if not again:
+                break
+            rendered = [render_view(v, study) if v.key in again else r for v, r in zip(spec.views, rendered)]
+            layout = layout_sheet(spec, rendered, rows)
         block = title_block(study, spec, i, len(specs), sheet_scale(rendered, layout))
         items.append((layout, block, rendered, rows))
     return compose(items), [it[0] for it in items]
