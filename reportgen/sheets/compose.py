@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import io
 import math
+
+import numpy as np
 from dataclasses import dataclass, field
 
 from matplotlib.figure import Figure
@@ -42,6 +44,7 @@ class SheetLayout:
     group_mu: dict[str, float] = field(default_factory=dict)
     # the captions of the cells as drawn: (key, extents in mm)
     caption_extents: list[tuple[str, tuple[float, float, float, float]]] = field(default_factory=list)
+    figures: dict = field(default_factory=dict)      # key → the view's figure as composed (for the checks)
 
     def drawings(self) -> list[Placed]:
         """Every view whose own drawing is on the sheet: the single views and the cells of the
@@ -81,6 +84,56 @@ def _fig_pdf(fig: Figure) -> bytes:
     return buf.getvalue()
 
 
+MAIN_FROM_PT = 0.75      # a solid line of the scenes at least this wide is a main line on the sheet
+DASH_DOT_MM = (12.0, 3.0, 0.5, 3.0)   # ГОСТ 2.303: dash-dot thin, dashes 5…30 mm, gaps 3…5 mm
+DASHED_MM = (5.0, 2.0)                # dashed: dashes 2…8 mm, gaps 1…2 mm
+
+
+def gost_lines(fig: Figure, s: float) -> None:
+    """Give every line of a view the weight of its type (ГОСТ 2.303) as it will be printed on the
+    sheet, enlarged ``s`` times: solid lines the scenes draw at least ``MAIN_FROM_PT`` wide
+    (contours, links, vectors, curves) become solid main lines S = 0,7 mm; the others, every
+    dashed and dash-dot line, the axes, grids and ticks of the charts become thin lines of
+    0,25 mm (S/3 … S/2); dashed and dash-dot lines get the standard dash lengths."""
+    from matplotlib.collections import Collection
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+    main, thin = F.LW_MAIN_MM * PT_PER_MM / s, F.LW_THIN_MM * PT_PER_MM / s
+    aux = set()
+    for ax in fig.axes:
+        ax.tick_params(which="both", width=thin, grid_linewidth=thin)   # ticks made again at drawing
+        aux |= set(ax.spines.values()) | set(ax.get_xgridlines()) | set(ax.get_ygridlines())
+        aux |= set(ax.xaxis.get_ticklines(minor=False)) | set(ax.yaxis.get_ticklines(minor=False))
+        aux |= set(ax.xaxis.get_ticklines(minor=True)) | set(ax.yaxis.get_ticklines(minor=True))
+
+    def pattern(art) -> tuple | None:
+        pat = getattr(art, "_unscaled_dash_pattern", (None, None))[1]
+        return tuple(pat) if pat else None
+
+    def restyle(art, pat) -> None:
+        mm = DASH_DOT_MM if len(pat) >= 4 else DASHED_MM
+        art.set_linestyle((0, tuple(x / F.LW_THIN_MM for x in mm)))
+
+    from matplotlib.text import Annotation
+    arts = fig.findobj(lambda a: isinstance(a, (Line2D, Patch, Collection)))
+    arts += [a.arrow_patch for a in fig.findobj(Annotation) if a.arrow_patch is not None and a.arrow_patch not in arts]
+    for art in arts:
+        if isinstance(art, Collection):
+            lws = np.atleast_1d(art.get_linewidths()).astype(float)
+            if lws.size:
+                art.set_linewidths([0.0 if w <= 0 else (main if w >= MAIN_FROM_PT else thin) for w in lws])
+            continue
+        lw = float(art.get_linewidth() or 0.0)
+        pat = pattern(art)
+        if isinstance(art, Line2D) and art.get_marker() not in (None, "", "None", " "):
+            art.set_markeredgewidth(thin)
+        if lw <= 0:
+            continue
+        art.set_linewidth(main if (lw >= MAIN_FROM_PT and pat is None and art not in aux) else thin)
+        if pat is not None:
+            restyle(art, pat)
+
+
 def _size_mm(fig: Figure) -> tuple[float, float]:
     w, h = fig.get_size_inches()
     return float(w * MM_PER_IN), float(h * MM_PER_IN)
@@ -95,7 +148,10 @@ TABLE_TITLE = F.lettering("Результаты расчёта")
 
 
 def view_title(r: Rendered, mu: float | None) -> str:
-    return _title(r.spec.title, r.spec.scale, mu)
+    text = _title(r.spec.title, r.spec.scale, mu)
+    if r.mu2 and mu and r.mu:
+        text += "   " + F.lettering(scale_text(r.spec.mu2[0], r.mu2 * mu / r.mu))
+    return text
 
 
 def _title(title: str, kind: str | None, mu: float | None) -> str:
@@ -136,7 +192,8 @@ def layout_sheet(spec: SheetSpec, rendered: list[Rendered], table_rows) -> Sheet
     for r, tw in zip(singles, widths):
         w, h = _size_mm(r.fig)
         views.append(View(r.spec.key, w, h, r.mu, priority=r.spec.priority, title_w=tw, mu_only=r.spec.mu_only,
-                          group=r.spec.group, min_s=r.spec.min_s, max_s=r.spec.max_s))
+                          group=r.spec.group, min_s=r.spec.min_s, max_s=r.spec.max_s,
+                          mu2=r.mu2 if r.spec.redraw is None else None))
     if table_rows:
         tw, th = _table_size(table_rows)
         views.append(View("__table__", tw, th, None, title_h=9.0, title_w=widths[-1], min_s=0.8, max_s=1.25))
@@ -278,7 +335,9 @@ def compose(layouts: list[tuple[SheetLayout, F.TitleBlock, list[Rendered], list]
         page = writer.add_page(PdfReader(io.BytesIO(page_pdf)).pages[0])
         by_key = {r.spec.key: r for r in rendered}
         for p in layout.drawings():
-            view = PdfReader(io.BytesIO(_fig_pdf(by_key[p.view.key].fig))).pages[0]
+            fig = by_key[p.view.key].fig
+            gost_lines(fig, p.s)
+            view = PdfReader(io.BytesIO(_fig_pdf(fig))).pages[0]
             op = Transformation().scale(p.s, p.s).translate(p.x * PT_PER_MM, p.y * PT_PER_MM)
             page.merge_transformed_page(view, op)
     writer.add_metadata({"/Producer": "reportgen", "/Title": layouts[0][1].name if layouts else ""})
@@ -313,7 +372,8 @@ def redrawn(spec: SheetSpec, rendered: list[Rendered], layout: SheetLayout) -> t
         mu = mus.get(v.group) if v.group in spec.groups else (scale[v.key].mu if v.key in scale else None)
         if v.redraw is not None and mu is not None and r.mu is not None and not math.isclose(mu, r.mu):
             mu = float(f"{mu:.10g}")
-            v = replace(v, draw=v.redraw(mu, mus), min_s=1.0, max_s=1.0, redraw=None)
+            args = (mu, mus) if v.mu2 is None else (mu, mus, r.mu2 * mu / r.mu)
+            v = replace(v, draw=v.redraw(*args), min_s=1.0, max_s=1.0, redraw=None)
             again.add(v.key)
         views.append(v)
     return replace(spec, views=views), again
@@ -336,6 +396,7 @@ def render_sheets(study) -> tuple[bytes, list[SheetLayout]]:
                 break
             rendered = [render_view(v, study) if v.key in again else r for v, r in zip(spec.views, rendered)]
             layout = layout_sheet(spec, rendered, rows)
+        layout.figures = {r.spec.key: r.fig for r in rendered}
         block = title_block(study, spec, i, len(specs), sheet_scale(rendered, layout))
         items.append((layout, block, rendered, rows))
     return compose(items), [it[0] for it in items]

@@ -45,6 +45,7 @@ class View:
     group: str | None = None      # views of one group grow together, step by step
     min_s: float = 0.4            # the view is not shrunk below this (its lettering stays legible)
     max_s: float | None = None    # nor enlarged above this
+    mu2: float | None = None      # a second scale of the view (the force polygon's μ_F beside the group)
 
 
 @dataclass
@@ -94,7 +95,8 @@ def factors_for(view: View) -> list[float]:
     drawn-to-scale view every factor between the ends of FACTORS that makes μ/s a standard value
     (so 1:25 may become 1:20, 1:15, 1:10 … and not only what FACTORS happens to hold); none
     below the view's ``min_s`` (the largest of them if all are)."""
-    fs = [f for f in _factors(view) if view.max_s is None or f <= view.max_s + 1e-12] or [1.0]
+    fs = [f for f in _factors(view) if (view.max_s is None or f <= view.max_s + 1e-12)
+          and (view.mu2 is None or is_nice(view.mu2 / f))] or [1.0]
     return [f for f in fs if f >= view.min_s - 1e-12] or fs[:1]
 
 

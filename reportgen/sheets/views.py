@@ -39,6 +39,7 @@ class ViewSpec:
     draw: Callable                   # study → scene result (a Figure or a drawing with .mu)
     scale: str | None = None         # LENGTH, VELOCITY, ACCELERATION, FORCE or None (a chart)
     mu_attr: str = "mu"
+    mu2: tuple[str, str] | None = None   # a second scale: (its kind, the scene's attribute), e.g. μ_F
     priority: float = 1.0            # how much more than the others the view is enlarged (main view > 1)
     mu_only: float | None = None     # the scale the case asks for (kept on the sheet if the view fits at it)
     group: str | None = None         # views drawn as one block at one scale (the velocity plans)
@@ -74,6 +75,7 @@ class Rendered:
     spec: ViewSpec
     fig: Figure
     mu: float | None
+    mu2: float | None = None
 
 
 def render_view(spec: ViewSpec, study) -> Rendered:
@@ -84,7 +86,8 @@ def render_view(spec: ViewSpec, study) -> Rendered:
     if fig is None:
         raise RuntimeError(f"сцена «{spec.title}» не дала рисунка")
     mu = getattr(out, spec.mu_attr, None) if spec.scale else None
-    return Rendered(spec, fig, float(mu) if mu else None)
+    mu2 = getattr(out, spec.mu2[1], None) if spec.mu2 else None
+    return Rendered(spec, fig, float(mu) if mu else None, float(mu2) if mu2 else None)
 
 
 def _regular_labels(study) -> list[str]:
@@ -206,18 +209,28 @@ def dynamics_sheet(study) -> SheetSpec:
 
 def forces_sheet(study) -> SheetSpec:
     from ..report.sections.common import chosen_position
-    from ..scenes.forces import GroupForces, ZhukovskyLever
-    from ..scenes.mechanism import KinematicScheme
+    from ..report.sections.common import pos_no
+    from ..scenes.forces import GroupForces, LoadedScheme, ZhukovskyLever
 
     f = study.forces
     lab = chosen_position(study) if f.settings.motion != "dynamics" else _forces_position(study)
-    views = [ViewSpec("scheme", f"Схема механизма, положение {lab}", KinematicScheme(lab).draw, LENGTH,
-                      priority=1.5)]
+    no = pos_no(study, lab)
+    views = [ViewSpec("scheme", f"Механизм в положении {no} с приложенными нагрузками", LoadedScheme(lab).draw,
+                      LENGTH, priority=1.5, redraw=lambda mu, _: LoadedScheme(lab, mu=mu).draw)]
     for gi, g in enumerate(f.model.groups):
         views.append(ViewSpec(f"group{gi}", f"Группа {g.label}: силы и план сил",
-                              GroupForces(lab, gi).draw, LENGTH, mu_attr="mu_l", priority=1.5))
-    views.append(ViewSpec("lever", "Рычаг Жуковского", ZhukovskyLever(lab).draw, VELOCITY))
-    return SheetSpec("forces", f"Силовой анализ механизма (положение {lab})", views, table=forces_results)
+                              GroupForces(lab, gi).draw, LENGTH, priority=1.5, mu2=(FORCE, "mu_F"),
+                              redraw=lambda mu, _, r, gi=gi: GroupForces(lab, gi, mu_l=mu, mu_F=round_up(r)).draw))
+    views.append(ViewSpec("lever", "Рычаг Жуковского", ZhukovskyLever(lab).draw, VELOCITY,
+                          redraw=lambda mu, _: ZhukovskyLever(lab, mu=mu).draw))
+    return SheetSpec("forces", f"Силовой анализ механизма (положение {no})", views, table=forces_results)
+
+
+def round_up(mu: float) -> float:
+    """The round scale (1; 1,5; 2; 2,5; 4; 5 · 10ᵏ) nearest above μ (a second scale of a view
+    redrawn at the sheet's enlargement)."""
+    from ..scenes.draw import nice_scale
+    return nice_scale(mu * (1 - 1e-9), 1.0)
 
 
 def _forces_position(study) -> str:
