@@ -290,7 +290,7 @@ class LoadedScheme:
                         avail_w=150, avail_h=150, margin_mm=6)
         draw_mechanism(cv, mech, cols, lw=1.4)
         mechanism_centre_lines(cv, mech, cols)
-        big = max(1.0, 0.12 * span / cv.mu / ARROW_MM)    # on a large drawing the arrows grow with it
+        big = max(1.0, 0.2 * span / cv.mu / ARROW_MM)     # on a large drawing the arrows grow with it
         for ld in forces:
             F = np.array([ld["Fx"], ld["Fy"]])
             n = float(np.hypot(*F))
@@ -308,7 +308,7 @@ class LoadedScheme:
             k_ = placed.get(S, 0)
             placed[S] = k_ + 1
             _moment_arc(cv, cols["x_" + S], cols["y_" + S], m["M"], m["label"],
-                        RED if m["label"] == "Mур" else INK, r_mm=5.0 + 3.5 * k_)
+                        RED if m["label"] == "Mур" else INK, r_mm=(5.0 + 3.5 * k_) * min(big, 2.0))
         return Drawing(cv.svg(), cv.width_mm, cv.mu)
 
 

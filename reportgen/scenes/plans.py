@@ -89,8 +89,9 @@ class PlanScene:
         plan, exact, mu = self.construct(study)
         plan = similarity_only(plan, study.mechanism)
         pts = np.array([[0.0, 0.0]] + [list(v) for v in plan.tips.values()])
+        given = self.mu_v if self.kind == "velocity" else self.mu_a
         cv = Canvas(pts[:, 0].min(), pts[:, 0].max(), pts[:, 1].min(), pts[:, 1].max(), mu, margin_mm=12,
-                    max_w=165.0)
+                    max_w=165.0 if given is None else 1e4)     # a scale given by the caller: the whole plan
         ax = cv.ax
         for seg in plan.segments:
             a = np.zeros(2) if seg.start == "p" else plan.tips[seg.start]

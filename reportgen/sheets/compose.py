@@ -362,8 +362,8 @@ def sheet_scale(rendered: list[Rendered], layout: SheetLayout) -> str:
 
 def redrawn(spec: SheetSpec, rendered: list[Rendered], layout: SheetLayout) -> tuple[SheetSpec, set[str]]:
     """The sheet with every view that can be redrawn (``ViewSpec.redraw``) and took another scale
-    on the sheet drawn at that scale and fixed at it (enlargement 1), and the keys of those views.
-    The views of a group take the group's scale."""
+    on the sheet drawn at that scale (no longer to be shrunk: its lettering stays at least at its
+    natural size), and the keys of those views.  The views of a group take the group's scale."""
     from dataclasses import replace
     scale = {p.view.key: p for p in layout.placed}
     mus = dict(layout.group_mu)
@@ -373,7 +373,7 @@ def redrawn(spec: SheetSpec, rendered: list[Rendered], layout: SheetLayout) -> t
         if v.redraw is not None and mu is not None and r.mu is not None and not math.isclose(mu, r.mu):
             mu = float(f"{mu:.10g}")
             args = (mu, mus) if v.mu2 is None else (mu, mus, r.mu2 * mu / r.mu)
-            v = replace(v, draw=v.redraw(*args), min_s=1.0, max_s=1.0, redraw=None)
+            v = replace(v, draw=v.redraw(*args), min_s=1.0)
             again.add(v.key)
         views.append(v)
     return replace(spec, views=views), again
@@ -390,7 +390,7 @@ def render_sheets(study) -> tuple[bytes, list[SheetLayout]]:
         rendered = [render_view(v, study) for v in spec.views]
         rows = spec.table(study) if spec.table else []
         layout = layout_sheet(spec, rendered, rows)
-        for _ in range(3):         # a view fixed at its scale may let another one grow: redraw that too
+        for _ in range(4):         # a redrawn view may grow again (its margins did not grow): redraw it again
             spec, again = redrawn(spec, rendered, layout)
             if not again:
                 break

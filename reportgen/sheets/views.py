@@ -203,7 +203,7 @@ def dynamics_sheet(study) -> SheetSpec:
              ViewSpec("wittenbauer", "Диаграмма энергомасс (Виттенбауэра)", WittenbauerDiagram().draw,
                       priority=2.0),
              ViewSpec("motion", "Закон движения ω(φ), ε(φ)", MotionCurves().draw),
-             ViewSpec("flywheel", "Маховик", FlywheelDrawing().draw)]
+             ViewSpec("flywheel", "Маховик", FlywheelDrawing().draw, LENGTH)]
     return SheetSpec("dynamics", "Динамический анализ и синтез маховика", views, table=dynamics_results)
 
 
