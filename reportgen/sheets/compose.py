@@ -160,6 +160,8 @@ def _title(title: str, kind: str | None, mu: float | None) -> str:
 
 
 GROUP = "group:"
+REDRAW_MAX = 2.5      # a view redrawn at its sheet scale grows at most this much beyond its first drawing
+CHART_MIN_S = 1.0     # a chart or the table is not shrunk (its lettering would fall under 2,5 mm)
 CAPTION_FS = TITLE_FS          # the captions of the cells of a block (the position numbers)
 
 
@@ -192,11 +194,13 @@ def layout_sheet(spec: SheetSpec, rendered: list[Rendered], table_rows) -> Sheet
     for r, tw in zip(singles, widths):
         w, h = _size_mm(r.fig)
         views.append(View(r.spec.key, w, h, r.mu, priority=r.spec.priority, title_w=tw, mu_only=r.spec.mu_only,
-                          group=r.spec.group, min_s=r.spec.min_s, max_s=r.spec.max_s,
+                          group=r.spec.group, min_s=max(r.spec.min_s, CHART_MIN_S if r.mu is None else 0.0),
+                          max_s=r.spec.max_s,
                           mu2=r.mu2 if r.spec.redraw is None else None))
     if table_rows:
         tw, th = _table_size(table_rows)
-        views.append(View("__table__", tw, th, None, title_h=9.0, title_w=widths[-1], min_s=0.8, max_s=1.25))
+        views.append(View("__table__", tw, th, None, title_h=9.0, title_w=widths[-1], min_s=CHART_MIN_S,
+                          max_s=1.25))
     field = F.field_rect()
     # the sheet's own title line takes the top 12 mm of the field
     field = (field[0], field[1], field[2], field[3] - 12.0)
@@ -373,7 +377,8 @@ def redrawn(spec: SheetSpec, rendered: list[Rendered], layout: SheetLayout) -> t
         if v.redraw is not None and mu is not None and r.mu is not None and not math.isclose(mu, r.mu):
             mu = float(f"{mu:.10g}")
             args = (mu, mus) if v.mu2 is None else (mu, mus, r.mu2 * mu / r.mu)
-            v = replace(v, draw=v.redraw(*args), min_s=1.0)
+            grown = v.grown * r.mu / mu
+            v = replace(v, draw=v.redraw(*args), min_s=1.0, grown=grown, max_s=max(1.0, REDRAW_MAX / grown))
             again.add(v.key)
         views.append(v)
     return replace(spec, views=views), again

@@ -49,6 +49,7 @@ class ViewSpec:
     # the sheet is laid out once, then such views are drawn again at the scale they took on it, so
     # that their lettering keeps its natural size instead of being enlarged with the drawing
     redraw: Callable | None = None
+    grown: float = 1.0               # the enlargement its redraws gave it so far (bounded by REDRAW_MAX)
 
 
 @dataclass
