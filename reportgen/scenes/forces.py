@@ -295,7 +295,7 @@ class LoadedScheme:
             F = np.array([ld["Fx"], ld["Fy"]])
             n = float(np.hypot(*F))
             at = (cols["x_" + ld["point"]], cols["y_" + ld["point"]])
-            L = cv.mm(_arrow_mm(n, Fmax) * big)
+            L = cv.mm(max(2 * MIN_ARROW_MM, _arrow_mm(n, Fmax) * big))   # longer than the moments' arcs
             tip = (at[0] + F[0] / n * L, at[1] + F[1] / n * L)
             color = INK if ld["kind"] in ("G", "Phi") else RED
             arrow(cv.ax, at[0], at[1], tip[0], tip[1], color=color, lw=1.2, zorder=6)
@@ -308,7 +308,7 @@ class LoadedScheme:
             k_ = placed.get(S, 0)
             placed[S] = k_ + 1
             _moment_arc(cv, cols["x_" + S], cols["y_" + S], m["M"], m["label"],
-                        RED if m["label"] == "Mур" else INK, r_mm=(5.0 + 3.5 * k_) * min(big, 2.0))
+                        RED if m["label"] == "Mур" else INK, r_mm=5.0 + 3.5 * k_)
         return Drawing(cv.svg(), cv.width_mm, cv.mu)
 
 
