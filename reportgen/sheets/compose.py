@@ -334,8 +334,8 @@ def compose(layouts: list[tuple[SheetLayout, F.TitleBlock, list[Rendered], list]
     from .title import drafting_family
     family = drafting_family()
     writer = PdfWriter()
-    for layout, block, rendered, rows in layouts:
-        page_pdf, _ = _frame_page(layout, block, rendered, rows, family)
+    for layout, tblock, rendered, rows in layouts:
+        page_pdf, _ = _frame_page(layout, tblock, rendered, rows, family)
         page = writer.add_page(PdfReader(io.BytesIO(page_pdf)).pages[0])
         by_key = {r.spec.key: r for r in rendered}
         for p in layout.drawings():
@@ -402,7 +402,7 @@ def render_sheets(study) -> tuple[bytes, list[SheetLayout]]:
             rendered = [render_view(v, study) if v.key in again else r for v, r in zip(spec.views, rendered)]
             layout = layout_sheet(spec, rendered, rows)
         layout.figures = {r.spec.key: r.fig for r in rendered}
-        block = title_block(study, spec, i, len(specs), sheet_scale(rendered, layout))
-        items.append((layout, block, rendered, rows))
+        tblock = title_block(study, spec, i, len(specs), sheet_scale(rendered, layout))
+        items.append((layout, tblock, rendered, rows))
     return compose(items), [it[0] for it in items]
 
