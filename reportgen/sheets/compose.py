@@ -84,7 +84,8 @@ def _fig_pdf(fig: Figure) -> bytes:
     return buf.getvalue()
 
 
-MAIN_FROM_PT = 0.75      # a solid line of the scenes at least this wide is a main line on the sheet
+MAIN_FROM_PT = 0.95      # a solid line of the scenes at least this wide is a main line on the sheet
+                         # (the other positions of the plan of positions, at 0,91 pt, stay thin)
 DASH_DOT_MM = (12.0, 3.0, 0.5, 3.0)   # ГОСТ 2.303: dash-dot thin, dashes 5…30 mm, gaps 3…5 mm
 DASHED_MM = (5.0, 2.0)                # dashed: dashes 2…8 mm, gaps 1…2 mm
 
@@ -278,7 +279,8 @@ def _draw_table(ax, p: Placed, rows, family) -> None:
     for i, (name, value, unit) in enumerate(rows, start=1):
         y = top - (i + 0.5) * rh
         ax.text(x0 + 2 * s, y, F.lettering(name), ha="left", va="center", fontsize=fs, fontfamily=family)
-        ax.text(x0 + w1 + w2 / 2, y, F.lettering(fmt(value, sig=4) + (f" {unit}" if unit else "")), ha="center",
+        num = str(value) if isinstance(value, int) else fmt(value, sig=4)     # counts (W, class) as integers
+        ax.text(x0 + w1 + w2 / 2, y, F.lettering(num + ("" if unit in ("", "°") else " ") + unit), ha="center",
                 va="center", fontsize=fs, fontfamily=family)
 
 

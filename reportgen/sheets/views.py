@@ -168,7 +168,7 @@ def kinematics_results(study) -> list[tuple[str, float, str]]:
 
     from ..analysis.plans import output_quantity
     st = study.structure
-    rows: list[tuple[str, float, str]] = [("$W$", float(st.W), ""), ("класс механизма", float(st.mech_class), "")]
+    rows: list[tuple[str, float, str]] = [("$W$", int(st.W), ""), ("класс механизма", int(st.mech_class), "")]
     d = study.mechanism.driver
     w = d.omega
     if w is not None and d.rotary:
@@ -191,7 +191,7 @@ def kinematics_results(study) -> list[tuple[str, float, str]]:
         rows.append((f"${sym}_{{max}}$", float(np.max(np.abs(cyc[v_col]))) * abs(w), unit_v))
         rows.append((r"$\varepsilon_{max}$" if angular else "$a_{max}$", float(np.max(np.abs(cyc[a_col]))) * w * w,
                      unit_a))
-    return [r for r in rows if isinstance(r[1], float) and math.isfinite(r[1])]
+    return [r for r in rows if isinstance(r[1], int) or (isinstance(r[1], float) and math.isfinite(r[1]))]
 
 
 def dynamics_sheet(study) -> SheetSpec:
@@ -383,7 +383,7 @@ def gears_sheet(study) -> SheetSpec:
 def gears_results(study) -> list[tuple[str, float, str]]:
     g = study.gears
     s = g.scalars
-    rows = [("$m$", s.get("gears_m"), "мм"), ("$z_1$", float(g.z1), ""), ("$z_2$", float(g.z2), ""),
+    rows = [("$m$", s.get("gears_m"), "мм"), ("$z_1$", int(g.z1), ""), ("$z_2$", int(g.z2), ""),
             ("$x_1$", s.get("gears_x1"), ""), ("$x_2$", s.get("gears_x2"), ""),
             (r"$\alpha_w$", s.get("gears_alpha_w_deg"), "°"), ("$a_w$", s.get("gears_a_w"), "мм"),
             (r"$\varepsilon_\alpha$", s.get("gears_eps_alpha"), "")]
