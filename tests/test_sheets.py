@@ -197,3 +197,160 @@ def test_cli_writes_sheets(tmp_path):
     assert main(["build", str(CASES / "slider_crank.toml"), "-o", str(tmp_path), "--format", "html",
                  "--sheets"]) == 0
     assert (tmp_path / "slider_crank-sheets.pdf").exists()
+
+
+def _text_boxes(lay):
+    """Every lettering of the views as placed on the sheet: (view key, text, (x0, y0, x1, y1) mm),
+    from the rendered extents of the texts of each view's figure, enlarged and moved as composed."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.text import Text
+    out = []
+    for p in lay.drawings():
+        fig = lay.figures[p.view.key]
+        renderer = FigureCanvasAgg(fig).get_renderer()
+        fig.draw_without_rendering()
+        k = 25.4 / fig.dpi * p.s
+        for t in _drawn_texts(fig):
+            if not isinstance(t, Text) or not t.get_visible() or not t.get_text().strip():
+                continue
+            bb = t.get_window_extent(renderer)
+            out.append((p.view.key, t.get_text(), (p.x + bb.x0 * k, p.y + bb.y0 * k, p.x + bb.x1 * k, p.y + bb.y1 * k)))
+    return out
+
+
+def _drawn_texts(fig):
+    """The texts matplotlib draws: free texts, titles, axis labels, legends and the labels of
+    the ticks inside the axes' limits (the others exist but are not drawn)."""
+    out = list(fig.texts)
+    for ax in fig.axes:
+        out += list(ax.texts) + [ax.title, ax._left_title, ax._right_title]
+        if not ax.axison:
+            continue
+        for axis in (ax.xaxis, ax.yaxis):
+            out += [axis.label, axis.offsetText]
+            for tick in axis._update_ticks():
+                out += [tick.label1, tick.label2]
+        if ax.get_legend() is not None:
+            out += list(ax.get_legend().get_texts())
+    for lg in fig.legends:
+        out += list(lg.get_texts())
+    return out
+
+
+def _meet(a, b, tol):
+    return a[0] < b[2] - tol and b[0] < a[2] - tol and a[1] < b[3] - tol and b[1] < a[3] - tol
+
+
+def test_labels_on_the_sheet_clear(built):
+    """The labels inside the views, as placed on the sheet: each inside its own view's drawing,
+    none on another label (of its view or another), on a view title, a caption or the title
+    block (0,3 mm tolerance for the glyphs' side bearings)."""
+    _, _, layouts = built
+    for lay in layouts:
+        boxes = _text_boxes(lay)
+        own = {p.view.key: p.box(with_title=False) for p in lay.drawings()}
+        others = [b for _, b in lay.title_extents + lay.caption_extents] + [F.BLOCK]
+        for key, text, b in boxes:
+            o = own[key]
+            assert o[0] - 0.5 <= b[0] and b[2] <= o[2] + 0.5 and o[1] - 0.5 <= b[1] and b[3] <= o[3] + 0.5, \
+                (lay.spec.key, key, text)
+            assert not any(_meet(b, t, 0.3) for t in others), (lay.spec.key, key, text)
+        bad = [(boxes[i][:2], boxes[j][:2]) for i in range(len(boxes)) for j in range(i + 1, len(boxes))
+               if _meet(boxes[i][2], boxes[j][2], 0.3)]
+        assert not bad, (lay.spec.key, bad[:5])
+
+
+def _stroke_widths(pdf: bytes) -> dict[float, int]:
+    """The width (mm on the sheet) of every stroke drawn on the pages: the content streams are
+    interpreted with the transformation matrix (q, Q, cm, form XObjects), each stroke's line
+    width scaled by it."""
+    import collections
+    import io
+
+    from pypdf.generic import ContentStream
+    reader = PdfReader(io.BytesIO(pdf))
+    out: dict[float, int] = collections.Counter()
+
+    def mul(m, c):
+        a, b, c_, d, e, f = m
+        A, B, C, D, E, G = c
+        return (a * A + b * C, a * B + b * D, c_ * A + d * C, c_ * B + d * D, e * A + f * C + E, e * B + f * D + G)
+
+    def walk(content, res, ctm, lw=1.0):
+        stack = []
+        for operands, op in ContentStream(content, reader).operations:
+            if op == b"q":
+                stack.append((ctm, lw))
+            elif op == b"Q":
+                ctm, lw = stack.pop()
+            elif op == b"cm":
+                ctm = mul([float(x) for x in operands], ctm)
+            elif op == b"w":
+                lw = float(operands[0])
+            elif op in (b"S", b"s", b"B", b"B*", b"b", b"b*"):
+                scale = abs(ctm[0] * ctm[3] - ctm[1] * ctm[2]) ** 0.5
+                out[round(lw * scale / PT_PER_MM, 3)] += 1
+            elif op == b"Do":
+                xo = res["/XObject"][operands[0]].get_object()
+                if xo.get("/Subtype") == "/Form":
+                    m = [float(x) for x in xo.get("/Matrix", [1, 0, 0, 1, 0, 0])]
+                    walk(xo, xo.get("/Resources", res), mul(m, ctm), lw)   # a form inherits the state
+
+    for page in reader.pages:
+        walk(page.get_contents(), page["/Resources"], (1.0, 0.0, 0.0, 1.0, 0.0, 0.0))
+    return out
+
+
+def test_line_weights_gost_2_303(built):
+    """Every stroke of every sheet, as printed: a solid main line S = 0,7 mm or a thin line
+    0,25 mm (S/3 … S/2, also the dashed and dash-dot ones), nothing else; both are used."""
+    _, pdf, _ = built
+    widths = _stroke_widths(pdf)
+    assert widths
+    for w, n in widths.items():
+        assert abs(w - F.LW_MAIN_MM) <= 0.01 or abs(w - F.LW_THIN_MM) <= 0.01 or w == 0.0, (w, n)
+    assert any(abs(w - F.LW_MAIN_MM) <= 0.01 for w in widths) and any(abs(w - F.LW_THIN_MM) <= 0.01 for w in widths)
+
+
+def test_every_sheet_has_a_table_of_results(built):
+    _, _, layouts = built
+    for lay in layouts:
+        assert lay.table_box is not None, lay.spec.key
+
+
+def test_velocity_plans_in_order_at_one_scale(built):
+    """The kinematics sheet: the velocity plans of every regular position, in the order of their
+    numbers, all at one μ_V (a round value), captioned with the position's number; one μ_a."""
+    study, _, layouts = built
+    lay = next((l for l in layouts if l.spec.key == "kinematics"), None)
+    if lay is None or study.mechanism.driver.omega is None:
+        return
+    from reportgen.report.russian import position_names
+    names = position_names(study.kinematics["pos"])
+    cells = [c for c in lay.cells if c.view.key.startswith("v")]
+    nums = [int(names[c.view.key[1:]]) for c in cells]
+    assert nums == sorted(nums) and len(nums) == sum(1 for p in study.kinematics["pos"] if not str(p).startswith("д"))
+    assert len({round(c.mu, 12) for c in cells}) == 1 and is_nice(cells[0].mu)
+    assert lay.group_mu["velocity"] == pytest.approx(cells[0].mu)
+    assert len({round(c.mu, 12) for c in lay.cells if c.view.key.startswith("a")}) == 1
+    # rows in reading order: each cell is right of the one before or starts a lower row
+    for a, b in zip(cells, cells[1:]):
+        assert b.x > a.x or b.y + b.h < a.y + a.h
+    caps = dict(lay.caption_extents)
+    assert all(c.view.key in caps for c in lay.cells)
+
+
+def test_forces_sheet_shows_the_loaded_mechanism(built):
+    """The force sheet's first view is the whole mechanism at the position with its loads, at a
+    ГОСТ 2.302 scale."""
+    study, _, layouts = built
+    lay = next((l for l in layouts if l.spec.key == "forces"), None)
+    if lay is None:
+        return
+    p = next(p for p in lay.placed if p.view.key == "scheme")
+    assert scale_text("l", p.mu).startswith("М ")
+    texts = {t for k, t, _ in _text_boxes(lay) if k == "scheme"}
+    loads = study.forces.details(study.forces.labels[0])["loads"]
+    from reportgen.scenes.forces import load_label, math_label
+    assert {math_label(load_label(ld)) for ld in loads if ld["kind"] == "G"} <= texts
+    assert any("ур" in t for t in texts) or study.mechanism.driver.kind != "crank"

@@ -9,7 +9,7 @@ import numpy as np
 from matplotlib.patches import Circle, Polygon
 
 from ..style import mplstyle
-from .draw import GREY, INK, LIGHT, Canvas, nice_scale
+from .draw import GREY, INK, LIGHT, Canvas, centre_cross, nice_scale
 from .mechanism import Drawing
 
 __all__ = ["LawDiagrams", "PhasePortrait", "FlatRockerSize", "PressureAngleGraph", "ProfileDrawing", "gost_scale",
@@ -338,6 +338,8 @@ class ProfileDrawing:
             arc = a0 - k * np.linspace(0.0, max(follower_positions(cam)), 60)
             ax.plot(syn.a_w * np.cos(arc), syn.a_w * np.sin(arc), color=GREY, lw=0.6, ls="-.", zorder=3)
         ax.plot(0, 0, "o", color=INK, ms=4, zorder=6)
+        R = float(np.max(np.hypot(W[:, 0], W[:, 1])))      # the cam's centre lines, 5 mm past the profile
+        centre_cross(cv, 0.0, 0.0, R / self.mu + 5.0)
         ax.annotate("O", (0, 0), xytext=(-12, -12), textcoords="offset points", fontsize=10)
         for i, seg in enumerate(fol):
             for line in seg["lines"]:

@@ -332,3 +332,42 @@ def arrow(ax, x0, y0, x1, y1, *, color=INK, lw=1.2, ls="-", head_mm=2.2, mu=1.0,
     ax.add_patch(FancyArrowPatch((x0, y0), (x1, y1), arrowstyle=f"-|>,head_length={head_mm * 0.35},head_width={head_mm * 0.14}",
                                  mutation_scale=10, color=color, lw=lw, linestyle=ls, shrinkA=0, shrinkB=0,
                                  zorder=zorder))
+
+
+CENTRE_LW = 0.5                        # thin line (ГОСТ 2.303: S/3 … S/2)
+DASH_DOT = (0, (24.0, 6.0, 2.0, 6.0))  # dash-dot in line widths: 4,2 mm dashes, 1 mm gaps at 0,5 pt
+
+
+def centre_line(cv: Canvas, x0, y0, x1, y1, color=INK) -> None:
+    """A thin dash-dot centre line (ГОСТ 2.303) from (x0, y0) to (x1, y1), drawn from its middle
+    outwards so that the middle (a centre, a crossing of axes) falls on a dash."""
+    xm, ym = (x0 + x1) / 2, (y0 + y1) / 2
+    for xe, ye in ((x0, y0), (x1, y1)):
+        cv.ax.plot([xm, xe], [ym, ye], color=color, lw=CENTRE_LW, ls=DASH_DOT, zorder=0.5,
+                   solid_capstyle="butt", dash_capstyle="butt")
+
+
+def centre_cross(cv: Canvas, x, y, half_mm: float, color=INK) -> None:
+    """The two centre lines of a circle or a pivot at (x, y), ``half_mm`` each side."""
+    h = cv.mm(half_mm)
+    centre_line(cv, x - h, y, x + h, y, color)
+    centre_line(cv, x, y - h, x, y + h, color)
+
+
+def mechanism_centre_lines(cv: Canvas, mech: Mechanism, row, *, spans=None, radii=None) -> None:
+    """The centre lines of a mechanism drawing (ГОСТ 2.303 thin dash-dot): a cross at every pivot
+    on the frame (``radii``: the radius of a circle drawn about a pivot, e.g. the crank circle, the
+    cross passing 5 mm beyond it) and the axis of every fixed guide over ``spans`` (the travel of
+    its slider point along the guide, as for :func:`draw_guide`; 14 mm each side of the slider)."""
+    radii = radii or {}
+    spans = spans or {}
+    for j in mech.joints:
+        x, y = _point(row, j.point)
+        if j.kind == "R" and FRAME in j.links:
+            r = radii.get(j.point)
+            centre_cross(cv, x, y, (r / cv.mu + 5.0) if r else 7.0)
+        elif j.kind != "R" and j.links[0] == FRAME:
+            ux, uy = math.cos(j.angle), math.sin(j.angle)
+            lo, hi = spans.get(j.name, (0.0, 0.0))
+            lo, hi = lo - cv.mm(16.0), hi + cv.mm(16.0)
+            centre_line(cv, x + ux * lo, y + uy * lo, x + ux * hi, y + uy * hi)

@@ -131,6 +131,7 @@ class EnergyCurves:
                         xytext=(10, 6 if va == "bottom" else -6), textcoords="offset points", fontsize=9, va=va,
                         bbox=dict(boxstyle="square,pad=0.15", fc="white", ec="none"))
         ax.axhline(0, color="0.3", lw=0.6)
+        ax.margins(y=0.2)             # room for the notes of the extremes inside the axes
         _xaxis(ax, study)
         ax.set_ylabel("Дж")
         ax.legend(fontsize=9, loc="lower left")

@@ -165,8 +165,11 @@ class GroupForces:
 
     needs = ("forces",)
 
-    def __init__(self, label: str, gi: int):
+    def __init__(self, label: str, gi: int, mu_l: float | None = None, mu_F: float | None = None):
+        """``mu_l``, ``mu_F``: the scales asked by the caller (a drawing sheet), else those that fit
+        the note's page."""
         self.label, self.gi = label, gi
+        self.mu_l, self.mu_F = mu_l, mu_F
 
     def draw(self, study) -> GroupDrawing:
         f = study.forces
@@ -179,7 +182,7 @@ class GroupForces:
         xs = np.array([cols["x_" + p] for p in pts])
         ys = np.array([cols["y_" + p] for p in pts])
         span = max(np.ptp(xs), np.ptp(ys), 1e-6)
-        mu_l = gost_scale(span, 70.0)
+        mu_l = self.mu_l or gost_scale(span, 70.0)
         Fmax = max([float(np.hypot(*v.F)) for v in ext + internal] + [1e-12])
         # arrow tips on the scheme (mm converted with μ_l)
         tips = []
@@ -199,7 +202,7 @@ class GroupForces:
         seq = [v for l in order for v in seq if v.link == l]
         cum = np.cumsum([np.zeros(2)] + [v.F for v in seq], axis=0)
         pext = max(np.ptp(cum[:, 0]), np.ptp(cum[:, 1]), 1e-9)
-        mu_F = nice_scale(pext, 62.0)
+        mu_F = self.mu_F or nice_scale(pext, 62.0)
         built = construct_polygon(seq, internal, mu_F)
         if built is not None:
             seq, constructed = built
@@ -216,7 +219,7 @@ class GroupForces:
         ext_pts = np.vstack([poly] + ([inset["box"]] if inset else []))
         cv = Canvas(min(allx.min(), ext_pts[:, 0].min()), max(allx.max(), ext_pts[:, 0].max()),
                     min(ally.min(), ext_pts[:, 1].min()), max(ally.max(), ext_pts[:, 1].max()), mu_l,
-                    margin_mm=10, max_w=170.0)
+                    margin_mm=10, max_w=170.0 if self.mu_l is None else 1e4)
         ax = cv.ax
         draw_mechanism(cv, mech, cols, only=set(g.links), supports=False, lw=1.4, com=True)
         for v in ext:
@@ -381,6 +384,64 @@ def _direction_lines(ax, seq: list[Vector], poly: np.ndarray) -> None:
                 ls=(0, (8, 2, 1, 2)), zorder=3)
 
 
+class LoadedScheme:
+    """The whole mechanism at a report position to a ГОСТ 2.302 scale with every applied load:
+    the weights G, the inertia forces Φ at the centres of mass, the useful (technological)
+    resistance, the inertia moments M_Φ and the balancing moment M_ур (or the actuator's force)
+    as arcs, in textbook notation; the arrows are not to scale (their lengths grow with the
+    force, the largest ``ARROW_MM``), with the pivots' centre lines and the guides' axes."""
+
+    needs = ("forces",)
+
+    def __init__(self, label: str, mu: float | None = None):
+        self.label, self.mu = label, mu
+
+    def draw(self, study) -> Drawing:
+        from .draw import mechanism_centre_lines
+        from .mechanism import fit_canvas
+        f = study.forces
+        mech = study.mechanism
+        det = f.details(self.label)
+        cols = det["cols"]
+        forces = [ld for ld in det["loads"] if ld["M"] is None and np.hypot(ld["Fx"], ld["Fy"]) > 0]
+        moments = [dict(label=load_label(ld), M=ld["M"], link=ld["link"]) for ld in det["loads"]
+                   if ld["M"] is not None]
+        for pv in det["pairs"]:
+            p = pv["pair"]
+            if p.kind == KS.K_MOM:
+                moments.append(dict(label="Mур", M=pv["M"], link=p.b))
+        Fmax = max([float(np.hypot(ld["Fx"], ld["Fy"])) for ld in forces] + [1e-12])
+        pts = _points(mech)
+        xs = [cols["x_" + p] for p in pts]
+        ys = [cols["y_" + p] for p in pts]
+        span = max(np.ptp(xs), np.ptp(ys), 1e-9)
+        reach = 0.2 * span                               # room for the arrows (a fifth of the mechanism)
+        cv = fit_canvas([min(xs) - reach, max(xs) + reach], [min(ys) - reach, max(ys) + reach], self.mu,
+                        avail_w=150, avail_h=150, margin_mm=6)
+        draw_mechanism(cv, mech, cols, lw=1.4)
+        mechanism_centre_lines(cv, mech, cols)
+        big = max(1.0, 0.2 * span / cv.mu / ARROW_MM)     # on a large drawing the arrows grow with it
+        for ld in forces:
+            F = np.array([ld["Fx"], ld["Fy"]])
+            n = float(np.hypot(*F))
+            at = (cols["x_" + ld["point"]], cols["y_" + ld["point"]])
+            L = cv.mm(max(2 * MIN_ARROW_MM, _arrow_mm(n, Fmax) * big))   # longer than the moments' arcs
+            tip = (at[0] + F[0] / n * L, at[1] + F[1] / n * L)
+            color = INK if ld["kind"] in ("G", "Phi") else RED
+            arrow(cv.ax, at[0], at[1], tip[0], tip[1], color=color, lw=1.2, zorder=6)
+            cv.labels.add(tip[0], tip[1], math_label(load_label(ld)), prefer=tuple(F), fontsize=10, color=color)
+        placed: dict[str, int] = {}
+        for m in moments:
+            if abs(m["M"]) < 1e-12:
+                continue
+            S = mech.link(m["link"]).com or f.model.ref[m["link"]]
+            k_ = placed.get(S, 0)
+            placed[S] = k_ + 1
+            _moment_arc(cv, cols["x_" + S], cols["y_" + S], m["M"], m["label"],
+                        RED if m["label"] == "Mур" else INK, r_mm=5.0 + 3.5 * k_)
+        return Drawing(cv.svg(), cv.width_mm, cv.mu)
+
+
 TINY_MM = 5.0          # a polygon side shorter than this is repeated enlarged in an inset
 INSET_MM = (6.0, 40.0)  # the smallest enlarged side at least, the whole enlarged chain at most
 
@@ -479,8 +540,10 @@ class ZhukovskyLever:
 
     needs = ("forces", "kinematics")
 
-    def __init__(self, label: str):
+    def __init__(self, label: str, mu: float | None = None):
+        """``mu``: the scale of the turned plan asked by the caller (a drawing sheet)."""
         self.label = label
+        self.mu = mu
 
     def draw(self, study) -> LeverDrawing:
         f = study.forces
@@ -542,7 +605,10 @@ class ZhukovskyLever:
             items = [(lab, back(pt), back(F), b) for lab, pt, F, b in items]
             bal = [(lab, back(pt), back(F), b) for lab, pt, F, b in bal]
             tips = np.array([[t[1], -t[0]] for t in tips])
-        cv = Canvas.fit(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16)
+        if self.mu is None:
+            cv = Canvas.fit(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16)
+        else:
+            cv = Canvas(tips[:, 0].min(), tips[:, 0].max(), tips[:, 1].min(), tips[:, 1].max(), self.mu, 16, max_w=1e4)
         ax = cv.ax
         for seg in plan.segments:
             p0 = np.zeros(2) if seg.start == "p" else rot[seg.start]
@@ -711,5 +777,5 @@ class AxleCurves:
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 
-__all__ = ["GroupForces", "GroupDrawing", "ZhukovskyLever", "LeverDrawing", "ReactionCurves", "CapacityCurves",
+__all__ = ["LoadedScheme", "GroupForces", "GroupDrawing", "ZhukovskyLever", "LeverDrawing", "ReactionCurves", "CapacityCurves",
            "AxleCurves", "group_vectors", "load_label", "pair_label", "shown_key", "sub", "Vector"]

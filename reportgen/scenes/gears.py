@@ -143,7 +143,7 @@ def mesh_drawing(gears) -> MeshDrawing:
     B1 = N1 + t_b1[0] * (N2 - N1) if t_b1.size else N1
     B2 = N1 + t_b2[-1] * (N2 - N1) if t_b2.size else N2
     ax.plot([B1[0], B2[0]], [B1[1], B2[1]], color=INK, lw=3.0, solid_capstyle="butt")
-    for pt, lab, off in ((N1, "$N_1$", (-10, -2)), (N2, "$N_2$", (3, -2)), (P, "$P$", (4, -10)),
+    for pt, lab, off in ((N1, "$N_1$", (-10, -2)), (N2, "$N_2$", (-14, 3)), (P, "$P$", (4, -10)),
                          (B1, "$B_1$", (-4, 5)), (B2, "$B_2$", (3, 5))):
         ax.plot(*pt, "o", ms=2.5, color=INK)
         ax.annotate(lab, tuple(pt), xytext=off, textcoords="offset points", fontsize=9)

@@ -9,7 +9,8 @@ import numpy as np
 from ..mechanism.model import FRAME
 from matplotlib.patches import Circle
 
-from .draw import GREY, INK, Canvas, draw_guide, draw_mechanism, gost_scale, mechanism_points
+from .draw import (GREY, INK, Canvas, draw_guide, draw_mechanism, gost_scale, mechanism_centre_lines,
+                   mechanism_points)
 
 
 @dataclass
@@ -27,6 +28,14 @@ LANDSCAPE_W, LANDSCAPE_H = 257.0, 140.0
 LANDSCAPE_GAIN = 1.5     # a drawing goes landscape when that enlarges it at least this much
 
 
+def fit_canvas(xs, ys, mu: float | None, *, avail_w: float, avail_h: float, margin_mm: float) -> Canvas:
+    """The canvas of the points at the scale ``mu`` if given (the page may then be wider than
+    the note's), else at the ГОСТ 2.302 scale that fits ``avail_w`` × ``avail_h`` mm."""
+    if mu is None:
+        return Canvas.fit(xs, ys, avail_w=avail_w, avail_h=avail_h, margin_mm=margin_mm, gost=True)
+    return Canvas(min(xs), max(xs), min(ys), max(ys), mu, margin_mm, max_w=1e4)
+
+
 def _row(study, label: str):
     k = study.kinematics
     return k[k["pos"] == label].iloc[0]
@@ -37,14 +46,21 @@ class KinematicScheme:
 
     needs = ("kinematics",)
 
-    def __init__(self, label: str):
+    def __init__(self, label: str, centre_lines: bool = False, mu: float | None = None):
+        """``centre_lines``: the pivots' centre lines and the guides' axes (ГОСТ 2.303 dash-dot);
+        ``mu``: the scale (m/mm) asked by the caller (a drawing sheet), else the ГОСТ 2.302 scale
+        that fits the page."""
         self.label = label
+        self.centre_lines = centre_lines
+        self.mu = mu
 
     def draw(self, study) -> Drawing:
         row = _row(study, self.label)
         xs, ys = mechanism_points(study.mechanism, [row])
-        cv = Canvas.fit(xs, ys, avail_w=140, avail_h=120, margin_mm=12, gost=True)
+        cv = fit_canvas(xs, ys, self.mu, avail_w=140, avail_h=120, margin_mm=12)
         draw_mechanism(cv, study.mechanism, row)
+        if self.centre_lines:
+            mechanism_centre_lines(cv, study.mechanism, row)
         return Drawing(cv.svg(), cv.width_mm, cv.mu)
 
 
@@ -55,6 +71,13 @@ class PositionsPlan:
     trajectories of the centres of mass over the cycle (dashed)."""
 
     needs = ("kinematics", "cycle")
+
+    def __init__(self, centre_lines: bool = False, mu: float | None = None):
+        """``centre_lines``: the centre lines of the crank circle and the pivots and the axes of
+        the guides (ГОСТ 2.303 thin dash-dot), as on a drawing sheet; ``mu``: the scale (m/mm)
+        asked by the caller, else the ГОСТ 2.302 scale that fits the page."""
+        self.centre_lines = centre_lines
+        self.mu = mu
 
     def draw(self, study) -> Drawing:
         from ..analysis.plans import output_quantity
@@ -69,10 +92,10 @@ class PositionsPlan:
             xs += list(cyc[f"x_{p}"])
             ys += list(cyc[f"y_{p}"])
         wide = dict(avail_w=LANDSCAPE_W, avail_h=LANDSCAPE_H - 24, margin_mm=12, gost=True, page_w=LANDSCAPE_W)
-        landscape = (Canvas.scale(xs, ys, avail_w=155, avail_h=190, margin_mm=12, gost=True)
-                     >= LANDSCAPE_GAIN * Canvas.scale(xs, ys, **wide))
+        landscape = self.mu is None and (Canvas.scale(xs, ys, avail_w=155, avail_h=190, margin_mm=12, gost=True)
+                                         >= LANDSCAPE_GAIN * Canvas.scale(xs, ys, **wide))
         cv = (Canvas.fit(xs, ys, **wide) if landscape
-              else Canvas.fit(xs, ys, avail_w=155, avail_h=190, margin_mm=12, gost=True))
+              else fit_canvas(xs, ys, self.mu, avail_w=155, avail_h=190, margin_mm=12))
         for p in coms:
             cv.ax.plot(cyc[f"x_{p}"], cyc[f"y_{p}"], ls=(0, (5, 3)), lw=0.7, color=INK, zorder=2)
         tip = _tracer_point(study)
@@ -95,12 +118,17 @@ class PositionsPlan:
             draw_mechanism(cv, mech, row, color=INK, lw=1.2, labels=False, numbers=False, zorder=3, com=False,
                            supports=False)
         draw_mechanism(cv, mech, rows[0], color=INK, lw=1.5, zorder=4, guides=False)
+        spans = {}
         for j in mech.prismatic:
             if j.links[0] == FRAME:
                 u = np.array([np.cos(j.angle), np.sin(j.angle)])
                 p0 = np.array([rows[0][f"x_{j.point}"], rows[0][f"y_{j.point}"]])
                 t = (np.column_stack([cyc[f"x_{j.point}"], cyc[f"y_{j.point}"]]) - p0) @ u
-                draw_guide(cv, mech, rows[0], j, (float(t.min()), float(t.max())))
+                spans[j.name] = (float(t.min()), float(t.max()))
+                draw_guide(cv, mech, rows[0], j, spans[j.name])
+        if self.centre_lines:
+            radii = {mech.driver.center: r} if mech.driver.rotary else {}
+            mechanism_centre_lines(cv, mech, rows[0], spans=spans, radii=radii)
         out = _output_point(study, s_col)
         for mark, row in zip(("′", "″"), ext):
             for p in dict.fromkeys([out, tip]):

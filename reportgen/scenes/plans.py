@@ -60,9 +60,14 @@ def plan_scale(plan: Plan) -> float:
 class PlanScene:
     needs = ("kinematics",)
 
-    def __init__(self, label: str, kind: str):
+    def __init__(self, label: str, kind: str, mu_v: float | None = None, mu_a: float | None = None):
+        """``mu_v``, ``mu_a``: scales given by the caller (one μ_V for all the velocity plans of a
+        drawing sheet, one μ_a for its acceleration plans); by default each plan takes the round
+        scale that fits it (:func:`plan_scale`)."""
         self.label = label
         self.kind = kind
+        self.mu_v = mu_v
+        self.mu_a = mu_a
 
     def construct(self, study):
         """(constructed plan, analytic plan, μ) of this scene's kind."""
@@ -70,12 +75,12 @@ class PlanScene:
         row = k[k["pos"] == self.label].iloc[0]
         mech = study.mechanism
         v_exact = velocity_plan(row, mech)
-        mu_v = plan_scale(v_exact)
+        mu_v = self.mu_v or plan_scale(v_exact)
         vrow, vplan = construct_velocity(row, study, mu_v)
         if self.kind == "velocity":
             return vplan, v_exact, mu_v
         a_exact = acceleration_plan(row, mech)
-        mu_a = plan_scale(a_exact)
+        mu_a = self.mu_a or plan_scale(a_exact)
         om = measured_omegas(vrow, vplan, mech, mu_v)
         _, aplan = construct_acceleration(row, vrow, om, study, mu_a, mu_v)
         return aplan, a_exact, mu_a
@@ -84,8 +89,9 @@ class PlanScene:
         plan, exact, mu = self.construct(study)
         plan = similarity_only(plan, study.mechanism)
         pts = np.array([[0.0, 0.0]] + [list(v) for v in plan.tips.values()])
+        given = self.mu_v if self.kind == "velocity" else self.mu_a
         cv = Canvas(pts[:, 0].min(), pts[:, 0].max(), pts[:, 1].min(), pts[:, 1].max(), mu, margin_mm=12,
-                    max_w=165.0)
+                    max_w=165.0 if given is None else 1e4)     # a scale given by the caller: the whole plan
         ax = cv.ax
         for seg in plan.segments:
             a = np.zeros(2) if seg.start == "p" else plan.tips[seg.start]

@@ -64,9 +64,14 @@ def _line(ax, x0, y0, x1, y1, main: bool) -> None:
 
 
 def lettering(s: str) -> str:
-    """Text as osifont can letter it: its «ё» is a blank box in the PDF and it has no U+2212, so
-    «е» (as drafting lettering writes it) and the hyphen-minus stand for them."""
-    return s.replace("ё", "е").replace("Ё", "Е").replace("−", "-")
+    """Text as osifont can letter it: its «ё», «Ё», «э», «Э» are blank boxes and it has no U+2212,
+    so «е» (as drafting lettering writes it) and the hyphen-minus stand for the first and the last;
+    «э», «Э» are set by mathtext in the note's upright face (outside the formulas of the text)."""
+    s = s.replace("ё", "е").replace("Ё", "Е").replace("−", "-")
+    parts = s.split("$")
+    for i in range(0, len(parts), 2):            # the text between formulas
+        parts[i] = parts[i].replace("э", r"$\mathrm{э}$").replace("Э", r"$\mathrm{Э}$")
+    return "$".join(parts)
 
 
 def _text(ax, x, y, s, size_mm, ha="center", va="center", family=None, width_mm=None, **kw):

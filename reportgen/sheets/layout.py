@@ -42,7 +42,10 @@ class View:
     priority: float = 1.0         # > 1 for the sheet's main view: it is enlarged first and most
     title_w: float = 0.0          # width of the title line: a narrow view is placed as wide as its title
     mu_only: float | None = None  # the one scale the view may take (asked by the case), if set
-    group: str | None = None      # views of one group (the velocity plans) grow together, step by step
+    group: str | None = None      # views of one group grow together, step by step
+    min_s: float = 0.4            # the view is not shrunk below this (its lettering stays legible)
+    max_s: float | None = None    # nor enlarged above this
+    mu2: float | None = None      # a second scale of the view (the force polygon's μ_F beside the group)
 
 
 @dataclass
@@ -90,7 +93,14 @@ def is_nice(mu: float) -> bool:
 def factors_for(view: View) -> list[float]:
     """The enlargements a view may take, largest first: the series FACTORS for a chart; for a
     drawn-to-scale view every factor between the ends of FACTORS that makes μ/s a standard value
-    (so 1:25 may become 1:20, 1:15, 1:10 … and not only what FACTORS happens to hold)."""
+    (so 1:25 may become 1:20, 1:15, 1:10 … and not only what FACTORS happens to hold); none
+    below the view's ``min_s`` (the largest of them if all are)."""
+    fs = [f for f in _factors(view) if (view.max_s is None or f <= view.max_s + 1e-12)
+          and (view.mu2 is None or is_nice(view.mu2 / f))] or [1.0]
+    return [f for f in fs if f >= view.min_s - 1e-12] or fs[:1]
+
+
+def _factors(view: View) -> list[float]:
     if view.mu is None:
         return list(FACTORS)
     lo, hi = FACTORS[-1], FACTORS[0]
@@ -166,7 +176,56 @@ def place(views: list[View], field, keepout) -> list[Placed]:
             return _place(views, field, keepout)
         except ValueError:
             views = [replace(v, mu_only=None) for v in views]
+    if any(v.min_s > FACTORS[-1] or v.max_s is not None for v in views):
+        try:
+            return _place(views, field, keepout)
+        except ValueError:     # legible lettering is given up before a view is left out
+            views = [replace(v, min_s=FACTORS[-1], max_s=None) for v in views]
     return _place(views, field, keepout)
+
+
+@dataclass
+class Block:
+    """Views of one group drawn at one scale as a block, in their order, row by row; each cell
+    is its view with a caption strip of ``CAPTION_MM`` above it."""
+
+    view: View                                      # the whole block as one view to place
+    cells: list[tuple[View, float, float]]          # member, lower left corner in the block (mm)
+
+
+CAPTION_MM = 8.0
+CELL_GAP_MM = 4.0
+
+
+def block(key: str, members: list[View], width: float, title_w: float, caption_w: list[float],
+          priority: float = 1.0) -> Block:
+    """The members in their order, row by row, a row filled while it stays within ``width``
+    (at least one member a row); a row as high as its highest member plus the caption strip,
+    the members of a row top-aligned under their captions and the rows centred."""
+    rows: list[list[int]] = [[]]
+    used = 0.0
+    cw = [max(v.width, c) for v, c in zip(members, caption_w)]
+    for i, w in enumerate(cw):
+        if rows[-1] and used + CELL_GAP_MM + w > width + 1e-9:
+            rows.append([])
+            used = 0.0
+        used += (CELL_GAP_MM if rows[-1] else 0.0) + w
+        rows[-1].append(i)
+    row_w = [sum(cw[i] for i in r) + CELL_GAP_MM * (len(r) - 1) for r in rows]
+    W = max(row_w)
+    rh = [max(members[i].height for i in r) + CAPTION_MM for r in rows]
+    H = sum(rh) + CELL_GAP_MM * (len(rows) - 1)
+    cells, top = [], H
+    for r, row in enumerate(rows):
+        x = (W - row_w[r]) / 2
+        for i in row:
+            v = members[i]
+            cells.append((v, x + (cw[i] - v.width) / 2, top - CAPTION_MM - v.height))
+            x += cw[i] + CELL_GAP_MM
+        top -= rh[r] + CELL_GAP_MM
+    mu = members[0].mu
+    return Block(View(key, W, H, mu, title_w=title_w, min_s=members[0].min_s, max_s=members[0].max_s,
+                      priority=priority), cells)
 
 
 def _place(views: list[View], field, keepout) -> list[Placed]:

@@ -39,9 +39,27 @@ class ViewSpec:
     draw: Callable                   # study → scene result (a Figure or a drawing with .mu)
     scale: str | None = None         # LENGTH, VELOCITY, ACCELERATION, FORCE or None (a chart)
     mu_attr: str = "mu"
+    mu2: tuple[str, str] | None = None   # a second scale: (its kind, the scene's attribute), e.g. μ_F
     priority: float = 1.0            # how much more than the others the view is enlarged (main view > 1)
     mu_only: float | None = None     # the scale the case asks for (kept on the sheet if the view fits at it)
-    group: str | None = None         # views enlarged together (the velocity plans)
+    group: str | None = None         # views drawn as one block at one scale (the velocity plans)
+    min_s: float = 0.8               # the view is not shrunk below this (its lettering stays legible)
+    max_s: float | None = None       # nor enlarged above this (set when it was redrawn at its sheet scale)
+    # the draw function of the same view at another scale: (μ, {group: μ of the group}) → draw;
+    # the sheet is laid out once, then such views are drawn again at the scale they took on it, so
+    # that their lettering keeps its natural size instead of being enlarged with the drawing
+    redraw: Callable | None = None
+    grown: float = 1.0               # the enlargement its redraws gave it so far (bounded by REDRAW_MAX)
+
+
+@dataclass
+class GroupSpec:
+    """A block of views at one common scale, in the given order, each captioned by ``cell`` text
+    (the velocity plans of all the positions under one μ_V)."""
+
+    title: str
+    scale: str
+    priority: float = 1.0
 
 
 @dataclass
@@ -50,6 +68,7 @@ class SheetSpec:
     title: str
     views: list[ViewSpec] = field(default_factory=list)
     table: Callable | None = None    # study → list of (quantity, value, unit) rows
+    groups: dict[str, GroupSpec] = field(default_factory=dict)
 
 
 @dataclass
@@ -57,6 +76,7 @@ class Rendered:
     spec: ViewSpec
     fig: Figure
     mu: float | None
+    mu2: float | None = None
 
 
 def render_view(spec: ViewSpec, study) -> Rendered:
@@ -67,30 +87,111 @@ def render_view(spec: ViewSpec, study) -> Rendered:
     if fig is None:
         raise RuntimeError(f"сцена «{spec.title}» не дала рисунка")
     mu = getattr(out, spec.mu_attr, None) if spec.scale else None
-    return Rendered(spec, fig, float(mu) if mu else None)
+    mu2 = getattr(out, spec.mu2[1], None) if spec.mu2 else None
+    return Rendered(spec, fig, float(mu) if mu else None, float(mu2) if mu2 else None)
 
 
 def _regular_labels(study) -> list[str]:
     return [str(p) for p in study.kinematics["pos"] if not str(p).startswith("д")]
 
 
+PLAN_MM = 75.0      # the largest velocity plan of a sheet is first drawn at most this long
+
+
+def plan_labels(study) -> list[str]:
+    """The report positions whose velocity plans the sheet draws, in the order of their numbers
+    (the student's numbering, report/russian.position_names)."""
+    from ..report.russian import position_names
+    names = position_names(study.kinematics["pos"])
+    labs = _regular_labels(study)
+    return sorted(labs, key=lambda p: (int(names[p]) if names[p].isdigit() else 10 ** 6, labs.index(p)))
+
+
+def common_plan_scale(study, labels: list[str], kind: str, avail_mm: float = PLAN_MM) -> float:
+    """One round μ for the plans of ``kind`` at all ``labels``: the largest plan fits ``avail_mm``
+    (the analytic plans; the constructed ones differ by the drawing's rounding only)."""
+    import numpy as np
+
+    from ..analysis.plans import acceleration_plan, velocity_plan
+    from ..scenes.draw import nice_scale
+    k = study.kinematics
+    ext = 0.0
+    for lab in labels:
+        row = k[k["pos"] == lab].iloc[0]
+        plan = (velocity_plan if kind == "velocity" else acceleration_plan)(row, study.mechanism)
+        pts = np.array([[0.0, 0.0]] + [list(v) for v in plan.tips.values()])
+        ext = max(ext, float(np.ptp(pts[:, 0])), float(np.ptp(pts[:, 1])))
+    return nice_scale(ext, avail_mm)
+
+
 def kinematics_sheet(study) -> SheetSpec:
+    """The plan of positions, the velocity plans of all the positions at one μ_V and the
+    acceleration plan at one μ_a (the largest plan first drawn about ``PLAN_MM`` long, then at
+    the scale it takes on the sheet), the diagrams, the results."""
+    from ..report.russian import position_names
     from ..report.sections.common import chosen_position
     from ..scenes.diagrams import OutputDiagrams
     from ..scenes.mechanism import PositionsPlan
     from ..scenes.plans import PlanScene
 
-    views = [ViewSpec("positions", "План положений механизма", PositionsPlan().draw, LENGTH,
-                      priority=2.0)]
+    views = [ViewSpec("positions", "План положений механизма", PositionsPlan(centre_lines=True).draw, LENGTH,
+                      priority=1.5, redraw=lambda mu, _: PositionsPlan(centre_lines=True, mu=mu).draw)]
+    groups = {}
     if study.mechanism.driver.omega is not None:   # plans need the true speed of the input link
-        lab = chosen_position(study)
-        for p in _regular_labels(study):
-            views.append(ViewSpec(f"v{p}", f"План скоростей, положение {p}",
-                                  PlanScene(p, "velocity").draw, VELOCITY, group="velocity"))
-        views.append(ViewSpec(f"a{lab}", f"План ускорений, положение {lab}",
-                              PlanScene(lab, "acceleration").draw, ACCELERATION))
+        names = position_names(study.kinematics["pos"])
+        labels = plan_labels(study)
+        chosen = [chosen_position(study)]
+        mu_v = common_plan_scale(study, labels, "velocity")
+        mu_a = common_plan_scale(study, chosen, "acceleration", 2 * PLAN_MM)
+        for p in labels:
+            views.append(ViewSpec(f"v{p}", f"Положение {names[p]}", PlanScene(p, "velocity", mu_v=mu_v).draw,
+                                  VELOCITY, group="velocity",
+                                  redraw=lambda mu, _, p=p: PlanScene(p, "velocity", mu_v=mu).draw))
+        for p in chosen:
+            views.append(ViewSpec(
+                f"a{p}", f"Положение {names[p]}", PlanScene(p, "acceleration", mu_v=mu_v, mu_a=mu_a).draw,
+                ACCELERATION, group="acceleration",
+                redraw=lambda mu, g, p=p: PlanScene(p, "acceleration", mu_v=g.get("velocity", mu_v), mu_a=mu).draw))
+        groups = {"velocity": GroupSpec("Планы скоростей", VELOCITY, priority=2.0),
+                  "acceleration": GroupSpec("План ускорений" if len(chosen) == 1 else "Планы ускорений",
+                                            ACCELERATION)}
     views.append(ViewSpec("diagrams", "Кинематические диаграммы выходного звена", OutputDiagrams().draw))
-    return SheetSpec("kinematics", "Кинематический анализ рычажного механизма", views)
+    return SheetSpec("kinematics", "Кинематический анализ рычажного механизма", views, table=kinematics_results,
+                     groups=groups)
+
+
+def kinematics_results(study) -> list[tuple[str, float, str]]:
+    """The structure and the output link's motion in textbook notation: W, the class, ω₁, the
+    stroke H (or the swing ψ), K, the crank angles of the working and return strokes, the mean
+    speeds of the strokes and the extreme speed and acceleration of the output link over the cycle."""
+    import numpy as np
+
+    from ..analysis.plans import output_quantity
+    st = study.structure
+    rows: list[tuple[str, float, str]] = [("$W$", int(st.W), ""), ("класс механизма", int(st.mech_class), "")]
+    d = study.mechanism.driver
+    w = d.omega
+    if w is not None and d.rotary:
+        rows.append((r"$\omega_1$", abs(float(w)), "рад/с"))
+    s = study.scalars
+    s_col, v_col, a_col, _ = output_quantity(study)
+    angular = s_col.startswith("phi_")
+    if "output_stroke" in s:
+        rows.append((r"$\psi_{max}$", math.degrees(s["output_stroke"]), "°") if angular
+                    else ("$H$", s["output_stroke"] * 1000.0, "мм"))
+        rows.append(("$K$", float(s["output_K"]), ""))
+        from ..analysis.synthesis import output_extremes
+        x = output_extremes(study)
+        rows += [(r"$\varphi_{р.х}$", math.degrees(max(x["phi_a"], x["phi_b"])), "°"),
+                 (r"$\varphi_{х.х}$", math.degrees(min(x["phi_a"], x["phi_b"])), "°")]
+    if w is not None and not d.epsilon:
+        cyc = study.cycle
+        unit_v, unit_a = ("рад/с", "рад/с²") if angular else ("м/с", "м/с²")
+        sym = r"\omega" if angular else "V"
+        rows.append((f"${sym}_{{max}}$", float(np.max(np.abs(cyc[v_col]))) * abs(w), unit_v))
+        rows.append((r"$\varepsilon_{max}$" if angular else "$a_{max}$", float(np.max(np.abs(cyc[a_col]))) * w * w,
+                     unit_a))
+    return [r for r in rows if isinstance(r[1], int) or (isinstance(r[1], float) and math.isfinite(r[1]))]
 
 
 def dynamics_sheet(study) -> SheetSpec:
@@ -103,24 +204,34 @@ def dynamics_sheet(study) -> SheetSpec:
              ViewSpec("wittenbauer", "Диаграмма энергомасс (Виттенбауэра)", WittenbauerDiagram().draw,
                       priority=2.0),
              ViewSpec("motion", "Закон движения ω(φ), ε(φ)", MotionCurves().draw),
-             ViewSpec("flywheel", "Маховик", FlywheelDrawing().draw)]
+             ViewSpec("flywheel", "Маховик", FlywheelDrawing().draw, LENGTH)]
     return SheetSpec("dynamics", "Динамический анализ и синтез маховика", views, table=dynamics_results)
 
 
 def forces_sheet(study) -> SheetSpec:
     from ..report.sections.common import chosen_position
-    from ..scenes.forces import GroupForces, ZhukovskyLever
-    from ..scenes.mechanism import KinematicScheme
+    from ..report.sections.common import pos_no
+    from ..scenes.forces import GroupForces, LoadedScheme, ZhukovskyLever
 
     f = study.forces
     lab = chosen_position(study) if f.settings.motion != "dynamics" else _forces_position(study)
-    views = [ViewSpec("scheme", f"Схема механизма, положение {lab}", KinematicScheme(lab).draw, LENGTH,
-                      priority=1.5)]
+    no = pos_no(study, lab)
+    views = [ViewSpec("scheme", f"Механизм в положении {no} с приложенными нагрузками", LoadedScheme(lab).draw,
+                      LENGTH, priority=1.5, redraw=lambda mu, _: LoadedScheme(lab, mu=mu).draw)]
     for gi, g in enumerate(f.model.groups):
         views.append(ViewSpec(f"group{gi}", f"Группа {g.label}: силы и план сил",
-                              GroupForces(lab, gi).draw, LENGTH, mu_attr="mu_l", priority=1.5))
-    views.append(ViewSpec("lever", "Рычаг Жуковского", ZhukovskyLever(lab).draw, VELOCITY))
-    return SheetSpec("forces", f"Силовой анализ механизма (положение {lab})", views, table=forces_results)
+                              GroupForces(lab, gi).draw, LENGTH, priority=1.5, mu2=(FORCE, "mu_F"),
+                              redraw=lambda mu, _, r, gi=gi: GroupForces(lab, gi, mu_l=mu, mu_F=round_up(r)).draw))
+    views.append(ViewSpec("lever", "Рычаг Жуковского", ZhukovskyLever(lab).draw, VELOCITY,
+                          redraw=lambda mu, _: ZhukovskyLever(lab, mu=mu).draw))
+    return SheetSpec("forces", f"Силовой анализ механизма (положение {no})", views, table=forces_results)
+
+
+def round_up(mu: float) -> float:
+    """The round scale (1; 1,5; 2; 2,5; 4; 5 · 10ᵏ) nearest above μ (a second scale of a view
+    redrawn at the sheet's enlargement)."""
+    from ..scenes.draw import nice_scale
+    return nice_scale(mu * (1 - 1e-9), 1.0)
 
 
 def _forces_position(study) -> str:
@@ -287,7 +398,7 @@ def gears_sheet(study) -> SheetSpec:
 def gears_results(study) -> list[tuple[str, float, str]]:
     g = study.gears
     s = g.scalars
-    rows = [("$m$", s.get("gears_m"), "мм"), ("$z_1$", float(g.z1), ""), ("$z_2$", float(g.z2), ""),
+    rows = [("$m$", s.get("gears_m"), "мм"), ("$z_1$", int(g.z1), ""), ("$z_2$", int(g.z2), ""),
             ("$x_1$", s.get("gears_x1"), ""), ("$x_2$", s.get("gears_x2"), ""),
             (r"$\alpha_w$", s.get("gears_alpha_w_deg"), "°"), ("$a_w$", s.get("gears_a_w"), "мм"),
             (r"$\varepsilon_\alpha$", s.get("gears_eps_alpha"), "")]
