@@ -66,6 +66,10 @@ __all__ = [
 
 ArrayFunc = Callable[[np.ndarray], np.ndarray]
 _EPS = np.finfo(float).eps
+# works on node intervals away from breaks by the Gauss–Lobatto rule of this order (its end
+# points are the nodes, where the kinematics is the solved cycle grid); 0 — Gauss–Legendre on
+# every interval
+LOBATTO = 6
 
 
 # --------------------------------------------------------------------------------------------
@@ -75,8 +79,9 @@ class DynamicModel:
     """One cycle of the reduced machine, tabulated once and evaluable at any φ.
 
     Nodes = user grid (wrapped into the cycle) ∪ breaks ∪ cycle ends, subdivided so that no
-    interval exceeds Φ/``min_nodes``.  On the nodes: A_c, A_дв, A_Σ (cumulative
-    Gauss–Legendre, split at the breaks) and J_II.  Everything periodic is evaluated at an
+    interval exceeds Φ/``min_nodes``.  On the nodes: A_c, A_дв, A_Σ (cumulative; Gauss–Lobatto
+    of order ``lobatto`` (default :data:`LOBATTO`) on intervals between two grid nodes,
+    Gauss–Legendre of order ``order`` on intervals touching a break or a cycle end) and J_II.  Everything periodic is evaluated at an
     arbitrary φ by reduction into the cycle: A(φ + kΦ) = A(φ) + k·A(cycle).
 
     Parameters are those of :func:`solve_dynamics`; J2/dJ2 may be None when only the works
@@ -86,7 +91,7 @@ class DynamicModel:
     def __init__(self, J2: ArrayFunc | None, dJ2: ArrayFunc | None, M: ArrayFunc,
                  breaks: Iterable[float] | None, cycle_start: float, cycle_length: float,
                  grid, Mdrive: float | ArrayFunc | None = None, *, min_nodes: int = 720,
-                 order: int = 8, balance_rtol: float = 1e-9):
+                 order: int = 8, balance_rtol: float = 1e-9, lobatto: int | None = None):
         a = float(cycle_start)
         L = float(cycle_length)
         if not (L > 0 and math.isfinite(L)):
@@ -113,7 +118,8 @@ class DynamicModel:
         base = np.unique(np.concatenate(([a, a + L], red, br)))
         self.nodes = merge_nodes(base, br, max_step=L / max(int(min_nodes), 2))
         # works on nodes
-        self._Ac = Antiderivative(M, self.nodes, br, order=order)
+        lob = LOBATTO if lobatto is None else lobatto
+        self._Ac = Antiderivative(M, self.nodes, br, order=order, lobatto=lob)
         self.Ac_total = self._Ac.total
         if Mdrive is None or np.isscalar(Mdrive):
             self.Md_const = (-self.Ac_total / L) if Mdrive is None else float(Mdrive)
@@ -122,7 +128,7 @@ class DynamicModel:
             Ad_n = self.Md_const * (self.nodes - a)
         else:
             self.Md_const = None
-            self._Ad = Antiderivative(Mdrive, self.nodes, br, order=order)
+            self._Ad = Antiderivative(Mdrive, self.nodes, br, order=order, lobatto=lob)
             self.Ad_total = self._Ad.total
             Ad_n = self._Ad.values
         self._Mdrive = Mdrive
@@ -244,8 +250,10 @@ class DynamicModel:
                 A[inner] += hin * (dv[: m * q].reshape(m, q) @ self._w)
             Ms = Ms + dv[m * q:]
         if self._has_J:
-            J = self._call(self._J2, r)
-            dJ = self._call(self._dJ2, r)
+            # on the same array as M (one kinematic evaluation: the columns are cached by the
+            # points asked, and J_II is element-wise)
+            J = self._call(self._J2, pts)[m * q:]
+            dJ = self._call(self._dJ2, pts)[m * q:]
         else:
             J = dJ = np.full(n, np.nan)
         return A.reshape(shape), Ms.reshape(shape), J.reshape(shape), dJ.reshape(shape)
@@ -271,9 +279,9 @@ class DynamicModel:
             dv = self._call(self._Mdrive, pts)
             A += float(self._Ad_vals[i]) + k * self.Ad_total + half * float(dv[:q] @ self._w)
             Ms += float(dv[q])
-        rr = pts[q:]
-        J = float(self._call(self._J2, rr)[0]) if self._has_J else math.nan
-        dJ = float(self._call(self._dJ2, rr)[0]) if self._has_J else math.nan
+        # J_II on the same points as M: one kinematic evaluation (columns cached by the points)
+        J = float(self._call(self._J2, pts)[q]) if self._has_J else math.nan
+        dJ = float(self._call(self._dJ2, pts)[q]) if self._has_J else math.nan
         return A, Ms, J, dJ
 
     def A(self, x) -> np.ndarray:
