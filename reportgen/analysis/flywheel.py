@@ -69,7 +69,7 @@ _EPS = np.finfo(float).eps
 # works on node intervals away from breaks by the Gauss–Lobatto rule of this order (its end
 # points are the nodes, where the kinematics is the solved cycle grid); 0 — Gauss–Legendre on
 # every interval
-LOBATTO = 6
+LOBATTO = 5
 
 
 # --------------------------------------------------------------------------------------------
