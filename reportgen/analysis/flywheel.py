@@ -351,8 +351,8 @@ class DynamicModel:
         hi = np.concatenate((x0, xp))
         eta = np.minimum(eta_abs, 0.25 * (hi - lo))
         ends = np.concatenate((lo + eta, hi - eta))
-        _, dv = combine(*self._ev(ends))
-        dv = s * dv
+        _, draw = combine(*self._ev(ends))
+        dv = s * draw
         m = lo.size
         dlo, dhi = dv[:m], dv[m:]
         roots = []
@@ -360,9 +360,15 @@ class DynamicModel:
             if hi[j] - lo[j] <= 4 * eta_abs:
                 continue
             if dlo[j] > 0 and dhi[j] < 0:
-                a_, b_ = lo[j] + eta[j], hi[j] - eta[j]
+                a_, b_ = ends[j], ends[m + j]
+                fa, fb = float(draw[j]), float(draw[m + j])
 
-                def fd(t, a_=a_, b_=b_):
+                def fd(t, a_=a_, b_=b_, fa=fa, fb=fb):
+                    # brentq starts with f at both ends: known from the evaluation above
+                    if t == a_:
+                        return fa
+                    if t == b_:
+                        return fb
                     return combine(*self._ev1(min(max(t, a_), b_)))[1]
 
                 # location to ~1e-13 rad: the value at a smooth extremum is then exact to
