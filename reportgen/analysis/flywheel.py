@@ -356,6 +356,7 @@ class DynamicModel:
         m = lo.size
         dlo, dhi = dv[:m], dv[m:]
         roots = []
+        seen: dict[float, tuple] = {}    # (A_Σ, M_Σ, J_II, J_II′) at the points brentq evaluated
         for j in range(m):
             if hi[j] - lo[j] <= 4 * eta_abs:
                 continue
@@ -369,18 +370,33 @@ class DynamicModel:
                         return fa
                     if t == b_:
                         return fb
-                    return combine(*self._ev1(min(max(t, a_), b_)))[1]
+                    tt = min(max(t, a_), b_)
+                    val = self._ev1(tt)
+                    seen[tt] = val
+                    return combine(*val)[1]
 
                 # location to ~1e-13 rad: the value at a smooth extremum is then exact to
                 # O(1e-26) relative; extremes at kinks are the nodes themselves
                 roots.append(brentq(fd, a_, b_, xtol=1e-13 * scale, rtol=4 * _EPS,
                                     maxiter=200))
+        # g at the candidate nodes is the table; at a root brentq returned, the model quantities
+        # of its last evaluation (brentq returns a point it evaluated); only the winner's
+        # quantities are evaluated anew when they are not known
         cand = np.concatenate((x0, np.asarray(roots, dtype=float)))
-        q = self._ev(cand)
-        gv, _ = combine(*q)
-        j = int(np.argmax(s * gv))
-        return (float(self.wrap(cand[j])), float(gv[j]),
-                tuple(float(z[j]) for z in q))
+        gv = np.concatenate((v[loc], [s * combine(*seen[r])[0] if r in seen else math.inf
+                                          for r in roots]))
+        unknown = [x0.size + i for i, r in enumerate(roots) if r not in seen]
+        if unknown:                 # a root brentq did not evaluate (f = 0 at an end)
+            gv[unknown] = s * combine(*self._ev(cand[unknown]))[0]
+        j = int(np.argmax(gv))
+        r = float(cand[j])
+        if j >= x0.size and r in seen:
+            q = seen[r]
+            g = combine(*q)[0]
+            return float(self.wrap(r)), float(g), tuple(float(z) for z in q)
+        q = self._ev(cand[j:j + 1])
+        g, _ = combine(*q)
+        return float(self.wrap(r)), float(g[0]), tuple(float(z[0]) for z in q)
 
     def line_extremum(self, slope: float, kind: str):
         """max/min over the cycle of A_Σ(φ) − slope·J_II(φ) (Мерцалов ΔT_I, Виттенбауэр K, L);
