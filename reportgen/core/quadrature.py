@@ -16,6 +16,10 @@ Formulas
 * The error of an n-point rule on a panel of width h is
   h^{2n+1}(n!)^4 / ((2n+1)((2n)!)^3) · f^{(2n)}(ξ); for n = 8 and h = 2π/720 this is far
   below the rounding level for the load laws of a linkage.
+* Gauss–Lobatto rule of n points (both panel ends are nodes, exact to degree 2n − 3;
+  Абрамовиц–Стиган 25.4.32): :class:`Antiderivative` with ``lobatto=n`` uses it on panels that
+  touch no break, so the integrand at the grid nodes (where the caller already knows it) is
+  shared by neighbouring panels; panels touching a break keep Gauss–Legendre.
 * Error estimate of :func:`integrate`: the difference between the results on n and 2n panels
   (Runge's principle; the finer value is returned, so the estimate is conservative).
 """
@@ -283,7 +287,9 @@ class Antiderivative:
 
     The nodes are the sorted union of ``grid`` and ``breaks`` (optionally subdivided to
     ``max_step``); every node interval is integrated with an ``order``-point Gauss–Legendre
-    rule (one vectorised call of f), the table is the running sum.  At an arbitrary x the
+    rule (one vectorised call of f; with ``lobatto`` the panels touching no break by the
+    Gauss–Lobatto rule of that order, see :func:`_panel_sums_lobatto`), the table is the
+    running sum.  At an arbitrary x the
     value is F(x_k) + ∫_{x_k}^{x} f with x_k the nearest node below x, again by Gauss–Legendre
     (no interval crosses a break because the breaks are nodes).
     """
