@@ -318,19 +318,26 @@ class ReducedModel:
         J, _ = self.link_inertia(self.crank, self.ev(np.array([self.loads.cycle_start])))
         return float(J[0])
 
-    def J2(self, q) -> np.ndarray:
+    def _sums(self, q) -> tuple[np.ndarray, np.ndarray]:
+        """(J_II, J_II′) at q; the last pair is kept for the same column table (J2 and dJ2 are
+        asked at the same points: one sum over the links for both)."""
         cols = self.ev(q)
-        out = np.zeros(len(cols["q"]))
-        for J, _ in self.parts(cols).values():
-            out = out + J
-        return out
+        last = getattr(self, "_last", None)
+        if last is not None and last[0] is cols:
+            return last[1]
+        J2 = np.zeros(len(cols["q"]))
+        dJ2 = np.zeros(len(cols["q"]))
+        for J, dJ in self.parts(cols).values():
+            J2 = J2 + J
+            dJ2 = dJ2 + dJ
+        self._last = (cols, (J2, dJ2))
+        return J2, dJ2
+
+    def J2(self, q) -> np.ndarray:
+        return self._sums(q)[0].copy()
 
     def dJ2(self, q) -> np.ndarray:
-        cols = self.ev(q)
-        out = np.zeros(len(cols["q"]))
-        for _, dJ in self.parts(cols).values():
-            out = out + dJ
-        return out
+        return self._sums(q)[1].copy()
 
     def M(self, q) -> np.ndarray:
         """Σ of the reduced moments of all given loads."""

@@ -66,6 +66,10 @@ __all__ = [
 
 ArrayFunc = Callable[[np.ndarray], np.ndarray]
 _EPS = np.finfo(float).eps
+# works on node intervals away from breaks by the Gauss–Lobatto rule of this order (its end
+# points are the nodes, where the kinematics is the solved cycle grid); 0 — Gauss–Legendre on
+# every interval
+LOBATTO = 5
 
 
 # --------------------------------------------------------------------------------------------
@@ -75,8 +79,9 @@ class DynamicModel:
     """One cycle of the reduced machine, tabulated once and evaluable at any φ.
 
     Nodes = user grid (wrapped into the cycle) ∪ breaks ∪ cycle ends, subdivided so that no
-    interval exceeds Φ/``min_nodes``.  On the nodes: A_c, A_дв, A_Σ (cumulative
-    Gauss–Legendre, split at the breaks) and J_II.  Everything periodic is evaluated at an
+    interval exceeds Φ/``min_nodes``.  On the nodes: A_c, A_дв, A_Σ (cumulative; Gauss–Lobatto
+    of order ``lobatto`` (default :data:`LOBATTO`) on intervals between two grid nodes,
+    Gauss–Legendre of order ``order`` on intervals touching a break or a cycle end) and J_II.  Everything periodic is evaluated at an
     arbitrary φ by reduction into the cycle: A(φ + kΦ) = A(φ) + k·A(cycle).
 
     Parameters are those of :func:`solve_dynamics`; J2/dJ2 may be None when only the works
@@ -86,7 +91,7 @@ class DynamicModel:
     def __init__(self, J2: ArrayFunc | None, dJ2: ArrayFunc | None, M: ArrayFunc,
                  breaks: Iterable[float] | None, cycle_start: float, cycle_length: float,
                  grid, Mdrive: float | ArrayFunc | None = None, *, min_nodes: int = 720,
-                 order: int = 8, balance_rtol: float = 1e-9):
+                 order: int = 8, balance_rtol: float = 1e-9, lobatto: int | None = None):
         a = float(cycle_start)
         L = float(cycle_length)
         if not (L > 0 and math.isfinite(L)):
@@ -113,7 +118,8 @@ class DynamicModel:
         base = np.unique(np.concatenate(([a, a + L], red, br)))
         self.nodes = merge_nodes(base, br, max_step=L / max(int(min_nodes), 2))
         # works on nodes
-        self._Ac = Antiderivative(M, self.nodes, br, order=order)
+        lob = LOBATTO if lobatto is None else lobatto
+        self._Ac = Antiderivative(M, self.nodes, br, order=order, lobatto=lob)
         self.Ac_total = self._Ac.total
         if Mdrive is None or np.isscalar(Mdrive):
             self.Md_const = (-self.Ac_total / L) if Mdrive is None else float(Mdrive)
@@ -122,7 +128,7 @@ class DynamicModel:
             Ad_n = self.Md_const * (self.nodes - a)
         else:
             self.Md_const = None
-            self._Ad = Antiderivative(Mdrive, self.nodes, br, order=order)
+            self._Ad = Antiderivative(Mdrive, self.nodes, br, order=order, lobatto=lob)
             self.Ad_total = self._Ad.total
             Ad_n = self._Ad.values
         self._Mdrive = Mdrive
@@ -244,8 +250,10 @@ class DynamicModel:
                 A[inner] += hin * (dv[: m * q].reshape(m, q) @ self._w)
             Ms = Ms + dv[m * q:]
         if self._has_J:
-            J = self._call(self._J2, r)
-            dJ = self._call(self._dJ2, r)
+            # on the same array as M (one kinematic evaluation: the columns are cached by the
+            # points asked, and J_II is element-wise)
+            J = self._call(self._J2, pts)[m * q:]
+            dJ = self._call(self._dJ2, pts)[m * q:]
         else:
             J = dJ = np.full(n, np.nan)
         return A.reshape(shape), Ms.reshape(shape), J.reshape(shape), dJ.reshape(shape)
@@ -271,9 +279,9 @@ class DynamicModel:
             dv = self._call(self._Mdrive, pts)
             A += float(self._Ad_vals[i]) + k * self.Ad_total + half * float(dv[:q] @ self._w)
             Ms += float(dv[q])
-        rr = pts[q:]
-        J = float(self._call(self._J2, rr)[0]) if self._has_J else math.nan
-        dJ = float(self._call(self._dJ2, rr)[0]) if self._has_J else math.nan
+        # J_II on the same points as M: one kinematic evaluation (columns cached by the points)
+        J = float(self._call(self._J2, pts)[q]) if self._has_J else math.nan
+        dJ = float(self._call(self._dJ2, pts)[q]) if self._has_J else math.nan
         return A, Ms, J, dJ
 
     def A(self, x) -> np.ndarray:
@@ -343,30 +351,52 @@ class DynamicModel:
         hi = np.concatenate((x0, xp))
         eta = np.minimum(eta_abs, 0.25 * (hi - lo))
         ends = np.concatenate((lo + eta, hi - eta))
-        _, dv = combine(*self._ev(ends))
-        dv = s * dv
+        _, draw = combine(*self._ev(ends))
+        dv = s * draw
         m = lo.size
         dlo, dhi = dv[:m], dv[m:]
         roots = []
+        seen: dict[float, tuple] = {}    # (A_Σ, M_Σ, J_II, J_II′) at the points brentq evaluated
         for j in range(m):
             if hi[j] - lo[j] <= 4 * eta_abs:
                 continue
             if dlo[j] > 0 and dhi[j] < 0:
-                a_, b_ = lo[j] + eta[j], hi[j] - eta[j]
+                a_, b_ = ends[j], ends[m + j]
+                fa, fb = float(draw[j]), float(draw[m + j])
 
-                def fd(t, a_=a_, b_=b_):
-                    return combine(*self._ev1(min(max(t, a_), b_)))[1]
+                def fd(t, a_=a_, b_=b_, fa=fa, fb=fb):
+                    # brentq starts with f at both ends: known from the evaluation above
+                    if t == a_:
+                        return fa
+                    if t == b_:
+                        return fb
+                    tt = min(max(t, a_), b_)
+                    val = self._ev1(tt)
+                    seen[tt] = val
+                    return combine(*val)[1]
 
                 # location to ~1e-13 rad: the value at a smooth extremum is then exact to
                 # O(1e-26) relative; extremes at kinks are the nodes themselves
                 roots.append(brentq(fd, a_, b_, xtol=1e-13 * scale, rtol=4 * _EPS,
                                     maxiter=200))
+        # g at the candidate nodes is the table; at a root brentq returned, the model quantities
+        # of its last evaluation (brentq returns a point it evaluated); only the winner's
+        # quantities are evaluated anew when they are not known
         cand = np.concatenate((x0, np.asarray(roots, dtype=float)))
-        q = self._ev(cand)
-        gv, _ = combine(*q)
-        j = int(np.argmax(s * gv))
-        return (float(self.wrap(cand[j])), float(gv[j]),
-                tuple(float(z[j]) for z in q))
+        gv = np.concatenate((v[loc], [s * combine(*seen[r])[0] if r in seen else math.inf
+                                          for r in roots]))
+        unknown = [x0.size + i for i, r in enumerate(roots) if r not in seen]
+        if unknown:                 # a root brentq did not evaluate (f = 0 at an end)
+            gv[unknown] = s * combine(*self._ev(cand[unknown]))[0]
+        j = int(np.argmax(gv))
+        r = float(cand[j])
+        if j >= x0.size and r in seen:
+            q = seen[r]
+            g = combine(*q)[0]
+            return float(self.wrap(r)), float(g), tuple(float(z) for z in q)
+        q = self._ev(cand[j:j + 1])
+        g, _ = combine(*q)
+        return float(self.wrap(r)), float(g[0]), tuple(float(z[0]) for z in q)
 
     def line_extremum(self, slope: float, kind: str):
         """max/min over the cycle of A_Σ(φ) − slope·J_II(φ) (Мерцалов ΔT_I, Виттенбауэр K, L);
