@@ -63,12 +63,16 @@ def _line(ax, x0, y0, x1, y1, main: bool) -> None:
             solid_capstyle="butt", zorder=5)
 
 
-def lettering(s: str) -> str:
+def lettering(s: str, literal: bool = False) -> str:
     """Text as osifont can letter it: its «ё», «Ё», «э», «Э» are blank boxes and it has no U+2212,
     so «е» (as drafting lettering writes it) and the hyphen-minus stand for the first and the last;
-    «э», «Э» are set by mathtext in the note's upright face (outside the formulas of the text)."""
+    «э», «Э» are set by mathtext in the note's upright face (outside the formulas of the text).
+    ``literal``: text from the case (the title block's fields) holds no formula: its «$» are
+    lettered as they are, never read by mathtext."""
     s = s.replace("ё", "е").replace("Ё", "Е").replace("−", "-")
-    parts = s.split("$")
+    if literal:
+        s = s.replace("$", r"\$")
+    parts = [s] if literal else s.split("$")
     for i in range(0, len(parts), 2):            # the text between formulas
         parts[i] = parts[i].replace("э", r"$\mathrm{э}$").replace("Э", r"$\mathrm{Э}$")
     return "$".join(parts)
@@ -80,7 +84,7 @@ def _text(ax, x, y, s, size_mm, ha="center", va="center", family=None, width_mm=
     if not s:
         return None
     fs = size_mm / 0.7 * PT_PER_MM
-    t = ax.text(x, y, lettering(s), fontsize=fs, ha=ha, va=va, fontfamily=family, zorder=6, **kw)
+    t = ax.text(x, y, lettering(s, literal=True), fontsize=fs, ha=ha, va=va, fontfamily=family, zorder=6, **kw)
     if width_mm is not None:
         t._reportgen_fit = width_mm  # read by fit_texts after the first draw
     return t
