@@ -273,9 +273,10 @@ def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
     bar = _progress(len(variants))
     results: list[Outcome] = []
     if jobs == 1 or len(variants) == 1:
-        from .report.parallel import note_jobs, set_note_jobs
+        from .report import parallel
+        from .report.parallel import set_note_jobs
         if jobs == 1:
-            saved = note_jobs()
+            saved = parallel._JOBS
             set_note_jobs(1)  # --jobs 1: one process in all
         try:
             for v in variants:

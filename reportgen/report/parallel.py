@@ -319,6 +319,33 @@ def _numbers_html(views, n: int) -> str:
             f"</style><style>{Markup(css)}</style></head><body>{pages}</body></html>")
 
 
+def _overlay(writer, page, over, name: str) -> None:
+    """Draw page ``over`` (of another PDF) on ``page`` as a form XObject: the page's own
+    content stays as WeasyPrint compressed it, wrapped in q … Q, and one short stream is
+    added."""
+    from pypdf.generic import (ArrayObject, DecodedStreamObject, DictionaryObject, FloatObject,
+                               NameObject)
+
+    form = DecodedStreamObject()
+    form.set_data(over.get_contents().get_data())
+    form[NameObject("/Type")] = NameObject("/XObject")
+    form[NameObject("/Subtype")] = NameObject("/Form")
+    form[NameObject("/BBox")] = ArrayObject(FloatObject(v) for v in over.mediabox)
+    form[NameObject("/Resources")] = over["/Resources"].clone(writer)
+    form = form.flate_encode()
+    ref = writer._add_object(form)
+    res = page["/Resources"].get_object()
+    if "/XObject" not in res:
+        res[NameObject("/XObject")] = DictionaryObject()
+    res["/XObject"].get_object()[NameObject(name)] = ref
+    contents = page.raw_get("/Contents")  # the reference: the stream itself must not be copied inline
+    old = list(contents.get_object()) if isinstance(contents.get_object(), ArrayObject) else [contents]
+    head, tail = DecodedStreamObject(), DecodedStreamObject()
+    head.set_data(b"q\n")
+    tail.set_data(f"\nQ q {name} Do Q\n".encode("ascii"))
+    page[NameObject("/Contents")] = ArrayObject([writer._add_object(head), *old, writer._add_object(tail)])
+
+
 def join(parts: list[_Laid], numbers: bytes, first_numbered: int) -> bytes:
     """One PDF of the laid-out parts in order: pages, the footer numbers of ``numbers`` drawn
     on every page from ``first_numbered`` (0-based), internal links and the outline with
@@ -346,7 +373,7 @@ def join(parts: list[_Laid], numbers: bytes, first_numbered: int) -> bytes:
             writer.add_page(page)
     num_reader = PdfReader(io.BytesIO(numbers))
     for i in range(first_numbered, len(writer.pages)):
-        writer.pages[i].merge_page(num_reader.pages[i])
+        _overlay(writer, writer.pages[i], num_reader.pages[i], f"/RGnum{i}")
     anchors = {}
     for p, s in zip(parts, starts):
         for name, (page, x, y) in p.anchors.items():
