@@ -289,7 +289,7 @@ class PartsJob:
         front_pdf = _write(front_doc)
         heights, anchors, links, outline = _facts(front_doc)
         front = _Laid(-1, front_pdf, heights, anchors, links, outline, {})
-        numbers = _write(_lay_out(_numbers_html(self.views, n)))
+        numbers = _numbers_pdf(self.views, n)
         st.seconds_front += time.perf_counter() - t0
         t0 = time.perf_counter()
         pdf = join([front] + parts, numbers, first_numbered=len(front.heights))
@@ -344,6 +344,45 @@ def _overlay(writer, page, over, name: str) -> None:
     head.set_data(b"q\n")
     tail.set_data(f"\nQ q {name} Do Q\n".encode("ascii"))
     page[NameObject("/Contents")] = ArrayObject([writer._add_object(head), *old, writer._add_object(tail)])
+
+
+_NUMBERS_MEMO: dict[str, bytes] = {}
+
+
+def _numbers_pdf(views, n: int) -> bytes:
+    """The PDF of :func:`_numbers_html`, remembered in the process and in the cache folder
+    (``<cache>/pages``): it depends on the page setup and the count only, and WeasyPrint
+    writes it byte for byte the same, so a remembered one changes nothing in the note."""
+    import hashlib
+
+    import weasyprint
+
+    from .formulas import _cache_dir
+    from .render import _atomic_write
+
+    html = _numbers_html(views, n)
+    key = hashlib.sha256(f"{weasyprint.__version__}|{html}".encode("utf-8")).hexdigest()
+    if key in _NUMBERS_MEMO:
+        return _NUMBERS_MEMO[key]
+    folder = _cache_dir()
+    path = None if folder is None else folder.parent / "pages" / f"{key}.pdf"
+    pdf = None
+    if path is not None:
+        try:
+            pdf = path.read_bytes()
+        except OSError:
+            pdf = None
+    if not pdf or not pdf.startswith(b"%PDF"):
+        pdf = _write(_lay_out(html))
+        if path is not None:
+            try:
+                _atomic_write(path, pdf)
+            except OSError:
+                pass  # a read-only cache folder is no reason to fail a report
+    if len(_NUMBERS_MEMO) > 16:
+        _NUMBERS_MEMO.clear()
+    _NUMBERS_MEMO[key] = pdf
+    return pdf
 
 
 def join(parts: list[_Laid], numbers: bytes, first_numbered: int) -> bytes:
