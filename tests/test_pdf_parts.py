@@ -173,3 +173,22 @@ def test_options_that_need_one_document():
     assert parallel.can_split(opts)
     assert not parallel.can_split(render.resolve_options({"section_new_page": False}))
     assert not parallel.can_split(render.resolve_options({"eskd_frame": True}))
+
+
+def test_an_error_in_a_worker_is_raised_as_in_one_process(monkeypatch):
+    """A section that fails in a worker is built again in the parent: the user sees the
+    same CaseError (exit 2), never a pickling error or a hung pool."""
+    from reportgen.analysis.study import Study
+    from reportgen.errors import CaseError
+    from reportgen.report import assemble
+
+    def broken(study):
+        raise CaseError("сломанный раздел", key="kinematics")
+
+    monkeypatch.setattr(assemble.SECTIONS["kinematics"][0], "build", broken)
+    parallel.set_note_jobs(2)
+    try:
+        with pytest.raises(CaseError, match="сломанный раздел"):
+            assemble.build_report(Study(CASES / "ws004_slotted_lever.toml"), SECTIONS)
+    finally:
+        parallel.set_note_jobs(None)

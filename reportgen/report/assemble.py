@@ -108,8 +108,14 @@ _STUDY = None  # the study whose sections are being built: inherited by the fork
 
 
 def _build_one(name: str):
+    """In a worker: the section, or ``None`` when building it failed (the parent builds it
+    again itself and so raises the error as a build in one process does: an exception
+    carried between processes may not survive pickling)."""
     from .document import freeze
-    return freeze(SECTIONS[name][0].build(_STUDY))
+    try:
+        return freeze(SECTIONS[name][0].build(_STUDY))
+    except Exception:
+        return None
 
 
 def _build_sections(study, names: list[str]) -> list:
@@ -135,7 +141,7 @@ def _build_sections(study, names: list[str]) -> list:
             done = dict(zip(order, pool.map(_build_one, [names[i] for i in order], chunksize=1)))
     finally:
         _STUDY = None
-    return [done[i] for i in range(len(names))]
+    return [done[i] if done[i] is not None else SECTIONS[names[i]][0].build(study) for i in range(len(names))]
 
 
 # relative cost of building a section of ws000 (figures): the longest first in the pool

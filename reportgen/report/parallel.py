@@ -96,6 +96,7 @@ class _Laid:
     seconds_write: float = 0.0
     key: str = ""
     known: bool = False  # split points were remembered
+    refused: list = field(default_factory=list)  # URLs the fetcher refused (safety.refused)
 
 
 def _outline(tree) -> list:
@@ -146,12 +147,24 @@ def _write(document) -> bytes:
         return document.write_pdf()
 
 
+def _lay_out_in_worker(task: tuple) -> _Laid | None:
+    """:func:`lay_out_part` in a worker; ``None`` when it failed (the parent lays the part out
+    again itself, so the error is raised there as in a build in one process)."""
+    try:
+        return lay_out_part(task)
+    except Exception:
+        return None
+
+
 def lay_out_part(task: tuple) -> _Laid:
     """Lay out body part ``index`` (its table split passes included) and write it."""
     from .render import MAX_PASSES, _next_splits, _page_rows
 
+    from . import safety
+
     index, html, splits, key, known = task
     splits = dict(splits)
+    seen = len(safety.refused)
     t0 = time.perf_counter()
     passes = 0
     while True:
@@ -167,7 +180,8 @@ def lay_out_part(task: tuple) -> _Laid:
     t2 = time.perf_counter()
     heights, anchors, links, outline = _facts(document)
     mine = {tid: list(splits[tid]) for tid in _page_rows(document) if tid in splits}
-    return _Laid(index, pdf, heights, anchors, links, outline, mine, passes, t1 - t0, t2 - t1, key, known)
+    refused = list(safety.refused[seen:] if len(safety.refused) >= seen else safety.refused)
+    return _Laid(index, pdf, heights, anchors, links, outline, mine, passes, t1 - t0, t2 - t1, key, known, refused)
 
 
 # ---------------------------------------------------------------- the whole note (parent)
@@ -232,15 +246,21 @@ class PartsJob:
 
             _font_config()  # loaded once, inherited by the workers
             self.pool = multiprocessing.get_context("fork").Pool(min(jobs, len(tasks)))
-            self.pending = self.pool.map_async(lay_out_part, tasks, chunksize=1)
+            self.pending = self.pool.map_async(_lay_out_in_worker, tasks, chunksize=1)
         t1 = time.perf_counter()
         self.front_doc = _lay_out(front)  # page count of the front matter, meanwhile
         self.stats.seconds_front += time.perf_counter() - t1
 
     def _results(self) -> list[_Laid]:
+        from . import safety
+
         try:
             if self.pending is not None:
                 laid = self.pending.get()
+                laid = [r if r is not None else lay_out_part(t) for r, t in zip(laid, self.tasks)]
+                for p in sorted(laid, key=lambda r: r.index):  # what the workers refused, recorded here
+                    safety.refused.extend(p.refused)
+                del safety.refused[:-100]
             else:
                 laid = [lay_out_part(t) for t in self.tasks]
         finally:
