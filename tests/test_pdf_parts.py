@@ -192,3 +192,17 @@ def test_an_error_in_a_worker_is_raised_as_in_one_process(monkeypatch):
             assemble.build_report(Study(CASES / "ws004_slotted_lever.toml"), SECTIONS)
     finally:
         parallel.set_note_jobs(None)
+
+
+def test_pages_look_the_same_as_one_document(built, tmp_path):
+    """Every page rendered at 30 dpi is the same image as the page of the one-document PDF
+    (footer numbers drawn by the overlay included)."""
+    from PIL import Image, ImageChops
+
+    for name in ("two", "whole"):
+        subprocess.run(["pdftoppm", "-r", "30", "-gray", str(built[name]), str(tmp_path / name)], check=True)
+    pages = sorted(tmp_path.glob("two-*.pgm"))
+    assert len(pages) == len(list(tmp_path.glob("whole-*.pgm"))) > 5
+    for p in pages:
+        other = tmp_path / p.name.replace("two-", "whole-")
+        assert ImageChops.difference(Image.open(p), Image.open(other)).getbbox() is None, p.name
