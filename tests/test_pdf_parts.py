@@ -206,3 +206,10 @@ def test_pages_look_the_same_as_one_document(built, tmp_path):
     for p in pages:
         other = tmp_path / p.name.replace("two-", "whole-")
         assert ImageChops.difference(Image.open(p), Image.open(other)).getbbox() is None, p.name
+
+
+def test_build_jobs_must_be_positive(tmp_path, capsys):
+    from reportgen.cli import main
+
+    assert main(["build", str(CASES / "ws004_slotted_lever.toml"), "--jobs", "0", "-o", str(tmp_path)]) == 2
+    assert "--jobs" in capsys.readouterr().err
