@@ -2,7 +2,10 @@
 
 Usage: python bench/bench_build.py [CASE …]  → bench/results/build.json (and a table on stdout).
 Each case is built twice in the same process: the first run includes one-time costs
-(numba cache load, fonts, formula rendering caches); the second is the warm figure.
+(numba cache load, fonts, formula rendering caches); the second is the warm figure. The PDF is
+laid out as the CLI lays it out (in parts, by ``REPORTGEN_JOBS`` / min(2, cores) processes):
+``pdf_layout`` and ``pdf_write`` are then summed over the parts (CPU of the workers), ``pdf`` is
+the wall time.
 """
 from __future__ import annotations
 
@@ -46,6 +49,9 @@ def stage_times(case: Path) -> dict:
         t["pdf_write"] = st.seconds_pdf
         t["pdf_passes"] = st.passes
         t["pages"] = st.pages
+        if st.parts is not None:  # laid out in parts (reportgen/report/parallel.py)
+            from dataclasses import asdict
+            t["pdf_parts"] = asdict(st.parts)
     t["sections"] = sections
     t["total"] = t["compute"] + t["sections_and_figures"] + t["html"] + t["pdf"]
     return t

@@ -61,19 +61,32 @@ def _env(**extra) -> dict:
 
 def run(args: list[str], **env) -> float:
     """Wall seconds of ``python -m reportgen.cli ARGS`` (exit code 0 or 1 accepted: a batch
-    with a failing variant exits 1)."""
+    with a failing variant exits 1); its CPU seconds (user + sys of the command and of the
+    worker processes it waited for) are appended to :data:`CPU`."""
+    import resource
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     p = subprocess.run([sys.executable, "-m", "reportgen.cli", *args], cwd=ROOT, env=_env(**env),
                        capture_output=True, text=True)
     dt = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    CPU.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
     if p.returncode not in (0, 1):
         raise SystemExit(f"reportgen {' '.join(args)} failed:\n{p.stderr}")
     return dt
 
 
+CPU: list[float] = []
+
+
 def median_of(n: int, args: list[str], **env) -> dict:
-    times = [run(args, **env) for _ in range(n)]
-    return {"median_s": round(statistics.median(times), 2), "runs_s": [round(t, 2) for t in times]}
+    times, cpu = [], []
+    for _ in range(n):
+        times.append(run(args, **env))
+        cpu.append(CPU[-1])
+    return {"median_s": round(statistics.median(times), 2), "runs_s": [round(t, 2) for t in times],
+            "cpu_median_s": round(statistics.median(cpu), 2), "cpu_runs_s": [round(t, 2) for t in cpu],
+            "load_average": [round(x, 2) for x in os.getloadavg()]}
 
 
 def bench_batch(tmp: Path, n: int) -> dict:
@@ -87,49 +100,69 @@ def bench_batch(tmp: Path, n: int) -> dict:
         w.writerows(good)
     out = tmp / "batch"
     args = ["batch", str(table), "--base", str(ROOT / CASE), "-o", str(out), "--jobs", "2"]
+    load = os.getloadavg()[0]
     dt = run(args)
     m = json.loads((out / "manifest.json").read_text(encoding="utf-8"))
     return {"variants": len(good), "ok": m["ok"], "wall_s": round(dt, 1), "jobs": 2,
+            # CPU not recorded: the workers are children of multiprocessing's fork server, whose
+            # children are not counted in RUSAGE_CHILDREN of the command
+            "load_average": [round(load, 2), round(os.getloadavg()[0], 2)],
             "per_variant_s": round(dt / max(1, len(good)), 2),
             "workers": m.get("workers", []),
             "command": f"reportgen batch <первые {len(good)} строк {CLASS}> --base {CASE} -o out --jobs 2"}
 
 
 def bench_pdf_vs_plain() -> dict:
-    """ws000's PDF (layout + write, split points known) against WeasyPrint on a plain
-    document of the same page count (running text only; same fonts, page setup, CSS)."""
+    """ws000's PDF against WeasyPrint alone on a plain document of the same page count (running
+    text only; same fonts, page setup, CSS), both with their table split points known (second
+    write). The note is written as the CLI writes it (in parts, by note_jobs() processes); the
+    plain document is laid out and written by WeasyPrint as one document. Wall and CPU seconds
+    (this process and the workers) of ``write_pdf``; the median of three of each."""
     sys.path.insert(0, str(ROOT))
     from reportgen.analysis.study import Study
-    from reportgen.report import render
+    from reportgen.report import parallel, render
     from reportgen.report.assemble import build_report
     from reportgen.report.document import Report, Section
 
-    def timed(report, path) -> tuple[float, int]:
-        render.write_pdf(report, path)  # the first layout finds the split points
-        render.write_pdf(report, path)
-        st = render.last_stats
-        return st.seconds_layout + st.seconds_pdf, st.pages
+    def timed(report, path, runs=3, **kw) -> tuple[float, float, int]:
+        render.write_pdf(report, path, **kw)  # the first layout finds the split points
+        walls, cpus = [], []
+        for _ in range(runs):
+            c0, t0 = os.times(), time.perf_counter()
+            render.write_pdf(report, path, **kw)
+            t1, c1 = time.perf_counter(), os.times()
+            walls.append(t1 - t0)
+            cpus.append(sum(c1[:4]) - sum(c0[:4]))
+        return statistics.median(walls), statistics.median(cpus), render.last_stats.pages
 
     def plain(n_par: int) -> Report:
         text = ("Механизм раскладывается на начальный механизм и группы Ассура; для каждой группы "
                 "записываются уравнения замкнутого векторного контура и решаются в замкнутом виде. ") * 3
         sections = []
-        for k in range(max(1, n_par // 20)):
-            s = Section(f"Раздел {k + 1}", f"s{k}")
-            for _ in range(20):
+        for k in range(0, max(1, n_par), 20):
+            s = Section(f"Раздел {k // 20 + 1}", f"s{k}")
+            for _ in range(min(20, n_par - k)):
                 s.paragraph(text)
             sections.append(s)
         return Report(meta={}, assignment=[], introduction=[], sections=sections, conclusion=[],
-                      references=[], options={"title_page": False, "assignment_page": False})
+                      references=[], options={"title_page": False, "assignment_page": False,
+                                              "section_new_page": False})  # one document
 
     with tempfile.TemporaryDirectory() as d:
         report = build_report(Study(ROOT / CASE))
-        t_note, pages = timed(report, Path(d) / "note.pdf")
-        _, p20 = timed(plain(20), Path(d) / "probe.pdf")
-        n = max(20, round(20 * pages / p20 / 20) * 20)
-        t_plain, plain_pages = timed(plain(n), Path(d) / "plain.pdf")
-    return {"note_pdf_s": round(t_note, 2), "note_pages": pages, "plain_pdf_s": round(t_plain, 2),
-            "plain_pages": plain_pages, "ratio": round(t_note / t_plain, 2)}
+        jobs = parallel.note_jobs()
+        t_note, c_note, pages = timed(report, Path(d) / "note.pdf")
+        t_one, c_one, _ = timed(report, Path(d) / "note1.pdf", runs=1, jobs=1)
+        _, _, p20 = timed(plain(20), Path(d) / "probe.pdf", runs=1)
+        n = max(1, round(20 * pages / p20))
+        _, _, pn = timed(plain(n), Path(d) / "probe.pdf", runs=1)
+        n = max(1, round(n * pages / pn))
+        t_plain, c_plain, plain_pages = timed(plain(n), Path(d) / "plain.pdf")
+    return {"note_pdf_s": round(t_note, 2), "note_pdf_cpu_s": round(c_note, 2), "note_jobs": jobs,
+            "note_pdf_one_worker_s": round(t_one, 2), "note_pdf_one_worker_cpu_s": round(c_one, 2),
+            "note_pages": pages, "plain_pdf_s": round(t_plain, 2), "plain_pdf_cpu_s": round(c_plain, 2),
+            "plain_pages": plain_pages, "ratio": round(t_note / t_plain, 2),
+            "load_average": [round(x, 2) for x in os.getloadavg()]}
 
 
 def _fmt(x: float) -> str:
@@ -143,7 +176,11 @@ def write_doc(res: dict) -> Path:
 
     def row(name, key, value, target, command):
         ok = "да" if value <= target else "нет"
-        rows.append(f"| {name} | {_fmt(value)} с | ≤ {_fmt(target)} с | {ok} | `{command}` |")
+        r = res[key]
+        cpu = r.get("cpu_median_s", r.get("cpu_s"))
+        load = r.get("load_average")
+        extra = (f"{_fmt(cpu)} с" if cpu is not None else "—") + (f" (load {_fmt(load[0])})" if load else "")
+        rows.append(f"| {name} | {_fmt(value)} с | {extra} | ≤ {_fmt(target)} с | {ok} | `{command}` |")
 
     if "help" in res:
         row("`reportgen --help` (медиана 5)", "help", res["help"]["median_s"], TARGETS["help"], res["help"]["command"])
@@ -174,8 +211,8 @@ def write_doc(res: dict) -> Path:
         + (" **Замер сделан под нагрузкой** (машину делили другие процессы): времена завышены."
            if max(res["load_average_before"][0], res["load_average_after"][0]) > (m["nproc"] or 1) else ""),
         "",
-        "| Что | Время | Цель | Достигнута | Команда |",
-        "|---|---|---|---|---|",
+        "| Что | Время (стен.) | ЦП (user+sys, с рабочими процессами) | Цель (стен.) | Достигнута | Команда |",
+        "|---|---|---|---|---|---|",
         *rows,
     ]
     if "batch" in res and res["batch"].get("workers"):
@@ -184,10 +221,14 @@ def write_doc(res: dict) -> Path:
     if "pdf" in res:
         p = res["pdf"]
         lines += ["", "PDF записки ws000 против WeasyPrint на простом документе того же объёма (только текст, те же",
-                  "шрифты и поля; вёрстка + запись, точки разрыва таблиц известны):",
-                  f"{p['note_pages']} стр. записки — {_fmt(p['note_pdf_s'])} с, {p['plain_pages']} стр. текста — "
-                  f"{_fmt(p['plain_pdf_s'])} с; отношение {_fmt(p['ratio'])} (цель ≤ {_fmt(TARGETS['pdf_ratio'])}). "
-                  f"Команда: `{p['command']}`."]
+                  "шрифты и поля, один документ; вёрстка + запись, точки разрыва таблиц известны, медиана трёх):",
+                  f"{p['note_pages']} стр. записки — {_fmt(p['note_pdf_s'])} с стен. ({_fmt(p.get('note_pdf_cpu_s', 0))} с ЦП, "
+                  f"вёрстка по частям в {p.get('note_jobs', 1)} процессах; в одном процессе — "
+                  f"{_fmt(p.get('note_pdf_one_worker_s', 0))} с), {p['plain_pages']} стр. текста — "
+                  f"{_fmt(p['plain_pdf_s'])} с стен. ({_fmt(p.get('plain_pdf_cpu_s', 0))} с ЦП); "
+                  f"отношение {_fmt(p['ratio'])} (цель ≤ {_fmt(TARGETS['pdf_ratio'])}). "
+                  + (f"Load average при замере: {_fmt(p['load_average'][0])}. " if p.get("load_average") else "")
+                  + f"Команда: `{p['command']}`."]
     if res.get("notes"):
         lines += ["", *res["notes"]]
     lines.append("")
@@ -228,7 +269,8 @@ def main(argv=None) -> None:
         if "first" in parts:
             cache = tmp / "empty-cache"
             cache.mkdir()
-            res["first"] = {"wall_s": round(run(build, XDG_CACHE_HOME=str(cache)), 2),
+            res["first"] = {"wall_s": round(run(build, XDG_CACHE_HOME=str(cache)), 2), "cpu_s": round(CPU[-1], 2),
+                            "load_average": [round(x, 2) for x in os.getloadavg()],
                             "command": f"XDG_CACHE_HOME=$(mktemp -d) reportgen build {CASE} --format pdf,html"}
             shutil.rmtree(cache, ignore_errors=True)
         if "batch" in parts:

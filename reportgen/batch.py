@@ -187,8 +187,10 @@ def _init_worker() -> None:
     builds afterwards reuses them, and the parsed formula images (see ``render._layout``)."""
     from .report import assemble  # noqa: F401  (sections, formulas, ziamath)
     from .report import render
+    from .report.parallel import set_note_jobs
     from .style import mplstyle
     from .warmup import warmup
+    set_note_jobs(1)  # the workers are the parallelism: no pool of layout processes inside one
     mplstyle.apply_style()
     render._font_config()
     render._get_env()
@@ -271,10 +273,19 @@ def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
     bar = _progress(len(variants))
     results: list[Outcome] = []
     if jobs == 1 or len(variants) == 1:
-        for v in variants:
-            results.append(run_variant(v, str(out_dir), formats, sections, key, sheets))
-            if bar:
-                bar.update()
+        from .report import parallel
+        from .report.parallel import set_note_jobs
+        if jobs == 1:
+            saved = parallel._JOBS
+            set_note_jobs(1)  # --jobs 1: one process in all
+        try:
+            for v in variants:
+                results.append(run_variant(v, str(out_dir), formats, sections, key, sheets))
+                if bar:
+                    bar.update()
+        finally:
+            if jobs == 1:
+                set_note_jobs(saved)
     else:
         # Workers are started once and kept for the whole class (no max_tasks_per_child):
         # the warm-up in _init_worker is paid once per worker, not once per variant.

@@ -66,6 +66,12 @@ def cmd_build(args) -> int:
     from .report.assemble import build_report
     from .report.render import build_outputs
     t0 = time.perf_counter()
+    if args.jobs is not None:
+        if args.jobs < 1:
+            raise CaseError("число процессов должно быть не меньше 1", key="--jobs", got=str(args.jobs),
+                            expected="целое число ≥ 1")
+        from .report.parallel import set_note_jobs
+        set_note_jobs(args.jobs)
     formats = _formats(args.format)
     out = _out_dir(Path(args.output))
     study = Study(args.case)
@@ -187,6 +193,9 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--sections", help="разделы через запятую: structure,kinematics,dynamics,forces")
     b.add_argument("--key", action="store_true", help="также ключ для преподавателя: <вариант>-key.pdf/.html")
     b.add_argument("--sheets", action="store_true", help="также листы графической части A1: <вариант>-sheets.pdf")
+    b.add_argument("--jobs", type=int, default=None,
+                   help="число процессов вёрстки PDF (по умолчанию — не больше двух, по числу ядер; "
+                        "или переменная REPORTGEN_JOBS)")
     b.set_defaults(func=cmd_build)
     bt = sub.add_parser("batch", help="отчёты по всем вариантам группы и манифест")
     bt.add_argument("variants", help="таблица вариантов (.csv, .toml) или папка с файлами вариантов")

@@ -105,7 +105,7 @@ def build_report(study, sections: Iterable[str] | None = None, options: dict | N
     node.table("options").check_keys(list(DEFAULT_OPTIONS))
     validate_options(node.table("options").data, file=node.file)
     names = chosen_sections(study, sections)
-    built = [SECTIONS[n][0].build(study) for n in names]
+    built = _build_sections(study, names)
     meta = dict(study.meta)
     meta.setdefault("topic", "Структурный и кинематический анализ рычажного механизма")
     meta.setdefault("variant", study.name)
@@ -113,6 +113,50 @@ def build_report(study, sections: Iterable[str] | None = None, options: dict | N
     opts.update(options or {})
     return Report(meta=meta, assignment=_assignment(study, names), introduction=_introduction(study, names, built),
                   sections=built, conclusion=_conclusion(study, names), references=REFERENCES, options=opts)
+
+
+_STUDY = None  # the study whose sections are being built: inherited by the forked workers
+
+
+def _build_one(name: str):
+    """In a worker: the section, or ``None`` when building it failed (the parent builds it
+    again itself and so raises the error as a build in one process does: an exception
+    carried between processes may not survive pickling)."""
+    from .document import freeze
+    try:
+        return freeze(SECTIONS[name][0].build(_STUDY))
+    except Exception:
+        return None
+
+
+def _build_sections(study, names: list[str]) -> list:
+    """Every chosen section built (``build(study)``: its text, tables and figures), in a pool
+    of forked processes when more than one may lay out a note
+    (:func:`~reportgen.report.parallel.note_jobs`): the figures of the sections are drawn
+    at the same time. The results the sections read are computed here first (``NEEDS``), so
+    the workers inherit them; a worker sends its section back made picklable
+    (:func:`~reportgen.report.document.freeze`)."""
+    global _STUDY
+    from .parallel import note_jobs
+    jobs = min(note_jobs(), len(names))
+    if jobs < 2:
+        return [SECTIONS[n][0].build(study) for n in names]
+    for need in sorted(needs(study, names)):
+        getattr(study, need)
+    import multiprocessing
+    _STUDY = study
+    try:
+        with multiprocessing.get_context("fork").Pool(jobs) as pool:
+            # the heaviest sections first (figures, tables): the order of the registry's tasks
+            order = sorted(range(len(names)), key=lambda i: (-_WEIGHT.get(names[i], 1), i))
+            done = dict(zip(order, pool.map(_build_one, [names[i] for i in order], chunksize=1)))
+    finally:
+        _STUDY = None
+    return [done[i] if done[i] is not None else SECTIONS[names[i]][0].build(study) for i in range(len(names))]
+
+
+# relative cost of building a section of ws000 (figures): the longest first in the pool
+_WEIGHT = {"dynamics": 4, "kinematics": 4, "forces": 3, "structure": 1}
 
 
 def _assignment(study, names) -> list:

@@ -35,6 +35,7 @@ __all__ = [
     "Report",
     "Formula",
     "ref",
+    "freeze",
 ]
 
 
@@ -174,3 +175,43 @@ class Report:
     references: list[str]
     appendices: list[Section] | tuple = ()
     options: dict = field(default_factory=dict)
+
+
+class _Texts:
+    """A column's printed texts by value: a formatter that crosses processes (a section
+    module's ``fmt`` is often a lambda, which ``pickle`` cannot carry)."""
+
+    def __init__(self, fmt: Callable[[Any], str], values):
+        self.texts = {}
+        for v in values:
+            try:
+                missing = v is None or bool(v != v)  # None, NaN: printed as a dash, never formatted
+            except TypeError:  # pandas.NA
+                missing = True
+            if not missing and v not in self.texts:
+                self.texts[v] = fmt(v)
+
+    def __call__(self, value) -> str:
+        return self.texts[value]
+
+
+def freeze(block):
+    """``block`` (a Section and everything in it) made picklable: every table's ``fmt`` and
+    ``index_fmt`` replaced by the texts they give for the table's own values (the same cells
+    are printed; columns are copied, as a section may share them between tables). Used to
+    send a section built in a worker process back."""
+    from dataclasses import replace
+
+    if isinstance(block, Section):
+        block.children = [freeze(child) for child in block.children]
+    elif isinstance(block, Table):
+        cols = []
+        for col in block.columns:
+            if col.fmt is not None and not isinstance(col.fmt, _Texts):
+                values = block.data[col.key].tolist() if col.key in block.data.columns else []
+                col = replace(col, fmt=_Texts(col.fmt, values))
+            cols.append(col)
+        block = replace(block, columns=cols)
+        if block.index_fmt is not None and not isinstance(block.index_fmt, _Texts):
+            block.index_fmt = _Texts(block.index_fmt, list(block.data.index))
+    return block

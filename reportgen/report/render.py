@@ -621,7 +621,36 @@ def _frame_svg() -> str:
             'fill="none" stroke="#000" stroke-width="0.6"/></svg>')
 
 
-def _render(report: Report, *, for_print: bool, splits=None) -> tuple[str, _Builder]:
+@dataclass
+class _Views:
+    """A report numbered and turned into views once: the whole document, its front matter
+    (title page, assignment, contents) or one top-level body node can be rendered from it."""
+
+    opts: dict
+    family: Any
+    builder: _Builder
+    ctx: dict
+
+    def html(self, *, front: bool = True, body: list | None = None,
+             toc_pages: dict | None = None, chunk: bool = False) -> str:
+        """The HTML of the front matter (``front``) followed by ``body`` (default: the whole
+        body). ``toc_pages``: the contents' page numbers as text (a document laid out in parts,
+        where ``target-counter`` cannot see the headings); ``chunk``: a body part laid out on
+        its own (no page number in its footer: the joined PDF gets the numbers afterwards)."""
+        env = _get_env()
+        ctx = dict(self.ctx)
+        css_ctx = dict(ctx.pop("css_ctx"), chunk=chunk)
+        if not front:
+            ctx.update(title_page=False, show_assignment=False)
+        css = env.get_template("gost.css" if ctx["for_print"] else "screen.css").render(**css_ctx)
+        ctx.update(css=Markup(css), front=front, toc_pages=toc_pages,
+                   body=ctx["body"] if body is None else body)
+        html = env.get_template("base.html.j2").render(**ctx)
+        html = _fill_refs(html, self.builder.targets)
+        return _typography(html)
+
+
+def _views(report: Report, *, for_print: bool, splits=None) -> _Views:
     opts = resolve_options(report.options)
     family = fonts.find_serif(opts["font"])
     builder = _Builder(report, opts, for_print=for_print, splits=splits)
@@ -632,17 +661,15 @@ def _render(report: Report, *, for_print: bool, splits=None) -> tuple[str, _Buil
         assignment = builder.blocks(report.assignment)
         builder.unnumbered = False
     body = _walk(builder, report)
-    env = _get_env()
     meta = {k: ("" if v is None else v) for k, v in (report.meta or {}).items()}
     css_ctx = {"o": opts, "for_print": for_print, "family": fonts.CSS_FAMILY,
-               "frame_uri": data_uri(_frame_svg()) if opts["eskd_frame"] else ""}
-    css = env.get_template("gost.css" if for_print else "screen.css").render(**css_ctx)
+               "frame_uri": data_uri(_frame_svg()) if opts["eskd_frame"] else "", "chunk": False}
     ctx = {
         "o": opts,
         "meta": meta,
         "for_print": for_print,
         "font_css": Markup(fonts.font_face_css(family, embed=not for_print)),
-        "css": Markup(css),
+        "css_ctx": css_ctx,
         "title_page": title_on,
         "assignment": assignment,
         "show_assignment": opts["assignment_page"] and (bool(assignment) or bool(meta)),
@@ -650,11 +677,14 @@ def _render(report: Report, *, for_print: bool, splits=None) -> tuple[str, _Buil
         "body": body,
         "eskd": bool(opts["eskd_frame"]) and for_print,
     }
-    html = env.get_template("base.html.j2").render(**ctx)
-    html = _fill_refs(html, builder.targets)
-    html = _typography(html)
-    _check_glyphs(html, family)
-    return html, builder
+    return _Views(opts, family, builder, ctx)
+
+
+def _render(report: Report, *, for_print: bool, splits=None) -> tuple[str, _Builder]:
+    views = _views(report, for_print=for_print, splits=splits)
+    html = views.html()
+    _check_glyphs(html, views.family)
+    return html, views.builder
 
 
 def render_html(report: Report, *, for_print: bool) -> str:
@@ -720,16 +750,27 @@ class RenderStats:
     seconds_layout: float = 0.0
     seconds_pdf: float = 0.0
     splits: dict = field(default_factory=dict)
+    parts: Any = None  # parallel.PartsStats of a note laid out in parts
 
 
 last_stats = RenderStats()
 
 
 class _QuietFontTools(logging.Filter):
-    """Drop WeasyPrint's notice about using fontTools instead of HarfBuzz-Subset."""
+    """Drop WeasyPrint's notice about using fontTools instead of HarfBuzz-Subset, and its
+    error about a link to an anchor outside the document: a part of a note laid out alone
+    (:mod:`reportgen.report.parallel`) links to the other parts, and those links are made
+    when the parts are joined (an unknown reference is an error before any layout)."""
 
     def filter(self, record):  # pragma: no cover - depends on the host libraries
-        return "HarfBuzz-Subset" not in record.getMessage()
+        msg = record.getMessage()
+        return "HarfBuzz-Subset" not in msg and not msg.startswith("No anchor #")
+
+
+def _quiet_weasyprint() -> None:
+    wlog = logging.getLogger("weasyprint")
+    if not any(isinstance(f, _QuietFontTools) for f in wlog.filters):
+        wlog.addFilter(_QuietFontTools())
 
 
 _ROW_ANCHOR = re.compile(r"^(.+)__r(\d+)$")
@@ -897,9 +938,7 @@ def _layout(report: Report, font_config):
 
     fetcher = url_fetcher()
     image_cache = _image_cache()  # parsed images (figures, formulas) shared by the passes and the process
-    wlog = logging.getLogger("weasyprint")
-    if not any(isinstance(f, _QuietFontTools) for f in wlog.filters):
-        wlog.addFilter(_QuietFontTools())
+    _quiet_weasyprint()
     splits: dict[str, list[int]] = {}
     stats = RenderStats()
     document = None
@@ -970,9 +1009,34 @@ def _fixed_font_timestamp():
         os.environ.pop("SOURCE_DATE_EPOCH", None)
 
 
-def write_pdf(report: Report, path) -> Path:
-    """Write the PDF atomically (WeasyPrint; «Продолжение таблицы» in passes)."""
+def _parts_job(report: Report, jobs: int | None = None):
+    """A :class:`~reportgen.report.parallel.PartsJob` for ``report`` when the note can be laid
+    out in parts (see :func:`~reportgen.report.parallel.can_split`), else ``None``."""
+    from . import parallel
+
+    if os.environ.get("REPORTGEN_PARTS", "1") == "0" or not parallel.can_split(resolve_options(report.options)):
+        return None
+    return parallel.PartsJob(report, parallel.note_jobs() if jobs is None else jobs)
+
+
+def _finish_parts(job, path) -> Path:
     global last_stats
+    pdf = job.finish()
+    st = job.stats
+    last_stats = RenderStats(passes=st.passes, pages=st.pages, seconds_html=st.seconds_html,
+                             seconds_layout=st.seconds_layout, seconds_pdf=st.seconds_write + st.seconds_join,
+                             splits=st.splits, parts=st)
+    return _atomic_write(Path(path), pdf)
+
+
+def write_pdf(report: Report, path, *, jobs: int | None = None) -> Path:
+    """Write the PDF atomically (WeasyPrint; «Продолжение таблицы» in passes): laid out in
+    parts by ``jobs`` processes (default :func:`~reportgen.report.parallel.note_jobs`) and
+    joined when the note allows it, else as one document."""
+    global last_stats
+    job = _parts_job(report, jobs)
+    if job is not None:
+        return _finish_parts(job, path)
     document, stats = _layout(report, _font_config())
     t0 = time.perf_counter()
     with _fixed_font_timestamp():
@@ -984,14 +1048,21 @@ def write_pdf(report: Report, path) -> Path:
 
 def build_outputs(report: Report, out_dir, stem: str,
                   formats=("pdf", "html")) -> dict[str, Path]:
-    """Write ``out_dir/stem.pdf`` and/or ``out_dir/stem.html``; returns the paths."""
+    """Write ``out_dir/stem.pdf`` and/or ``out_dir/stem.html``; returns the paths. The parts of
+    the PDF are laid out by the workers while this process writes the HTML."""
     from .safety import write_together
-    writers = {}
     for f in formats:
-        if f == "pdf":
-            writers["pdf"] = lambda p: write_pdf(report, p)
-        elif f == "html":
-            writers["html"] = lambda p: write_html(report, p)
-        else:
+        if f not in ("pdf", "html"):
             raise ValueError(f"Неизвестный формат вывода: {f!r} (допустимы pdf, html)")
-    return write_together(Path(out_dir), stem, writers)
+    writers = {}
+    job = _parts_job(report) if "pdf" in formats else None
+    if "html" in formats:
+        writers["html"] = lambda p: write_html(report, p)
+    if "pdf" in formats:
+        writers["pdf"] = (lambda p: _finish_parts(job, p)) if job is not None else (lambda p: write_pdf(report, p))
+    try:
+        written = write_together(Path(out_dir), stem, writers)
+        return {f: written[f] for f in formats if f in written}
+    finally:
+        if job is not None:
+            job.close()
