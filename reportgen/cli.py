@@ -14,7 +14,6 @@ from .errors import CaseError, ReportgenError
 
 
 def _parse_at(study, text: str) -> list[float]:
-    from .case import units as U
     from .case.expr import evaluate
     vals = []
     if text.count(",") >= 10_000:
@@ -107,6 +106,8 @@ def cmd_check(args) -> int:
     from .analysis.study import Study
     study = Study(args.case)
     study.meta  # [meta] values are checked as the note reads them
+    from .report.safety import validate_report
+    validate_report(study.root.table("report"))  # [report] as build reads it
     print(f"Вариант: {study.name}")
     if study.has_linkage:
         _check_linkage(study)

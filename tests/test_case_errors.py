@@ -83,3 +83,26 @@ def test_unknown_report_option(tmp_path, capsys):
     err = capsys.readouterr().err
     assert rc == 2 and "report.options.figure_wrd" in err and "figure_word" in err
     assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
+
+
+import pytest  # noqa: E402
+
+
+@pytest.mark.parametrize("report, key", [
+    ('options = { figure_wrd = "Рис." }', "report.options.figure_wrd"),
+    ('options = { font_size_pt = 200 }', "report.options.font_size_pt"),
+    ('sections = ["kinematic"]', "report.sections"),
+    ('sections = []', "report.sections"),
+    ('sectons = ["dof"]', "report.sectons"),
+])
+def test_check_rejects_a_bad_report_section_as_build_does(tmp_path, capsys, report, key):
+    """``check`` validates ``[report]`` exactly as ``build`` reads it: same exit code, same key."""
+    p = tmp_path / "rep.toml"
+    p.write_text(BASE + f"\n[report]\n{report}\n", encoding="utf-8")
+    errs = []
+    for argv in (["check", str(p)], ["build", str(p), "-o", str(tmp_path / "out"), "--format", "html"]):
+        rc = main(argv)
+        err = capsys.readouterr().err
+        assert rc == 2 and key in err and "Traceback" not in err, (argv[0], err)
+        errs.append(err)
+    assert errs[0] == errs[1]

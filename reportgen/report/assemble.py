@@ -18,6 +18,7 @@ from ..registry import KINDS
 from ..style.numbers import fmt
 from .document import Column, Paragraph, Report, Table
 from .russian import param_symbol, param_title, plural
+from .safety import validate_report
 from .sections import kinematics as sec_kin
 from .sections import structure as sec_struct
 from .sections.common import as_written, swing_text, value_with_unit
@@ -69,14 +70,10 @@ REFERENCES = [_typeset(r) for r in REFERENCES]
 def chosen_sections(study, names: Iterable[str] | None) -> list[str]:
     """The note's sections: ``--sections``, else ``[report] sections`` of the case, else every
     section the case has."""
-    if not names and study.root.table("report").has("sections"):
-        node = study.root.table("report")
-        raw = node.raw("sections")
-        ok = [n for n in ORDER if n in SECTIONS]
-        if not (isinstance(raw, list) and raw and all(isinstance(x, str) and x in SECTIONS for x in raw)):
-            raise node.error("sections", "ожидался список разделов записки", expected="sections = [\"dof\"]; разделы: "
-                             + ", ".join(ok), got=repr(raw)[:200])
-        return [n for n in ORDER if n in raw]
+    if not names:
+        asked = validate_report(study.root.table("report"))
+        if asked is not None:
+            return asked
     if names:
         unknown = [n for n in names if n not in SECTIONS]
         if unknown:
@@ -94,16 +91,11 @@ def needs(study, names: Iterable[str] | None = None) -> set[str]:
     return out
 
 
-REPORT_KEYS = ["position", "output", "output_title", "options", "sections"]
-
-
 def build_report(study, sections: Iterable[str] | None = None, options: dict | None = None) -> Report:
     from .render import DEFAULT_OPTIONS
-    from .safety import validate_options
     node = study.root.table("report")
-    node.check_keys(REPORT_KEYS)
+    validate_report(node)
     node.table("options").check_keys(list(DEFAULT_OPTIONS))
-    validate_options(node.table("options").data, file=node.file)
     names = chosen_sections(study, sections)
     built = _build_sections(study, names)
     meta = dict(study.meta)

@@ -19,7 +19,7 @@ from urllib.parse import unquote, urlparse
 
 from ..errors import CaseError
 
-__all__ = ["OPTION_RULES", "validate_options", "url_fetcher", "check_url", "FetchRefused", "allowed_files"]
+__all__ = ["OPTION_RULES", "REPORT_KEYS", "validate_options", "validate_report", "url_fetcher", "check_url", "FetchRefused", "allowed_files"]
 
 # key -> ("number", lo, hi) | ("int", lo, hi) | ("bool",) | ("text", max length) | ("font",)
 OPTION_RULES: dict[str, tuple] = {
@@ -108,6 +108,30 @@ def validate_options(options: Mapping[str, Any] | None, *, file: str | None = No
                            "один из установленных: " + (", ".join(names) or "нет ни одного"), v)
             out[key] = v
     return out
+
+
+REPORT_KEYS = ["position", "output", "output_title", "options", "sections"]
+
+
+def section_names() -> list[str]:
+    """The note's sections in their order: the linkage's two, then one per registered task kind."""
+    from ..registry import KINDS
+    return ["structure", "kinematics", *(k.name for k in KINDS)]
+
+
+def validate_report(node) -> list[str] | None:
+    """``[report]`` checked as ``build`` reads it (its keys, ``options``, ``sections``) without
+    loading the renderer, so that ``check`` rejects what ``build`` would; returns the sections
+    the case asks for, or None."""
+    node.check_keys(REPORT_KEYS)
+    validate_options(node.table("options").data, file=node.file)
+    if not node.has("sections"):
+        return None
+    raw, ok = node.raw("sections"), section_names()
+    if not (isinstance(raw, list) and raw and all(isinstance(x, str) and x in ok for x in raw)):
+        raise node.error("sections", "ожидался список разделов записки", expected="sections = [\"dof\"]; разделы: "
+                         + ", ".join(ok), got=repr(raw)[:200])
+    return [n for n in ok if n in raw]
 
 
 class FetchRefused(ValueError):
