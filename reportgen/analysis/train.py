@@ -498,7 +498,7 @@ def read_model(node: Node, names) -> tuple[TrainModel, dict]:
             "z_min": sel.integer("z_min", 17, minimum=5),
             "z_from": sel.integer("z_from", None, minimum=5),
             "dz_internal": sel.integer("dz_internal", 8, minimum=1),
-            "limit": sel.integer("limit", 10, minimum=1, maximum=100)}
+            "limit": sel.integer("limit", 6, minimum=1, maximum=100)}
         if not any(w.z == 0 for w in wheels.values()):
             raise node.error("select", "для подбора нужны колёса с z = \"select\"",
                              expected='z = "select" у подбираемых колёс')

@@ -430,7 +430,7 @@ class Selector:
         model = self.model_with(zs)
         fails = []
         if target is not None and abs(float(u) - target) > tol * abs(target) * (1 + 1e-12) + 1e-12 * abs(target):
-            fails.append(f"передаточное отношение {float(u):.4f} вне допуска ±{tol * 100:g} %")
+            fails.append(f"передаточное отношение {_dec(float(u))} вне допуска ±{_dec(tol * 100, 'g')} %")
         y, resid = place_axes(model)
         bad = [(n, r) for n, r in resid if abs(r) > 1e-9]
         if bad:
@@ -445,17 +445,18 @@ class Selector:
         nb = neighbourhood(model, y, z, self.k, self.ha)
         for h, ax, s, rhs, ok in nb:
             if not ok:
-                fails.append(f"не выполнено условие соседства при k = {self.k}: sin(π/k) = {s:.4f} ≤ {rhs:.4f}")
+                fails.append(f"не выполнено условие соседства при k = {self.k}: sin(π/k) = {_dec(s)} ≤ "
+                             f"(z + 2h_a*)m/(2a_w) = {_dec(rhs)}")
         for w in model.wheels.values():
             if not w.internal and w.z < self.z_min:
-                fails.append(f"z{_sub(w.name)} = {w.z} < {self.z_min}: подрезание")
+                fails.append(f"z{w.name} = {w.z} < {self.z_min}: подрезание")
         for a, b in model.meshes:
             wa, wb = model.wheels[a], model.wheels[b]
             if not (wa.internal or wb.internal):
                 continue
             ring, small = (wa, wb) if wa.internal else (wb, wa)
             if ring.z - small.z < self.dz_int:
-                fails.append(f"z{_sub(ring.name)} − z{_sub(small.name)} = {ring.z - small.z} < {self.dz_int}: "
+                fails.append(f"z{ring.name} − z{small.name} = {ring.z - small.z} < {self.dz_int}: "
                              f"интерференция во внутреннем зацеплении")
             elif small.z >= 5:
                 worst = [NAMES[c] for c, v in _internal_margins(small.z, ring.z).items() if v < -1e-9]
@@ -465,22 +466,23 @@ class Selector:
         return Candidate(dict(zs), float(u), size, fails, u, asm, nb)
 
 
+def _dec(x: float, spec: str = ".4f") -> str:
+    """A number with the decimal comma (Russian text)."""
+    return format(x, spec).replace(".", ",").replace("-", "−")
+
+
 def _frac(x: Fraction) -> str:
     return str(x.numerator) if x.denominator == 1 else f"{x.numerator}/{x.denominator}"
 
 
-def _sub(name: str) -> str:
-    """Wheel name as a plain-text index: «z₂′» style is kept simple: «z2'»."""
-    return name
-
-
 def select(model: TrainModel, target: float, k: int, *, tol: float = 0.03, z_min: int = 17,
-           z_max: int = 150, dz_int: int = 8, ha: float = 1.0, limit: int = 10, z_from: int | None = None,
+           z_max: int = 150, dz_int: int = 8, ha: float = 1.0, limit: int = 6, z_from: int | None = None,
            prefer=()) -> tuple[list[Candidate], list[Candidate], Selector]:
-    """Accepted sets (at most ``limit``, smallest first) and the sets ranked before the last
-    accepted one that fail (at most ``limit``), with the selector (formulas for the note)."""
+    """Accepted sets (at most ``limit``, smallest first) and at most ``limit`` failing sets: those
+    ranked before the first accepted one (every kind of failure represented), then those among
+    the accepted ones; with the selector (formulas for the note)."""
     sel = Selector(model, k=k, z_min=z_min, z_max=z_max, dz_int=dz_int, ha=ha, z_from=z_from, prefer=prefer)
-    ok, bad = [], []
+    ok, before, after = [], [], []
     for zs in sel.survivors(target, tol):
         c = sel.check(zs, target, tol)
         if c.ok:
@@ -488,10 +490,11 @@ def select(model: TrainModel, target: float, k: int, *, tol: float = 0.03, z_min
             if len(ok) >= limit:
                 break
         else:
-            bad.append(c)
-            if len(bad) > 50 * limit:
-                del bad[:25 * limit]
-    return ok, _variety(bad, limit), sel
+            (after if ok else before).append(c)
+            if len(before) > 50 * limit:
+                del before[:25 * limit]
+    bad = _variety(before, limit)
+    return ok, bad + after[:limit - len(bad)], sel
 
 
 KINDS = ("допуска", "соосности", "сборки", "соседства", "подрезание", "интерференция", "ГОСТ")

@@ -90,14 +90,14 @@ def _selection(sec: Section, tr) -> None:
         f"отвергнутые (ближайшие к принятым по габариту, по каждой причине) с причинами отказа.")
     rows = []
     for c in tr.candidates + tr.rejected:
-        rows.append({"set": " / ".join(str(c.z[w]) for w in sel.unknown), "u": c.u,
+        rows.append({"set": "/".join(str(c.z[w]) for w in sel.unknown), "u": c.u,
                      "du": (c.u - tr.opts["target"]) / tr.opts["target"] * 100, "size": c.size,
                      "asm": "; ".join(_asm_value(ok, qs) for _, ok, qs in c.assembly) or "—",
-                     "nb": ("; ".join(f"{fmt(sv, sig=3)} {'&gt;' if ok else '≤'} {fmt(r, sig=3)}"
+                     "nb": ("; ".join(f"{fmt(sv, sig=3)} {'>' if ok else '≤'} {fmt(r, sig=3)}"
                                       for *_, sv, r, ok in c.neighbours) or "—"),
                      "verdict": "годится" if c.ok else "; ".join(c.fails)})
     s.table("Наборы чисел зубьев и проверка условий", [
-        Column("set", " / ".join(f"<i>z</i><sub>{w}</sub>" for w in sel.unknown), fmt=str),
+        Column("set", "/".join(f"<i>z</i><sub>{w}</sub>" for w in sel.unknown), fmt=str),
         Column("u", f"<i>u</i><sub>{m.inp}{m.out}</sub>", sig=6), Column("du", "Δ<i>u</i>", "%", sig=2),
         Column("size", "Габарит, модулей", sig=4), Column("asm", "Сборка", fmt=str),
         Column("nb", "Соседство, sin(π/<i>k</i>)", fmt=str), Column("verdict", "Заключение", fmt=str)],
@@ -162,7 +162,7 @@ def _assembly_text(s: Section, tr, k: int) -> None:
         s.paragraph("Сателлит один (<i>k</i> = 1): условия сборки и соседства не накладываются.")
         return
     s.paragraph(
-        "Условие сборки <i>k</i> сателлитов, равномерно расположенных по окружности (Кудрявцев): "
+        "Условие сборки <i>k</i> сателлитов, равномерно расположенных по окружности: "
         "центральные колёса неподвижны, фаза зацепления венца сателлита <i>z</i><sub>c</sub> с центральным "
         "колесом <i>z</i><sub>a</sub> при переходе к соседнему месту (поворот линии центров на 2π/<i>k</i>) "
         "меняется на <i>z</i><sub>a</sub>/<i>k</i> шага; одинаковый блок сателлита встаёт на место, если "
@@ -170,7 +170,7 @@ def _assembly_text(s: Section, tr, k: int) -> None:
         "(<i>z</i><sub>d</sub><i>z</i><sub>a</sub> ± <i>z</i><sub>c</sub><i>z</i><sub>b</sub>)/(<i>k</i>·НОД(<i>z</i><sub>c</sub>, "
         "<i>z</i><sub>d</sub>)) — целое («+», когда одно из зацеплений внутреннее); для одновенцового сателлита "
         "(<i>c</i> = <i>d</i>) это (<i>z</i><sub>a</sub> ± <i>z</i><sub>b</sub>)/<i>k</i>, что совпадает с условием "
-        "<i>z</i><sub>1</sub><i>u</i><sub>1H</sub>(1 + <i>kp</i>)/<i>k</i> — целое схемы 2K-H.")
+        "<i>z</i><sub>1</sub><i>u</i><sub>1H</sub>(1 + <i>kp</i>)/<i>k</i> — целое схемы 2K-H [2].")
     bad = [pl.member for pl in sel.planets if pl.coupled]
     if bad:
         s.paragraph("Для сателлитов " + ", ".join(bad) + ", зацепляющихся с другими сателлитами или несущих "
