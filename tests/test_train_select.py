@@ -310,7 +310,7 @@ def test_double_satellite_agrees_with_a_plain_enumeration():
     assert ok[0].z == best[1]
 
 
-@pytest.mark.parametrize("case", ["train_2kh_double_select", "train_3k_select"])
+@pytest.mark.parametrize("case", ["train_2kh_double_select", "train_3k_select", "train_two_carrier_select"])
 def test_cases_select_and_note(case):
     from reportgen import load_case
     from reportgen.report.sections import train as sec

@@ -70,11 +70,11 @@ def _selection(sec: Section, tr) -> None:
     if sel.equations:
         s.paragraph("Условия соосности — равенство межосевых расстояний в каждом замкнутом контуре осей "
                     "(модуль сокращён):")
-        s.formula(*[Formula(rf"{_form(p)} = {_form(c)}") for _, p, c in sel.equations])
+        s.formula(*[Formula(rf"{_form(p, sel.order)} = {_form(c, sel.order)}") for _, p, c in sel.equations])
     if sel.dependent:
         s.paragraph("Из них выражаются числа зубьев " + ", ".join(f"<i>z</i><sub>{d}</sub>" for d in sel.dependent)
                     + "; остальные перебираются от " + f"{sel.z_from} до {sel.z_max}:")
-        s.formula(*[Formula(rf"z_{{{d}}} = {_affine(c0, cf)}") for d, (c0, cf) in sel.dependent.items()])
+        s.formula(*[Formula(rf"z_{{{d}}} = {_affine(c0, cf, sel.order)}") for d, (c0, cf) in sel.dependent.items()])
     _assembly_text(s, tr, k)
     s.paragraph(
         f"Условие соседства: окружности вершин соседних сателлитов не пересекаются, "
@@ -99,7 +99,7 @@ def _selection(sec: Section, tr) -> None:
     s.table("Наборы чисел зубьев и проверка условий", [
         Column("set", "/".join(f"<i>z</i><sub>{w}</sub>" for w in sel.unknown), fmt=str),
         Column("u", f"<i>u</i><sub>{m.inp}{m.out}</sub>", sig=6), Column("du", "Δ<i>u</i>", "%", sig=2),
-        Column("size", "Габарит, модулей", sig=4), Column("asm", "Сборка", fmt=str),
+        Column("size", "Габарит, модулей", digits=0, sig=None), Column("asm", "Сборка", fmt=str),
         Column("nb", "Соседство, sin(π/<i>k</i>)", fmt=str), Column("verdict", "Заключение", fmt=str)],
         pd.DataFrame(rows), id="tab-train-select", highlight_rows=[0])
     s.paragraph("Проверка принятого набора (" + ", ".join(f"<i>z</i><sub>{w}</sub> = {acc.z[w]}" for w in sel.unknown)
@@ -108,7 +108,7 @@ def _selection(sec: Section, tr) -> None:
     forms = [Formula(rf"u_{{{m.inp}\,{m.out}}} = \frac{{{fr.numerator}}}{{{fr.denominator}}}" if fr.denominator != 1
                      else rf"u_{{{m.inp}\,{m.out}}} = {fr.numerator}", result=tex_num(float(fr), sig=7))]
     for (_, p, c) in sel.equations:
-        forms.append(Formula(rf"{_form(p)} = {_form(c)}", rf"{_value(p, z)} = {_value(c, z)}"))
+        forms.append(Formula(rf"{_form(p, sel.order)} = {_form(c, sel.order)}", rf"{_value(p, z)} = {_value(c, z)}"))
     for pl, (_, ok, qs) in zip(sel.planets, acc.assembly):
         for (c0, p0, s0), (cj, pj, sj), q in zip([pl.meshes[0]] * len(qs), pl.meshes[1:], qs):
             sym, num = _asm_tex(c0, p0, s0, cj, pj, sj, z, k)
@@ -120,9 +120,9 @@ def _selection(sec: Section, tr) -> None:
     s.paragraph("Все условия выполнены; по принятым числам зубьев ниже построены схема и планы скоростей.")
 
 
-def _affine(c0, cf: dict) -> str:
+def _affine(c0, cf: dict, order: list) -> str:
     """z_dep = c0 + Σ c z as TeX."""
-    t = _form({w: c for w, c in cf.items()})
+    t = _form(cf, order)
     if c0:
         t += (" + " if c0 > 0 else " - ") + _num(abs(c0))
     return t
@@ -207,10 +207,12 @@ def _wheels(sec: Section, tr) -> None:
         sec.paragraph(text)
 
 
-def _form(t: dict) -> str:
-    """A linear form in the tooth numbers as TeX, positive terms first: «z_{2} - z_{1}»."""
+def _form(t: dict, order: list | None = None) -> str:
+    """A linear form in the tooth numbers as TeX, positive terms first (then by ``order`` when
+    given): «z_{2} - z_{1}»."""
     out = ""
-    for w, c in sorted(t.items(), key=lambda wc: wc[1] < 0):
+    rank = (lambda w: order.index(w)) if order else (lambda w: 0)  # noqa: E731
+    for w, c in sorted(t.items(), key=lambda wc: (wc[1] < 0, rank(wc[0]))):
         k = "" if abs(c) == 1 else str(abs(c))
         out += (" - " if c < 0 else (" + " if out else "")) + k + _z(w)
     return out.strip()
@@ -319,5 +321,11 @@ def conclusion_lines(study) -> list[str]:
     m = tr.model
     fr = tr.ratio_fraction
     zs = ", ".join(f"z<sub>{w.name}</sub> = {w.z}" for w in m.wheels.values())
-    return [f"Передаточное отношение планетарного механизма <i>u</i><sub>{m.inp}{m.out}</sub> = "
-            f"{fr.numerator}/{fr.denominator} = {fmt(tr.ratio, sig=7)} ({zs})."]
+    out = [f"Передаточное отношение планетарного механизма <i>u</i><sub>{m.inp}{m.out}</sub> = "
+           f"{fr.numerator}/{fr.denominator} = {fmt(tr.ratio, sig=7)} ({zs})."]
+    if tr.candidates:
+        out.append(f"Числа зубьев подобраны перебором под <i>u</i> = {fmt(tr.opts['target'], sig=6)} (отклонение "
+                   f"{_pct(tr.scalars['train_u_error_pct'])} %) при <i>k</i> = {tr.opts['planets']}: выполнены условия "
+                   f"соосности, сборки, соседства, отсутствия подрезания и интерференции; набор — наименьший "
+                   f"по габариту (наибольший занимаемый колёсами диаметр {fmt(tr.candidates[0].size, sig=4)}<i>m</i>).")
+    return out
