@@ -445,8 +445,7 @@ class Selector:
         nb = neighbourhood(model, y, z, self.k, self.ha)
         for h, ax, s, rhs, ok in nb:
             if not ok:
-                fails.append(f"не выполнено условие соседства при k = {self.k}: sin(π/k) = {_dec(s)} ≤ "
-                             f"(z + 2h_a*)m/(2a_w) = {_dec(rhs)}")
+                fails.append(f"не выполнено условие соседства при k = {self.k}: {_dec(s)} ≤ {_dec(rhs)}")
         for w in model.wheels.values():
             if not w.internal and w.z < self.z_min:
                 fails.append(f"z{w.name} = {w.z} < {self.z_min}: подрезание")
