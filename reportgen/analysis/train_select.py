@@ -30,7 +30,9 @@ Conditions (Кудрявцев В. Н. «Планетарные передачи
   no tip interference outside the line of action).
 
 Enumeration: the free tooth numbers run over [z_from, z_max] (numpy, one slab per value of the
-first), the dependent ones come from coaxiality, the ratio filters, the survivors are ranked by the
+first) — except one in which the ratio is a Möbius function u = (ax + b)/(cx + d): its admissible
+integers lie between the roots of u = target(1 ± tol) and are taken from there — the dependent ones
+come from coaxiality, the ratio filters, the survivors are ranked by the
 overall size (the largest diameter the wheels occupy, max(2|y_c| + mz) over the wheels, in modules)
 then Σz, and checked in that order until ``limit`` sets pass; the sets before them that fail are
 kept with their reasons.
@@ -353,28 +355,87 @@ class Selector:
         return dep, free
 
     # -------------------------------------------------------------------------------- vectorised
-    def _slabs(self):
-        """Tooth numbers of the free wheels, one slab per value of the first."""
+    def _linear_free(self) -> str | None:
+        """A free wheel in which the ratio's numerator and denominator (the dependent tooth numbers
+        substituted) are both of degree ≤ 1 — its admissible values then follow from the target
+        (second differences at 0, 1, 2 vanish at several points of the others, exactly)."""
+        rs = np.random.default_rng(0)
+        for x in reversed(self.free):
+            linear = True
+            for _ in range(4):
+                base = {w: int(rs.integers(self.z_from, self.z_max + 1)) for w in self.free}
+                vals = []
+                for v in (0, 1, 2):
+                    z = {**self.known, **base, x: v}
+                    z.update({d: c0 + sum(c * z[w] for w, c in cf.items()) for d, (c0, cf) in self.dependent.items()})
+                    vals.append((poly_eval(self.num, z), poly_eval(self.den, z)))
+                if any(vals[0][i] - 2 * vals[1][i] + vals[2][i] != 0 for i in (0, 1)):
+                    linear = False
+                    break
+            if linear:
+                return x
+        return None
+
+    def _slabs(self, target: float, tol: float):
+        """Tooth numbers of the free wheels, one slab per value of the first enumerated one.  When
+        the ratio is a Möbius function u = (a x + b)/(c x + d) of a free wheel x, x is not
+        enumerated: only the integers between the roots of u(x) = target(1 ± tol) are taken (all
+        of the range where the preimage is not that interval: the pole in between)."""
         rng = np.arange(self.z_from, self.z_max + 1)
+        x = self._linear_free() if len(self.free) > 1 else None
+        enum = [w for w in self.free if w != x]
         if not self.free:
             yield {}
             return
-        if rng.size ** len(self.free) > GRID_LIMIT:
-            raise OverflowError(rng.size ** len(self.free))
-        rest = self.free[1:]
+        if rng.size ** len(enum) > GRID_LIMIT:
+            raise OverflowError(rng.size ** len(enum))
+        rest = enum[1:]
         grids = np.meshgrid(*([rng] * len(rest)), indexing="ij") if rest else []
         flat = [g.ravel() for g in grids]
         n = flat[0].size if flat else 1
         for v in rng:
-            yield {self.free[0]: np.full(n, v), **dict(zip(rest, flat))}
+            slab = {enum[0]: np.full(n, v), **dict(zip(rest, flat))}
+            yield slab if x is None else self._expand(slab, x, rng, target, tol)
+
+    def _expand(self, slab: dict, x: str, rng: np.ndarray, target: float, tol: float) -> dict:
+        n = next(iter(slab.values())).size
+        ends = []
+        for v in (0.0, 1.0):
+            z = {**self.known, **{w: np.asarray(a, float) for w, a in slab.items()}, x: np.full(n, v)}
+            for d, (c0, cf) in self.dependent.items():
+                z[d] = float(c0) + sum(float(c) * z[w] for w, c in cf.items())
+            ends.append((np.broadcast_to(np.asarray(poly_eval(self.num, z), float), (n,)),
+                         np.broadcast_to(np.asarray(poly_eval(self.den, z), float), (n,))))
+        (b_n, b_d), (n1, d1) = ends
+        a_n, a_d = n1 - b_n, d1 - b_d
+        lo_t, hi_t = sorted((target * (1 - tol), target * (1 + tol)))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r1 = (lo_t * b_d - b_n) / (a_n - lo_t * a_d)
+            r2 = (hi_t * b_d - b_n) / (a_n - hi_t * a_d)
+            pole_in = (a_d != 0) & (a_n / np.where(a_d != 0, a_d, 1) >= lo_t - 1e-12) & \
+                (a_n / np.where(a_d != 0, a_d, 1) <= hi_t + 1e-12)
+        full = pole_in | ~np.isfinite(r1) | ~np.isfinite(r2) | ((a_n == 0) & (a_d == 0))
+        eps = 1e-7 * (1 + np.abs(np.nan_to_num(r1)) + np.abs(np.nan_to_num(r2)))
+        lo = np.where(full, rng[0], np.ceil(np.minimum(np.nan_to_num(r1), np.nan_to_num(r2)) - eps))
+        hi = np.where(full, rng[-1], np.floor(np.maximum(np.nan_to_num(r1), np.nan_to_num(r2)) + eps))
+        lo, hi = np.maximum(lo, rng[0]).astype(np.int64), np.minimum(hi, rng[-1]).astype(np.int64)
+        cnt = np.maximum(hi - lo + 1, 0)
+        total = int(cnt.sum())
+        row = np.repeat(np.arange(n), cnt)
+        start = np.repeat(np.cumsum(cnt) - cnt, cnt)
+        out = {w: np.asarray(a)[row] for w, a in slab.items()}
+        out[x] = lo[row] + (np.arange(total) - start)
+        return out
 
     def survivors(self, target: float, tol: float) -> list[dict[str, int]]:
         """Tooth sets (integers, coaxial, in range) with the ratio within tolerance (float
         filter; the exact check follows), sorted by size, Σz and |u − target|."""
         found = []
-        for slab in self._slabs():
+        for slab in self._slabs(target, tol):
             z = {w: np.asarray(v, np.int64) for w, v in slab.items()}
             n = next(iter(z.values())).size if z else 1
+            if n == 0:
+                continue
             ok = np.ones(n, bool)
             for d, (c0, cf) in self.dependent.items():
                 den = math.lcm(c0.denominator, *(c.denominator for c in cf.values()))
