@@ -353,3 +353,13 @@ def test_solving_the_linear_wheel_from_the_target_loses_nothing(name):
     slow = sel.survivors(target, kw.get("tol", 0.03))
     key = lambda zs: sorted(zs.items())  # noqa: E731
     assert fast and sorted(map(key, fast)) == sorted(map(key, slow))
+
+
+def test_given_tooth_numbers_checked_with_reasons():
+    """A set given whole is checked like a candidate: a non-coaxial set names the mesh and the
+    gap (m = 1: z₃ one tooth too many → 0,5 mm), Khurmi's 14/21/56 (k = 3) fails assembly."""
+    from reportgen.analysis.train import check_2kh
+    c = check_2kh(17, 34, 86, 3, 6.0, 0.03)
+    assert any("соосности" in f and "−0,5 мм" in f for f in c.fails)
+    c = check_2kh(14, 21, 56, 3, None, 0.03)
+    assert any("70/3 — не целое" in f for f in c.fails)

@@ -321,6 +321,7 @@ class Selector:
     def _solve(self, prefer):
         """Gauss–Jordan on the coaxiality equations: dependent wheel → (constant, {free: coef})."""
         rows = []
+        self.inconsistent = False
         for _, path, close in self.equations:
             row = {w: path.get(w, 0) - close.get(w, 0) for w in set(path) | set(close)}
             const = sum(Fraction(c) * self.known[w] for w, c in row.items() if w in self.known)
@@ -335,8 +336,7 @@ class Selector:
                         coefs[w] = coefs.get(w, 0) + a * c
             coefs = {w: c for w, c in coefs.items() if c}
             if not coefs:
-                if const != 0:
-                    raise ValueError("coaxiality fails for the given tooth numbers")
+                self.inconsistent |= const != 0      # the given tooth numbers break a loop
                 continue
             rank = lambda w: (w not in prefer, not self.model.wheels[w].internal, abs(coefs[w]) != 1,  # noqa: E731
                               -self.order.index(w))
@@ -431,6 +431,8 @@ class Selector:
         """Tooth sets (integers, coaxial, in range) with the ratio within tolerance (float
         filter; the exact check follows), sorted by size, Σz and |u − target|."""
         found = []
+        if self.inconsistent:
+            return found
         for slab in self._slabs(target, tol):
             z = {w: np.asarray(v, np.int64) for w, v in slab.items()}
             n = next(iter(z.values())).size if z else 1
@@ -495,7 +497,7 @@ class Selector:
         y, resid = place_axes(model)
         bad = [(n, r) for n, r in resid if abs(r) > 1e-9]
         if bad:
-            fails.append("не выполнено условие соосности (" + ", ".join(f"зацепление {n}: {r:+.3g} мм" for n, r in bad) + ")")
+            fails.append("не выполнено условие соосности (" + ", ".join(f"зацепление {n}: {_dec(r, '+.3g')} мм" for n, r in bad) + ")")
         asm = []
         for pl in self.planets:
             ok, qs = assembly(pl, z, self.k)
