@@ -363,3 +363,13 @@ def test_given_tooth_numbers_checked_with_reasons():
     assert any("соосности" in f and "−0,5 мм" in f for f in c.fails)
     c = check_2kh(14, 21, 56, 3, None, 0.03)
     assert any("70/3 — не целое" in f for f in c.fails)
+
+
+@pytest.mark.parametrize("name", ["two carriers", "two internal"])
+def test_no_runtime_warnings(name):
+    """Poles of the ratio and roots out of range give no floating-point warnings."""
+    import warnings
+    build, _, _, target, k, kw = SCHEMES[name]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert select(build(), target, k, tol=kw.get("tol", 0.03), limit=2)[0]

@@ -415,9 +415,11 @@ class Selector:
             pole_in = (a_d != 0) & (a_n / np.where(a_d != 0, a_d, 1) >= lo_t - 1e-12) & \
                 (a_n / np.where(a_d != 0, a_d, 1) <= hi_t + 1e-12)
         full = pole_in | ~np.isfinite(r1) | ~np.isfinite(r2) | ((a_n == 0) & (a_d == 0))
-        eps = 1e-7 * (1 + np.abs(np.nan_to_num(r1)) + np.abs(np.nan_to_num(r2)))
-        lo = np.where(full, rng[0], np.ceil(np.minimum(np.nan_to_num(r1), np.nan_to_num(r2)) - eps))
-        hi = np.where(full, rng[-1], np.floor(np.maximum(np.nan_to_num(r1), np.nan_to_num(r2)) + eps))
+        r1, r2 = np.where(full, 0.0, r1), np.where(full, 0.0, r2)
+        r1, r2 = np.clip(r1, -1e9, 1e9), np.clip(r2, -1e9, 1e9)     # beyond the range either way
+        eps = 1e-7 * (1 + np.abs(r1) + np.abs(r2))
+        lo = np.where(full, rng[0], np.ceil(np.minimum(r1, r2) - eps))
+        hi = np.where(full, rng[-1], np.floor(np.maximum(r1, r2) + eps))
         lo, hi = np.maximum(lo, rng[0]).astype(np.int64), np.minimum(hi, rng[-1]).astype(np.int64)
         cnt = np.maximum(hi - lo + 1, 0)
         total = int(cnt.sum())
