@@ -373,3 +373,20 @@ def test_no_runtime_warnings(name):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert select(build(), target, k, tol=kw.get("tol", 0.03), limit=2)[0]
+
+
+def test_satellites_counted_per_carrier():
+    """planets = {H1 = 3, H2 = 4}: each stage's sets assemble and clear with its own k (by
+    placing teeth and tip circles), and the case reads the table."""
+    from reportgen import load_case
+    _, loops, sats, *_ = SCHEMES["two carriers"]
+    ok, _, sel = select(compound(), 24.0, {"H1": 3, "H2": 4}, tol=0.0, limit=4)
+    assert ok
+    for c in ok:
+        z = {w.name: w.z for w in sel.model_with(c.z).wheels.values()}
+        s1, s2 = sats(z)
+        assert placed_teeth_assemble(s1, z, 3) and placed_teeth_assemble(s2, z, 4)
+        assert tip_circles_clear(s1, z, 3) and tip_circles_clear(s2, z, 4)
+        assert (z["4"] + z["6"]) % 4 == 0 and (z["1"] + z["3"]) % 3 == 0
+    tr = load_case(CASES / "train_two_carrier_select.toml").train
+    assert tr.opts["planets"] == {"H1": 3, "H2": 4} and tr.candidates[0].z == ok[0].z

@@ -485,7 +485,7 @@ def read_model(node: Node, names) -> tuple[TrainModel, dict]:
         raise node.error("printed", "coaxiality: ожидался список равенств-строк",
                          expected='coaxiality = ["z1 - z2 = z4 + z3"]')
     opts = {"printed": printed, "printed_coaxiality": eqs, "target": node.quantity("target", U.DIMENSIONLESS, names) if node.has("target") else None,
-            "planets": node.integer("planets", 1, minimum=1),
+            "planets": _planets(node, members, axes),
             "tolerance": node.quantity("tolerance", U.DIMENSIONLESS, names, default=0.03, nonnegative=True),
             "coaxial": coaxial}
     if sel.data:
@@ -506,6 +506,19 @@ def read_model(node: Node, names) -> tuple[TrainModel, dict]:
             raise node.error("target", "для подбора чисел зубьев нужно целевое передаточное отношение",
                              expected="target = 6.0")
     return model, opts
+
+
+def _planets(node: Node, members: dict, axes: dict):
+    """``planets``: k of every carrier (an integer) or a table {carrier = k}."""
+    raw = node.raw("planets", 1)
+    if not isinstance(raw, dict):
+        return node.integer("planets", 1, minimum=1, maximum=24)
+    carriers = sorted({h for h in axes.values() if h != FRAME})
+    tab = node.table("planets")
+    for name in raw:
+        if name not in carriers:
+            raise tab.error(name, f"«{name}» — не водило", expected="водило из [train.axes]: " + ", ".join(carriers))
+    return {name: tab.integer(name, 1, minimum=1, maximum=24) for name in raw}
 
 
 class Train:

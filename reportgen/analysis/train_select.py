@@ -49,7 +49,7 @@ import numpy as np
 from ..core.gears import Rack, internal_checks, pair_geometry
 from .train import FRAME, TrainModel, Wheel, coaxiality_equations, place_axes
 
-__all__ = ["Candidate", "Poly", "willis_polynomials", "poly_tex", "Planet", "planets_of", "assembly",
+__all__ = ["Candidate", "Poly", "willis_polynomials", "poly_tex", "Planet", "planets_of", "assembly", "k_of",
            "neighbourhood", "Selector", "select", "check"]
 
 GRID_LIMIT = 6_000_000      # tooth-number combinations enumerated at most (the free ones' grid)
@@ -228,11 +228,12 @@ def planets_of(model: TrainModel) -> list[Planet]:
     return out
 
 
-def assembly(pl: Planet, z: dict, k: int) -> tuple[bool | None, list[Fraction]]:
+def assembly(pl: Planet, z: dict, k) -> tuple[bool | None, list[Fraction]]:
     """Can k identical satellites be put on equally spaced positions?  Exact: the congruences
     σ_j z_pj t ≡ z_cj/k (mod 1) have a common real t (t enumerated over the first mesh's
     solutions).  Returns (verdict or None when not checked, Кудрявцев's quantities of the first
     mesh paired with every other one)."""
+    k = k_of(k, pl.carrier)
     if k <= 1:
         return True, []
     if pl.coupled:
@@ -248,13 +249,20 @@ def assembly(pl: Planet, z: dict, k: int) -> tuple[bool | None, list[Fraction]]:
     return ok, quantities
 
 
-def neighbourhood(model: TrainModel, y: dict, z: dict, k: int, ha: float = 1.0):
-    """For every satellite axis of a carrier: (carrier, axis, sin π/k, (z + 2h_a*)m / 2a_w of the
-    largest wheel on the axis, ok)."""
+def k_of(k, carrier: str) -> int:
+    """Number of satellites of a carrier: ``k`` an int (every carrier) or {carrier: k} (1 if absent)."""
+    return k if isinstance(k, int) else k.get(carrier, 1)
+
+
+def neighbourhood(model: TrainModel, y: dict, z: dict, k, ha: float = 1.0):
+    """For every satellite axis of a carrier with k > 1 satellites (``k`` an int or {carrier: k}):
+    (carrier, axis, sin π/k, (z + 2h_a*)m / 2a_w of the largest wheel on the axis, ok); a satellite
+    axis on the central axis (a_w = 0) fails, its ratio written as 2."""
     out = []
-    if k <= 1:
-        return out
     for h, h_axis in model.members.items():
+        kh = k_of(k, h)
+        if kh <= 1:
+            continue
         for ax, host in model.axes.items():
             if host != h:
                 continue
@@ -263,8 +271,8 @@ def neighbourhood(model: TrainModel, y: dict, z: dict, k: int, ha: float = 1.0):
                 continue
             a = abs(y[ax] - y[h_axis])
             d_a = max(w.m * (z[w.name] + 2 * ha) for w in ws)
-            s = math.sin(math.pi / k)
-            rhs = d_a / (2 * a) if a > 0 else math.inf
+            s = math.sin(math.pi / kh)
+            rhs = d_a / (2 * a) if a > 0 else 2.0
             out.append((h, ax, s, rhs, s > rhs))
     return out
 
@@ -295,7 +303,7 @@ class Selector:
     """The selection problem of one train: unknown wheels (z = 0 in the model), the coaxiality
     equations solved for the dependent ones, the ratio as polynomials."""
 
-    def __init__(self, model: TrainModel, *, k: int = 1, z_min: int = 17, z_max: int = 150,
+    def __init__(self, model: TrainModel, *, k: int | dict = 1, z_min: int = 17, z_max: int = 150,
                  dz_int: int = 8, ha: float = 1.0, z_from: int | None = None, prefer=()):
         self.model, self.k, self.z_min, self.z_max, self.dz_int, self.ha = model, k, z_min, z_max, dz_int, ha
         self.z_from = max(6, z_min // 2) if z_from is None else z_from
@@ -506,11 +514,12 @@ class Selector:
             asm.append((pl.member, ok, qs))
             if ok is False:
                 q = ", ".join(_frac(x) for x in qs)
-                fails.append(f"не выполнено условие сборки при k = {self.k}" + (f": {q} — не целое" if qs else ""))
+                fails.append(f"не выполнено условие сборки при k = {k_of(self.k, pl.carrier)}"
+                             + (f": {q} — не целое" if qs else ""))
         nb = neighbourhood(model, y, z, self.k, self.ha)
         for h, ax, s, rhs, ok in nb:
             if not ok:
-                fails.append(f"не выполнено условие соседства при k = {self.k}: {_dec(s)} ≤ {_dec(rhs)}")
+                fails.append(f"не выполнено условие соседства при k = {k_of(self.k, h)}: {_dec(s)} ≤ {_dec(rhs)}")
         for w in model.wheels.values():
             if not w.internal and w.z < self.z_min:
                 fails.append(f"z{w.name} = {w.z} < {self.z_min}: подрезание")
@@ -539,7 +548,7 @@ def _frac(x: Fraction) -> str:
     return str(x.numerator) if x.denominator == 1 else f"{x.numerator}/{x.denominator}"
 
 
-def select(model: TrainModel, target: float, k: int, *, tol: float = 0.03, z_min: int = 17,
+def select(model: TrainModel, target: float, k: int | dict, *, tol: float = 0.03, z_min: int = 17,
            z_max: int = 150, dz_int: int = 8, ha: float = 1.0, limit: int = 6, z_from: int | None = None,
            prefer=()) -> tuple[list[Candidate], list[Candidate], Selector]:
     """Accepted sets (at most ``limit``, smallest first) and at most ``limit`` failing sets: those
@@ -580,6 +589,6 @@ def _variety(bad: list[Candidate], limit: int) -> list[Candidate]:
     return sorted(out, key=lambda c: order[id(c)])
 
 
-def check(model: TrainModel, k: int, target: float | None = None, tol: float = 0.03, **kw) -> Candidate:
+def check(model: TrainModel, k: int | dict, target: float | None = None, tol: float = 0.03, **kw) -> Candidate:
     """All conditions of the train's own tooth numbers (no unknowns)."""
     return Selector(model, k=k, **kw).check({}, target, tol)

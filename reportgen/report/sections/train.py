@@ -11,7 +11,7 @@ import pandas as pd
 from markupsafe import Markup
 
 from ...analysis.train import FRAME
-from ...analysis.train_select import poly_tex
+from ...analysis.train_select import k_of, poly_tex
 from ...scenes.train import stage_plans, train_picture
 from ...style.numbers import fmt, tex_num
 from ..document import Column, Formula, Section, ref
@@ -56,6 +56,7 @@ def _selection(sec: Section, tr) -> None:
     of sets with the checks, the accepted set's checks with numbers."""
     s = sec.subsection("Подбор чисел зубьев", "sec-train-select")
     sel, m, k = tr.selector, tr.model, tr.opts["planets"]
+    ktext = _k_text(k)
     opt = tr.opts["select"]
     acc = tr.candidates[0]
     z = {w.name: w.z for w in m.wheels.values()}
@@ -63,7 +64,7 @@ def _selection(sec: Section, tr) -> None:
     s.paragraph(
         f"Числа зубьев {chosen} подбираются перебором под передаточное отношение "
         f"<i>u</i><sub>{m.inp}{m.out}</sub> = {fmt(tr.opts['target'], sig=6)} (допуск "
-        f"{fmt(tr.opts['tolerance'] * 100, sig=3)} %) при числе сателлитов <i>k</i> = {k}. Передаточное "
+        f"{fmt(tr.opts['tolerance'] * 100, sig=3)} %) при числе сателлитов {ktext}. Передаточное "
         f"отношение как функция чисел зубьев — совместное решение уравнений Виллиса всех зацеплений "
         f"(подраздел {ref('sec-train-willis')}) по правилу Крамера:")
     s.formula(rf"u_{{{m.inp}\,{m.out}}} = \frac{{{poly_tex(sel.num, sel.order)}}}{{{poly_tex(sel.den, sel.order)}}}")
@@ -111,10 +112,10 @@ def _selection(sec: Section, tr) -> None:
         forms.append(Formula(rf"{_form(p, sel.order)} = {_form(c, sel.order)}", rf"{_value(p, z)} = {_value(c, z)}"))
     for pl, (_, ok, qs) in zip(sel.planets, acc.assembly):
         for (c0, p0, s0), (cj, pj, sj), q in zip([pl.meshes[0]] * len(qs), pl.meshes[1:], qs):
-            sym, num = _asm_tex(c0, p0, s0, cj, pj, sj, z, k)
+            sym, num = _asm_tex(c0, p0, s0, cj, pj, sj, z, k_of(k, pl.carrier))
             forms.append(Formula(sym, num, _frac_tex(q)))
     for h, ax, sv, r, ok in acc.neighbours:
-        forms.append(Formula(rf"\sin\frac{{\pi}}{{{k}}} = {tex_num(sv, sig=4)} > "
+        forms.append(Formula(rf"\sin\frac{{\pi}}{{{k_of(k, h)}}} = {tex_num(sv, sig=4)} > "
                              rf"\frac{{z_с + 2h_a^*}}{{2a_w/m}} = {tex_num(r, sig=4)}"))
     s.formula(*forms)
     s.paragraph("Все условия выполнены; по принятым числам зубьев ниже построены схема и планы скоростей.")
@@ -156,9 +157,16 @@ def _asm_tex(c0, p0, s0, cj, pj, sj, z, k) -> tuple[str, str]:
             rf"\frac{{{z[pj]} \cdot {z[c0]} {op} {z[p0]} \cdot {z[cj]}}}{{{k} \cdot {g}}}")
 
 
-def _assembly_text(s: Section, tr, k: int) -> None:
+def _k_text(k) -> str:
+    """«<i>k</i> = 3» or, per carrier, «<i>k</i><sub>H1</sub> = 3, <i>k</i><sub>H2</sub> = 4»."""
+    if isinstance(k, int):
+        return f"<i>k</i> = {k}"
+    return ", ".join(Markup("<i>k</i><sub>{}</sub> = {}").format(h, v) for h, v in k.items())
+
+
+def _assembly_text(s: Section, tr, k) -> None:
     sel = tr.selector
-    if k <= 1:
+    if all(k_of(k, pl.carrier) <= 1 for pl in sel.planets):
         s.paragraph("Сателлит один (<i>k</i> = 1): условия сборки и соседства не накладываются.")
         return
     s.paragraph(
@@ -325,7 +333,7 @@ def conclusion_lines(study) -> list[str]:
            f"{fr.numerator}/{fr.denominator} = {fmt(tr.ratio, sig=7)} ({zs})."]
     if tr.candidates:
         out.append(f"Числа зубьев подобраны перебором под <i>u</i> = {fmt(tr.opts['target'], sig=6)} (отклонение "
-                   f"{_pct(tr.scalars['train_u_error_pct'])} %) при <i>k</i> = {tr.opts['planets']}: выполнены условия "
+                   f"{_pct(tr.scalars['train_u_error_pct'])} %) при {_k_text(tr.opts['planets'])}: выполнены условия "
                    f"соосности, сборки, соседства, отсутствия подрезания и интерференции; набор — наименьший "
                    f"по габариту (наибольший занимаемый колёсами диаметр {fmt(tr.candidates[0].size, sig=4)}<i>m</i>).")
     return out
