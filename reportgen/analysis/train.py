@@ -568,7 +568,7 @@ class Train:
         except OverflowError as e:
             raise CaseError(f"перебор слишком велик: {e.args[0]} сочетаний чисел зубьев (не более {GRID_LIMIT})",
                             file=file, key="train.select",
-                            expected="меньший z_max, больший z_from или часть чисел зубьев задана") from None
+                            expected="меньший z_max или допуск tolerance, больший z_from или часть чисел зубьев задана") from None
         except ValueError:
             raise CaseError("подбор невозможен: передаточное отношение или соосность не определяются по схеме",
                             file=file, key="train", expected="механизм с одной степенью свободы, "

@@ -53,6 +53,8 @@ __all__ = ["Candidate", "Poly", "willis_polynomials", "poly_tex", "Planet", "pla
            "neighbourhood", "Selector", "select", "check"]
 
 GRID_LIMIT = 6_000_000      # tooth-number combinations enumerated at most (the free ones' grid)
+CHECK_LIMIT = 20_000        # candidates within tolerance checked one by one at most (smallest first)
+FAILING_SHOWN = 200         # of them, failing the plain tooth-number rules (kept for their reasons)
 NAMES = {"base": "вершина колеса внутри основной окружности", "pinion_root": "интерференция у ножки шестерни",
          "ring_root": "интерференция у ножки колеса", "trochoid": "интерференция вершин (трохоидальная)"}
 
@@ -401,9 +403,15 @@ class Selector:
         grids = np.meshgrid(*([rng] * len(rest)), indexing="ij") if rest else []
         flat = [g.ravel() for g in grids]
         n = flat[0].size if flat else 1
+        total = 0
         for v in rng:
             slab = {enum[0]: np.full(n, v), **dict(zip(rest, flat))}
-            yield slab if x is None else self._expand(slab, x, rng, target, tol)
+            if x is not None:
+                slab = self._expand(slab, x, rng, target, tol)
+                total += slab[x].size
+                if total > 4 * GRID_LIMIT:       # a tolerance so wide that x is not restricted
+                    raise OverflowError(total * rng.size // max(1, int(v - rng[0] + 1)))
+            yield slab
 
     def _expand(self, slab: dict, x: str, rng: np.ndarray, target: float, tol: float) -> dict:
         n = next(iter(slab.values())).size
@@ -437,9 +445,9 @@ class Selector:
         out[x] = lo[row] + (np.arange(total) - start)
         return out
 
-    def survivors(self, target: float, tol: float) -> list[dict[str, int]]:
+    def survivors(self, target: float, tol: float, cap: int = CHECK_LIMIT) -> list[dict[str, int]]:
         """Tooth sets (integers, coaxial, in range) with the ratio within tolerance (float
-        filter; the exact check follows), sorted by size, Σz and |u − target|."""
+        filter; the exact check follows), sorted by size, Σz and |u − target|; the first ``cap``."""
         found = []
         if self.inconsistent:
             return found
@@ -473,11 +481,31 @@ class Selector:
             zz = {w: np.broadcast_to(np.asarray(v), (n,))[idx] for w, v in z.items()}
             size = self._size({**self.known, **zz}, idx.size)
             tot = sum(zz[w] for w in self.unknown) if self.unknown else np.zeros(idx.size)
-            for i in range(idx.size):
-                found.append((float(size[i]), int(tot[i]), float(abs(u[idx[i]] - target)),
-                              {w: int(zz[w][i]) for w in self.unknown}))
-        found.sort(key=lambda t: t[:3])
-        return [f[3] for f in found]
+            found.append((size, np.asarray(tot, float) + 0 * size, np.abs(u[idx] - target), self._plain_ok(zz, idx.size),
+                          np.column_stack([zz[w] for w in self.unknown]) if self.unknown
+                          else np.zeros((idx.size, 0), np.int64)))
+        if not found:
+            return []
+        size, tot, du, plain, zs = (np.concatenate(parts) for parts in zip(*found))
+        order = np.lexsort((du, tot, size))
+        # every set passing the plain tooth-number rules (undercut, internal Δz) up to the cap, and
+        # the first few failing them (their reasons shown): smallest sets are mostly undercut
+        pos = np.sort(np.concatenate([np.nonzero(plain[order])[0][:cap], np.nonzero(~plain[order])[0][:FAILING_SHOWN]]))
+        return [dict(zip(self.unknown, map(int, zs[i]))) for i in order[pos]]
+
+    def _plain_ok(self, zz: dict, n: int) -> np.ndarray:
+        """Vectorised tooth-number rules: external wheels z ≥ z_min, internal meshes Δz ≥ dz_int."""
+        z = {**{w: np.full(n, v) for w, v in self.known.items()}, **zz}
+        ok = np.ones(n, bool)
+        for w in self.model.wheels.values():
+            if not w.internal:
+                ok &= z[w.name] >= self.z_min
+        for a, b in self.model.meshes:
+            wa, wb = self.model.wheels[a], self.model.wheels[b]
+            if wa.internal or wb.internal:
+                ring, small = (a, b) if wa.internal else (b, a)
+                ok &= z[ring] - z[small] >= self.dz_int
+        return ok
 
     def _size(self, z: dict, n: int) -> np.ndarray:
         """max over the wheels of (2|y_c| + m z) in modules of the first wheel."""
