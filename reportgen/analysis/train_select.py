@@ -53,7 +53,7 @@ __all__ = ["Candidate", "Poly", "willis_polynomials", "poly_tex", "Planet", "pla
            "neighbourhood", "Selector", "select", "check"]
 
 GRID_LIMIT = 6_000_000      # tooth-number combinations enumerated at most (the free ones' grid)
-CHECK_LIMIT = 20_000        # candidates within tolerance checked one by one at most (smallest first)
+CHECK_LIMIT = 5_000         # candidates within tolerance checked one by one at most (smallest first)
 FAILING_SHOWN = 200         # of them, failing the plain tooth-number rules (kept for their reasons)
 NAMES = {"base": "вершина колеса внутри основной окружности", "pinion_root": "интерференция у ножки шестерни",
          "ring_root": "интерференция у ножки колеса", "trochoid": "интерференция вершин (трохоидальная)"}
