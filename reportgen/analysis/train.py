@@ -459,7 +459,9 @@ def read_model(node: Node, names) -> tuple[TrainModel, dict]:
                 raise node.error("meshes", f"неизвестное колесо «{w}»",
                                  expected="имя из [[train.wheel]]: " + ", ".join(wheels))
     fixed = node.raw("fixed", [])
-    fixed = [fixed] if isinstance(fixed, str) else list(fixed)
+    fixed = [fixed] if isinstance(fixed, str) else fixed
+    if not isinstance(fixed, list) or not all(isinstance(f, str) for f in fixed):
+        raise node.error("fixed", "ожидался список имён неподвижных звеньев", expected='fixed = ["3"]')
     for key, val in (("input", node.raw("input")), ("output", node.raw("output"))):
         if str(val) not in members:
             raise node.error(key, f"неизвестное звено «{val}»", expected="одно из: " + ", ".join(members))
