@@ -24,7 +24,7 @@ CAM_CASES = ["cam_translating_roller", "cam_rocker_roller", "ws001_cam_2013_2", 
 
 @pytest.fixture(scope="module", params=["ws000_six_bar", "ws002_tractor_hitch", "ws004_slotted_lever",
                                          "slider_crank", "gear_pair_shifted", "gear_pair_internal",
-                                         "train_2kh_three_planets"] + CAM_CASES)
+                                         "train_2kh_three_planets", "train_2kh_double_select", "train_3k_select"] + CAM_CASES)
 def built(request):
     study = load_case(CASES / f"{request.param}.toml")
     pdf, layouts = render_sheets(study)

@@ -20,15 +20,16 @@ Both give linear systems in the angular velocities (the input ω = 1, fixed memb
 and compared.  The placement of the axes also checks coaxiality (соосность): a mesh whose both
 centres are already placed must have the distance of its pitch radii.
 
-Tooth-number selection for the 2K-H schemes (single planets z₁, z₂, z₃ or double planets z₁,
-z₂, z₂′, z₃; ring fixed): ratio, coaxiality, assembly (z₁u₁H(1 + kp)/k integer), neighbourhood
-sin(π/k) > (z₂ + 2h_a*)/(z₁ + z₂), undercut (z ≥ z_min) and internal interference
-(z₃ − z₂ ≥ Δz_min), enumerated and ranked by the overall size m·max(z₃, z₁ + 2z₂).
+Tooth-number selection for a target ratio, for any train of this graph (2K-H with single or
+double satellites and any mix of external and internal meshes, 3K, several carriers): wheels with
+z = "select" (and "coaxial") are found by ``train_select`` with the ratio as an exact function of
+the tooth numbers, coaxiality from the loops of axes, assembly of k satellites, neighbourhood,
+undercut and internal-mesh checks, enumerated and ranked by the overall size.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from fractions import Fraction
 from functools import cached_property
 
@@ -39,8 +40,9 @@ from ..case import units as U
 from ..case.reader import Node
 from ..errors import CaseError
 
-__all__ = ["Wheel", "TrainModel", "Train", "willis", "direct", "select_2kh", "Candidate", "ratio_chain",
-           "coaxiality_equations", "parse_linear", "judge_printed_coaxiality"]
+__all__ = ["Wheel", "TrainModel", "Train", "willis", "direct", "select_2kh", "ratio_chain",
+           "coaxiality_equations", "parse_linear", "judge_printed_coaxiality", "two_kh_model",
+           "check_2kh"]
 
 FRAME = "0"
 
@@ -142,13 +144,15 @@ def _dist_terms(model: TrainModel, a: str, b: str) -> dict[str, float]:
     return {a: wa.m / 2, b: wa.m / 2}
 
 
-def place_axes(model: TrainModel, loops: list | None = None) -> tuple[dict[str, float], list[tuple[str, str, float]]]:
+def place_axes(model: TrainModel, loops: list | None = None,
+               forms: dict | None = None) -> tuple[dict[str, float], list[tuple[str, str, float]]]:
     """Axis positions on the scheme's line (breadth-first from the frame's first axis): a
     deeper axis is placed above its partner.  Returns positions and the coaxiality residuals
     (mesh, |Δy| − a) of meshes closing a loop.  With ``loops`` given, it receives for every closing
     mesh the coaxiality equation as two linear forms in the tooth numbers (mm per tooth):
     (mesh, path, closing) with path = y_b − y_a along the placing meshes (made positive) and
-    closing = the mesh's own centre distance; the condition is path = closing."""
+    closing = the mesh's own centre distance; the condition is path = closing.  With ``forms``
+    given, it receives every placed axis's position as a linear form in the tooth numbers."""
     def dist(a, b):
         wa, wb = model.wheels[a], model.wheels[b]
         if wa.m != wb.m:
@@ -195,6 +199,8 @@ def place_axes(model: TrainModel, loops: list | None = None) -> tuple[dict[str, 
                     break
     for a in model.axes:
         y.setdefault(a, 0.0)
+    if forms is not None:
+        forms.update(sym)
     return y, resid
 
 
@@ -375,77 +381,32 @@ def ratio_chain(w: dict[str, float], inp: str, out: str) -> list[str]:
 
 
 # ------------------------------------------------------------------------- tooth-number selection
-@dataclass
-class Candidate:
-    z: dict[str, int]
-    u: float
-    size: int
-    fails: list[str] = field(default_factory=list)
-
-    @property
-    def ok(self) -> bool:
-        return not self.fails
+def two_kh_model(double: bool, z: dict[str, int] | None = None) -> TrainModel:
+    """The 2K-H train of Джеймс (sun 1, satellites 2 or blocks 2–2′ on carrier H, fixed ring 3,
+    input 1, output H), unit module; tooth numbers from ``z`` (0 = to be selected)."""
+    z = z or {}
+    spec = [("1", "1", False), ("2", "2", False)] + ([("2'", "2", False)] if double else []) + [("3", "3", True)]
+    wheels = {n: Wheel(n, z.get(n, 0), mem, "A" if mem == "2" else "O", internal, 1.0) for n, mem, internal in spec}
+    return TrainModel({"1": "O", "2": "A", "3": "O", "H": "O"}, {"O": FRAME, "A": "H"}, wheels,
+                      [("1", "2"), ("2'" if double else "2", "3")], ("3",), "1", "H")
 
 
-def check_2kh(z1, z2, z3, k, target, tol, ha=1.0, z_min=17, dz_int=8, z2b=None) -> Candidate:
-    """All conditions of a 2K-H set (ring fixed, input sun, output carrier).  ``z2b`` is the
-    planet's second wheel (meshing the ring) of a double planet; None for single planets.
-    Reasons are Russian, one per failed condition."""
-    zr = z2 if z2b is None else z2b              # planet wheel meshing the ring
-    u = Fraction(1) + Fraction(z3 * z2, z1 * zr) if z2b is not None else Fraction(z1 + z3, z1)
-    fails = []
-    if target is not None and abs(float(u) - target) > tol * target:
-        fails.append(f"передаточное отношение {float(u):.4f} вне допуска ±{tol * 100:g} %")
-    if z1 + z2 != z3 - zr:
-        fails.append("не выполнено условие соосности")
-    # assembly: z₁u₁H(1 + kp)/k integer for some p = 0…k−1
-    if not any((Fraction(z1) * u * (1 + k * p) / k).denominator == 1 for p in range(k)):
-        fails.append(f"не выполнено условие сборки при k = {k}")
-    zp = max(z2, zr)
-    if not math.sin(math.pi / k) > (zp + 2 * ha) / (z1 + z2):
-        fails.append(f"не выполнено условие соседства при k = {k}")
-    for name, zz in (("z₁", z1), ("z₂", z2)) + ((("z₂′", zr),) if z2b is not None else ()):
-        if zz < z_min:
-            fails.append(f"{name} = {zz} < {z_min}: подрезание")
-    if z3 - zr < dz_int:
-        fails.append(f"z₃ − z_сат = {z3 - zr} < {dz_int}: интерференция во внутреннем зацеплении")
-    size = max(z3, z1 + 2 * z2) if z2b is None else max(z3, z1 + 2 * z2, 2 * z3 - z1)
-    zd = {"1": z1, "2": z2, "3": z3} if z2b is None else {"1": z1, "2": z2, "2'": zr, "3": z3}
-    return Candidate(zd, float(u), size, fails)
+def check_2kh(z1, z2, z3, k, target, tol, ha=1.0, z_min=17, dz_int=8, z2b=None):
+    """All conditions of a 2K-H set (``z2b`` the second wheel of a double satellite, meshing the
+    ring), by the general check of ``train_select``."""
+    from .train_select import check
+    z = {"1": z1, "2": z2, "3": z3} | ({"2'": z2b} if z2b is not None else {})
+    return check(two_kh_model(z2b is not None, z), k, target, tol, ha=ha, z_min=z_min, dz_int=dz_int)
 
 
 def select_2kh(target: float, k: int, *, tol: float = 0.03, double: bool = False, z_max: int = 150,
                ha: float = 1.0, z_min: int = 17, dz_int: int = 8, limit: int = 10):
-    """Enumerate 2K-H sets near the target ratio; returns (accepted ranked by size then Σz,
-    rejected near the target with their reasons).  Single planets: z₃ = z₁ + 2z₂ from
-    coaxiality; double planets: z₃ = z₁ + z₂ + z₂′."""
-    ok, bad = [], []
-    for z1 in range(max(6, z_min // 2), z_max):
-        if double:
-            for z2 in range(6, z_max):
-                for zr in range(6, z_max):
-                    z3 = z1 + z2 + zr
-                    if z3 > z_max:
-                        break
-                    u = 1 + z3 * z2 / (z1 * zr)
-                    if abs(u - target) > tol * target:
-                        continue
-                    c = check_2kh(z1, z2, z3, k, target, tol, ha, z_min, dz_int, z2b=zr)
-                    (ok if c.ok else bad).append(c)
-        else:
-            for z2 in range(6, z_max):
-                z3 = z1 + 2 * z2
-                if z3 > z_max:
-                    break
-                u = 1 + z3 / z1
-                if abs(u - target) > tol * target:
-                    continue
-                c = check_2kh(z1, z2, z3, k, target, tol, ha, z_min, dz_int)
-                (ok if c.ok else bad).append(c)
-    key = lambda c: (c.size, sum(c.z.values()), abs(c.u - target))  # noqa: E731
-    ok.sort(key=key)
-    bad.sort(key=key)
-    return ok[:limit], bad[:limit]
+    """2K-H sets near the target ratio by the general enumeration of ``train_select``:
+    (accepted ranked by size then Σz, rejected ranked before them with their reasons)."""
+    from .train_select import select
+    ok, bad, _ = select(two_kh_model(double), target, k, tol=tol, z_min=z_min, z_max=z_max,
+                        dz_int=dz_int, ha=ha, limit=limit)
+    return ok, bad
 
 
 # --------------------------------------------------------------------------------- case reading
@@ -464,6 +425,7 @@ def read_model(node: Node, names) -> tuple[TrainModel, dict]:
         members[mn.string("name", required=True)] = mn.string("axis", "O")
     wheels: dict[str, Wheel] = {}
     sel = node.table("select")
+    coaxial: list[str] = []
     for wn in node.tables("wheel"):
         wn.check_keys(["name", "z", "member", "centre", "internal", "module"], required=["name", "z"])
         name = wn.string("name", required=True)
@@ -471,6 +433,8 @@ def read_model(node: Node, names) -> tuple[TrainModel, dict]:
             raise wn.error("name", f"колесо «{name}» задано дважды", expected="уникальные имена колёс")
         zraw = wn.raw("z")
         z = 0 if (zraw == "select" and sel.data) or zraw == "coaxial" else wn.integer("z", minimum=5)
+        if zraw == "coaxial":
+            coaxial.append(wn.string("name", required=True))
         member = wn.string("member", name)
         members.setdefault(member, "O")
         m = wn.quantity("module", U.LENGTH, names, positive=True) * 1000.0 if wn.has("module") else m0
@@ -495,7 +459,9 @@ def read_model(node: Node, names) -> tuple[TrainModel, dict]:
                 raise node.error("meshes", f"неизвестное колесо «{w}»",
                                  expected="имя из [[train.wheel]]: " + ", ".join(wheels))
     fixed = node.raw("fixed", [])
-    fixed = [fixed] if isinstance(fixed, str) else list(fixed)
+    fixed = [fixed] if isinstance(fixed, str) else fixed
+    if not isinstance(fixed, list) or not all(isinstance(f, str) for f in fixed):
+        raise node.error("fixed", "ожидался список имён неподвижных звеньев", expected='fixed = ["3"]')
     for key, val in (("input", node.raw("input")), ("output", node.raw("output"))):
         if str(val) not in members:
             raise node.error(key, f"неизвестное звено «{val}»", expected="одно из: " + ", ".join(members))
@@ -521,21 +487,40 @@ def read_model(node: Node, names) -> tuple[TrainModel, dict]:
         raise node.error("printed", "coaxiality: ожидался список равенств-строк",
                          expected='coaxiality = ["z1 - z2 = z4 + z3"]')
     opts = {"printed": printed, "printed_coaxiality": eqs, "target": node.quantity("target", U.DIMENSIONLESS, names) if node.has("target") else None,
-            "planets": node.integer("planets", 1, minimum=1),
-            "tolerance": node.quantity("tolerance", U.DIMENSIONLESS, names, default=0.03, nonnegative=True)}
+            "planets": _planets(node, members, axes),
+            "tolerance": node.quantity("tolerance", U.DIMENSIONLESS, names, default=0.03, nonnegative=True),
+            "coaxial": coaxial}
     if sel.data:
-        sel.check_keys(["scheme", "sun", "planet", "planet2", "ring", "z_max", "z_min", "dz_internal"],
-                       required=["scheme", "sun", "planet", "ring"])
+        # sun/planet/planet2/ring: roles of the first version, accepted and not needed (the graph says it)
+        sel.check_keys(["scheme", "sun", "planet", "planet2", "ring", "z_max", "z_min", "z_from", "dz_internal",
+                        "limit"])
         opts["select"] = {
-            "scheme": sel.string("scheme", required=True, choices=["2K-H", "2K-H double"]),
-            "roles": {r: sel.string(r) for r in ("sun", "planet", "planet2", "ring") if sel.has(r)},
-            "z_max": sel.integer("z_max", 150, minimum=20),
+            "scheme": sel.string("scheme", ""),
+            "z_max": sel.integer("z_max", 150, minimum=20, maximum=400),
             "z_min": sel.integer("z_min", 17, minimum=5),
-            "dz_internal": sel.integer("dz_internal", 8, minimum=1)}
+            "z_from": sel.integer("z_from", None, minimum=5),
+            "dz_internal": sel.integer("dz_internal", 8, minimum=1),
+            "limit": sel.integer("limit", 6, minimum=1, maximum=100)}
+        if not any(w.z == 0 for w in wheels.values()):
+            raise node.error("select", "для подбора нужны колёса с z = \"select\"",
+                             expected='z = "select" у подбираемых колёс')
         if opts["target"] is None:
             raise node.error("target", "для подбора чисел зубьев нужно целевое передаточное отношение",
                              expected="target = 6.0")
     return model, opts
+
+
+def _planets(node: Node, members: dict, axes: dict):
+    """``planets``: k of every carrier (an integer) or a table {carrier = k}."""
+    raw = node.raw("planets", 1)
+    if not isinstance(raw, dict):
+        return node.integer("planets", 1, minimum=1, maximum=24)
+    carriers = sorted({h for h in axes.values() if h != FRAME})
+    tab = node.table("planets")
+    for name in raw:
+        if name not in carriers:
+            raise tab.error(name, f"«{name}» — не водило", expected="водило из [train.axes]: " + ", ".join(carriers))
+    return {name: tab.integer(name, 1, minimum=1, maximum=24) for name in raw}
 
 
 class Train:
@@ -546,25 +531,12 @@ class Train:
         self.study = study
         names = study.spec.parameters() if hasattr(study.spec, "parameters") else {}
         model, self.opts = read_model(study.root.table("train"), names)
-        self.candidates: list[Candidate] = []
-        self.rejected: list[Candidate] = []
+        self.candidates: list = []
+        self.rejected: list = []
+        self.selector = None
         sel = self.opts.get("select")
         if sel:
-            double = sel["scheme"] == "2K-H double"
-            ok, bad = select_2kh(self.opts["target"], self.opts["planets"], tol=self.opts["tolerance"],
-                                 double=double, z_max=sel["z_max"], z_min=sel["z_min"],
-                                 dz_int=sel["dz_internal"])
-            if not ok:
-                raise CaseError("подходящих чисел зубьев не найдено", file=study.root.file,
-                                key="train.select", expected="больший z_max или допуск tolerance")
-            self.candidates, self.rejected = ok, bad
-            roles = sel["roles"]
-            zs = ok[0].z
-            mapping = {roles["sun"]: zs["1"], roles["planet"]: zs["2"], roles["ring"]: zs["3"]}
-            if double:
-                mapping[roles["planet2"]] = zs["2'"]
-            model.wheels = {n: (Wheel(n, mapping.get(n, w.z), w.member, w.centre, w.internal, w.m))
-                            for n, w in model.wheels.items()}
+            model = self._select(model, sel)
         self.model = model
         try:
             self.coaxial_solved = solve_coaxial(model)
@@ -586,6 +558,28 @@ class Train:
             except ValueError as e:
                 raise CaseError(f"равенство «{text}»: {e}", file=study.root.file, key="train.printed.coaxiality",
                                 expected="z1 - z2 = z4 + z3 (имена колёс из [[train.wheel]])") from None
+
+    def _select(self, model: TrainModel, sel: dict) -> TrainModel:
+        """Tooth numbers of the wheels marked "select" (and "coaxial") by ``train_select``."""
+        from .train_select import GRID_LIMIT, select
+        file = self.study.root.file
+        try:
+            ok, bad, selector = select(model, self.opts["target"], self.opts["planets"], tol=self.opts["tolerance"],
+                                       z_min=sel["z_min"], z_max=sel["z_max"], dz_int=sel["dz_internal"],
+                                       limit=sel["limit"], z_from=sel["z_from"], prefer=self.opts["coaxial"])
+        except OverflowError as e:
+            raise CaseError(f"перебор слишком велик: {e.args[0]} сочетаний чисел зубьев (не более {GRID_LIMIT})",
+                            file=file, key="train.select",
+                            expected="меньший z_max или допуск tolerance, больший z_from или часть чисел зубьев задана") from None
+        except ValueError:
+            raise CaseError("подбор невозможен: передаточное отношение или соосность не определяются по схеме",
+                            file=file, key="train", expected="механизм с одной степенью свободы, "
+                            "все контуры осей замкнуты зацеплениями") from None
+        if not ok:
+            raise CaseError("подходящих чисел зубьев не найдено", file=file,
+                            key="train.select", expected="больший z_max или допуск tolerance")
+        self.candidates, self.rejected, self.selector = ok, bad, selector
+        return selector.model_with(ok[0].z)
 
     @property
     def ratio(self) -> float:
@@ -611,6 +605,9 @@ class Train:
         out = {"train_wheels": wheels, "train_omegas": omegas}
         if self.candidates or self.rejected:
             rows = [{**{f"z{k}": v for k, v in c.z.items()}, "u": c.u, "size": c.size,
+                     "assembly": "; ".join(" ".join(f"{q.numerator}/{q.denominator}" if q.denominator != 1
+                                                    else str(q.numerator) for q in qs) for _, ok, qs in c.assembly if qs),
+                     **({"neighbourhood": min(s - r for *_, s, r, _ in c.neighbours)} if c.neighbours else {}),
                      "ok": c.ok, "reasons": "; ".join(c.fails)} for c in self.candidates + self.rejected]
             out["train_candidates"] = pd.DataFrame(rows)
         return out

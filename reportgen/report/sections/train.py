@@ -11,6 +11,7 @@ import pandas as pd
 from markupsafe import Markup
 
 from ...analysis.train import FRAME
+from ...analysis.train_select import k_of, poly_tex
 from ...scenes.train import stage_plans, train_picture
 from ...style.numbers import fmt, tex_num
 from .common import as_written
@@ -67,36 +68,138 @@ def build(study) -> Section:
 
 
 def _selection(sec: Section, tr) -> None:
+    """Tooth-number selection: the conditions written for this train (ratio as a function of the
+    tooth numbers, coaxiality, assembly, neighbourhood, undercut and internal meshes), the table
+    of sets with the checks, the accepted set's checks with numbers."""
     s = sec.subsection("Подбор чисел зубьев", "sec-train-select")
-    k = tr.opts["planets"]
-    sel = tr.opts["select"]
+    sel, m, k = tr.selector, tr.model, tr.opts["planets"]
+    ktext = _k_text(k)
+    opt = tr.opts["select"]
+    acc = tr.candidates[0]
+    z = {w.name: w.z for w in m.wheels.values()}
+    chosen = ", ".join(f"<i>z</i><sub>{w}</sub>" for w in sel.unknown)
     s.paragraph(
-        f"Числа зубьев подбираются перебором под передаточное отношение <i>u</i><sub>1H</sub> = "
-        f"{fmt(tr.opts['target'], sig=5)} (допуск {fmt(tr.opts['tolerance'] * 100, sig=3)} %) при числе "
-        f"сателлитов <i>k</i> = {k}. Проверяются условия: соосности (<i>z</i><sub>3</sub> = <i>z</i><sub>1</sub> + "
-        f"2<i>z</i><sub>2</sub> для однорядной схемы), сборки (<i>z</i><sub>1</sub><i>u</i><sub>1H</sub>(1 + <i>kp</i>)/<i>k</i> "
-        f"— целое), соседства (sin(π/<i>k</i>) &gt; (<i>z</i><sub>2</sub> + 2<i>h</i><sub>a</sub><sup>*</sup>)/"
-        f"(<i>z</i><sub>1</sub> + <i>z</i><sub>2</sub>)), отсутствия подрезания (<i>z</i> ≥ {sel['z_min']}) и "
-        f"интерференции во внутреннем зацеплении (<i>z</i><sub>3</sub> − <i>z</i><sub>2</sub> ≥ {sel['dz_internal']}). "
-        f"Наборы упорядочены по габариту max(<i>z</i><sub>3</sub>, <i>z</i><sub>1</sub> + 2<i>z</i><sub>2</sub>); "
-        f"принят первый.")
+        f"Числа зубьев {chosen} подбираются перебором под передаточное отношение "
+        f"<i>u</i><sub>{m.inp}{m.out}</sub> = {fmt(tr.opts['target'], sig=6)} (допуск "
+        f"{fmt(tr.opts['tolerance'] * 100, sig=3)} %) при числе сателлитов {ktext}. Передаточное "
+        f"отношение как функция чисел зубьев — совместное решение уравнений Виллиса всех зацеплений "
+        f"(подраздел {ref('sec-train-willis')}) по правилу Крамера:")
+    s.formula(rf"u_{{{m.inp}\,{m.out}}} = \frac{{{poly_tex(sel.num, sel.order)}}}{{{poly_tex(sel.den, sel.order)}}}")
+    if sel.equations:
+        s.paragraph("Условия соосности — равенство межосевых расстояний в каждом замкнутом контуре осей "
+                    "(модуль сокращён):")
+        s.formula(*[Formula(rf"{_form(p, sel.order)} = {_form(c, sel.order)}") for _, p, c in sel.equations])
+    if sel.dependent:
+        s.paragraph("Из них выражаются числа зубьев " + ", ".join(f"<i>z</i><sub>{d}</sub>" for d in sel.dependent)
+                    + "; остальные перебираются от " + f"{sel.z_from} до {sel.z_max}:")
+        s.formula(*[Formula(rf"z_{{{d}}} = {_affine(c0, cf, sel.order)}") for d, (c0, cf) in sel.dependent.items()])
+    _assembly_text(s, tr, k)
+    s.paragraph(
+        f"Условие соседства: окружности вершин соседних сателлитов не пересекаются, "
+        f"sin(π/<i>k</i>) &gt; (<i>z</i><sub>с</sub> + 2<i>h</i><sub>a</sub><sup>*</sup>)/(2<i>a</i><sub>w</sub>/<i>m</i>), "
+        f"где <i>z</i><sub>с</sub> — наибольшее колесо сателлита, <i>a</i><sub>w</sub> — радиус его оси. "
+        f"Подрезание: у колёс с внешними зубьями <i>z</i> ≥ {opt['z_min']}; внутреннее зацепление: "
+        f"<i>z</i><sub>вн</sub> − <i>z</i> ≥ {opt['dz_internal']} и проверки ГОСТ 19274-73 для колёс без "
+        f"смещения (вершина колеса вне основной окружности, нет интерференции у ножек и вершин). "
+        f"Наборы, удовлетворяющие соосности и допуску, упорядочены по габариту — наибольшему диаметру, "
+        f"занимаемому колёсами, max(2|<i>y</i><sub>ц</sub>| + <i>z</i>) в модулях (<i>y</i><sub>ц</sub> — "
+        f"расстояние центра колеса от центральной оси), затем по сумме чисел зубьев; принят первый "
+        f"набор, выдержавший все проверки. В таблице {ref('tab-train-select')} — принятые наборы и "
+        f"отвергнутые (ближайшие к принятым по габариту, по каждой причине) с причинами отказа.")
     rows = []
     for c in tr.candidates + tr.rejected:
-        rows.append({"set": " / ".join(str(v) for v in c.z.values()), "u": c.u, "size": c.size,
+        rows.append({"set": "/".join(str(c.z[w]) for w in sel.unknown), "u": c.u,
+                     "du": (c.u - tr.opts["target"]) / tr.opts["target"] * 100, "size": c.size,
+                     "asm": "; ".join(_asm_value(ok, qs) for _, ok, qs in c.assembly) or "—",
+                     "nb": ("; ".join(f"{fmt(sv, sig=3)} {'>' if ok else '≤'} {fmt(r, sig=3)}"
+                                      for *_, sv, r, ok in c.neighbours) or "—"),
                      "verdict": "годится" if c.ok else "; ".join(c.fails)})
-    df = pd.DataFrame(rows)
-    names = " / ".join(f"z{n}" for n in tr.candidates[0].z)
     s.table("Наборы чисел зубьев и проверка условий", [
-        Column("set", names, fmt=str), Column("u", "<i>u</i><sub>1H</sub>", sig=5),
-        Column("size", "Габарит, модулей", sig=4), Column("verdict", "Заключение", fmt=str)], df,
-        id="tab-train-select", highlight_rows=[0])
-    c = tr.candidates[0]
-    z1, z2 = c.z["1"], c.z["2"]
-    zr = c.z.get("2'", z2)
-    s.paragraph("Проверка условия соседства для принятого набора:")
-    s.formula(Formula(rf"\sin\frac{{\pi}}{{{k}}} = {tex_num(math.sin(math.pi / k), sig=4)} > "
-                      rf"\frac{{z_2 + 2h_a^*}}{{z_1 + z_2}} = \frac{{{max(z2, zr)} + 2}}{{{z1} + {z2}}} = "
-                      rf"{tex_num((max(z2, zr) + 2) / (z1 + z2), sig=4)}"))
+        Column("set", "/".join(f"<i>z</i><sub>{w}</sub>" for w in sel.unknown), fmt=str),
+        Column("u", f"<i>u</i><sub>{m.inp}{m.out}</sub>", sig=6), Column("du", "Δ<i>u</i>", "%", sig=2),
+        Column("size", "Габарит, модулей", digits=0, sig=None), Column("asm", "Сборка", fmt=str),
+        Column("nb", "Соседство, sin(π/<i>k</i>)", fmt=str), Column("verdict", "Заключение", fmt=str)],
+        pd.DataFrame(rows), id="tab-train-select", highlight_rows=[0])
+    s.paragraph("Проверка принятого набора (" + ", ".join(f"<i>z</i><sub>{w}</sub> = {acc.z[w]}" for w in sel.unknown)
+                + "):")
+    fr = acc.u_exact
+    forms = [Formula(rf"u_{{{m.inp}\,{m.out}}} = \frac{{{fr.numerator}}}{{{fr.denominator}}}" if fr.denominator != 1
+                     else rf"u_{{{m.inp}\,{m.out}}} = {fr.numerator}", result=tex_num(float(fr), sig=7))]
+    for (_, p, c) in sel.equations:
+        forms.append(Formula(rf"{_form(p, sel.order)} = {_form(c, sel.order)}", rf"{_value(p, z)} = {_value(c, z)}"))
+    for pl, (_, ok, qs) in zip(sel.planets, acc.assembly):
+        for (c0, p0, s0), (cj, pj, sj), q in zip([pl.meshes[0]] * len(qs), pl.meshes[1:], qs):
+            sym, num = _asm_tex(c0, p0, s0, cj, pj, sj, z, k_of(k, pl.carrier))
+            forms.append(Formula(sym, num, _frac_tex(q)))
+    for h, ax, sv, r, ok in acc.neighbours:
+        forms.append(Formula(rf"\sin\frac{{\pi}}{{{k_of(k, h)}}} = {tex_num(sv, sig=4)} > "
+                             rf"\frac{{z_с + 2h_a^*}}{{2a_w/m}} = {tex_num(r, sig=4)}"))
+    s.formula(*forms)
+    s.paragraph("Все условия выполнены; по принятым числам зубьев ниже построены схема и планы скоростей.")
+
+
+def _affine(c0, cf: dict, order: list) -> str:
+    """z_dep = c0 + Σ c z as TeX."""
+    t = _form(cf, order)
+    if c0:
+        t += (" + " if c0 > 0 else " - ") + _num(abs(c0))
+    return t
+
+
+def _value(form: dict, z: dict) -> str:
+    return _num(sum(c * z[w] for w, c in form.items()))
+
+
+def _asm_value(ok, qs) -> str:
+    if ok is None:
+        return "не проверялось"
+    return ", ".join(str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}" for q in qs) or "—"
+
+
+def _frac_tex(q) -> str:
+    return str(q.numerator) if q.denominator == 1 else rf"\frac{{{q.numerator}}}{{{q.denominator}}}"
+
+
+def _asm_tex(c0, p0, s0, cj, pj, sj, z, k) -> tuple[str, str]:
+    """Кудрявцев's assembly quantity of one satellite with the central wheels c0 and cj (its wheels
+    p0, pj; σ = ±1): symbolic and with numbers."""
+    a, b = sj, -s0
+    if a < 0:
+        a, b = -a, -b
+    op = "+" if b > 0 else "-"
+    if p0 == pj:
+        return (rf"\frac{{z_{{{c0}}} {op} z_{{{cj}}}}}{{k}}", rf"\frac{{{z[c0]} {op} {z[cj]}}}{{{k}}}")
+    g = math.gcd(z[p0], z[pj])
+    return (rf"\frac{{z_{{{pj}}}\,z_{{{c0}}} {op} z_{{{p0}}}\,z_{{{cj}}}}}{{k\cdot \mathrm{{НОД}}(z_{{{p0}}}, z_{{{pj}}})}}",
+            rf"\frac{{{z[pj]} \cdot {z[c0]} {op} {z[p0]} \cdot {z[cj]}}}{{{k} \cdot {g}}}")
+
+
+def _k_text(k) -> str:
+    """«<i>k</i> = 3» or, per carrier, «<i>k</i><sub>H1</sub> = 3, <i>k</i><sub>H2</sub> = 4»."""
+    if isinstance(k, int):
+        return f"<i>k</i> = {k}"
+    return ", ".join(Markup("<i>k</i><sub>{}</sub> = {}").format(h, v) for h, v in k.items())
+
+
+def _assembly_text(s: Section, tr, k) -> None:
+    sel = tr.selector
+    if all(k_of(k, pl.carrier) <= 1 for pl in sel.planets):
+        s.paragraph("Сателлит один (<i>k</i> = 1): условия сборки и соседства не накладываются.")
+        return
+    s.paragraph(
+        "Условие сборки <i>k</i> сателлитов, равномерно расположенных по окружности: "
+        "центральные колёса неподвижны, фаза зацепления венца сателлита <i>z</i><sub>c</sub> с центральным "
+        "колесом <i>z</i><sub>a</sub> при переходе к соседнему месту (поворот линии центров на 2π/<i>k</i>) "
+        "меняется на <i>z</i><sub>a</sub>/<i>k</i> шага; одинаковый блок сателлита встаёт на место, если "
+        "поворотом на целое число зубьев обоих венцов можно согласовать все его зацепления: "
+        "(<i>z</i><sub>d</sub><i>z</i><sub>a</sub> ± <i>z</i><sub>c</sub><i>z</i><sub>b</sub>)/(<i>k</i>·НОД(<i>z</i><sub>c</sub>, "
+        "<i>z</i><sub>d</sub>)) — целое («+», когда одно из зацеплений внутреннее); для одновенцового сателлита "
+        "(<i>c</i> = <i>d</i>) это (<i>z</i><sub>a</sub> ± <i>z</i><sub>b</sub>)/<i>k</i>, что совпадает с условием "
+        "<i>z</i><sub>1</sub><i>u</i><sub>1H</sub>(1 + <i>kp</i>)/<i>k</i> — целое схемы 2K-H [2].")
+    bad = [pl.member for pl in sel.planets if pl.coupled]
+    if bad:
+        s.paragraph("Для сателлитов " + ", ".join(bad) + ", зацепляющихся с другими сателлитами или несущих "
+                    "свои сателлиты, условие сборки не проверяется.")
 
 
 def _wheels(sec: Section, tr) -> None:
@@ -129,10 +232,12 @@ def _wheels(sec: Section, tr) -> None:
         sec.paragraph(text)
 
 
-def _form(t: dict) -> str:
-    """A linear form in the tooth numbers as TeX, positive terms first: «z_{2} - z_{1}»."""
+def _form(t: dict, order: list | None = None) -> str:
+    """A linear form in the tooth numbers as TeX, positive terms first (then by ``order`` when
+    given): «z_{2} - z_{1}»."""
     out = ""
-    for w, c in sorted(t.items(), key=lambda wc: wc[1] < 0):
+    rank = (lambda w: order.index(w)) if order else (lambda w: 0)  # noqa: E731
+    for w, c in sorted(t.items(), key=lambda wc: (wc[1] < 0, rank(wc[0]))):
         k = "" if abs(c) == 1 else str(abs(c))
         out += (" - " if c < 0 else (" + " if out else "")) + k + _z(w)
     return out.strip()
@@ -241,5 +346,11 @@ def conclusion_lines(study) -> list[str]:
     m = tr.model
     fr = tr.ratio_fraction
     zs = ", ".join(f"z<sub>{w.name}</sub> = {w.z}" for w in m.wheels.values())
-    return [f"Передаточное отношение планетарного механизма <i>u</i><sub>{m.inp}{m.out}</sub> = "
-            f"{fr.numerator}/{fr.denominator} = {fmt(tr.ratio, sig=7)} ({zs})."]
+    out = [f"Передаточное отношение планетарного механизма <i>u</i><sub>{m.inp}{m.out}</sub> = "
+           f"{fr.numerator}/{fr.denominator} = {fmt(tr.ratio, sig=7)} ({zs})."]
+    if tr.candidates:
+        out.append(f"Числа зубьев подобраны перебором под <i>u</i> = {fmt(tr.opts['target'], sig=6)} (отклонение "
+                   f"{_pct(tr.scalars['train_u_error_pct'])} %) при {_k_text(tr.opts['planets'])}: выполнены условия "
+                   f"соосности, сборки, соседства, отсутствия подрезания и интерференции; набор — наименьший "
+                   f"по габариту (наибольший занимаемый колёсами диаметр {fmt(tr.candidates[0].size, sig=4)}<i>m</i>).")
+    return out
