@@ -120,7 +120,7 @@ def acceleration_plan(row: pd.Series, mech: Mechanism) -> Plan:
     plan, fixed = _start("acceleration", row, mech)
     for link in mech.moving:
         ref = _reference(mech, link)
-        w, e = row["w_" + link.name], row["e_" + link.name]
+        w = row["w_" + link.name]
         for p in link.points:
             if p == ref:
                 continue
@@ -314,18 +314,25 @@ def _longest_rel(plan: Plan, link: str):
     return max(rel, key=lambda s: s.length) if rel else None
 
 
+def _drawn_input_rate(row: pd.Series, mech: Mechanism, kind: str, mu: float) -> float:
+    """ω₁ (``kind`` "w") or ε₁ ("e") of the input link as the plan gives it: the crank pin's
+    velocity ω₁·l_OA (or tangential acceleration ε₁·l_OA) laid off to 0,5 mm at the scale ``mu``
+    and divided back by l_OA; a sliding input keeps its value."""
+    d = mech.driver
+    rate = float(row[f"{kind}_" + d.link])
+    if d.rotary:
+        l = float(np.hypot(*(_vec(row, "", mech.crank_pin()) - _vec(row, "", d.center))))
+        rate = np.sign(rate) * drawn(abs(rate) * l, mu) / l
+    return rate
+
+
 def construct_velocity(row: pd.Series, study, mu: float) -> tuple[pd.Series, Plan]:
     """The velocity plan as it is constructed: pa = ω₁·l_OA/μ_v drawn to 0,5 mm (for an
     actuator the rod's relative velocity), then each group's points at the intersection of the
     lines of its equations V̄_B = V̄_A + V̄_BA (⊥ AB), V̄_B = V̄_C + V̄_BC (⊥ CB) or, for a slider,
     ∥ the guide. Returns the row of constructed velocities and the plan."""
     mech = study.mechanism
-    d = mech.driver
-    w1 = float(row["w_" + d.link])
-    if d.rotary:
-        tip = mech.crank_pin()
-        l = float(np.hypot(*(_vec(row, "", tip) - _vec(row, "", d.center))))
-        w1 = np.sign(w1) * drawn(abs(w1) * l, mu) / l
+    w1 = _drawn_input_rate(row, mech, "w", mu)
 
     def terms(kind, obj, vec):
         if kind == "normal":
@@ -363,12 +370,7 @@ def construct_acceleration(row: pd.Series, vrow: pd.Series, omegas: dict[str, fl
     0,5 mm; the tangential (⊥ link) and relative (∥ guide) directions intersected group by
     group."""
     mech = study.mechanism
-    d = mech.driver
-    e1 = float(row["e_" + d.link])
-    if d.rotary:
-        tip = mech.crank_pin()
-        l = float(np.hypot(*(_vec(row, "", tip) - _vec(row, "", d.center))))
-        e1 = np.sign(e1) * drawn(abs(e1) * l, mu) / l
+    e1 = _drawn_input_rate(row, mech, "e", mu)
 
     def terms(kind, obj, vec):
         if kind == "normal":
