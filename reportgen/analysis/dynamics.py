@@ -45,8 +45,8 @@ from ..case.reader import Node
 from ..case.text import inline_html
 from ..errors import CaseError, did_you_mean
 from .flywheel import DynamicModel, DynamicsResult, exact, flywheel_dims, solve_dynamics
-from .loads import (ColumnEvaluator, Loads, Table1D, com_point, cycle_of, read_loads, read_table,
-                    switching_points)
+from .loads import (ColumnEvaluator, Loads, LoadWorks, Table1D, com_point, cycle_of, read_loads,
+                    read_table, switching_points)
 from .study import true_motion
 
 __all__ = ["Settings", "ReducedModel", "Dynamics", "Printed", "read_settings", "METHODS"]
@@ -339,6 +339,10 @@ class ReducedModel:
     def dJ2(self, q) -> np.ndarray:
         return self._sums(q)[1].copy()
 
+    def works(self, nodes: np.ndarray, breaks: np.ndarray) -> LoadWorks:
+        """The closed-form works of the loads on the nodes of the dynamic model."""
+        return LoadWorks(self.loads, self.ev, nodes, breaks)
+
     def M(self, q) -> np.ndarray:
         """Σ of the reduced moments of all given loads."""
         cols = self.ev(q)
@@ -395,14 +399,14 @@ class Dynamics:
                 # inverse task: the exact steady motion with J_I = J_I,const + u²·J_fly gives δ;
                 # the direct task below is then solved for that δ (its exact J_I is the given one)
                 dm = DynamicModel(self.model.J2, self.model.dJ2, self.model.M, self.breaks, a, Phi, self.grid,
-                                  Mdrive)
+                                  Mdrive, works=self.model.works)
                 self.inverse = exact(dm, s.omega_m, s.delta, J_I=self.J_I_const + s.ratio ** 2 * s.J_given)
                 self.settings = s = replace(s, delta=float(self.inverse.delta_achieved))
             else:
                 self.inverse = None
             self.result: DynamicsResult = solve_dynamics(
                 self.model.J2, self.model.dJ2, self.model.M, self.breaks, a, Phi, self.J_I_const,
-                s.omega_m, s.delta, self.grid, s.method, Mdrive, s.flywheel_kw)
+                s.omega_m, s.delta, self.grid, s.method, Mdrive, s.flywheel_kw, works=self.model.works)
             if s.ratio != 1.0:
                 r = self.result
                 self.result = replace(r, flywheel=flywheel_dims(r.J_flywheel / s.ratio ** 2, r.omega_max * s.ratio,

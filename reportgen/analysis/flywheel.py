@@ -34,10 +34,9 @@ analytic derivative, never read off the grid.
 """
 from __future__ import annotations
 
-import bisect
 import math
 from dataclasses import dataclass, field
-from typing import Callable, Iterable, NamedTuple, Sequence
+from typing import Callable, Iterable, NamedTuple, Protocol, Sequence
 
 import numpy as np
 from scipy.optimize import brentq
@@ -45,6 +44,7 @@ from scipy.optimize import brentq
 from reportgen.core.quadrature import Antiderivative, gauss_legendre, merge_nodes
 
 __all__ = [
+    "ClosedWork",
     "DynamicModel",
     "prepare_model",
     "Works",
@@ -65,6 +65,21 @@ __all__ = [
 ]
 
 ArrayFunc = Callable[[np.ndarray], np.ndarray]
+
+
+class ClosedWork(Protocol):
+    """The works of the loads that have a closed form, tabulated on the nodes of a
+    :class:`DynamicModel` (built by ``works(nodes, breaks)``).
+
+    values  – ∫_{nodes[0]}^{nodes[k]} of their reduced moment, at every node;
+    partial – ``partial(i, x)``: ∫_{nodes[i]}^{x} of it for x inside the node interval i;
+    rest    – the reduced moment of the other loads (integrated by quadrature), or None.
+    """
+
+    values: np.ndarray
+    rest: ArrayFunc | None
+
+    def partial(self, i: np.ndarray, x: np.ndarray) -> np.ndarray: ...
 _EPS = np.finfo(float).eps
 # works on node intervals away from breaks by the Gauss–Lobatto rule of this order (its end
 # points are the nodes, where the kinematics is the solved cycle grid); 0 — Gauss–Legendre on
@@ -85,13 +100,17 @@ class DynamicModel:
     arbitrary φ by reduction into the cycle: A(φ + kΦ) = A(φ) + k·A(cycle).
 
     Parameters are those of :func:`solve_dynamics`; J2/dJ2 may be None when only the works
-    are wanted.
+    are wanted.  ``works`` (optional): ``works(nodes, breaks)`` → a :class:`ClosedWork`, the
+    works of the loads that have a closed form (a force constant between switching points does
+    the work F·Δr_P, a moment M·Δφ_k: no quadrature points at all); only its ``rest`` (the loads
+    given by tables) is integrated by quadrature.
     """
 
     def __init__(self, J2: ArrayFunc | None, dJ2: ArrayFunc | None, M: ArrayFunc,
                  breaks: Iterable[float] | None, cycle_start: float, cycle_length: float,
                  grid, Mdrive: float | ArrayFunc | None = None, *, min_nodes: int = 720,
-                 order: int = 8, balance_rtol: float = 1e-9, lobatto: int | None = None):
+                 order: int = 8, balance_rtol: float = 1e-9, lobatto: int | None = None,
+                 works: "Callable[[np.ndarray, np.ndarray], ClosedWork] | None" = None):
         a = float(cycle_start)
         L = float(cycle_length)
         if not (L > 0 and math.isfinite(L)):
@@ -119,8 +138,15 @@ class DynamicModel:
         self.nodes = merge_nodes(base, br, max_step=L / max(int(min_nodes), 2))
         # works on nodes
         lob = LOBATTO if lobatto is None else lobatto
-        self._Ac = Antiderivative(M, self.nodes, br, order=order, lobatto=lob)
-        self.Ac_total = self._Ac.total
+        self._closed = works(self.nodes, br) if works is not None else None
+        # the integrand left to quadrature: M, or the part of M without a closed-form work
+        self._Q = M if self._closed is None else self._closed.rest
+        Ac_vals = np.zeros(self.nodes.size)
+        if self._Q is not None:
+            Ac_vals = Antiderivative(self._Q, self.nodes, br, order=order, lobatto=lob).values
+        if self._closed is not None:
+            Ac_vals = Ac_vals + self._closed.values
+        self.Ac_total = float(Ac_vals[-1])
         if Mdrive is None or np.isscalar(Mdrive):
             self.Md_const = (-self.Ac_total / L) if Mdrive is None else float(Mdrive)
             self._Ad = None
@@ -132,7 +158,7 @@ class DynamicModel:
             self.Ad_total = self._Ad.total
             Ad_n = self._Ad.values
         self._Mdrive = Mdrive
-        self.Ac_n = self._Ac.values
+        self.Ac_n = Ac_vals
         self.Ad_n = Ad_n
         self.A_n = self.Ac_n + self.Ad_n
         scale = float(np.max(np.abs(self.Ac_n)) + np.max(np.abs(self.Ad_n)))
@@ -162,8 +188,7 @@ class DynamicModel:
         self._cache: dict = {}
         self._order = int(order)
         self._t, self._w = gauss_legendre(self._order)
-        self._nodes_list = self.nodes.tolist()
-        self._Ac_vals = self._Ac.values
+        self._Ac_vals = Ac_vals
         self._Ad_vals = None if self._Ad is None else self._Ad.values
         self._has_J = J2 is not None
 
@@ -214,75 +239,77 @@ class DynamicModel:
     def _ev(self, x):
         """(A_Σ, M_Σ, J_II, J_II′) at arbitrary φ (array).
 
-        A_Σ(φ) = A_Σ(x_i) + ∫_{x_i}^{φ} M_Σ (Gauss–Legendre from the node x_i below φ; no
-        break inside because the breaks are nodes) + k·A_Σ(cycle) for φ reduced by kΦ.
-        One call of each user function for all points.
+        A_Σ(φ) = A_Σ(x_i) + ∫_{x_i}^{φ} M_Σ (the closed-form part of the works exactly, the rest
+        by Gauss–Legendre from the node x_i below φ; no break inside because the breaks are
+        nodes) + k·A_Σ(cycle) for φ reduced by kΦ.  One call of each user function for all
+        points.
         """
         x = np.asarray(x, dtype=float)
         shape = x.shape
         r, k = self._reduce(x.ravel())
-        nn = self.nodes.size
-        i = np.clip(np.searchsorted(self.nodes, r, side="right") - 1, 0, nn - 2)
-        base = self.nodes[i]
-        half = 0.5 * (r - base)
-        mid = 0.5 * (r + base)
-        n, q = r.size, self._order
-        # a point on a node needs no quadrature (its integral from the node is 0): the
-        # Gauss–Legendre points are placed only for the others (on the cycle grid, none)
-        inner = np.flatnonzero(half != 0.0)
-        m = inner.size
-        hin = half[inner]
-        pts = np.empty(m * q + n)
-        pts[: m * q] = (mid[inner, None] + hin[:, None] * self._t).ravel()
-        pts[m * q:] = r
-        mv = self._call(self._M, pts)
-        A = self._Ac_vals[i] + k * self.Ac_total
-        if m:
-            A[inner] += hin * (mv[: m * q].reshape(m, q) @ self._w)
-        Ms = mv[m * q:]
+        i, A, pts, mv, split = self._Ac_from_nodes(r)
+        A = A + k * self.Ac_total
+        Ms = mv[split:]
         if self._Ad_vals is None:
             A = A + self.Md_const * (r - self.a) + k * self.Ad_total
             Ms = Ms + self.Md_const
         else:
-            dv = self._call(self._Mdrive, pts)
+            # the given driving moment (a function of φ alone) by Gauss–Legendre from the node
+            n, q = r.size, self._order
+            base = self.nodes[i]
+            half = 0.5 * (r - base)
+            inner = np.flatnonzero(half != 0.0)
+            dpts = np.empty(inner.size * q + n)
+            dpts[: inner.size * q] = (0.5 * (r + base)[inner, None] + half[inner, None] * self._t).ravel()
+            dpts[inner.size * q:] = r
+            dv = self._call(self._Mdrive, dpts)
             A = A + self._Ad_vals[i] + k * self.Ad_total
-            if m:
-                A[inner] += hin * (dv[: m * q].reshape(m, q) @ self._w)
-            Ms = Ms + dv[m * q:]
+            if inner.size:
+                A[inner] += half[inner] * (dv[: inner.size * q].reshape(inner.size, q) @ self._w)
+            Ms = Ms + dv[inner.size * q:]
         if self._has_J:
             # on the same array as M (one kinematic evaluation: the columns are cached by the
             # points asked, and J_II is element-wise)
-            J = self._call(self._J2, pts)[m * q:]
-            dJ = self._call(self._dJ2, pts)[m * q:]
+            J = self._call(self._J2, pts)[split:]
+            dJ = self._call(self._dJ2, pts)[split:]
         else:
-            J = dJ = np.full(n, np.nan)
+            J = dJ = np.full(r.size, np.nan)
         return A.reshape(shape), Ms.reshape(shape), J.reshape(shape), dJ.reshape(shape)
 
-    def _ev1(self, t: float):
-        """Scalar fast path of :meth:`_ev` (used inside brentq); returns Python floats."""
-        r, k = self._reduce1(float(t))
-        i = bisect.bisect_right(self._nodes_list, r) - 1
-        i = min(max(i, 0), len(self._nodes_list) - 2)
-        base = self._nodes_list[i]
-        half = 0.5 * (r - base)
-        q = self._order
-        pts = np.empty(q + 1)
-        pts[:q] = 0.5 * (r + base) + half * self._t
-        pts[q] = r
-        mv = self._call(self._M, pts)
-        A = float(self._Ac_vals[i]) + k * self.Ac_total + half * float(mv[:q] @ self._w)
-        Ms = float(mv[q])
-        if self._Ad_vals is None:
-            A += self.Md_const * (r - self.a) + k * self.Ad_total
-            Ms += self.Md_const
+    def _Ac_from_nodes(self, r: np.ndarray):
+        """A_c at points r of the cycle: the node value below each point plus the integral from
+        the node (closed form and Gauss–Legendre of the rest).  Returns (node index, A_c,
+        the points M was evaluated at, M there, the offset of r in them)."""
+        nn = self.nodes.size
+        i = np.clip(np.searchsorted(self.nodes, r, side="right") - 1, 0, nn - 2)
+        base = self.nodes[i]
+        A = self._Ac_vals[i].copy()
+        n, q = r.size, self._order
+        if self._Q is None:
+            pts, split = r, 0
         else:
-            dv = self._call(self._Mdrive, pts)
-            A += float(self._Ad_vals[i]) + k * self.Ad_total + half * float(dv[:q] @ self._w)
-            Ms += float(dv[q])
-        # J_II on the same points as M: one kinematic evaluation (columns cached by the points)
-        J = float(self._call(self._J2, pts)[q]) if self._has_J else math.nan
-        dJ = float(self._call(self._dJ2, pts)[q]) if self._has_J else math.nan
-        return A, Ms, J, dJ
+            # a point on a node needs no quadrature (its integral from the node is 0): the
+            # Gauss–Legendre points are placed only for the others (on the cycle grid, none)
+            half = 0.5 * (r - base)
+            inner = np.flatnonzero(half != 0.0)
+            m = inner.size
+            hin = half[inner]
+            pts = np.empty(m * q + n)
+            pts[: m * q] = (0.5 * (r + base)[inner, None] + hin[:, None] * self._t).ravel()
+            pts[m * q:] = r
+            split = m * q
+        mv = self._call(self._M, pts)
+        if self._Q is not None:
+            qv = mv if self._Q is self._M else self._call(self._Q, pts)
+            if m:
+                A[inner] += hin * (qv[:split].reshape(m, q) @ self._w)
+        if self._closed is not None:
+            A += self._closed.partial(i, r)
+        return i, A, pts, mv, split
+
+    def _ev1(self, t: float):
+        """Scalar form of :meth:`_ev` (used inside brentq); returns Python floats."""
+        return tuple(float(v[0]) for v in self._ev(np.array([float(t)])))
 
     def A(self, x) -> np.ndarray:
         """A_Σ(φ) = ∫_{φ_a}^{φ} M_Σ at arbitrary φ (periodic continuation)."""
@@ -290,8 +317,9 @@ class DynamicModel:
 
     def Ac(self, x) -> np.ndarray:
         """A_c(φ) = ∫_{φ_a}^{φ} M_пр.с at arbitrary φ."""
-        r, k = self._reduce(x)
-        return self._Ac(r) + k * self.Ac_total
+        x = np.asarray(x, dtype=float)
+        r, k = self._reduce(x.ravel())
+        return (self._Ac_from_nodes(r)[1] + k * self.Ac_total).reshape(x.shape)
 
     def M_sum(self, x) -> np.ndarray:
         """M_Σ(φ) = M_пр.с(φ) + M_дв(φ)."""
@@ -1085,20 +1113,21 @@ def solve_dynamics(J2: ArrayFunc, dJ2: ArrayFunc, M: ArrayFunc,
                    breaks: Iterable[float] | None, cycle_start: float, cycle_length: float,
                    J1_const: float, omega_m: float, delta: float, grid,
                    method: str = "exact", Mdrive: float | ArrayFunc | None = None,
-                   flywheel_kw: dict | None = None) -> DynamicsResult:
+                   flywheel_kw: dict | None = None, works=None) -> DynamicsResult:
     """Dynamic analysis and flywheel synthesis over one cycle.
 
     J2, dJ2 – J_II(φ) and its exact derivative; M – M_пр.с(φ) (all loads except the driving
     moment); breaks – switching points of M inside the cycle; cycle [cycle_start,
     cycle_start + cycle_length]; J1_const – J_O.пр; omega_m – ω_ср; delta – δ; grid – array of
     φ (or number of intervals over the cycle); Mdrive – M_дв (None: −A_c/Φ, a number, or a
-    callable of φ).  Computes the exact motion, Мерцалов and Виттенбауэр (both slopes) and
+    callable of φ); works – the closed-form works of the loads (see :class:`DynamicModel`).
+    Computes the exact motion, Мерцалов and Виттенбауэр (both slopes) and
     reports ``method``'s J_I, ω(φ), ε(φ) with the deviations of all from the exact J_I.
     """
     if method not in ("exact", "mertsalov", "wittenbauer"):
         raise ValueError(f"unknown method {method!r}")
     _check_targets(omega_m, delta)
-    model = DynamicModel(J2, dJ2, M, breaks, cycle_start, cycle_length, grid, Mdrive)
+    model = DynamicModel(J2, dJ2, M, breaks, cycle_start, cycle_length, grid, Mdrive, works=works)
     ex = exact(model, omega_m, delta)
     me = mertsalov(model, omega_m, delta)
     wi = wittenbauer(model, omega_m, delta)

@@ -57,6 +57,7 @@ __all__ = [
     "AppliedForce",
     "AppliedMoment",
     "read_loads",
+    "LoadWorks",
     "cycle_of",
     "switching_points",
     "reduced_moment",
@@ -437,6 +438,25 @@ class Load:
                     out.append((lambda cols, of=p.of, xb=xb: of(cols) - xb, p.phase))
         return out
 
+    @property
+    def closed_form(self) -> bool:
+        """Is the load constant between its switching points (a vector, or constant laws with
+        ``when``/``against``/phases), so that its work has a closed form (:class:`LoadWorks`)?"""
+        return self.vector is not None or all(p.table is None for p in self.pieces)
+
+    def work_coordinates(self, cols) -> list[np.ndarray]:
+        """The coordinates whose differences times the load give its work: x_P, y_P of the
+        force's point, φ_k of the moment's link."""
+        if self.kind == "moment":
+            return [cols["phi_" + self.link]]
+        return [cols["x_" + self.point], cols["y_" + self.point]]
+
+    def components(self, cols, phase) -> list[np.ndarray]:
+        """The load's components along :meth:`work_coordinates`: Fx, Fy or M."""
+        if self.kind == "moment":
+            return [self.moment(cols, phase)]
+        return list(self.force(cols, phase))
+
     def phase_breaks(self) -> list[float]:
         out = []
         for p in self.pieces:
@@ -500,6 +520,79 @@ class Loads:
                 span = float(p.table.x[-1] - p.table.x[0])
                 if d > 1e-9 * span:
                     out.append((ld, p, d))
+        return out
+
+
+class LoadWorks:
+    """Works of the loads that are constant between their switching points, in closed form,
+    on the nodes of a dynamic model (:class:`reportgen.analysis.flywheel.ClosedWork`).
+
+    On a node interval [x_p, x_p+1] that contains no switching point such a force is a
+    constant vector F_p and its reduced moment F_p·r_P′(φ) integrates exactly to
+    F_p·(r_P(x_p+1) − r_P(x_p)) (the work of a constant force is the scalar product with the
+    displacement of its point; a moment M_p·Δφ_k).  F_p is the load at the interval's ends when
+    both agree and neither is a switching point (nor a cycle end); otherwise at its midpoint.
+    The running sum is taken in Abel's form, A_k = F_k−1·r_k − F_0·r_0 − Σ_{p=1}^{k−1}(F_p −
+    F_p−1)·r_p, so that between switches it is one difference, F·(r_k − r_0), not a sum of k
+    rounded increments.  Loads given by tables are left to quadrature (``rest``).
+    """
+
+    def __init__(self, loads: Loads, evaluator, nodes: np.ndarray, breaks: np.ndarray):
+        self.loads = loads
+        self.ev = evaluator
+        self.closed = [ld for ld in loads.loads if ld.closed_form]
+        self.other = [ld for ld in loads.loads if not ld.closed_form]
+        self.rest = self._rest if self.other else None
+        nodes = np.asarray(nodes, dtype=float)
+        n = nodes.size
+        self.values = np.zeros(n)
+        if not self.closed:
+            self.Fp = np.zeros((0, n - 1))
+            self.R = np.zeros((0, n))
+            return
+        cols = evaluator(nodes)
+        V = self._components(cols)
+        R = np.array([c for ld in self.closed for c in ld.work_coordinates(cols)])
+        # link angles of single positions lie in (−π, π]: continuous along the nodes
+        self._angle = np.array([ld.kind == "moment" for ld in self.closed for _ in ld.work_coordinates(cols)])
+        if self._angle.any():
+            R[self._angle] = np.unwrap(R[self._angle], axis=1)
+        edge = np.isin(nodes, breaks)
+        edge[0] = edge[-1] = True
+        amb = edge[:-1] | edge[1:] | np.any(V[:, :-1] != V[:, 1:], axis=0)
+        Fp = V[:, :-1].copy()
+        if amb.any():
+            mid = 0.5 * (nodes[:-1][amb] + nodes[1:][amb])
+            Fp[:, amb] = self._components(evaluator(mid))
+        self.Fp, self.R = Fp, R
+        jumps = (Fp[:, 1:] - Fp[:, :-1]) * R[:, 1:-1]
+        C = np.concatenate((np.zeros((Fp.shape[0], 1)), np.cumsum(jumps, axis=1)), axis=1)
+        W = Fp * R[:, 1:] - (Fp[:, :1] * R[:, :1]) - C
+        self.values[1:] = W.sum(axis=0)
+
+    def _components(self, cols) -> np.ndarray:
+        ph = self.loads.phase(cols)
+        return np.array([c for ld in self.closed for c in ld.components(cols, ph)])
+
+    def partial(self, i: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """∫_{nodes[i]}^{x} of the reduced moment of the closed-form loads (x in interval i)."""
+        x = np.asarray(x, dtype=float)
+        if not self.closed:
+            return np.zeros(x.size)
+        cols = self.ev(x)
+        R = np.array([c for ld in self.closed for c in ld.work_coordinates(cols)])
+        d = R - self.R[:, i]
+        if self._angle.any():
+            d[self._angle] = np.mod(d[self._angle] + math.pi, 2 * math.pi) - math.pi
+        return np.einsum("ij,ij->j", self.Fp[:, i], d)
+
+    def _rest(self, q) -> np.ndarray:
+        """Reduced moment of the loads given by tables (integrated by quadrature)."""
+        cols = self.ev(q)
+        ph = self.loads.phase(cols)
+        out = np.zeros(len(cols["q"]))
+        for ld in self.other:
+            out = out + ld.reduced(cols, ph)
         return out
 
 
