@@ -85,6 +85,41 @@ _EPS = np.finfo(float).eps
 # points are the nodes, where the kinematics is the solved cycle grid); 0 — Gauss–Legendre on
 # every interval
 LOBATTO = 5
+# the extremum search on a node interval uses Chebyshev interpolants of CELL_POINTS points when
+# their last coefficients are below CELL_TOL of the size of the quantity (DynamicModel._build_cells)
+CELL_POINTS = 12
+CELL_TOL = 1e-14
+_CHEB_X = np.cos(np.pi * (np.arange(CELL_POINTS) + 0.5) / CELL_POINTS)      # first kind, interior
+# values at _CHEB_X → Chebyshev coefficients: c_j = (2/N) Σ_k f_k T_j(x_k), c_0 halved
+_CHEB_T = (2.0 / CELL_POINTS) * np.cos(np.outer(np.pi * (np.arange(CELL_POINTS) + 0.5) / CELL_POINTS,
+                                                np.arange(CELL_POINTS)))
+_CHEB_T[:, 0] *= 0.5
+# Chebyshev coefficients → monomial coefficients (row j: T_j in powers of s)
+_CHEB_MONO = np.zeros((CELL_POINTS, CELL_POINTS))
+for _j in range(CELL_POINTS):
+    _p = np.polynomial.chebyshev.cheb2poly(np.eye(CELL_POINTS)[_j])
+    _CHEB_MONO[_j, :_p.size] = _p
+del _j, _p
+
+
+class _CellFit:
+    """(A_Σ, M_Σ, J_II, J_II′) on one node interval by polynomials in s = (φ − mid)/half
+    (Horner; Python floats, for the scalar root finding of the extremum search)."""
+
+    __slots__ = ("mid", "ih", "rows")
+
+    def __init__(self, mid: float, ih: float, rows: list[list[float]]):
+        self.mid, self.ih, self.rows = mid, ih, rows
+
+    def __call__(self, t: float) -> tuple[float, float, float, float]:
+        s = (t - self.mid) * self.ih
+        out = []
+        for row in self.rows:
+            acc = 0.0
+            for c in row:
+                acc = acc * s + c
+            out.append(acc)
+        return tuple(out)
 
 
 # --------------------------------------------------------------------------------------------
@@ -186,6 +221,7 @@ class DynamicModel:
             if np.any(~np.isfinite(self.J2_n)):
                 raise ValueError("J_II(φ) is not finite on the cycle")
         self._cache: dict = {}
+        self._cells: dict[int, _CellFit | None] = {}
         self._order = int(order)
         self._t, self._w = gauss_legendre(self._order)
         self._Ac_vals = Ac_vals
@@ -379,9 +415,23 @@ class DynamicModel:
         hi = np.concatenate((x0, xp))
         eta = np.minimum(eta_abs, 0.25 * (hi - lo))
         ends = np.concatenate((lo + eta, hi - eta))
-        _, draw = combine(*self._ev(ends))
-        dv = s * draw
         m = lo.size
+        # the cells around the candidates: (A_Σ, M_Σ, J_II, J_II′) by their Chebyshev
+        # interpolants where these are resolved to rounding (:meth:`_cell`), else exactly
+        cells = np.concatenate((np.where(loc == 0, n - 1, loc - 1), loc))
+        shift = np.concatenate((np.where(loc == 0, self.L, 0.0), np.zeros(loc.size)))
+        self._build_cells(cells)
+        fit = [self._cells[int(c)] for c in cells]
+        draw = np.empty(2 * m)
+        direct = [j for j in range(m) if fit[j] is None]
+        for j in range(m):
+            if fit[j] is not None:
+                draw[j] = combine(*fit[j](ends[j] + shift[j]))[1]
+                draw[m + j] = combine(*fit[j](ends[m + j] + shift[j]))[1]
+        if direct:
+            sel = np.array(direct + [m + j for j in direct])
+            draw[sel] = combine(*self._ev(ends[sel]))[1]
+        dv = s * draw
         dlo, dhi = dv[:m], dv[m:]
         roots = []
         seen: dict[float, tuple] = {}    # (A_Σ, M_Σ, J_II, J_II′) at the points brentq evaluated
@@ -391,15 +441,16 @@ class DynamicModel:
             if dlo[j] > 0 and dhi[j] < 0:
                 a_, b_ = ends[j], ends[m + j]
                 fa, fb = float(draw[j]), float(draw[m + j])
+                at = (lambda t, f=fit[j], sh=shift[j]: f(t + sh)) if fit[j] is not None else self._ev1
 
-                def fd(t, a_=a_, b_=b_, fa=fa, fb=fb):
+                def fd(t, a_=a_, b_=b_, fa=fa, fb=fb, at=at):
                     # brentq starts with f at both ends: known from the evaluation above
                     if t == a_:
                         return fa
                     if t == b_:
                         return fb
                     tt = min(max(t, a_), b_)
-                    val = self._ev1(tt)
+                    val = at(tt)
                     seen[tt] = val
                     return combine(*val)[1]
 
@@ -425,6 +476,41 @@ class DynamicModel:
         q = self._ev(cand[j:j + 1])
         g, _ = combine(*q)
         return float(self.wrap(r)), float(g[0]), tuple(float(z[0]) for z in q)
+
+    def _build_cells(self, cells) -> None:
+        """Chebyshev interpolants of (A_Σ, M_Σ, J_II, J_II′) on the node intervals ``cells``
+        that have none yet, from one evaluation at the :data:`CELL_POINTS` Chebyshev points of
+        each (interior points: a jump at a break, which is a node, is never straddled).
+
+        The interpolant of degree N − 1 of a function analytic in a Bernstein ellipse of
+        parameter ρ errs by O(ρ^−N) (Trefethen, «Approximation Theory and Approximation
+        Practice», th. 8.2): on a node interval of a tenth of a degree its last coefficients
+        sink to rounding.  A cell is used only if the last three coefficients of every
+        quantity are below :data:`CELL_TOL` of its size there; otherwise (a near-singular
+        position, where the analogs change on the scale of the interval) it is marked None and
+        the extremum search evaluates exactly there.  The search over the cycle asks about the
+        same few cells many times (Мерцалов, Виттенбауэр, each iteration of the exact
+        solution): the exact model quantities are computed once per cell."""
+        need = sorted({int(c) for c in cells} - self._cells.keys())
+        if not need:
+            return
+        idx = np.array(need)
+        lo, hi = self.nodes[idx], self.nodes[idx + 1]
+        mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
+        N = CELL_POINTS
+        pts = (mid[:, None] + half[:, None] * _CHEB_X[None, :]).ravel()
+        vals = np.stack(self._ev(pts)).reshape(4, idx.size, N)
+        coef = vals @ _CHEB_T                       # Chebyshev coefficients (4, cells, N)
+        size = np.max(np.abs(vals), axis=2)
+        tail = np.max(np.abs(coef[:, :, -3:]), axis=2)
+        ok = np.all((tail <= CELL_TOL * size) & np.isfinite(size), axis=0)
+        mono = coef @ _CHEB_MONO                    # monomial coefficients in s = (φ − mid)/half
+        for k, c in enumerate(need):
+            if not ok[k]:
+                self._cells[c] = None
+                continue
+            rows = [list(mono[q, k, ::-1]) for q in range(4)]
+            self._cells[c] = _CellFit(float(mid[k]), 1.0 / float(half[k]), rows)
 
     def line_extremum(self, slope: float, kind: str):
         """max/min over the cycle of A_Σ(φ) − slope·J_II(φ) (Мерцалов ΔT_I, Виттенбауэр K, L);
