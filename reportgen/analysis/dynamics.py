@@ -47,7 +47,7 @@ from ..errors import CaseError, did_you_mean
 from .flywheel import DynamicModel, DynamicsResult, exact, flywheel_dims, solve_dynamics
 from .loads import (ColumnEvaluator, Loads, LoadWorks, Table1D, com_point, cycle_of, read_loads,
                     read_table, switching_points)
-from .study import true_motion
+from .study import frame_of, true_motion
 
 __all__ = ["Settings", "ReducedModel", "Dynamics", "Printed", "read_settings", "METHODS"]
 
@@ -491,10 +491,7 @@ class Dynamics:
             res = getattr(r, meth)
             out["omega_" + meth] = res.omega_at(q)
             out["eps_" + meth] = res.eps_at(q)
-        df = pd.DataFrame(out)
-        if labels is not None:
-            df.insert(0, "pos", labels)
-        return df
+        return frame_of(out, labels)
 
     def at(self, q) -> pd.DataFrame:
         """Dynamics and true-motion columns at arbitrary positions q (for ``export --at``);
@@ -518,10 +515,7 @@ class Dynamics:
         e = self.result.eps_at(q)
         out = {"q": q, "q_deg": np.degrees(q), "omega": w, "eps": e}
         out.update(true_motion(cols, self.study.mechanism, w, e))
-        df = pd.DataFrame(out)
-        if labels is not None:
-            df.insert(0, "pos", labels)
-        return df
+        return frame_of(out, labels)
 
     @cached_property
     def table(self) -> pd.DataFrame:

@@ -222,6 +222,7 @@ class DynamicModel:
                 raise ValueError("J_II(φ) is not finite on the cycle")
         self._cache: dict = {}
         self._cells: dict[int, _CellFit | None] = {}
+        self._memo_tab: dict = {}
         self._order = int(order)
         self._t, self._w = gauss_legendre(self._order)
         self._Ac_vals = Ac_vals
@@ -347,28 +348,42 @@ class DynamicModel:
         """Scalar form of :meth:`_ev` (used inside brentq); returns Python floats."""
         return tuple(float(v[0]) for v in self._ev(np.array([float(t)])))
 
+    def _memo(self, name: str, x, fn) -> np.ndarray:
+        """fn(x) remembered by the values of x: the tables ask for A_Σ, J_II, … on the same grid
+        for ω and ε of every method (a copy is returned)."""
+        x = np.asarray(x, dtype=float)
+        key = (name, x.shape, x.tobytes())
+        hit = self._memo_tab.get(key)
+        if hit is None:
+            hit = fn(x)
+            self._memo_tab[key] = hit
+            if len(self._memo_tab) > 32:
+                self._memo_tab.pop(next(iter(self._memo_tab)))
+        return hit.copy()
+
     def A(self, x) -> np.ndarray:
         """A_Σ(φ) = ∫_{φ_a}^{φ} M_Σ at arbitrary φ (periodic continuation)."""
-        return self._ev(x)[0]
+        return self._memo("A", x, lambda x: self._ev(x)[0])
 
     def Ac(self, x) -> np.ndarray:
         """A_c(φ) = ∫_{φ_a}^{φ} M_пр.с at arbitrary φ."""
-        x = np.asarray(x, dtype=float)
-        r, k = self._reduce(x.ravel())
-        return (self._Ac_from_nodes(r)[1] + k * self.Ac_total).reshape(x.shape)
+        def f(x):
+            r, k = self._reduce(x.ravel())
+            return (self._Ac_from_nodes(r)[1] + k * self.Ac_total).reshape(x.shape)
+        return self._memo("Ac", x, f)
 
     def M_sum(self, x) -> np.ndarray:
         """M_Σ(φ) = M_пр.с(φ) + M_дв(φ)."""
-        r, _ = self._reduce(x)
-        return self._call(self._M, r) + self._md(r)
+        def f(x):
+            r, _ = self._reduce(x)
+            return self._call(self._M, r) + self._md(r)
+        return self._memo("M_sum", x, f)
 
     def J2(self, x) -> np.ndarray:
-        r, _ = self._reduce(x)
-        return self._call(self._J2, r)
+        return self._memo("J2", x, lambda x: self._call(self._J2, self._reduce(x)[0]))
 
     def dJ2(self, x) -> np.ndarray:
-        r, _ = self._reduce(x)
-        return self._call(self._dJ2, r)
+        return self._memo("dJ2", x, lambda x: self._call(self._dJ2, self._reduce(x)[0]))
 
     def wrap(self, x) -> np.ndarray:
         """φ reduced into [φ_a, φ_a + Φ)."""

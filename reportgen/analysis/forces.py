@@ -65,7 +65,7 @@ from ..errors import StructureError, did_you_mean
 from ..mechanism.model import FRAME
 from ..mechanism.structure import solver_bodies
 from .loads import ColumnEvaluator, com_point
-from .study import true_motion
+from .study import frame_of, true_motion
 
 __all__ = ["ForceSettings", "ActuatorData", "CapacityData", "CarrierData", "ForceModel",
            "Pair", "ForceGroup", "LoadItem", "Solution", "Forces", "read_settings",
@@ -740,10 +740,7 @@ class Forces:
             out["reserve_pct"] = (out[f"Gcap_{c.point}"] - Pld) / Pld * 100.0
         if s.carrier is not None:
             out.update(self._carrier(sol))
-        df = pd.DataFrame(out)
-        if sol.labels is not None:
-            df.insert(0, "pos", sol.labels)
-        return df
+        return frame_of(out, sol.labels)
 
     def _load_scale(self, sol: Solution) -> np.ndarray:
         """Magnitude of the loads in the unit of the balancing load: Σ|F|·l + Σ|M| for a crank

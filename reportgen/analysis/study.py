@@ -298,19 +298,17 @@ class Study:
             return None
         return np.full_like(q, d.omega), np.full_like(q, d.epsilon)
 
-    def _frame(self, q: np.ndarray, labels=None, grid=True, res=None) -> pd.DataFrame:
-        if res is None:
-            res = self._solve_on_branch(q, labels) if not grid else L.solve(self.model, q, labels)
-        cols = L.columns(self.model, res, grid=grid)
+    def _frame(self, q: np.ndarray, labels=None, grid=True, res=None, cols=None) -> pd.DataFrame:
+        if cols is None:
+            if res is None:
+                res = self._solve_on_branch(q, labels) if not grid else L.solve(self.model, q, labels)
+            cols = L.columns(self.model, res, grid=grid)
         cols.update(self._extra_angles(cols))
         law = self.motion_law(q)
         if law is not None:
             cols.update(true_motion(cols, self.mechanism, *law))
         cols.update(self._derived(cols))
-        df = pd.DataFrame(cols)
-        if labels is not None:
-            df.insert(0, "pos", labels)
-        return df
+        return frame_of(cols, labels)
 
     def _extra_angles(self, cols) -> dict[str, np.ndarray]:
         out = {}
@@ -348,7 +346,19 @@ class Study:
     def cycle(self) -> pd.DataFrame:
         """The same columns on the fine grid over one cycle (for curves and integrals)."""
         self.computed.add("cycle")
-        return self._frame(self.grid.cycle, grid=True, res=self._cycle_solution)
+        return self._frame(self.grid.cycle, grid=True, cols=self._grid_columns())
+
+    def _grid_columns(self) -> dict[str, np.ndarray]:
+        """The columns of ``L.columns(grid=True)`` on the cycle grid, from those of single
+        positions (:attr:`_cycle_columns`, already computed for the evaluations at grid points):
+        the link angles, there in (−π, π], are unwrapped along the grid — the same numbers."""
+        cols = dict(self._cycle_columns)
+        d = self.mechanism.driver
+        for link in self.mechanism.moving:
+            if (d.rotary and link.name == d.link) or cols["q"].size < 2:
+                continue
+            cols["phi_" + link.name] = np.unwrap(cols["phi_" + link.name])
+        return cols
 
     @cached_property
     def _cycle_solution(self) -> L.KinematicsResult:
@@ -515,6 +525,22 @@ def _cycle_hint():
         if e.amount > 0 and not e.hint:
             raise AssemblyError(e.group, e.position, e.amount, e.detail, CYCLE_HINT) from None
         raise
+
+
+def frame_of(cols: Mapping[str, Any], labels=None) -> pd.DataFrame:
+    """The DataFrame of named columns (with the labels as the first column «pos»).  Equal-length
+    float columns are stacked into one 2-D block first: a dict of columns goes through pandas'
+    per-column checks and consolidation, several times slower for the hundreds of columns of a
+    cycle table.  The values are the same."""
+    vals = list(cols.values())
+    n = len(vals[0]) if vals else 0
+    if vals and all(isinstance(v, np.ndarray) and v.dtype == np.float64 and v.shape == (n,) for v in vals):
+        df = pd.DataFrame(np.stack(vals).T, columns=list(cols), copy=False)
+    else:
+        df = pd.DataFrame(cols)
+    if labels is not None:
+        df.insert(0, "pos", labels)
+    return df
 
 
 def true_motion(cols, mech: Mechanism, w: np.ndarray, e: np.ndarray) -> dict[str, np.ndarray]:
