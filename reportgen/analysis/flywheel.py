@@ -492,6 +492,16 @@ class DynamicModel:
         g, _ = combine(*q)
         return float(self.wrap(r)), float(g[0]), tuple(float(z[0]) for z in q)
 
+    def _cell_scale(self) -> np.ndarray:
+        """The largest |A_Σ|, |M_Σ|, J_II, |J_II′| on the grid (the scale of rounding)."""
+        if "cell_scale" not in self._cache:
+            with np.errstate(invalid="ignore"):
+                self._cache["cell_scale"] = np.array([
+                    float(np.max(np.abs(self.A_n))), float(np.max(np.abs(self.M_g))),
+                    float(np.max(np.abs(self.J2_n))) if self._has_J else math.nan,
+                    float(np.max(np.abs(self.dJ2_g))) if self._has_J else math.nan])
+        return self._cache["cell_scale"]
+
     def _build_cells(self, cells) -> None:
         """Chebyshev interpolants of (A_Σ, M_Σ, J_II, J_II′) on the node intervals ``cells``
         that have none yet, from one evaluation at the :data:`CELL_POINTS` Chebyshev points of
@@ -501,7 +511,7 @@ class DynamicModel:
         parameter ρ errs by O(ρ^−N) (Trefethen, «Approximation Theory and Approximation
         Practice», th. 8.2): on a node interval of a tenth of a degree its last coefficients
         sink to rounding.  A cell is used only if the last three coefficients of every
-        quantity are below :data:`CELL_TOL` of its size there; otherwise (a near-singular
+        quantity are below :data:`CELL_TOL` of its size (there or over the cycle); otherwise (a near-singular
         position, where the analogs change on the scale of the interval) it is marked None and
         the extremum search evaluates exactly there.  The search over the cycle asks about the
         same few cells many times (Мерцалов, Виттенбауэр, each iteration of the exact
@@ -516,7 +526,9 @@ class DynamicModel:
         pts = (mid[:, None] + half[:, None] * _CHEB_X[None, :]).ravel()
         vals = np.stack(self._ev(pts)).reshape(4, idx.size, N)
         coef = vals @ _CHEB_T                       # Chebyshev coefficients (4, cells, N)
-        size = np.max(np.abs(vals), axis=2)
+        # the size of a quantity: its largest value on the cell or over the cycle (M_Σ is a
+        # sum of the loads' moments, whose rounding is that of the largest of them)
+        size = np.maximum(np.max(np.abs(vals), axis=2), self._cell_scale()[:, None])
         tail = np.max(np.abs(coef[:, :, -3:]), axis=2)
         ok = np.all((tail <= CELL_TOL * size) & np.isfinite(size), axis=0)
         mono = coef @ _CHEB_MONO                    # monomial coefficients in s = (φ − mid)/half
