@@ -41,7 +41,8 @@ from typing import Callable, Iterable, NamedTuple, Protocol, Sequence
 import numpy as np
 from scipy.optimize import brentq
 
-from reportgen.core.quadrature import Antiderivative, gauss_legendre, merge_nodes
+from reportgen.core.quadrature import (CHEB_POINTS, Antiderivative, CellPoly, cell_fit, cheb_points,
+                                      gauss_legendre, merge_nodes)
 
 __all__ = [
     "ClosedWork",
@@ -85,41 +86,10 @@ _EPS = np.finfo(float).eps
 # points are the nodes, where the kinematics is the solved cycle grid); 0 — Gauss–Legendre on
 # every interval
 LOBATTO = 5
-# the extremum search on a node interval uses Chebyshev interpolants of CELL_POINTS points when
-# their last coefficients are below CELL_TOL of the size of the quantity (DynamicModel._build_cells)
-CELL_POINTS = 12
+# the extremum search on a node interval uses Chebyshev interpolants (core.quadrature.cell_fit)
+# when their last coefficients are below CELL_TOL of the size of the quantity (DynamicModel._build_cells)
 CELL_TOL = 1e-14
-_CHEB_X = np.cos(np.pi * (np.arange(CELL_POINTS) + 0.5) / CELL_POINTS)      # first kind, interior
-# values at _CHEB_X → Chebyshev coefficients: c_j = (2/N) Σ_k f_k T_j(x_k), c_0 halved
-_CHEB_T = (2.0 / CELL_POINTS) * np.cos(np.outer(np.pi * (np.arange(CELL_POINTS) + 0.5) / CELL_POINTS,
-                                                np.arange(CELL_POINTS)))
-_CHEB_T[:, 0] *= 0.5
-# Chebyshev coefficients → monomial coefficients (row j: T_j in powers of s)
-_CHEB_MONO = np.zeros((CELL_POINTS, CELL_POINTS))
-for _j in range(CELL_POINTS):
-    _p = np.polynomial.chebyshev.cheb2poly(np.eye(CELL_POINTS)[_j])
-    _CHEB_MONO[_j, :_p.size] = _p
-del _j, _p
-
-
-class _CellFit:
-    """(A_Σ, M_Σ, J_II, J_II′) on one node interval by polynomials in s = (φ − mid)/half
-    (Horner; Python floats, for the scalar root finding of the extremum search)."""
-
-    __slots__ = ("mid", "ih", "rows")
-
-    def __init__(self, mid: float, ih: float, rows: list[list[float]]):
-        self.mid, self.ih, self.rows = mid, ih, rows
-
-    def __call__(self, t: float) -> tuple[float, float, float, float]:
-        s = (t - self.mid) * self.ih
-        out = []
-        for row in self.rows:
-            acc = 0.0
-            for c in row:
-                acc = acc * s + c
-            out.append(acc)
-        return tuple(out)
+CELL_REACH = 2        # cells built beside each candidate cell
 
 
 # --------------------------------------------------------------------------------------------
@@ -221,7 +191,7 @@ class DynamicModel:
             if np.any(~np.isfinite(self.J2_n)):
                 raise ValueError("J_II(φ) is not finite on the cycle")
         self._cache: dict = {}
-        self._cells: dict[int, _CellFit | None] = {}
+        self._cells: dict[int, CellPoly | None] = {}
         self._memo_tab: dict = {}
         self._order = int(order)
         self._t, self._w = gauss_legendre(self._order)
@@ -435,7 +405,9 @@ class DynamicModel:
         # interpolants where these are resolved to rounding (:meth:`_cell`), else exactly
         cells = np.concatenate((np.where(loc == 0, n - 1, loc - 1), loc))
         shift = np.concatenate((np.where(loc == 0, self.L, 0.0), np.zeros(loc.size)))
-        self._build_cells(cells)
+        # with their neighbours: the searches that follow (the other method, the next iteration of
+        # the exact solution) look near the same extremes
+        self._build_cells(np.mod(cells[:, None] + np.arange(-CELL_REACH, CELL_REACH + 1), n).ravel())
         fit = [self._cells[int(c)] for c in cells]
         draw = np.empty(2 * m)
         direct = [j for j in range(m) if fit[j] is None]
@@ -504,7 +476,7 @@ class DynamicModel:
 
     def _build_cells(self, cells) -> None:
         """Chebyshev interpolants of (A_Σ, M_Σ, J_II, J_II′) on the node intervals ``cells``
-        that have none yet, from one evaluation at the :data:`CELL_POINTS` Chebyshev points of
+        that have none yet, from one evaluation at the Chebyshev points of
         each (interior points: a jump at a break, which is a node, is never straddled).
 
         The interpolant of degree N − 1 of a function analytic in a Bernstein ellipse of
@@ -521,23 +493,14 @@ class DynamicModel:
             return
         idx = np.array(need)
         lo, hi = self.nodes[idx], self.nodes[idx + 1]
-        mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
-        N = CELL_POINTS
-        pts = (mid[:, None] + half[:, None] * _CHEB_X[None, :]).ravel()
-        vals = np.stack(self._ev(pts)).reshape(4, idx.size, N)
-        coef = vals @ _CHEB_T                       # Chebyshev coefficients (4, cells, N)
+        pts = cheb_points(lo, hi).ravel()
+        vals = np.stack(self._ev(pts)).reshape(4, idx.size, CHEB_POINTS)
         # the size of a quantity: its largest value on the cell or over the cycle (M_Σ is a
         # sum of the loads' moments, whose rounding is that of the largest of them)
         size = np.maximum(np.max(np.abs(vals), axis=2), self._cell_scale()[:, None])
-        tail = np.max(np.abs(coef[:, :, -3:]), axis=2)
-        ok = np.all((tail <= CELL_TOL * size) & np.isfinite(size), axis=0)
-        mono = coef @ _CHEB_MONO                    # monomial coefficients in s = (φ − mid)/half
+        fits = cell_fit(lo, hi, vals, CELL_TOL * size)
         for k, c in enumerate(need):
-            if not ok[k]:
-                self._cells[c] = None
-                continue
-            rows = [list(mono[q, k, ::-1]) for q in range(4)]
-            self._cells[c] = _CellFit(float(mid[k]), 1.0 / float(half[k]), rows)
+            self._cells[c] = fits[k]
 
     def line_extremum(self, slope: float, kind: str):
         """max/min over the cycle of A_Σ(φ) − slope·J_II(φ) (Мерцалов ΔT_I, Виттенбауэр K, L);

@@ -849,6 +849,42 @@ def _refine(evaluator, fns, which, a, b, fa, fb, maxiter: int = 200) -> np.ndarr
     return root
 
 
+def _roots_in_cells(evaluator, fns, which, a, b, fa, fb, grid_cols) -> np.ndarray:
+    """Roots of fns[which[i]] in the grid cells [a_i, b_i] (fa·fb ≤ 0).  A switching function is
+    smooth inside a cell (the kinematic columns are): one evaluation at the Chebyshev points of
+    every cell gives its interpolant (:func:`reportgen.core.quadrature.cell_fit`), resolved to
+    rounding when its last coefficients are below 10⁻¹⁴ of the function's size on the grid, and
+    the root of that polynomial is found by ``brentq`` to ~4ε·|q| without evaluating the
+    kinematics again.  Cells not resolved so (a non-smooth expression, a near-singular position)
+    and roots on a grid point go to :func:`_refine`."""
+    from scipy.optimize import brentq
+    from ..core.quadrature import CHEB_POINTS, cell_fit, cheb_points
+    a, b, fa, fb = (np.asarray(v, dtype=float) for v in (a, b, fa, fb))
+    which = np.asarray(which)
+    root = np.full(a.size, np.nan)
+    strict = np.flatnonzero(fa * fb < 0)
+    if strict.size:
+        cols = evaluator(cheb_points(a[strict], b[strict]).ravel())
+        vals = np.empty((1, strict.size, CHEB_POINTS))
+        tol = np.empty((1, strict.size))
+        for k in np.unique(which[strict]):
+            sel = which[strict] == k
+            vals[0, sel] = fns[k](cols).reshape(strict.size, CHEB_POINTS)[sel]
+            tol[0, sel] = 1e-14 * float(np.max(np.abs(fns[k](grid_cols))))
+        for j, fit in zip(strict, cell_fit(a[strict], b[strict], vals, tol)):
+            if fit is None:
+                continue
+            g0, g1 = fit(a[j])[0], fit(b[j])[0]
+            if not g0 * g1 < 0:
+                continue
+            root[j] = brentq(lambda t, fit=fit: fit(t)[0], a[j], b[j],
+                             xtol=4 * np.finfo(float).eps * max(abs(a[j]), 1.0), rtol=4 * np.finfo(float).eps)
+    rest = np.flatnonzero(np.isnan(root))
+    if rest.size:
+        root[rest] = _refine(evaluator, fns, which[rest], a[rest], b[rest], fa[rest], fb[rest])
+    return root
+
+
 def switching_points(study, loads: Loads | None = None, grid: np.ndarray | None = None,
                      evaluator: ColumnEvaluator | None = None) -> np.ndarray:
     """Sorted q in [start, start + Φ) where some load law is not smooth.
@@ -895,7 +931,7 @@ def switching_points(study, loads: Loads | None = None, grid: np.ndarray | None 
         if A:
             A, B, FA, FB, W = (np.concatenate(v) for v in (A, B, FA, FB, W))
             if A.size:  # a grid point where g == 0 exactly is itself the root
-                out += list(_refine(evaluator, fns, W, A, B, FA, FB))
+                out += list(_roots_in_cells(evaluator, fns, W, A, B, FA, FB, cols))
     r = np.asarray(out, dtype=float)
     if r.size == 0:
         return r

@@ -20,6 +20,11 @@ Formulas
   Абрамовиц–Стиган 25.4.32): :class:`Antiderivative` with ``lobatto=n`` uses it on panels that
   touch no break, so the integrand at the grid nodes (where the caller already knows it) is
   shared by neighbouring panels; panels touching a break keep Gauss–Legendre.
+* Chebyshev interpolation on a cell (:func:`cell_fit`): values at the N Chebyshev points of
+  the first kind x_k = cos(π(k + ½)/N) (interior: a jump at a cell end is never sampled) give
+  the coefficients c_j = (2/N) Σ_k f(x_k) T_j(x_k) (c₀ halved); for f analytic in a Bernstein
+  ellipse of parameter ρ the interpolant errs by O(ρ^−N) and its last coefficients show it
+  (Trefethen, «Approximation Theory and Approximation Practice», SIAM 2013, ch. 3, 8).
 * Error estimate of :func:`integrate`: the difference between the results on n and 2n panels
   (Runge's principle; the finer value is returned, so the estimate is conservative).
 """
@@ -40,6 +45,10 @@ __all__ = [
     "Antiderivative",
     "cumulative",
     "merge_nodes",
+    "CHEB_POINTS",
+    "cheb_points",
+    "cell_fit",
+    "CellPoly",
 ]
 
 ArrayFunc = Callable[[np.ndarray], np.ndarray]
@@ -348,3 +357,67 @@ def cumulative(f: ArrayFunc, grid, breaks: Iterable[float] | None = (), order: i
     g = np.asarray(grid, dtype=float).ravel()
     ad = Antiderivative(f, g, breaks, order=order, max_step=max_step)
     return ad.values[np.searchsorted(ad.nodes, g)]
+
+
+# --------------------------------------------------------------------------------------------
+# Chebyshev interpolants on cells
+# --------------------------------------------------------------------------------------------
+CHEB_POINTS = 12
+_CHEB_X = np.cos(np.pi * (np.arange(CHEB_POINTS) + 0.5) / CHEB_POINTS)
+# values at _CHEB_X → Chebyshev coefficients: c_j = (2/N) Σ_k f_k T_j(x_k), c₀ halved
+_CHEB_T = (2.0 / CHEB_POINTS) * np.cos(np.outer(np.pi * (np.arange(CHEB_POINTS) + 0.5) / CHEB_POINTS,
+                                                np.arange(CHEB_POINTS)))
+_CHEB_T[:, 0] *= 0.5
+# Chebyshev coefficients → monomial coefficients (row j: T_j in powers of s)
+_CHEB_MONO = np.zeros((CHEB_POINTS, CHEB_POINTS))
+for _j in range(CHEB_POINTS):
+    _p = np.polynomial.chebyshev.cheb2poly(np.eye(CHEB_POINTS)[_j])
+    _CHEB_MONO[_j, :_p.size] = _p
+del _j, _p
+
+
+def cheb_points(lo, hi) -> np.ndarray:
+    """The :data:`CHEB_POINTS` Chebyshev points of the first kind of every cell [lo_i, hi_i]:
+    an array (cells, N)."""
+    lo, hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+    return 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * _CHEB_X[None, :]
+
+
+class CellPoly:
+    """Several functions on one cell by their interpolating polynomials in s = (x − mid)/half
+    (Horner in Python floats: the scalar root finding of a caller calls it many times)."""
+
+    __slots__ = ("mid", "ih", "rows")
+
+    def __init__(self, mid: float, ih: float, rows: list[list[float]]):
+        self.mid, self.ih, self.rows = mid, ih, rows
+
+    def __call__(self, x: float) -> tuple[float, ...]:
+        s = (x - self.mid) * self.ih
+        out = []
+        for row in self.rows:
+            acc = 0.0
+            for c in row:
+                acc = acc * s + c
+            out.append(acc)
+        return tuple(out)
+
+
+def cell_fit(lo, hi, vals: np.ndarray, tol) -> list[CellPoly | None]:
+    """Interpolants of m functions on each cell from their values at :func:`cheb_points`
+    (``vals``: (m, cells, N)); a cell whose last three coefficients of some function exceed
+    ``tol`` (a number, or (m, cells)) is not resolved to that accuracy: None."""
+    lo, hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+    coef = vals @ _CHEB_T
+    tail = np.max(np.abs(coef[:, :, -3:]), axis=2)
+    ok = np.all((tail <= tol) & np.all(np.isfinite(vals), axis=2), axis=0)
+    mono = coef @ _CHEB_MONO
+    mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
+    out: list[CellPoly | None] = []
+    for k in range(lo.size):
+        if not ok[k] or not half[k] > 0:
+            out.append(None)
+            continue
+        out.append(CellPoly(float(mid[k]), 1.0 / float(half[k]),
+                            [list(mono[q, k, ::-1]) for q in range(mono.shape[0])]))
+    return out
