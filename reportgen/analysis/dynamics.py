@@ -630,14 +630,25 @@ class Dynamics:
         """A scalar by name or a table cell ``column@position`` (dynamics or motion table)."""
         if "@" in key:
             col, lab = key.split("@", 1)
-            for t in (self.table, self.motion):
-                if col in t.columns and lab in list(t["pos"]):
-                    return float(t.loc[t["pos"] == lab, col].iloc[0])
+            for t, rows in self._cells_index:
+                if col in t.columns and lab in rows:
+                    return float(t[col].to_numpy()[rows[lab]])
             raise KeyError(key)
         v = self.scalars[key]
         if isinstance(v, str):
             raise KeyError(key)
         return float(v)
+
+    @cached_property
+    def _cells_index(self) -> list[tuple[pd.DataFrame, dict[str, int]]]:
+        """The dynamics and motion tables with the row of each position label (its first row)."""
+        out = []
+        for t in (self.table, self.motion):
+            rows: dict[str, int] = {}
+            for i, lab in enumerate(t["pos"]):
+                rows.setdefault(lab, i)
+            out.append((t, rows))
+        return out
 
     @cached_property
     def printed(self) -> pd.DataFrame:

@@ -555,13 +555,16 @@ class Forces:
         """Reactions, balancing moment and checks at arbitrary positions q (``export --at``)."""
         return self.frame(self.solve(np.atleast_1d(np.asarray(q, dtype=float))))
 
-    def solve(self, q, labels: list[str] | None = None) -> Solution:
-        """Loads, reactions and checks at the positions q (one kernel call)."""
+    def solve(self, q, labels: list[str] | None = None, all_points: bool = True) -> Solution:
+        """Loads, reactions and checks at the positions q (one kernel call); ``all_points``: the
+        true velocities and accelerations of every point among the columns (for the drawings),
+        else only of the centres of mass."""
         q = np.ascontiguousarray(np.atleast_1d(np.asarray(q, dtype=float)))
         mech, model = self.mech, self.model
         cols = dict(self.ev(q))
         w, e = self.motion_law(q)
-        cols.update(true_motion(cols, mech, w, e))
+        cols.update(true_motion(cols, mech, w, e,
+                                None if all_points else {S for _, _, _, S in self.inertial if S}))
         loads = self._loads(cols, q)
         N = q.size
         nl = len(model.links)
@@ -625,7 +628,7 @@ class Forces:
 
     @cached_property
     def cycle_solution(self) -> Solution:
-        return self.solve(self.grid)
+        return self.solve(self.grid, all_points=False)
 
     # ---------------------------------------------------------------------------- columns
     def pair_vectors(self, sol: Solution, p: Pair, i: int | None = None) -> dict[str, np.ndarray]:

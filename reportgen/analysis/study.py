@@ -543,12 +543,16 @@ def frame_of(cols: Mapping[str, Any], labels=None) -> pd.DataFrame:
     return df
 
 
-def true_motion(cols, mech: Mechanism, w: np.ndarray, e: np.ndarray) -> dict[str, np.ndarray]:
-    """v = ω·x′, a = ω²·x″ + ε·x′ for every point, link and slider (ω = dq/dt, ε = d²q/dt²)."""
+def true_motion(cols, mech: Mechanism, w: np.ndarray, e: np.ndarray,
+                points=None) -> dict[str, np.ndarray]:
+    """v = ω·x′, a = ω²·x″ + ε·x′ for every point, link and slider (ω = dq/dt, ε = d²q/dt²);
+    ``points``: only those points (links and sliders all the same)."""
     out = {}
     for k in list(cols):
         if k.startswith("vqx_"):
             p = k[4:]
+            if points is not None and p not in points:
+                continue
             vx, vy = w * cols["vqx_" + p], w * cols["vqy_" + p]
             ax = w * w * cols["aqx_" + p] + e * cols["vqx_" + p]
             ay = w * w * cols["aqy_" + p] + e * cols["vqy_" + p]
