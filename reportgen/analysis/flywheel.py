@@ -459,10 +459,10 @@ class DynamicModel:
         if j >= x0.size and r in seen:
             q = seen[r]
             g = combine(*q)[0]
-            return float(self.wrap(r)), float(g), tuple(float(z) for z in q)
+            return self._reduce1(r)[0], float(g), tuple(float(z) for z in q)
         q = self._ev(cand[j:j + 1])
         g, _ = combine(*q)
-        return float(self.wrap(r)), float(g[0]), tuple(float(z[0]) for z in q)
+        return self._reduce1(r)[0], float(g[0]), tuple(float(z[0]) for z in q)
 
     def _cell_scale(self) -> np.ndarray:
         """The largest |A_Σ|, |M_Σ|, J_II, |J_II′| on the grid (the scale of rounding)."""

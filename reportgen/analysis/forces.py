@@ -64,7 +64,7 @@ from ..core import kinetostatics as KS
 from ..errors import StructureError, did_you_mean
 from ..mechanism.model import FRAME
 from ..mechanism.structure import solver_bodies
-from .loads import ColumnEvaluator, com_point
+from .loads import ColumnEvaluator, LazyColumns, com_point
 from .study import frame_of, true_motion
 
 __all__ = ["ForceSettings", "ActuatorData", "CapacityData", "CarrierData", "ForceModel",
@@ -561,7 +561,8 @@ class Forces:
         else only of the centres of mass."""
         q = np.ascontiguousarray(np.atleast_1d(np.asarray(q, dtype=float)))
         mech, model = self.mech, self.model
-        cols = dict(self.ev(q))
+        base = self.ev(q)
+        cols = LazyColumns(base, base.__getitem__)      # the evaluator's columns stay unchanged
         w, e = self.motion_law(q)
         cols.update(true_motion(cols, mech, w, e,
                                 None if all_points else {S for _, _, _, S in self.inertial if S}))

@@ -35,6 +35,7 @@ from __future__ import annotations
 import math
 import re
 from collections import OrderedDict
+from collections.abc import MutableMapping
 from dataclasses import dataclass, field
 from typing import Any, Callable, Mapping, NamedTuple
 
@@ -75,6 +76,50 @@ _CMP_RE = re.compile(r"(<=|>=|<|>)")
 # --------------------------------------------------------------------------------------------
 # Kinematic columns at arbitrary q
 # --------------------------------------------------------------------------------------------
+class LazyColumns(MutableMapping):
+    """Named kinematic columns made on first access by ``make(name)`` (then kept): a caller
+    taking a few columns of a grid evaluation (a load's point, the centres of mass) does not
+    pay for gathering the hundreds of others.  Columns may be added and replaced as in a
+    dict."""
+
+    __slots__ = ("_names", "_known", "_vals", "_make")
+
+    def __init__(self, names, make: Callable[[str], np.ndarray]):
+        self._names = list(names)
+        self._known = set(self._names)
+        self._vals: dict[str, np.ndarray] = {}
+        self._make = make
+
+    def __getitem__(self, k: str) -> np.ndarray:
+        try:
+            return self._vals[k]
+        except KeyError:
+            if k not in self._known:
+                raise
+        v = self._vals[k] = self._make(k)
+        return v
+
+    def __setitem__(self, k: str, v) -> None:
+        if k not in self._known:
+            self._known.add(k)
+            self._names.append(k)
+        self._vals[k] = v
+
+    def __delitem__(self, k: str) -> None:
+        self._known.remove(k)
+        self._names.remove(k)
+        self._vals.pop(k, None)
+
+    def __contains__(self, k) -> bool:
+        return k in self._known
+
+    def __iter__(self):
+        return iter(self._names)
+
+    def __len__(self) -> int:
+        return len(self._names)
+
+
 class ColumnEvaluator:
     """Kinematic columns at arbitrary q: the columns of ``Study.at`` up to the analogs (points,
     links, prismatic pairs, ``[outputs.angles]``) without building a DataFrame.
@@ -123,18 +168,20 @@ class ColumnEvaluator:
         if grid is None:
             return L.columns(self.model, self.study._solve_on_branch(q), grid=False)
         if nhit == q.size:
-            cols = {k: v[idx] for k, v in grid.items()}
+            cols = LazyColumns(grid, lambda k: grid[k][idx])
             cols["q"] = q.copy()
             return cols
         miss = ~hit
         rest = L.columns(self.model, self.study._solve_on_branch(q[miss]), grid=False)
-        cols = {}
-        for k, v in rest.items():
+        hidx = idx[hit]
+
+        def merged(k):
             c = np.empty(q.size)
-            c[miss] = v
-            c[hit] = grid[k][idx[hit]]
-            cols[k] = c
-        return cols
+            c[miss] = rest[k]
+            c[hit] = grid[k][hidx]
+            return c
+
+        return LazyColumns(rest, merged)
 
     def names(self) -> list[str]:
         """Names of the columns (evaluated at the start of the grid)."""
