@@ -173,3 +173,117 @@ def test_same_shape_from_millimetres_to_kilometres(name, scale):
             ref = base[col].to_numpy()
             got = cyc[col].to_numpy() / scale
             assert np.abs(got - ref).max() <= 1e-12 * max(1.0, np.abs(ref).max()), col
+
+
+# ------------------------------------------------------------------------------------------
+# Exactly folded dyads, a seeded family at the Grashof change point, the class III triad near
+# its limit, and the tables of dynamics and forces of a near-singular machine
+# ------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("abcd", [(0.1, 0.3, 0.1, 0.3), (0.1, 0.5, 0.2, 0.4), (0.2, 0.3, 0.1, 0.4)])
+def test_exactly_folded_dyad_is_singular_not_short(abcd):
+    """|b − c| = d − a: at q = 0 the dyad is exactly folded (0,5 − 0,2 ≠ 0,4 − 0,1 in floats):
+    a singular position with its transmission angle, never «не хватает»."""
+    with pytest.raises(AssemblyError) as ei:
+        _four_bar(*abcd).cycle
+    text = str(ei.value)
+    assert ei.value.amount == 0.0
+    assert "Особое положение" in text and "q = 0°" in text and "μ = 0,00°" in text
+    assert "не хватает" not in text
+
+
+def _family(seed: int, n: int) -> list[tuple[float, float, float, float]]:
+    """Crank-rockers a < c < d drawn with a fixed seed, b on the change point a + d = b + c."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(n):
+        a = float(rng.uniform(0.05, 0.15))
+        d = float(rng.uniform(0.35, 0.6))
+        c = float(rng.uniform(0.2, 0.33))
+        out.append((a, a + d - c, c, d))
+    return out
+
+
+@pytest.mark.parametrize("rel", [1e-4, 1e-7])
+def test_seeded_four_bars_just_inside_the_change_point(rel):
+    for a, b, c, d in _family(11, 6):
+        eps = rel * d
+        s = _four_bar(a, b + eps, c, d)
+        check_finite_and_continuous(s)
+        (flag,) = s.flags.values()
+        assert flag["low"] and flag["min"] < 0.2
+        assert flag["singular"] == (math.sin(flag["min"]) < L.SINGULAR_SIN)
+
+
+def test_seeded_four_bars_just_past_the_change_point():
+    for a, b, c, d in _family(11, 6):
+        eps = 1e-4 * d
+        with pytest.raises(AssemblyError) as ei:
+            _four_bar(a, b - eps, c, d).kinematics        # q = 180° is a report position
+        assert ei.value.amount == pytest.approx(eps, rel=1e-6)
+        assert "не хватает" in str(ei.value) and "180°" in str(ei.value)
+
+
+# l_AB below which the triad of class3_triad.toml (on the assembly its Newton start reaches, x_C(0) = 1,445)
+# does not assemble at q ≈ 206°
+TRIAD_LIMIT = 0.5007181565616337
+
+
+def _triad(l_ab: float) -> Study:
+    data = _data("class3_triad.toml")
+    data["parameters"]["l_AB"] = f"{l_ab!r} m"
+    return _study(data)
+
+
+@pytest.mark.parametrize("delta", [1e-3, 1e-5, 1e-7])
+def test_class3_triad_near_its_singular_configuration(delta):
+    """Just above the limit length the class III group passes near its singular configuration:
+    the cycle is finite and on one branch (Newton never jumps: positions within the Taylor bound
+    of the analogs), and the analogs at the stiffest position agree with the 50-digit reference
+    to the conditioning of the position (measured at δ = 10⁻⁷: 1·10⁻¹² positions, 5·10⁻¹⁰ first,
+    6·10⁻¹⁰ second analogs).  Class III groups have no transmission angle and are not flagged:
+    see docs/performance.md, stress families."""
+    s = _triad(TRIAD_LIMIT + delta)
+    check_finite_and_continuous(s)
+    cyc = s.cycle
+    for c in cyc.columns:                       # one branch over the whole turn: the cycle closes
+        if c.startswith(("x_", "y_")):
+            assert abs(cyc[c].iloc[-1] - cyc[c].iloc[0]) <= 1e-9, c
+    stiff = np.max(np.abs(np.stack([cyc[c].to_numpy() for c in cyc.columns if c.startswith("eq_")])), axis=0)
+    q = float(cyc["q"].to_numpy()[int(np.argmax(stiff))])
+    worst = scaled_errors(s.at([q]), reference_columns(s, [q]))
+    assert worst["position"][0] <= 1e-11
+    assert worst["first"][0] <= 1e-13 / delta
+    assert worst["second"][0] <= 1e-13 / delta
+
+
+def test_class3_triad_below_its_limit_is_a_clear_error():
+    with pytest.raises(AssemblyError) as ei:
+        _triad(TRIAD_LIMIT - 1e-4).cycle
+    text = str(ei.value)
+    assert "(2,3,4,5)" in text and ("не хватает" in text or "Особое положение" in text)
+    assert "nan" not in text.lower() and "inf" not in text.lower()
+
+
+def test_dynamics_and_forces_tables_finite_near_the_change_point():
+    """A four-bar machine 10⁻⁶ of its size inside the change point, with masses, a resisting
+    moment on the rocker, the flywheel by the exact method and the force analysis with the true
+    motion: no NaN or inf in any table or scalar."""
+    data = _data("four_bar.toml")
+    data["parameters"].update(l_OA="0.1 m", l_AB=f"{0.3 + 1e-6 * 0.4!r} m", l_CB="0.2 m", l_OC="0.4 m")
+    data.pop("sketch", None)
+    for link in data["links"]:
+        if link["name"] in ("2", "3"):
+            link.update(mass="3 kg", J_S="0.02 kg*m^2", com="B")
+    data["loads"] = {"moment": [{"name": "Mс", "link": "3", "M": "20 N*m", "against": "motion"}]}
+    data["dynamics"] = {"n": "120 rpm", "delta": 0.05, "method": "exact"}
+    data["forces"] = {"motion": "dynamics"}
+    s = _study(data)
+    check_finite_and_continuous(s)
+    tables = s.extra_tables()
+    assert {"dynamics_cycle", "motion_cycle", "forces_cycle"} <= set(tables)
+    for name, df in tables.items():
+        num = df.select_dtypes("number").to_numpy(dtype=float)
+        assert np.isfinite(num).all(), f"non-finite value in {name}"
+    for k, v in s.all_scalars().items():
+        if isinstance(v, float):
+            assert math.isfinite(v), k
