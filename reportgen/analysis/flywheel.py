@@ -41,8 +41,8 @@ from typing import Callable, Iterable, NamedTuple, Protocol, Sequence
 import numpy as np
 from scipy.optimize import brentq
 
-from reportgen.core.quadrature import (CHEB_POINTS, Antiderivative, CellPoly, cell_fit, cheb_points,
-                                      gauss_legendre, merge_nodes)
+from reportgen.core.quadrature import (CHEB_POINTS, Antiderivative, CellPoly, cheb_coefficients, cheb_points,
+                                      cheb_to_monomial, gauss_legendre, merge_nodes)
 
 __all__ = [
     "ClosedWork",
@@ -90,6 +90,7 @@ LOBATTO = 5
 # when their last coefficients are below CELL_TOL of the size of the quantity (DynamicModel._build_cells)
 CELL_TOL = 1e-14
 CELL_REACH = 2        # cells built beside each candidate cell
+CELL_PREFETCH = 30    # cells built on each side of the extremes of A_Σ by the first search
 
 
 # --------------------------------------------------------------------------------------------
@@ -407,7 +408,14 @@ class DynamicModel:
         shift = np.concatenate((np.where(loc == 0, self.L, 0.0), np.zeros(loc.size)))
         # with their neighbours: the searches that follow (the other method, the next iteration of
         # the exact solution) look near the same extremes
-        self._build_cells(np.mod(cells[:, None] + np.arange(-CELL_REACH, CELL_REACH + 1), n).ravel())
+        want = np.mod(cells[:, None] + np.arange(-CELL_REACH, CELL_REACH + 1), n).ravel()
+        if not self._cells:
+            # the first search: the extremes of ΔT_I, of Виттенбауэр's K and L and of ω lie near
+            # those of A_Σ (J_II varies less): their cells in the same evaluation
+            ext = np.array([np.argmax(self.A_n[:-1]), np.argmin(self.A_n[:-1])])
+            want = np.concatenate((want, np.mod(ext[:, None] + np.arange(-CELL_PREFETCH, CELL_PREFETCH + 1),
+                                                n).ravel()))
+        self._build_cells(want)
         fit = [self._cells[int(c)] for c in cells]
         draw = np.empty(2 * m)
         direct = [j for j in range(m) if fit[j] is None]
@@ -476,8 +484,10 @@ class DynamicModel:
 
     def _build_cells(self, cells) -> None:
         """Chebyshev interpolants of (A_Σ, M_Σ, J_II, J_II′) on the node intervals ``cells``
-        that have none yet, from one evaluation at the Chebyshev points of
-        each (interior points: a jump at a break, which is a node, is never straddled).
+        that have none yet, from one evaluation of M_Σ, J_II, J_II′ at the Chebyshev points of
+        each (interior points: a jump at a break, which is a node, is never straddled); A_Σ is
+        its node value plus the antiderivative of M_Σ's interpolant (Clenshaw–Curtis-like,
+        no quadrature points of its own).
 
         The interpolant of degree N − 1 of a function analytic in a Bernstein ellipse of
         parameter ρ errs by O(ρ^−N) (Trefethen, «Approximation Theory and Approximation
@@ -493,14 +503,27 @@ class DynamicModel:
             return
         idx = np.array(need)
         lo, hi = self.nodes[idx], self.nodes[idx + 1]
+        half = 0.5 * (hi - lo)
         pts = cheb_points(lo, hi).ravel()
-        vals = np.stack(self._ev(pts)).reshape(4, idx.size, CHEB_POINTS)
+        Ms = self._call(self._M, pts) + self._md(pts)
+        vals = np.stack((Ms, self._call(self._J2, pts), self._call(self._dJ2, pts))).reshape(3, idx.size, CHEB_POINTS)
+        coef = cheb_coefficients(vals)
         # the size of a quantity: its largest value on the cell or over the cycle (M_Σ is a
         # sum of the loads' moments, whose rounding is that of the largest of them)
-        size = np.maximum(np.max(np.abs(vals), axis=2), self._cell_scale()[:, None])
-        fits = cell_fit(lo, hi, vals, CELL_TOL * size)
+        size = np.maximum(np.max(np.abs(vals), axis=2), self._cell_scale()[1:, None])
+        tail = np.max(np.abs(coef[:, :, -3:]), axis=2)
+        ok = np.all((tail <= CELL_TOL * size) & np.all(np.isfinite(vals), axis=2), axis=0)
+        # A_Σ = A_Σ(node) + ∫ M_Σ: the antiderivative of M_Σ's interpolant, zero at the node
+        Aco = np.polynomial.chebyshev.chebint(coef[0], lbnd=-1, axis=-1) * half[:, None]
+        Aco[:, 0] += self.A_n[idx]
+        monoA = cheb_to_monomial(Aco)
+        mono = cheb_to_monomial(coef)
         for k, c in enumerate(need):
-            self._cells[c] = fits[k]
+            if not ok[k]:
+                self._cells[c] = None
+                continue
+            rows = [list(monoA[k, ::-1])] + [list(mono[q, k, ::-1]) for q in range(3)]
+            self._cells[c] = CellPoly(0.5 * float(lo[k] + hi[k]), 1.0 / float(half[k]), rows)
 
     def line_extremum(self, slope: float, kind: str):
         """max/min over the cycle of A_Σ(φ) − slope·J_II(φ) (Мерцалов ΔT_I, Виттенбауэр K, L);

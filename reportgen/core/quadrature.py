@@ -48,6 +48,8 @@ __all__ = [
     "CHEB_POINTS",
     "cheb_points",
     "cell_fit",
+    "cheb_coefficients",
+    "cheb_to_monomial",
     "CellPoly",
 ]
 
@@ -401,6 +403,20 @@ class CellPoly:
                 acc = acc * s + c
             out.append(acc)
         return tuple(out)
+
+
+def cheb_coefficients(vals: np.ndarray) -> np.ndarray:
+    """Chebyshev coefficients (…, N) of the interpolants through values at the N Chebyshev
+    points of the last axis (:func:`cheb_points`)."""
+    return np.asarray(vals, dtype=float) @ _CHEB_T
+
+
+def cheb_to_monomial(coef: np.ndarray) -> np.ndarray:
+    """Monomial coefficients (lowest power first) of Chebyshev series of up to N + 1 terms."""
+    coef = np.asarray(coef, dtype=float)
+    if coef.shape[-1] <= CHEB_POINTS:
+        return coef @ _CHEB_MONO[:coef.shape[-1], :coef.shape[-1]]
+    return np.apply_along_axis(np.polynomial.chebyshev.cheb2poly, -1, coef)
 
 
 def cell_fit(lo, hi, vals: np.ndarray, tol) -> list[CellPoly | None]:
