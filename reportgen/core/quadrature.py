@@ -370,10 +370,11 @@ _CHEB_X = np.cos(np.pi * (np.arange(CHEB_POINTS) + 0.5) / CHEB_POINTS)
 _CHEB_T = (2.0 / CHEB_POINTS) * np.cos(np.outer(np.pi * (np.arange(CHEB_POINTS) + 0.5) / CHEB_POINTS,
                                                 np.arange(CHEB_POINTS)))
 _CHEB_T[:, 0] *= 0.5
-# Chebyshev coefficients → monomial coefficients (row j: T_j in powers of s)
-_CHEB_MONO = np.zeros((CHEB_POINTS, CHEB_POINTS))
-for _j in range(CHEB_POINTS):
-    _p = np.polynomial.chebyshev.cheb2poly(np.eye(CHEB_POINTS)[_j])
+# Chebyshev coefficients → monomial coefficients (row j: T_j in powers of s), one term more
+# than the interpolants for their antiderivatives
+_CHEB_MONO = np.zeros((CHEB_POINTS + 1, CHEB_POINTS + 1))
+for _j in range(CHEB_POINTS + 1):
+    _p = np.polynomial.chebyshev.cheb2poly(np.eye(CHEB_POINTS + 1)[_j])
     _CHEB_MONO[_j, :_p.size] = _p
 del _j, _p
 
@@ -412,11 +413,11 @@ def cheb_coefficients(vals: np.ndarray) -> np.ndarray:
 
 
 def cheb_to_monomial(coef: np.ndarray) -> np.ndarray:
-    """Monomial coefficients (lowest power first) of Chebyshev series of up to N + 1 terms."""
+    """Monomial coefficients (lowest power first) of Chebyshev series of up to N + 1 terms
+    (lowest first)."""
     coef = np.asarray(coef, dtype=float)
-    if coef.shape[-1] <= CHEB_POINTS:
-        return coef @ _CHEB_MONO[:coef.shape[-1], :coef.shape[-1]]
-    return np.apply_along_axis(np.polynomial.chebyshev.cheb2poly, -1, coef)
+    m = coef.shape[-1]
+    return coef @ _CHEB_MONO[:m, :m]
 
 
 def cell_fit(lo, hi, vals: np.ndarray, tol) -> list[CellPoly | None]:
@@ -427,7 +428,7 @@ def cell_fit(lo, hi, vals: np.ndarray, tol) -> list[CellPoly | None]:
     coef = vals @ _CHEB_T
     tail = np.max(np.abs(coef[:, :, -3:]), axis=2)
     ok = np.all((tail <= tol) & np.all(np.isfinite(vals), axis=2), axis=0)
-    mono = coef @ _CHEB_MONO
+    mono = coef @ _CHEB_MONO[:CHEB_POINTS, :CHEB_POINTS]
     mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
     out: list[CellPoly | None] = []
     for k in range(lo.size):
