@@ -241,7 +241,7 @@ def test_class3_triad_near_its_singular_configuration(delta):
     of the analogs), and the analogs at the stiffest position agree with the 50-digit reference
     to the conditioning of the position (measured at δ = 10⁻⁷: 1·10⁻¹² positions, 5·10⁻¹⁰ first,
     6·10⁻¹⁰ second analogs).  Class III groups have no transmission angle and are not flagged:
-    see docs/performance.md, stress families."""
+    see docs/work-precision.md, stress families."""
     s = _triad(TRIAD_LIMIT + delta)
     check_finite_and_continuous(s)
     cyc = s.cycle
