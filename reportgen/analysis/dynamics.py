@@ -18,8 +18,8 @@ Dynamic model (Артоболевский «Теория механизмов и
   or the driving moment is given (``drive``) and must balance the cycle.
 * Works A_c(φ), A_дв(φ), A_Σ(φ) = ΔT(φ), the flywheel J_I by the exact periodic solution,
   Мерцалов and Виттенбауэр, ω(φ), ε(φ): :func:`reportgen.analysis.flywheel.solve_dynamics`
-  (integrals split at the switching points of the loads, Gauss–Legendre; extremes by root
-  finding).  J_доп = J_I − J_I,const.
+  (works in closed form for loads constant between switching points, quadrature split at the
+  switching points for table loads; extremes by root finding).  J_доп = J_I − J_I,const.
 * True motion: v = ω x′, a = ω² x″ + ε x′ (and the same for link angles and sliders) with ω(φ),
   ε(φ) of the chosen method, :func:`reportgen.analysis.study.true_motion`.
 

@@ -28,9 +28,12 @@ Three ways to size J_I are computed side by side (numerics.md §4):
   (1 ± δ/2)² is identically KL/(ω_ср² δ) and exact; the textbook slopes ω_ср²(1 ± δ)/2 give
   the same formula with slightly different K and L (error ∝ δ²).
 
-All integrals are Gauss–Legendre on intervals split at the switching points of the loads
-(``reportgen.core.quadrature``); the extremes of every curve are refined by ``brentq`` on the
-analytic derivative, never read off the grid.
+The works of loads constant between switching points are taken in closed form (F·Δr_P,
+M·Δφ_k; ``works`` of :class:`DynamicModel`), the others by Gauss–Lobatto/Gauss–Legendre on
+intervals split at the switching points (``reportgen.core.quadrature``); the extremes of every
+curve are refined by ``brentq`` on the analytic derivative, never read off the grid — on the
+Chebyshev interpolants of the model quantities in the node interval where these are resolved to
+rounding (:meth:`DynamicModel._build_cells`), else by exact evaluation.
 """
 from __future__ import annotations
 
