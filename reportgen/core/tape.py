@@ -1,0 +1,400 @@
+"""Whole-cycle kinematics of linkages made of closed-form groups, compiled into a flat "tape".
+
+A mechanism whose groups are all the initial link (a revolute and the drive) and dyads ВВВ,
+ВВП, ВПВ with constant local geometry (no actuator) is compiled once into two arrays: an int
+row per group (operation, its bodies, the known bodies it hangs on) and a float row of
+constants (local points, link lengths, guide angles, offsets).  One kernel, :func:`run_tape`,
+loops over the positions and the groups doing only scalar arithmetic and writes positions,
+first and second analogs straight into the output arrays: no per-position allocation, no
+per-group call with array arguments.
+
+Positions are those of :mod:`.kinematics` (the same closed forms, the same expressions for the
+angles); the cosine and sine of each body's angle come from direction vectors, not from the
+angle.  The analogs are the group's vector loop equation differentiated once and twice, written
+out as a 2×2 system in two scalars solved by Cramer's rule (Артоболевский, «Теория механизмов и
+машин», §§ 3.5–3.8: the velocity and acceleration equations of a group projected on two axes):
+
+* ВВВ, inner joint B on bodies a, b hanging on A and C:
+  ``A′ + ω_a ⊥(B−A) = C′ + ω_b ⊥(B−C)`` and
+  ``A″ + ε_a ⊥(B−A) − ω_a²(B−A) = C″ + ε_b ⊥(B−C) − ω_b²(B−C)``;
+* ВВП (b slides along a guide fixed to the known body k, direction u):
+  ``A′ + ω_a ⊥(B−A) = V_k(B) + τ u`` and
+  ``A″ + ε_a ⊥(B−A) − ω_a²(B−A) = W_k(B) + 2ω_k τ ⊥u + τ′ u`` with V_k, W_k the velocity and
+  acceleration analogs of the point of k coinciding with B (Coriolis term 2ω_k τ ⊥u);
+* ВПВ (guide body G, slider S, w = P_S − P_G between their pivots):
+  ``ω ⊥w + τ u = P_S′ − P_G′`` and ``ε ⊥w + τ′ u = P_S″ − P_G″ + ω² w − 2ωτ ⊥u``.
+
+Near a singular position (the group's measure below MEAS_MIN, or an assembly failure) the kernel
+stops and reports ``fail[0] = NEED_GENERAL``: the caller then solves the whole grid with the
+general kernel :func:`.kinematics.solve_cycle`, which judges singular positions, clamps stretched
+groups and reports failures exactly as before.  Newton groups (class III), ПВП/ВПП dyads and
+actuators always take the general kernel.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from . import kinematics as K
+
+OP_CRANK = 1
+OP_RRR = 2
+OP_RRP = 3
+OP_RPR = 4
+NEED_GENERAL = -1.0
+MEAS_MIN = 1e-6     # above the general kernel's FAST_MIN: near-singular positions are left to it
+NI = 6              # int columns: op, body a, body b, known body 1, known body 2, flag
+NF = 20             # float columns (constants of the group)
+
+
+@njit(cache=True, error_model="numpy")
+def _point(x, y, c, s, vx, vy, w, ax, ay, e, px, py):
+    """Global position and analogs of local point p of a body with pose (x, y, θ) (c, s =
+    cos θ, sin θ) and analogs: P = r + u, P′ = r′ + θ′⊥u, P″ = r″ + θ″⊥u − θ′²u, u = A(θ)p."""
+    ux = c * px - s * py
+    uy = s * px + c * py
+    return (x + ux, y + uy, vx - w * uy, vy + w * ux,
+            ax - e * uy - w * w * ux, ay + e * ux - w * w * uy)
+
+
+@njit(cache=True, error_model="numpy")
+def run_tape(q, top, tf, sigma, ng, pose0):
+    """Positions, first and second analogs of the bodies over the grid q for the first ``ng``
+    groups of the tape (top, tf); the same outputs as :func:`.kinematics.solve_cycle`
+    (pose, d1, d2, quality, fail).  fail[0] = NEED_GENERAL (fail[1] the position, fail[2] the
+    group) when a position needs the general kernel."""
+    N = q.shape[0]
+    nb = pose0.shape[0]
+    # every entry is written below (fixed bodies here, the others by their group)
+    pose = np.empty((N, nb, 3))
+    d1 = np.empty((N, nb, 3))
+    d2 = np.empty((N, nb, 3))
+    quality = np.empty((N, ng))
+    fail = np.zeros(4)
+    cs = np.zeros((nb, 2))
+    solved = np.zeros(nb, dtype=np.bool_)
+    for g in range(ng):
+        solved[top[g, 1]] = True
+        if top[g, 0] != OP_CRANK:
+            solved[top[g, 2]] = True
+    nfix = 0
+    fixed = np.zeros(nb, dtype=np.int64)
+    for b in range(nb):
+        cs[b, 0] = np.cos(pose0[b, 2])
+        cs[b, 1] = np.sin(pose0[b, 2])
+        if not solved[b]:
+            fixed[nfix] = b
+            nfix += 1
+    for i in range(N):
+        qi = q[i]
+        P = pose[i]
+        V = d1[i]
+        A = d2[i]
+        for kk in range(nfix):
+            b = fixed[kk]
+            for c in range(3):
+                P[b, c] = pose0[b, c]
+                V[b, c] = 0.0
+                A[b, c] = 0.0
+        for g in range(ng):
+            op = top[g, 0]
+            a = top[g, 1]
+            b = top[g, 2]
+            k1 = top[g, 3]
+            k2 = top[g, 4]
+            sg = sigma[g]
+            if op == OP_CRANK:
+                # θ = θ_m ± (c0 + c1 q); r = P − A(θ)p with P the pivot on the known body k2
+                th = P[k1, 2] + tf[g, 0] * (tf[g, 1] + tf[g, 2] * qi)
+                w = V[k1, 2] + tf[g, 0] * tf[g, 2]
+                e = A[k1, 2]
+                c = np.cos(th)
+                s = np.sin(th)
+                Px, Py, Pvx, Pvy, Pax, Pay = _point(P[k2, 0], P[k2, 1], cs[k2, 0], cs[k2, 1], V[k2, 0], V[k2, 1],
+                                                    V[k2, 2], A[k2, 0], A[k2, 1], A[k2, 2], tf[g, 3], tf[g, 4])
+                ux = c * tf[g, 5] - s * tf[g, 6]
+                uy = s * tf[g, 5] + c * tf[g, 6]
+                P[a, 0] = Px - ux
+                P[a, 1] = Py - uy
+                P[a, 2] = th
+                V[a, 0] = Pvx + w * uy
+                V[a, 1] = Pvy - w * ux
+                V[a, 2] = w
+                A[a, 0] = Pax + e * uy + w * w * ux
+                A[a, 1] = Pay - e * ux + w * w * uy
+                A[a, 2] = e
+                cs[a, 0] = c
+                cs[a, 1] = s
+                # Hadamard's ratio of the link's 3×3 system (rows of the revolute and the drive)
+                quality[i, g] = 1.0 / (np.sqrt(1.0 + uy * uy) * np.sqrt(1.0 + ux * ux))
+                continue
+            # the pivot of body a on the known body k1 (every dyad kind has one)
+            Ax, Ay, Avx, Avy, Aax, Aay = _point(P[k1, 0], P[k1, 1], cs[k1, 0], cs[k1, 1], V[k1, 0], V[k1, 1],
+                                                V[k1, 2], A[k1, 0], A[k1, 1], A[k1, 2], tf[g, 0], tf[g, 1])
+            if op == OP_RRR:
+                Cx, Cy, Cvx, Cvy, Cax, Cay = _point(P[k2, 0], P[k2, 1], cs[k2, 0], cs[k2, 1], V[k2, 0], V[k2, 1],
+                                                    V[k2, 2], A[k2, 0], A[k2, 1], A[k2, 2], tf[g, 4], tf[g, 5])
+                La = tf[g, 8]
+                Lb = tf[g, 9]
+                dx = Cx - Ax
+                dy = Cy - Ay
+                D2 = dx * dx + dy * dy
+                if D2 == 0.0:
+                    fail[0] = NEED_GENERAL
+                    break
+                D = np.sqrt(D2)
+                iD = 1.0 / D
+                x = 0.5 * (La * La - Lb * Lb + D2) * iD
+                h2 = La * La - x * x
+                if h2 <= 0.0:
+                    fail[0] = NEED_GENERAL
+                    break
+                h = np.sqrt(h2)
+                ex = dx * iD
+                ey = dy * iD
+                Bx = Ax + x * ex - sg * h * ey
+                By = Ay + x * ey + sg * h * ex
+                rax = Bx - Ax
+                ray = By - Ay
+                rbx = Bx - Cx
+                rby = By - Cy
+                det = ray * rbx - rax * rby
+                sinmu = -det * tf[g, 16]
+                if abs(sinmu) < MEAS_MIN:
+                    fail[0] = NEED_GENERAL
+                    break
+                quality[i, g] = sinmu
+                # ω_a ⊥ρa − ω_b ⊥ρb = C′ − A′, then the same matrix for ε
+                wx = Cvx - Avx
+                wy = Cvy - Avy
+                idet = 1.0 / det
+                wa = (-wx * rbx - rby * wy) * idet
+                wb = (-ray * wy - rax * wx) * idet
+                wx = Cax - Aax + wa * wa * rax - wb * wb * rbx
+                wy = Cay - Aay + wa * wa * ray - wb * wb * rby
+                ea = (-wx * rbx - rby * wy) * idet
+                eb = (-ray * wy - rax * wx) * idet
+                # body a about A, body b about C: θ = atan2(ρ) − β, (cos θ, sin θ) from ρ/L
+                ca = (rax * tf[g, 11] + ray * tf[g, 12]) * tf[g, 17]
+                sa = (ray * tf[g, 11] - rax * tf[g, 12]) * tf[g, 17]
+                P[a, 2] = np.arctan2(ray, rax) - tf[g, 10]
+                cb = (rbx * tf[g, 14] + rby * tf[g, 15]) * tf[g, 18]
+                sb = (rby * tf[g, 14] - rbx * tf[g, 15]) * tf[g, 18]
+                P[b, 2] = np.arctan2(rby, rbx) - tf[g, 13]
+                _body_about(P, V, A, cs, b, cb, sb, Cx, Cy, Cvx, Cvy, Cax, Cay, wb, eb, tf[g, 6], tf[g, 7])
+            elif op == OP_RRP:
+                # body b slides along a guide fixed to the known body k2 (its angle locked to k2's)
+                ck = cs[k2, 0]
+                sk = cs[k2, 1]
+                P[b, 2] = P[k2, 2] + tf[g, 11]
+                cb = ck * tf[g, 12] - sk * tf[g, 13]
+                sb = sk * tf[g, 12] + ck * tf[g, 13]
+                if top[g, 5] == 0:
+                    ux = cb
+                    uy = sb
+                else:
+                    ux = ck
+                    uy = sk
+                nx = -uy
+                ny = ux
+                # the line traced by body b's frame origin: r_b = r0 + t u
+                r0x = P[k2, 0] + ck * tf[g, 6] - sk * tf[g, 7] + tf[g, 10] * nx - (cb * tf[g, 8] - sb * tf[g, 9])
+                r0y = P[k2, 1] + sk * tf[g, 6] + ck * tf[g, 7] + tf[g, 10] * ny - (sb * tf[g, 8] + cb * tf[g, 9])
+                bx = cb * tf[g, 4] - sb * tf[g, 5]
+                by = sb * tf[g, 4] + cb * tf[g, 5]
+                La = tf[g, 14]
+                wx = r0x + bx - Ax
+                wy = r0y + by - Ay
+                wu = wx * ux + wy * uy
+                disc = wu * wu - (wx * wx + wy * wy) + La * La
+                if disc <= 0.0:
+                    fail[0] = NEED_GENERAL
+                    break
+                root = np.sqrt(disc)
+                t = -wu + sg * root
+                sinmu = sg * root * tf[g, 18]
+                if abs(sinmu) < MEAS_MIN:
+                    fail[0] = NEED_GENERAL
+                    break
+                quality[i, g] = sinmu
+                P[b, 0] = r0x + t * ux
+                P[b, 1] = r0y + t * uy
+                Bx = P[b, 0] + bx
+                By = P[b, 1] + by
+                rax = Bx - Ax
+                ray = By - Ay
+                # τ u − ω_a ⊥ρa = A′ − V_k(B), then τ′ u − ε_a ⊥ρa = A″ − ω_a²ρa − W_k(B) − 2ω_kτ⊥u
+                wk = V[k2, 2]
+                ek = A[k2, 2]
+                dBx = Bx - P[k2, 0]
+                dBy = By - P[k2, 1]
+                idet = -1.0 / (ux * rax + uy * ray)
+                wx = Avx - (V[k2, 0] - wk * dBy)
+                wy = Avy - (V[k2, 1] + wk * dBx)
+                tau = (-wx * rax - ray * wy) * idet
+                wa = (ux * wy - uy * wx) * idet
+                wx = Aax - wa * wa * rax - (A[k2, 0] - ek * dBy - wk * wk * dBx) + 2.0 * wk * tau * uy
+                wy = Aay - wa * wa * ray - (A[k2, 1] + ek * dBx - wk * wk * dBy) - 2.0 * wk * tau * ux
+                ea = (ux * wy - uy * wx) * idet
+                # body b: B′ = A′ + ω_a ⊥ρa, B″ = A″ + ε_a ⊥ρa − ω_a²ρa; r_b = B − A(θ_b)p_B
+                Bvx = Avx - wa * ray
+                Bvy = Avy + wa * rax
+                Bax = Aax - ea * ray - wa * wa * rax
+                Bay = Aay + ea * rax - wa * wa * ray
+                V[b, 0] = Bvx + wk * by
+                V[b, 1] = Bvy - wk * bx
+                V[b, 2] = wk
+                A[b, 0] = Bax + ek * by + wk * wk * bx
+                A[b, 1] = Bay - ek * bx + wk * wk * by
+                A[b, 2] = ek
+                cs[b, 0] = cb
+                cs[b, 1] = sb
+                ca = (rax * tf[g, 16] + ray * tf[g, 17]) * tf[g, 18]
+                sa = (ray * tf[g, 16] - rax * tf[g, 17]) * tf[g, 18]
+                P[a, 2] = np.arctan2(ray, rax) - tf[g, 15]
+            else:
+                # ВПВ: a is the guide body G, b the slider S; both angles from the guide equation
+                Sx, Sy, Svx, Svy, Sax, Say = _point(P[k2, 0], P[k2, 1], cs[k2, 0], cs[k2, 1], V[k2, 0], V[k2, 1],
+                                                    V[k2, 2], A[k2, 0], A[k2, 1], A[k2, 2], tf[g, 4], tf[g, 5])
+                rax = Sx - Ax
+                ray = Sy - Ay
+                W2 = rax * rax + ray * ray
+                if W2 == 0.0:
+                    fail[0] = NEED_GENERAL
+                    break
+                iW = 1.0 / np.sqrt(W2)
+                c = tf[g, 11] * iW
+                if c >= 1.0 or c <= -1.0:
+                    fail[0] = NEED_GENERAL
+                    break
+                sn = np.sqrt(1.0 - c * c)
+                if sn < MEAS_MIN:
+                    fail[0] = NEED_GENERAL
+                    break
+                quality[i, g] = sg * sn
+                # θ_G = ψ − β + σ acos(K/|w|), ψ = atan2(w); θ_S = θ_G + α
+                P[a, 2] = np.arctan2(ray, rax) - tf[g, 12] + sg * np.arccos(c)
+                P[b, 2] = P[a, 2] + tf[g, 8]
+                cp = rax * iW
+                sp = ray * iW
+                cy = cp * c - sp * sg * sn
+                sy = sp * c + cp * sg * sn
+                ca = cy * tf[g, 13] + sy * tf[g, 14]
+                sa = sy * tf[g, 13] - cy * tf[g, 14]
+                cb = ca * tf[g, 9] - sa * tf[g, 10]
+                sb = sa * tf[g, 9] + ca * tf[g, 10]
+                ux = cb
+                uy = sb
+                # ω ⊥w + τ u = P_S′ − P_G′, then ε ⊥w + τ′ u = P_S″ − P_G″ + ω²w − 2ωτ⊥u
+                idet = -1.0 / (ray * uy + rax * ux)
+                wx = Svx - Avx
+                wy = Svy - Avy
+                wa = (wx * uy - ux * wy) * idet
+                tau = (-ray * wy - rax * wx) * idet
+                wx = Sax - Aax + wa * wa * rax + 2.0 * wa * tau * uy
+                wy = Say - Aay + wa * wa * ray - 2.0 * wa * tau * ux
+                ea = (wx * uy - ux * wy) * idet
+                _body_about(P, V, A, cs, b, cb, sb, Sx, Sy, Svx, Svy, Sax, Say, wa, ea, tf[g, 6], tf[g, 7])
+            _body_about(P, V, A, cs, a, ca, sa, Ax, Ay, Avx, Avy, Aax, Aay, wa, ea, tf[g, 2], tf[g, 3])
+        if fail[0] != 0.0:
+            fail[1] = i
+            fail[2] = g
+            return pose, d1, d2, quality, fail
+    return pose, d1, d2, quality, fail
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _body_about(P, V, A, cs, b, c, s, Px, Py, Pvx, Pvy, Pax, Pay, w, e, px, py):
+    """Pose and analogs of body b turning by (cos θ, sin θ) = (c, s), θ′ = w, θ″ = e about its
+    point p (local) whose global position and analogs are P, P′, P″:
+    r = P − u, r′ = P′ − w⊥u, r″ = P″ − e⊥u + w²u, u = A(θ)p (θ itself is set by the caller)."""
+    ux = c * px - s * py
+    uy = s * px + c * py
+    P[b, 0] = Px - ux
+    P[b, 1] = Py - uy
+    V[b, 0] = Pvx + w * uy
+    V[b, 1] = Pvy - w * ux
+    V[b, 2] = w
+    A[b, 0] = Pax + e * uy + w * w * ux
+    A[b, 1] = Pay - e * ux + w * w * uy
+    A[b, 2] = e
+    cs[b, 0] = c
+    cs[b, 1] = s
+
+
+def _pivot_points(jb, jf, j, body):
+    """(local point on ``body``, known body, local point on the known body) of revolute j."""
+    if jb[j, 0] == body:
+        return (jf[j, 0], jf[j, 1]), int(jb[j, 1]), (jf[j, 2], jf[j, 3])
+    return (jf[j, 2], jf[j, 3]), int(jb[j, 0]), (jf[j, 0], jf[j, 1])
+
+
+def build_tape(jt, jb, jf, gkind, gspec, gjoint, gnj, gbody):
+    """Compile the groups into (top, tf) for :func:`run_tape`, or None when some group needs the
+    general kernel (Newton, ПВП/ВПП, a forced dense path, a local point moving with q)."""
+    ng = len(gkind)
+    top = np.zeros((ng, NI), np.int64)
+    tf = np.zeros((ng, NF))
+    for g in range(ng):
+        js = [int(j) for j in gjoint[g, :gnj[g]]]
+        for j in js:
+            moving = jf[j, 4:8] if jt[j] == K.J_REV else jf[j, 6:10] if jt[j] == K.J_PRI else ()
+            if np.any(np.asarray(moving) != 0.0):
+                return None
+        kind, spec = int(gkind[g]), [int(x) for x in gspec[g]]
+        if kind == K.G_LIN and spec[5] == K.A_SINGLE:
+            body = int(gbody[g, 0])
+            jr, jd = (js[0], js[1]) if jt[js[0]] == K.J_REV else (js[1], js[0])
+            sgn, m = (1.0, int(jb[jd, 0])) if jb[jd, 1] == body else (-1.0, int(jb[jd, 1]))
+            pb, k, pk = _pivot_points(jb, jf, jr, body)
+            top[g, :5] = (OP_CRANK, body, 0, m, k)
+            tf[g, :7] = (sgn, jf[jd, 0], jf[jd, 1], pk[0], pk[1], pb[0], pb[1])
+            continue
+        if spec[5] != K.A_DYAD or kind not in (K.G_RRR, K.G_RRP, K.G_RPR):
+            return None
+        a, b, jA, jI, jC = spec[:5]
+        if kind == K.G_RPR:
+            # a := the guide body G, b := the slider S of the prismatic jI
+            G, S = int(jb[jI, 0]), int(jb[jI, 1])
+            jG, jS = (jA, jC) if G == a else (jC, jA)
+            pg, kG, pkG = _pivot_points(jb, jf, jG, G)
+            ps, kS, pkS = _pivot_points(jb, jf, jS, S)
+            al, e = jf[jI, 4], jf[jI, 5]
+            nlx, nly = -math.sin(al), math.cos(al)
+            lx, ly = jf[jI, 2] - ps[0], jf[jI, 3] - ps[1]
+            rx, ry = math.cos(al) * lx - math.sin(al) * ly, math.sin(al) * lx + math.cos(al) * ly
+            Kc = e + nlx * (jf[jI, 0] - pg[0]) + nly * (jf[jI, 1] - pg[1]) - (nlx * rx + nly * ry)
+            beta = al + 0.5 * np.pi
+            top[g, :5] = (OP_RPR, G, S, kG, kS)
+            tf[g, :15] = (pkG[0], pkG[1], pg[0], pg[1], pkS[0], pkS[1], ps[0], ps[1],
+                          al, math.cos(al), math.sin(al), Kc, beta, math.cos(beta), math.sin(beta))
+            continue
+        paA, ka, pkA = _pivot_points(jb, jf, jA, a)
+        pIa, _, pIb = _pivot_points(jb, jf, jI, a)          # inner joint: point on a, point on b
+        La = math.hypot(pIa[0] - paA[0], pIa[1] - paA[1])
+        ba = math.atan2(pIa[1] - paA[1], pIa[0] - paA[0])
+        if kind == K.G_RRR:
+            pbC, kc, pkC = _pivot_points(jb, jf, jC, b)
+            Lb = math.hypot(pIb[0] - pbC[0], pIb[1] - pbC[1])
+            bb = math.atan2(pIb[1] - pbC[1], pIb[0] - pbC[0])
+            if La == 0.0 or Lb == 0.0:
+                return None
+            top[g, :5] = (OP_RRR, a, b, ka, kc)
+            tf[g, :19] = (pkA[0], pkA[1], paA[0], paA[1], pkC[0], pkC[1], pbC[0], pbC[1], La, Lb,
+                          ba, math.cos(ba), math.sin(ba), bb, math.cos(bb), math.sin(bb),
+                          1.0 / (La * Lb), 1.0 / La, 1.0 / Lb)
+            continue
+        # ВВП: b on the prismatic jC to a known body kp (b the slider on kp's guide, or b the guide)
+        al, e = jf[jC, 4], jf[jC, 5]
+        if jb[jC, 1] == b:
+            kp, pk, pb, se, off, case = int(jb[jC, 0]), jf[jC, 0:2], jf[jC, 2:4], e, al, 0
+        else:
+            kp, pk, pb, se, off, case = int(jb[jC, 1]), jf[jC, 2:4], jf[jC, 0:2], -e, -al, 1
+        if La == 0.0:
+            return None
+        top[g, :6] = (OP_RRP, a, b, ka, kp, case)
+        tf[g, :19] = (pkA[0], pkA[1], paA[0], paA[1], pIb[0], pIb[1], pk[0], pk[1], pb[0], pb[1],
+                      se, off, math.cos(off), math.sin(off), La, ba, math.cos(ba), math.sin(ba), 1.0 / La)
+    return top, tf
