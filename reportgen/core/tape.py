@@ -49,6 +49,43 @@ NI = 6              # int columns: op, body a, body b, known body 1, known body 
 NF = 20             # float columns (constants of the group)
 
 
+PIO2 = 1.5707963267948966
+PIO4 = 0.7853981633974483
+MOREBITS = 6.123233995736765886130e-17     # π/2 − PIO2
+
+
+@njit(cache=True, error_model="numpy")
+def _atan2(y, x):
+    """atan2(y, x) in (−π, π] by the Cephes arctangent (S. L. Moshier, Cephes Mathematical
+    Library, atan.c: the argument min(|x|,|y|)/max(|x|,|y|) ≤ 1 reduced by the π/4 shift above
+    0.66, then a 4/5 rational in its square, error about 1e-16), the octant restored from the
+    signs; about a third of libm's cost and within 2 ulp of it."""
+    ay = abs(y)
+    ax = abs(x)
+    if ay > ax:
+        t = ax / ay
+    elif ax > 0.0:
+        t = ay / ax
+    else:
+        return 0.0
+    big = t > 0.66
+    if big:
+        t = (t - 1.0) / (t + 1.0)
+    z = t * t
+    p = (((-8.750608600031904122785e-1 * z - 1.615753718733365076637e1) * z
+          - 7.500855792314704667340e1) * z - 1.228866684490136173410e2) * z - 6.485021904942025371773e1
+    qq = ((((z + 2.485846490142306297962e1) * z + 1.650270098316988542046e2) * z
+           + 4.328810604912902668951e2) * z + 4.853903996359136964868e2) * z + 1.945506571482613964425e2
+    a = t + t * z * p / qq
+    if big:
+        a = PIO4 + (a + 0.5 * MOREBITS)
+    if ay > ax:
+        a = PIO2 - a + MOREBITS
+    if x < 0.0:
+        a = 2.0 * PIO2 - a + 2.0 * MOREBITS
+    return -a if y < 0.0 else a
+
+
 @njit(cache=True, error_model="numpy")
 def _point(x, y, c, s, vx, vy, w, ax, ay, e, px, py):
     """Global position and analogs of local point p of a body with pose (x, y, θ) (c, s =
@@ -89,15 +126,12 @@ def run_tape(q, top, tf, sigma, ng, pose0):
             nfix += 1
     for i in range(N):
         qi = q[i]
-        P = pose[i]
-        V = d1[i]
-        A = d2[i]
         for kk in range(nfix):
             b = fixed[kk]
             for c in range(3):
-                P[b, c] = pose0[b, c]
-                V[b, c] = 0.0
-                A[b, c] = 0.0
+                pose[i, b, c] = pose0[b, c]
+                d1[i, b, c] = 0.0
+                d2[i, b, c] = 0.0
         for g in range(ng):
             op = top[g, 0]
             a = top[g, 1]
@@ -107,35 +141,35 @@ def run_tape(q, top, tf, sigma, ng, pose0):
             sg = sigma[g]
             if op == OP_CRANK:
                 # θ = θ_m ± (c0 + c1 q); r = P − A(θ)p with P the pivot on the known body k2
-                th = P[k1, 2] + tf[g, 0] * (tf[g, 1] + tf[g, 2] * qi)
-                w = V[k1, 2] + tf[g, 0] * tf[g, 2]
-                e = A[k1, 2]
+                th = pose[i, k1, 2] + tf[g, 0] * (tf[g, 1] + tf[g, 2] * qi)
+                w = d1[i, k1, 2] + tf[g, 0] * tf[g, 2]
+                e = d2[i, k1, 2]
                 c = np.cos(th)
                 s = np.sin(th)
-                Px, Py, Pvx, Pvy, Pax, Pay = _point(P[k2, 0], P[k2, 1], cs[k2, 0], cs[k2, 1], V[k2, 0], V[k2, 1],
-                                                    V[k2, 2], A[k2, 0], A[k2, 1], A[k2, 2], tf[g, 3], tf[g, 4])
+                Px, Py, Pvx, Pvy, Pax, Pay = _point(pose[i, k2, 0], pose[i, k2, 1], cs[k2, 0], cs[k2, 1], d1[i, k2, 0], d1[i, k2, 1],
+                                                    d1[i, k2, 2], d2[i, k2, 0], d2[i, k2, 1], d2[i, k2, 2], tf[g, 3], tf[g, 4])
                 ux = c * tf[g, 5] - s * tf[g, 6]
                 uy = s * tf[g, 5] + c * tf[g, 6]
-                P[a, 0] = Px - ux
-                P[a, 1] = Py - uy
-                P[a, 2] = th
-                V[a, 0] = Pvx + w * uy
-                V[a, 1] = Pvy - w * ux
-                V[a, 2] = w
-                A[a, 0] = Pax + e * uy + w * w * ux
-                A[a, 1] = Pay - e * ux + w * w * uy
-                A[a, 2] = e
+                pose[i, a, 0] = Px - ux
+                pose[i, a, 1] = Py - uy
+                pose[i, a, 2] = th
+                d1[i, a, 0] = Pvx + w * uy
+                d1[i, a, 1] = Pvy - w * ux
+                d1[i, a, 2] = w
+                d2[i, a, 0] = Pax + e * uy + w * w * ux
+                d2[i, a, 1] = Pay - e * ux + w * w * uy
+                d2[i, a, 2] = e
                 cs[a, 0] = c
                 cs[a, 1] = s
                 # Hadamard's ratio of the link's 3×3 system (rows of the revolute and the drive)
                 quality[i, g] = 1.0 / (np.sqrt(1.0 + uy * uy) * np.sqrt(1.0 + ux * ux))
                 continue
             # the pivot of body a on the known body k1 (every dyad kind has one)
-            Ax, Ay, Avx, Avy, Aax, Aay = _point(P[k1, 0], P[k1, 1], cs[k1, 0], cs[k1, 1], V[k1, 0], V[k1, 1],
-                                                V[k1, 2], A[k1, 0], A[k1, 1], A[k1, 2], tf[g, 0], tf[g, 1])
+            Ax, Ay, Avx, Avy, Aax, Aay = _point(pose[i, k1, 0], pose[i, k1, 1], cs[k1, 0], cs[k1, 1], d1[i, k1, 0], d1[i, k1, 1],
+                                                d1[i, k1, 2], d2[i, k1, 0], d2[i, k1, 1], d2[i, k1, 2], tf[g, 0], tf[g, 1])
             if op == OP_RRR:
-                Cx, Cy, Cvx, Cvy, Cax, Cay = _point(P[k2, 0], P[k2, 1], cs[k2, 0], cs[k2, 1], V[k2, 0], V[k2, 1],
-                                                    V[k2, 2], A[k2, 0], A[k2, 1], A[k2, 2], tf[g, 4], tf[g, 5])
+                Cx, Cy, Cvx, Cvy, Cax, Cay = _point(pose[i, k2, 0], pose[i, k2, 1], cs[k2, 0], cs[k2, 1], d1[i, k2, 0], d1[i, k2, 1],
+                                                    d1[i, k2, 2], d2[i, k2, 0], d2[i, k2, 1], d2[i, k2, 2], tf[g, 4], tf[g, 5])
                 La = tf[g, 8]
                 Lb = tf[g, 9]
                 dx = Cx - Ax
@@ -179,16 +213,16 @@ def run_tape(q, top, tf, sigma, ng, pose0):
                 # body a about A, body b about C: θ = atan2(ρ) − β, (cos θ, sin θ) from ρ/L
                 ca = (rax * tf[g, 11] + ray * tf[g, 12]) * tf[g, 17]
                 sa = (ray * tf[g, 11] - rax * tf[g, 12]) * tf[g, 17]
-                P[a, 2] = np.arctan2(ray, rax) - tf[g, 10]
+                pose[i, a, 2] = _atan2(ray, rax) - tf[g, 10]
                 cb = (rbx * tf[g, 14] + rby * tf[g, 15]) * tf[g, 18]
                 sb = (rby * tf[g, 14] - rbx * tf[g, 15]) * tf[g, 18]
-                P[b, 2] = np.arctan2(rby, rbx) - tf[g, 13]
-                _body_about(P, V, A, cs, b, cb, sb, Cx, Cy, Cvx, Cvy, Cax, Cay, wb, eb, tf[g, 6], tf[g, 7])
+                pose[i, b, 2] = _atan2(rby, rbx) - tf[g, 13]
+                _body_about(pose, d1, d2, i, cs, b, cb, sb, Cx, Cy, Cvx, Cvy, Cax, Cay, wb, eb, tf[g, 6], tf[g, 7])
             elif op == OP_RRP:
                 # body b slides along a guide fixed to the known body k2 (its angle locked to k2's)
                 ck = cs[k2, 0]
                 sk = cs[k2, 1]
-                P[b, 2] = P[k2, 2] + tf[g, 11]
+                pose[i, b, 2] = pose[i, k2, 2] + tf[g, 11]
                 cb = ck * tf[g, 12] - sk * tf[g, 13]
                 sb = sk * tf[g, 12] + ck * tf[g, 13]
                 if top[g, 5] == 0:
@@ -200,8 +234,8 @@ def run_tape(q, top, tf, sigma, ng, pose0):
                 nx = -uy
                 ny = ux
                 # the line traced by body b's frame origin: r_b = r0 + t u
-                r0x = P[k2, 0] + ck * tf[g, 6] - sk * tf[g, 7] + tf[g, 10] * nx - (cb * tf[g, 8] - sb * tf[g, 9])
-                r0y = P[k2, 1] + sk * tf[g, 6] + ck * tf[g, 7] + tf[g, 10] * ny - (sb * tf[g, 8] + cb * tf[g, 9])
+                r0x = pose[i, k2, 0] + ck * tf[g, 6] - sk * tf[g, 7] + tf[g, 10] * nx - (cb * tf[g, 8] - sb * tf[g, 9])
+                r0y = pose[i, k2, 1] + sk * tf[g, 6] + ck * tf[g, 7] + tf[g, 10] * ny - (sb * tf[g, 8] + cb * tf[g, 9])
                 bx = cb * tf[g, 4] - sb * tf[g, 5]
                 by = sb * tf[g, 4] + cb * tf[g, 5]
                 La = tf[g, 14]
@@ -219,45 +253,45 @@ def run_tape(q, top, tf, sigma, ng, pose0):
                     fail[0] = NEED_GENERAL
                     break
                 quality[i, g] = sinmu
-                P[b, 0] = r0x + t * ux
-                P[b, 1] = r0y + t * uy
-                Bx = P[b, 0] + bx
-                By = P[b, 1] + by
+                pose[i, b, 0] = r0x + t * ux
+                pose[i, b, 1] = r0y + t * uy
+                Bx = pose[i, b, 0] + bx
+                By = pose[i, b, 1] + by
                 rax = Bx - Ax
                 ray = By - Ay
                 # τ u − ω_a ⊥ρa = A′ − V_k(B), then τ′ u − ε_a ⊥ρa = A″ − ω_a²ρa − W_k(B) − 2ω_kτ⊥u
-                wk = V[k2, 2]
-                ek = A[k2, 2]
-                dBx = Bx - P[k2, 0]
-                dBy = By - P[k2, 1]
+                wk = d1[i, k2, 2]
+                ek = d2[i, k2, 2]
+                dBx = Bx - pose[i, k2, 0]
+                dBy = By - pose[i, k2, 1]
                 idet = -1.0 / (ux * rax + uy * ray)
-                wx = Avx - (V[k2, 0] - wk * dBy)
-                wy = Avy - (V[k2, 1] + wk * dBx)
+                wx = Avx - (d1[i, k2, 0] - wk * dBy)
+                wy = Avy - (d1[i, k2, 1] + wk * dBx)
                 tau = (-wx * rax - ray * wy) * idet
                 wa = (ux * wy - uy * wx) * idet
-                wx = Aax - wa * wa * rax - (A[k2, 0] - ek * dBy - wk * wk * dBx) + 2.0 * wk * tau * uy
-                wy = Aay - wa * wa * ray - (A[k2, 1] + ek * dBx - wk * wk * dBy) - 2.0 * wk * tau * ux
+                wx = Aax - wa * wa * rax - (d2[i, k2, 0] - ek * dBy - wk * wk * dBx) + 2.0 * wk * tau * uy
+                wy = Aay - wa * wa * ray - (d2[i, k2, 1] + ek * dBx - wk * wk * dBy) - 2.0 * wk * tau * ux
                 ea = (ux * wy - uy * wx) * idet
                 # body b: B′ = A′ + ω_a ⊥ρa, B″ = A″ + ε_a ⊥ρa − ω_a²ρa; r_b = B − A(θ_b)p_B
                 Bvx = Avx - wa * ray
                 Bvy = Avy + wa * rax
                 Bax = Aax - ea * ray - wa * wa * rax
                 Bay = Aay + ea * rax - wa * wa * ray
-                V[b, 0] = Bvx + wk * by
-                V[b, 1] = Bvy - wk * bx
-                V[b, 2] = wk
-                A[b, 0] = Bax + ek * by + wk * wk * bx
-                A[b, 1] = Bay - ek * bx + wk * wk * by
-                A[b, 2] = ek
+                d1[i, b, 0] = Bvx + wk * by
+                d1[i, b, 1] = Bvy - wk * bx
+                d1[i, b, 2] = wk
+                d2[i, b, 0] = Bax + ek * by + wk * wk * bx
+                d2[i, b, 1] = Bay - ek * bx + wk * wk * by
+                d2[i, b, 2] = ek
                 cs[b, 0] = cb
                 cs[b, 1] = sb
                 ca = (rax * tf[g, 16] + ray * tf[g, 17]) * tf[g, 18]
                 sa = (ray * tf[g, 16] - rax * tf[g, 17]) * tf[g, 18]
-                P[a, 2] = np.arctan2(ray, rax) - tf[g, 15]
+                pose[i, a, 2] = _atan2(ray, rax) - tf[g, 15]
             else:
                 # ВПВ: a is the guide body G, b the slider S; both angles from the guide equation
-                Sx, Sy, Svx, Svy, Sax, Say = _point(P[k2, 0], P[k2, 1], cs[k2, 0], cs[k2, 1], V[k2, 0], V[k2, 1],
-                                                    V[k2, 2], A[k2, 0], A[k2, 1], A[k2, 2], tf[g, 4], tf[g, 5])
+                Sx, Sy, Svx, Svy, Sax, Say = _point(pose[i, k2, 0], pose[i, k2, 1], cs[k2, 0], cs[k2, 1], d1[i, k2, 0], d1[i, k2, 1],
+                                                    d1[i, k2, 2], d2[i, k2, 0], d2[i, k2, 1], d2[i, k2, 2], tf[g, 4], tf[g, 5])
                 rax = Sx - Ax
                 ray = Sy - Ay
                 W2 = rax * rax + ray * ray
@@ -275,8 +309,8 @@ def run_tape(q, top, tf, sigma, ng, pose0):
                     break
                 quality[i, g] = sg * sn
                 # θ_G = ψ − β + σ acos(K/|w|), ψ = atan2(w); θ_S = θ_G + α
-                P[a, 2] = np.arctan2(ray, rax) - tf[g, 12] + sg * np.arccos(c)
-                P[b, 2] = P[a, 2] + tf[g, 8]
+                pose[i, a, 2] = _atan2(ray, rax) - tf[g, 12] + sg * np.arccos(c)
+                pose[i, b, 2] = pose[i, a, 2] + tf[g, 8]
                 cp = rax * iW
                 sp = ray * iW
                 cy = cp * c - sp * sg * sn
@@ -296,8 +330,8 @@ def run_tape(q, top, tf, sigma, ng, pose0):
                 wx = Sax - Aax + wa * wa * rax + 2.0 * wa * tau * uy
                 wy = Say - Aay + wa * wa * ray - 2.0 * wa * tau * ux
                 ea = (wx * uy - ux * wy) * idet
-                _body_about(P, V, A, cs, b, cb, sb, Sx, Sy, Svx, Svy, Sax, Say, wa, ea, tf[g, 6], tf[g, 7])
-            _body_about(P, V, A, cs, a, ca, sa, Ax, Ay, Avx, Avy, Aax, Aay, wa, ea, tf[g, 2], tf[g, 3])
+                _body_about(pose, d1, d2, i, cs, b, cb, sb, Sx, Sy, Svx, Svy, Sax, Say, wa, ea, tf[g, 6], tf[g, 7])
+            _body_about(pose, d1, d2, i, cs, a, ca, sa, Ax, Ay, Avx, Avy, Aax, Aay, wa, ea, tf[g, 2], tf[g, 3])
         if fail[0] != 0.0:
             fail[1] = i
             fail[2] = g
@@ -306,20 +340,20 @@ def run_tape(q, top, tf, sigma, ng, pose0):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _body_about(P, V, A, cs, b, c, s, Px, Py, Pvx, Pvy, Pax, Pay, w, e, px, py):
+def _body_about(pose, d1, d2, i, cs, b, c, s, Px, Py, Pvx, Pvy, Pax, Pay, w, e, px, py):
     """Pose and analogs of body b turning by (cos θ, sin θ) = (c, s), θ′ = w, θ″ = e about its
     point p (local) whose global position and analogs are P, P′, P″:
     r = P − u, r′ = P′ − w⊥u, r″ = P″ − e⊥u + w²u, u = A(θ)p (θ itself is set by the caller)."""
     ux = c * px - s * py
     uy = s * px + c * py
-    P[b, 0] = Px - ux
-    P[b, 1] = Py - uy
-    V[b, 0] = Pvx + w * uy
-    V[b, 1] = Pvy - w * ux
-    V[b, 2] = w
-    A[b, 0] = Pax + e * uy + w * w * ux
-    A[b, 1] = Pay - e * ux + w * w * uy
-    A[b, 2] = e
+    pose[i, b, 0] = Px - ux
+    pose[i, b, 1] = Py - uy
+    d1[i, b, 0] = Pvx + w * uy
+    d1[i, b, 1] = Pvy - w * ux
+    d1[i, b, 2] = w
+    d2[i, b, 0] = Pax + e * uy + w * w * ux
+    d2[i, b, 1] = Pay - e * ux + w * w * uy
+    d2[i, b, 2] = e
     cs[b, 0] = c
     cs[b, 1] = s
 
