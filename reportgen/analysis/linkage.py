@@ -226,6 +226,14 @@ def solve_general(model: SolverModel, q: np.ndarray, ng: int, sig, p0):
                          model.gnj[:ng], model.gbody[:ng], model.gnb[:ng], p0, model.size)
 
 
+def compile_kernels(model: SolverModel, q: np.ndarray) -> None:
+    """Compile (or load from numba's cache) both kernels on two positions: the tape and the
+    general kernel, which only singular positions, Newton groups, ПВП/ВПП and actuators need."""
+    q = np.ascontiguousarray(q[:2], dtype=np.float64)
+    run_kernel(model, q)
+    solve_general(model, q, len(model.groups), model.gsigma, model.pose0)
+
+
 def has_newton(model: SolverModel) -> bool:
     """Whether some group is solved by Newton (class III and higher): its branch is then defined
     by continuation along the cycle, not by a closed-form sign."""
