@@ -62,15 +62,15 @@ def _atan2(y, x):
     signs; about a third of libm's cost and within 2 ulp of it."""
     ay = abs(y)
     ax = abs(x)
-    if ay > ax:
-        t = ax / ay
-    elif ax > 0.0:
-        t = ay / ax
-    else:
+    hi = max(ax, ay)
+    lo = min(ax, ay)
+    if hi == 0.0:
         return 0.0
-    big = t > 0.66
+    big = lo > 0.66 * hi
     if big:
-        t = (t - 1.0) / (t + 1.0)
+        t = (lo - hi) / (lo + hi)       # (t − 1)/(t + 1) for t = lo/hi, one division
+    else:
+        t = lo / hi
     z = t * t
     p = (((-8.750608600031904122785e-1 * z - 1.615753718733365076637e1) * z
           - 7.500855792314704667340e1) * z - 1.228866684490136173410e2) * z - 6.485021904942025371773e1
@@ -162,7 +162,7 @@ def run_tape(q, top, tf, sigma, ng, pose0):
                 cs[a, 0] = c
                 cs[a, 1] = s
                 # Hadamard's ratio of the link's 3×3 system (rows of the revolute and the drive)
-                quality[i, g] = 1.0 / (np.sqrt(1.0 + uy * uy) * np.sqrt(1.0 + ux * ux))
+                quality[i, g] = 1.0 / np.sqrt((1.0 + uy * uy) * (1.0 + ux * ux))
                 continue
             # the pivot of body a on the known body k1 (every dyad kind has one)
             Ax, Ay, Avx, Avy, Aax, Aay = _point(pose[i, k1, 0], pose[i, k1, 1], cs[k1, 0], cs[k1, 1], d1[i, k1, 0], d1[i, k1, 1],
