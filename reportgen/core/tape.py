@@ -1,7 +1,8 @@
 """Whole-cycle kinematics of linkages made of closed-form groups, compiled into a flat "tape".
 
 A mechanism whose groups are all the initial link (a revolute and the drive) and dyads ВВВ,
-ВВП, ВПВ with constant local geometry (no actuator) is compiled once into two arrays: an int
+ВВП, ВПВ with constant local geometry — except the actuator's rod end as the inner joint of a
+ВВВ group (its point p = p0 + q·p1 on the cylinder's body) — is compiled once into two arrays: an int
 row per group (operation, its bodies, the known bodies it hangs on) and a float row of
 constants (local points, link lengths, guide angles, offsets).  One kernel, :func:`run_tape`,
 loops over the positions and the groups doing only scalar arithmetic and writes positions,
@@ -15,8 +16,9 @@ out as a 2×2 system in two scalars solved by Cramer's rule (Артоболев�
 машин», §§ 3.5–3.8: the velocity and acceleration equations of a group projected on two axes):
 
 * ВВВ, inner joint B on bodies a, b hanging on A and C:
-  ``A′ + ω_a ⊥(B−A) = C′ + ω_b ⊥(B−C)`` and
-  ``A″ + ε_a ⊥(B−A) − ω_a²(B−A) = C″ + ε_b ⊥(B−C) − ω_b²(B−C)``;
+  ``A′ + ω_a ⊥(B−A) + v = C′ + ω_b ⊥(B−C)`` and
+  ``A″ + ε_a ⊥(B−A) − ω_a²(B−A) + 2ω_a ⊥v = C″ + ε_b ⊥(B−C) − ω_b²(B−C)``, v = A(θ_a)p1 the rod's
+  own rate (zero without an actuator);
 * ВВП (b slides along a guide fixed to the known body k, direction u):
   ``A′ + ω_a ⊥(B−A) = V_k(B) + τ u`` and
   ``A″ + ε_a ⊥(B−A) − ω_a²(B−A) = W_k(B) + 2ω_k τ ⊥u + τ′ u`` with V_k, W_k the velocity and
@@ -27,8 +29,8 @@ out as a 2×2 system in two scalars solved by Cramer's rule (Артоболев�
 Near a singular position (the group's measure below MEAS_MIN, or an assembly failure) the kernel
 stops and reports ``fail[0] = NEED_GENERAL``: the caller then solves the whole grid with the
 general kernel :func:`.kinematics.solve_cycle`, which judges singular positions, clamps stretched
-groups and reports failures exactly as before.  Newton groups (class III), ПВП/ВПП dyads and
-actuators always take the general kernel.
+groups and reports failures exactly as before.  Newton groups (class III), ПВП/ВПП dyads and any
+other point moving with q always take the general kernel.
 """
 from __future__ import annotations
 
@@ -46,7 +48,7 @@ OP_RPR = 4
 NEED_GENERAL = -1.0
 MEAS_MIN = 1e-6     # above the general kernel's FAST_MIN: near-singular positions are left to it
 NI = 6              # int columns: op, body a, body b, known body 1, known body 2, flag
-NF = 20             # float columns (constants of the group)
+NF = 24             # float columns (constants of the group)
 
 
 PIO2 = 1.5707963267948966
@@ -172,6 +174,20 @@ def run_tape(q, top, tf, sigma, ng, pose0):
                                                     d1[i, k2, 2], d2[i, k2, 0], d2[i, k2, 1], d2[i, k2, 2], tf[g, 4], tf[g, 5])
                 La = tf[g, 8]
                 Lb = tf[g, 9]
+                ba = tf[g, 10]
+                cba = tf[g, 11]
+                sba = tf[g, 12]
+                iLa = tf[g, 17]
+                moving = top[g, 5] == 1
+                if moving:
+                    # the inner joint's point on a moves with q (an actuator's rod): p = p0 + q p1
+                    lx = tf[g, 19] + qi * tf[g, 21] - tf[g, 2]
+                    ly = tf[g, 20] + qi * tf[g, 22] - tf[g, 3]
+                    La = np.sqrt(lx * lx + ly * ly)
+                    iLa = 1.0 / La
+                    ba = _atan2(ly, lx)
+                    cba = lx * iLa
+                    sba = ly * iLa
                 dx = Cx - Ax
                 dy = Cy - Ay
                 D2 = dx * dx + dy * dy
@@ -195,25 +211,31 @@ def run_tape(q, top, tf, sigma, ng, pose0):
                 rbx = Bx - Cx
                 rby = By - Cy
                 det = ray * rbx - rax * rby
-                sinmu = -det * tf[g, 16]
+                sinmu = -det * (iLa * tf[g, 18])
                 if abs(sinmu) < MEAS_MIN:
                     fail[0] = NEED_GENERAL
                     break
                 quality[i, g] = sinmu
-                # ω_a ⊥ρa − ω_b ⊥ρb = C′ − A′, then the same matrix for ε
-                wx = Cvx - Avx
-                wy = Cvy - Avy
+                # body a about A, body b about C: θ = atan2(ρ) − β, (cos θ, sin θ) from ρ/L
+                ca = (rax * cba + ray * sba) * iLa
+                sa = (ray * cba - rax * sba) * iLa
+                pose[i, a, 2] = _atan2(ray, rax) - ba
+                # ω_a ⊥ρa − ω_b ⊥ρb = C′ − A′ − v, then the same matrix for ε with
+                # −2ω_a ⊥v; v = A(θ_a) p1 is the rod's own rate (zero without an actuator)
+                vx = 0.0
+                vy = 0.0
+                if moving:
+                    vx = ca * tf[g, 21] - sa * tf[g, 22]
+                    vy = sa * tf[g, 21] + ca * tf[g, 22]
+                wx = Cvx - Avx - vx
+                wy = Cvy - Avy - vy
                 idet = 1.0 / det
                 wa = (-wx * rbx - rby * wy) * idet
                 wb = (-ray * wy - rax * wx) * idet
-                wx = Cax - Aax + wa * wa * rax - wb * wb * rbx
-                wy = Cay - Aay + wa * wa * ray - wb * wb * rby
+                wx = Cax - Aax + wa * wa * rax - wb * wb * rbx + 2.0 * wa * vy
+                wy = Cay - Aay + wa * wa * ray - wb * wb * rby - 2.0 * wa * vx
                 ea = (-wx * rbx - rby * wy) * idet
                 eb = (-ray * wy - rax * wx) * idet
-                # body a about A, body b about C: θ = atan2(ρ) − β, (cos θ, sin θ) from ρ/L
-                ca = (rax * tf[g, 11] + ray * tf[g, 12]) * tf[g, 17]
-                sa = (ray * tf[g, 11] - rax * tf[g, 12]) * tf[g, 17]
-                pose[i, a, 2] = _atan2(ray, rax) - tf[g, 10]
                 cb = (rbx * tf[g, 14] + rby * tf[g, 15]) * tf[g, 18]
                 sb = (rby * tf[g, 14] - rbx * tf[g, 15]) * tf[g, 18]
                 pose[i, b, 2] = _atan2(rby, rbx) - tf[g, 13]
@@ -373,11 +395,16 @@ def build_tape(jt, jb, jf, gkind, gspec, gjoint, gnj, gbody):
     tf = np.zeros((ng, NF))
     for g in range(ng):
         js = [int(j) for j in gjoint[g, :gnj[g]]]
+        kind, spec = int(gkind[g]), [int(x) for x in gspec[g]]
+        rod = None         # ВВВ with an actuator's rod: the inner joint's point on a moves with q
         for j in js:
             moving = jf[j, 4:8] if jt[j] == K.J_REV else jf[j, 6:10] if jt[j] == K.J_PRI else ()
             if np.any(np.asarray(moving) != 0.0):
-                return None
-        kind, spec = int(gkind[g]), [int(x) for x in gspec[g]]
+                a_side = 4 if jb[j, 0] == spec[0] else 6
+                if (kind != K.G_RRR or spec[5] != K.A_DYAD or j != spec[3]
+                        or np.any(jf[j, 10 - a_side:12 - a_side] != 0.0)):
+                    return None
+                rod = (jf[j, a_side], jf[j, a_side + 1])
         if kind == K.G_LIN and spec[5] == K.A_SINGLE:
             body = int(gbody[g, 0])
             jr, jd = (js[0], js[1]) if jt[js[0]] == K.J_REV else (js[1], js[0])
@@ -413,12 +440,14 @@ def build_tape(jt, jb, jf, gkind, gspec, gjoint, gnj, gbody):
             pbC, kc, pkC = _pivot_points(jb, jf, jC, b)
             Lb = math.hypot(pIb[0] - pbC[0], pIb[1] - pbC[1])
             bb = math.atan2(pIb[1] - pbC[1], pIb[0] - pbC[0])
-            if La == 0.0 or Lb == 0.0:
+            if (La == 0.0 and rod is None) or Lb == 0.0:
                 return None
-            top[g, :5] = (OP_RRR, a, b, ka, kc)
+            top[g, :6] = (OP_RRR, a, b, ka, kc, 0 if rod is None else 1)
             tf[g, :19] = (pkA[0], pkA[1], paA[0], paA[1], pkC[0], pkC[1], pbC[0], pbC[1], La, Lb,
                           ba, math.cos(ba), math.sin(ba), bb, math.cos(bb), math.sin(bb),
-                          1.0 / (La * Lb), 1.0 / La, 1.0 / Lb)
+                          0.0, 1.0 / La if La else 0.0, 1.0 / Lb)
+            if rod is not None:
+                tf[g, 19:23] = (pIa[0], pIa[1], rod[0], rod[1])
             continue
         # ВВП: b on the prismatic jC to a known body kp (b the slider on kp's guide, or b the guide)
         al, e = jf[jC, 4], jf[jC, 5]
