@@ -89,6 +89,13 @@ def _atan2(y, x):
 
 
 @njit(cache=True, error_model="numpy")
+def _inv_norm(x, y):
+    """1/|(x, y)|, or 0 for the zero vector."""
+    n2 = x * x + y * y
+    return 1.0 / np.sqrt(n2) if n2 > 0.0 else 0.0
+
+
+@njit(cache=True, error_model="numpy")
 def _point(x, y, c, s, vx, vy, w, ax, ay, e, px, py):
     """Global position and analogs of local point p of a body with pose (x, y, θ) (c, s =
     cos θ, sin θ) and analogs: P = r + u, P′ = r′ + θ′⊥u, P″ = r″ + θ″⊥u − θ′²u, u = A(θ)p."""
@@ -150,19 +157,10 @@ def run_tape(q, top, tf, sigma, ng, pose0):
                 s = np.sin(th)
                 Px, Py, Pvx, Pvy, Pax, Pay = _point(pose[i, k2, 0], pose[i, k2, 1], cs[k2, 0], cs[k2, 1], d1[i, k2, 0], d1[i, k2, 1],
                                                     d1[i, k2, 2], d2[i, k2, 0], d2[i, k2, 1], d2[i, k2, 2], tf[g, 3], tf[g, 4])
+                pose[i, a, 2] = th
+                _body_about(pose, d1, d2, i, cs, a, c, s, Px, Py, Pvx, Pvy, Pax, Pay, w, e, tf[g, 5], tf[g, 6])
                 ux = c * tf[g, 5] - s * tf[g, 6]
                 uy = s * tf[g, 5] + c * tf[g, 6]
-                pose[i, a, 0] = Px - ux
-                pose[i, a, 1] = Py - uy
-                pose[i, a, 2] = th
-                d1[i, a, 0] = Pvx + w * uy
-                d1[i, a, 1] = Pvy - w * ux
-                d1[i, a, 2] = w
-                d2[i, a, 0] = Pax + e * uy + w * w * ux
-                d2[i, a, 1] = Pay - e * ux + w * w * uy
-                d2[i, a, 2] = e
-                cs[a, 0] = c
-                cs[a, 1] = s
                 # Hadamard's ratio of the link's 3×3 system (rows of the revolute and the drive)
                 quality[i, g] = 1.0 / np.sqrt((1.0 + uy * uy) * (1.0 + ux * ux))
                 continue
@@ -190,13 +188,11 @@ def run_tape(q, top, tf, sigma, ng, pose0):
                     sba = ly * iLa
                 dx = Cx - Ax
                 dy = Cy - Ay
-                D2 = dx * dx + dy * dy
-                if D2 == 0.0:
+                iD = _inv_norm(dx, dy)
+                if iD == 0.0:
                     fail[0] = NEED_GENERAL
                     break
-                D = np.sqrt(D2)
-                iD = 1.0 / D
-                x = 0.5 * (La * La - Lb * Lb + D2) * iD
+                x = 0.5 * (La * La - Lb * Lb + dx * dx + dy * dy) * iD
                 h2 = La * La - x * x
                 if h2 <= 0.0:
                     fail[0] = NEED_GENERAL
@@ -275,10 +271,8 @@ def run_tape(q, top, tf, sigma, ng, pose0):
                     fail[0] = NEED_GENERAL
                     break
                 quality[i, g] = sinmu
-                pose[i, b, 0] = r0x + t * ux
-                pose[i, b, 1] = r0y + t * uy
-                Bx = pose[i, b, 0] + bx
-                By = pose[i, b, 1] + by
+                Bx = r0x + t * ux + bx
+                By = r0y + t * uy + by
                 rax = Bx - Ax
                 ray = By - Ay
                 # τ u − ω_a ⊥ρa = A′ − V_k(B), then τ′ u − ε_a ⊥ρa = A″ − ω_a²ρa − W_k(B) − 2ω_kτ⊥u
@@ -295,18 +289,8 @@ def run_tape(q, top, tf, sigma, ng, pose0):
                 wy = Aay - wa * wa * ray - (d2[i, k2, 1] + ek * dBx - wk * wk * dBy) - 2.0 * wk * tau * ux
                 ea = (ux * wy - uy * wx) * idet
                 # body b: B′ = A′ + ω_a ⊥ρa, B″ = A″ + ε_a ⊥ρa − ω_a²ρa; r_b = B − A(θ_b)p_B
-                Bvx = Avx - wa * ray
-                Bvy = Avy + wa * rax
-                Bax = Aax - ea * ray - wa * wa * rax
-                Bay = Aay + ea * rax - wa * wa * ray
-                d1[i, b, 0] = Bvx + wk * by
-                d1[i, b, 1] = Bvy - wk * bx
-                d1[i, b, 2] = wk
-                d2[i, b, 0] = Bax + ek * by + wk * wk * bx
-                d2[i, b, 1] = Bay - ek * bx + wk * wk * by
-                d2[i, b, 2] = ek
-                cs[b, 0] = cb
-                cs[b, 1] = sb
+                _body_about(pose, d1, d2, i, cs, b, cb, sb, Bx, By, Avx - wa * ray, Avy + wa * rax,
+                            Aax - ea * ray - wa * wa * rax, Aay + ea * rax - wa * wa * ray, wk, ek, tf[g, 4], tf[g, 5])
                 ca = (rax * tf[g, 16] + ray * tf[g, 17]) * tf[g, 18]
                 sa = (ray * tf[g, 16] - rax * tf[g, 17]) * tf[g, 18]
                 pose[i, a, 2] = _atan2(ray, rax) - tf[g, 15]
@@ -316,11 +300,10 @@ def run_tape(q, top, tf, sigma, ng, pose0):
                                                     d1[i, k2, 2], d2[i, k2, 0], d2[i, k2, 1], d2[i, k2, 2], tf[g, 4], tf[g, 5])
                 rax = Sx - Ax
                 ray = Sy - Ay
-                W2 = rax * rax + ray * ray
-                if W2 == 0.0:
+                iW = _inv_norm(rax, ray)
+                if iW == 0.0:
                     fail[0] = NEED_GENERAL
                     break
-                iW = 1.0 / np.sqrt(W2)
                 c = tf[g, 11] * iW
                 if c >= 1.0 or c <= -1.0:
                     fail[0] = NEED_GENERAL
