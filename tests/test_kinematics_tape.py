@@ -1,8 +1,9 @@
 """The kinematics tape (``core/tape.py``, issue #11) against the general kernel.
 
 * Every case whose groups are in closed form runs on the tape; its positions and both analogs
-  equal the general kernel's dense path (each group's Φ_x x′ = −Φ_q, Φ_x x″ = −γ assembled and
-  LU-solved: a second formulation) and its structured path, and the transmission quality equals.
+  equal the general kernel's (each group's Φ_x x′ = −Φ_q, Φ_x x″ = −γ assembled and LU-solved: a
+  second formulation), with every group forced off the tape and as the model stands, and the
+  transmission quality equals.
 * The ВВП dyad in its two other forms: the slider on a guide of a rotating link (the Coriolis
   term 2ω_k τ ⊥u) and the dyad's own link carrying the guide while the frame carries the slider
   point (the same mechanism as Whitworth's: bit for bit the same result).
