@@ -5,11 +5,11 @@ cases/ws000_six_bar.toml).  For each case:
 
 * the whole-grid kernel ``analysis.linkage.run_kernel`` on the cycle grid (positions, first and
   second analogs): median and minimum CPU time (``time.process_time``) of N warm calls;
-* the same kernel with every group on the dense path (the group's Φ_x assembled and LU-solved,
-  ``gspec[:, 5] = 0``) against the structured path (dyads by 2×2, the initial link by 3×3),
-  alternated in one process: minimum CPU time of N calls each;
+* the closed-form tape (``core/tape.py``: what ``run_kernel`` runs when every group is the initial
+  link or a ВВВ/ВВП/ВПВ dyad) against the general kernel ``core.kinematics.solve_cycle`` (every
+  group's Φ_x assembled and LU-solved), alternated in one process: minimum CPU time of N calls each;
 * the kernel solving only the first k groups, k = 0 … number of groups (the cost of the loop
-  itself and of each group in order);
+  itself — allocating and filling the outputs — and of each group in order);
 * the whole numerical analysis of a fresh Study (kinematics, the cycle, every task of the case —
   dynamics with the flywheel, forces — with all their export tables and scalars, and again with
   the scalars only): median and minimum CPU time of 7 fresh Studies after one warm-up, the time
@@ -64,25 +64,22 @@ def group_costs(case: str, repeat: int) -> list[float]:
 
 
 def analog_paths(case: str, repeat: int) -> tuple[float, float]:
-    """(structured, dense) minimum CPU time of the kernel, calls alternated in one process."""
+    """(tape, general kernel) minimum CPU time over the cycle grid, calls alternated in one
+    process (the tape time is ``inf`` when the case has a group the tape does not take)."""
     from reportgen.analysis import linkage as L
     from reportgen.analysis.study import Study
     s = Study(ROOT / case)
     model, q = s.model, s.grid.cycle
-    fast = model.gspec.copy()
-    dense = fast.copy()
-    dense[:, 5] = 0
+    ng = len(model.groups)
+    runs = (lambda: L.run_kernel(model, q),
+            lambda: L.solve_general(model, q, ng, model.gsigma, model.pose0))
     best = {0: [], 1: []}
-    try:
-        for _ in range(repeat):
-            for k, spec in ((0, fast), (1, dense)):
-                model.gspec = spec
-                t0 = time.process_time()
-                L.run_kernel(model, q)
-                best[k].append(time.process_time() - t0)
-    finally:
-        model.gspec = fast
-    return min(best[0]), min(best[1])
+    for _ in range(repeat):
+        for k, fn in enumerate(runs):
+            t0 = time.process_time()
+            fn()
+            best[k].append(time.process_time() - t0)
+    return (min(best[0]) if L.tape(model) is not None else float("inf")), min(best[1])
 
 
 def analysis_stages(case: str, tables: bool = True) -> tuple[dict[str, float], int, int]:
@@ -152,17 +149,18 @@ def main(argv=None) -> None:
     ap.add_argument("--repeat", type=int, default=200)
     args = ap.parse_args(argv)
     import os
-    print(f"load average before: {os.getloadavg()[0]:.2f}")
+    print(f"load average before: {os.getloadavg()[0]:.2f}; "
+          f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}")
     for case in args.cases:
         med, best, n = kernel_times(case, args.repeat)
         print(f"{case}: kernel over {n} positions (positions + both analogs), CPU: "
-              f"median {med * 1e3:.2f} ms, min {best * 1e3:.2f} ms ({med / n * 1e9:.0f} ns a position)")
+              f"median {med * 1e3:.3f} ms, min {best * 1e3:.3f} ms ({med / n * 1e9:.0f} ns a position)")
         fast, dense = analog_paths(case, args.repeat)
-        print(f"  analogs: structured path {fast * 1e3:.2f} ms, dense LU path {dense * 1e3:.2f} ms "
+        print(f"  paths: tape {fast * 1e3:.3f} ms, general kernel (dense LU) {dense * 1e3:.2f} ms "
               f"(minimum CPU time, {args.repeat} alternated calls each)")
         gc = group_costs(case, max(20, args.repeat // 4))
         print("  kernel with the first k groups (minimum CPU time): "
-              + ", ".join(f"k = {k}: {t * 1e3:.2f} ms" for k, t in enumerate(gc)))
+              + ", ".join(f"k = {k}: {t * 1e3:.3f} ms" for k, t in enumerate(gc)))
         whole_analysis(case, tables=True)
         whole_analysis(case, tables=False)
     print(f"load average after: {os.getloadavg()[0]:.2f}")

@@ -27,10 +27,12 @@ def warmup() -> None:
     """Run the kinematics and every registered analysis that has a ``warmup(study)`` hook."""
     import importlib
 
+    from .analysis import linkage as L
     from .analysis.study import Study
     from .registry import KINDS
     s = Study(CaseSpec(Path("warmup.toml"), _TINY))
     s.kinematics
+    L.compile_kernels(s.model, s.grid.cycle)
     s.cycle
     for kind in KINDS:
         module, cls = kind.analysis.split(":")

@@ -1,9 +1,11 @@
-"""The structured analog solvers of the kinematics kernel and the evaluator's reuse of the cycle
-grid against the general path (issue #11).
+"""The kinematics kernel's paths and the evaluator's reuse of the cycle grid against the general
+path (issue #11).
 
-* Every dyad's analogs by its 2×2 system and the initial link's by 3×3 (``gspec[:, 5]``) equal the
-  analogs of the group's dense system Φ_x x' = −Φ_q, Φ_x x'' = −γ solved by LU, at every position of
-  the cycle grid of each case (a second formulation of the same equations).
+* What ``run_kernel`` gives (the closed-form tape of ``core/tape.py``: dyads' analogs by their
+  velocity and acceleration equations as 2×2 systems, or the general kernel for Newton groups)
+  equals the analogs of every group's dense system Φ_x x' = −Φ_q, Φ_x x'' = −γ solved by LU in the
+  general kernel (``gspec[:, 5] = A_DENSE`` keeps a group off the tape), at every position of the
+  cycle grid of each case (a second formulation of the same equations).
 * ``ColumnEvaluator`` takes points of the solved cycle grid from the cycle: at a mix of grid and
   off-grid points its columns equal a direct solve of the same points.
 """

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core import kinematics as K
+from ..core import tape as T
 from ..errors import AssemblyError
 from ..mechanism.model import FRAME, Mechanism
 from ..mechanism.structure import Structure, solver_bodies
@@ -43,6 +44,7 @@ class SolverModel:
     pbody: np.ndarray | None = None
     ploc: np.ndarray | None = None
     body_group: dict[int, int] = field(default_factory=dict)
+    _tape: tuple = field(default=(None, None), repr=False)
     _body_index: dict[str, int] = field(default_factory=dict, repr=False)
 
     def body(self, link: str) -> int:
@@ -190,15 +192,46 @@ def _collect_points(model: SolverModel) -> None:
     model.ploc = np.array(pl, dtype=np.float64).reshape(-1, 4)
 
 
+def tape(model: SolverModel):
+    """The model's groups compiled for :func:`core.tape.run_tape` (cached; rebuilt when gkind or
+    gspec change), or None when some group needs the general kernel."""
+    key = (model.gkind.tobytes(), model.gspec.tobytes())
+    if model._tape[0] != key:
+        model._tape = (key, T.build_tape(model.jt, model.jb, model.jf, model.gkind, model.gspec,
+                                         model.gjoint, model.gnj, model.gbody))
+    return model._tape[1]
+
+
 def run_kernel(model: SolverModel, q: np.ndarray, ngroups: int | None = None, sigma=None, pose0=None):
-    """Call the whole-grid kernel (optionally only the first ``ngroups`` groups; Newton groups
-    start from ``pose0``, by default the sketch)."""
+    """Positions and both analogs over the grid q (optionally only the first ``ngroups`` groups;
+    Newton groups start from ``pose0``, by default the sketch): the tape kernel when every group
+    is in closed form and no position is near a singular one, otherwise the general kernel
+    :func:`core.kinematics.solve_cycle` on the whole grid.  Returns (pose, d1, d2, quality, fail)."""
     ng = len(model.groups) if ngroups is None else ngroups
     sig = model.gsigma if sigma is None else sigma
     p0 = model.pose0 if pose0 is None else np.ascontiguousarray(pose0, dtype=np.float64)
-    return K.solve_cycle(np.ascontiguousarray(q, dtype=np.float64), model.jt, model.jb, model.jf,
+    q = np.ascontiguousarray(q, dtype=np.float64)
+    tp = tape(model)
+    if tp is not None:
+        out = T.run_tape(q, tp[0], tp[1], np.ascontiguousarray(sig, dtype=np.float64), ng, p0)
+        if out[4][0] != T.NEED_GENERAL:
+            return out
+    return solve_general(model, q, ng, sig, p0)
+
+
+def solve_general(model: SolverModel, q: np.ndarray, ng: int, sig, p0):
+    """The general kernel (dense and Newton groups, singular positions judged)."""
+    return K.solve_cycle(q, model.jt, model.jb, model.jf,
                          model.gkind[:ng], model.gspec[:ng], sig[:ng], model.gjoint[:ng],
                          model.gnj[:ng], model.gbody[:ng], model.gnb[:ng], p0, model.size)
+
+
+def compile_kernels(model: SolverModel, q: np.ndarray) -> None:
+    """Compile (or load from numba's cache) both kernels on two positions: the tape and the
+    general kernel, which only singular positions, Newton groups, ПВП/ВПП and actuators need."""
+    q = np.ascontiguousarray(q[:2], dtype=np.float64)
+    run_kernel(model, q)
+    solve_general(model, q, len(model.groups), model.gsigma, model.pose0)
 
 
 def has_newton(model: SolverModel) -> bool:

@@ -18,7 +18,11 @@ circle–line, the rotating-guide equation of the ВПВ group, and a linear sol
 of the group is known: ПВП, ВПП and the initial link); any other group by Newton with the
 analytic Jacobian and a second-order predictor.  The first and second analogs (d/dq, d²/dq²)
 of every group come from the group's own linear system ``Φ_x x' = −Φ_q`` and
-``Φ_x x'' = −γ`` (exact, no differences).
+``Φ_x x'' = −γ`` (exact, no differences), one LU factorisation for both.
+
+This is the general kernel: mechanisms made only of the initial link and ВВВ, ВВП, ВПВ dyads
+run on the closed-form tape of :mod:`.tape`, which hands a grid over to this kernel when a
+position is near a singular one.
 
 The kernels take the whole grid of q at once (one call per cycle) and are compiled with
 ``cache=True``.
@@ -41,11 +45,12 @@ G_RRP = 2      # ВВП: circle–line
 G_RPR = 3      # ВПВ: rotating guide
 G_NEWTON = 4   # anything else (class III and higher)
 
-# analog solvers (gspec[g, 5]): the group's dense system, a dyad by a 2×2 system, one body by 3×3
+# group forms (gspec[g, 5]): a dyad or the initial link (a revolute and the drive) run on the
+# closed-form tape (core/tape.py); in this general kernel every group's analogs come from its
+# dense system, the initial link's position in closed form; A_DENSE keeps a group off the tape
 A_DENSE = 0
 A_DYAD = 1
-A_SINGLE = 2       # the initial link: a revolute and the drive (position in closed form too)
-FAST_MIN = 1e-8     # below this conditioning measure the dense path (LU) judges and solves
+A_SINGLE = 2
 
 # failure kinds reported by the kernel
 F_OK = 0
@@ -725,167 +730,6 @@ def _general_analogs(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, acc, mat, rhs, per
     return True
 
 
-@njit(cache=True, error_model="numpy", inline="always")
-def _body_affine(jt, jb, jf, j, body, q, pose, v, x, level, coef, expl, gam, cs):
-    """The two rows of the external joint j tie ``body`` to a known body: its analog
-    (x′ at level 1, x″ at level 2) is x_b = c + λ·s with s = C₀ × C₁ spanning the null space of
-    the body's 2×3 block C and c = Cᵀ(CCᵀ)⁻¹h the least-norm solution of C c = h
-    (h = −(known block · known analog + explicit/γ term)).  Returns (c, s) as six floats."""
-    _joint_rows(jt, jb, jf, j, q, pose, v, coef, expl, gam, level == 2, cs)
-    side = 0 if jb[j, 0] == body else 1
-    k = jb[j, 1 - side]
-    o = 3 * side
-    ko = 3 - o
-    t0 = gam[0] if level == 2 else expl[0]
-    t1 = gam[1] if level == 2 else expl[1]
-    h0 = -(t0 + coef[0, ko] * x[k, 0] + coef[0, ko + 1] * x[k, 1] + coef[0, ko + 2] * x[k, 2])
-    h1 = -(t1 + coef[1, ko] * x[k, 0] + coef[1, ko + 1] * x[k, 1] + coef[1, ko + 2] * x[k, 2])
-    a0 = coef[0, o]
-    a1 = coef[0, o + 1]
-    a2 = coef[0, o + 2]
-    b0 = coef[1, o]
-    b1 = coef[1, o + 1]
-    b2 = coef[1, o + 2]
-    g00 = a0 * a0 + a1 * a1 + a2 * a2
-    g01 = a0 * b0 + a1 * b1 + a2 * b2
-    g11 = b0 * b0 + b1 * b1 + b2 * b2
-    dg = g00 * g11 - g01 * g01
-    y0 = (h0 * g11 - g01 * h1) / dg
-    y1 = (g00 * h1 - g01 * h0) / dg
-    return (y0 * a0 + y1 * b0, y0 * a1 + y1 * b1, y0 * a2 + y1 * b2,
-            a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0)
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _dyad_level(jt, jb, jf, a, b, jA, jI, jB, q, pose, v, x, level, coef, expl, gam, cs):
-    """One level of :func:`_dyad_analogs` (x = v at level 1, the second analogs at level 2).
-    At level 1 returns the conditioning measure and leaves x untouched when it is below
-    FAST_MIN."""
-    ca0, ca1, ca2, sa0, sa1, sa2 = _body_affine(jt, jb, jf, jA, a, q, pose, v, x, level, coef, expl, gam, cs)
-    cb0, cb1, cb2, sb0, sb1, sb2 = _body_affine(jt, jb, jf, jB, b, q, pose, v, x, level, coef, expl, gam, cs)
-    _joint_rows(jt, jb, jf, jI, q, pose, v, coef, expl, gam, level == 2, cs)
-    oa = 0 if jb[jI, 0] == a else 3
-    ob = 3 - oa
-    t0 = gam[0] if level == 2 else expl[0]
-    t1 = gam[1] if level == 2 else expl[1]
-    m00 = coef[0, oa] * sa0 + coef[0, oa + 1] * sa1 + coef[0, oa + 2] * sa2
-    m10 = coef[1, oa] * sa0 + coef[1, oa + 1] * sa1 + coef[1, oa + 2] * sa2
-    m01 = coef[0, ob] * sb0 + coef[0, ob + 1] * sb1 + coef[0, ob + 2] * sb2
-    m11 = coef[1, ob] * sb0 + coef[1, ob + 1] * sb1 + coef[1, ob + 2] * sb2
-    r0 = -(t0 + coef[0, oa] * ca0 + coef[0, oa + 1] * ca1 + coef[0, oa + 2] * ca2
-           + coef[0, ob] * cb0 + coef[0, ob + 1] * cb1 + coef[0, ob + 2] * cb2)
-    r1 = -(t1 + coef[1, oa] * ca0 + coef[1, oa + 1] * ca1 + coef[1, oa + 2] * ca2
-           + coef[1, ob] * cb0 + coef[1, ob + 1] * cb1 + coef[1, ob + 2] * cb2)
-    det = m00 * m11 - m01 * m10
-    meas = 1.0
-    if level == 1:
-        na = np.hypot(m00, m10)
-        nb = np.hypot(m01, m11)
-        if na == 0.0 or nb == 0.0:
-            return 0.0
-        meas = abs(det) / (na * nb)
-        if meas < FAST_MIN:
-            return meas
-    la = (r0 * m11 - m01 * r1) / det
-    lb = (m00 * r1 - m10 * r0) / det
-    x[a, 0] = ca0 + la * sa0
-    x[a, 1] = ca1 + la * sa1
-    x[a, 2] = ca2 + la * sa2
-    x[b, 0] = cb0 + lb * sb0
-    x[b, 1] = cb1 + lb * sb1
-    x[b, 2] = cb2 + lb * sb2
-    return meas
-
-
-@njit(cache=True, error_model="numpy")
-def _dyad_analogs(jt, jb, jf, a, b, jA, jI, jB, q, pose, v, acc, coef, expl, gam, cs):
-    """First and second analogs of a dyad (any of ВВВ, ВВП, ВПВ, ПВП, ВПП) without its 6×6
-    system: each body's analog is affine in one scalar (:func:`_body_affine`: θ′ of a body on
-    a revolute, the sliding rate of a body on a guide), and the two rows of the inner joint give
-    a 2×2 system in those scalars, solved by Cramer's rule (Артоболевский, «Теория механизмов
-    и машин», §§ 3.5–3.8: the vector equation of the group's inner pair projected on two axes).
-    a, b: the bodies; jA, jB: their external joints; jI: the inner joint.
-
-    Returns the sine of the angle between the columns of the 2×2 matrix (1 for a well
-    conditioned group, 0 at a singular position); the caller falls back to the general dense
-    path when it is below FAST_MIN, so singular positions are judged as before."""
-    meas = 1.0
-    for level in range(1, 3):      # a run-time level: one compiled specialisation
-        x = v if level == 1 else acc
-        m = _dyad_level(jt, jb, jf, a, b, jA, jI, jB, q, pose, v, x, level, coef, expl, gam, cs)
-        if level == 1:
-            meas = m
-            if meas < FAST_MIN:
-                break
-    return meas
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _single_level(jt, jb, jf, gjoint, g, nj, body, q, pose, v, x, level, coef, expl, gam, cs, mat, rhs):
-    """One level of :func:`_single_analogs` (x = v at level 1, the second analogs at level 2)."""
-    row = 0
-    for kk in range(nj):
-        j = gjoint[g, kk]
-        nr = _joint_rows(jt, jb, jf, j, q, pose, v, coef, expl, gam, level == 2, cs)
-        side = 0 if jb[j, 0] == body else 1
-        k = jb[j, 1 - side]
-        o = 3 * side
-        ko = 3 - o
-        for r in range(nr):
-            if row >= 3:
-                return 0.0
-            t = gam[r] if level == 2 else expl[r]
-            mat[row, 0] = coef[r, o]
-            mat[row, 1] = coef[r, o + 1]
-            mat[row, 2] = coef[r, o + 2]
-            rhs[row] = -(t + coef[r, ko] * x[k, 0] + coef[r, ko + 1] * x[k, 1] + coef[r, ko + 2] * x[k, 2])
-            row += 1
-    if row != 3:
-        return 0.0
-    c00 = mat[1, 1] * mat[2, 2] - mat[1, 2] * mat[2, 1]
-    c01 = mat[1, 2] * mat[2, 0] - mat[1, 0] * mat[2, 2]
-    c02 = mat[1, 0] * mat[2, 1] - mat[1, 1] * mat[2, 0]
-    det = mat[0, 0] * c00 + mat[0, 1] * c01 + mat[0, 2] * c02
-    meas = 1.0
-    if level == 1:
-        h = 1.0
-        for r in range(3):
-            h *= np.sqrt(mat[r, 0] * mat[r, 0] + mat[r, 1] * mat[r, 1] + mat[r, 2] * mat[r, 2])
-        if h == 0.0:
-            return 0.0
-        meas = abs(det) / h
-        if meas < FAST_MIN:
-            return meas
-    b0 = rhs[0]
-    b1 = rhs[1]
-    b2 = rhs[2]
-    # Cramer's rule: x_c = det(M with column c replaced by b) / det
-    x[body, 0] = (b0 * c00 + mat[0, 1] * (mat[1, 2] * b2 - b1 * mat[2, 2])
-                  + mat[0, 2] * (b1 * mat[2, 1] - mat[1, 1] * b2)) / det
-    x[body, 1] = (mat[0, 0] * (b1 * mat[2, 2] - mat[1, 2] * b2) + b0 * c01
-                  + mat[0, 2] * (mat[1, 0] * b2 - b1 * mat[2, 0])) / det
-    x[body, 2] = (mat[0, 0] * (mat[1, 1] * b2 - b1 * mat[2, 1])
-                  + mat[0, 1] * (b1 * mat[2, 0] - mat[1, 0] * b2) + b0 * c02) / det
-    return meas
-
-
-@njit(cache=True, error_model="numpy")
-def _single_analogs(jt, jb, jf, gjoint, g, nj, body, q, pose, v, acc, coef, expl, gam, cs, mat, rhs):
-    """First and second analogs of a one-body group with three equations (the initial link: a
-    revolute or prismatic pair to a known body and the drive) by Cramer's rule on its 3×3
-    system.  Returns |det| divided by the product of the row norms (Hadamard's ratio, 0 at a
-    singular matrix); the caller falls back to the dense path when it is below FAST_MIN."""
-    meas = 1.0
-    for level in range(1, 3):      # a run-time level: one compiled specialisation
-        x = v if level == 1 else acc
-        m = _single_level(jt, jb, jf, gjoint, g, nj, body, q, pose, v, x, level, coef, expl, gam, cs, mat, rhs)
-        if level == 1:
-            meas = m
-            if meas < FAST_MIN:
-                break
-    return meas
-
-
 @njit(cache=True, error_model="numpy")
 def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj, gbody, gnb,
                     size, cur, v, acc, pp, pv, pa, ip, qarr, iq, fail, mat, rhs, perm, known,
@@ -976,16 +820,7 @@ def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj
             b = gbody[g, k]
             cs[b, 0] = np.cos(cur[b, 2])
             cs[b, 1] = np.sin(cur[b, 2])
-        fast = gspec[g, 5]
-        meas = -1.0
-        if fast == A_DYAD:
-            meas = _dyad_analogs(jt, jb, jf, s0, s1, s2, s3, s4, qi, cur, v, acc, coef, expl, gam, cs)
-        elif fast == A_SINGLE:
-            meas = _single_analogs(jt, jb, jf, gjoint, g, nj, gbody[g, 0], qi, cur, v, acc, coef, expl, gam, cs, mat, rhs)
-        if meas >= FAST_MIN:
-            if kind == G_NEWTON or kind == G_LIN:
-                qual = meas
-        elif not _general_analogs(jt, jb, jf, gjoint[g], nj, gbody[g], nbg, qi, cur, v, acc, mat, rhs, perm, col_of,
+        if not _general_analogs(jt, jb, jf, gjoint[g], nj, gbody[g], nbg, qi, cur, v, acc, mat, rhs, perm, col_of,
                                   coef, expl, gam, res, cs, kind, qual, g, qarr, iq, fail):
             return False
         elif kind == G_NEWTON or kind == G_LIN:

@@ -1,0 +1,38 @@
+"""Keep freed heap memory in the process (glibc only).
+
+glibc's malloc serves a block larger than its mmap threshold (128 KiB at start, raised
+dynamically up to 32 MiB) by a fresh ``mmap`` and returns freed memory at the top of the heap
+to the system above its trim threshold, so the arrays of a whole-grid kernel (a few hundred KiB
+to a few MiB each: positions, analogs, points over 3 600 positions) are new pages at nearly
+every call and every page is zeroed by the kernel on its first touch.  On this project's
+machine that costs more than the arithmetic (ws000: ``linkage.solve`` over the cycle grid
+2,4 ms with fresh pages against 1,0 ms with the pages kept; ``bench/bench_analysis.py``).
+``mallopt(M_MMAP_THRESHOLD, 64 MiB)`` and ``mallopt(M_TRIM_THRESHOLD, 128 MiB)`` (glibc
+``mallopt(3)``; the same as the environment variables ``MALLOC_MMAP_THRESHOLD_`` and
+``MALLOC_TRIM_THRESHOLD_``) make such blocks come from the heap and stay there when freed;
+the process keeps at most 128 MiB of free heap.  Nothing happens outside glibc or when the
+user has set either variable.
+"""
+from __future__ import annotations
+
+import ctypes
+import os
+import sys
+
+M_TRIM_THRESHOLD = -1
+M_MMAP_THRESHOLD = -3
+MMAP_THRESHOLD = 64 << 20
+TRIM_THRESHOLD = 128 << 20
+
+
+def keep_freed_memory() -> bool:
+    """Set the two glibc thresholds; returns whether they were set."""
+    if not sys.platform.startswith("linux") or "MALLOC_MMAP_THRESHOLD_" in os.environ \
+            or "MALLOC_TRIM_THRESHOLD_" in os.environ:
+        return False
+    try:
+        mallopt = ctypes.CDLL(None).mallopt       # the process's own C library
+    except (OSError, AttributeError):
+        return False
+    mallopt.argtypes = (ctypes.c_int, ctypes.c_int)
+    return bool(mallopt(M_MMAP_THRESHOLD, MMAP_THRESHOLD)) and bool(mallopt(M_TRIM_THRESHOLD, TRIM_THRESHOLD))
