@@ -9,11 +9,14 @@ from __future__ import annotations
 import importlib
 import math
 import re
+from collections.abc import Mapping
 from typing import Iterable
 
 import pandas as pd
 from markupsafe import Markup, escape
 
+from ..case import units as U
+from ..errors import CaseError
 from ..registry import KINDS
 from ..style.numbers import fmt
 from .document import Column, Paragraph, Report, Table
@@ -210,7 +213,10 @@ def _given_parameters(study) -> list:
             continue
         v, unit = value_with_unit(q)
         title, symbol = texts.get(name, (None, None))
-        text = raw[name] if isinstance(raw[name], str) else ""
+        given = raw[name]["value"] if isinstance(raw[name], Mapping) else raw[name]
+        text = given if isinstance(given, str) else ""
+        if text and not _literal(text):     # computed from other parameters: 4 significant digits
+            v = float(f"{v:.4g}")
         rows.append({"title": title or param_title(name), "name": symbol or param_symbol(name), "value": v,
                      "unit": unit, "given": text[:60] if _imperial(text) else ""})
     if rows:
@@ -220,6 +226,16 @@ def _given_parameters(study) -> list:
             cols.append(Column("given", "Задано", fmt=lambda s: Markup(escape(s.replace("*", "·")))))
         out.append(Table("Исходные данные", cols, pd.DataFrame(rows), id="tab-given"))
     return out
+
+
+def _literal(text: str) -> bool:
+    """The parameter is given as a number with a unit (``"0.38 m"``), not computed by an
+    expression over other parameters (``"h*l_1/sqrt(l_0^2 - l_1^2)"``)."""
+    try:
+        U.parse_quantity(text)
+    except (CaseError, ValueError):
+        return False
+    return True
 
 
 def _cell_html(x) -> Markup:

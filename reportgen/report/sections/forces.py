@@ -264,9 +264,10 @@ def _incidence(s: Section, study, f) -> None:
         legend.append("(П) — поступательная пара (нормальная сила и реактивный момент)")
     if KS.K_ACT in kinds:
         legend.append("(Ц) — пара цилиндр–шток (усилие гидроцилиндра, нормальная сила и момент)")
-    s.paragraph(f"Связи звеньев и кинематических пар (таблица {ref('tab-frc-incidence')}): «1» — реакция пары "
-                f"{sub('R', 'ij')} приложена к звену j, «−1» — равная ей и противоположная {sub('R', 'ji')} — "
-                "к звену i" + "".join("; " + x for x in legend) + ".")
+    s.paragraph(f"Связи звеньев и кинематических пар показаны в таблице {ref('tab-frc-incidence')}: единица "
+                f"означает, что реакция пары {sub('R', 'ij')} приложена к звену j, минус единица — что к звену i "
+                f"приложена равная ей и противоположная реакция {sub('R', 'ji')}"
+                + "".join("; " + x for x in legend) + ".")
     per = 12
     chunked_tables(s, "Матрица инциденций звеньев и кинематических пар", pd.DataFrame(rows),
                    columns[1:], columns[:1], "tab-frc-incidence", per=per)

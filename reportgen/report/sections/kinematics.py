@@ -45,6 +45,11 @@ def _links(study):
             and float(np.abs(cyc["wq_" + l.name]).max()) > 1e-12]
 
 
+def _rotates(study, link: str) -> bool:
+    """The link turns somewhere in the cycle (a guide on it gives a Coriolis acceleration)."""
+    return float(np.abs(study.cycle["wq_" + link]).max()) > 1e-12
+
+
 def build(study) -> Section:
     mech = study.mechanism
     k = study.kinematics.copy()
@@ -125,18 +130,23 @@ def build(study) -> Section:
         f"{v_m}, {a_m}.")
     wcols = [Column(f"wq_{l.name}", sub("φ′", l.name), None, digits=4) for l in _links(study)
              if not (rotary and l.name == mech.driver.link)]
-    chunked_tables(s2, "Аналоги угловых скоростей звеньев", k, wcols, lead, "tab-wq")
     ecols = [Column(f"eq_{l.name}", sub("φ″", l.name), None, digits=4) for l in _links(study)
              if not (rotary and l.name == mech.driver.link)]
-    chunked_tables(s2, "Аналоги угловых ускорений звеньев", k, ecols, lead, "tab-eq")
+    if wcols:        # no table of angular analogues where every other link only translates
+        chunked_tables(s2, "Аналоги угловых скоростей звеньев", k, wcols, lead, "tab-wq")
+        chunked_tables(s2, "Аналоги угловых ускорений звеньев", k, ecols, lead, "tab-eq")
+    else:
+        s2.paragraph("Все звенья механизма, кроме ведущего, движутся поступательно: их угловые скорости "
+                     "и ускорения равны нулю.")
     vcols = []
     for p in pts:
         vcols += [Column(f"vqx_{p}", f"<i>x′</i><sub>{p}</sub>", None, digits=4),
                   Column(f"vqy_{p}", f"<i>y′</i><sub>{p}</sub>", None, digits=4)]
     chunked_tables(s2, "Аналоги скоростей точек", k, vcols, lead, "tab-vq")
-    curves = AnalogCurves().draw(study)
-    s2.figure("Аналоги угловых скоростей звеньев " + ("в диапазоне качания входного звена" if mech.driver.swing
-                                                       else "за цикл"), curves.svg, curves.width_mm, id="fig-analogs")
+    if wcols:
+        curves = AnalogCurves().draw(study)
+        s2.figure("Аналоги угловых скоростей звеньев " + ("в диапазоне качания входного звена" if mech.driver.swing
+                                                           else "за цикл"), curves.svg, curves.width_mm, id="fig-analogs")
 
     # ----- true velocities
     if w_known:
@@ -222,7 +232,9 @@ def build(study) -> Section:
 
 
 def _deg(x) -> str:
-    return fmt(math.degrees(float(x)), digits=2)
+    """A link's angle in degrees reduced to [0°, 360°), as it is measured on the drawing."""
+    v = math.degrees(float(x)) % 360.0
+    return fmt(0.0 if round(v, 2) >= 360.0 else v, digits=2)
 
 
 def swing_strokes_text(study) -> str:
@@ -318,9 +330,13 @@ def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
     kinds = ["для точки, общей двум звеньям, — относительное вращательное движение вокруг соседних шарниров"]
     if any(j.links[0] == FRAME for j in mech.prismatic):
         kinds.append("для ползуна на неподвижной направляющей — скорость и ускорение вдоль направляющей")
-    if any(j.links[0] != FRAME for j in mech.prismatic):
-        kinds.append("для камня на подвижной направляющей — переносное и относительное движение с "
+    moving = [j for j in mech.prismatic if j.links[0] != FRAME]
+    if any(_rotates(study, j.links[0]) for j in moving):
+        kinds.append("для камня на вращающейся направляющей — переносное и относительное движение с "
                      "кориолисовым ускорением")
+    if any(not _rotates(study, j.links[0]) for j in moving):
+        kinds.append("для ползуна на поступательно движущейся направляющей — переносное и относительное "
+                     "движение без кориолисова ускорения")
     sec.paragraph("Скорости и ускорения определены построением планов по векторным уравнениям групп Ассура ("
                   + "; ".join(kinds) + "). Угловые скорости и ускорения звеньев:")
     if fs:
@@ -334,9 +350,9 @@ def conclusion_lines(study) -> list[str]:
     cyc = study.cycle
     s = cyc[s_col]
     if s_col.startswith("phi_"):
-        out.append(f"Размах качания выходного звена ({title}) — {fmt(math.degrees(s.max() - s.min()), digits=2)}°.")
+        out.append(f"Выходное звено — {title}; размах его качания {fmt(math.degrees(s.max() - s.min()), digits=2)}°.")
     else:
-        out.append(f"Ход выходного звена ({title}) H&nbsp;=&nbsp;{fmt(s.max() - s.min(), digits=4)}&nbsp;м.")
+        out.append(f"Выходное звено — {title}; его ход H&nbsp;=&nbsp;{fmt(s.max() - s.min(), digits=4)}&nbsp;м.")
     if study.mechanism.driver.omega is not None and s_col.startswith("s_"):
         n = s_col[2:]
         out.append(f"Наибольшая скорость выходного звена {fmt(cyc['vs_' + n].abs().max(), digits=3)}&nbsp;м/с, "
