@@ -149,7 +149,10 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
             for p in others:
                 ax.plot([x, _point(row, p)[0]], [y, _point(row, p)[1]], color=color, lw=lw, alpha=alpha, zorder=zorder)
         elif len(pts) >= 3 and not _collinear(pts):
-            poly = Polygon(np.array(_hull(pts)), closed=True, facecolor=LIGHT, edgecolor=color, lw=lw,
+            # a plate is tinted at the drawn position only: tinted copies in the other positions of a
+            # plan would pile up into a grey blot hiding the trajectories
+            poly = Polygon(np.array(_hull(pts)), closed=True, facecolor=LIGHT if color == INK else "none",
+                           edgecolor=color, lw=lw,
                            alpha=alpha, zorder=zorder - 0.5)
             ax.add_patch(poly)
         elif len(pts) >= 2:

@@ -86,7 +86,7 @@ class PositionsPlan:
         regular = k[~k["pos"].str.startswith("д")] if k["pos"].dtype == object else k
         rows = [r for _, r in regular.iterrows()]
         cyc = study.cycle
-        coms = [l.com for l in mech.moving if l.com]
+        coms = traced_points(study)
         xs, ys = mechanism_points(mech, rows)
         for p in coms:
             xs += list(cyc[f"x_{p}"])
@@ -148,6 +148,21 @@ class PositionsPlan:
         return Drawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape)
 
 
+def traced_points(study) -> list[str]:
+    """The points whose trajectories the plan of positions shows: the centres of mass and the
+    output point when the output is a coordinate of a point of a link (a coupler point)."""
+    from ..analysis.plans import output_quantity
+    mech = study.mechanism
+    out = [l.com for l in mech.moving if l.com]
+    s_col = output_quantity(study)[0]
+    head, _, p = s_col.partition("_")
+    turning = [l for l in mech.moving if p in l.points
+               and float(np.abs(study.cycle["wq_" + l.name]).max()) > 1e-12]
+    if head in ("x", "y") and p not in out and turning and p not in mech.link(FRAME).points:
+        out.append(p)
+    return out
+
+
 def _marked(p: str, mark: str) -> str:
     """B with a prime or double prime in mathtext: $B′$, $S″_{2}$."""
     head = p.rstrip("0123456789")
@@ -161,7 +176,9 @@ def _output_point(study, s_col: str) -> str:
     """The point that shows the output link's extreme positions: the slider's point, or the
     rocker's point farthest from its pivot."""
     mech = study.mechanism
-    name = s_col.partition("_")[2]
+    head, _, name = s_col.partition("_")
+    if head in ("x", "y") and any(name in l.points for l in mech.moving):
+        return name                     # the output is a coordinate of this point
     for j in mech.prismatic:
         if j.name == name:
             return j.point

@@ -12,7 +12,7 @@ from markupsafe import Markup
 from ...analysis.plans import output_quantity
 from ...mechanism.model import FRAME
 from ...scenes.diagrams import AnalogCurves, OutputDiagrams
-from ...scenes.mechanism import PositionsPlan
+from ...scenes.mechanism import PositionsPlan, traced_points
 from ...scenes.plans import MIN_MM, READ_MM, PlanScene
 from ...scenes.draw import gost_ratio, mu_text
 from ...style.numbers import fmt, fmt_pct, tex_num
@@ -63,6 +63,8 @@ def build(study) -> Section:
     # ----- plan of positions
     s1 = sec.subsection("План положений механизма", "sec-positions")
     plan = PositionsPlan().draw(study)
+    extra = [p for p in traced_points(study) if p not in {l.com for l in mech.moving}]
+    traced = "".join(f" и точки {p}" for p in extra)       # a coupler point given as the output
     ncount = int((~k["pos"].astype(str).str.startswith("д")).sum()) if k["pos"].dtype == object else len(k)
     mu_l = inline_math(r"\mu_l")
     phi0_m = inline_math(r"\varphi_0")
@@ -74,19 +76,19 @@ def build(study) -> Section:
                      f"диапазоне его качания {swing_text(mech.driver)}, от одного крайнего положения до другого; "
                      f"на обратном ходе звенья проходят те же положения в обратном порядке. "
                      f"Масштаб {mu_l}&nbsp;=&nbsp;{mu_text(plan.mu)}&nbsp;м/мм ({gost_ratio(plan.mu)}). Штриховыми линиями показаны "
-                     f"траектории центров масс звеньев (рисунок {ref('fig-positions')}).")
+                     f"траектории центров масс звеньев{traced} (рисунок {ref('fig-positions')}).")
     elif rotary:
         s1.paragraph(f"План положений построен для {ncount} положений кривошипа, начиная с положения "
                      f"{phi0_m}&nbsp;=&nbsp;{fmt(math.degrees(mech.driver.phi0), digits=1)}°, "
                      f"при вращении {'по часовой стрелке' if mech.driver.direction < 0 else 'против часовой стрелки'}. "
                      f"Масштаб {mu_l}&nbsp;=&nbsp;{mu_text(plan.mu)}&nbsp;м/мм ({gost_ratio(plan.mu)}). Штриховыми линиями показаны "
-                     f"траектории центров масс звеньев (рисунок {ref('fig-positions')}).")
+                     f"траектории центров масс звеньев{traced} (рисунок {ref('fig-positions')}).")
     else:
         lo, hi = mech.driver.q_range
         s1.paragraph(f"План положений построен для {ncount} значений длины гидроцилиндра от "
                      f"{fmt(lo, digits=3)} до {fmt(hi, digits=3)}&nbsp;м; масштаб {mu_l}&nbsp;=&nbsp;"
                      f"{mu_text(plan.mu)}&nbsp;м/мм (рисунок {ref('fig-positions')}).")
-    fig = s1.figure("План положений механизма и траектории центров масс", plan.svg, plan.width_mm,
+    fig = s1.figure("План положений механизма и траектории центров масс" + traced, plan.svg, plan.width_mm,
                     id="fig-positions", landscape=plan.landscape)
     if plan.landscape:      # its own page follows the first table of coordinates (not a near-empty page)
         s1.children.remove(fig)
@@ -359,17 +361,17 @@ def conclusion_lines(study) -> list[str]:
                    f"наибольшее ускорение {fmt(cyc['as_' + n].abs().max(), sig=4)}&nbsp;м/с².")
     for c, v in study.flags.items():
         mu = math.degrees(v["min"])
-        note = ""
+        note = " — не меньше допускаемого 40°, механизм работоспособен без заклинивания"
         if mu < 40:
             note = (" — меньше допускаемого 40°: в этих положениях растут реакции в парах группы и опасно "
                     "заклинивание. Угол передачи можно увеличить, удлинив шатун группы или сместив опору "
                     "выходного звена так, чтобы в крайних положениях шатун был ближе к перпендикуляру к "
                     "выходному звену (повторить синтез с ограничением μ ≥ 40°)")
-        out.append(f"Наименьший угол передачи в группе ({c[3:].replace('_', ', ')}) — {fmt(mu, digits=1)}°{note}.")
+        out.append(f"Наименьший угол передачи в группе ({c[3:].replace('_', ',')}) — {fmt(mu, digits=1)}°{note}.")
     for g, fl in study.guide_flags.items():
         if fl["singular"]:
             pivot, pin = fl["points"]
-            out.append(f"Группа ({g.replace('_', ', ')}) проходит особое положение: шарнир {pin} проходит через "
+            out.append(f"Группа ({g.replace('_', ',')}) проходит особое положение: шарнир {pin} проходит через "
                        f"ось кулисы {pivot}, аналог угловой скорости кулисы неограниченно растёт; в этом "
                        "положении механизм неработоспособен — нужно изменить размеры (например, длину "
                        "кривошипа или расстояние между опорами).")
