@@ -110,13 +110,13 @@ class PositionsPlan:
             cv.ax.add_patch(Circle((cx, cy), r, fill=False, lw=0.6, color=INK, zorder=1))
         for i, row in enumerate(rows[1:], start=1):
             draw_mechanism(cv, mech, row, color=GREY, lw=0.7, labels=False, numbers=False, alpha=0.9,
-                           zorder=1, com=False, supports=False)
+                           zorder=1, com=False, supports=False, tint=False)
         s_col = output_quantity(study)[0]
         s = cyc[s_col].to_numpy()
         ext = [cyc.iloc[int(np.argmin(s))], cyc.iloc[int(np.argmax(s))]]
         for row in ext:
             draw_mechanism(cv, mech, row, color=INK, lw=1.2, labels=False, numbers=False, zorder=3, com=False,
-                           supports=False)
+                           supports=False, tint=False)
         draw_mechanism(cv, mech, rows[0], color=INK, lw=1.5, zorder=4, guides=False)
         spans = {}
         for j in mech.prismatic:

@@ -787,7 +787,9 @@ def conclusion_lines(study) -> list[str]:
                    f"постоянный приведённый момент сопротивления M<sub>с</sub>&nbsp;=&nbsp;{fmt(sc['M_c'], sig=5)}&nbsp;Н·м.")
     out.append(f"Для δ&nbsp;=&nbsp;{as_written(st.delta)} при ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(st.omega_m, digits=3)}&nbsp;рад/с "
                f"требуется J<sub>I</sub>&nbsp;=&nbsp;{fmt(r.J_I, sig=5)}&nbsp;кг·м² ({METHOD_RU[st.method]}); "
-               f"точное значение {fmt(r.J_I_exact, sig=6)}&nbsp;кг·м², метод Мерцалова даёт отклонение "
+               + ("" if st.method == "exact" else
+                  f"точное значение {fmt(r.J_I_exact, sig=6)}&nbsp;кг·м², ")
+               + "относительно точного решения метод Мерцалова даёт отклонение "
                f"{fmt(r.dev_mertsalov_pct, digits=3, sign=True)}&nbsp;%, метод Виттенбауэра "
                f"{fmt(r.dev_wittenbauer_pct, digits=3, sign=True)}&nbsp;%.")
     out += _delta_judgement(st)

@@ -84,14 +84,6 @@ def _in(x) -> str:
     return tex_num(x, digits=_decimals(x), sig=None, paren=True)
 
 
-def _short(x) -> str:
-    """Five significant digits without trailing zeros (9000, −35, 110,37)."""
-    if x is None or math.isnan(float(x)):
-        return fmt(math.nan)
-    v = float(f"{float(x):.5g}")
-    return fmt(v, digits=_decimals(v), sig=None)
-
-
 def _decimals(x) -> int:
     t = f"{float(x):.10g}"
     return len(t.split(".")[1]) if "." in t and "e" not in t else 0
@@ -215,10 +207,10 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
                          "e": row["eps_" + name], "MPhi": row["MPhi_" + name] if J else math.nan,
                          "G": l.weight or math.nan})
         s.table(f"Массы, ускорения, силы и моменты сил инерции звеньев (положение {pos_no(study, lab)})", [
-            Column("n", "Звено"), Column("m", "<i>m</i>", "кг", fmt=_fin), Column("a", sub("a", "S"), "м/с²", sig=4),
-            Column("Phi", "Φ", "Н", sig=4), Column("J", sub("J", "S"), "кг·м²", fmt=_fin),
+            Column("n", "Звено"), Column("m", "<i>m</i>", "кг", sig=4), Column("a", sub("a", "S"), "м/с²", sig=4),
+            Column("Phi", "Φ", "Н", sig=4), Column("J", sub("J", "S"), "кг·м²", sig=4),
             Column("e", "ε", "рад/с²", sig=4), Column("MPhi", sub("M", "Φ"), "Н·м", sig=4),
-            Column("G", "<i>G</i>", "Н", fmt=_fin)], pd.DataFrame(rows), id="tab-frc-inertia")
+            Column("G", "<i>G</i>", "Н", digits=2)], pd.DataFrame(rows), id="tab-frc-inertia")
     lrows = []
     for ld in det["loads"]:
         if ld["kind"] in ("Phi", "MPhi", "Mfly"):
@@ -234,8 +226,8 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
                     "(силы тяжести приложены в центрах масс и направлены вниз).")
         s.table(f"Заданные силы и моменты (положение {pos_no(study, lab)})", [
             Column("name", "Нагрузка"), Column("link", "Звено"), Column("point", "Точка"),
-            Column("Fx", sub("F", "x"), "Н", fmt=_short), Column("Fy", sub("F", "y"), "Н", fmt=_short),
-            Column("F", "<i>F</i>", "Н", fmt=_short), Column("M", "<i>M</i>", "Н·м", fmt=_short)],
+            Column("Fx", sub("F", "x"), "Н", digits=2), Column("Fy", sub("F", "y"), "Н", digits=2),
+            Column("F", "<i>F</i>", "Н", digits=2), Column("M", "<i>M</i>", "Н·м", digits=2)],
             pd.DataFrame(lrows), id="tab-frc-applied")
     if not inertial and not lrows:
         s.paragraph("Звенья не нагружены: все реакции равны нулю.")
