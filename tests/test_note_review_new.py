@@ -158,6 +158,7 @@ def test_column_printed_to_one_number_of_decimals():
     assert column_decimals(col, [25.58, 1947.7]) == 0
     assert column_decimals(Column("a", "a", digits=3), [1.0]) is None
     assert column_decimals(col, [1, 2, 3]) is None
+    assert column_decimals(col, [5.9e-13, -1.1e-14]) == 3          # noise of an exact zero: 0,000
 
 
 # ------------------------------------------------------------------ plan of positions
@@ -187,3 +188,22 @@ def test_transmission_angle_judged(conveyor):
     assert "не меньше допускаемого 40°" in lines
     assert "Выходное звено — захват M; его ход" in lines
     assert "(2, 3)" not in lines
+
+
+# ------------------------------------------------------------------ force polygons (§4.2)
+def test_construction_text_without_tangential_components():
+    """The polygon of the group ПВП (two prismatic outer pairs) was described with «касательные
+    составляющие R^τ … нормальная составляющая R^n — вдоль звена», which it has not."""
+    from types import SimpleNamespace
+    from reportgen.report.sections.forces import _construction_text
+    from reportgen.scenes.forces import Constructed, Vector
+    found = [Constructed("R34", 6400.0, 6418.8), Constructed("R05", 1300.0, 1314.6)]
+    plain = SimpleNamespace(vectors=[Vector("R34", np.zeros(2), (0, 0), "unknown")], constructed=found)
+    text = _construction_text(plain, "fig", set())
+    assert "R</i><sup>τ" not in text and "R</i><sup>n" not in text and "перпендикулярно направляющей" in text
+    tau = SimpleNamespace(vectors=[Vector("R12", np.zeros(2), (0, 0), "known", tex="$R^{\\tau}_{12}$")],
+                          constructed=found)
+    assert "<i>R</i><sup>τ</sup>" in _construction_text(tau, "fig", set())
+    # a group constructed the other way is described in full, not «так же»
+    assert "так же" not in _construction_text(tau, "fig", {(2, False)})
+    assert "так же" in _construction_text(tau, "fig", {(2, True)})

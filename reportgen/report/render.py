@@ -239,6 +239,8 @@ def column_decimals(col: Column, values) -> int | None:
     if not nums or all(isinstance(v, _numbers.Integral) for v in values if _is_number(v)):
         return None
     big = max(nums)
+    if 0 < big < 1e-9:          # rounding noise of an exact zero (a reaction 5,9·10⁻¹³ Н)
+        return col.sig - 1
     if big == 0 or not math.isfinite(big) or big >= 1e6 or big < 1e-4:
         return None
     return max(0, col.sig - 1 - math.floor(math.log10(big)))

@@ -276,7 +276,7 @@ def _groups(sec: Section, study, f, lab: str) -> None:
                 "определяющий точку её приложения). Реакции со стороны групп, рассчитанных ранее, известны. "
                 "Система линейных уравнений группы решается точно; векторные уравнения сил проверяются "
                 "построением планов сил в масштабе μ<sub>F</sub> (замкнутые многоугольники).")
-    told: set[int] = set()      # the kinds of construction already described in full
+    told: set[tuple[int, bool]] = set()      # the kinds of construction already described in full
     for gi, g in enumerate(f.model.groups):
         draw = GroupForces(lab, gi).draw(study)
         ext, moments, internal = group_vectors(study, lab, gi)
@@ -298,7 +298,7 @@ def _groups(sec: Section, study, f, lab: str) -> None:
                  draw.svg, draw.width_mm, id=gid)
         if draw.constructed:
             s.paragraph(_construction_text(draw, gid, told))
-            told |= {len(draw.constructed)}
+            told |= {(len(draw.constructed), any("tau" in v.tex for v in draw.vectors))}
         rows = []
         det = f.details(lab)
         for k in g.pairs:
@@ -323,17 +323,23 @@ def _groups(sec: Section, study, f, lab: str) -> None:
 _DIGITS = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
 
 
-def _construction_text(draw, gid: str, told: set[int]) -> str:
+def _construction_text(draw, gid: str, told: set[tuple[int, bool]]) -> str:
     """How the polygon of the group was constructed (in full the first time, then by reference)
     and what was read off it, against the exact solution of the group's equations."""
     found = "; ".join(f"{sub('R', c.label[1:].translate(_DIGITS))}&nbsp;=&nbsp;{fmt(c.graphic, sig=4)}&nbsp;Н (аналитически "
                       f"{fmt(c.exact, sig=5)}&nbsp;Н, расхождение {fmt(c.dev_pct, digits=2, sign=True)}&nbsp;%)"
                       for c in draw.constructed)
-    if len(draw.constructed) in told:
+    tau = any("tau" in v.tex for v in draw.vectors)         # R^τ laid off (a link with two revolute pairs)
+    if (len(draw.constructed), tau) in told:
         how = "План сил построен так же, реакции измерены на чертеже"
     elif len(draw.constructed) == 1:
         how = ("Известные силы отложены в масштабе μ<sub>F</sub> (длины округлены до 0,5&nbsp;мм); "
                "замыкающая сторона плана сил — искомая реакция, её длина измерена на чертеже")
+    elif not tau:           # both unknown reactions have known lines (prismatic pairs): no R^τ, no R^n
+        how = ("Известные силы отложены в масштабе μ<sub>F</sub> с длинами, округлёнными до 0,5&nbsp;мм; "
+               "через начало и конец цепи проведены линии известных направлений реакций (реакция "
+               "поступательной пары — перпендикулярно направляющей); точка их пересечения замыкает план, "
+               "реакции измерены на чертеже")
     else:
         how = ("Известные силы и касательные составляющие реакций <i>R</i><sup>τ</sup> (из уравнений моментов "
                "сил каждого звена относительно внутреннего шарнира) отложены в масштабе μ<sub>F</sub> "
