@@ -207,3 +207,15 @@ def test_construction_text_without_tangential_components():
     # a group constructed the other way is described in full, not «так же»
     assert "так же" not in _construction_text(tau, "fig", {(2, False)})
     assert "так же" in _construction_text(tau, "fig", {(2, True)})
+
+
+def test_load_law_cell_rendered_as_markup(conveyor):
+    """The law with the textbook symbol was printed as text «<i>y</i><sub>M</sub> &gt; 0,4000 м»."""
+    from reportgen.report.render import render_fragment
+    from reportgen.report.sections.dynamics import _model
+    sec = Section("Динамика", "sec-dyn")
+    _model(sec, conveyor, conveyor.dynamics)
+    (tab,) = [b for b in _blocks(sec) if isinstance(b, Table) and b.id == "tab-dyn-loads"]
+    html = render_fragment(tab, chapter="3")
+    assert "<i>y</i><sub>M</sub> &gt; 0,4000" in html
+    assert "&lt;i&gt;" not in html

@@ -271,7 +271,7 @@ def _model(sec: Section, study, d) -> None:
                     f"вычислены при g&nbsp;=&nbsp;{fmt(d.loads.g, sig=4)}&nbsp;м/с².")
         s.table("Нагрузки, действующие на звенья", [
             Column("name", "Обозначение"), Column("what", "Нагрузка"), Column("where", "Точка приложения"),
-            Column("law", "Закон изменения")], pd.DataFrame(lrows), id="tab-dyn-loads")
+            Column("law", "Закон изменения", fmt=Markup)], pd.DataFrame(lrows), id="tab-dyn-loads")
     if d.breaks.size:
         pts = ", ".join(_phase_deg(study, q) for q in d.breaks)
         s.paragraph(f"Нагрузки меняют закон действия (точки переключения, найденные решением уравнений) при "
