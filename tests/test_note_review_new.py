@@ -219,3 +219,13 @@ def test_load_law_cell_rendered_as_markup(conveyor):
     html = render_fragment(tab, chapter="3")
     assert "<i>y</i><sub>M</sub> &gt; 0,4000" in html
     assert "&lt;i&gt;" not in html
+
+
+def test_two_prismatic_pairs_at_one_point_told_apart(shaper):
+    """Table 1.2 and the incidence table had two columns «D (П)» (stone 4 on the lever, slider 5 on
+    the frame)."""
+    from reportgen.report.sections import structure
+    (tab,) = [b for b in _blocks(structure.build(shaper)) if isinstance(b, Table) and b.id == "tab-pairs"]
+    names = list(tab.data["name"])
+    assert len(set(names)) == len(names)
+    assert "D<sub>34</sub> (П)" in names and "D<sub>05</sub> (П)" in names and "A (П)" in names

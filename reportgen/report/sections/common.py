@@ -124,3 +124,12 @@ def as_written(x) -> str:
     t = f"{float(x):.10g}"
     return fmt(float(t), digits=len(t.split(".")[1]) if "." in t and "e" not in t else 0, sig=None,
                exp_from=1e10 if "e" not in t else 1e6)
+
+
+def pair_label(point: str, mark: str, a: str, b: str, clash: bool) -> str:
+    """The designation of a pair in the note's tables: «D (П)» by its point and kind mark; where
+    two pairs would read the same (a stone and a slider at one point D), the point carries the
+    numbers of the pair's links: «D<sub>34</sub> (П)»."""
+    head = f"{point}<sub>{a}{b}</sub>" if clash else point
+    return f"{head} ({mark})" if mark else head
+

@@ -25,7 +25,8 @@ from ...style.numbers import fmt, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import plural
-from .common import chosen_position, chunked_tables, input_word, q_degrees, q_header, sub, tex_point, pos_fmt, pos_no
+from .common import (chosen_position, chunked_tables, input_word, pair_label, pos_fmt, pos_no, q_degrees, q_header,
+                     sub, tex_point)
 
 NEEDS = ("kinematics", "cycle", "forces")
 
@@ -239,9 +240,11 @@ def _incidence(s: Section, study, f) -> None:
     of the column acts on the link as written (link j), −1 on link i."""
     rows = []
     cols = []
+    prism = [p.point for p in f.model.pairs if p.kind == KS.K_PRI]
     for p in f.model.pairs:
-        head = "М<sub>ур</sub>" if p.kind == KS.K_MOM else (
-            p.point + (" (П)" if p.kind == KS.K_PRI else " (Ц)" if p.kind == KS.K_ACT else ""))
+        head = "М<sub>ур</sub>" if p.kind == KS.K_MOM else pair_label(
+            p.point, "П" if p.kind == KS.K_PRI else "Ц" if p.kind == KS.K_ACT else "", p.a, p.b,
+            p.kind == KS.K_PRI and prism.count(p.point) > 1)
         cols.append((p, head))
     for link in f.model.links:
         r = {"link": link}
