@@ -211,7 +211,7 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
             Column("n", "Звено"), Column("m", "<i>m</i>", "кг", sig=4), Column("a", sub("a", "S"), "м/с²", sig=4),
             Column("Phi", "Φ", "Н", sig=4), Column("J", sub("J", "S"), "кг·м²", sig=4),
             Column("e", "ε", "рад/с²", sig=4), Column("MPhi", sub("M", "Φ"), "Н·м", sig=4),
-            Column("G", "<i>G</i>", "Н", digits=2)], pd.DataFrame(rows), id="tab-frc-inertia")
+            Column("G", "<i>G</i>", "Н", sig=5)], pd.DataFrame(rows), id="tab-frc-inertia")
     lrows = []
     for ld in det["loads"]:
         if ld["kind"] in ("Phi", "MPhi", "Mfly"):
@@ -227,8 +227,8 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
                     "(силы тяжести приложены в центрах масс и направлены вниз).")
         s.table(f"Заданные силы и моменты (положение {pos_no(study, lab)})", [
             Column("name", "Нагрузка"), Column("link", "Звено"), Column("point", "Точка"),
-            Column("Fx", sub("F", "x"), "Н", digits=2), Column("Fy", sub("F", "y"), "Н", digits=2),
-            Column("F", "<i>F</i>", "Н", digits=2), Column("M", "<i>M</i>", "Н·м", digits=2)],
+            Column("Fx", sub("F", "x"), "Н", sig=5), Column("Fy", sub("F", "y"), "Н", sig=5),
+            Column("F", "<i>F</i>", "Н", sig=5), Column("M", "<i>M</i>", "Н·м", sig=5)],
             pd.DataFrame(lrows), id="tab-frc-applied")
     if not inertial and not lrows:
         s.paragraph("Звенья не нагружены: все реакции равны нулю.")

@@ -45,6 +45,17 @@ def _links(study):
             and float(np.abs(cyc["wq_" + l.name]).max()) > 1e-12]
 
 
+def _flag_group(study, key: str) -> str:
+    """The structural group a transmission-angle flag ``mu_2_3`` belongs to, as chapter 1 names it:
+    «(2,3)», or «(1,2,3)» for the dyad of an actuator's initial mechanism."""
+    from .structure import decomposition
+    links = set(key[3:].split("_"))
+    for row in decomposition(study)[0]:
+        if links <= set(row["g"].strip("()").split(",")):
+            return row["g"]
+    return "(" + ",".join(key[3:].split("_")) + ")"
+
+
 def _rotates(study, link: str) -> bool:
     """The link turns somewhere in the cycle (a guide on it gives a Coriolis acceleration)."""
     return float(np.abs(study.cycle["wq_" + link]).max()) > 1e-12
@@ -222,7 +233,7 @@ def build(study) -> Section:
     s5.figure("Кинематические диаграммы выходного звена", diag.svg, diag.width_mm, id="fig-diagrams")
     flags = study.flags
     if flags:
-        rows = [{"g": c[3:].replace("_", ","), "mu": v["min"], "q": v["q_min"]} for c, v in flags.items()]
+        rows = [{"g": _flag_group(study, c), "mu": v["min"], "q": v["q_min"]} for c, v in flags.items()]
         mdf = pd.DataFrame(rows)
         s5.paragraph(f"Наименьшие за цикл углы передачи движения в диадах приведены в таблице {ref('tab-mu')}; "
                      "рекомендуемое значение — не менее 40°.")
@@ -367,7 +378,7 @@ def conclusion_lines(study) -> list[str]:
                     "заклинивание. Угол передачи можно увеличить, удлинив шатун группы или сместив опору "
                     "выходного звена так, чтобы в крайних положениях шатун был ближе к перпендикуляру к "
                     "выходному звену (повторить синтез с ограничением μ ≥ 40°)")
-        out.append(f"Наименьший угол передачи в группе ({c[3:].replace('_', ',')}) — {fmt(mu, digits=1)}°{note}.")
+        out.append(f"Наименьший угол передачи в группе {_flag_group(study, c)} — {fmt(mu, digits=1)}°{note}.")
     for g, fl in study.guide_flags.items():
         if fl["singular"]:
             pivot, pin = fl["points"]
