@@ -236,3 +236,10 @@ def test_transmission_angle_group_named_as_in_chapter_1(ws002):
     from reportgen.report.sections.kinematics import _flag_group
     assert _flag_group(ws002, "mu_2_3") == "(1,2,3)"
     assert _flag_group(ws002, "mu_4_5") == "(4,5)"
+
+
+def test_cylinders_numeral_in_words():
+    """«давление в 2 гидроцилиндрах» → «в двух гидроцилиндрах»."""
+    from reportgen.report.sections.forces import _in_cylinders
+    assert _in_cylinders(2) == "в двух гидроцилиндрах"
+    assert _in_cylinders(1) == "в гидроцилиндре"

@@ -289,7 +289,7 @@ def _groups(sec: Section, study, f, lab: str) -> None:
         unknown = [f.model.pairs[k] for k in g.pairs]
         act = next((p for p in unknown if p.kind == KS.K_ACT), None)
         if act is not None:   # the initial mechanism of an actuator-driven linkage (structure.decomposition)
-            head = (f"Начальный механизм ({', '.join(g.links)}) с ведущей поступательной парой "
+            head = (f"Начальный механизм ({','.join(g.links)}) с ведущей поступательной парой "
                     f"{act.a}–{act.b}")
         else:
             head = g.title[0].upper() + g.title[1:]
@@ -324,6 +324,13 @@ def _groups(sec: Section, study, f, lab: str) -> None:
 
 
 _DIGITS = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
+
+
+def _in_cylinders(n: int) -> str:
+    """«в двух гидроцилиндрах»: the numeral in words in the prepositional case (up to four)."""
+    words = {1: "в гидроцилиндре", 2: "в двух гидроцилиндрах", 3: "в трёх гидроцилиндрах",
+             4: "в четырёх гидроцилиндрах"}
+    return words.get(int(n), f"в {int(n)} гидроцилиндрах")
 
 
 def _construction_text(draw, gid: str, told: set[tuple[int, bool]]) -> str:
@@ -641,7 +648,7 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
     s.paragraph(f"Усилие на штоке находится из силового расчёта по группам; по принципу возможных перемещений "
                 f"для единственной вертикальной нагрузки {c.load} оно равно произведению нагрузки на передаточное "
                 f"число {inline_math(rf'i_{{{pt}}} = dy_{{{pt}}}/dS')} её точки приложения. Площадь поршня, "
-                f"давление в {a.count} гидроцилиндрах и грузоподъёмность (в точке {c.point} и на оси "
+                f"давление {_in_cylinders(a.count)} и грузоподъёмность (в точке {c.point} и на оси "
                 + ", ".join(c.points) + f") для положения {pos_no(study, lab)} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м):")
     ip = row["i_" + c.point]
     L_ = _name_tex(c.load)
@@ -722,7 +729,7 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
         Formula(r"G_{max}^{*} = \frac{P_в b + P_{гр} (a + L) - k_A L (P_в + P_{гр})}{x_G + k_A L}", None,
                 _t(row["Gmax_carrier_consistent"], sig=5, unit="Н")))
     s.paragraph("Здесь R<sub>A,min</sub> вычислена "
-                "для номинального груза; если условие R<sub>A</sub>&nbsp;≥&nbsp;k<sub>A</sub>·ΣG относить к самому "
+                "для номинального груза; если условие R<sub>A</sub>&nbsp;≥&nbsp;k<sub>A</sub>·ΣG относить к "
                 "наибольшему грузу, получается G<sub>max</sub><sup>*</sup>.")
     cols = [Column("R_front", sub("R", "A"), "Н", digits=0, sig=None), Column("R_rear", sub("R", "B"), "Н", digits=0, sig=None),
             Column("front_share_pct", "Δ" + sub("R", "A"), "%", digits=1),
