@@ -243,3 +243,13 @@ def test_cylinders_numeral_in_words():
     from reportgen.report.sections.forces import _in_cylinders
     assert _in_cylinders(2) == "в двух гидроцилиндрах"
     assert _in_cylinders(1) == "в гидроцилиндре"
+
+
+def test_positions_numbered_along_the_longer_path(ws002, conveyor):
+    """ws002's ten positions were numbered at the rod end 23, whose short stroke piled the numbers
+    on the labels of the pivots; they go along the path of the hitch axis 56."""
+    from reportgen.scenes.mechanism import _tracer_point, numbered_point
+    rows = [r for _, r in ws002.kinematics.iterrows()]
+    assert numbered_point(ws002.mechanism, rows, _tracer_point(ws002), "56") == "56"
+    rows = [r for _, r in conveyor.kinematics.iterrows()]
+    assert numbered_point(conveyor.mechanism, rows, _tracer_point(conveyor), "M") == "A"

@@ -133,19 +133,41 @@ class PositionsPlan:
         for mark, row in zip(("′", "″"), ext):
             for p in dict.fromkeys([out, tip]):
                 cv.labels.add(float(row[f"x_{p}"]), float(row[f"y_{p}"]), _marked(p, mark), fontsize=10)
-        # position numbers at the driver's moving point; coincident positions share one label
+        # position numbers at the crank pin; for a cylinder or a rocker at its moving point or at the
+        # output point, whichever travels farther (the numbers of a short stroke pile up)
+        num = numbered_point(mech, rows, tip, out)
         groups: list[tuple[float, float, list[str]]] = []
         for row in rows:
-            x, y = float(row[f"x_{tip}"]), float(row[f"y_{tip}"])
+            x, y = float(row[f"x_{num}"]), float(row[f"y_{num}"])
             for gx, gy, names in groups:
                 if np.hypot(x - gx, y - gy) < cv.mm(0.5):
                     names.append(str(row["pos"]))
                     break
             else:
                 groups.append((x, y, [str(row["pos"])]))
+        path = np.array([[float(r[f"x_{num}"]), float(r[f"y_{num}"])] for r in rows])
+        mid = np.array([np.mean(xs), np.mean(ys)])
         for x, y, names in groups:
-            cv.labels.add(x, y, ", ".join(names), prefer=(x - cx, y - cy), fontsize=8)
+            prefer = (x - cx, y - cy)
+            if num != tip and len(path) > 1:
+                # across the output point's path, on the side away from the mechanism
+                i = int(np.argmin(np.hypot(*(path - [x, y]).T)))
+                t = path[min(i + 1, len(path) - 1)] - path[max(i - 1, 0)]
+                n = np.array([-t[1], t[0]])
+                prefer = tuple(n if n @ (np.array([x, y]) - mid) >= 0 else -n)
+            cv.labels.add(x, y, ", ".join(names), prefer=prefer, fontsize=8)
         return Drawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape)
+
+
+def numbered_point(mech, rows, tip: str, out: str) -> str:
+    """Where the plan of positions numbers the positions: the crank pin; for a cylinder or an input
+    rocker its moving point or the output point, whichever travels farther over the positions."""
+    if mech.driver.rotary:
+        return tip
+
+    def travel(p):
+        return float(np.hypot(np.diff([r[f"x_{p}"] for r in rows]), np.diff([r[f"y_{p}"] for r in rows])).sum())
+    return max((tip, out), key=travel)
 
 
 def traced_points(study) -> list[str]:
