@@ -253,3 +253,13 @@ def test_positions_numbered_along_the_longer_path(ws002, conveyor):
     assert numbered_point(ws002.mechanism, rows, _tracer_point(ws002), "56") == "56"
     rows = [r for _, r in conveyor.kinematics.iterrows()]
     assert numbered_point(conveyor.mechanism, rows, _tracer_point(conveyor), "M") == "A"
+
+
+def test_link_lengths_named_by_their_links(ws004):
+    """ws004's given data read «длина 1», «длина 0», «длина 3»."""
+    from reportgen.report.assemble import _given_parameters
+    (tab,) = _given_parameters(ws004)
+    titles = list(tab.data["title"])
+    assert "длина звена 1 (кривошип)" in titles and "длина звена 3 (кулиса)" in titles
+    assert any(t.startswith("длина стойки") for t in titles)
+    assert "длина 1" not in titles

@@ -87,6 +87,11 @@ def _split(name: str) -> tuple[str, str, str]:
     return head, tail.replace("_", ""), "параметр"
 
 
+def param_parts(name: str) -> tuple[str, str, str]:
+    """(letter, index, Russian name of the letter) of a parameter name: l_3 → ("l", "3", "длина")."""
+    return _split(name)
+
+
 def param_symbol(name: str) -> Markup:
     """Textbook symbol of a parameter in HTML: l_AB → <i>l</i><sub>AB</sub>, phi_P6 → φ<sub>P6</sub>."""
     letter, index, _ = _split(name)
