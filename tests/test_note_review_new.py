@@ -263,3 +263,12 @@ def test_link_lengths_named_by_their_links(ws004):
     assert "длина звена 1 (кривошип)" in titles and "длина звена 3 (кулиса)" in titles
     assert any(t.startswith("длина стойки") for t in titles)
     assert "длина 1" not in titles
+
+
+def test_quick_return_judged_only_when_the_strokes_differ():
+    """The shaper's K = 1,49 was printed with no word on which stroke works; a crank with K ≈ 1
+    gets no such sentence."""
+    from reportgen.report.sections.kinematics import _quick_return
+    text = _quick_return(145.2, 214.8 / 145.2)
+    assert "рабочим назначается медленный ход" in text and "214,8°" in text and "1,48 раза" in text
+    assert _quick_return(178.5, 181.5 / 178.5) == ""

@@ -56,6 +56,26 @@ def _flag_group(study, key: str) -> str:
     return "(" + ",".join(key[3:].split("_")) + ")"
 
 
+def _strokes(study, s) -> tuple[int, int, float, float]:
+    """Cycle indices of the output's extreme positions, the crank angle of the shorter stroke (°)
+    and the coefficient of change of the mean speed K = (360° − that angle)/that angle ≥ 1."""
+    q = study.cycle["q"]
+    i_max, i_min = int(np.argmax(s)), int(np.argmin(s))
+    th = abs(math.degrees(q.iloc[i_max] - q.iloc[i_min]))
+    work = min(th, 360 - th)
+    K = (360 - work) / work if work > 0 else float("nan")
+    return i_min, i_max, work, K
+
+
+def _quick_return(fast: float, K: float) -> str:
+    """Engineering reading of K > 1 (Артоболевский, гл. «Синтез»): the slow stroke is the working one."""
+    if not K > 1.05:
+        return ""
+    return (f" Один ход выходного звена занимает {fmt(360 - fast, digits=1)}°, другой — {fmt(fast, digits=1)}° "
+            f"поворота кривошипа: рабочим назначается медленный ход, холостой выполняется в "
+            f"{fmt(K, digits=2)} раза быстрее, что сокращает время цикла.")
+
+
 def _rotates(study, link: str) -> bool:
     """The link turns somewhere in the cycle (a guide on it gives a Coriolis acceleration)."""
     return float(np.abs(study.cycle["wq_" + link]).max()) > 1e-12
@@ -221,15 +241,12 @@ def build(study) -> Section:
     if mech.driver.swing:
         s5.paragraph(swing_strokes_text(study))
     elif rotary:
-        i_max, i_min = int(np.argmax(s)), int(np.argmin(s))
-        th = abs(math.degrees(cyc["q"].iloc[i_max] - cyc["q"].iloc[i_min]))
-        work = min(th, 360 - th)
-        Kc = (360 - work) / work if work > 0 else float("nan")
+        i_min, i_max, work, K = _strokes(study, s)
         s5.paragraph(f"Крайние положения выходного звена соответствуют углам поворота кривошипа "
                      f"{fmt(math.degrees(cyc['q'].iloc[i_min] - study.grid.start), digits=1)}° и "
                      f"{fmt(math.degrees(cyc['q'].iloc[i_max] - study.grid.start), digits=1)}°; угол перекрытия "
                      f"θ&nbsp;=&nbsp;{fmt(abs(180 - work), digits=1)}°, коэффициент изменения средней скорости "
-                     f"K&nbsp;=&nbsp;{fmt(max(Kc, 1 / Kc), digits=3)}.")
+                     f"K&nbsp;=&nbsp;{fmt(K, digits=3)}." + _quick_return(work, K))
     s5.figure("Кинематические диаграммы выходного звена", diag.svg, diag.width_mm, id="fig-diagrams")
     flags = study.flags
     if flags:
