@@ -272,3 +272,13 @@ def test_quick_return_judged_only_when_the_strokes_differ():
     text = _quick_return(145.2, 214.8 / 145.2)
     assert "рабочим назначается медленный ход" in text and "214,8°" in text and "1,48 раза" in text
     assert _quick_return(178.5, 181.5 / 178.5) == ""
+
+
+def test_group_at_one_point_not_enlarged_tenfold(shaper):
+    """The group (4,5) — a stone and a slider at one point D — was drawn at μ_l = 0,0001 м/мм
+    (10:1): its joints span nothing, the scale now follows the mechanism's size."""
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.forces import GroupForces
+    lab = chosen_position(shaper)
+    mus = [GroupForces(lab, gi).draw(shaper).mu for gi in range(len(shaper.structure.groups))]
+    assert min(mus) >= 0.001
