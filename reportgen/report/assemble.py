@@ -9,15 +9,18 @@ from __future__ import annotations
 import importlib
 import math
 import re
+from collections.abc import Mapping
 from typing import Iterable
 
 import pandas as pd
 from markupsafe import Markup, escape
 
+from ..case import units as U
+from ..errors import CaseError
 from ..registry import KINDS
 from ..style.numbers import fmt
 from .document import Column, Paragraph, Report, Table
-from .russian import param_symbol, param_title, plural
+from .russian import param_parts, param_symbol, param_title, plural
 from .safety import validate_report
 from .sections import kinematics as sec_kin
 from .sections import structure as sec_struct
@@ -210,8 +213,12 @@ def _given_parameters(study) -> list:
             continue
         v, unit = value_with_unit(q)
         title, symbol = texts.get(name, (None, None))
-        text = raw[name] if isinstance(raw[name], str) else ""
-        rows.append({"title": title or param_title(name), "name": symbol or param_symbol(name), "value": v,
+        given = raw[name]["value"] if isinstance(raw[name], Mapping) else raw[name]
+        text = given if isinstance(given, str) else ""
+        if text and not _literal(text):     # computed from other parameters: 4 significant digits
+            v = float(f"{v:.4g}")
+        rows.append({"title": title or _link_length_title(study, name) or param_title(name),
+                     "name": symbol or param_symbol(name), "value": v,
                      "unit": unit, "given": text[:60] if _imperial(text) else ""})
     if rows:
         cols = [Column("title", "Параметр", fmt=_cell_html), Column("name", "Обозначение", fmt=_cell_html),
@@ -220,6 +227,31 @@ def _given_parameters(study) -> list:
             cols.append(Column("given", "Задано", fmt=lambda s: Markup(escape(s.replace("*", "·")))))
         out.append(Table("Исходные данные", cols, pd.DataFrame(rows), id="tab-given"))
     return out
+
+
+def _link_length_title(study, name: str) -> str | None:
+    """«длина звена 1 (кривошип)» for a length named by a link's number (l_1, l3); «длина стойки»
+    for l_0 — instead of the bare «длина 1»."""
+    letter, index, ru = param_parts(name)
+    if ru != "длина" or not index.isdigit() or not study.has_linkage:
+        return None
+    if index == "0":
+        return "длина стойки (расстояние между опорами)"
+    link = next((l for l in study.mechanism.links if l.name == index), None)
+    if link is None:
+        return None
+    title = Markup(link.title).striptags() if link.title else ""
+    return f"длина звена {index}" + (f" ({title})" if title else "")
+
+
+def _literal(text: str) -> bool:
+    """The parameter is given as a number with a unit (``"0.38 m"``), not computed by an
+    expression over other parameters (``"h*l_1/sqrt(l_0^2 - l_1^2)"``)."""
+    try:
+        U.parse_quantity(text)
+    except (CaseError, ValueError):
+        return False
+    return True
 
 
 def _cell_html(x) -> Markup:

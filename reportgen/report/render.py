@@ -42,13 +42,14 @@ import hashlib
 import html as _html
 import json
 import logging
+import math
 import numbers as _numbers
 import os
 import re
 import tempfile
 import time
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -227,6 +228,24 @@ def _is_number(v) -> bool:
     return isinstance(v, _numbers.Real) and not isinstance(v, bool)
 
 
+def column_decimals(col: Column, values) -> int | None:
+    """One number of decimals for a column printed to ``sig`` significant digits (ГОСТ 7.32,
+    6.6.6: the numbers of a column are written to the same number of decimals): the decimals its
+    largest value needs, e.g. 0,9455 / 5,014 / 10,03 → 0,946 / 5,014 / 10,030.  None for a column
+    with its own ``digits`` or formatter, or of integers only (printed as they are)."""
+    if col.fmt is not None or col.digits is not None or not col.sig:
+        return None
+    nums = [abs(float(v)) for v in values if _is_number(v) and not _missing(v)]
+    if not nums or all(isinstance(v, _numbers.Integral) for v in values if _is_number(v)):
+        return None
+    big = max(nums)
+    if 0 < big < 1e-9:          # rounding noise of an exact zero (a reaction 5,9·10⁻¹³ Н)
+        return col.sig - 1
+    if big == 0 or not math.isfinite(big) or big >= 1e6 or big < 1e-4:
+        return None
+    return max(0, col.sig - 1 - math.floor(math.log10(big)))
+
+
 class _Builder:
     """Numbers the document and turns the model into template views."""
 
@@ -383,6 +402,8 @@ class _Builder:
         highlight = set(int(i) for i in tab.highlight_rows)
         rows = []
         cols = [(c, df[c.key].tolist()) for c in tab.columns]
+        cols = [(c if (k := column_decimals(c, vals)) is None else replace(c, digits=k),
+                 vals) for c, vals in cols]
         index = list(df.index)
         for i in range(len(df)):
             cells = []

@@ -11,6 +11,8 @@ import re
 
 from markupsafe import Markup, escape
 
+from ..style.numbers import fmt
+
 NBSP = "\u00a0"
 
 
@@ -85,6 +87,11 @@ def _split(name: str) -> tuple[str, str, str]:
     return head, tail.replace("_", ""), "параметр"
 
 
+def param_parts(name: str) -> tuple[str, str, str]:
+    """(letter, index, Russian name of the letter) of a parameter name: l_3 → ("l", "3", "длина")."""
+    return _split(name)
+
+
 def param_symbol(name: str) -> Markup:
     """Textbook symbol of a parameter in HTML: l_AB → <i>l</i><sub>AB</sub>, phi_P6 → φ<sub>P6</sub>."""
     letter, index, _ = _split(name)
@@ -146,6 +153,53 @@ def condition_text(text: str) -> str:
     return "при " + out
 
 
+_COLUMN = re.compile(r"^(vq|aq|wq|eq|phi|x|y|s)([xys]?)_(\w+)$")
+_PRIME = {"vq": "′", "aq": "″", "wq": "′", "eq": "″"}
+_CMP = re.compile(r"(<=|>=|<|>)")
+
+
+def column_html(name: str) -> Markup | None:
+    """Textbook symbol of a kinematic column: x_D → <i>x</i><sub>D</sub>, vqx_H → <i>x</i>′<sub>H</sub>
+    (analogue: derivative with respect to the generalized coordinate), phi_3 → φ<sub>3</sub>,
+    wq_3 → φ′<sub>3</sub>, s_50 → <i>s</i><sub>50</sub>; None for a name that is not a column."""
+    m = _COLUMN.match(name.strip())
+    if not m:
+        return None
+    head, axis, sub = m.groups()
+    if head in ("vq", "aq"):
+        if axis not in ("x", "y", "s"):
+            return None
+        return Markup("<i>{}</i>{}<sub>{}</sub>").format(axis, _PRIME[head], sub)
+    if axis:
+        return None
+    if head in ("wq", "eq"):
+        return Markup("φ{}<sub>{}</sub>").format(_PRIME[head], sub)
+    if head == "phi":
+        return Markup("φ<sub>{}</sub>").format(sub)
+    return Markup("<i>{}</i><sub>{}</sub>").format(head, sub)
+
+
+def condition_html(text: str, rhs_value: float | None = None, unit: str = "") -> Markup:
+    """A load's condition for a student (escaped HTML, no identifiers).  A sign condition on a
+    velocity analogue reads «при движении точки H в положительном направлении оси x»; a bound on
+    one column whose right side holds only parameters reads «при <i>x</i><sub>D</sub> &gt; −0,171 м»
+    with the right side's value ``rhs_value`` (already in ``unit``) instead of the parameter names;
+    anything else is written with :func:`expr_html`."""
+    if _COND.match(text):
+        return Markup(escape(condition_text(text)))
+    parts = _CMP.split(text)
+    if len(parts) == 3:
+        lhs, op, rhs = (x.strip() for x in parts)
+        left = column_html(lhs) or expr_html(lhs)
+        if rhs_value is not None:
+            right = Markup(escape(fmt(rhs_value, sig=4))) + (Markup(NBSP) + unit if unit and unit != "°"
+                                                             else Markup(unit))
+        else:
+            right = expr_html(rhs)
+        return Markup("при {} {} {}").format(left, _OPS.get(op, op), right)
+    return Markup("при {}").format(expr_html(text))
+
+
 _EXPR_TOKEN = re.compile(r"(\d+(?:\.\d+)?(?:[eE][-+]?\d+)?)|([A-Za-z_][A-Za-z0-9_]*)|(>=|<=|!=|==|\*|[^\sA-Za-z0-9_])|(\s+)")
 _UNITS_RU = {"m": "м", "mm": "мм", "cm": "см", "deg": "°", "rad": "рад", "kg": "кг", "N": "Н", "s": "с",
              "Pa": "Па", "MPa": "МПа", "rpm": "об/мин"}
@@ -176,5 +230,5 @@ def expr_html(text: str) -> Markup:
         elif ident:
             out.append(param_symbol(ident))
         else:
-            out.append(escape(_OPS.get(op, "·" if op == "*" else op)))
+            out.append(escape(_OPS.get(op, {"*": "·", "-": "−"}.get(op, op))))
     return Markup("").join(out)

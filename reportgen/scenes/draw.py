@@ -129,9 +129,11 @@ def _slider_links(mech: Mechanism) -> dict[str, str]:
 
 
 def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, labels=True,
-                   numbers=True, alpha=1.0, zorder=2, com=True, supports=True, only=None, guides=True) -> None:
+                   numbers=True, alpha=1.0, zorder=2, com=True, supports=True, only=None, guides=True,
+                   tint=True) -> None:
     """Draw the mechanism at a position (``only``: a set of link names to draw, e.g. one
-    Assur group taken apart)."""
+    Assur group taken apart; ``tint``: fill plates of three or more joints light grey — off for
+    the overlaid positions of a plan, where tinted copies pile up into a blot)."""
     ax = cv.ax
     sliders = _slider_links(mech)
     d = mech.driver
@@ -149,7 +151,8 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
             for p in others:
                 ax.plot([x, _point(row, p)[0]], [y, _point(row, p)[1]], color=color, lw=lw, alpha=alpha, zorder=zorder)
         elif len(pts) >= 3 and not _collinear(pts):
-            poly = Polygon(np.array(_hull(pts)), closed=True, facecolor=LIGHT, edgecolor=color, lw=lw,
+            poly = Polygon(np.array(_hull(pts)), closed=True, facecolor=LIGHT if tint else "none",
+                           edgecolor=color, lw=lw,
                            alpha=alpha, zorder=zorder - 0.5)
             ax.add_patch(poly)
         elif len(pts) >= 2:

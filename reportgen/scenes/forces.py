@@ -181,7 +181,11 @@ class GroupForces:
         pts = {p for l in g.links for p in mech.link(l).points}
         xs = np.array([cols["x_" + p] for p in pts])
         ys = np.array([cols["y_" + p] for p in pts])
-        span = max(np.ptp(xs), np.ptp(ys), 1e-6)
+        # a group whose joints nearly coincide (a stone and a slider at one point) is drawn at a
+        # scale fitting a sixth of the whole mechanism, not enlarged until its symbols pile up
+        allp = {p for l in mech.moving for p in l.points}
+        whole = max(np.ptp([cols["x_" + p] for p in allp]), np.ptp([cols["y_" + p] for p in allp]))
+        span = max(np.ptp(xs), np.ptp(ys), whole / 6.0, 1e-6)
         mu_l = self.mu_l or gost_scale(span, 70.0)
         Fmax = max([float(np.hypot(*v.F)) for v in ext + internal] + [1e-12])
         # arrow tips on the scheme (mm converted with μ_l)

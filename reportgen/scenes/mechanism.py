@@ -86,7 +86,7 @@ class PositionsPlan:
         regular = k[~k["pos"].str.startswith("д")] if k["pos"].dtype == object else k
         rows = [r for _, r in regular.iterrows()]
         cyc = study.cycle
-        coms = [l.com for l in mech.moving if l.com]
+        coms = traced_points(study)
         xs, ys = mechanism_points(mech, rows)
         for p in coms:
             xs += list(cyc[f"x_{p}"])
@@ -110,13 +110,13 @@ class PositionsPlan:
             cv.ax.add_patch(Circle((cx, cy), r, fill=False, lw=0.6, color=INK, zorder=1))
         for i, row in enumerate(rows[1:], start=1):
             draw_mechanism(cv, mech, row, color=GREY, lw=0.7, labels=False, numbers=False, alpha=0.9,
-                           zorder=1, com=False, supports=False)
+                           zorder=1, com=False, supports=False, tint=False)
         s_col = output_quantity(study)[0]
         s = cyc[s_col].to_numpy()
         ext = [cyc.iloc[int(np.argmin(s))], cyc.iloc[int(np.argmax(s))]]
         for row in ext:
             draw_mechanism(cv, mech, row, color=INK, lw=1.2, labels=False, numbers=False, zorder=3, com=False,
-                           supports=False)
+                           supports=False, tint=False)
         draw_mechanism(cv, mech, rows[0], color=INK, lw=1.5, zorder=4, guides=False)
         spans = {}
         for j in mech.prismatic:
@@ -133,19 +133,56 @@ class PositionsPlan:
         for mark, row in zip(("′", "″"), ext):
             for p in dict.fromkeys([out, tip]):
                 cv.labels.add(float(row[f"x_{p}"]), float(row[f"y_{p}"]), _marked(p, mark), fontsize=10)
-        # position numbers at the driver's moving point; coincident positions share one label
+        # position numbers at the crank pin; for a cylinder or a rocker at its moving point or at the
+        # output point, whichever travels farther (the numbers of a short stroke pile up)
+        num = numbered_point(mech, rows, tip, out)
         groups: list[tuple[float, float, list[str]]] = []
         for row in rows:
-            x, y = float(row[f"x_{tip}"]), float(row[f"y_{tip}"])
+            x, y = float(row[f"x_{num}"]), float(row[f"y_{num}"])
             for gx, gy, names in groups:
                 if np.hypot(x - gx, y - gy) < cv.mm(0.5):
                     names.append(str(row["pos"]))
                     break
             else:
                 groups.append((x, y, [str(row["pos"])]))
+        path = np.array([[float(r[f"x_{num}"]), float(r[f"y_{num}"])] for r in rows])
+        mid = np.array([np.mean(xs), np.mean(ys)])
         for x, y, names in groups:
-            cv.labels.add(x, y, ", ".join(names), prefer=(x - cx, y - cy), fontsize=8)
+            prefer = (x - cx, y - cy)
+            if num != tip and len(path) > 1:
+                # across the output point's path, on the side away from the mechanism
+                i = int(np.argmin(np.hypot(*(path - [x, y]).T)))
+                t = path[min(i + 1, len(path) - 1)] - path[max(i - 1, 0)]
+                n = np.array([-t[1], t[0]])
+                prefer = tuple(n if n @ (np.array([x, y]) - mid) >= 0 else -n)
+            cv.labels.add(x, y, ", ".join(names), prefer=prefer, fontsize=8)
         return Drawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape)
+
+
+def numbered_point(mech, rows, tip: str, out: str) -> str:
+    """Where the plan of positions numbers the positions: the crank pin; for a cylinder or an input
+    rocker its moving point or the output point, whichever travels farther over the positions."""
+    if mech.driver.rotary:
+        return tip
+
+    def travel(p):
+        return float(np.hypot(np.diff([r[f"x_{p}"] for r in rows]), np.diff([r[f"y_{p}"] for r in rows])).sum())
+    return max((tip, out), key=travel)
+
+
+def traced_points(study) -> list[str]:
+    """The points whose trajectories the plan of positions shows: the centres of mass and the
+    output point when the output is a coordinate of a point of a link (a coupler point)."""
+    from ..analysis.plans import output_quantity
+    mech = study.mechanism
+    out = [l.com for l in mech.moving if l.com]
+    s_col = output_quantity(study)[0]
+    head, _, p = s_col.partition("_")
+    turning = [l for l in mech.moving if p in l.points
+               and float(np.abs(study.cycle["wq_" + l.name]).max()) > 1e-12]
+    if head in ("x", "y") and p not in out and turning and p not in mech.link(FRAME).points:
+        out.append(p)
+    return out
 
 
 def _marked(p: str, mark: str) -> str:
@@ -161,7 +198,9 @@ def _output_point(study, s_col: str) -> str:
     """The point that shows the output link's extreme positions: the slider's point, or the
     rocker's point farthest from its pivot."""
     mech = study.mechanism
-    name = s_col.partition("_")[2]
+    head, _, name = s_col.partition("_")
+    if head in ("x", "y") and any(name in l.points for l in mech.moving):
+        return name                     # the output is a coordinate of this point
     for j in mech.prismatic:
         if j.name == name:
             return j.point

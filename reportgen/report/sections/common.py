@@ -113,6 +113,8 @@ def value_with_unit(q) -> tuple[float, str]:
         return math.degrees(v), "°"
     if dim[:3] == (0, 0, 0):
         return v, "—"
+    if dim == U.PRESSURE and abs(v) >= 1e4:      # pressures of machines in МПа (1,2 МПа, not 1,2·10⁶ Па)
+        return v / 1e6, "МПа"
     return v, UNIT_RU.get(dim, U.format_dim(dim))
 
 
@@ -120,4 +122,14 @@ def as_written(x) -> str:
     """A given value as the case writes it (shortest representation, no padding zeros):
     0.11 → «0,11», 8.0 → «8», 20.0000001 → «20»."""
     t = f"{float(x):.10g}"
-    return fmt(float(t), digits=len(t.split(".")[1]) if "." in t and "e" not in t else 0, sig=None)
+    return fmt(float(t), digits=len(t.split(".")[1]) if "." in t and "e" not in t else 0, sig=None,
+               exp_from=1e10 if "e" not in t else 1e6)
+
+
+def pair_label(point: str, mark: str, a: str, b: str, clash: bool) -> str:
+    """The designation of a pair in the note's tables: «D (П)» by its point and kind mark; where
+    two pairs would read the same (a stone and a slider at one point D), the point carries the
+    numbers of the pair's links: «D<sub>34</sub> (П)»."""
+    head = f"{point}<sub>{a}{b}</sub>" if clash else point
+    return f"{head} ({mark})" if mark else head
+

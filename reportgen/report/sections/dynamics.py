@@ -10,9 +10,10 @@ import math
 
 import numpy as np
 import pandas as pd
-from markupsafe import Markup
+from markupsafe import Markup, escape
 
 from ...analysis.dynamics import DELTA_RANGES
+from ...case import units as U
 from ...case.text import inline_html
 from ...scenes.draw import gost_ratio
 from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, MomentCurves,
@@ -20,7 +21,7 @@ from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, Mo
 from ...style.numbers import fmt, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
-from ..russian import condition_text, plural
+from ..russian import condition_html, expr_html, plural
 from .common import MAX_COLS, as_written, chosen_position, chunked_tables, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle", "dynamics")
@@ -270,7 +271,7 @@ def _model(sec: Section, study, d) -> None:
                     f"вычислены при g&nbsp;=&nbsp;{fmt(d.loads.g, sig=4)}&nbsp;м/с².")
         s.table("Нагрузки, действующие на звенья", [
             Column("name", "Обозначение"), Column("what", "Нагрузка"), Column("where", "Точка приложения"),
-            Column("law", "Закон изменения")], pd.DataFrame(lrows), id="tab-dyn-loads")
+            Column("law", "Закон изменения", fmt=Markup)], pd.DataFrame(lrows), id="tab-dyn-loads")
     if d.breaks.size:
         pts = ", ".join(_phase_deg(study, q) for q in d.breaks)
         s.paragraph(f"Нагрузки меняют закон действия (точки переключения, найденные решением уравнений) при "
@@ -278,10 +279,11 @@ def _model(sec: Section, study, d) -> None:
                     "Гаусса–Лежандра, поэтому разрывы нагрузок не вносят погрешности.")
 
 
-def _law(ld) -> str:
-    """Russian description of a load law (plain text with no-break spaces)."""
+def _law(ld) -> Markup:
+    """Russian description of a load law (escaped HTML with no-break spaces): expressions and
+    conditions in textbook symbols, parameters by their values (:func:`condition_html`)."""
     if ld.kind == "weight":
-        return f"G\u00a0=\u00a0{fmt(-ld.vector[1], sig=4)}\u00a0Н, вертикально вниз"
+        return Markup(escape(f"G\u00a0=\u00a0{fmt(-ld.vector[1], sig=4)}\u00a0Н, вертикально вниз"))
     parts = []
     if ld.vector is not None:
         parts.append(f"F\u00a0=\u00a0({fmt(ld.vector[0], sig=4)}; {fmt(ld.vector[1], sig=4)})\u00a0Н")
@@ -290,8 +292,9 @@ def _law(ld) -> str:
                 f"{' (' + p.name + ')' if p.name else ''}: " if p.phase is not None else "")
         unit, k = _law_unit(ld, p)
         if p.table is not None:
-            parts.append(head + f"таблица {len(p.table.x)} точек от «{p.of.text}», "
-                         f"{fmt(p.table.y.min() / k, sig=3)}…{fmt(p.table.y.max() / k, sig=3)}\u00a0{unit}")
+            parts.append(Markup("{}таблица {} от {}, {}…{}\u00a0{}").format(
+                head, plural(len(p.table.x), "точка", "точки", "точек"), expr_html(p.of.text),
+                fmt(p.table.y.min() / k, sig=3), fmt(p.table.y.max() / k, sig=3), unit))
         else:
             parts.append(head + f"{fmt(p.const / k, sig=4)}\u00a0{unit}")
     if ld.area is not None:
@@ -301,8 +304,19 @@ def _law(ld) -> str:
     if ld.against:
         parts.append("против движения")
     for c in ld.when:
-        parts.append(condition_text(c.text))
-    return "; ".join(parts)
+        parts.append(_condition(c))
+    return Markup("; ").join(parts)
+
+
+def _condition(c) -> Markup:
+    """A load condition with the right side evaluated when it holds only parameters: an angle in
+    degrees, anything else in its SI unit."""
+    if c.rhs.used or c.lhs.used == []:
+        return condition_html(c.text)
+    value = float(np.asarray(c.rhs._eval({}).value, dtype=float).reshape(-1)[0])
+    if tuple(c.lhs.dim) == U.ANGLE:
+        return condition_html(c.text, math.degrees(value), "°")
+    return condition_html(c.text, value, U.format_dim(c.lhs.dim))
 
 
 def _law_unit(ld, p) -> tuple[str, float]:
@@ -773,7 +787,9 @@ def conclusion_lines(study) -> list[str]:
                    f"постоянный приведённый момент сопротивления M<sub>с</sub>&nbsp;=&nbsp;{fmt(sc['M_c'], sig=5)}&nbsp;Н·м.")
     out.append(f"Для δ&nbsp;=&nbsp;{as_written(st.delta)} при ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(st.omega_m, digits=3)}&nbsp;рад/с "
                f"требуется J<sub>I</sub>&nbsp;=&nbsp;{fmt(r.J_I, sig=5)}&nbsp;кг·м² ({METHOD_RU[st.method]}); "
-               f"точное значение {fmt(r.J_I_exact, sig=6)}&nbsp;кг·м², метод Мерцалова даёт отклонение "
+               + ("" if st.method == "exact" else
+                  f"точное значение {fmt(r.J_I_exact, sig=6)}&nbsp;кг·м², ")
+               + "относительно точного решения метод Мерцалова даёт отклонение "
                f"{fmt(r.dev_mertsalov_pct, digits=3, sign=True)}&nbsp;%, метод Виттенбауэра "
                f"{fmt(r.dev_wittenbauer_pct, digits=3, sign=True)}&nbsp;%.")
     out += _delta_judgement(st)
@@ -789,12 +805,12 @@ def conclusion_lines(study) -> list[str]:
                    + ".")
         v = max(fw.rim.v_rim, fw.disk.v_rim)
         if math.isfinite(v):
-            formula = ("u·ω<sub>max</sub>·D/2 (маховик на валу, вращающемся в u раз быстрее кривошипа)"
-                       if u != 1.0 else "ω<sub>max</sub>·D/2")
+            formula = "u·ω<sub>max</sub>·D/2" if u != 1.0 else "ω<sub>max</sub>·D/2"
             verdict = (f"превышает допускаемую [v]&nbsp;=&nbsp;{fmt(fw.v_limit, sig=3)}&nbsp;м/с: обод следует "
                        "сделать меньшего диаметра и большей ширины или стальным" if fw.any_exceeds else
                        f"не превышает допускаемой [v]&nbsp;=&nbsp;{fmt(fw.v_limit, sig=3)}&nbsp;м/с")
-            out.append(f"Наибольшая окружная скорость обода v&nbsp;=&nbsp;{formula}&nbsp;=&nbsp;"
+            where = " (маховик на валу, вращающемся в u раз быстрее кривошипа)" if u != 1.0 else ""
+            out.append(f"Наибольшая окружная скорость обода{where} v&nbsp;=&nbsp;{formula}&nbsp;=&nbsp;"
                        f"{fmt(v, sig=3)}&nbsp;м/с {verdict}.")
         if u == 1.0 and min(fw.rim.m, fw.disk.m) > 500:
             out.append(f"Маховик массой {fmt(min(fw.rim.m, fw.disk.m) / 1000, digits=1)}&nbsp;т на валу кривошипа "

@@ -25,7 +25,8 @@ from ...style.numbers import fmt, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import plural
-from .common import chosen_position, chunked_tables, input_word, q_degrees, q_header, sub, tex_point, pos_fmt, pos_no
+from .common import (chosen_position, chunked_tables, input_word, pair_label, pos_fmt, pos_no, q_degrees, q_header,
+                     sub, tex_point)
 
 NEEDS = ("kinematics", "cycle", "forces")
 
@@ -82,14 +83,6 @@ def _name_tex(name: str) -> str:
 def _in(x) -> str:
     """An input value in LaTeX as written (shortest representation: 0.6, 1.62, 56 000)."""
     return tex_num(x, digits=_decimals(x), sig=None, paren=True)
-
-
-def _short(x) -> str:
-    """Five significant digits without trailing zeros (9000, −35, 110,37)."""
-    if x is None or math.isnan(float(x)):
-        return fmt(math.nan)
-    v = float(f"{float(x):.5g}")
-    return fmt(v, digits=_decimals(v), sig=None)
 
 
 def _decimals(x) -> int:
@@ -215,10 +208,10 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
                          "e": row["eps_" + name], "MPhi": row["MPhi_" + name] if J else math.nan,
                          "G": l.weight or math.nan})
         s.table(f"Массы, ускорения, силы и моменты сил инерции звеньев (положение {pos_no(study, lab)})", [
-            Column("n", "Звено"), Column("m", "<i>m</i>", "кг", fmt=_fin), Column("a", sub("a", "S"), "м/с²", sig=4),
-            Column("Phi", "Φ", "Н", sig=4), Column("J", sub("J", "S"), "кг·м²", fmt=_fin),
+            Column("n", "Звено"), Column("m", "<i>m</i>", "кг", sig=4), Column("a", sub("a", "S"), "м/с²", sig=4),
+            Column("Phi", "Φ", "Н", sig=4), Column("J", sub("J", "S"), "кг·м²", sig=4),
             Column("e", "ε", "рад/с²", sig=4), Column("MPhi", sub("M", "Φ"), "Н·м", sig=4),
-            Column("G", "<i>G</i>", "Н", fmt=_fin)], pd.DataFrame(rows), id="tab-frc-inertia")
+            Column("G", "<i>G</i>", "Н", sig=5)], pd.DataFrame(rows), id="tab-frc-inertia")
     lrows = []
     for ld in det["loads"]:
         if ld["kind"] in ("Phi", "MPhi", "Mfly"):
@@ -234,8 +227,8 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
                     "(силы тяжести приложены в центрах масс и направлены вниз).")
         s.table(f"Заданные силы и моменты (положение {pos_no(study, lab)})", [
             Column("name", "Нагрузка"), Column("link", "Звено"), Column("point", "Точка"),
-            Column("Fx", sub("F", "x"), "Н", fmt=_short), Column("Fy", sub("F", "y"), "Н", fmt=_short),
-            Column("F", "<i>F</i>", "Н", fmt=_short), Column("M", "<i>M</i>", "Н·м", fmt=_short)],
+            Column("Fx", sub("F", "x"), "Н", sig=5), Column("Fy", sub("F", "y"), "Н", sig=5),
+            Column("F", "<i>F</i>", "Н", sig=5), Column("M", "<i>M</i>", "Н·м", sig=5)],
             pd.DataFrame(lrows), id="tab-frc-applied")
     if not inertial and not lrows:
         s.paragraph("Звенья не нагружены: все реакции равны нулю.")
@@ -247,9 +240,11 @@ def _incidence(s: Section, study, f) -> None:
     of the column acts on the link as written (link j), −1 on link i."""
     rows = []
     cols = []
+    prism = [p.point for p in f.model.pairs if p.kind == KS.K_PRI]
     for p in f.model.pairs:
-        head = "М<sub>ур</sub>" if p.kind == KS.K_MOM else (
-            p.point + (" (П)" if p.kind == KS.K_PRI else " (Ц)" if p.kind == KS.K_ACT else ""))
+        head = "М<sub>ур</sub>" if p.kind == KS.K_MOM else pair_label(
+            p.point, "П" if p.kind == KS.K_PRI else "Ц" if p.kind == KS.K_ACT else "", p.a, p.b,
+            p.kind == KS.K_PRI and prism.count(p.point) > 1)
         cols.append((p, head))
     for link in f.model.links:
         r = {"link": link}
@@ -264,9 +259,10 @@ def _incidence(s: Section, study, f) -> None:
         legend.append("(П) — поступательная пара (нормальная сила и реактивный момент)")
     if KS.K_ACT in kinds:
         legend.append("(Ц) — пара цилиндр–шток (усилие гидроцилиндра, нормальная сила и момент)")
-    s.paragraph(f"Связи звеньев и кинематических пар (таблица {ref('tab-frc-incidence')}): «1» — реакция пары "
-                f"{sub('R', 'ij')} приложена к звену j, «−1» — равная ей и противоположная {sub('R', 'ji')} — "
-                "к звену i" + "".join("; " + x for x in legend) + ".")
+    s.paragraph(f"Связи звеньев и кинематических пар показаны в таблице {ref('tab-frc-incidence')}: единица "
+                f"означает, что реакция пары {sub('R', 'ij')} приложена к звену j, минус единица — что к звену i "
+                f"приложена равная ей и противоположная реакция {sub('R', 'ji')}"
+                + "".join("; " + x for x in legend) + ".")
     per = 12
     chunked_tables(s, "Матрица инциденций звеньев и кинематических пар", pd.DataFrame(rows),
                    columns[1:], columns[:1], "tab-frc-incidence", per=per)
@@ -283,7 +279,7 @@ def _groups(sec: Section, study, f, lab: str) -> None:
                 "определяющий точку её приложения). Реакции со стороны групп, рассчитанных ранее, известны. "
                 "Система линейных уравнений группы решается точно; векторные уравнения сил проверяются "
                 "построением планов сил в масштабе μ<sub>F</sub> (замкнутые многоугольники).")
-    told: set[int] = set()      # the kinds of construction already described in full
+    told: set[tuple[int, bool]] = set()      # the kinds of construction already described in full
     for gi, g in enumerate(f.model.groups):
         draw = GroupForces(lab, gi).draw(study)
         ext, moments, internal = group_vectors(study, lab, gi)
@@ -293,7 +289,7 @@ def _groups(sec: Section, study, f, lab: str) -> None:
         unknown = [f.model.pairs[k] for k in g.pairs]
         act = next((p for p in unknown if p.kind == KS.K_ACT), None)
         if act is not None:   # the initial mechanism of an actuator-driven linkage (structure.decomposition)
-            head = (f"Начальный механизм ({', '.join(g.links)}) с ведущей поступательной парой "
+            head = (f"Начальный механизм ({','.join(g.links)}) с ведущей поступательной парой "
                     f"{act.a}–{act.b}")
         else:
             head = g.title[0].upper() + g.title[1:]
@@ -305,7 +301,7 @@ def _groups(sec: Section, study, f, lab: str) -> None:
                  draw.svg, draw.width_mm, id=gid)
         if draw.constructed:
             s.paragraph(_construction_text(draw, gid, told))
-            told |= {len(draw.constructed)}
+            told |= {(len(draw.constructed), any("tau" in v.tex for v in draw.vectors))}
         rows = []
         det = f.details(lab)
         for k in g.pairs:
@@ -330,17 +326,30 @@ def _groups(sec: Section, study, f, lab: str) -> None:
 _DIGITS = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
 
 
-def _construction_text(draw, gid: str, told: set[int]) -> str:
+def _in_cylinders(n: int) -> str:
+    """«в двух гидроцилиндрах»: the numeral in words in the prepositional case (up to four)."""
+    words = {1: "в гидроцилиндре", 2: "в двух гидроцилиндрах", 3: "в трёх гидроцилиндрах",
+             4: "в четырёх гидроцилиндрах"}
+    return words.get(int(n), f"в {int(n)} гидроцилиндрах")
+
+
+def _construction_text(draw, gid: str, told: set[tuple[int, bool]]) -> str:
     """How the polygon of the group was constructed (in full the first time, then by reference)
     and what was read off it, against the exact solution of the group's equations."""
     found = "; ".join(f"{sub('R', c.label[1:].translate(_DIGITS))}&nbsp;=&nbsp;{fmt(c.graphic, sig=4)}&nbsp;Н (аналитически "
                       f"{fmt(c.exact, sig=5)}&nbsp;Н, расхождение {fmt(c.dev_pct, digits=2, sign=True)}&nbsp;%)"
                       for c in draw.constructed)
-    if len(draw.constructed) in told:
+    tau = any("tau" in v.tex for v in draw.vectors)         # R^τ laid off (a link with two revolute pairs)
+    if (len(draw.constructed), tau) in told:
         how = "План сил построен так же, реакции измерены на чертеже"
     elif len(draw.constructed) == 1:
         how = ("Известные силы отложены в масштабе μ<sub>F</sub> (длины округлены до 0,5&nbsp;мм); "
                "замыкающая сторона плана сил — искомая реакция, её длина измерена на чертеже")
+    elif not tau:           # both unknown reactions have known lines (prismatic pairs): no R^τ, no R^n
+        how = ("Известные силы отложены в масштабе μ<sub>F</sub> с длинами, округлёнными до 0,5&nbsp;мм; "
+               "через начало и конец цепи проведены линии известных направлений реакций (реакция "
+               "поступательной пары — перпендикулярно направляющей); точка их пересечения замыкает план, "
+               "реакции измерены на чертеже")
     else:
         how = ("Известные силы и касательные составляющие реакций <i>R</i><sup>τ</sup> (из уравнений моментов "
                "сил каждого звена относительно внутреннего шарнира) отложены в масштабе μ<sub>F</sub> "
@@ -639,7 +648,7 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
     s.paragraph(f"Усилие на штоке находится из силового расчёта по группам; по принципу возможных перемещений "
                 f"для единственной вертикальной нагрузки {c.load} оно равно произведению нагрузки на передаточное "
                 f"число {inline_math(rf'i_{{{pt}}} = dy_{{{pt}}}/dS')} её точки приложения. Площадь поршня, "
-                f"давление в {a.count} гидроцилиндрах и грузоподъёмность (в точке {c.point} и на оси "
+                f"давление {_in_cylinders(a.count)} и грузоподъёмность (в точке {c.point} и на оси "
                 + ", ".join(c.points) + f") для положения {pos_no(study, lab)} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м):")
     ip = row["i_" + c.point]
     L_ = _name_tex(c.load)
@@ -720,7 +729,7 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
         Formula(r"G_{max}^{*} = \frac{P_в b + P_{гр} (a + L) - k_A L (P_в + P_{гр})}{x_G + k_A L}", None,
                 _t(row["Gmax_carrier_consistent"], sig=5, unit="Н")))
     s.paragraph("Здесь R<sub>A,min</sub> вычислена "
-                "для номинального груза; если условие R<sub>A</sub>&nbsp;≥&nbsp;k<sub>A</sub>·ΣG относить к самому "
+                "для номинального груза; если условие R<sub>A</sub>&nbsp;≥&nbsp;k<sub>A</sub>·ΣG относить к "
                 "наибольшему грузу, получается G<sub>max</sub><sup>*</sup>.")
     cols = [Column("R_front", sub("R", "A"), "Н", digits=0, sig=None), Column("R_rear", sub("R", "B"), "Н", digits=0, sig=None),
             Column("front_share_pct", "Δ" + sub("R", "A"), "%", digits=1),

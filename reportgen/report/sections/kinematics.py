@@ -12,7 +12,7 @@ from markupsafe import Markup
 from ...analysis.plans import output_quantity
 from ...mechanism.model import FRAME
 from ...scenes.diagrams import AnalogCurves, OutputDiagrams
-from ...scenes.mechanism import PositionsPlan
+from ...scenes.mechanism import PositionsPlan, traced_points
 from ...scenes.plans import MIN_MM, READ_MM, PlanScene
 from ...scenes.draw import gost_ratio, mu_text
 from ...style.numbers import fmt, fmt_pct, tex_num
@@ -45,6 +45,42 @@ def _links(study):
             and float(np.abs(cyc["wq_" + l.name]).max()) > 1e-12]
 
 
+def _flag_group(study, key: str) -> str:
+    """The structural group a transmission-angle flag ``mu_2_3`` belongs to, as chapter 1 names it:
+    «(2,3)», or «(1,2,3)» for the dyad of an actuator's initial mechanism."""
+    from .structure import decomposition
+    links = set(key[3:].split("_"))
+    for row in decomposition(study)[0]:
+        if links <= set(row["g"].strip("()").split(",")):
+            return row["g"]
+    return "(" + ",".join(key[3:].split("_")) + ")"
+
+
+def _strokes(study, s) -> tuple[int, int, float, float]:
+    """Cycle indices of the output's extreme positions, the crank angle of the shorter stroke (°)
+    and the coefficient of change of the mean speed K = (360° − that angle)/that angle ≥ 1."""
+    q = study.cycle["q"]
+    i_max, i_min = int(np.argmax(s)), int(np.argmin(s))
+    th = abs(math.degrees(q.iloc[i_max] - q.iloc[i_min]))
+    work = min(th, 360 - th)
+    K = (360 - work) / work if work > 0 else float("nan")
+    return i_min, i_max, work, K
+
+
+def _quick_return(fast: float, K: float) -> str:
+    """Engineering reading of K > 1 (Артоболевский, гл. «Синтез»): the slow stroke is the working one."""
+    if not K > 1.05:
+        return ""
+    return (f" Один ход выходного звена занимает {fmt(360 - fast, digits=1)}°, другой — {fmt(fast, digits=1)}° "
+            f"поворота кривошипа: рабочим назначается медленный ход, холостой выполняется в "
+            f"{fmt(K, digits=2)} раза быстрее, что сокращает время цикла.")
+
+
+def _rotates(study, link: str) -> bool:
+    """The link turns somewhere in the cycle (a guide on it gives a Coriolis acceleration)."""
+    return float(np.abs(study.cycle["wq_" + link]).max()) > 1e-12
+
+
 def build(study) -> Section:
     mech = study.mechanism
     k = study.kinematics.copy()
@@ -58,6 +94,8 @@ def build(study) -> Section:
     # ----- plan of positions
     s1 = sec.subsection("План положений механизма", "sec-positions")
     plan = PositionsPlan().draw(study)
+    extra = [p for p in traced_points(study) if p not in {l.com for l in mech.moving}]
+    traced = "".join(f" и точки {p}" for p in extra)       # a coupler point given as the output
     ncount = int((~k["pos"].astype(str).str.startswith("д")).sum()) if k["pos"].dtype == object else len(k)
     mu_l = inline_math(r"\mu_l")
     phi0_m = inline_math(r"\varphi_0")
@@ -69,19 +107,19 @@ def build(study) -> Section:
                      f"диапазоне его качания {swing_text(mech.driver)}, от одного крайнего положения до другого; "
                      f"на обратном ходе звенья проходят те же положения в обратном порядке. "
                      f"Масштаб {mu_l}&nbsp;=&nbsp;{mu_text(plan.mu)}&nbsp;м/мм ({gost_ratio(plan.mu)}). Штриховыми линиями показаны "
-                     f"траектории центров масс звеньев (рисунок {ref('fig-positions')}).")
+                     f"траектории центров масс звеньев{traced} (рисунок {ref('fig-positions')}).")
     elif rotary:
         s1.paragraph(f"План положений построен для {ncount} положений кривошипа, начиная с положения "
                      f"{phi0_m}&nbsp;=&nbsp;{fmt(math.degrees(mech.driver.phi0), digits=1)}°, "
                      f"при вращении {'по часовой стрелке' if mech.driver.direction < 0 else 'против часовой стрелки'}. "
                      f"Масштаб {mu_l}&nbsp;=&nbsp;{mu_text(plan.mu)}&nbsp;м/мм ({gost_ratio(plan.mu)}). Штриховыми линиями показаны "
-                     f"траектории центров масс звеньев (рисунок {ref('fig-positions')}).")
+                     f"траектории центров масс звеньев{traced} (рисунок {ref('fig-positions')}).")
     else:
         lo, hi = mech.driver.q_range
         s1.paragraph(f"План положений построен для {ncount} значений длины гидроцилиндра от "
                      f"{fmt(lo, digits=3)} до {fmt(hi, digits=3)}&nbsp;м; масштаб {mu_l}&nbsp;=&nbsp;"
                      f"{mu_text(plan.mu)}&nbsp;м/мм (рисунок {ref('fig-positions')}).")
-    fig = s1.figure("План положений механизма и траектории центров масс", plan.svg, plan.width_mm,
+    fig = s1.figure("План положений механизма и траектории центров масс" + traced, plan.svg, plan.width_mm,
                     id="fig-positions", landscape=plan.landscape)
     if plan.landscape:      # its own page follows the first table of coordinates (not a near-empty page)
         s1.children.remove(fig)
@@ -125,18 +163,23 @@ def build(study) -> Section:
         f"{v_m}, {a_m}.")
     wcols = [Column(f"wq_{l.name}", sub("φ′", l.name), None, digits=4) for l in _links(study)
              if not (rotary and l.name == mech.driver.link)]
-    chunked_tables(s2, "Аналоги угловых скоростей звеньев", k, wcols, lead, "tab-wq")
     ecols = [Column(f"eq_{l.name}", sub("φ″", l.name), None, digits=4) for l in _links(study)
              if not (rotary and l.name == mech.driver.link)]
-    chunked_tables(s2, "Аналоги угловых ускорений звеньев", k, ecols, lead, "tab-eq")
+    if wcols:        # no table of angular analogues where every other link only translates
+        chunked_tables(s2, "Аналоги угловых скоростей звеньев", k, wcols, lead, "tab-wq")
+        chunked_tables(s2, "Аналоги угловых ускорений звеньев", k, ecols, lead, "tab-eq")
+    else:
+        s2.paragraph("Все звенья механизма, кроме ведущего, движутся поступательно: их угловые скорости "
+                     "и ускорения равны нулю.")
     vcols = []
     for p in pts:
         vcols += [Column(f"vqx_{p}", f"<i>x′</i><sub>{p}</sub>", None, digits=4),
                   Column(f"vqy_{p}", f"<i>y′</i><sub>{p}</sub>", None, digits=4)]
     chunked_tables(s2, "Аналоги скоростей точек", k, vcols, lead, "tab-vq")
-    curves = AnalogCurves().draw(study)
-    s2.figure("Аналоги угловых скоростей звеньев " + ("в диапазоне качания входного звена" if mech.driver.swing
-                                                       else "за цикл"), curves.svg, curves.width_mm, id="fig-analogs")
+    if wcols:
+        curves = AnalogCurves().draw(study)
+        s2.figure("Аналоги угловых скоростей звеньев " + ("в диапазоне качания входного звена" if mech.driver.swing
+                                                           else "за цикл"), curves.svg, curves.width_mm, id="fig-analogs")
 
     # ----- true velocities
     if w_known:
@@ -198,19 +241,16 @@ def build(study) -> Section:
     if mech.driver.swing:
         s5.paragraph(swing_strokes_text(study))
     elif rotary:
-        i_max, i_min = int(np.argmax(s)), int(np.argmin(s))
-        th = abs(math.degrees(cyc["q"].iloc[i_max] - cyc["q"].iloc[i_min]))
-        work = min(th, 360 - th)
-        Kc = (360 - work) / work if work > 0 else float("nan")
+        i_min, i_max, work, K = _strokes(study, s)
         s5.paragraph(f"Крайние положения выходного звена соответствуют углам поворота кривошипа "
                      f"{fmt(math.degrees(cyc['q'].iloc[i_min] - study.grid.start), digits=1)}° и "
                      f"{fmt(math.degrees(cyc['q'].iloc[i_max] - study.grid.start), digits=1)}°; угол перекрытия "
                      f"θ&nbsp;=&nbsp;{fmt(abs(180 - work), digits=1)}°, коэффициент изменения средней скорости "
-                     f"K&nbsp;=&nbsp;{fmt(max(Kc, 1 / Kc), digits=3)}.")
+                     f"K&nbsp;=&nbsp;{fmt(K, digits=3)}." + _quick_return(work, K))
     s5.figure("Кинематические диаграммы выходного звена", diag.svg, diag.width_mm, id="fig-diagrams")
     flags = study.flags
     if flags:
-        rows = [{"g": c[3:].replace("_", ","), "mu": v["min"], "q": v["q_min"]} for c, v in flags.items()]
+        rows = [{"g": _flag_group(study, c), "mu": v["min"], "q": v["q_min"]} for c, v in flags.items()]
         mdf = pd.DataFrame(rows)
         s5.paragraph(f"Наименьшие за цикл углы передачи движения в диадах приведены в таблице {ref('tab-mu')}; "
                      "рекомендуемое значение — не менее 40°.")
@@ -222,7 +262,9 @@ def build(study) -> Section:
 
 
 def _deg(x) -> str:
-    return fmt(math.degrees(float(x)), digits=2)
+    """A link's angle in degrees reduced to [0°, 360°), as it is measured on the drawing."""
+    v = math.degrees(float(x)) % 360.0
+    return fmt(0.0 if round(v, 2) >= 360.0 else v, digits=2)
 
 
 def swing_strokes_text(study) -> str:
@@ -318,9 +360,13 @@ def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
     kinds = ["для точки, общей двум звеньям, — относительное вращательное движение вокруг соседних шарниров"]
     if any(j.links[0] == FRAME for j in mech.prismatic):
         kinds.append("для ползуна на неподвижной направляющей — скорость и ускорение вдоль направляющей")
-    if any(j.links[0] != FRAME for j in mech.prismatic):
-        kinds.append("для камня на подвижной направляющей — переносное и относительное движение с "
+    moving = [j for j in mech.prismatic if j.links[0] != FRAME]
+    if any(_rotates(study, j.links[0]) for j in moving):
+        kinds.append("для камня на вращающейся направляющей — переносное и относительное движение с "
                      "кориолисовым ускорением")
+    if any(not _rotates(study, j.links[0]) for j in moving):
+        kinds.append("для ползуна на поступательно движущейся направляющей — переносное и относительное "
+                     "движение без кориолисова ускорения")
     sec.paragraph("Скорости и ускорения определены построением планов по векторным уравнениям групп Ассура ("
                   + "; ".join(kinds) + "). Угловые скорости и ускорения звеньев:")
     if fs:
@@ -334,26 +380,26 @@ def conclusion_lines(study) -> list[str]:
     cyc = study.cycle
     s = cyc[s_col]
     if s_col.startswith("phi_"):
-        out.append(f"Размах качания выходного звена ({title}) — {fmt(math.degrees(s.max() - s.min()), digits=2)}°.")
+        out.append(f"Выходное звено — {title}; размах его качания {fmt(math.degrees(s.max() - s.min()), digits=2)}°.")
     else:
-        out.append(f"Ход выходного звена ({title}) H&nbsp;=&nbsp;{fmt(s.max() - s.min(), digits=4)}&nbsp;м.")
+        out.append(f"Выходное звено — {title}; его ход H&nbsp;=&nbsp;{fmt(s.max() - s.min(), digits=4)}&nbsp;м.")
     if study.mechanism.driver.omega is not None and s_col.startswith("s_"):
         n = s_col[2:]
         out.append(f"Наибольшая скорость выходного звена {fmt(cyc['vs_' + n].abs().max(), digits=3)}&nbsp;м/с, "
                    f"наибольшее ускорение {fmt(cyc['as_' + n].abs().max(), sig=4)}&nbsp;м/с².")
     for c, v in study.flags.items():
         mu = math.degrees(v["min"])
-        note = ""
+        note = " — не меньше допускаемого 40°, механизм работоспособен без заклинивания"
         if mu < 40:
             note = (" — меньше допускаемого 40°: в этих положениях растут реакции в парах группы и опасно "
                     "заклинивание. Угол передачи можно увеличить, удлинив шатун группы или сместив опору "
                     "выходного звена так, чтобы в крайних положениях шатун был ближе к перпендикуляру к "
                     "выходному звену (повторить синтез с ограничением μ ≥ 40°)")
-        out.append(f"Наименьший угол передачи в группе ({c[3:].replace('_', ', ')}) — {fmt(mu, digits=1)}°{note}.")
+        out.append(f"Наименьший угол передачи в группе {_flag_group(study, c)} — {fmt(mu, digits=1)}°{note}.")
     for g, fl in study.guide_flags.items():
         if fl["singular"]:
             pivot, pin = fl["points"]
-            out.append(f"Группа ({g.replace('_', ', ')}) проходит особое положение: шарнир {pin} проходит через "
+            out.append(f"Группа ({g.replace('_', ',')}) проходит особое положение: шарнир {pin} проходит через "
                        f"ось кулисы {pivot}, аналог угловой скорости кулисы неограниченно растёт; в этом "
                        "положении механизм неработоспособен — нужно изменить размеры (например, длину "
                        "кривошипа или расстояние между опорами).")

@@ -8,9 +8,15 @@ from ...scenes.mechanism import AssurGroups, KinematicScheme
 from ..document import Column, Section, ref
 from ..formulas import inline_math
 from ..russian import expr_html, plural
-from .common import input_word
+from .common import input_word, pair_label
 
 NEEDS = ("structure", "kinematics")
+
+
+def _ends(links: str) -> tuple[str, str]:
+    """The two link numbers of «3–4»."""
+    a, _, b = links.partition("–")
+    return a, b
 
 
 def build(study) -> Section:
@@ -41,9 +47,11 @@ def build(study) -> Section:
     pdf["klass"] = pdf["klass"].astype(str)
     # pairs named by their point, a prismatic pair marked «(П)» as in the incidence table (no
     # program names such as «50»)
-    pdf["name"] = [(f"{r.point} (П)" if r.point != "—" else f"{r.links} (П)") if r.kind.startswith("поступательная")
+    prism = [r.point for r in pdf.itertuples() if r.kind.startswith("поступательная")]
+    pdf["name"] = [(pair_label(r.point, "П", *_ends(r.links), prism.count(r.point) > 1) if r.point != "—"
+                    else f"{r.links} (П)") if r.kind.startswith("поступательная")
                    else r.name for r in pdf.itertuples()]
-    s1.table("Кинематические пары", [Column("name", "Обозначение"), Column("links", "Звенья"),
+    s1.table("Кинематические пары", [Column("name", "Обозначение", fmt=Markup), Column("links", "Звенья"),
                                      Column("kind", "Вид пары"), Column("klass", "Класс"),
                                      Column("level", "Низшая/высшая")], pdf, id="tab-pairs")
 

@@ -50,6 +50,17 @@ def _pt(p: str, link: str | None = None) -> str:
     return f"{t}_{{{link}}}" if link is not None else t
 
 
+def _solved_before(study, g) -> set:
+    """Links known when group ``g`` is solved: the frame, the driving link and the links of the
+    groups attached before it."""
+    out = {FRAME, getattr(study.mechanism.driver, "link", None)} - {None}
+    for h in study.structure.groups:
+        if h is g:
+            break
+        out |= set(h.links)
+    return out
+
+
 def _m(tex: str) -> Markup:
     return inline_math(tex)
 
@@ -95,9 +106,12 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
                 _m(P), _m(R), _m(rf"\bar{{a}}^{{\tau}}_{{{P}{R}}} \;\perp\; {R}{P}"),
                 _m(rf"a^{{\tau}}_{{{P}{R}}} = \varepsilon_{{{_ang(name)}}} l_{{{R}{P}}}"
                    + (rf" = {tex_num(abs(e) * l, sig=4, unit='м/с²')}" if known else ""))))
+    known = _solved_before(study, g) | links
     for j in mech.prismatic:
         guide, slider = j.links
-        if not ({guide, slider} & links) or j.driving and g.klass != 1:
+        # a pair of this group: one of its links in the group, the other solved before (or the
+        # frame) — not a pair by which a later group is attached to this one
+        if not ({guide, slider} & links) or not {guide, slider} <= known or j.driving and g.klass != 1:
             continue
         P = tex_point(j.point)
         Ps, Pg = _pt(j.point, slider), _pt(j.point, guide)
@@ -112,9 +126,20 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
         vf.append(Formula(rf"\bar{{V}}_{{{Ps}}} = \bar{{V}}_{{{Pg}}} + \bar{{V}}_{{{Ps}{Pg}}}"))
         gref = _attach(mech, mech.link(guide), links | {guide})
         G = tex_point(gref)
-        vn.append(Markup("{} — скорость точки звена {} под ползуном: {}, {}; {} направляющей "
-                         "звена {} — величины находятся построением").format(
-            _m(rf"\bar{{V}}_{{{Pg}}}"), guide, _m(rf"\bar{{V}}_{{{Pg}}} = \bar{{V}}_{{{G}}} + \bar{{V}}_{{{Pg}{G}}}"),
+        if float(study.cycle["wq_" + guide].abs().max()) < 1e-12:
+            # the guide only translates: every point of it has the same velocity and acceleration,
+            # and there is no Coriolis term (Артоболевский, гл. 3)
+            vn.append(Markup("{}: звено {} движется поступательно, скорости всех его точек одинаковы; {} "
+                             "направляющей — величина находится построением").format(
+                _m(rf"\bar{{V}}_{{{Pg}}} = \bar{{V}}_{{{G}}}"), guide, _m(rf"\bar{{V}}_{{{Ps}{Pg}}} \;\parallel")))
+            af.append(Formula(rf"\bar{{a}}_{{{Ps}}} = \bar{{a}}_{{{Pg}}} + \bar{{a}}^{{r}}_{{{Ps}{Pg}}}"))
+            an.append(Markup("{} (направляющая движется поступательно, поэтому кориолисова ускорения нет), {} "
+                             "направляющей — величина находится построением").format(
+                _m(rf"\bar{{a}}_{{{Pg}}} = \bar{{a}}_{{{G}}}"), _m(rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}} \;\parallel")))
+            continue
+        vn.append(Markup("{} — скорость точки звена {}, совпадающей в данный момент с точкой {} звена {}: "
+                         "{}, {}; {} направляющей звена {} — величины находятся построением").format(
+            _m(rf"\bar{{V}}_{{{Pg}}}"), guide, _m(P), slider, _m(rf"\bar{{V}}_{{{Pg}}} = \bar{{V}}_{{{G}}} + \bar{{V}}_{{{Pg}{G}}}"),
             _m(rf"\bar{{V}}_{{{Pg}{G}}} \;\perp\; {G}{P}"), _m(rf"\bar{{V}}_{{{Ps}{Pg}}} \;\parallel"), guide))
         af.append(Formula(rf"\bar{{a}}_{{{Ps}}} = \bar{{a}}_{{{Pg}}} + \bar{{a}}^{{k}}_{{{Ps}{Pg}}} + "
                           rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}}"))
