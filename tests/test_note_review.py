@@ -24,6 +24,27 @@ def slider():
     return load_case(CASES / "slider_crank.toml")
 
 
+DATA = CASES.parent / "tests" / "data"
+
+
+@pytest.fixture(scope="module")
+def slotted():
+    """ws004's slotted lever with masses and a resistance: the group (2,3) is ВПВ."""
+    return load_case(DATA / "slotted_lever_forces.toml")
+
+
+@pytest.fixture(scope="module")
+def yoke():
+    """A Scotch yoke: the group (2,3) is ВПП."""
+    return load_case(DATA / "scotch_yoke_forces.toml")
+
+
+@pytest.fixture(scope="module")
+def hitch():
+    """ws002: the initial mechanism with the actuator's pair."""
+    return load_case(CASES / "ws002_tractor_hitch.toml")
+
+
 def _position(st):
     from reportgen.report.sections.common import chosen_position
     lab = chosen_position(st)
@@ -33,29 +54,33 @@ def _position(st):
 # --------------------------------------------------------------------------------------------
 # force polygons constructed as the graphical method does it
 # --------------------------------------------------------------------------------------------
-@pytest.mark.parametrize("name", ["corrected", "slider"])
-def test_polygon_by_intersection_exact_lengths_give_the_analytic_reactions(name, request):
-    """With lengths not rounded (μ_F tiny) the intersection of the two known lines reproduces the
-    reactions of the exact solution of the group's equations: a second formulation."""
+KINDS = {"corrected": {"intersection", "closing"}, "slider": {"intersection", "closing"},
+         "slotted": {"intersection", "links", "closing"}, "yoke": {"link_intersection", "closing"},
+         "hitch": {"intersection", "actuated"}}
+
+
+@pytest.mark.parametrize("name", list(KINDS))
+def test_polygon_by_construction_exact_lengths_give_the_analytic_reactions(name, request):
+    """With lengths not rounded (μ_F tiny) the construction (intersection of the known lines, or
+    the closing side of each link's polygon) reproduces the reactions of the exact solution of
+    the group's equations at every report position and for every group: a second formulation."""
     from reportgen.scenes.forces import construct_polygon, group_vectors
     st = request.getfixturevalue(name)
-    lab = _position(st)
-    n = 0
-    for gi in range(len(st.forces.model.groups)):
-        ext, _, internal = group_vectors(st, lab, gi)
-        built = construct_polygon(ext, internal, 1e-9)
-        if built is None:
-            continue
-        seq, found = built
-        n += 1
-        scale = max(float(np.hypot(*v.F)) for v in ext)
-        assert np.hypot(*np.sum([v.F for v in seq], axis=0)) < 1e-9 * scale      # the polygon closes
-        for c in found:
-            assert abs(c.graphic - c.exact) < 1e-6 * scale, c
-    assert n >= 2
+    methods = set()
+    for lab in st.forces.labels:
+        for gi in range(len(st.forces.model.groups)):
+            ext, _, internal = group_vectors(st, lab, gi)
+            built = construct_polygon(ext, internal, 1e-9)
+            assert built is not None, (lab, gi)
+            methods.add(built.method)
+            scale = max(float(np.hypot(*v.F)) for v in ext + internal)
+            assert np.hypot(*np.sum([v.F for v in built.chain], axis=0)) < 1e-9 * scale   # the polygon closes
+            for c in built.found:
+                assert abs(c.graphic - c.exact) < 1e-6 * scale, (lab, gi, c)
+    assert methods == KINDS[name]
 
 
-@pytest.mark.parametrize("name", ["corrected", "slider"])
+@pytest.mark.parametrize("name", list(KINDS))
 def test_polygon_at_scale_is_a_real_graphical_solution(name, request):
     """Drawn at μ_F with every length rounded to 0,5 mm the reactions read off the drawing differ
     from the analytic ones, by no more than the drawing's accuracy (a few per cent), and the

@@ -7,7 +7,9 @@ Scenes only draw what ``study.forces`` computed (``Forces.details`` at a report 
 from __future__ import annotations
 
 import math
+import unicodedata
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
@@ -43,21 +45,46 @@ def load_label(ld: dict) -> str:
 UNSUB = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
 
 
+def split_label(label: str) -> tuple[str, str, str] | None:
+    """A force label of the tables (R₁₂, Φ₂, MΦ₂′, Fур) split into the letter, its index and the
+    primes: ("R", "12", ""), ("M", "Φ2", "′"), ("F", "ур", ""); None for an empty letter."""
+    text = label.translate(UNSUB)
+    primes = ""
+    while text and text[-1] in "′″'":
+        primes = ("′" if text[-1] == "'" else text[-1]) + primes
+        text = text[:-1]
+    if not text:
+        return None
+    return text[0], text[1:], primes
+
+
+GREEK_TEX = {"Φ": r"\Phi", "ω": r"\omega", "ε": r"\varepsilon"}
+
+
 def math_label(label: str) -> str:
     """A force label of the tables (R₁₂, Φ₂, MΦ₂, Fур, G₂′) in mathtext for a drawing:
     $R_{12}$, $\\Phi_{2}$, $M_{\\Phi 2}$, $F_{ур}$, $G′_{2}$."""
-    text = label.translate(UNSUB)
-    primes = ""
-    while text and text[-1] in "′″":
-        primes = text[-1] + primes
-        text = text[:-1]
-    if not text:
+    parts = split_label(label)
+    if parts is None:
         return label
-    head, rest = text[0], text[1:]
-    greek = {"Φ": r"\Phi", "ω": r"\omega", "ε": r"\varepsilon"}
-    head = greek.get(head, head)
-    rest = "".join(greek.get(c, c) + (" " if c in greek else "") for c in rest).strip()
+    head, rest, primes = parts
+    head = GREEK_TEX.get(head, head)
+    rest = "".join(GREEK_TEX.get(c, c) + (" " if c in GREEK_TEX else "") for c in rest).strip()
     return "$" + head + primes + (f"_{{{rest}}}" if rest else "") + "$"
+
+
+def html_label(label: str) -> str:
+    """The same label in the note's HTML (textbook notation, as ``math_label`` draws it): the
+    Latin letter in italics, Greek upright, the index as a subscript, primes after the letter:
+    <i>P</i><sub>пс</sub>, <i>M</i>′<sub>Φ2</sub>, Φ<sub>2</sub>. Labels are built by the
+    program from validated names (letters and digits only)."""
+    from markupsafe import escape
+    parts = split_label(label)
+    if parts is None:
+        return str(escape(label))
+    head, rest, primes = (str(escape(x)) for x in parts)
+    letter = head if "GREEK" in unicodedata.name(parts[0], "") else f"<i>{head}</i>"
+    return letter + primes + (f"<sub>{rest}</sub>" if rest else "")
 
 
 def pair_label(a: str, b: str) -> str:
@@ -76,6 +103,8 @@ class Vector:
     other: str = ""        # internal reaction: the link that exerts it
     kind: int = -1         # reaction: the pair kind (kinetostatics K_REV, K_PRI, …)
     tex: str = ""          # mathtext label when it is not math_label(label) (components R^n, R^τ)
+    back: str = ""         # internal reaction: the label of the opposite force when it is not
+                           # pair_label(link, other) (links merged into one body)
 
 
 @dataclass
@@ -97,6 +126,7 @@ class GroupDrawing(Drawing):
     mu_F: float = 0.0
     vectors: list[Vector] = field(default_factory=list)
     constructed: list[Constructed] = field(default_factory=list)   # reactions found by construction
+    method: str = ""              # Construction.method ("" where the polygon is drawn, not constructed)
 
 
 def group_vectors(study, label: str, gi: int) -> tuple[list[Vector], list[dict], list[Vector]]:
@@ -205,7 +235,7 @@ class GroupForces:
         mu_F = self.mu_F or nice_scale(pext, 62.0)
         built = construct_polygon(seq, internal, mu_F)
         if built is not None:
-            seq, constructed = built
+            seq, constructed, internal = built.chain, built.found, built.internal
             count = {l: sum(1 for v in seq if v.link == l) for l in g.links}
             order = list(dict.fromkeys(v.link for v in seq))
             cum = np.cumsum([np.zeros(2)] + [v.F for v in seq], axis=0)
@@ -256,8 +286,8 @@ class GroupForces:
             nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
             if not inset or i not in inset["tiny"]:
                 cv.labels.add(mid[0], mid[1], v.tex or math_label(v.label), prefer=nrm, fontsize=10, color=color)
-        if len(constructed) == 2:
-            _direction_lines(ax, seq, poly)
+        if built is not None and built.lines:
+            _direction_lines(ax, built.lines, poly)
         if inset:
             _draw_inset(cv, seq, inset)
         # internal reactions: a cut between the first links of the order and the rest crossed by
@@ -271,7 +301,7 @@ class GroupForces:
             if len(cross) != 1 or n == 0:
                 continue
             v = cross[0]
-            F, lab = (v.F, v.label) if v.link in side else (-v.F, pair_label(v.link, v.other))
+            F, lab = (v.F, v.label) if v.link in side else (-v.F, v.back or pair_label(v.link, v.other))
             start, end = poly[n], poly[0]
             arrow(ax, start[0], start[1], end[0], end[1], color=BLUE, lw=1.0, ls="--", zorder=5)
             closing.append(Vector(lab, F, v.at, "internal", v.link if v.link in side else v.other))
@@ -280,7 +310,8 @@ class GroupForces:
             nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
             cv.labels.add(mid[0], mid[1], math_label(lab), prefer=nrm, fontsize=10, color=BLUE)
         ax.plot([poly[0, 0]], [poly[0, 1]], "o", ms=2.5, color=INK)
-        return GroupDrawing(cv.svg(), cv.width_mm, mu_l, mu_F=mu_F, vectors=seq + closing, constructed=constructed)
+        return GroupDrawing(cv.svg(), cv.width_mm, mu_l, mu_F=mu_F, vectors=seq + closing, constructed=constructed,
+                            method=built.method if built is not None else "")
 
 
 def _unit(v) -> np.ndarray:
@@ -294,19 +325,48 @@ def _component_tex(label: str, sup: str) -> str:
     return "$" + text[0] + "^{" + sup + "}_{" + text[1:] + "}$"
 
 
-def construct_polygon(seq: list[Vector], internal: list[Vector], mu_F: float):
-    """The force polygon of a group constructed as the graphical method does it (Артоболевский [1],
-    гл. «Кинетостатика»; Попов–Тимофеев [2]): each unknown reaction of an outer pair has a known
-    line — a revolute pair of a link joined to the rest of the group by a revolute pair splits
-    into R^τ ⊥ the link (from the moments of the link about the inner pair, analytic) and R^n
-    along the link (direction known); a prismatic pair gives R ⊥ the guide. The known forces and
-    the R^τ are laid off head to tail, each rounded to READ_MM on the drawing; the two unknown
-    directions drawn through the ends of the chain intersect in the polygon's vertex, and the
-    reactions are read off the drawing to READ_MM.
+class Construction(NamedTuple):
+    """A force polygon as constructed: its sides in the order drawn (head to tail, the last
+    ending at the first's start), the reactions read off it, the sides whose lines of known
+    direction were drawn to intersect (pairs of vertex indices of the polygon: side i runs from
+    vertex i to i + 1, the closing side of the first link's polygon from vertex k to vertex 0)
+    and the method: "closing" (one link, the closing side), "intersection" (two lines through
+    the ends of the group's chain; "actuated": the same with the cylinder and the rod as one
+    body), "links" (an inner prismatic pair: each link's polygon
+    closed by its outer reaction), "link_intersection" (an inner prismatic pair and an outer
+    one on the same link: the two lines intersect on that link's polygon)."""
 
-    Returns (the polygon as drawn: R^n₁, R^τ₁, the known forces link by link, R^τ₂, R^n₂;
-    the reactions read off it) or None where the group has no such pair of lines (one unknown
-    outer reaction, both on one link, a prismatic inner pair, parallel lines)."""
+    chain: list[Vector]
+    found: list[Constructed]
+    lines: list[tuple[int, int]]
+    method: str
+    internal: list[Vector]        # the inner reactions of the construction (the actuator's pair
+                                  # is inside one body: its cylinder and rod bear one link's name)
+
+
+def construct_polygon(seq: list[Vector], internal: list[Vector], mu_F: float) -> Construction | None:
+    """The force polygon of a group constructed as the graphical method does it (Артоболевский [1],
+    гл. «Кинетостатика»; Попов–Тимофеев [2]), for every kind of class II group and the initial
+    link. Every known force is laid off head to tail, rounded to READ_MM on the drawing, and the
+    unknown reactions are read off the drawing to READ_MM:
+
+    - one link (the crank): the closing side of its polygon;
+    - inner revolute pair (ВВВ, ВВП, ПВП): each unknown reaction of an outer pair has a known
+      line — a revolute pair splits into R^τ ⊥ the link (from the moments of the link about the
+      inner pair, analytic) and R^n along the link; a prismatic pair gives R ⊥ the guide; the two
+      lines through the ends of the group's chain intersect in the polygon's vertex;
+    - inner prismatic pair, both outer pairs revolute (ВПВ): the inner reaction is ⊥ the guide
+      and its magnitude comes from the moments of a link about its outer pair (analytic, as R^τ);
+      the polygon of each link is then closed by its outer reaction;
+    - inner prismatic pair and an outer prismatic pair on one link (ВПП): both reactions on that
+      link are ⊥ their guides, so its polygon is closed by intersecting the two lines; the
+      other link's polygon is closed by its outer reaction;
+    - the initial mechanism of an actuator-driven linkage: the cylinder and the rod are one
+      body of variable length (structure.decomposition), joined to the output link by a
+      revolute pair, which is then an inner revolute pair as above (R^n along the cylinder).
+
+    Returns the ``Construction`` or None where the group has none of these forms (class III
+    groups, the actuator's pair, lines closer than 3° to parallel)."""
     unknown = [v for v in seq if v.role == "unknown"]
 
     def drawn_vec(F) -> np.ndarray:
@@ -315,32 +375,41 @@ def construct_polygon(seq: list[Vector], internal: list[Vector], mu_F: float):
         n = float(np.hypot(*F))
         return np.asarray(F, dtype=float) if n / mu_F < TINY_MM else _unit(F) * drawn(n, mu_F)
 
+    def laid(v: Vector) -> Vector:
+        return Vector(v.label, drawn_vec(v.F), v.at, v.role, v.link, v.other, v.kind, v.tex)
+
+    def read(label: str, R, exact) -> Constructed:
+        return Constructed(label, drawn(float(np.hypot(*R)), mu_F), float(np.hypot(*exact)))
+
     if len(unknown) == 1 and not internal:      # one link (the crank): the closing side of the polygon
         u = unknown[0]
-        chain = [Vector(v.label, drawn_vec(v.F), v.at, v.role, v.link, v.other, v.kind, v.tex)
-                 for v in seq if v.role != "unknown"]
+        chain = [laid(v) for v in seq if v.role != "unknown"]
         if not chain:
             return None
         C = np.sum([v.F for v in chain], axis=0)
-        return chain + [Vector(u.label, -C, u.at, "unknown", u.link, kind=u.kind)], [
-            Constructed(u.label, drawn(float(np.hypot(*C)), mu_F), float(np.hypot(*u.F)))]
-    if len(unknown) != 2 or unknown[0].link == unknown[1].link:
+        return Construction(chain + [Vector(u.label, -C, u.at, "unknown", u.link, kind=u.kind)],
+                            [read(u.label, C, u.F)], [], "closing", [])
+    act = [w for w in internal if w.kind == KS.K_ACT]
+    if len(act) == 1 and len(internal) == 2:
+        return _construct_actuated(seq, internal, act[0], mu_F)
+    if len(unknown) != 2 or unknown[0].link == unknown[1].link or len(internal) != 1:
+        return None
+    if internal[0].kind == KS.K_PRI:
+        return _construct_inner_prismatic(seq, unknown, internal[0], laid, read)
+    if internal[0].kind != KS.K_REV:
         return None
     dirs = []
     for v in unknown:
         if v.kind == KS.K_PRI:
             d = _unit(v.F)                       # the normal of the guide (no friction)
         elif v.kind == KS.K_REV:
-            inner = [w for w in internal if v.link in (w.link, w.other)]
-            if len(inner) != 1 or inner[0].kind != KS.K_REV:
-                return None
-            d = _unit(np.subtract(inner[0].at, v.at))
+            d = _unit(np.subtract(internal[0].at, v.at))
         else:
             return None
         if not d.any():
             return None
         dirs.append(d)
-    if abs(dirs[0][0] * dirs[1][1] - dirs[0][1] * dirs[1][0]) < 0.05:   # lines closer than 3° to parallel
+    if _parallel(*dirs):
         return None
 
     (u1, u2), (d1, d2) = unknown, dirs
@@ -351,7 +420,7 @@ def construct_polygon(seq: list[Vector], internal: list[Vector], mu_F: float):
     if float(np.hypot(*t1)) > 1e-9 * float(np.hypot(*u1.F)):
         chain.append(Vector(u1.label, drawn_vec(t1), u1.at, "known", u1.link, kind=u1.kind,
                             tex=_component_tex(u1.label, r"\tau")))
-    chain += [Vector(v.label, drawn_vec(v.F), v.at, v.role, v.link, v.other, v.kind, v.tex) for v in middle]
+    chain += [laid(v) for v in middle]
     if float(np.hypot(*t2)) > 1e-9 * float(np.hypot(*u2.F)):
         chain.append(Vector(u2.label, drawn_vec(t2), u2.at, "known", u2.link, kind=u2.kind,
                             tex=_component_tex(u2.label, r"\tau")))
@@ -365,16 +434,82 @@ def construct_polygon(seq: list[Vector], internal: list[Vector], mu_F: float):
                   tex=_component_tex(u2.label, "n") if sup[1] and chain and chain[-1].label == u2.label else "")
     R1 = n1 + (chain[0].F if chain and chain[0].label == u1.label else 0.0)
     R2 = n2 + (chain[-1].F if chain and chain[-1].label == u2.label else 0.0)
-    found = [Constructed(u.label, drawn(float(np.hypot(*R)), mu_F), float(np.hypot(*u.F)))
-             for u, R in ((u1, R1), (u2, R2))]
-    return [first] + chain + [last], found
+    n = len(chain) + 1
+    return Construction([first] + chain + [last], [read(u1.label, R1, u1.F), read(u2.label, R2, u2.F)],
+                        [(0, 1), (n, n + 1)], "intersection", internal)
 
 
-def _direction_lines(ax, seq: list[Vector], poly: np.ndarray) -> None:
-    """The two lines of known direction through the ends of the chain, thin dash-dot beyond
-    the vertex where they intersect (the construction left visible on the drawing)."""
-    for i in (0, len(seq) - 1):
-        a, b = poly[i], poly[i + 1]
+def _construct_actuated(seq, internal, act: Vector, mu_F: float) -> Construction | None:
+    """The initial mechanism of an actuator-driven linkage with the cylinder and the rod taken
+    as one body (the actuator's force, normal force and moment are inner forces of the body)."""
+    body = {act.link: act.other, act.other: act.other}
+
+    def merged(v: Vector) -> Vector:
+        return Vector(v.label, v.F, v.at, v.role, body.get(v.link, v.link), body.get(v.other, v.other),
+                      v.kind, v.tex, pair_label(v.link, v.other) if v.other else "")
+
+    rest = [merged(w) for w in internal if w is not act]
+    if rest[0].link == rest[0].other:
+        return None
+    built = construct_polygon([merged(v) for v in seq], rest, mu_F)
+    return built._replace(method="actuated") if built is not None and built.method == "intersection" else None
+
+
+def _parallel(d1, d2) -> bool:
+    """Lines closer than 3° to parallel do not give a readable intersection."""
+    return abs(d1[0] * d2[1] - d1[1] * d2[0]) < 0.05
+
+
+def _construct_inner_prismatic(seq, unknown, inner: Vector, laid, read) -> Construction | None:
+    """The polygons of a group whose inner pair is prismatic (ВПВ, ВПП), link by link: the chain
+    is [outer reaction of link a, loads of a, loads of b, outer reaction of b]; the inner
+    reaction closes the polygon of link a (vertex k back to vertex 0), drawn dashed by the
+    caller. Link b is the one with the outer prismatic pair when there is one."""
+    d_in = _unit(inner.F)                               # ⊥ the inner guide (no friction)
+    by_link = {v.link: v for v in unknown}
+    if not d_in.any() or set(by_link) != {inner.link, inner.other}:
+        return None
+    pri = [v for v in unknown if v.kind == KS.K_PRI]
+    if any(v.kind not in (KS.K_REV, KS.K_PRI) for v in unknown) or len(pri) == 2:
+        return None
+    ub = pri[0] if pri else next(v for v in unknown if v.link == inner.link)
+    ua = next(v for v in unknown if v is not ub)
+    la = [laid(v) for v in seq if v.role != "unknown" and v.link == ua.link]
+    lb = [laid(v) for v in seq if v.role != "unknown" and v.link == ub.link]
+    La = np.sum([v.F for v in la], axis=0) if la else np.zeros(2)
+    Lb = np.sum([v.F for v in lb], axis=0) if lb else np.zeros(2)
+    sign = 1.0 if inner.link == ub.link else -1.0     # inner.F acts on inner.link
+    found = []
+    if pri:       # ВПП: on link b, R_ab ⊥ the inner guide and R_0b ⊥ the outer guide intersect
+        d_out = _unit(ub.F)
+        if not d_out.any() or _parallel(d_in, d_out):
+            return None
+        lam = np.linalg.solve(np.column_stack([d_in, d_out]), -Lb)
+        R_ab, Rb = lam[0] * d_in, lam[1] * d_out
+        found.append(read(ub.label, Rb, ub.F))
+        found.append(read(inner.label if sign > 0 else pair_label(inner.link, inner.other), R_ab, sign * inner.F))
+        method = "link_intersection"
+    else:         # ВПВ: R_ab from the moments (analytic), laid off to the drawing's accuracy
+        R_ab = laid(Vector(inner.label, sign * inner.F, inner.at, "known")).F
+        Rb = -(Lb + R_ab)
+        found.append(read(ub.label, Rb, ub.F))
+        method = "links"
+    Ra = R_ab - La                                      # link a: R_a + L_a − R_ab = 0
+    found.insert(0, read(ua.label, Ra, ua.F))
+    chain = ([Vector(ua.label, Ra, ua.at, "unknown", ua.link, kind=ua.kind)] + la + lb
+             + [Vector(ub.label, Rb, ub.at, "unknown", ub.link, kind=ub.kind)])
+    k = 1 + len(la)                                     # the vertex where link a's polygon is closed
+    n = len(chain)
+    lines = [(n - 1, n), (k, 0)] if pri else []
+    return Construction(chain, found, lines, method, [inner])
+
+
+def _direction_lines(ax, lines: list[tuple[int, int]], poly: np.ndarray) -> None:
+    """The lines of known direction (sides between the given vertices of the polygon), thin
+    dash-dot beyond the vertex where they intersect (the construction left visible on the
+    drawing)."""
+    for i, j in lines:
+        a, b = poly[i], poly[j]
         d = b - a
         n = float(np.hypot(*d))
         if n == 0:
@@ -778,4 +913,4 @@ class AxleCurves:
 
 
 __all__ = ["LoadedScheme", "GroupForces", "GroupDrawing", "ZhukovskyLever", "LeverDrawing", "ReactionCurves", "CapacityCurves",
-           "AxleCurves", "group_vectors", "load_label", "pair_label", "shown_key", "sub", "Vector"]
+           "AxleCurves", "group_vectors", "html_label", "load_label", "pair_label", "shown_key", "sub", "Vector"]

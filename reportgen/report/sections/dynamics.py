@@ -15,6 +15,7 @@ from markupsafe import Markup
 from ...analysis.dynamics import DELTA_RANGES
 from ...case.text import inline_html
 from ...scenes.draw import gost_ratio
+from ...scenes.forces import html_label
 from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, MomentCurves,
                                 MotionCurves, WittenbauerDiagram, WorkCurves)
 from ...style.numbers import fmt, fmt_pct, tex_num
@@ -269,7 +270,7 @@ def _model(sec: Section, study, d) -> None:
         s.paragraph(f"Внешние нагрузки машины перечислены в таблице {ref('tab-dyn-loads')}. Силы тяжести "
                     f"вычислены при g&nbsp;=&nbsp;{fmt(d.loads.g, sig=4)}&nbsp;м/с².")
         s.table("Нагрузки, действующие на звенья", [
-            Column("name", "Обозначение"), Column("what", "Нагрузка"), Column("where", "Точка приложения"),
+            Column("name", "Обозначение", fmt=lambda v: Markup(html_label(v))), Column("what", "Нагрузка"), Column("where", "Точка приложения"),
             Column("law", "Закон изменения")], pd.DataFrame(lrows), id="tab-dyn-loads")
     if d.breaks.size:
         pts = ", ".join(_phase_deg(study, q) for q in d.breaks)

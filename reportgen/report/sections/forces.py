@@ -18,8 +18,8 @@ from markupsafe import Markup
 from ...analysis.forces import crank_pin
 from ...core import kinetostatics as KS
 from ...mechanism.model import FRAME
-from ...scenes.forces import (AxleCurves, CapacityCurves, GroupForces, ReactionCurves, ZhukovskyLever,
-                              group_vectors, shown_key)
+from ...scenes.forces import (AxleCurves, CapacityCurves, GroupForces, ReactionCurves, ZhukovskyLever, html_label,
+                              group_vectors, load_label, shown_key)
 from ...scenes.draw import mu_text
 from ...style.numbers import fmt, tex_num
 from ..document import Column, Formula, Section, ref
@@ -224,16 +224,17 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
         if ld["kind"] in ("Phi", "MPhi", "Mfly"):
             continue
         if ld["M"] is None:
-            lrows.append({"name": ld["name"], "link": ld["link"], "point": ld["point"], "Fx": ld["Fx"],
+            lrows.append({"name": load_label(ld), "link": ld["link"], "point": ld["point"], "Fx": ld["Fx"],
                           "Fy": ld["Fy"], "F": math.hypot(ld["Fx"], ld["Fy"]), "M": math.nan})
         else:
-            lrows.append({"name": ld["name"], "link": ld["link"], "point": "—", "Fx": math.nan, "Fy": math.nan,
+            lrows.append({"name": load_label(ld), "link": ld["link"], "point": "—", "Fx": math.nan, "Fy": math.nan,
                           "F": math.nan, "M": ld["M"]})
     if lrows:
         s.paragraph(f"Заданные нагрузки и силы тяжести в положении {pos_no(study, lab)} — в таблице {ref('tab-frc-applied')} "
                     "(силы тяжести приложены в центрах масс и направлены вниз).")
         s.table(f"Заданные силы и моменты (положение {pos_no(study, lab)})", [
-            Column("name", "Нагрузка"), Column("link", "Звено"), Column("point", "Точка"),
+            Column("name", "Нагрузка", fmt=lambda v: Markup(html_label(v))), Column("link", "Звено"),
+            Column("point", "Точка"),
             Column("Fx", sub("F", "x"), "Н", fmt=_short), Column("Fy", sub("F", "y"), "Н", fmt=_short),
             Column("F", "<i>F</i>", "Н", fmt=_short), Column("M", "<i>M</i>", "Н·м", fmt=_short)],
             pd.DataFrame(lrows), id="tab-frc-applied")
@@ -283,13 +284,12 @@ def _groups(sec: Section, study, f, lab: str) -> None:
                 "определяющий точку её приложения). Реакции со стороны групп, рассчитанных ранее, известны. "
                 "Система линейных уравнений группы решается точно; векторные уравнения сил проверяются "
                 "построением планов сил в масштабе μ<sub>F</sub> (замкнутые многоугольники).")
-    told: set[int] = set()      # the kinds of construction already described in full
+    told: set[str] = set()      # the kinds of construction already described in full
     for gi, g in enumerate(f.model.groups):
         draw = GroupForces(lab, gi).draw(study)
         ext, moments, internal = group_vectors(study, lab, gi)
         gid = f"fig-frc-group-{gi + 1}"
-        names = " + ".join(v.label.replace("R", "<i>R</i>", 1) if v.label.startswith("R") else v.label
-                            for v in ext) or "0"
+        names = " + ".join(html_label(v.label) for v in ext) or "0"
         unknown = [f.model.pairs[k] for k in g.pairs]
         act = next((p for p in unknown if p.kind == KS.K_ACT), None)
         if act is not None:   # the initial mechanism of an actuator-driven linkage (structure.decomposition)
@@ -305,7 +305,7 @@ def _groups(sec: Section, study, f, lab: str) -> None:
                  draw.svg, draw.width_mm, id=gid)
         if draw.constructed:
             s.paragraph(_construction_text(draw, gid, told))
-            told |= {len(draw.constructed)}
+            told.add(draw.method)
         rows = []
         det = f.details(lab)
         for k in g.pairs:
@@ -330,24 +330,42 @@ def _groups(sec: Section, study, f, lab: str) -> None:
 _DIGITS = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
 
 
-def _construction_text(draw, gid: str, told: set[int]) -> str:
+_LAID = "отложены в масштабе μ<sub>F</sub> с длинами, округлёнными до 0,5&nbsp;мм"
+_INTERSECTION = ("Известные силы и касательные составляющие реакций <i>R</i><sup>τ</sup> (из уравнений моментов "
+                 "сил каждого звена относительно внутреннего шарнира) " + _LAID + "; через начало и конец цепи "
+                 "проведены линии известных направлений (нормальная составляющая <i>R</i><sup>n</sup> — вдоль "
+                 "{along}, реакция поступательной пары — перпендикулярно направляющей); точка их пересечения "
+                 "замыкает план, реакции измерены на чертеже")
+# how each kind of construction (scenes.forces.Construction.method) is done, told once in full
+CONSTRUCTION_TEXT = {
+    "closing": ("Известные силы " + _LAID + "; замыкающая сторона плана сил — искомая реакция, её длина "
+                "измерена на чертеже"),
+    "intersection": _INTERSECTION.format(along="звена"),
+    "actuated": ("Гидроцилиндр и шток рассматриваются как одно звено переменной длины (усилие цилиндра — "
+                 "внутренняя сила этого звена). " + _INTERSECTION.format(
+                     along="звена, для цилиндра со штоком — вдоль оси гидроцилиндра")),
+    "links": ("Реакция во внутренней поступательной паре перпендикулярна направляющей; её модуль найден из "
+              "уравнения моментов сил звена относительно его внешнего шарнира. Она и известные силы " + _LAID
+              + "; план сил каждого звена замыкается реакцией в его внешнем шарнире (сплошные стороны), "
+              "реакция во внутренней паре показана штриховой линией; реакции измерены на чертеже"),
+    "link_intersection": ("У звена с двумя поступательными парами обе реакции перпендикулярны своим "
+                          "направляющим: известные силы этого звена " + _LAID + ", через начало и конец "
+                          "цепи проведены линии этих направлений, точка их пересечения замыкает план сил "
+                          "звена. Затем план сил второго звена замыкается реакцией в его шарнире; реакции "
+                          "измерены на чертеже"),
+}
+
+
+def _construction_text(draw, gid: str, told: set[str]) -> str:
     """How the polygon of the group was constructed (in full the first time, then by reference)
     and what was read off it, against the exact solution of the group's equations."""
     found = "; ".join(f"{sub('R', c.label[1:].translate(_DIGITS))}&nbsp;=&nbsp;{fmt(c.graphic, sig=4)}&nbsp;Н (аналитически "
                       f"{fmt(c.exact, sig=5)}&nbsp;Н, расхождение {fmt(c.dev_pct, digits=2, sign=True)}&nbsp;%)"
                       for c in draw.constructed)
-    if len(draw.constructed) in told:
+    if draw.method in told:
         how = "План сил построен так же, реакции измерены на чертеже"
-    elif len(draw.constructed) == 1:
-        how = ("Известные силы отложены в масштабе μ<sub>F</sub> (длины округлены до 0,5&nbsp;мм); "
-               "замыкающая сторона плана сил — искомая реакция, её длина измерена на чертеже")
     else:
-        how = ("Известные силы и касательные составляющие реакций <i>R</i><sup>τ</sup> (из уравнений моментов "
-               "сил каждого звена относительно внутреннего шарнира) отложены в масштабе μ<sub>F</sub> "
-               "с длинами, округлёнными до 0,5&nbsp;мм; через начало и конец цепи проведены линии известных "
-               "направлений (нормальная составляющая <i>R</i><sup>n</sup> — вдоль звена, реакция "
-               "поступательной пары — перпендикулярно направляющей); точка их пересечения замыкает "
-               "план, реакции измерены на чертеже")
+        how = CONSTRUCTION_TEXT[draw.method]
     return f"{how} (рисунок {ref(gid)}): {found}."
 
 
@@ -505,7 +523,7 @@ def _balance(sec: Section, study, f, lab: str) -> None:
              lever.svg, lever.width_mm, id="fig-frc-lever")
     loads = mt[~mt["balancing"].astype(bool)]
     s.table(f"Моменты сил относительно полюса рычага Жуковского (положение {pos_no(study, lab)})", [
-        Column("label", "Сила"), Column("F", "<i>F</i>", "Н", digits=2, sig=None),
+        Column("label", "Сила", fmt=lambda v: Markup(html_label(v))), Column("F", "<i>F</i>", "Н", digits=2, sig=None),
         Column("h", "<i>h</i>", "мм", digits=1, sig=None),
         Column("Fh", "±<i>F·h</i>", "Н·мм", fmt=lambda v: fmt(v, digits=1, sig=None, exp_from=1e12))], mt, id="tab-frc-lever",
         note="Плечо h — расстояние от полюса p до линии действия силы на рычаге; знак «+» — момент против "
