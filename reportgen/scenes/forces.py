@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 import unicodedata
 from dataclasses import dataclass, field
+from types import SimpleNamespace
 from typing import NamedTuple
 
 import numpy as np
@@ -22,7 +23,7 @@ from ..style import mplstyle
 from ..style.numbers import fmt
 from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow, draw_mechanism, gost_scale, nice_scale
 from .labels import tex_point
-from .mechanism import Drawing
+from .mechanism import LANDSCAPE_GAIN, LANDSCAPE_H, LANDSCAPE_W, Drawing
 
 BLUE = "#1f4e9c"
 RED = "#b2182b"
@@ -201,19 +202,11 @@ class GroupForces:
         self.label, self.gi = label, gi
         self.mu_l, self.mu_F = mu_l, mu_F
 
-    def draw(self, study) -> GroupDrawing:
-        f = study.forces
-        mech = study.mechanism
-        det = f.details(self.label)
-        cols = det["cols"]
-        g = f.model.groups[self.gi]
-        ext, moments, internal = group_vectors(study, self.label, self.gi)
-        pts = {p for l in g.links for p in mech.link(l).points}
-        xs = np.array([cols["x_" + p] for p in pts])
-        ys = np.array([cols["y_" + p] for p in pts])
+    def _layout(self, xs, ys, ext, internal, g, Fmax, gain: float) -> SimpleNamespace:
+        """The scales and the places of the scheme and the force polygon when the scheme is given
+        70·gain mm and the polygon 62·gain mm (gain 1 on the note's portrait page)."""
         span = max(np.ptp(xs), np.ptp(ys), 1e-6)
-        mu_l = self.mu_l or gost_scale(span, 70.0)
-        Fmax = max([float(np.hypot(*v.F)) for v in ext + internal] + [1e-12])
+        mu_l = self.mu_l or gost_scale(span, 70.0 * gain)
         # arrow tips on the scheme (mm converted with μ_l)
         tips = []
         for v in ext:
@@ -232,7 +225,7 @@ class GroupForces:
         seq = [v for l in order for v in seq if v.link == l]
         cum = np.cumsum([np.zeros(2)] + [v.F for v in seq], axis=0)
         pext = max(np.ptp(cum[:, 0]), np.ptp(cum[:, 1]), 1e-9)
-        mu_F = self.mu_F or nice_scale(pext, 62.0)
+        mu_F = self.mu_F or nice_scale(pext, 62.0 * gain)
         built = construct_polygon(seq, internal, mu_F)
         if built is not None:
             seq, constructed, internal = built.chain, built.found, built.internal
@@ -247,9 +240,40 @@ class GroupForces:
         poly = np.column_stack([x0 + cum[:, 0] * k, y0 + cum[:, 1] * k])
         inset = _inset(seq, cum, mu_F, k, poly, mu_l)
         ext_pts = np.vstack([poly] + ([inset["box"]] if inset else []))
+        x_lo, x_hi = min(allx.min(), ext_pts[:, 0].min()), max(allx.max(), ext_pts[:, 0].max())
+        y_lo, y_hi = min(ally.min(), ext_pts[:, 1].min()), max(ally.max(), ext_pts[:, 1].max())
+        return SimpleNamespace(mu_l=mu_l, mu_F=mu_F, allx=allx, ally=ally, seq=seq, constructed=constructed,
+                               internal=internal, count=count, order=order, cum=cum, poly=poly, inset=inset,
+                               ext_pts=ext_pts, built=built, w_mm=(x_hi - x_lo) / mu_l + 20.0,
+                               h_mm=(y_hi - y_lo) / mu_l + 20.0)
+
+    def draw(self, study) -> GroupDrawing:
+        f = study.forces
+        mech = study.mechanism
+        det = f.details(self.label)
+        cols = det["cols"]
+        g = f.model.groups[self.gi]
+        ext, moments, internal = group_vectors(study, self.label, self.gi)
+        pts = {p for l in g.links for p in mech.link(l).points}
+        xs = np.array([cols["x_" + p] for p in pts])
+        ys = np.array([cols["y_" + p] for p in pts])
+        Fmax = max([float(np.hypot(*v.F)) for v in ext + internal] + [1e-12])
+        lay = self._layout(xs, ys, ext, internal, g, Fmax, 1.0)
+        landscape = False
+        if self.mu_l is None and self.mu_F is None:
+            # on a landscape page when that enlarges both the scheme and the polygon LANDSCAPE_GAIN
+            # times and the drawing fits the page
+            wide = self._layout(xs, ys, ext, internal, g, Fmax, LANDSCAPE_GAIN * 1.05)
+            landscape = (lay.mu_l >= LANDSCAPE_GAIN * wide.mu_l and lay.mu_F >= LANDSCAPE_GAIN * wide.mu_F
+                         and wide.w_mm <= LANDSCAPE_W and wide.h_mm <= LANDSCAPE_H)
+            if landscape:
+                lay = wide
+        mu_l, mu_F, allx, ally, seq, constructed, internal, count, order, cum, poly, inset, ext_pts, built = (
+            lay.mu_l, lay.mu_F, lay.allx, lay.ally, lay.seq, lay.constructed, lay.internal, lay.count, lay.order,
+            lay.cum, lay.poly, lay.inset, lay.ext_pts, lay.built)
         cv = Canvas(min(allx.min(), ext_pts[:, 0].min()), max(allx.max(), ext_pts[:, 0].max()),
                     min(ally.min(), ext_pts[:, 1].min()), max(ally.max(), ext_pts[:, 1].max()), mu_l,
-                    margin_mm=10, max_w=170.0 if self.mu_l is None else 1e4)
+                    margin_mm=10, max_w=1e4 if self.mu_l is not None else LANDSCAPE_W if landscape else 170.0)
         ax = cv.ax
         draw_mechanism(cv, mech, cols, only=set(g.links), supports=False, lw=1.4, com=True)
         for v in ext:
@@ -310,7 +334,8 @@ class GroupForces:
             nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
             cv.labels.add(mid[0], mid[1], math_label(lab), prefer=nrm, fontsize=10, color=BLUE)
         ax.plot([poly[0, 0]], [poly[0, 1]], "o", ms=2.5, color=INK)
-        return GroupDrawing(cv.svg(), cv.width_mm, mu_l, mu_F=mu_F, vectors=seq + closing, constructed=constructed,
+        return GroupDrawing(cv.svg(), cv.width_mm, mu_l, landscape=landscape, mu_F=mu_F, vectors=seq + closing,
+                            constructed=constructed,
                             method=built.method if built is not None else "")
 
 
@@ -740,8 +765,14 @@ class ZhukovskyLever:
             items = [(lab, back(pt), back(F), b) for lab, pt, F, b in items]
             bal = [(lab, back(pt), back(F), b) for lab, pt, F, b in bal]
             tips = np.array([[t[1], -t[0]] for t in tips])
+        landscape = False
         if self.mu is None:
-            cv = Canvas.fit(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16)
+            # on a landscape page when that enlarges the lever at least LANDSCAPE_GAIN times
+            wide = dict(avail_w=LANDSCAPE_W, avail_h=LANDSCAPE_H - 32, margin_mm=16, page_w=LANDSCAPE_W)
+            landscape = (Canvas.scale(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16)
+                         >= LANDSCAPE_GAIN * Canvas.scale(tips[:, 0], tips[:, 1], **wide))
+            cv = (Canvas.fit(tips[:, 0], tips[:, 1], **wide) if landscape
+                  else Canvas.fit(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16))
         else:
             cv = Canvas(tips[:, 0].min(), tips[:, 0].max(), tips[:, 1].min(), tips[:, 1].max(), self.mu, 16, max_w=1e4)
         ax = cv.ax
@@ -777,7 +808,8 @@ class ZhukovskyLever:
         loads_ = table[~table["balancing"].astype(bool)]
         total = float(loads_["Fh"].sum())
         graph = -total / arm_read if abs(arm_read) > 0 else 0.0
-        return LeverDrawing(cv.svg(), cv.width_mm, cv.mu, moments=table, analog=analog, arm_mm=arm_read,
+        return LeverDrawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape, moments=table, analog=analog,
+                            arm_mm=arm_read,
                             graphic=graph, arm_exact_mm=arm_mm, forces_turned=turned)
 
 

@@ -302,7 +302,7 @@ def _groups(sec: Section, study, f, lab: str) -> None:
                     f"(рисунок {ref(gid)}): {names}&nbsp;=&nbsp;0.")
         s.figure(f"{'Начальный механизм' if act is not None else 'Группа'} {g.label}: схема нагружения (μ<sub>l</sub> = {mu_text(draw.mu)} м/мм, стрелки сил "
                  f"без масштаба) и план сил (μ<sub>F</sub> = {mu_text(draw.mu_F)} Н/мм)",
-                 draw.svg, draw.width_mm, id=gid)
+                 draw.svg, draw.width_mm, id=gid, landscape=draw.landscape)
         if draw.constructed:
             s.paragraph(_construction_text(draw, gid, told))
             told.add(draw.method)
@@ -520,7 +520,7 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     mu_unit = "м·с⁻¹/мм" if not lever.analog else ("м/мм" if rot else "мм⁻¹")
     turned = ", силы повёрнуты на 90° по часовой стрелке" if lever.forces_turned else ""
     s.figure(f"Рычаг Жуковского для положения {pos_no(study, lab)} (μ<sub>v</sub> = {mu_text(lever.mu)} {mu_unit}{turned})",
-             lever.svg, lever.width_mm, id="fig-frc-lever")
+             lever.svg, lever.width_mm, id="fig-frc-lever", landscape=lever.landscape)
     loads = mt[~mt["balancing"].astype(bool)]
     s.table(f"Моменты сил относительно полюса рычага Жуковского (положение {pos_no(study, lab)})", [
         Column("label", "Сила", fmt=lambda v: Markup(html_label(v))), Column("F", "<i>F</i>", "Н", digits=2, sig=None),
