@@ -21,7 +21,7 @@ from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, Mo
 from ...style.numbers import fmt, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
-from ..russian import condition_text, plural
+from ..russian import condition_text, expr_html, plural
 from .common import MAX_COLS, as_written, chosen_position, chunked_tables, sub, tex_point, pos_fmt, pos_no
 
 NEEDS = ("kinematics", "cycle", "dynamics")
@@ -271,7 +271,7 @@ def _model(sec: Section, study, d) -> None:
                     f"вычислены при g&nbsp;=&nbsp;{fmt(d.loads.g, sig=4)}&nbsp;м/с².")
         s.table("Нагрузки, действующие на звенья", [
             Column("name", "Обозначение", fmt=lambda v: Markup(html_label(v))), Column("what", "Нагрузка"), Column("where", "Точка приложения"),
-            Column("law", "Закон изменения")], pd.DataFrame(lrows), id="tab-dyn-loads")
+            Column("law", "Закон изменения", fmt=Markup)], pd.DataFrame(lrows), id="tab-dyn-loads")
     if d.breaks.size:
         pts = ", ".join(_phase_deg(study, q) for q in d.breaks)
         s.paragraph(f"Нагрузки меняют закон действия (точки переключения, найденные решением уравнений) при "
@@ -280,7 +280,8 @@ def _model(sec: Section, study, d) -> None:
 
 
 def _law(ld) -> str:
-    """Russian description of a load law (plain text with no-break spaces)."""
+    """Russian description of a load law (HTML with no-break spaces; the argument of a table in
+    textbook notation)."""
     if ld.kind == "weight":
         return f"G\u00a0=\u00a0{fmt(-ld.vector[1], sig=4)}\u00a0Н, вертикально вниз"
     parts = []
@@ -290,9 +291,10 @@ def _law(ld) -> str:
         head = (f"на фазе {fmt(math.degrees(p.phase[0]), digits=0)}…{fmt(math.degrees(p.phase[1]), digits=0)}°"
                 f"{' (' + p.name + ')' if p.name else ''}: " if p.phase is not None else "")
         unit, k = _law_unit(ld, p)
-        if p.table is not None:
-            parts.append(head + f"таблица {len(p.table.x)} точек от «{p.of.text}», "
-                         f"{fmt(p.table.y.min() / k, sig=3)}…{fmt(p.table.y.max() / k, sig=3)}\u00a0{unit}")
+        if p.table is not None:      # the argument of the table in textbook notation (expr_html escapes it)
+            parts.append(Markup("{}таблица {} от {}, {}…{}\u00a0{}").format(
+                head, plural(len(p.table.x), "точка", "точки", "точек"), expr_html(p.of.text), fmt(p.table.y.min() / k, sig=3),
+                fmt(p.table.y.max() / k, sig=3), unit))
         else:
             parts.append(head + f"{fmt(p.const / k, sig=4)}\u00a0{unit}")
     if ld.area is not None:
@@ -303,7 +305,7 @@ def _law(ld) -> str:
         parts.append("против движения")
     for c in ld.when:
         parts.append(condition_text(c.text))
-    return "; ".join(parts)
+    return Markup("; ").join(parts)       # plain parts are escaped
 
 
 def _law_unit(ld, p) -> tuple[str, float]:
