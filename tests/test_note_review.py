@@ -220,3 +220,67 @@ def test_delta_against_the_usual_range(delta, want):
     assert want in line and "ориентировочный диапазон" in line
     assert not re.search(r"\[\d\]", line) and "рекоменд" not in line
     assert _delta_judgement(SimpleNamespace(machine=None, delta=delta)) == []
+
+
+# --------------------------------------------------------------------------------------------
+# session 4: force names in textbook notation, vector equations of every dyad kind, landscape
+# --------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("label, html", [
+    ("Pпс", "<i>P</i><sub>пс</sub>"), ("MΦ₂′", "<i>M</i>′<sub>Φ2</sub>"), ("Φ₂″", "Φ″<sub>2</sub>"),
+    ("G₃", "<i>G</i><sub>3</sub>"), ("Fур", "<i>F</i><sub>ур</sub>"), ("R₁₂", "<i>R</i><sub>12</sub>"),
+    ("<b>", "<i>&lt;</i><sub>b&gt;</sub>")])
+def test_force_names_in_textbook_notation(label, html):
+    """Table 4.12 (the Жуковский lever) and the load tables print «P_пс», «M′_Φ2» as on the
+    drawings, never the plain «Рпс», «МФ2'»; anything else is escaped."""
+    from reportgen.scenes.forces import html_label, math_label
+    assert html_label(label) == html
+    assert html_label("MΦ2'") == html_label("MΦ₂′") and math_label("MΦ₂′") == "$M′_{\\Phi 2}$"
+
+
+def _equations(st):
+    from reportgen.report.sections import vectors
+    from reportgen.report.sections.common import chosen_position
+    k = st.kinematics
+    row = k[k["pos"] == chosen_position(st)].iloc[0]
+    return {g.kind: vectors.group_equations(st, row, g) for g in st.structure.groups}
+
+
+def test_vector_equations_moving_guide_with_coriolis_and_numbers(ws004):
+    """ВПВ of the slotted lever: the guide's point under the slider with its normal term and the
+    Coriolis term 2·ω₃·V_rel written out with numbers equal to the kinematics."""
+    from reportgen.report.sections.common import chosen_position
+    vf, vn, af, an = _equations(ws004)["RPR"]
+    text = " ".join(str(n) for n in an)
+    assert "кориолисово ускорение" in text and "ускорение точки звена 3 под ползуном" in text
+    k = ws004.kinematics
+    row = k[k["pos"] == chosen_position(ws004)].iloc[0]
+    ak = 2 * abs(row["w_3"]) * abs(row["vs_23"])
+    alts = re.findall(r'alt="([^"]*)"', text)
+    coriolis = next(a for a in alts if a.startswith("a^{k}"))
+    value = float(coriolis.split("=")[-1].split("\\")[0].replace("{,}", "."))
+    assert abs(value - ak) < 5e-4 * ak            # a^k = 2·ω₃·V_A2A3 to the 4 figures printed
+
+
+def test_vector_equations_guide_in_translation_without_coriolis(yoke):
+    """ВПП of a Scotch yoke: the guide moves in translation, so there is no Coriolis term."""
+    vf, vn, af, an = _equations(yoke)["RPP"]
+    text = " ".join(str(n) for n in an + vn)
+    assert "движется поступательно" in text and "кориолисова ускорения нет" in text
+
+
+def test_wide_plans_and_lever_go_landscape(ws004, corrected):
+    """The rule of the plan of positions for the other drawings: landscape when that enlarges the
+    drawing ≥ 1,5×, drawn up to the landscape text width."""
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.forces import ZhukovskyLever
+    from reportgen.scenes.mechanism import LANDSCAPE_GAIN, LANDSCAPE_W
+    from reportgen.scenes.plans import PlanScene, page_scale, plan_scale
+    lab = chosen_position(ws004)
+    acc = PlanScene(lab, "acceleration").draw(ws004)
+    vel = PlanScene(lab, "velocity").draw(ws004)
+    assert acc.landscape and 165 < acc.width_mm <= LANDSCAPE_W
+    assert not vel.landscape and vel.width_mm <= 165
+    mu, land = page_scale(acc.plan)
+    assert plan_scale(acc.plan) >= LANDSCAPE_GAIN * plan_scale(acc.plan, landscape=True)
+    lever = ZhukovskyLever(_position(corrected)).draw(corrected)
+    assert lever.landscape and lever.width_mm > 165
