@@ -276,11 +276,12 @@ def test_wide_plans_and_lever_go_landscape(ws004, corrected):
     from reportgen.scenes.mechanism import LANDSCAPE_GAIN, LANDSCAPE_W
     from reportgen.scenes.plans import PlanScene, page_scale, plan_scale
     lab = chosen_position(ws004)
-    acc = PlanScene(lab, "acceleration").draw(ws004)
-    vel = PlanScene(lab, "velocity").draw(ws004)
+    acc = PlanScene(lab, "acceleration", landscape=True).draw(ws004)
+    vel = PlanScene(lab, "velocity", landscape=True).draw(ws004)
+    assert not PlanScene(lab, "acceleration").draw(ws004).landscape      # a drawing sheet: never
     assert acc.landscape and 165 < acc.width_mm <= LANDSCAPE_W
     assert not vel.landscape and vel.width_mm <= 165
     mu, land = page_scale(acc.plan)
     assert plan_scale(acc.plan) >= LANDSCAPE_GAIN * plan_scale(acc.plan, landscape=True)
-    lever = ZhukovskyLever(_position(corrected)).draw(corrected)
+    lever = ZhukovskyLever(_position(corrected), landscape=True).draw(corrected)
     assert lever.landscape and lever.width_mm > 165

@@ -196,11 +196,13 @@ class GroupForces:
 
     needs = ("forces",)
 
-    def __init__(self, label: str, gi: int, mu_l: float | None = None, mu_F: float | None = None):
+    def __init__(self, label: str, gi: int, mu_l: float | None = None, mu_F: float | None = None,
+                 landscape: bool = False):
         """``mu_l``, ``mu_F``: the scales asked by the caller (a drawing sheet), else those that fit
-        the note's page."""
+        the note's page; ``landscape``: a landscape page may be taken where it pays (the note)."""
         self.label, self.gi = label, gi
         self.mu_l, self.mu_F = mu_l, mu_F
+        self.landscape = landscape
 
     def _layout(self, xs, ys, ext, internal, g, Fmax, gain: float) -> SimpleNamespace:
         """The scales and the places of the scheme and the force polygon when the scheme is given
@@ -260,7 +262,7 @@ class GroupForces:
         Fmax = max([float(np.hypot(*v.F)) for v in ext + internal] + [1e-12])
         lay = self._layout(xs, ys, ext, internal, g, Fmax, 1.0)
         landscape = False
-        if self.mu_l is None and self.mu_F is None:
+        if self.landscape and self.mu_l is None and self.mu_F is None:
             # on a landscape page when that enlarges both the scheme and the polygon LANDSCAPE_GAIN
             # times and the drawing fits the page
             wide = self._layout(xs, ys, ext, internal, g, Fmax, LANDSCAPE_GAIN * 1.05)
@@ -700,10 +702,12 @@ class ZhukovskyLever:
 
     needs = ("forces", "kinematics")
 
-    def __init__(self, label: str, mu: float | None = None):
-        """``mu``: the scale of the turned plan asked by the caller (a drawing sheet)."""
+    def __init__(self, label: str, mu: float | None = None, landscape: bool = False):
+        """``mu``: the scale of the turned plan asked by the caller (a drawing sheet);
+        ``landscape``: a landscape page may be taken where it pays (the note)."""
         self.label = label
         self.mu = mu
+        self.landscape = landscape
 
     def draw(self, study) -> LeverDrawing:
         f = study.forces
@@ -769,7 +773,7 @@ class ZhukovskyLever:
         if self.mu is None:
             # on a landscape page when that enlarges the lever at least LANDSCAPE_GAIN times
             wide = dict(avail_w=LANDSCAPE_W, avail_h=LANDSCAPE_H - 32, margin_mm=16, page_w=LANDSCAPE_W)
-            landscape = (Canvas.scale(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16)
+            landscape = self.landscape and (Canvas.scale(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16)
                          >= LANDSCAPE_GAIN * Canvas.scale(tips[:, 0], tips[:, 1], **wide))
             cv = (Canvas.fit(tips[:, 0], tips[:, 1], **wide) if landscape
                   else Canvas.fit(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16))

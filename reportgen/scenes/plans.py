@@ -72,14 +72,20 @@ def page_scale(plan: Plan) -> tuple[float, bool]:
 class PlanScene:
     needs = ("kinematics",)
 
-    def __init__(self, label: str, kind: str, mu_v: float | None = None, mu_a: float | None = None):
+    def __init__(self, label: str, kind: str, mu_v: float | None = None, mu_a: float | None = None,
+                 landscape: bool = False):
         """``mu_v``, ``mu_a``: scales given by the caller (one μ_V for all the velocity plans of a
         drawing sheet, one μ_a for its acceleration plans); by default each plan takes the round
-        scale that fits it (:func:`plan_scale`)."""
+        scale that fits it (:func:`plan_scale`), on a landscape page where that pays if
+        ``landscape`` (the note: :func:`page_scale`)."""
         self.label = label
         self.kind = kind
         self.mu_v = mu_v
         self.mu_a = mu_a
+        self.landscape = landscape
+
+    def _scale(self, plan: Plan) -> tuple[float, bool]:
+        return page_scale(plan) if self.landscape else (plan_scale(plan), False)
 
     def construct(self, study):
         """(constructed plan, analytic plan, μ, landscape) of this scene's kind."""
@@ -87,12 +93,12 @@ class PlanScene:
         row = k[k["pos"] == self.label].iloc[0]
         mech = study.mechanism
         v_exact = velocity_plan(row, mech)
-        mu_v, land_v = (self.mu_v, False) if self.mu_v else page_scale(v_exact)
+        mu_v, land_v = (self.mu_v, False) if self.mu_v else self._scale(v_exact)
         vrow, vplan = construct_velocity(row, study, mu_v)
         if self.kind == "velocity":
             return vplan, v_exact, mu_v, land_v
         a_exact = acceleration_plan(row, mech)
-        mu_a, land_a = (self.mu_a, False) if self.mu_a else page_scale(a_exact)
+        mu_a, land_a = (self.mu_a, False) if self.mu_a else self._scale(a_exact)
         om = measured_omegas(vrow, vplan, mech, mu_v)
         _, aplan = construct_acceleration(row, vrow, om, study, mu_a, mu_v)
         return aplan, a_exact, mu_a, land_a

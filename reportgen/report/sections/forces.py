@@ -286,7 +286,7 @@ def _groups(sec: Section, study, f, lab: str) -> None:
                 "построением планов сил в масштабе μ<sub>F</sub> (замкнутые многоугольники).")
     told: set[str] = set()      # the kinds of construction already described in full
     for gi, g in enumerate(f.model.groups):
-        draw = GroupForces(lab, gi).draw(study)
+        draw = GroupForces(lab, gi, landscape=True).draw(study)
         ext, moments, internal = group_vectors(study, lab, gi)
         gid = f"fig-frc-group-{gi + 1}"
         names = " + ".join(html_label(v.label) for v in ext) or "0"
@@ -490,7 +490,7 @@ def _balance(sec: Section, study, f, lab: str) -> None:
                           r" + \sum_k M_k \varphi_k^{\prime} = 0",
                           where=[(r"x_i^{\prime}, y_i^{\prime}", "передаточные отношения dx/dS, dy/dS точек приложения сил")],
                           label="eq-frc-power"))
-    lever = ZhukovskyLever(lab).draw(study)
+    lever = ZhukovskyLever(lab, landscape=True).draw(study)
     plan = "аналогов скоростей" if lever.analog else "скоростей"
     if lever.forces_turned:
         how = (f"Рычаг Н.&nbsp;Е.&nbsp;Жуковского — план {plan}, повёрнутый на 90°; повёрнутый план получился "

@@ -161,8 +161,8 @@ def build(study) -> Section:
         lab = chosen_position(study)
         s4 = sec.subsection(f"Планы скоростей и ускорений для положения {pos_no(study, lab)}", "sec-plans")
         row = k[k["pos"] == lab].iloc[0]
-        vplan = PlanScene(lab, "velocity").draw(study)
-        aplan = PlanScene(lab, "acceleration").draw(study)
+        vplan = PlanScene(lab, "velocity", landscape=True).draw(study)
+        aplan = PlanScene(lab, "acceleration", landscape=True).draw(study)
         vectors.add(s4, study, row)
         _plan_formulas(s4, study, row, vplan, aplan)
         s4.figure(f"План скоростей для положения {pos_no(study, lab)} (μ<sub>v</sub> = {mu_text(vplan.mu)} м·с⁻¹/мм)",
