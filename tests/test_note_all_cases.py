@@ -134,7 +134,7 @@ def test_numerals_agree_with_nouns(path, notes):
     flat = re.sub(r"\s+", " ", text.replace("\u00a0", " "))
     bad = []
     for forms in NOUNS:
-        for n, word in re.findall(rf"(?<![\d,.])(\d+) ({forms[2][:3]}\w*)", flat):
+        for n, word in re.findall(rf"(?<![\w,.])(\d+) ({forms[2][:3]}\w*)", flat):
             if word in forms and word != plural_form(int(n), *forms):
                 bad.append((n, word))
     assert bad == []
