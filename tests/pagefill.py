@@ -25,7 +25,7 @@ def pages(pdf: Path) -> list[dict]:
         words.sort()
         top_line = sorted((x0, t) for y0, _, x0, t in words if abs(y0 - words[0][0]) < 3) if words else []
         first = " ".join(t for _, t in top_line)
-        out.append({"height": H, "words": words, "first": first,
+        out.append({"height": H, "width": float(w), "words": words, "first": first,
                     "top": words[0][0] / H if words else 1.0,
                     "fill": max(w[1] for w in words) / H if words else 0.0,
                     "text": " ".join(w[3] for w in words)})
@@ -35,13 +35,13 @@ def pages(pdf: Path) -> list[dict]:
 def short_pages(pdf: Path, min_fill: float = 0.5) -> list[int]:
     """1-based numbers of pages filled less than ``min_fill`` of the height with no excuse: the
     next page does not start a chapter (a numbered level-1 heading or a structural heading) and
-    does not start with a figure (text first appears low on the page). The title page and the
-    last page are exempt."""
+    does not start with a figure (text first appears low on the page). The title page, the
+    last page and the landscape pages of wide figures are exempt."""
     ps = pages(pdf)
     bad = []
     for i, p in enumerate(ps[:-1]):
-        if i == 0 or p["fill"] >= min_fill:
-            continue
+        if i == 0 or p["fill"] >= min_fill or p["width"] > p["height"]:
+            continue              # a landscape page holds one wide figure (ГОСТ 7.32), however flat
         nxt = ps[i + 1]
         first = nxt["first"]
         chapter = bool(re.match(r"^\d+ [А-ЯЁ]", first)) or first.startswith(STRUCTURAL)

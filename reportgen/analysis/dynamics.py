@@ -55,9 +55,12 @@ METHODS = ("exact", "mertsalov", "wittenbauer")
 DYN_KEYS = ["cycle", "omega_m", "n", "delta", "J_O", "method", "drive", "balance", "flywheel",
             "points", "printed", "compare", "flywheel_ratio", "J_fly", "fly_mass", "fly_radius", "machine"]
 
-# recommended coefficients of speed fluctuation by kind of machine (Артоболевский И. И., «Теория
-# механизмов и машин», 1988, гл. «Регулирование хода машин», таблица значений δ):
-# key → (Russian name, δ_min, δ_max)
+# usual coefficients of speed fluctuation by kind of machine, key → (Russian name, δ_min, δ_max).
+# Written from memory of the tables in Russian textbooks (Артоболевский, 1988, «Регулирование хода
+# машин»); NOT verified: a search of the stored reference pages (session 4, queries in Russian
+# and English, «коэффициент неравномерности хода δ рекомендуемые значения», «coefficient of
+# fluctuation of speed typical values») found no table to check them against. The note therefore
+# calls the range approximate and cites no source for it (report.sections.dynamics._delta_judgement).
 DELTA_RANGES = {
     "crusher": ("дробилки", 1 / 20, 1 / 5),
     "press": ("прессы и ножницы", 1 / 20, 1 / 7),

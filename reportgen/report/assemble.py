@@ -103,7 +103,7 @@ def build_report(study, sections: Iterable[str] | None = None, options: dict | N
     built = _build_sections(study, names)
     meta = dict(study.meta)
     meta.setdefault("topic", "Структурный и кинематический анализ рычажного механизма")
-    meta.setdefault("variant", study.name)
+    # no [meta] variant: no «Вариант» line (the case file's name is not a student's text)
     opts = dict(study.root.table("report").raw("options", {}) or {})
     opts.update(options or {})
     return Report(meta=meta, assignment=_assignment(study, names), introduction=_introduction(study, names, built),

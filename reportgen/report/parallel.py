@@ -309,7 +309,9 @@ class PartsJob:
         front_pdf = _write(front_doc)
         heights, anchors, links, outline = _facts(front_doc)
         front = _Laid(-1, front_pdf, heights, anchors, links, outline, {})
-        numbers = _numbers_pdf(self.views, n)
+        # the pages turned to landscape (a wide figure) get their footer number on a landscape page
+        turned = {i for i, h in enumerate(h for p in [front] + parts for h in p.heights) if h < LANDSCAPE_BELOW}
+        numbers = _numbers_pdf(self.views, n, turned)
         st.seconds_front += time.perf_counter() - t0
         t0 = time.perf_counter()
         pdf = join([front] + parts, numbers, first_numbered=len(front.heights))
@@ -327,14 +329,20 @@ def _cost(html: str) -> float:
     return html.count("<td") + 0.5 * html.count("<img") + len(text) / 2000
 
 
-def _numbers_html(views, n: int) -> str:
-    """``n`` empty pages with the note's ``@page`` rules: the page numbers of the footer."""
+# a page lower than this (CSS px) is an A4 page turned to landscape (595 pt = 793,7 px high)
+LANDSCAPE_BELOW = 1000.0
+
+
+def _numbers_html(views, n: int, turned: frozenset | set = frozenset()) -> str:
+    """``n`` empty pages with the note's ``@page`` rules: the page numbers of the footer; the
+    pages ``turned`` (0-based) on the landscape page, as in the note."""
     from markupsafe import Markup
 
     from .render import _get_env
 
     css = _get_env().get_template("gost.css").render(**views.ctx["css_ctx"])
-    pages = '<div style="break-after: page"></div>' * (n - 1) + "<div></div>"
+    pages = "".join('<div style="{}{}"></div>'.format("page: landscape; " if i in turned else "",
+                                                    "break-after: page" if i < n - 1 else "") for i in range(n))
     return (f'<!DOCTYPE html><html lang="ru"><head><meta charset="utf-8"><style>{views.ctx["font_css"]}'
             f"</style><style>{Markup(css)}</style></head><body>{pages}</body></html>")
 
@@ -369,7 +377,7 @@ def _overlay(writer, page, over, name: str) -> None:
 _NUMBERS_MEMO: dict[str, bytes] = {}
 
 
-def _numbers_pdf(views, n: int) -> bytes:
+def _numbers_pdf(views, n: int, turned: frozenset | set = frozenset()) -> bytes:
     """The PDF of :func:`_numbers_html`, remembered in the process and in the cache folder
     (``<cache>/pages``): it depends on the page setup and the count only, and WeasyPrint
     writes it byte for byte the same, so a remembered one changes nothing in the note."""
@@ -380,7 +388,7 @@ def _numbers_pdf(views, n: int) -> bytes:
     from .formulas import _cache_dir
     from .render import _atomic_write
 
-    html = _numbers_html(views, n)
+    html = _numbers_html(views, n, turned)
     key = hashlib.sha256(f"{weasyprint.__version__}|{html}".encode("utf-8")).hexdigest()
     if key in _NUMBERS_MEMO:
         return _NUMBERS_MEMO[key]

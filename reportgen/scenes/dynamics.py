@@ -167,15 +167,15 @@ class WittenbauerDiagram:
             ax.plot([tp.J], [tp.dT], "s", ms=5, mfc="white", mec=col, zorder=6)
         ax.axvline(0, color=INK, lw=0.9)
         ax.axhline(0, color="0.3", lw=0.6)
-        ax.plot([0, 0], [wi.L, wi.K], color=INK, lw=3.0, solid_capstyle="butt", zorder=7)
+        # the length of KL in the legend: beside the segment it would cover the labels of positions
+        ax.plot([0, 0], [wi.L, wi.K], color=INK, lw=3.0, solid_capstyle="butt", zorder=7,
+                label=f"отрезок KL = {fmt(wi.KL, sig=5)} Дж")
         ax.annotate("K", (0, wi.K), xytext=(5, 2), textcoords="offset points", fontsize=11, style="italic")
         ax.annotate("L", (0, wi.L), xytext=(5, -10), textcoords="offset points", fontsize=11, style="italic")
-        ax.annotate(f"KL = {fmt(wi.KL, sig=5)} Дж", (0, 0.5 * (wi.K + wi.L)), xytext=(8, 0),
-                    textcoords="offset points", fontsize=9, va="center")
         ax.set_xlim(-0.04 * jmax, jmax)
         ax.set_xlabel("$J_{II}$, кг·м²")
         ax.set_ylabel("$\\Delta T$, Дж")
-        ax.legend(fontsize=9, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncols=3)
+        ax.legend(fontsize=9, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncols=2)
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 

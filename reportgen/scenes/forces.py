@@ -7,7 +7,10 @@ Scenes only draw what ``study.forces`` computed (``Forces.details`` at a report 
 from __future__ import annotations
 
 import math
+import unicodedata
 from dataclasses import dataclass, field
+from types import SimpleNamespace
+from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
@@ -20,7 +23,7 @@ from ..style import mplstyle
 from ..style.numbers import fmt
 from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow, draw_mechanism, gost_scale, nice_scale
 from .labels import tex_point
-from .mechanism import Drawing
+from .mechanism import LANDSCAPE_GAIN, LANDSCAPE_H, LANDSCAPE_W, Drawing
 
 BLUE = "#1f4e9c"
 RED = "#b2182b"
@@ -43,21 +46,46 @@ def load_label(ld: dict) -> str:
 UNSUB = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
 
 
+def split_label(label: str) -> tuple[str, str, str] | None:
+    """A force label of the tables (R₁₂, Φ₂, MΦ₂′, Fур) split into the letter, its index and the
+    primes: ("R", "12", ""), ("M", "Φ2", "′"), ("F", "ур", ""); None for an empty letter."""
+    text = label.translate(UNSUB)
+    primes = ""
+    while text and text[-1] in "′″'":
+        primes = ("′" if text[-1] == "'" else text[-1]) + primes
+        text = text[:-1]
+    if not text:
+        return None
+    return text[0], text[1:], primes
+
+
+GREEK_TEX = {"Φ": r"\Phi", "ω": r"\omega", "ε": r"\varepsilon"}
+
+
 def math_label(label: str) -> str:
     """A force label of the tables (R₁₂, Φ₂, MΦ₂, Fур, G₂′) in mathtext for a drawing:
     $R_{12}$, $\\Phi_{2}$, $M_{\\Phi 2}$, $F_{ур}$, $G′_{2}$."""
-    text = label.translate(UNSUB)
-    primes = ""
-    while text and text[-1] in "′″":
-        primes = text[-1] + primes
-        text = text[:-1]
-    if not text:
+    parts = split_label(label)
+    if parts is None:
         return label
-    head, rest = text[0], text[1:]
-    greek = {"Φ": r"\Phi", "ω": r"\omega", "ε": r"\varepsilon"}
-    head = greek.get(head, head)
-    rest = "".join(greek.get(c, c) + (" " if c in greek else "") for c in rest).strip()
+    head, rest, primes = parts
+    head = GREEK_TEX.get(head, head)
+    rest = "".join(GREEK_TEX.get(c, c) + (" " if c in GREEK_TEX else "") for c in rest).strip()
     return "$" + head + primes + (f"_{{{rest}}}" if rest else "") + "$"
+
+
+def html_label(label: str) -> str:
+    """The same label in the note's HTML (textbook notation, as ``math_label`` draws it): the
+    Latin letter in italics, Greek upright, the index as a subscript, primes after the letter:
+    <i>P</i><sub>пс</sub>, <i>M</i>′<sub>Φ2</sub>, Φ<sub>2</sub>. Labels are built by the
+    program from validated names (letters and digits only)."""
+    from markupsafe import escape
+    parts = split_label(label)
+    if parts is None:
+        return str(escape(label))
+    head, rest, primes = (str(escape(x)) for x in parts)
+    letter = head if "GREEK" in unicodedata.name(parts[0], "") else f"<i>{head}</i>"
+    return letter + primes + (f"<sub>{rest}</sub>" if rest else "")
 
 
 def pair_label(a: str, b: str) -> str:
@@ -76,6 +104,8 @@ class Vector:
     other: str = ""        # internal reaction: the link that exerts it
     kind: int = -1         # reaction: the pair kind (kinetostatics K_REV, K_PRI, …)
     tex: str = ""          # mathtext label when it is not math_label(label) (components R^n, R^τ)
+    back: str = ""         # internal reaction: the label of the opposite force when it is not
+                           # pair_label(link, other) (links merged into one body)
 
 
 @dataclass
@@ -97,6 +127,7 @@ class GroupDrawing(Drawing):
     mu_F: float = 0.0
     vectors: list[Vector] = field(default_factory=list)
     constructed: list[Constructed] = field(default_factory=list)   # reactions found by construction
+    method: str = ""              # Construction.method ("" where the polygon is drawn, not constructed)
 
 
 def group_vectors(study, label: str, gi: int) -> tuple[list[Vector], list[dict], list[Vector]]:
@@ -165,29 +196,19 @@ class GroupForces:
 
     needs = ("forces",)
 
-    def __init__(self, label: str, gi: int, mu_l: float | None = None, mu_F: float | None = None):
+    def __init__(self, label: str, gi: int, mu_l: float | None = None, mu_F: float | None = None,
+                 landscape: bool = False):
         """``mu_l``, ``mu_F``: the scales asked by the caller (a drawing sheet), else those that fit
-        the note's page."""
+        the note's page; ``landscape``: a landscape page may be taken where it pays (the note)."""
         self.label, self.gi = label, gi
         self.mu_l, self.mu_F = mu_l, mu_F
+        self.landscape = landscape
 
-    def draw(self, study) -> GroupDrawing:
-        f = study.forces
-        mech = study.mechanism
-        det = f.details(self.label)
-        cols = det["cols"]
-        g = f.model.groups[self.gi]
-        ext, moments, internal = group_vectors(study, self.label, self.gi)
-        pts = {p for l in g.links for p in mech.link(l).points}
-        xs = np.array([cols["x_" + p] for p in pts])
-        ys = np.array([cols["y_" + p] for p in pts])
-        # a group whose joints nearly coincide (a stone and a slider at one point) is drawn at a
-        # scale fitting a sixth of the whole mechanism, not enlarged until its symbols pile up
-        allp = {p for l in mech.moving for p in l.points}
-        whole = max(np.ptp([cols["x_" + p] for p in allp]), np.ptp([cols["y_" + p] for p in allp]))
-        span = max(np.ptp(xs), np.ptp(ys), whole / 6.0, 1e-6)
-        mu_l = self.mu_l or gost_scale(span, 70.0)
-        Fmax = max([float(np.hypot(*v.F)) for v in ext + internal] + [1e-12])
+    def _layout(self, xs, ys, ext, internal, g, Fmax, gain: float, floor: float = 0.0) -> SimpleNamespace:
+        """The scales and the places of the scheme and the force polygon when the scheme is given
+        70·gain mm and the polygon 62·gain mm (gain 1 on the note's portrait page)."""
+        span = max(np.ptp(xs), np.ptp(ys), floor, 1e-6)
+        mu_l = self.mu_l or gost_scale(span, 70.0 * gain)
         # arrow tips on the scheme (mm converted with μ_l)
         tips = []
         for v in ext:
@@ -206,10 +227,10 @@ class GroupForces:
         seq = [v for l in order for v in seq if v.link == l]
         cum = np.cumsum([np.zeros(2)] + [v.F for v in seq], axis=0)
         pext = max(np.ptp(cum[:, 0]), np.ptp(cum[:, 1]), 1e-9)
-        mu_F = self.mu_F or nice_scale(pext, 62.0)
+        mu_F = self.mu_F or nice_scale(pext, 62.0 * gain)
         built = construct_polygon(seq, internal, mu_F)
         if built is not None:
-            seq, constructed = built
+            seq, constructed, internal = built.chain, built.found, built.internal
             count = {l: sum(1 for v in seq if v.link == l) for l in g.links}
             order = list(dict.fromkeys(v.link for v in seq))
             cum = np.cumsum([np.zeros(2)] + [v.F for v in seq], axis=0)
@@ -221,9 +242,44 @@ class GroupForces:
         poly = np.column_stack([x0 + cum[:, 0] * k, y0 + cum[:, 1] * k])
         inset = _inset(seq, cum, mu_F, k, poly, mu_l)
         ext_pts = np.vstack([poly] + ([inset["box"]] if inset else []))
+        x_lo, x_hi = min(allx.min(), ext_pts[:, 0].min()), max(allx.max(), ext_pts[:, 0].max())
+        y_lo, y_hi = min(ally.min(), ext_pts[:, 1].min()), max(ally.max(), ext_pts[:, 1].max())
+        return SimpleNamespace(mu_l=mu_l, mu_F=mu_F, allx=allx, ally=ally, seq=seq, constructed=constructed,
+                               internal=internal, count=count, order=order, cum=cum, poly=poly, inset=inset,
+                               ext_pts=ext_pts, built=built, w_mm=(x_hi - x_lo) / mu_l + 20.0,
+                               h_mm=(y_hi - y_lo) / mu_l + 20.0)
+
+    def draw(self, study) -> GroupDrawing:
+        f = study.forces
+        mech = study.mechanism
+        det = f.details(self.label)
+        cols = det["cols"]
+        g = f.model.groups[self.gi]
+        ext, moments, internal = group_vectors(study, self.label, self.gi)
+        pts = {p for l in g.links for p in mech.link(l).points}
+        xs = np.array([cols["x_" + p] for p in pts])
+        ys = np.array([cols["y_" + p] for p in pts])
+        Fmax = max([float(np.hypot(*v.F)) for v in ext + internal] + [1e-12])
+        # a group whose joints nearly coincide (a stone and a slider at one point) is drawn at a
+        # scale fitting a sixth of the whole mechanism, not enlarged until its symbols pile up
+        allp = {p for l in mech.moving for p in l.points}
+        floor = max(np.ptp([cols["x_" + p] for p in allp]), np.ptp([cols["y_" + p] for p in allp])) / 6.0
+        lay = self._layout(xs, ys, ext, internal, g, Fmax, 1.0, floor)
+        landscape = False
+        if self.landscape and self.mu_l is None and self.mu_F is None:
+            # on a landscape page when that enlarges both the scheme and the polygon LANDSCAPE_GAIN
+            # times and the drawing fits the page
+            wide = self._layout(xs, ys, ext, internal, g, Fmax, LANDSCAPE_GAIN * 1.05, floor)
+            landscape = (lay.mu_l >= LANDSCAPE_GAIN * wide.mu_l and lay.mu_F >= LANDSCAPE_GAIN * wide.mu_F
+                         and wide.w_mm <= LANDSCAPE_W and wide.h_mm <= LANDSCAPE_H)
+            if landscape:
+                lay = wide
+        mu_l, mu_F, allx, ally, seq, constructed, internal, count, order, cum, poly, inset, ext_pts, built = (
+            lay.mu_l, lay.mu_F, lay.allx, lay.ally, lay.seq, lay.constructed, lay.internal, lay.count, lay.order,
+            lay.cum, lay.poly, lay.inset, lay.ext_pts, lay.built)
         cv = Canvas(min(allx.min(), ext_pts[:, 0].min()), max(allx.max(), ext_pts[:, 0].max()),
                     min(ally.min(), ext_pts[:, 1].min()), max(ally.max(), ext_pts[:, 1].max()), mu_l,
-                    margin_mm=10, max_w=170.0 if self.mu_l is None else 1e4)
+                    margin_mm=10, max_w=1e4 if self.mu_l is not None else LANDSCAPE_W if landscape else 170.0)
         ax = cv.ax
         draw_mechanism(cv, mech, cols, only=set(g.links), supports=False, lw=1.4, com=True)
         for v in ext:
@@ -260,8 +316,8 @@ class GroupForces:
             nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
             if not inset or i not in inset["tiny"]:
                 cv.labels.add(mid[0], mid[1], v.tex or math_label(v.label), prefer=nrm, fontsize=10, color=color)
-        if len(constructed) == 2:
-            _direction_lines(ax, seq, poly)
+        if built is not None and built.lines:
+            _direction_lines(ax, built.lines, poly)
         if inset:
             _draw_inset(cv, seq, inset)
         # internal reactions: a cut between the first links of the order and the rest crossed by
@@ -275,7 +331,7 @@ class GroupForces:
             if len(cross) != 1 or n == 0:
                 continue
             v = cross[0]
-            F, lab = (v.F, v.label) if v.link in side else (-v.F, pair_label(v.link, v.other))
+            F, lab = (v.F, v.label) if v.link in side else (-v.F, v.back or pair_label(v.link, v.other))
             start, end = poly[n], poly[0]
             arrow(ax, start[0], start[1], end[0], end[1], color=BLUE, lw=1.0, ls="--", zorder=5)
             closing.append(Vector(lab, F, v.at, "internal", v.link if v.link in side else v.other))
@@ -284,7 +340,9 @@ class GroupForces:
             nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
             cv.labels.add(mid[0], mid[1], math_label(lab), prefer=nrm, fontsize=10, color=BLUE)
         ax.plot([poly[0, 0]], [poly[0, 1]], "o", ms=2.5, color=INK)
-        return GroupDrawing(cv.svg(), cv.width_mm, mu_l, mu_F=mu_F, vectors=seq + closing, constructed=constructed)
+        return GroupDrawing(cv.svg(), cv.width_mm, mu_l, landscape=landscape, mu_F=mu_F, vectors=seq + closing,
+                            constructed=constructed,
+                            method=built.method if built is not None else "")
 
 
 def _unit(v) -> np.ndarray:
@@ -298,19 +356,48 @@ def _component_tex(label: str, sup: str) -> str:
     return "$" + text[0] + "^{" + sup + "}_{" + text[1:] + "}$"
 
 
-def construct_polygon(seq: list[Vector], internal: list[Vector], mu_F: float):
-    """The force polygon of a group constructed as the graphical method does it (Артоболевский [1],
-    гл. «Кинетостатика»; Попов–Тимофеев [2]): each unknown reaction of an outer pair has a known
-    line — a revolute pair of a link joined to the rest of the group by a revolute pair splits
-    into R^τ ⊥ the link (from the moments of the link about the inner pair, analytic) and R^n
-    along the link (direction known); a prismatic pair gives R ⊥ the guide. The known forces and
-    the R^τ are laid off head to tail, each rounded to READ_MM on the drawing; the two unknown
-    directions drawn through the ends of the chain intersect in the polygon's vertex, and the
-    reactions are read off the drawing to READ_MM.
+class Construction(NamedTuple):
+    """A force polygon as constructed: its sides in the order drawn (head to tail, the last
+    ending at the first's start), the reactions read off it, the sides whose lines of known
+    direction were drawn to intersect (pairs of vertex indices of the polygon: side i runs from
+    vertex i to i + 1, the closing side of the first link's polygon from vertex k to vertex 0)
+    and the method: "closing" (one link, the closing side), "intersection" (two lines through
+    the ends of the group's chain; "actuated": the same with the cylinder and the rod as one
+    body), "links" (an inner prismatic pair: each link's polygon
+    closed by its outer reaction), "link_intersection" (an inner prismatic pair and an outer
+    one on the same link: the two lines intersect on that link's polygon)."""
 
-    Returns (the polygon as drawn: R^n₁, R^τ₁, the known forces link by link, R^τ₂, R^n₂;
-    the reactions read off it) or None where the group has no such pair of lines (one unknown
-    outer reaction, both on one link, a prismatic inner pair, parallel lines)."""
+    chain: list[Vector]
+    found: list[Constructed]
+    lines: list[tuple[int, int]]
+    method: str
+    internal: list[Vector]        # the inner reactions of the construction (the actuator's pair
+                                  # is inside one body: its cylinder and rod bear one link's name)
+
+
+def construct_polygon(seq: list[Vector], internal: list[Vector], mu_F: float) -> Construction | None:
+    """The force polygon of a group constructed as the graphical method does it (Артоболевский [1],
+    гл. «Кинетостатика»; Попов–Тимофеев [2]), for every kind of class II group and the initial
+    link. Every known force is laid off head to tail, rounded to READ_MM on the drawing, and the
+    unknown reactions are read off the drawing to READ_MM:
+
+    - one link (the crank): the closing side of its polygon;
+    - inner revolute pair (ВВВ, ВВП, ПВП): each unknown reaction of an outer pair has a known
+      line — a revolute pair splits into R^τ ⊥ the link (from the moments of the link about the
+      inner pair, analytic) and R^n along the link; a prismatic pair gives R ⊥ the guide; the two
+      lines through the ends of the group's chain intersect in the polygon's vertex;
+    - inner prismatic pair, both outer pairs revolute (ВПВ): the inner reaction is ⊥ the guide
+      and its magnitude comes from the moments of a link about its outer pair (analytic, as R^τ);
+      the polygon of each link is then closed by its outer reaction;
+    - inner prismatic pair and an outer prismatic pair on one link (ВПП): both reactions on that
+      link are ⊥ their guides, so its polygon is closed by intersecting the two lines; the
+      other link's polygon is closed by its outer reaction;
+    - the initial mechanism of an actuator-driven linkage: the cylinder and the rod are one
+      body of variable length (structure.decomposition), joined to the output link by a
+      revolute pair, which is then an inner revolute pair as above (R^n along the cylinder).
+
+    Returns the ``Construction`` or None where the group has none of these forms (class III
+    groups, the actuator's pair, lines closer than 3° to parallel)."""
     unknown = [v for v in seq if v.role == "unknown"]
 
     def drawn_vec(F) -> np.ndarray:
@@ -319,32 +406,41 @@ def construct_polygon(seq: list[Vector], internal: list[Vector], mu_F: float):
         n = float(np.hypot(*F))
         return np.asarray(F, dtype=float) if n / mu_F < TINY_MM else _unit(F) * drawn(n, mu_F)
 
+    def laid(v: Vector) -> Vector:
+        return Vector(v.label, drawn_vec(v.F), v.at, v.role, v.link, v.other, v.kind, v.tex)
+
+    def read(label: str, R, exact) -> Constructed:
+        return Constructed(label, drawn(float(np.hypot(*R)), mu_F), float(np.hypot(*exact)))
+
     if len(unknown) == 1 and not internal:      # one link (the crank): the closing side of the polygon
         u = unknown[0]
-        chain = [Vector(v.label, drawn_vec(v.F), v.at, v.role, v.link, v.other, v.kind, v.tex)
-                 for v in seq if v.role != "unknown"]
+        chain = [laid(v) for v in seq if v.role != "unknown"]
         if not chain:
             return None
         C = np.sum([v.F for v in chain], axis=0)
-        return chain + [Vector(u.label, -C, u.at, "unknown", u.link, kind=u.kind)], [
-            Constructed(u.label, drawn(float(np.hypot(*C)), mu_F), float(np.hypot(*u.F)))]
-    if len(unknown) != 2 or unknown[0].link == unknown[1].link:
+        return Construction(chain + [Vector(u.label, -C, u.at, "unknown", u.link, kind=u.kind)],
+                            [read(u.label, C, u.F)], [], "closing", [])
+    act = [w for w in internal if w.kind == KS.K_ACT]
+    if len(act) == 1 and len(internal) == 2:
+        return _construct_actuated(seq, internal, act[0], mu_F)
+    if len(unknown) != 2 or unknown[0].link == unknown[1].link or len(internal) != 1:
+        return None
+    if internal[0].kind == KS.K_PRI:
+        return _construct_inner_prismatic(seq, unknown, internal[0], laid, read)
+    if internal[0].kind != KS.K_REV:
         return None
     dirs = []
     for v in unknown:
         if v.kind == KS.K_PRI:
             d = _unit(v.F)                       # the normal of the guide (no friction)
         elif v.kind == KS.K_REV:
-            inner = [w for w in internal if v.link in (w.link, w.other)]
-            if len(inner) != 1 or inner[0].kind != KS.K_REV:
-                return None
-            d = _unit(np.subtract(inner[0].at, v.at))
+            d = _unit(np.subtract(internal[0].at, v.at))
         else:
             return None
         if not d.any():
             return None
         dirs.append(d)
-    if abs(dirs[0][0] * dirs[1][1] - dirs[0][1] * dirs[1][0]) < 0.05:   # lines closer than 3° to parallel
+    if _parallel(*dirs):
         return None
 
     (u1, u2), (d1, d2) = unknown, dirs
@@ -355,7 +451,7 @@ def construct_polygon(seq: list[Vector], internal: list[Vector], mu_F: float):
     if float(np.hypot(*t1)) > 1e-9 * float(np.hypot(*u1.F)):
         chain.append(Vector(u1.label, drawn_vec(t1), u1.at, "known", u1.link, kind=u1.kind,
                             tex=_component_tex(u1.label, r"\tau")))
-    chain += [Vector(v.label, drawn_vec(v.F), v.at, v.role, v.link, v.other, v.kind, v.tex) for v in middle]
+    chain += [laid(v) for v in middle]
     if float(np.hypot(*t2)) > 1e-9 * float(np.hypot(*u2.F)):
         chain.append(Vector(u2.label, drawn_vec(t2), u2.at, "known", u2.link, kind=u2.kind,
                             tex=_component_tex(u2.label, r"\tau")))
@@ -369,16 +465,82 @@ def construct_polygon(seq: list[Vector], internal: list[Vector], mu_F: float):
                   tex=_component_tex(u2.label, "n") if sup[1] and chain and chain[-1].label == u2.label else "")
     R1 = n1 + (chain[0].F if chain and chain[0].label == u1.label else 0.0)
     R2 = n2 + (chain[-1].F if chain and chain[-1].label == u2.label else 0.0)
-    found = [Constructed(u.label, drawn(float(np.hypot(*R)), mu_F), float(np.hypot(*u.F)))
-             for u, R in ((u1, R1), (u2, R2))]
-    return [first] + chain + [last], found
+    n = len(chain) + 1
+    return Construction([first] + chain + [last], [read(u1.label, R1, u1.F), read(u2.label, R2, u2.F)],
+                        [(0, 1), (n, n + 1)], "intersection", internal)
 
 
-def _direction_lines(ax, seq: list[Vector], poly: np.ndarray) -> None:
-    """The two lines of known direction through the ends of the chain, thin dash-dot beyond
-    the vertex where they intersect (the construction left visible on the drawing)."""
-    for i in (0, len(seq) - 1):
-        a, b = poly[i], poly[i + 1]
+def _construct_actuated(seq, internal, act: Vector, mu_F: float) -> Construction | None:
+    """The initial mechanism of an actuator-driven linkage with the cylinder and the rod taken
+    as one body (the actuator's force, normal force and moment are inner forces of the body)."""
+    body = {act.link: act.other, act.other: act.other}
+
+    def merged(v: Vector) -> Vector:
+        return Vector(v.label, v.F, v.at, v.role, body.get(v.link, v.link), body.get(v.other, v.other),
+                      v.kind, v.tex, pair_label(v.link, v.other) if v.other else "")
+
+    rest = [merged(w) for w in internal if w is not act]
+    if rest[0].link == rest[0].other:
+        return None
+    built = construct_polygon([merged(v) for v in seq], rest, mu_F)
+    return built._replace(method="actuated") if built is not None and built.method == "intersection" else None
+
+
+def _parallel(d1, d2) -> bool:
+    """Lines closer than 3° to parallel do not give a readable intersection."""
+    return abs(d1[0] * d2[1] - d1[1] * d2[0]) < 0.05
+
+
+def _construct_inner_prismatic(seq, unknown, inner: Vector, laid, read) -> Construction | None:
+    """The polygons of a group whose inner pair is prismatic (ВПВ, ВПП), link by link: the chain
+    is [outer reaction of link a, loads of a, loads of b, outer reaction of b]; the inner
+    reaction closes the polygon of link a (vertex k back to vertex 0), drawn dashed by the
+    caller. Link b is the one with the outer prismatic pair when there is one."""
+    d_in = _unit(inner.F)                               # ⊥ the inner guide (no friction)
+    by_link = {v.link: v for v in unknown}
+    if not d_in.any() or set(by_link) != {inner.link, inner.other}:
+        return None
+    pri = [v for v in unknown if v.kind == KS.K_PRI]
+    if any(v.kind not in (KS.K_REV, KS.K_PRI) for v in unknown) or len(pri) == 2:
+        return None
+    ub = pri[0] if pri else next(v for v in unknown if v.link == inner.link)
+    ua = next(v for v in unknown if v is not ub)
+    la = [laid(v) for v in seq if v.role != "unknown" and v.link == ua.link]
+    lb = [laid(v) for v in seq if v.role != "unknown" and v.link == ub.link]
+    La = np.sum([v.F for v in la], axis=0) if la else np.zeros(2)
+    Lb = np.sum([v.F for v in lb], axis=0) if lb else np.zeros(2)
+    sign = 1.0 if inner.link == ub.link else -1.0     # inner.F acts on inner.link
+    found = []
+    if pri:       # ВПП: on link b, R_ab ⊥ the inner guide and R_0b ⊥ the outer guide intersect
+        d_out = _unit(ub.F)
+        if not d_out.any() or _parallel(d_in, d_out):
+            return None
+        lam = np.linalg.solve(np.column_stack([d_in, d_out]), -Lb)
+        R_ab, Rb = lam[0] * d_in, lam[1] * d_out
+        found.append(read(ub.label, Rb, ub.F))
+        found.append(read(inner.label if sign > 0 else pair_label(inner.link, inner.other), R_ab, sign * inner.F))
+        method = "link_intersection"
+    else:         # ВПВ: R_ab from the moments (analytic), laid off to the drawing's accuracy
+        R_ab = laid(Vector(inner.label, sign * inner.F, inner.at, "known")).F
+        Rb = -(Lb + R_ab)
+        found.append(read(ub.label, Rb, ub.F))
+        method = "links"
+    Ra = R_ab - La                                      # link a: R_a + L_a − R_ab = 0
+    found.insert(0, read(ua.label, Ra, ua.F))
+    chain = ([Vector(ua.label, Ra, ua.at, "unknown", ua.link, kind=ua.kind)] + la + lb
+             + [Vector(ub.label, Rb, ub.at, "unknown", ub.link, kind=ub.kind)])
+    k = 1 + len(la)                                     # the vertex where link a's polygon is closed
+    n = len(chain)
+    lines = [(n - 1, n), (k, 0)] if pri else []
+    return Construction(chain, found, lines, method, [inner])
+
+
+def _direction_lines(ax, lines: list[tuple[int, int]], poly: np.ndarray) -> None:
+    """The lines of known direction (sides between the given vertices of the polygon), thin
+    dash-dot beyond the vertex where they intersect (the construction left visible on the
+    drawing)."""
+    for i, j in lines:
+        a, b = poly[i], poly[j]
         d = b - a
         n = float(np.hypot(*d))
         if n == 0:
@@ -544,10 +706,12 @@ class ZhukovskyLever:
 
     needs = ("forces", "kinematics")
 
-    def __init__(self, label: str, mu: float | None = None):
-        """``mu``: the scale of the turned plan asked by the caller (a drawing sheet)."""
+    def __init__(self, label: str, mu: float | None = None, landscape: bool = False):
+        """``mu``: the scale of the turned plan asked by the caller (a drawing sheet);
+        ``landscape``: a landscape page may be taken where it pays (the note)."""
         self.label = label
         self.mu = mu
+        self.landscape = landscape
 
     def draw(self, study) -> LeverDrawing:
         f = study.forces
@@ -609,8 +773,14 @@ class ZhukovskyLever:
             items = [(lab, back(pt), back(F), b) for lab, pt, F, b in items]
             bal = [(lab, back(pt), back(F), b) for lab, pt, F, b in bal]
             tips = np.array([[t[1], -t[0]] for t in tips])
+        landscape = False
         if self.mu is None:
-            cv = Canvas.fit(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16)
+            # on a landscape page when that enlarges the lever at least LANDSCAPE_GAIN times
+            wide = dict(avail_w=LANDSCAPE_W, avail_h=LANDSCAPE_H - 32, margin_mm=16, page_w=LANDSCAPE_W)
+            landscape = self.landscape and (Canvas.scale(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16)
+                         >= LANDSCAPE_GAIN * Canvas.scale(tips[:, 0], tips[:, 1], **wide))
+            cv = (Canvas.fit(tips[:, 0], tips[:, 1], **wide) if landscape
+                  else Canvas.fit(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16))
         else:
             cv = Canvas(tips[:, 0].min(), tips[:, 0].max(), tips[:, 1].min(), tips[:, 1].max(), self.mu, 16, max_w=1e4)
         ax = cv.ax
@@ -646,7 +816,8 @@ class ZhukovskyLever:
         loads_ = table[~table["balancing"].astype(bool)]
         total = float(loads_["Fh"].sum())
         graph = -total / arm_read if abs(arm_read) > 0 else 0.0
-        return LeverDrawing(cv.svg(), cv.width_mm, cv.mu, moments=table, analog=analog, arm_mm=arm_read,
+        return LeverDrawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape, moments=table, analog=analog,
+                            arm_mm=arm_read,
                             graphic=graph, arm_exact_mm=arm_mm, forces_turned=turned)
 
 
@@ -782,4 +953,4 @@ class AxleCurves:
 
 
 __all__ = ["LoadedScheme", "GroupForces", "GroupDrawing", "ZhukovskyLever", "LeverDrawing", "ReactionCurves", "CapacityCurves",
-           "AxleCurves", "group_vectors", "load_label", "pair_label", "shown_key", "sub", "Vector"]
+           "AxleCurves", "group_vectors", "html_label", "load_label", "pair_label", "shown_key", "sub", "Vector"]

@@ -265,9 +265,11 @@ def rack_drawing(gears):
     ax.annotate("станочно-начальная прямая", (-half * 0.98, r), xytext=(0, -9), textcoords="offset points",
                 fontsize=7)
     ax.axhline(yd - (rack.ha) * m, color=GREY, lw=0.5, ls="--")
-    for rr, lab in ((r, "$d$"), (r * math.cos(al), "$d_b$"), (da / 2, "$d_a$")):
+    # labels at different abscissae: the circles d and d_b are too close for one column of labels
+    for rr, lab, fx in ((r, "$d$", 0.62), (r * math.cos(al), "$d_b$", 0.84), (da / 2, "$d_a$", 0.4)):
         ax.add_patch(Circle((0, 0), rr, fill=False, lw=0.6, ls="-.", color=GREY))
-        ax.annotate(lab, (half * 0.86, math.sqrt(max(rr * rr - (half * 0.86) ** 2, 0))), fontsize=7, color=GREY)
+        xl = fx * 0.9 * min(half, r * math.cos(al))        # on the circle, inside the view
+        ax.annotate(lab, (xl, math.sqrt(rr * rr - xl * xl)), fontsize=7, color=GREY)
     N = np.array([-r * math.cos(al) * math.sin(al), r * math.cos(al) * math.cos(al)])
     Pp = np.array([0.0, r])
     d = Pp - N

@@ -16,6 +16,7 @@ import pandas as pd
 from ..analysis.plans import (READ_MM, Plan, acceleration_plan, construct_acceleration, construct_velocity,
                               drawn, measured_omegas, velocity_plan)
 from .draw import GREY, INK, Canvas, arrow, nice_scale
+from .mechanism import LANDSCAPE_GAIN, LANDSCAPE_W, LANDSCAPE_H
 
 MIN_MM = 5.0         # shorter segments are drawn but not compared (reading error dominates)
 AVAIL_MM = (140.0, 150.0)
@@ -23,6 +24,7 @@ STYLE = {"abs": dict(color=INK, lw=1.3, ls="-"), "rel": dict(color=INK, lw=1.0, 
          "normal": dict(color=GREY, lw=1.0, ls="--"), "tangential": dict(color=INK, lw=1.0, ls="-."),
          "coriolis": dict(color=GREY, lw=1.0, ls="--"), "slide": dict(color=INK, lw=1.0, ls=":")}
 CONSTRUCTION_MM = 8.0     # construction lines extended past the intersection, mm
+MARGIN_MM = 12.0          # around the plan, for the labels
 
 
 @dataclass
@@ -32,6 +34,7 @@ class PlanDrawing:
     mu: float
     table: pd.DataFrame       # segment, analytic value, length on the plan (mm), graphic value, Δ %
     plan: Plan                # the constructed plan
+    landscape: bool = False   # drawn for a landscape page (scenes.mechanism.LANDSCAPE_GAIN)
 
 
 def tip_label(lab: str, plan: Plan, kind: str) -> str:
@@ -51,47 +54,62 @@ def tip_label(lab: str, plan: Plan, kind: str) -> str:
     return "$" + head.lower() + ("′" if kind == "acceleration" else "") + (f"_{{{tail}}}" if tail else "") + "$"
 
 
-def plan_scale(plan: Plan) -> float:
-    """The round scale μ at which the plan fits the space (1; 1,5; 2; 2,5; 4; 5·10ᵏ per mm)."""
+def plan_scale(plan: Plan, landscape: bool = False) -> float:
+    """The round scale μ at which the plan fits the space (1; 1,5; 2; 2,5; 4; 5·10ᵏ per mm) of a
+    portrait page, or of a landscape one."""
     pts = np.array([[0.0, 0.0]] + [list(v) for v in plan.tips.values()])
-    return max(nice_scale(np.ptp(pts[:, 0]), AVAIL_MM[0]), nice_scale(np.ptp(pts[:, 1]), AVAIL_MM[1]))
+    w, h = (LANDSCAPE_W - 2 * MARGIN_MM, LANDSCAPE_H - 2 * MARGIN_MM) if landscape else AVAIL_MM
+    return max(nice_scale(np.ptp(pts[:, 0]), w), nice_scale(np.ptp(pts[:, 1]), h))
+
+
+def page_scale(plan: Plan) -> tuple[float, bool]:
+    """(μ, landscape): the plan goes onto a landscape page when that enlarges it at least
+    LANDSCAPE_GAIN times (a wide, flat plan), as the plan of positions does."""
+    mu, mu_l = plan_scale(plan), plan_scale(plan, landscape=True)
+    return (mu_l, True) if mu >= LANDSCAPE_GAIN * mu_l else (mu, False)
 
 
 class PlanScene:
     needs = ("kinematics",)
 
-    def __init__(self, label: str, kind: str, mu_v: float | None = None, mu_a: float | None = None):
+    def __init__(self, label: str, kind: str, mu_v: float | None = None, mu_a: float | None = None,
+                 landscape: bool = False):
         """``mu_v``, ``mu_a``: scales given by the caller (one μ_V for all the velocity plans of a
         drawing sheet, one μ_a for its acceleration plans); by default each plan takes the round
-        scale that fits it (:func:`plan_scale`)."""
+        scale that fits it (:func:`plan_scale`), on a landscape page where that pays if
+        ``landscape`` (the note: :func:`page_scale`)."""
         self.label = label
         self.kind = kind
         self.mu_v = mu_v
         self.mu_a = mu_a
+        self.landscape = landscape
+
+    def _scale(self, plan: Plan) -> tuple[float, bool]:
+        return page_scale(plan) if self.landscape else (plan_scale(plan), False)
 
     def construct(self, study):
-        """(constructed plan, analytic plan, μ) of this scene's kind."""
+        """(constructed plan, analytic plan, μ, landscape) of this scene's kind."""
         k = study.kinematics
         row = k[k["pos"] == self.label].iloc[0]
         mech = study.mechanism
         v_exact = velocity_plan(row, mech)
-        mu_v = self.mu_v or plan_scale(v_exact)
+        mu_v, land_v = (self.mu_v, False) if self.mu_v else self._scale(v_exact)
         vrow, vplan = construct_velocity(row, study, mu_v)
         if self.kind == "velocity":
-            return vplan, v_exact, mu_v
+            return vplan, v_exact, mu_v, land_v
         a_exact = acceleration_plan(row, mech)
-        mu_a = self.mu_a or plan_scale(a_exact)
+        mu_a, land_a = (self.mu_a, False) if self.mu_a else self._scale(a_exact)
         om = measured_omegas(vrow, vplan, mech, mu_v)
         _, aplan = construct_acceleration(row, vrow, om, study, mu_a, mu_v)
-        return aplan, a_exact, mu_a
+        return aplan, a_exact, mu_a, land_a
 
     def draw(self, study) -> PlanDrawing:
-        plan, exact, mu = self.construct(study)
+        plan, exact, mu, landscape = self.construct(study)
         plan = similarity_only(plan, study.mechanism)
         pts = np.array([[0.0, 0.0]] + [list(v) for v in plan.tips.values()])
         given = self.mu_v if self.kind == "velocity" else self.mu_a
-        cv = Canvas(pts[:, 0].min(), pts[:, 0].max(), pts[:, 1].min(), pts[:, 1].max(), mu, margin_mm=12,
-                    max_w=165.0 if given is None else 1e4)     # a scale given by the caller: the whole plan
+        cv = Canvas(pts[:, 0].min(), pts[:, 0].max(), pts[:, 1].min(), pts[:, 1].max(), mu, margin_mm=MARGIN_MM,
+                    max_w=1e4 if given is not None else LANDSCAPE_W if landscape else 165.0)
         ax = cv.ax
         for seg in plan.segments:
             a = np.zeros(2) if seg.start == "p" else plan.tips[seg.start]
@@ -114,7 +132,7 @@ class PlanScene:
             d = np.hypot(*v)
             cv.labels.add(v[0], v[1], text, prefer=(v[0], v[1]) if d > 1e-12 else (1, 1), fontsize=10)
         table = measure(plan, exact, mu)
-        return PlanDrawing(cv.svg(), cv.width_mm, mu, table, plan)
+        return PlanDrawing(cv.svg(), cv.width_mm, mu, table, plan, landscape)
 
 
 def similarity_only(plan: Plan, mech) -> Plan:

@@ -16,6 +16,7 @@ from ...analysis.dynamics import DELTA_RANGES
 from ...case import units as U
 from ...case.text import inline_html
 from ...scenes.draw import gost_ratio
+from ...scenes.forces import html_label
 from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, MomentCurves,
                                 MotionCurves, WittenbauerDiagram, WorkCurves)
 from ...style.numbers import fmt, fmt_pct, tex_num
@@ -270,7 +271,7 @@ def _model(sec: Section, study, d) -> None:
         s.paragraph(f"Внешние нагрузки машины перечислены в таблице {ref('tab-dyn-loads')}. Силы тяжести "
                     f"вычислены при g&nbsp;=&nbsp;{fmt(d.loads.g, sig=4)}&nbsp;м/с².")
         s.table("Нагрузки, действующие на звенья", [
-            Column("name", "Обозначение"), Column("what", "Нагрузка"), Column("where", "Точка приложения"),
+            Column("name", "Обозначение", fmt=lambda v: Markup(html_label(v))), Column("what", "Нагрузка"), Column("where", "Точка приложения"),
             Column("law", "Закон изменения", fmt=Markup)], pd.DataFrame(lrows), id="tab-dyn-loads")
     if d.breaks.size:
         pts = ", ".join(_phase_deg(study, q) for q in d.breaks)
@@ -752,19 +753,21 @@ def comparison_block(sec, study) -> None:
 # ЗАКЛЮЧЕНИЕ
 # --------------------------------------------------------------------------------------------
 def _delta_judgement(st) -> list[str]:
-    """δ of the case against the recommended range for its kind of machine (Артоболевский [1])."""
+    """δ of the case against the usual range for its kind of machine (``DELTA_RANGES``). The
+    ranges could not be checked against a source in this project (see the note at
+    ``DELTA_RANGES``), so the sentence cites none and calls the range approximate."""
     if st.machine is None:
         return []
     name, lo, hi = DELTA_RANGES[st.machine]
-    rng = (f"для машин этого типа ({name}) рекомендуется δ&nbsp;=&nbsp;{as_written(round(lo, 4))}…"
-           f"{as_written(round(hi, 4))} (1/{round(1 / lo)}…1/{round(1 / hi)}) [1]")
+    rng = (f"ориентировочный диапазон для машин этого типа ({name}) — δ&nbsp;=&nbsp;{as_written(round(lo, 4))}…"
+           f"{as_written(round(hi, 4))} (1/{round(1 / lo)}…1/{round(1 / hi)})")
     d = st.delta
     if d > hi * (1 + 1e-9):
-        verdict = ("заданный δ больше рекомендуемого: ход машины менее равномерен, чем принято для таких машин; "
-                   "при δ из рекомендуемого диапазона маховик был бы в "
+        verdict = ("заданный δ больше: ход машины менее равномерен, чем обычно для таких машин; "
+                   "при δ из этого диапазона маховик был бы в "
                    f"{fmt(d / hi, sig=2)} раза больше (J<sub>I</sub> обратно пропорционален δ)")
     elif d < lo * (1 - 1e-9):
-        verdict = ("заданный δ меньше рекомендуемого: маховик больше, чем требуется для таких машин; "
+        verdict = ("заданный δ меньше: маховик больше, чем обычно требуется для таких машин; "
                    f"при δ&nbsp;=&nbsp;{fmt(lo, sig=2)} он был бы в {fmt(lo / d, sig=2)} раза меньше")
     else:
         verdict = "заданный δ в этом диапазоне"

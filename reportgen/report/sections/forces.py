@@ -18,8 +18,8 @@ from markupsafe import Markup
 from ...analysis.forces import crank_pin
 from ...core import kinetostatics as KS
 from ...mechanism.model import FRAME
-from ...scenes.forces import (AxleCurves, CapacityCurves, GroupForces, ReactionCurves, ZhukovskyLever,
-                              group_vectors, shown_key)
+from ...scenes.forces import (AxleCurves, CapacityCurves, GroupForces, ReactionCurves, ZhukovskyLever, html_label,
+                              group_vectors, load_label, shown_key)
 from ...scenes.draw import mu_text
 from ...style.numbers import fmt, tex_num
 from ..document import Column, Formula, Section, ref
@@ -217,16 +217,16 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
         if ld["kind"] in ("Phi", "MPhi", "Mfly"):
             continue
         if ld["M"] is None:
-            lrows.append({"name": ld["name"], "link": ld["link"], "point": ld["point"], "Fx": ld["Fx"],
+            lrows.append({"name": load_label(ld), "link": ld["link"], "point": ld["point"], "Fx": ld["Fx"],
                           "Fy": ld["Fy"], "F": math.hypot(ld["Fx"], ld["Fy"]), "M": math.nan})
         else:
-            lrows.append({"name": ld["name"], "link": ld["link"], "point": "—", "Fx": math.nan, "Fy": math.nan,
+            lrows.append({"name": load_label(ld), "link": ld["link"], "point": "—", "Fx": math.nan, "Fy": math.nan,
                           "F": math.nan, "M": ld["M"]})
     if lrows:
         s.paragraph(f"Заданные нагрузки и силы тяжести в положении {pos_no(study, lab)} — в таблице {ref('tab-frc-applied')} "
                     "(силы тяжести приложены в центрах масс и направлены вниз).")
         s.table(f"Заданные силы и моменты (положение {pos_no(study, lab)})", [
-            Column("name", "Нагрузка"), Column("link", "Звено"), Column("point", "Точка"),
+            Column("name", "Нагрузка", fmt=lambda v: Markup(html_label(v))), Column("link", "Звено"), Column("point", "Точка"),
             Column("Fx", sub("F", "x"), "Н", sig=5), Column("Fy", sub("F", "y"), "Н", sig=5),
             Column("F", "<i>F</i>", "Н", sig=5), Column("M", "<i>M</i>", "Н·м", sig=5)],
             pd.DataFrame(lrows), id="tab-frc-applied")
@@ -279,13 +279,12 @@ def _groups(sec: Section, study, f, lab: str) -> None:
                 "определяющий точку её приложения). Реакции со стороны групп, рассчитанных ранее, известны. "
                 "Система линейных уравнений группы решается точно; векторные уравнения сил проверяются "
                 "построением планов сил в масштабе μ<sub>F</sub> (замкнутые многоугольники).")
-    told: set[tuple[int, bool]] = set()      # the kinds of construction already described in full
+    told: set[str] = set()      # the kinds of construction already described in full
     for gi, g in enumerate(f.model.groups):
-        draw = GroupForces(lab, gi).draw(study)
+        draw = GroupForces(lab, gi, landscape=True).draw(study)
         ext, moments, internal = group_vectors(study, lab, gi)
         gid = f"fig-frc-group-{gi + 1}"
-        names = " + ".join(v.label.replace("R", "<i>R</i>", 1) if v.label.startswith("R") else v.label
-                            for v in ext) or "0"
+        names = " + ".join(html_label(v.label) for v in ext) or "0"
         unknown = [f.model.pairs[k] for k in g.pairs]
         act = next((p for p in unknown if p.kind == KS.K_ACT), None)
         if act is not None:   # the initial mechanism of an actuator-driven linkage (structure.decomposition)
@@ -298,10 +297,10 @@ def _groups(sec: Section, study, f, lab: str) -> None:
                     f"(рисунок {ref(gid)}): {names}&nbsp;=&nbsp;0.")
         s.figure(f"{'Начальный механизм' if act is not None else 'Группа'} {g.label}: схема нагружения (μ<sub>l</sub> = {mu_text(draw.mu)} м/мм, стрелки сил "
                  f"без масштаба) и план сил (μ<sub>F</sub> = {mu_text(draw.mu_F)} Н/мм)",
-                 draw.svg, draw.width_mm, id=gid)
+                 draw.svg, draw.width_mm, id=gid, landscape=draw.landscape)
         if draw.constructed:
             s.paragraph(_construction_text(draw, gid, told))
-            told |= {(len(draw.constructed), any("tau" in v.tex for v in draw.vectors))}
+            told.add(_construction_kind(draw))
         rows = []
         det = f.details(lab)
         for k in g.pairs:
@@ -333,30 +332,55 @@ def _in_cylinders(n: int) -> str:
     return words.get(int(n), f"в {int(n)} гидроцилиндрах")
 
 
-def _construction_text(draw, gid: str, told: set[tuple[int, bool]]) -> str:
+_LAID = "отложены в масштабе μ<sub>F</sub> с длинами, округлёнными до 0,5&nbsp;мм"
+_INTERSECTION = ("Известные силы и касательные составляющие реакций <i>R</i><sup>τ</sup> (из уравнений моментов "
+                 "сил каждого звена относительно внутреннего шарнира) " + _LAID + "; через начало и конец цепи "
+                 "проведены линии известных направлений (нормальная составляющая <i>R</i><sup>n</sup> — вдоль "
+                 "{along}, реакция поступательной пары — перпендикулярно направляющей); точка их пересечения "
+                 "замыкает план, реакции измерены на чертеже")
+# how each kind of construction (scenes.forces.Construction.method) is done, told once in full
+CONSTRUCTION_TEXT = {
+    "closing": ("Известные силы " + _LAID + "; замыкающая сторона плана сил — искомая реакция, её длина "
+                "измерена на чертеже"),
+    "intersection": _INTERSECTION.format(along="звена"),
+    "actuated": ("Гидроцилиндр и шток рассматриваются как одно звено переменной длины (усилие цилиндра — "
+                 "внутренняя сила этого звена). " + _INTERSECTION.format(
+                     along="звена, для цилиндра со штоком — вдоль оси гидроцилиндра")),
+    "links": ("Реакция во внутренней поступательной паре перпендикулярна направляющей; её модуль найден из "
+              "уравнения моментов сил звена относительно его внешнего шарнира. Она и известные силы " + _LAID
+              + "; план сил каждого звена замыкается реакцией в его внешнем шарнире (сплошные стороны), "
+              "реакция во внутренней паре показана штриховой линией; реакции измерены на чертеже"),
+    # both unknown reactions have known lines (prismatic pairs, e.g. ПВП): no R^τ, no R^n
+    "lines": ("Известные силы " + _LAID + "; через начало и конец цепи проведены линии известных "
+              "направлений реакций (реакция поступательной пары — перпендикулярно направляющей); точка их "
+              "пересечения замыкает план, реакции измерены на чертеже"),
+    "link_intersection": ("У звена с двумя поступательными парами обе реакции перпендикулярны своим "
+                          "направляющим: известные силы этого звена " + _LAID + ", через начало и конец "
+                          "цепи проведены линии этих направлений, точка их пересечения замыкает план сил "
+                          "звена. Затем план сил второго звена замыкается реакцией в его шарнире; реакции "
+                          "измерены на чертеже"),
+}
+
+
+def _construction_kind(draw) -> str:
+    """The construction's method, told apart for two lines of known direction without R^τ laid off
+    (both unknown reactions in prismatic pairs)."""
+    if draw.method == "intersection" and not any("tau" in v.tex for v in draw.vectors):
+        return "lines"
+    return draw.method
+
+
+def _construction_text(draw, gid: str, told: set[str]) -> str:
     """How the polygon of the group was constructed (in full the first time, then by reference)
     and what was read off it, against the exact solution of the group's equations."""
     found = "; ".join(f"{sub('R', c.label[1:].translate(_DIGITS))}&nbsp;=&nbsp;{fmt(c.graphic, sig=4)}&nbsp;Н (аналитически "
                       f"{fmt(c.exact, sig=5)}&nbsp;Н, расхождение {fmt(c.dev_pct, digits=2, sign=True)}&nbsp;%)"
                       for c in draw.constructed)
-    tau = any("tau" in v.tex for v in draw.vectors)         # R^τ laid off (a link with two revolute pairs)
-    if (len(draw.constructed), tau) in told:
+    kind = _construction_kind(draw)
+    if kind in told:
         how = "План сил построен так же, реакции измерены на чертеже"
-    elif len(draw.constructed) == 1:
-        how = ("Известные силы отложены в масштабе μ<sub>F</sub> (длины округлены до 0,5&nbsp;мм); "
-               "замыкающая сторона плана сил — искомая реакция, её длина измерена на чертеже")
-    elif not tau:           # both unknown reactions have known lines (prismatic pairs): no R^τ, no R^n
-        how = ("Известные силы отложены в масштабе μ<sub>F</sub> с длинами, округлёнными до 0,5&nbsp;мм; "
-               "через начало и конец цепи проведены линии известных направлений реакций (реакция "
-               "поступательной пары — перпендикулярно направляющей); точка их пересечения замыкает план, "
-               "реакции измерены на чертеже")
     else:
-        how = ("Известные силы и касательные составляющие реакций <i>R</i><sup>τ</sup> (из уравнений моментов "
-               "сил каждого звена относительно внутреннего шарнира) отложены в масштабе μ<sub>F</sub> "
-               "с длинами, округлёнными до 0,5&nbsp;мм; через начало и конец цепи проведены линии известных "
-               "направлений (нормальная составляющая <i>R</i><sup>n</sup> — вдоль звена, реакция "
-               "поступательной пары — перпендикулярно направляющей); точка их пересечения замыкает "
-               "план, реакции измерены на чертеже")
+        how = CONSTRUCTION_TEXT[kind]
     return f"{how} (рисунок {ref(gid)}): {found}."
 
 
@@ -481,7 +505,7 @@ def _balance(sec: Section, study, f, lab: str) -> None:
                           r" + \sum_k M_k \varphi_k^{\prime} = 0",
                           where=[(r"x_i^{\prime}, y_i^{\prime}", "передаточные отношения dx/dS, dy/dS точек приложения сил")],
                           label="eq-frc-power"))
-    lever = ZhukovskyLever(lab).draw(study)
+    lever = ZhukovskyLever(lab, landscape=True).draw(study)
     plan = "аналогов скоростей" if lever.analog else "скоростей"
     if lever.forces_turned:
         how = (f"Рычаг Н.&nbsp;Е.&nbsp;Жуковского — план {plan}, повёрнутый на 90°; повёрнутый план получился "
@@ -511,10 +535,10 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     mu_unit = "м·с⁻¹/мм" if not lever.analog else ("м/мм" if rot else "мм⁻¹")
     turned = ", силы повёрнуты на 90° по часовой стрелке" if lever.forces_turned else ""
     s.figure(f"Рычаг Жуковского для положения {pos_no(study, lab)} (μ<sub>v</sub> = {mu_text(lever.mu)} {mu_unit}{turned})",
-             lever.svg, lever.width_mm, id="fig-frc-lever")
+             lever.svg, lever.width_mm, id="fig-frc-lever", landscape=lever.landscape)
     loads = mt[~mt["balancing"].astype(bool)]
     s.table(f"Моменты сил относительно полюса рычага Жуковского (положение {pos_no(study, lab)})", [
-        Column("label", "Сила"), Column("F", "<i>F</i>", "Н", digits=2, sig=None),
+        Column("label", "Сила", fmt=lambda v: Markup(html_label(v))), Column("F", "<i>F</i>", "Н", digits=2, sig=None),
         Column("h", "<i>h</i>", "мм", digits=1, sig=None),
         Column("Fh", "±<i>F·h</i>", "Н·мм", fmt=lambda v: fmt(v, digits=1, sig=None, exp_from=1e12))], mt, id="tab-frc-lever",
         note="Плечо h — расстояние от полюса p до линии действия силы на рычаге; знак «+» — момент против "

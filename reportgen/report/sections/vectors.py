@@ -13,7 +13,9 @@ for a slider P of link s on the guide of link g (point P_g of the guide under it
 
 * V̄_{P_s} = V̄_{P_g} + V̄_{P_sP_g},  V̄_{P_sP_g} ∥ guide;
 * ā_{P_s} = ā_{P_g} + ā^k + ā^r,  a^k = 2·ω_g·V_{P_sP_g} (V̄_r turned by 90° in the sense of ω_g),
-  ā^r ∥ guide — the Coriolis term only where the guide rotates (on the frame: ā_P ∥ guide).
+  ā^r ∥ guide — the Coriolis term only where the guide rotates (on the frame: ā_P ∥ guide);
+  ā_{P_g} = ā_G + āⁿ_{P_gG} + ā^τ_{P_gG} for the point of the guide under the slider, G the
+  point by which the guide is attached.
 
 Magnitudes known before the group is solved are given with numbers; the unknown ones are found
 by the construction of the plans (their values follow in the text)."""
@@ -47,7 +49,9 @@ def _attach(mech, link, group_links: set) -> str:
 def _pt(p: str, link: str | None = None) -> str:
     """T of a point; a point of a given link carries its number: A_3 → A_{3}."""
     t = tex_point(p)
-    return f"{t}_{{{link}}}" if link is not None else t
+    if link is None:
+        return t
+    return f"{{{t}}}_{{{link}}}" if "_" in t else f"{t}_{{{link}}}"     # S_3 of link 3: {S_{3}}_{3}
 
 
 def _solved_before(study, g) -> set:
@@ -116,26 +120,28 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
         P = tex_point(j.point)
         Ps, Pg = _pt(j.point, slider), _pt(j.point, guide)
         if guide == FRAME:
-            vf.append(Formula(rf"\bar{{V}}_{{{P}}} = \bar{{V}}_{{{P}_{{0}}}} + \bar{{V}}_{{{P}{P}_{{0}}}}"))
+            P0 = _pt(j.point, "0")
+            vf.append(Formula(rf"\bar{{V}}_{{{P}}} = \bar{{V}}_{{{P0}}} + \bar{{V}}_{{{P}{P0}}}"))
             vn.append(Markup("{}, {} направляющей — скорость ползуна направлена вдоль направляющей").format(
-                _m(rf"\bar{{V}}_{{{P}_{{0}}}} = 0"), _m(rf"\bar{{V}}_{{{P}{P}_{{0}}}} \;\parallel")))
-            af.append(Formula(rf"\bar{{a}}_{{{P}}} = \bar{{a}}_{{{P}_{{0}}}} + \bar{{a}}^{{r}}_{{{P}{P}_{{0}}}}"))
+                _m(rf"\bar{{V}}_{{{P0}}} = 0"), _m(rf"\bar{{V}}_{{{P}{P0}}} \;\parallel")))
+            af.append(Formula(rf"\bar{{a}}_{{{P}}} = \bar{{a}}_{{{P0}}} + \bar{{a}}^{{r}}_{{{P}{P0}}}"))
             an.append(Markup("{} (направляющая неподвижна, поэтому кориолисова ускорения нет), {} направляющей").format(
-                _m(rf"\bar{{a}}_{{{P}_{{0}}}} = 0"), _m(rf"\bar{{a}}^{{r}}_{{{P}{P}_{{0}}}} \;\parallel")))
+                _m(rf"\bar{{a}}_{{{P0}}} = 0"), _m(rf"\bar{{a}}^{{r}}_{{{P}{P0}}} \;\parallel")))
             continue
         vf.append(Formula(rf"\bar{{V}}_{{{Ps}}} = \bar{{V}}_{{{Pg}}} + \bar{{V}}_{{{Ps}{Pg}}}"))
         gref = _attach(mech, mech.link(guide), links | {guide})
         G = tex_point(gref)
-        if float(study.cycle["wq_" + guide].abs().max()) < 1e-12:
-            # the guide only translates: every point of it has the same velocity and acceleration,
-            # and there is no Coriolis term (Артоболевский, гл. 3)
-            vn.append(Markup("{}: звено {} движется поступательно, скорости всех его точек одинаковы; {} "
+        if float(study.cycle["wq_" + guide].abs().max()) < 1e-12:      # a guide moving in translation
+            G = tex_point(next((o.point for o in mech.prismatic if guide in o.links and o is not j), gref))
+            vn.append(Markup("{} — звено {} движется поступательно, все его точки имеют одну скорость; {} "
                              "направляющей — величина находится построением").format(
                 _m(rf"\bar{{V}}_{{{Pg}}} = \bar{{V}}_{{{G}}}"), guide, _m(rf"\bar{{V}}_{{{Ps}{Pg}}} \;\parallel")))
             af.append(Formula(rf"\bar{{a}}_{{{Ps}}} = \bar{{a}}_{{{Pg}}} + \bar{{a}}^{{r}}_{{{Ps}{Pg}}}"))
-            an.append(Markup("{} (направляющая движется поступательно, поэтому кориолисова ускорения нет), {} "
-                             "направляющей — величина находится построением").format(
-                _m(rf"\bar{{a}}_{{{Pg}}} = \bar{{a}}_{{{G}}}"), _m(rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}} \;\parallel")))
+            an.append(Markup("{} (направляющая движется поступательно: "
+                             "{}, кориолисова ускорения нет); {} направляющей — величина находится "
+                             "построением").format(_m(rf"\bar{{a}}_{{{Pg}}} = \bar{{a}}_{{{G}}}"),
+                                                  _m(rf"\omega_{{{_ang(guide)}}} = 0"),
+                                                  _m(rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}} \;\parallel")))
             continue
         vn.append(Markup("{} — скорость точки звена {}, совпадающей в данный момент с точкой {} звена {}: "
                          "{}, {}; {} направляющей звена {} — величины находятся построением").format(
@@ -143,9 +149,21 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
             _m(rf"\bar{{V}}_{{{Pg}{G}}} \;\perp\; {G}{P}"), _m(rf"\bar{{V}}_{{{Ps}{Pg}}} \;\parallel"), guide))
         af.append(Formula(rf"\bar{{a}}_{{{Ps}}} = \bar{{a}}_{{{Pg}}} + \bar{{a}}^{{k}}_{{{Ps}{Pg}}} + "
                           rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}}"))
-        an.append(Markup("{}, направление — вектор относительной скорости, повёрнутый на 90° в сторону "
-                         "вращения звена {}; {} — величина находится построением").format(
-            _m(rf"a^{{k}}_{{{Ps}{Pg}}} = 2 \omega_{{{_ang(guide)}}} V_{{{Ps}{Pg}}}"), guide,
+        wg = abs(float(row.get(f"w_{guide}", 0.0)))
+        vr = abs(float(row.get(f"vs_{j.name}", 0.0)))
+        lg = _len(row, j.point, gref)
+        an.append(Markup("{}: {}, {} (направлено от точки {} к точке {}), {}").format(
+            _m(rf"\bar{{a}}_{{{Pg}}} = \bar{{a}}_{{{G}}} + \bar{{a}}^{{n}}_{{{Pg}{G}}} + \bar{{a}}^{{\tau}}_{{{Pg}{G}}}"),
+            Markup("ускорение точки звена {} под ползуном").format(guide),
+            _m(rf"a^{{n}}_{{{Pg}{G}}} = \omega_{{{_ang(guide)}}}^{{2}} l_{{{G}{P}}} = {tex_num(wg, sig=4)}^{{2}} \cdot "
+               rf"{tex_num(lg, sig=4)} = {tex_num(wg * wg * lg, sig=4, unit='м/с²')}"), _m(P), _m(G),
+            _m(rf"\bar{{a}}^{{\tau}}_{{{Pg}{G}}} \;\perp\; {G}{P}")))
+        an.append(Markup("{} — кориолисово ускорение (направляющая вращается), направление — вектор "
+                         "относительной скорости {}, повёрнутый на 90° в сторону вращения звена {}; {} "
+                         "— величина находится построением").format(
+            _m(rf"a^{{k}}_{{{Ps}{Pg}}} = 2 \omega_{{{_ang(guide)}}} V_{{{Ps}{Pg}}} = 2 \cdot {tex_num(wg, sig=4)} \cdot "
+               rf"{tex_num(vr, sig=4)} = {tex_num(2 * wg * vr, sig=4, unit='м/с²')}"),
+            _m(rf"\bar{{V}}_{{{Ps}{Pg}}}"), guide,
             _m(rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}} \;\parallel") + Markup(" направляющей")))
     return vf, vn, af, an
 
