@@ -110,6 +110,7 @@ _BIG = {"∑": "sum", "∏": "sum", "∫": "int", "∮": "int", "∬": "int"}
 # thin, medium and thick space of TeX (3/18, 4/18, 5/18 em)
 _THIN, _MED, _THICK = 0.1667, 0.2222, 0.2778
 _PRIMES = {1: "′", 2: "″", 3: "‴"}
+_PRIME_COUNT = {"′": 1, "″": 2, "‴": 3, "'": 1}
 _FOUR, _THIN_SP, _SIX = "\u2005", "\u2009", "\u2006"
 _SPACES = ((0.167, _SIX), (0.222, _THIN_SP), (0.278, _FOUR), (1.0, "\u2003"), (2.0, "\u2003\u2003"))
 # glyphs the body faces lack, written with the ones they have (no fallback font in the PDF)
@@ -303,19 +304,29 @@ class _Writer:
         span = row.h + row.d
         k = max(1.0, span / LINE)
         m, b = self._token(text, False)
-        if k <= 1.05:
+        if k <= 1.3:  # scripts only: the glyph as it is
             return m, b
         return (Markup('<span class="mf" style="transform:scale(1,{k:.3f})">{t}</span>').format(k=k, t=m),
                 Box(b.w + 0.1, max(b.h, row.h), max(b.d, row.d)))
 
     # scripts
     @staticmethod
-    def _primes(el) -> int:
-        """Number of primes if the element holds only primes (′), else 0."""
+    def _primes(el) -> tuple[int, ET.Element | None]:
+        """The leading primes of a superscript and what follows them: ``^{\\prime 2}`` →
+        (1, «2»); ``^{\\prime\\prime}`` → (2, None); no primes → (0, el)."""
         text = html.unescape("".join(el.itertext()))
-        if text and set(text) <= {"′"} and len(text) <= 3:
-            return len(text)
-        return 0
+        if text and set(text) <= set(_PRIME_COUNT):
+            return sum(_PRIME_COUNT[c] for c in text), None
+        kids = list(el) if el.tag.replace(_NS, "") == "mrow" else []
+        k = n = 0
+        while k < len(kids) and kids[k].tag.replace(_NS, "") in ("mi", "mo") and _t(kids[k]) in _PRIME_COUNT:
+            n += _PRIME_COUNT[_t(kids[k])]
+            k += 1
+        if not n:
+            return 0, el
+        rest = ET.Element("mrow")
+        rest.extend(kids[k:])
+        return n, rest
 
     def _base(self, el, script) -> tuple[Markup, Box]:
         tag = el.tag.replace(_NS, "")
@@ -339,28 +350,31 @@ class _Writer:
         if sup_el is not None and html.unescape("".join(sup_el.itertext())) == "∘":
             base, bb = base + "°", Box(bb.w + _width("°"), bb.h, bb.d)  # 30^\circ: the degree sign
             sup_el = None
-        n = self._primes(sup_el) if sup_el is not None else 0
-        if n:  # x′, φ″: the prime glyph is already raised, full size
+        n, sup_el = self._primes(sup_el) if sup_el is not None else (0, None)
+        if n > 3:
+            raise Unsupported("больше трёх штрихов")
+        if n:  # x′, φ″: the prime glyph is already raised, full size; an exponent follows it
             p = _PRIMES[n]
             base, bb = base + p, Box(bb.w + _width(p), bb.h, bb.d)
-            sup_el = None
         if sup_el is None and sub_el is None:
             return base, bb
-        if sup_el is not None and sub_el is not None:
-            sm, sb = self._script(sup_el, script)
-            dm, db = self._script(sub_el, script)
-            m = Markup('<span class="mss"><span class="msp">{}</span><span class="msb">{}</span></span>'
-                       ).format(sm, dm)
-            w = max(sb.w, db.w)
-            top = (SUB_DROP * -1) + SCRIPT * (LINE * 0.86) + SCRIPT * BASE  # sup line over sub line
-            return base + m, Box(bb.w + w + 0.05, max(bb.h, top), max(bb.d, SUB_DROP + SCRIPT * (LINE - BASE)))
-        if sup_el is not None:
-            sm, sb = self._script(sup_el, script)
-            return base + Markup('<sup class="msup">{}</sup>').format(sm), \
-                Box(bb.w + sb.w + 0.05, max(bb.h, SUP_RAISE + sb.h * 0.8), bb.d)
-        dm, db = self._script(sub_el, script)
-        return base + Markup('<sub class="msub">{}</sub>').format(dm), \
-            Box(bb.w + db.w + 0.05, bb.h, max(bb.d, SUB_DROP + db.d * 0.8))
+        sm, sb = self._script(sup_el, script) if sup_el is not None else (None, None)
+        dm, db = self._script(sub_el, script) if sub_el is not None else (None, None)
+        # inline sub- and superscripts (line-height 0) grow the line only by what is taller
+        # than a plain script line in them (a fraction)
+        plain_h, plain_d = SCRIPT * BASE + 0.01, SCRIPT * (LINE - BASE) + 0.01
+        h = max(bb.h, SUP_RAISE + sb.h) if sb is not None and sb.h > plain_h else bb.h
+        d = max(bb.d, SUB_DROP + db.d) if db is not None and db.d > plain_d else bb.d
+        if sm is not None and dm is not None:
+            # both on one base: the subscript drawn back under the superscript (its estimated
+            # width, in the scripts' own em), the next atom after the wider of the two
+            ws, wd = sb.w / SCRIPT, db.w / SCRIPT
+            m = Markup('<sup class="msup">{}</sup><sub class="msub" style="margin-left:-{:.3f}em;'
+                       'margin-right:{:.3f}em">{}</sub>').format(sm, ws, max(0.0, ws - wd), dm)
+            return base + m, Box(bb.w + max(sb.w, db.w), h, d)
+        if sm is not None:
+            return base + Markup('<sup class="msup">{}</sup>').format(sm), Box(bb.w + sb.w, h, d)
+        return base + Markup('<sub class="msub">{}</sub>').format(dm), Box(bb.w + db.w, h, d)
 
     def m_msub(self, el, script):
         base, sub = list(el)
@@ -382,8 +396,9 @@ class _Writer:
         if _BIG[op] == "sum" and not script:
             lo, lb = self._script(sub_el, script) if sub_el is not None else (Markup(""), Box(0, 0, 0))
             hi, hb = self._script(sup_el, script) if sup_el is not None else (Markup(""), Box(0, 0, 0))
-            m = Markup('<span class="mlim"><span class="mlh">{}</span>{}<span class="mll">{}</span></span>'
-                       ).format(hi or Markup("&#8203;"), sym, lo or Markup("&#8203;"))
+            over = Markup('<span class="mlh">{}</span>').format(hi) if sup_el is not None else Markup("")
+            m = Markup('<span class="mlim">{}{}<span class="mll">{}</span></span>'
+                       ).format(over, sym, lo or Markup("&#8203;"))
             return m, Box(max(bw, lb.w, hb.w) + 2 * _THIN, 1.6, 1.1)
         m = sym
         w = bw
@@ -421,7 +436,9 @@ class _Writer:
         k = (cb.h + cb.d) / LINE if tall else 1.0
         sign = Markup('<span class="mrs" style="transform:scale(1,{:.3f})">√</span>').format(k) if tall \
             else Markup('<span class="mrs">√</span>')
-        m = Markup('{}<span class="mrc">{}</span>').format(sign, cm)
+        # a radicand taller than a line (a fraction) is an inline block, so that the vinculum
+        # clears it
+        m = Markup('{}<span class="mrc{}">{}</span>').format(sign, " mrc-tall" if tall else "", cm)
         return m, Box(cb.w + _width("√") + 0.1, cb.h + 0.08, cb.d)
 
     def m_mroot(self, el, script):
