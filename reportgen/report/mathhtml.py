@@ -246,11 +246,13 @@ class _Writer:
                 elif text in _BIG:
                     m, b = self._big(text, None, None, script)
                     prev = "op"
-                elif len(text) > 1 and text.isalpha():  # \max, \min, \lim as <mo>
+                elif len(text) > 1 and text.isalpha():  # \max, \operatorname{tg} as <mo>
                     m, b = self._token(text, False)
                     if prev == "ord":
                         m, b = _SIX + m, Box(b.w + _THIN, b.h, b.d)
-                    prev = "ord"
+                    if i + 1 < len(children):  # a thin space before the argument
+                        m, b = m + _SIX, Box(b.w + _THIN, b.h, b.d)
+                    prev = "op"
                 else:
                     if text in _OPEN:
                         kind = "open"
