@@ -31,6 +31,7 @@ import hashlib
 import os
 import re
 import tempfile
+import warnings
 from pathlib import Path
 from dataclasses import dataclass, field
 
@@ -231,6 +232,9 @@ def _math(tex: str, inline: bool = False):
         try:
             return mathhtml.convert(tex, not inline)
         except mathhtml.Unsupported as exc:
+            if tex not in fallbacks:
+                warnings.warn(f"Формула {tex!r} нарисована ziamath (картинкой), а не набрана текстом: {exc}",
+                              RuntimeWarning, stacklevel=3)
             fallbacks[tex] = str(exc)
     return _image(tex, inline)
 
