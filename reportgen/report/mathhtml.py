@@ -107,8 +107,7 @@ _PUNCT = {",", ";"}
 _OPEN = set("([{⟨|‖")
 _CLOSE = set(")]}⟩|‖")
 _BIG = {"∑": "sum", "∏": "sum", "∫": "int", "∮": "int", "∬": "int"}
-# thin, medium and thick space of TeX (3/18, 4/18, 5/18 em)
-_THIN, _MED, _THICK = 0.1667, 0.2222, 0.2778
+_THIN = 0.1667  # TeX's thin space (3/18 em)
 _PRIMES = {1: "′", 2: "″", 3: "‴"}
 _PRIME_COUNT = {"′": 1, "″": 2, "‴": 3, "'": 1}
 _FOUR, _THIN_SP, _SIX = "\u2005", "\u2009", "\u2006"
@@ -218,9 +217,6 @@ class _Writer:
         return self.row([el], script)
 
     # rows: operator spacing depends on the neighbours
-    def _items(self, el) -> list[ET.Element]:
-        return list(el)
-
     def row(self, children: list[ET.Element], script: int) -> tuple[Markup, Box]:
         out: list[Markup] = []
         boxes: list[Box] = []
