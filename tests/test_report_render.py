@@ -314,7 +314,12 @@ def test_long_formula_is_wrapped_or_scaled_to_fit():
     assert one.tex == r"\lambda = \frac{l_{OA}}{l_{AB}} = \frac{0{,}1}{0{,}4} = 0{,}25"
 
 
-def test_inline_math_markup():
+def test_inline_math_markup(monkeypatch):
+    # typeset as HTML text (reportgen/report/mathhtml.py) …
+    html = str(inline_math(r"\varphi_3"))
+    assert html == '<span class="mx math-inline"><i>φ</i><sub class="msub">3</sub></span>'
+    # … and as a ziamath image when asked for (REPORTGEN_MATH=svg), the fallback
+    monkeypatch.setenv("REPORTGEN_MATH", "svg")
     html = str(inline_math(r"\varphi_3"))
     assert html.startswith('<img class="math-inline"')
     assert "vertical-align:-" in html and "data:image/svg+xml;base64," in html

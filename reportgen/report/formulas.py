@@ -1,4 +1,6 @@
-"""Formulas rendered to SVG in Python with ziamath (WeasyPrint has no MathML/JS).
+"""Formulas of the note: typeset as HTML text by :mod:`reportgen.report.mathhtml`, or
+rendered to SVG in Python with ziamath (WeasyPrint has no MathML/JS) when the HTML
+typesetter does not handle a construct (see :data:`fallbacks`).
 
 A :class:`Formula` is one numbered display line in the Mathcad style that
 students know: ``symbolic = substituted = result``, for example::
@@ -29,6 +31,7 @@ import hashlib
 import os
 import re
 import tempfile
+import warnings
 from pathlib import Path
 from dataclasses import dataclass, field
 
@@ -208,13 +211,43 @@ def _image(tex: str, inline: bool = False) -> FormulaImage:
     return FormulaImage(svg, w * k, h * k, depth * k, tex)
 
 
+# Formulas are typeset as HTML text (:mod:`reportgen.report.mathhtml`); one the typesetter
+# cannot handle is drawn by ziamath instead, and its LaTeX is counted here (a test asserts that
+# the notes of cases/ need none). REPORTGEN_MATH=svg draws every formula with ziamath (the
+# former way, kept for comparison: bench and docs/performance.md).
+fallbacks: dict[str, str] = {}
+
+
+def _svg_only() -> bool:
+    return os.environ.get("REPORTGEN_MATH", "").lower() == "svg"
+
+
+def _math(tex: str, inline: bool = False):
+    """The formula as :class:`~reportgen.report.mathhtml.MathHtml`, or as a ziamath
+    :class:`FormulaImage` when the HTML typesetter does not handle it (counted in
+    :data:`fallbacks` with the reason)."""
+    if not _svg_only():
+        from . import mathhtml
+
+        try:
+            return mathhtml.convert(tex, not inline)
+        except mathhtml.Unsupported as exc:
+            if tex not in fallbacks:
+                warnings.warn(f"Формула {tex!r} нарисована ziamath (картинкой), а не набрана текстом: {exc}",
+                              RuntimeWarning, stacklevel=3)
+            fallbacks[tex] = str(exc)
+    return _image(tex, inline)
+
+
 def inline_math(tex: str) -> Markup:
-    """An ``<img>`` (data URI) for math inside a paragraph, on the text baseline."""
-    return _image(tex, inline=True).img("math-inline")
+    """Math inside a paragraph, on the text baseline (HTML text, or an ``<img>``)."""
+    return _math(tex, inline=True).img("math-inline")
 
 
-def formula_images(formula: Formula, max_width_em: float) -> list[FormulaImage]:
-    """The display line(s) of a formula that fit ``max_width_em``.
+def formula_images(formula: Formula, max_width_em: float) -> list:
+    """The display line(s) of a formula that fit ``max_width_em`` (each a
+    :class:`~reportgen.report.mathhtml.MathHtml` or a :class:`FormulaImage`: both have
+    ``width_em``, ``tex``, ``scaled`` and ``img``).
 
     The whole line if it fits; otherwise it is broken after an equals sign,
     which is repeated at the start of the next line (ГОСТ 2.105):
@@ -222,7 +255,7 @@ def formula_images(formula: Formula, max_width_em: float) -> list[FormulaImage]:
     Whatever still does not fit is scaled down.
     """
     parts = formula.parts()
-    whole = _image(" = ".join(parts))
+    whole = _math(" = ".join(parts))
     if whole.width_em <= max_width_em or len(parts) == 1:
         return [whole.scaled(max_width_em)]
     candidates: list[list[str]] = []
@@ -231,7 +264,7 @@ def formula_images(formula: Formula, max_width_em: float) -> list[FormulaImage]:
     lines = [f"{parts[0]} ="] + [f"= {p} =" for p in parts[1:-1]] + [f"= {parts[-1]}"]
     candidates.append(lines)
     for cand in candidates:
-        imgs = [_image(t) for t in cand]
+        imgs = [_math(t) for t in cand]
         if all(i.width_em <= max_width_em for i in imgs):
             return imgs
     return [i.scaled(max_width_em) for i in imgs]

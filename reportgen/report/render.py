@@ -913,6 +913,11 @@ def _next_splits(document, splits: dict[str, list[int]],
             if not starts:
                 continue
             if starts[0] < min_rows and not lead and n > min_rows:
+                if changed:
+                    # an earlier table changed in this pass, so where this one starts is not
+                    # known yet: moving it to a new page now may leave a page half empty
+                    # (decided in the next pass)
+                    continue
                 result[tid] = [0]  # too few rows would stay: start on a new page
             else:
                 result[tid] = lead + _tidy_cuts(starts, n, min_rows)
