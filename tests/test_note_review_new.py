@@ -198,15 +198,16 @@ def test_construction_text_without_tangential_components():
     from reportgen.report.sections.forces import _construction_text
     from reportgen.scenes.forces import Constructed, Vector
     found = [Constructed("R34", 6400.0, 6418.8), Constructed("R05", 1300.0, 1314.6)]
-    plain = SimpleNamespace(vectors=[Vector("R34", np.zeros(2), (0, 0), "unknown")], constructed=found)
+    plain = SimpleNamespace(vectors=[Vector("R34", np.zeros(2), (0, 0), "unknown")], constructed=found,
+                            method="intersection")
     text = _construction_text(plain, "fig", set())
     assert "R</i><sup>τ" not in text and "R</i><sup>n" not in text and "перпендикулярно направляющей" in text
     tau = SimpleNamespace(vectors=[Vector("R12", np.zeros(2), (0, 0), "known", tex="$R^{\\tau}_{12}$")],
-                          constructed=found)
+                          constructed=found, method="intersection")
     assert "<i>R</i><sup>τ</sup>" in _construction_text(tau, "fig", set())
     # a group constructed the other way is described in full, not «так же»
-    assert "так же" not in _construction_text(tau, "fig", {(2, False)})
-    assert "так же" in _construction_text(tau, "fig", {(2, True)})
+    assert "так же" not in _construction_text(tau, "fig", {"lines"})
+    assert "так же" in _construction_text(tau, "fig", {"intersection"})
 
 
 def test_load_law_cell_rendered_as_markup(conveyor):
