@@ -298,12 +298,13 @@ class Study:
             return None
         return np.full_like(q, d.omega), np.full_like(q, d.epsilon)
 
-    def _frame(self, q: np.ndarray, labels=None, grid=True, res=None) -> pd.DataFrame:
+    def _frame(self, q: np.ndarray, labels=None, grid=True, res=None, law=None) -> pd.DataFrame:
         if res is None:
             res = self._solve_on_branch(q, labels) if not grid else L.solve(self.model, q, labels)
         cols = L.columns(self.model, res, grid=grid)
         cols.update(self._extra_angles(cols))
-        law = self.motion_law(q)
+        if law is None:
+            law = self.motion_law(q)
         if law is not None:
             cols.update(true_motion(cols, self.mechanism, *law))
         cols.update(self._derived(cols))
@@ -345,6 +346,28 @@ class Study:
             return self._frame(g.q, g.labels, grid=False)
 
     @cached_property
+    def kinematics_return(self) -> pd.DataFrame | None:
+        """An input rocker's return stroke (q_max → q_min at dq/dt = −ω₁; None for other drivers or
+        without ω₁): the report positions in the order they are passed, the same positions and
+        analogs, the velocities v = −ω₁x′ of the opposite sign, the same accelerations a = ω₁²x″."""
+        d = self.mechanism.driver
+        if not d.swing or d.omega is None:
+            return None
+        k = self.kinematics
+        order = np.argsort(-k["q"].to_numpy(), kind="stable")
+        q = k["q"].to_numpy()[order]
+        return self._frame(q, [k["pos"].iloc[i] for i in order], grid=False,
+                           law=(np.full_like(q, -d.omega), np.zeros_like(q)))
+
+    @cached_property
+    def strokes(self) -> pd.DataFrame | None:
+        """An input rocker's forward and return strokes (analysis/synthesis.py ``swing_strokes``)."""
+        if not self.mechanism.driver.swing:
+            return None
+        from .synthesis import swing_strokes
+        return swing_strokes(self)
+
+    @cached_property
     def cycle(self) -> pd.DataFrame:
         """The same columns on the fine grid over one cycle (for curves and integrals)."""
         self.computed.add("cycle")
@@ -373,9 +396,21 @@ class Study:
 
     def at(self, q) -> pd.DataFrame:
         """Exact evaluation at the given values of the generalised coordinate (SI), on the
-        branch of the cycle."""
+        branch of the cycle.  A mechanism with Newton groups (class III) whose cycle has not been
+        solved is not solved over it (``export --at``): each position is reached from the sketch
+        (:func:`~reportgen.analysis.linkage.solve_from_sketch`), so a mechanism that assembles
+        only in part of the turn is analysed where it does; once the cycle is solved, positions
+        are continued from it (the same branch, fewer steps)."""
         q = np.atleast_1d(np.asarray(q, dtype=float))
-        return self._frame(q, [f"q{i}" for i in range(len(q))], grid=False)
+        labels = [f"q{i}" for i in range(len(q))]
+        res = None
+        if L.has_newton(self.model) and "_cycle_solution" not in self.__dict__:
+            mech = self.mechanism
+            q0 = mech.sketch_q if mech.sketch_q is not None else self.grid.start
+            step = self.grid.length / (len(self.grid.cycle) - 1)
+            res = L.solve_from_sketch(self.model, q, q0, step, self.grid.length if mech.driver.periodic else None,
+                                      labels)
+        return self._frame(q, labels, grid=False, res=res)
 
     @cached_property
     def flags(self) -> dict:
@@ -458,8 +493,12 @@ class Study:
                "output_reversals": len(x["reversals"]), "output_K": 1.0}
         for i, r in enumerate(x["reversals"]):
             out[f"output_q_reversal_{i + 1}"] = r
+        st = self.strokes
+        out["output_path"] = float(st["s_path"].iloc[0])
         if d.omega is not None:
             out["t_stroke"] = out["swing"] / d.omega
+            out["t_return"] = float(st["t"].iloc[1])
+            out["t_cycle"] = float(st["t"].sum())
         return out
 
     # ------------------------------------------------------------- export
@@ -476,8 +515,18 @@ class Study:
             out["fits"] = pd.DataFrame([{"name": f.name, "value": f.value, "condition": f.condition,
                                          "at": f.at, "residual": f.residual} for f in self.fits])
         for name in self._tasks_for(positions_only):
-            out.update(self.analysis(name).tables())
+            out.update(self._task_part(name, "tables", positions_only)())
         return out
+
+    def _task_part(self, name: str, part: str, positions_only: bool):
+        """A task's ``tables`` (method) or ``scalars``; ``positions_only`` (``export --at``): its
+        ``position_tables()`` / ``position_scalars()`` when it has them (the part that needs no
+        solution of the linkage over the cycle)."""
+        obj = self.analysis(name)
+        fn = getattr(obj, "position_" + part, None) if positions_only else None
+        if fn is not None:
+            return fn
+        return getattr(obj, part) if part == "tables" else (lambda: obj.scalars)
 
     @property
     def structure_scalars(self) -> dict[str, Any]:
@@ -495,7 +544,7 @@ class Study:
         if self.has_linkage:
             out.update(self.structure_scalars if positions_only else self.scalars)
         for name in self._tasks_for(positions_only):
-            out.update(self.analysis(name).scalars)
+            out.update(self._task_part(name, "scalars", positions_only)())
         return out
 
 

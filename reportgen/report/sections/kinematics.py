@@ -152,6 +152,8 @@ def build(study) -> Section:
         tv += [Column(f"w_{l.name}", sub("ω", l.name), "рад/с", digits=3) for l in _links(study)
                if not (rotary and l.name == mech.driver.link)]
         chunked_tables(s3, "Скорости точек и угловые скорости звеньев", k, tv, lead, "tab-v")
+        if mech.driver.swing:
+            _return_velocities(s3, study, lead)
         ta = [Column(f"a_{p}", sub("a", p), "м/с²", sig=4) for p in pts]
         ta += [Column(f"e_{l.name}", sub("ε", l.name), "рад/с²", sig=4) for l in _links(study)
                if not (rotary and l.name == mech.driver.link)]
@@ -197,6 +199,7 @@ def build(study) -> Section:
                      f"(рисунок {ref('fig-diagrams')}).")
     if mech.driver.swing:
         s5.paragraph(swing_strokes_text(study))
+        _strokes_table(s5, study, s_col)
     elif rotary:
         i_max, i_min = int(np.argmax(s)), int(np.argmin(s))
         th = abs(math.degrees(cyc["q"].iloc[i_max] - cyc["q"].iloc[i_min]))
@@ -242,7 +245,9 @@ def swing_strokes_text(study) -> str:
                  "ускорений зависят только от угла φ и на обоих ходах одинаковы; при обратном ходе с той же по модулю "
                  "угловой скоростью (ω<sub>1</sub> заменяется на −ω<sub>1</sub>) скорости всех точек и звеньев "
                  "v&nbsp;=&nbsp;ω<sub>1</sub>x′ меняют знак, а ускорения a&nbsp;=&nbsp;ω<sub>1</sub><sup>2</sup>x″ не меняются. "
-                 "Поэтому таблицы и диаграммы приведены для прямого хода. В крайних положениях скорость входного "
+                 "Поэтому таблицы положений, аналогов и ускорений, диаграммы и силовой расчёт приведены для прямого "
+                 f"хода, угловые скорости на обратном ходе — в таблице {ref('tab-v-return')}, оба хода — в таблице "
+                 f"{ref('tab-strokes')}. В крайних положениях скорость входного "
                  "звена меняет знак мгновенно (принятая идеализация привода); действительный привод разгоняет и "
                  "тормозит звено за конечное время, что добавляет силы инерции вблизи крайних положений.")
     if d.omega is not None:
@@ -250,6 +255,43 @@ def swing_strokes_text(study) -> str:
                      f"{fmt(sc['t_stroke'], sig=4)}&nbsp;с, время цикла {fmt(2 * sc['t_stroke'], sig=4)}&nbsp;с; прямой и "
                      "обратный ходы длятся одинаково, коэффициент изменения средней скорости K&nbsp;=&nbsp;1.")
     return " ".join(parts)
+
+
+def _return_velocities(sec: Section, study, lead: list[Column]) -> None:
+    """An input rocker's return stroke: the positions in the order they are passed, the angular
+    velocities of the links (and the output slider's velocity) with their signs."""
+    mech = study.mechanism
+    kr = study.kinematics_return
+    cols = [Column(f"w_{l.name}", sub("ω", l.name), "рад/с", digits=3) for l in _links(study)]
+    cols += [Column(f"vs_{j.name}", sub("V", j.point), "м/с", digits=3) for j in mech.prismatic if j.links[0] == FRAME]
+    lo, hi = (fmt(math.degrees(x), digits=1) for x in mech.driver.q_range)
+    sec.paragraph(f"На обратном ходе (φ от {hi}° до {lo}°) входное коромысло вращается с угловой "
+                  f"скоростью −ω<sub>1</sub>; модули скоростей точек и все ускорения те же, что на прямом ходе, "
+                  f"угловые скорости звеньев и скорости ползунов меняют знак (таблица {ref('tab-v-return')}).")
+    chunked_tables(sec, "Угловые скорости звеньев на обратном ходе входного коромысла", kr, cols, lead, "tab-v-return")
+
+
+def _strokes_table(sec: Section, study, s_col: str) -> None:
+    """The forward and return strokes of an input rocker: the input's angles, the output at the
+    start and end, its range and path, the time and the output's mean speed."""
+    df = study.strokes.copy()
+    df["name"] = df["stroke"].map({"forward": "прямой", "return": "обратный"})
+    ang = s_col.startswith("phi_")
+    conv = math.degrees if ang else (lambda x: x)
+    for c in ("s_from", "s_to", "s_range", "s_path"):
+        df[c] = df[c].map(conv)
+    unit = "град" if ang else "м"
+    sym = sub("φ", s_col[4:]) if ang else sub("s", s_col.split("_", 1)[1])
+    cols = [Column("name", "Ход"), Column("q_from_deg", "φ<sub>нач</sub>", "град", digits=1),
+            Column("q_to_deg", "φ<sub>кон</sub>", "град", digits=1),
+            Column("s_from", f"{sym} в начале", unit, digits=2 if ang else 4),
+            Column("s_to", f"{sym} в конце", unit, digits=2 if ang else 4),
+            Column("s_path", "путь выходного звена", unit, digits=2 if ang else 4)]
+    if "t" in df:
+        df["v_mean"] = df["v_mean"].map(conv)
+        cols += [Column("t", "<i>t</i>", "с", sig=4),
+                 Column("v_mean", "средняя скорость выхода", unit + "/с", sig=4)]
+    sec.table("Прямой и обратный ходы входного коромысла", cols, df, id="tab-strokes")
 
 
 def _vec_name(name: str) -> Markup:
