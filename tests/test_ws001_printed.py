@@ -19,7 +19,7 @@ TABLES = [("ws001_p1_dof", "dof"), ("ws001_p3_cross", "cross"), ("ws001_p6_six_b
           ("ws001_p7_governor", "governor"), ("ws001_p8_press", "machine")]
 # entries whose printed value differs from the exact one by more than a unit of its last digit,
 # each explained by its note (what the worksheet rounded or measured)
-EXPLAINED = {("ws001_p6_six_bar", "a"), ("ws001_p7_governor", "F_i")}
+EXPLAINED = {("ws001_p7_governor", "F_i")}
 
 
 def _unit(row, node) -> float:
