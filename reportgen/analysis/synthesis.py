@@ -191,8 +191,13 @@ class Synthesis:
         return out
 
     def target_stroke(self) -> float:
-        """The stroke (m) or swing (rad) the synthesis was asked for."""
+        """The stroke (m) or swing (rad) the synthesis was asked for: a crank-rocker's swing ψ; a
+        slotted lever's swing when the lever is the output, the stroke H of its end when a slider
+        driven by the end is (the shaper: in the lever's extreme positions its end D is at one
+        height, so a coupler to a slider on a straight line transfers the chord H and K)."""
         x = self.inputs
-        if self.kind in ("crank_rocker", "slotted_lever"):
+        chk = self.check
+        lever_out = chk is None or str(chk.get("column", "")).startswith("phi_")
+        if self.kind == "crank_rocker" or (self.kind == "slotted_lever" and lever_out):
             return self.chosen["psi"]
         return x["H"]
