@@ -83,6 +83,8 @@ def _at_table(study: Study, q: list[float]) -> pd.DataFrame:
 
 
 def _linkage_tables(study: Study) -> dict[str, pd.DataFrame]:
+    if not study.has_cycle:          # [grid] cycle = false: the report positions only
+        return {"kinematics": study.kinematics, **_structure_tables(study)}
     out = {"kinematics": study.kinematics, "cycle": study.cycle, **_structure_tables(study)}
     if study.strokes is not None:          # an input rocker: its return stroke separately
         out["strokes"] = study.strokes

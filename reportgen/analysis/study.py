@@ -38,6 +38,7 @@ class Grid:
     cycle: np.ndarray         # fine grid over one cycle (ends included)
     start: float
     length: float             # cycle length (2π for a crank, stroke for an actuator)
+    solved: bool = True       # False: ``[grid] cycle = false``, only the report positions are solved
 
 
 def column_dims(name: str, qdim: U.Dim) -> U.Dim:
@@ -246,9 +247,14 @@ class Study:
     @cached_property
     def grid(self) -> Grid:
         node = self.root.table("grid")
-        node.check_keys(["positions", "closed", "extra", "cycle_points", "start"])
+        node.check_keys(["positions", "closed", "extra", "cycle_points", "start", "cycle", "at"])
         names = self.params
         d = self.mechanism.driver
+        if not node.boolean("cycle", True):
+            return self._positions_grid(node, names)
+        if node.has("at"):
+            raise node.error("at", "список положений задаётся только без расчёта цикла",
+                             expected="cycle = false и at = [\"0 deg\", \"40 deg\"]; иначе positions и extra")
         n = node.integer("positions", 12, minimum=2, maximum=MAX_POSITIONS)
         m = node.integer("cycle_points", 3600, minimum=36, maximum=MAX_CYCLE_POINTS)
         closed = node.boolean("closed", False)
@@ -289,6 +295,40 @@ class Study:
         q = np.concatenate([q, np.array(xs, dtype=float)])
         cycle = start + length * np.arange(m + 1) / m
         return Grid(q, labels, cycle, start, length)
+
+    def _positions_grid(self, node: Node, names) -> Grid:
+        """``[grid] cycle = false``: the mechanism is analysed at the positions ``at`` only (a
+        mechanism that assembles in part of the turn, or a task that asks for single positions);
+        the cycle is not solved, so nothing that needs it (diagrams, dynamics, forces over the
+        cycle) is available."""
+        for k in ("positions", "closed", "extra", "cycle_points", "start"):
+            if node.has(k):
+                raise node.error(k, "без расчёта цикла (cycle = false) положения задаются списком at",
+                                 expected="at = [\"0 deg\", \"40 deg\"]")
+        raw = node.raw("at")
+        if not isinstance(raw, list) or not 1 <= len(raw) <= MAX_POSITIONS:
+            raise node.error("at", "ожидался список положений", expected=f"at = [\"0 deg\", \"40 deg\"], "
+                                                                       f"от 1 до {MAX_POSITIONS} значений")
+        q = np.array([node.eval_value(v, f"at[{i}]", self.qdim, names) for i, v in enumerate(raw)], dtype=float)
+        d = self.mechanism.driver
+        if d.q_range is not None:
+            for i, x in enumerate(q):
+                if not d.q_range[0] - 1e-12 <= x <= d.q_range[1] + 1e-12:
+                    raise node.error(f"at[{i}]", "положение вне диапазона входного звена",
+                                     expected=f"от {d.q_range[0]:.6g} до {d.q_range[1]:.6g}")
+        start = d.q_range[0] if d.q_range is not None else 0.0
+        length = (d.q_range[1] - d.q_range[0]) if d.q_range is not None else 2 * math.pi
+        return Grid(q, [str(i) for i in range(len(q))], q.copy(), start, length, solved=False)
+
+    @property
+    def has_cycle(self) -> bool:
+        """Whether the cycle is solved (not ``[grid] cycle = false``)."""
+        return self.grid.solved
+
+    def _no_cycle(self) -> CaseError:
+        node = self.root.table("grid")
+        return node.error("cycle", "в варианте не рассчитывается цикл механизма, а эта величина или раздел его требует",
+                          expected="cycle = true (по умолчанию) с механизмом, собирающимся во всём цикле")
 
     # ----------------------------------------------------------------- kinematics
     def motion_law(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
@@ -370,11 +410,15 @@ class Study:
     @cached_property
     def cycle(self) -> pd.DataFrame:
         """The same columns on the fine grid over one cycle (for curves and integrals)."""
+        if not self.has_cycle:
+            raise self._no_cycle()
         self.computed.add("cycle")
         return self._frame(self.grid.cycle, grid=True, res=self._cycle_solution)
 
     @cached_property
     def _cycle_solution(self) -> L.KinematicsResult:
+        if not self.has_cycle:
+            raise self._no_cycle()
         with _cycle_hint():
             return L.solve(self.model, self.grid.cycle)
 
@@ -391,8 +435,18 @@ class Study:
         the sketch)."""
         if not L.has_newton(self.model):
             return L.solve(self.model, q, labels)
+        if not self.has_cycle:
+            return self._from_sketch(q, labels)
         period = self.grid.length if self.mechanism.driver.periodic else None
         return L.solve_continued(self.model, q, self._cycle_solution, period, labels)
+
+    def _from_sketch(self, q: np.ndarray, labels) -> L.KinematicsResult:
+        """Newton groups reached from the sketch (:func:`~reportgen.analysis.linkage.solve_from_sketch`)."""
+        mech = self.mechanism
+        g = self.grid
+        q0 = mech.sketch_q if mech.sketch_q is not None else g.start
+        step = g.length / 3600 if not g.solved else g.length / (len(g.cycle) - 1)
+        return L.solve_from_sketch(self.model, q, q0, step, g.length if mech.driver.periodic else None, labels)
 
     def at(self, q) -> pd.DataFrame:
         """Exact evaluation at the given values of the generalised coordinate (SI), on the
@@ -405,11 +459,7 @@ class Study:
         labels = [f"q{i}" for i in range(len(q))]
         res = None
         if L.has_newton(self.model) and "_cycle_solution" not in self.__dict__:
-            mech = self.mechanism
-            q0 = mech.sketch_q if mech.sketch_q is not None else self.grid.start
-            step = self.grid.length / (len(self.grid.cycle) - 1)
-            res = L.solve_from_sketch(self.model, q, q0, step, self.grid.length if mech.driver.periodic else None,
-                                      labels)
+            res = self._from_sketch(q, labels)
         return self._frame(q, labels, grid=False, res=res)
 
     @cached_property
@@ -456,6 +506,8 @@ class Study:
     @cached_property
     def scalars(self) -> dict[str, float]:
         out = dict(self.structure_scalars)
+        if not self.has_cycle:
+            return out
         for c, v in self.flags.items():
             out[c + "_min"] = v["min"]
         out.update(self._output_stroke())

@@ -40,7 +40,7 @@ def _moving_points(study) -> list[str]:
 def _links(study):
     """Links whose angle changes (a slider on a fixed guide only translates)."""
     d = study.mechanism.driver
-    cyc = study.cycle
+    cyc = study.cycle if study.has_cycle else study.kinematics
     return [l for l in study.mechanism.moving if not (d.kind == "actuator" and l.name == d.rod)
             and float(np.abs(cyc["wq_" + l.name]).max()) > 1e-12]
 
@@ -64,7 +64,13 @@ def build(study) -> Section:
     w1_m = inline_math(r"\omega_1")
     v_m = inline_math(r"v = \omega_1 x^{\prime}")
     a_m = inline_math(r"a = \omega_1^2 x^{\prime\prime} + \varepsilon_1 x^{\prime}")
-    if mech.driver.swing:
+    if not study.has_cycle:
+        s1.paragraph(f"Механизм рассчитан в {ncount} заданных положениях {input_word(mech.driver, 'gen')} "
+                     f"(углы φ в таблицах); цикл не рассчитывается — механизм собирается не во всех положениях "
+                     f"цикла, поэтому траектории, диаграммы и крайние положения выходного звена не строятся. "
+                     f"Масштаб {mu_l}&nbsp;=&nbsp;{mu_text(plan.mu)}&nbsp;м/мм ({gost_ratio(plan.mu)}), "
+                     f"рисунок {ref('fig-positions')}.")
+    elif mech.driver.swing:
         s1.paragraph(f"План положений построен для {ncount} положений входного коромысла {mech.driver.link} в "
                      f"диапазоне его качания {swing_text(mech.driver)}, от одного крайнего положения до другого; "
                      f"на обратном ходе звенья проходят те же положения в обратном порядке. "
@@ -81,7 +87,7 @@ def build(study) -> Section:
         s1.paragraph(f"План положений построен для {ncount} значений длины гидроцилиндра от "
                      f"{fmt(lo, digits=3)} до {fmt(hi, digits=3)}&nbsp;м; масштаб {mu_l}&nbsp;=&nbsp;"
                      f"{mu_text(plan.mu)}&nbsp;м/мм (рисунок {ref('fig-positions')}).")
-    fig = s1.figure("План положений механизма и траектории центров масс", plan.svg, plan.width_mm,
+    fig = s1.figure("План положений механизма" + (" и траектории центров масс" if study.has_cycle else ""), plan.svg, plan.width_mm,
                     id="fig-positions", landscape=plan.landscape)
     if plan.landscape:      # its own page follows the first table of coordinates (not a near-empty page)
         s1.children.remove(fig)
@@ -134,9 +140,10 @@ def build(study) -> Section:
         vcols += [Column(f"vqx_{p}", f"<i>x′</i><sub>{p}</sub>", None, digits=4),
                   Column(f"vqy_{p}", f"<i>y′</i><sub>{p}</sub>", None, digits=4)]
     chunked_tables(s2, "Аналоги скоростей точек", k, vcols, lead, "tab-vq")
-    curves = AnalogCurves().draw(study)
-    s2.figure("Аналоги угловых скоростей звеньев " + ("в диапазоне качания входного звена" if mech.driver.swing
-                                                       else "за цикл"), curves.svg, curves.width_mm, id="fig-analogs")
+    if study.has_cycle:
+        curves = AnalogCurves().draw(study)
+        s2.figure("Аналоги угловых скоростей звеньев " + ("в диапазоне качания входного звена" if mech.driver.swing
+                                                           else "за цикл"), curves.svg, curves.width_mm, id="fig-analogs")
 
     # ----- true velocities
     if w_known:
@@ -146,7 +153,7 @@ def build(study) -> Section:
             s3.paragraph(f"Входное коромысло качается с постоянной по модулю угловой скоростью "
                          f"{w1_m}&nbsp;=&nbsp;{fmt(w1, digits=3)}&nbsp;рад/с; значения в таблицах — для прямого хода.")
         elif rotary:
-            s3.paragraph(f"Кривошип вращается равномерно с угловой скоростью "
+            s3.paragraph(f"{'Кривошип' if study.has_cycle else 'Ведущее звено'} вращается равномерно с угловой скоростью "
                          f"{w1_m}&nbsp;=&nbsp;{fmt(w1, digits=3)}&nbsp;рад/с.")
         tv = [Column(f"v_{p}", sub("V", p), "м/с", digits=3) for p in pts]
         tv += [Column(f"w_{l.name}", sub("ω", l.name), "рад/с", digits=3) for l in _links(study)
@@ -185,6 +192,8 @@ def build(study) -> Section:
         s4.table(f"Ускорения по плану и аналитически (положение {pos_no(study, lab)}), м/с²", cmp_cols, aplan.table, id="tab-aplan")
 
     # ----- kinematic diagrams
+    if not study.has_cycle:        # [grid] cycle = false: single positions, no diagrams over the cycle
+        return sec
     s5 = sec.subsection("Кинематические диаграммы выходного звена", "sec-diagrams")
     diag = OutputDiagrams().draw(study)
     s_col, v_col, a_col, title = output_quantity(study)
@@ -373,6 +382,10 @@ def conclusion_lines(study) -> list[str]:
     """Key kinematic results for the ЗАКЛЮЧЕНИЕ."""
     out = []
     s_col, v_col, a_col, title = output_quantity(study)
+    if not study.has_cycle:
+        return [f"Механизм рассчитан в {len(study.kinematics)} заданных положениях (цикл не рассчитывается: "
+                f"механизм собирается не во всех его положениях); положения, скорости и ускорения — в таблицах "
+                f"раздела {ref('sec-kinematics')}."]
     cyc = study.cycle
     s = cyc[s_col]
     if s_col.startswith("phi_"):
