@@ -28,7 +28,7 @@ import pytest
 from reportgen.analysis.study import Study
 from reportgen.case.load import CaseSpec
 from reportgen.cli import main
-from reportgen.errors import AssemblyError
+from reportgen.errors import AssemblyError, CaseError
 from reportgen.export import tables
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
@@ -218,3 +218,65 @@ def test_rocker_export_has_both_strokes(tmp_path):
     assert s["stroke"].tolist() == ["forward", "return"]
     sc = json.loads((tmp_path / "x" / "scalars.json").read_text(encoding="utf-8"))
     assert sc["t_return"] == pytest.approx(sc["t_stroke"]) and "t_cycle" in sc
+
+
+# ----------------------------------------------------------------- [grid] cycle = false
+POSITIONS = CASES / "four_bar_positions.toml"
+
+
+def test_positions_case_without_the_cycle(tmp_path, capsys):
+    """``cases/four_bar_positions.toml``: the non-Grashof four-bar driven as a crank, analysed at
+    the five positions of ``[grid] at``: positions and analogs equal the closed form, the cycle is
+    never solved, export writes the kinematics and structure only, check passes."""
+    st = Study(POSITIONS)
+    k = st.kinematics
+    q = np.radians([-80.0, -40.0, 0.0, 40.0, 80.0])
+    assert k["q"].to_numpy() == pytest.approx(q, abs=1e-15) and k["pos"].tolist() == ["0", "1", "2", "3", "4"]
+    bx, by = _B(q)
+    assert np.max(np.abs(k["x_B"] - bx)) < 1e-13 and np.max(np.abs(k["y_B"] - by)) < 1e-13
+    assert "_cycle_solution" not in st.__dict__ and not st.has_cycle
+    assert set(tables(st)) == {"kinematics", "links", "pairs", "groups"}
+    assert st.all_scalars() == {"W": 1, "n": 3, "p5": 4, "p4": 0, "mech_class": 2}
+    with pytest.raises(CaseError) as ei:
+        st.cycle
+    assert "grid.cycle" in str(ei.value)
+    assert main(["check", str(POSITIONS)]) == 0
+    assert "в заданных положениях" in capsys.readouterr().out
+
+
+def test_positions_case_class3_from_the_sketch(partial, tmp_path):
+    """The partial triad with ``cycle = false``: its report positions are reached from the sketch
+    (the same rows as ``at``), the loops close; dynamics needs the cycle and says so."""
+    text = partial.read_text(encoding="utf-8").replace("[grid]\npositions = 12\n",
+                                                       '[grid]\ncycle = false\nat = ["0 deg", "60 deg", "330 deg"]\n')
+    assert "cycle = false" in text
+    p = tmp_path / "triad_positions.toml"
+    p.write_text(text, encoding="utf-8")
+    st = Study(p)
+    k = st.kinematics
+    for _, row in k.iterrows():
+        assert _closure(row, 0.3) < 1e-12
+    ref = Study(partial).at(np.radians([0.0, 60.0, 330.0]))
+    assert np.max(np.abs(k["x_C"].to_numpy() - ref["x_C"].to_numpy())) < 1e-13
+    p2 = tmp_path / "triad_dyn.toml"
+    p2.write_text(text + '\n[dynamics]\ndelta = 0.05\n', encoding="utf-8")
+    with pytest.raises(CaseError) as ei:
+        Study(p2).dynamics.scalars
+    assert "grid.cycle" in str(ei.value)
+
+
+@pytest.mark.parametrize("grid, key", [
+    ("cycle = false\n", "grid.at"),
+    ('cycle = false\nat = ["0 deg"]\npositions = 5\n', "grid.positions"),
+    ('at = ["0 deg"]\n', "grid.at"),
+    ("cycle = false\nat = []\n", "grid.at"),
+])
+def test_positions_grid_errors(tmp_path, grid, key):
+    text = POSITIONS.read_text(encoding="utf-8")
+    old = 'cycle = false\nat = ["-80 deg", "-40 deg", "0 deg", "40 deg", "80 deg"]\n'
+    assert old in text
+    p = tmp_path / "bad.toml"
+    p.write_text(text.replace(old, grid), encoding="utf-8")
+    with pytest.raises(CaseError) as ei:
+        Study(p).kinematics
+    assert key in str(ei.value)

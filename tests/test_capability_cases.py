@@ -3,6 +3,8 @@
 numbers checked independently from the exported files:
 
 * rocker (swinging) input — ``rocker_input_four_bar.toml`` (both strokes exported);
+* single positions without the cycle — ``four_bar_positions.toml`` (``[grid] cycle = false``; its
+  numbers in tests/test_at_positions_only.py);
 * a cycle of three revolutions — ``crank_press_three_turns.toml``;
 * the flywheel on the motor shaft, J/u², and ``[parameters]`` in a load table —
   ``crank_press_motor_shaft.toml`` (the same J_доп as ``crank_press.toml``, whose table is numeric);
@@ -13,7 +15,7 @@ numbers checked independently from the exported files:
 * exported K, output stroke, power and mean speed — ``ws001_p6_six_bar.toml`` (K, stroke, mean
   speeds) and the press cases (power).
 
-Single positions without the cycle (``export --at``) are in tests/test_at_positions_only.py and
+Single positions of ``export --at`` are in tests/test_at_positions_only.py and
 tests/test_rocker_input.py, dynamics and forces in the ``--at`` table in tests/test_machines.py.
 """
 from __future__ import annotations
@@ -34,6 +36,7 @@ CASES = Path(__file__).resolve().parent.parent / "cases"
 
 RUNS = [
     ("rocker_input_four_bar", "kinematics", "обратном ходе"),
+    ("four_bar_positions", "kinematics", "заданных положениях"),
     ("crank_press_three_turns", "dynamics", "маховик"),
     ("crank_press_motor_shaft", "dynamics", "вал"),
     ("crank_press_inverse", "dynamics", "δ"),
