@@ -146,3 +146,24 @@ def test_imperial_exported_in_si(outputs):
     q = k["q"].to_numpy()
     xb = 2 * inch * np.cos(q) + np.sqrt((8 * inch) ** 2 - (0.5 * inch - 2 * inch * np.sin(q)) ** 2)
     assert np.max(np.abs(k["x_B"] - xb)) < 1e-15
+
+
+@pytest.mark.parametrize("case, old, new, key", [
+    ("rocker_input_four_bar", 'M = "-150 N*m"', 'M = "-150 N"', "loads.moment"),
+    ("rocker_input_four_bar", 'mode = "kinetostatic"', 'mode = "kinetic"', "forces.mode"),
+    ("crank_press", "delta = 0.1\n", 'delta = "abc"\n', "dynamics.delta"),
+    ("crank_press", "[86, 40], [93, 40]", '[86, "P_x"], [93, 40]', "loads.force"),
+])
+def test_check_rejects_bad_task_sections_as_export_does(tmp_path, capsys, case, old, new, key):
+    """``check`` reads [loads], [dynamics] and [forces] exactly as ``export``: the same message."""
+    text = (CASES / f"{case}.toml").read_text(encoding="utf-8")
+    assert old in text
+    p = tmp_path / "bad.toml"
+    p.write_text(text.replace(old, new, 1), encoding="utf-8")
+    capsys.readouterr()
+    assert main(["check", str(p)]) == 2
+    err_check = capsys.readouterr().err
+    assert main(["export", str(p), "-o", str(tmp_path / "out")]) == 2
+    err_export = capsys.readouterr().err
+    err_check = err_check[err_check.index("Ошибка:"):]          # after the warnings check prints
+    assert key in err_check and err_check == err_export and "Traceback" not in err_check
