@@ -151,6 +151,10 @@ def _check_linkage(study) -> None:
         print(f"  {g.title}")
     for f in study.fits:
         print(f"Подобран параметр {f.name} = {f.value:.12g} (условие {f.condition} при {f.at})")
+    if not study.has_cycle:
+        study.kinematics  # [grid] cycle = false: the given positions must assemble
+        print("Проверка пройдена: механизм собирается в заданных положениях (цикл не рассчитывается).")
+        return
     study.cycle  # the whole cycle must assemble
     for name, fl in study.flags.items():
         if fl["singular"]:

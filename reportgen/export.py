@@ -83,7 +83,14 @@ def _at_table(study: Study, q: list[float]) -> pd.DataFrame:
 
 
 def _linkage_tables(study: Study) -> dict[str, pd.DataFrame]:
-    return {"kinematics": study.kinematics, "cycle": study.cycle, **_structure_tables(study)}
+    if not study.has_cycle:          # [grid] cycle = false: the report positions only
+        return {"kinematics": study.kinematics, **_structure_tables(study)}
+    out = {"kinematics": study.kinematics, "cycle": study.cycle, **_structure_tables(study)}
+    if study.strokes is not None:          # an input rocker: its return stroke separately
+        out["strokes"] = study.strokes
+        if study.kinematics_return is not None:
+            out["kinematics_return"] = study.kinematics_return
+    return out
 
 
 def _structure_tables(study: Study) -> dict[str, pd.DataFrame]:

@@ -20,7 +20,7 @@ def _dist(p, q):
 
 
 @pytest.mark.parametrize("name", ["synth_crank_rocker", "synth_slider_crank", "synth_slotted_lever",
-                                  "ws001_p6_six_bar"])
+                                  "synth_shaper", "ws001_p6_six_bar"])
 def test_engine_reproduces_stroke_and_K(name):
     st = load_case(CASES / f"{name}.toml")
     sy = st.synthesis
@@ -156,3 +156,20 @@ def test_K_one_slider_crank(tmp_path):
     p = _spec(tmp_path, base + "lam = 0.25\n").parameters()
     assert float(p["syn_a"].value) == pytest.approx(0.15, abs=1e-15)     # H = 2a
     assert float(p["syn_e"].value) == pytest.approx(0.0, abs=1e-15)
+
+
+def test_shaper_ram_stroke_is_the_chord_of_the_lever_end():
+    """The shaper (slotted lever, coupler, ram): independent closed form of the ram's position in
+    the lever's extreme positions ±θ/2 from the vertical, x_E = l·sin(±θ/2) + √(l₄² − (y_E − l·cos(θ/2))²),
+    whose difference is the chord 2l·sin(θ/2) = H; the engine's ram stroke and K equal H and K."""
+    st = load_case(CASES / "synth_shaper.toml")
+    v = st.synthesis.chosen
+    l, th = v["l"], v["theta"]
+    l4 = 0.3 * l
+    yE = l * (1 + math.cos(th / 2)) / 2
+    xs = [l * math.sin(s * th / 2) + math.sqrt(l4 ** 2 - (yE - l * math.cos(th / 2)) ** 2) for s in (-1, 1)]
+    chk = st.synthesis.check
+    assert chk["column"] == "s_50"
+    assert xs[1] - xs[0] == pytest.approx(0.4, abs=1e-15)
+    assert chk["stroke"] == pytest.approx(xs[1] - xs[0], abs=1e-12) and chk["K"] == pytest.approx(1.5, abs=1e-10)
+    assert max(chk["s1"], chk["s2"]) == pytest.approx(xs[1], abs=1e-12)

@@ -37,7 +37,7 @@ def test_problem_2013_7():
     # the sleeve's closed form of the worksheet: R = m₂g/(2 cos(45° + α))
     assert s["governor_R"] == pytest.approx(98.1 / (2 * math.cos(math.pi / 4 + s["governor_alpha"])), rel=1e-12)
     assert s["governor_omega_down"] < s["governor_omega_0"] < s["governor_omega_up"]
-    assert [p["key"] for p in g.printed] == ["rho", "alpha", "R", "P", "R76_angle", "F_i", "omega"]
+    assert [p["key"] for p in g.printed] == ["phi_f", "r_D", "rho", "alpha", "R", "P", "R76_angle", "F_i", "omega"]
     assert set(g.tables()["governor"].columns) >= {"mode", "omega"}
 
 

@@ -53,3 +53,18 @@ def test_problem_2013_9_reduced_model_and_printed_slips():
 def test_wrong_derivative_is_rejected(tmp_path):
     with pytest.raises(CaseError, match="dJ"):
         _variant(tmp_path, **{'dJ = "-2*m*r^2*sin(phi)*cos(phi)"': 'dJ = "-m*r^2*sin(phi)*cos(phi)"'}).motion
+
+
+def test_integration_work_is_bounded():
+    """A mutated interval a thousand times longer: a clear CaseError after a bounded number of
+    evaluations, never an integration that runs for minutes."""
+    import tomllib
+    from reportgen.analysis import motion as MO
+    from reportgen.analysis.study import Study
+    from reportgen.case.load import CaseSpec
+    path = Path(__file__).resolve().parents[1] / "cases" / "ws001_p9_valve.toml"
+    d = tomllib.loads(path.read_text(encoding="utf-8"))
+    d["motion"]["t_end"] = "2000 s"
+    with pytest.raises(CaseError) as ei:
+        Study(CaseSpec(Path("v.toml"), d)).motion.history
+    assert "motion.t_end" in str(ei.value) and str(MO.MAX_RHS_CALLS) in str(ei.value)

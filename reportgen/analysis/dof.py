@@ -153,10 +153,13 @@ class Dof(PrintedResults):
         return pd.DataFrame(rows, columns=["q", "q_deg", "s", "angle_OML", "OM", "h", "vqx_M1", "vqy_M1",
                                            "vqx_rel", "vqy_rel", "vq_out"])
 
-    def results(self) -> dict:
+    def _counts(self) -> dict:
         b, a = self.before, self.after
-        out = {"n": b["n"], "p5": b["p5"], "p4": b["p4"], "W": b["W"], "q": b["q"], "W_true": b["W_true"],
-               "n_after": a["n"], "p5_after": a["p5"], "p4_after": a["p4"], "W_after": a["W"]}
+        return {"n": b["n"], "p5": b["p5"], "p4": b["p4"], "W": b["W"], "q": b["q"], "W_true": b["W_true"],
+                "n_after": a["n"], "p5_after": a["p5"], "p4_after": a["p4"], "W_after": a["W"]}
+
+    def results(self) -> dict:
+        out = self._counts()
         z = self.zero
         if z is not None:
             out["zero_count"] = len(z)
@@ -165,9 +168,17 @@ class Dof(PrintedResults):
                 out.update(zero_q=r["q"], zero_s=r["s"], angle_OML=r["angle_OML"], zero_OM=r["OM"])
         return out
 
+    # ``export --at``: the counts and the pairs; the zero-speed positions are searched over the
+    # whole range of the input link (its cycle), so they are left out there
+    def position_scalars(self) -> dict:
+        return {f"{self.PREFIX}_{k}": float(v) for k, v in self._counts().items()}
+
+    def position_tables(self) -> dict[str, pd.DataFrame]:
+        return {"dof_pairs": pd.DataFrame([{"pair": nm, "i": i, "j": j, "type": t}
+                                           for nm, (i, j, t) in zip(self.names, self.pairs)])}
+
     def tables(self) -> dict[str, pd.DataFrame]:
-        out = {"dof_pairs": pd.DataFrame([{"pair": nm, "i": i, "j": j, "type": t}
-                                          for nm, (i, j, t) in zip(self.names, self.pairs)])}
+        out = self.position_tables()
         if self.zero is not None:
             out["dof_zero"] = self.zero
         return out

@@ -358,6 +358,54 @@ def solve_continued(model: SolverModel, q, base: KinematicsResult, period: float
     return KinematicsResult(q, pose, d1, d2, qual, pts)
 
 
+def solve_from_sketch(model: SolverModel, q, q0: float, step: float, period: float | None,
+                      labels=None) -> KinematicsResult:
+    """Positions at arbitrary q of a mechanism with Newton groups without solving its cycle
+    (``export --at``): the first assembly at the sketch's position q0 (Newton and
+    Levenberg–Marquardt from the sketch, the assembly nearer to the sketch) is continued along
+    a path of steps ≤ ``step`` to each q (the kernel's predictor with jump detection), so the
+    branch is the sketch's and only the path from q0 to q has to assemble, not the whole cycle.
+    For a crank (``period``) each q is first reached the shorter way round, then the other way;
+    a q that no path reaches is assembled directly from the sketch (the first-assembly path at
+    q itself), and where that fails too, the assembly error names that q."""
+    q = np.atleast_1d(np.asarray(q, dtype=np.float64))
+    n = len(q)
+    rows: list = [None] * n
+    if period:
+        near = q - np.round((q - q0) / period) * period        # the representative nearest to q0
+        tries = [near, near - np.sign(near - q0 + 1e-300) * period]
+    else:
+        tries = [q]
+    for target in tries:
+        todo = [i for i in range(n) if rows[i] is None]
+        for side in (1.0, -1.0):
+            idx = [i for i in todo if (target[i] - q0) * side >= 0]
+            if not idx:
+                continue
+            far = max(abs(target[i] - q0) for i in idx)
+            m = max(1, math.ceil(far / step))
+            path = np.unique(np.concatenate([q0 + side * far * np.arange(m + 1) / m, target[idx]]))
+            path = path[::-1] if side < 0 else path
+            pose, d1, d2, qual, fail = run_kernel(model, path)
+            reached = len(path) if fail[0] == K.F_OK else int(fail[1])
+            for i in idx:
+                k = int(np.nonzero(path == target[i])[0][0])
+                if k < reached:
+                    rows[i] = (pose[k], d1[k], d2[k], qual[k])
+    for i in range(n):
+        if rows[i] is None:
+            qt = np.array([tries[0][i]])
+            pose, d1, d2, qual, fail = run_kernel(model, qt)
+            check_failure(model, q[i:i + 1], fail, None if labels is None else [labels[i]])
+            rows[i] = (pose[0], d1[0], d2[0], qual[0])
+    pose = np.array([r[0] for r in rows])
+    d1 = np.array([r[1] for r in rows])
+    d2 = np.array([r[2] for r in rows])
+    qual = np.array([r[3] for r in rows])
+    pts = K.points_cycle(pose, d1, d2, q, model.pbody, model.ploc)
+    return KinematicsResult(q, pose, d1, d2, qual, pts)
+
+
 def _unwrap(th: np.ndarray, grid: bool) -> np.ndarray:
     th = np.arctan2(np.sin(th), np.cos(th))
     return np.unwrap(th) if grid and th.size > 1 else th

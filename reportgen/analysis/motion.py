@@ -26,6 +26,14 @@ __all__ = ["Motion"]
 KEYS = ["J", "dJ", "M", "phi0", "omega0", "t_end", "points", "printed_eps", "printed_note", "rtol"]
 
 
+# the work of one integration is bounded (the worksheet's valve needs about 3 000 evaluations)
+MAX_RHS_CALLS = 12_000
+
+
+class _TooLong(Exception):
+    """The integration would exceed MAX_RHS_CALLS evaluations of the right-hand side."""
+
+
 class Motion:
     """The time history φ(t), ω(t), ε(t) of the case's ``[motion]``."""
 
@@ -79,14 +87,24 @@ class Motion:
         return (M - 0.5 * dJ * omega * omega) / J
 
     def _integrate(self, which: str) -> pd.DataFrame:
+        calls = [0]
+
         def rhs(t, y):
+            calls[0] += 1
+            if calls[0] > MAX_RHS_CALLS:
+                raise _TooLong
             ph, w = np.array([y[0]]), np.array([y[1]])
             e = self.eps(ph, w, t) if which == "correct" else self._ev("printed_eps", ph, w, t, U.ANGULAR_ACCELERATION)
             return [y[1], float(e[0])]
 
         ts = np.linspace(0.0, self.t_end, self.points)
-        sol = solve_ivp(rhs, (0.0, self.t_end), [self.phi0, self.omega0], method="DOP853", t_eval=ts,
-                        rtol=self.rtol, atol=self.rtol * 1e-3, dense_output=False)
+        try:
+            sol = solve_ivp(rhs, (0.0, self.t_end), [self.phi0, self.omega0], method="DOP853", t_eval=ts,
+                            rtol=self.rtol, atol=self.rtol * 1e-3, dense_output=False)
+        except _TooLong:
+            raise self.node.error("t_end", f"интегрирование уравнения движения требует более {MAX_RHS_CALLS} "
+                                           "вычислений правой части: уравнение слишком жёсткое или интервал слишком длинен",
+                                  expected="меньшие t_end, жёсткость и демпфирование или бóльший rtol") from None
         if not sol.success:
             raise self.node.error(None, f"интегрирование уравнения движения не удалось: {sol.message}",
                                   expected="конечные J(φ) > 0 и M(φ, ω, t) на всём интервале")

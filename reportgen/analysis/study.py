@@ -38,6 +38,7 @@ class Grid:
     cycle: np.ndarray         # fine grid over one cycle (ends included)
     start: float
     length: float             # cycle length (2π for a crank, stroke for an actuator)
+    solved: bool = True       # False: ``[grid] cycle = false``, only the report positions are solved
 
 
 def column_dims(name: str, qdim: U.Dim) -> U.Dim:
@@ -246,9 +247,14 @@ class Study:
     @cached_property
     def grid(self) -> Grid:
         node = self.root.table("grid")
-        node.check_keys(["positions", "closed", "extra", "cycle_points", "start"])
+        node.check_keys(["positions", "closed", "extra", "cycle_points", "start", "cycle", "at"])
         names = self.params
         d = self.mechanism.driver
+        if not node.boolean("cycle", True):
+            return self._positions_grid(node, names)
+        if node.has("at"):
+            raise node.error("at", "список положений задаётся только без расчёта цикла",
+                             expected="cycle = false и at = [\"0 deg\", \"40 deg\"]; иначе positions и extra")
         n = node.integer("positions", 12, minimum=2, maximum=MAX_POSITIONS)
         m = node.integer("cycle_points", 3600, minimum=36, maximum=MAX_CYCLE_POINTS)
         closed = node.boolean("closed", False)
@@ -290,6 +296,40 @@ class Study:
         cycle = start + length * np.arange(m + 1) / m
         return Grid(q, labels, cycle, start, length)
 
+    def _positions_grid(self, node: Node, names) -> Grid:
+        """``[grid] cycle = false``: the mechanism is analysed at the positions ``at`` only (a
+        mechanism that assembles in part of the turn, or a task that asks for single positions);
+        the cycle is not solved, so nothing that needs it (diagrams, dynamics, forces over the
+        cycle) is available."""
+        for k in ("positions", "closed", "extra", "cycle_points", "start"):
+            if node.has(k):
+                raise node.error(k, "без расчёта цикла (cycle = false) положения задаются списком at",
+                                 expected="at = [\"0 deg\", \"40 deg\"]")
+        raw = node.raw("at")
+        if not isinstance(raw, list) or not 1 <= len(raw) <= MAX_POSITIONS:
+            raise node.error("at", "ожидался список положений", expected=f"at = [\"0 deg\", \"40 deg\"], "
+                                                                       f"от 1 до {MAX_POSITIONS} значений")
+        q = np.array([node.eval_value(v, f"at[{i}]", self.qdim, names) for i, v in enumerate(raw)], dtype=float)
+        d = self.mechanism.driver
+        if d.q_range is not None:
+            for i, x in enumerate(q):
+                if not d.q_range[0] - 1e-12 <= x <= d.q_range[1] + 1e-12:
+                    raise node.error(f"at[{i}]", "положение вне диапазона входного звена",
+                                     expected=f"от {d.q_range[0]:.6g} до {d.q_range[1]:.6g}")
+        start = d.q_range[0] if d.q_range is not None else 0.0
+        length = (d.q_range[1] - d.q_range[0]) if d.q_range is not None else 2 * math.pi
+        return Grid(q, [str(i) for i in range(len(q))], q.copy(), start, length, solved=False)
+
+    @property
+    def has_cycle(self) -> bool:
+        """Whether the cycle is solved (not ``[grid] cycle = false``)."""
+        return self.grid.solved
+
+    def _no_cycle(self) -> CaseError:
+        node = self.root.table("grid")
+        return node.error("cycle", "в варианте не рассчитывается цикл механизма, а эта величина или раздел его требует",
+                          expected="cycle = true (по умолчанию) с механизмом, собирающимся во всём цикле")
+
     # ----------------------------------------------------------------- kinematics
     def motion_law(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
         """dq/dt and d²q/dt² at q: the driver's constant values (dynamics may replace this)."""
@@ -298,13 +338,14 @@ class Study:
             return None
         return np.full_like(q, d.omega), np.full_like(q, d.epsilon)
 
-    def _frame(self, q: np.ndarray, labels=None, grid=True, res=None, cols=None) -> pd.DataFrame:
+    def _frame(self, q: np.ndarray, labels=None, grid=True, res=None, cols=None, law=None) -> pd.DataFrame:
         if cols is None:
             if res is None:
                 res = self._solve_on_branch(q, labels) if not grid else L.solve(self.model, q, labels)
             cols = L.columns(self.model, res, grid=grid)
         cols.update(self._extra_angles(cols))
-        law = self.motion_law(q)
+        if law is None:
+            law = self.motion_law(q)
         if law is not None:
             cols.update(true_motion(cols, self.mechanism, *law))
         cols.update(self._derived(cols))
@@ -343,8 +384,32 @@ class Study:
             return self._frame(g.q, g.labels, grid=False)
 
     @cached_property
+    def kinematics_return(self) -> pd.DataFrame | None:
+        """An input rocker's return stroke (q_max → q_min at dq/dt = −ω₁; None for other drivers or
+        without ω₁): the report positions in the order they are passed, the same positions and
+        analogs, the velocities v = −ω₁x′ of the opposite sign, the same accelerations a = ω₁²x″."""
+        d = self.mechanism.driver
+        if not d.swing or d.omega is None:
+            return None
+        k = self.kinematics
+        order = np.argsort(-k["q"].to_numpy(), kind="stable")
+        q = k["q"].to_numpy()[order]
+        return self._frame(q, [k["pos"].iloc[i] for i in order], grid=False,
+                           law=(np.full_like(q, -d.omega), np.zeros_like(q)))
+
+    @cached_property
+    def strokes(self) -> pd.DataFrame | None:
+        """An input rocker's forward and return strokes (analysis/synthesis.py ``swing_strokes``)."""
+        if not self.mechanism.driver.swing:
+            return None
+        from .synthesis import swing_strokes
+        return swing_strokes(self)
+
+    @cached_property
     def cycle(self) -> pd.DataFrame:
         """The same columns on the fine grid over one cycle (for curves and integrals)."""
+        if not self.has_cycle:
+            raise self._no_cycle()
         self.computed.add("cycle")
         return self._frame(self.grid.cycle, grid=True, cols=self._grid_columns())
 
@@ -362,6 +427,8 @@ class Study:
 
     @cached_property
     def _cycle_solution(self) -> L.KinematicsResult:
+        if not self.has_cycle:
+            raise self._no_cycle()
         with _cycle_hint():
             return L.solve(self.model, self.grid.cycle)
 
@@ -378,14 +445,32 @@ class Study:
         the sketch)."""
         if not L.has_newton(self.model):
             return L.solve(self.model, q, labels)
+        if not self.has_cycle:
+            return self._from_sketch(q, labels)
         period = self.grid.length if self.mechanism.driver.periodic else None
         return L.solve_continued(self.model, q, self._cycle_solution, period, labels)
 
+    def _from_sketch(self, q: np.ndarray, labels) -> L.KinematicsResult:
+        """Newton groups reached from the sketch (:func:`~reportgen.analysis.linkage.solve_from_sketch`)."""
+        mech = self.mechanism
+        g = self.grid
+        q0 = mech.sketch_q if mech.sketch_q is not None else g.start
+        step = g.length / 3600 if not g.solved else g.length / (len(g.cycle) - 1)
+        return L.solve_from_sketch(self.model, q, q0, step, g.length if mech.driver.periodic else None, labels)
+
     def at(self, q) -> pd.DataFrame:
         """Exact evaluation at the given values of the generalised coordinate (SI), on the
-        branch of the cycle."""
+        branch of the cycle.  A mechanism with Newton groups (class III) whose cycle has not been
+        solved is not solved over it (``export --at``): each position is reached from the sketch
+        (:func:`~reportgen.analysis.linkage.solve_from_sketch`), so a mechanism that assembles
+        only in part of the turn is analysed where it does; once the cycle is solved, positions
+        are continued from it (the same branch, fewer steps)."""
         q = np.atleast_1d(np.asarray(q, dtype=float))
-        return self._frame(q, [f"q{i}" for i in range(len(q))], grid=False)
+        labels = [f"q{i}" for i in range(len(q))]
+        res = None
+        if L.has_newton(self.model) and "_cycle_solution" not in self.__dict__:
+            res = self._from_sketch(q, labels)
+        return self._frame(q, labels, grid=False, res=res)
 
     @cached_property
     def flags(self) -> dict:
@@ -431,6 +516,8 @@ class Study:
     @cached_property
     def scalars(self) -> dict[str, float]:
         out = dict(self.structure_scalars)
+        if not self.has_cycle:
+            return out
         for c, v in self.flags.items():
             out[c + "_min"] = v["min"]
         out.update(self._output_stroke())
@@ -468,8 +555,12 @@ class Study:
                "output_reversals": len(x["reversals"]), "output_K": 1.0}
         for i, r in enumerate(x["reversals"]):
             out[f"output_q_reversal_{i + 1}"] = r
+        st = self.strokes
+        out["output_path"] = float(st["s_path"].iloc[0])
         if d.omega is not None:
             out["t_stroke"] = out["swing"] / d.omega
+            out["t_return"] = float(st["t"].iloc[1])
+            out["t_cycle"] = float(st["t"].sum())
         return out
 
     # ------------------------------------------------------------- export
@@ -486,8 +577,18 @@ class Study:
             out["fits"] = pd.DataFrame([{"name": f.name, "value": f.value, "condition": f.condition,
                                          "at": f.at, "residual": f.residual} for f in self.fits])
         for name in self._tasks_for(positions_only):
-            out.update(self.analysis(name).tables())
+            out.update(self._task_part(name, "tables", positions_only)())
         return out
+
+    def _task_part(self, name: str, part: str, positions_only: bool):
+        """A task's ``tables`` (method) or ``scalars``; ``positions_only`` (``export --at``): its
+        ``position_tables()`` / ``position_scalars()`` when it has them (the part that needs no
+        solution of the linkage over the cycle)."""
+        obj = self.analysis(name)
+        fn = getattr(obj, "position_" + part, None) if positions_only else None
+        if fn is not None:
+            return fn
+        return getattr(obj, part) if part == "tables" else (lambda: obj.scalars)
 
     @property
     def structure_scalars(self) -> dict[str, Any]:
@@ -505,7 +606,7 @@ class Study:
         if self.has_linkage:
             out.update(self.structure_scalars if positions_only else self.scalars)
         for name in self._tasks_for(positions_only):
-            out.update(self.analysis(name).scalars)
+            out.update(self._task_part(name, "scalars", positions_only)())
         return out
 
 

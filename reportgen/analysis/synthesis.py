@@ -24,7 +24,7 @@ from ..case import synthesis as SY
 from ..case.printed import read_printed
 from .plans import output_quantity
 
-__all__ = ["Synthesis", "output_extremes", "swing_output"]
+__all__ = ["Synthesis", "output_extremes", "swing_output", "swing_strokes"]
 
 
 def output_extremes(study) -> dict:
@@ -59,6 +59,29 @@ def swing_output(study) -> dict:
     s = study.at(qs)[s_col].to_numpy()
     return dict(column=s_col, title=title, q=qs, s=s, reversals=inner,
                 stroke=float(s.max() - s.min()), s_first=float(s[0]), s_last=float(s[-1]))
+
+
+def swing_strokes(study) -> pd.DataFrame:
+    """The forward (q_min → q_max, dq/dt = +ω₁) and return (q_max → q_min, dq/dt = −ω₁) strokes
+    of an input rocker: the input's angles at the start and end of each, the output's values
+    there, its range s_max − s_min and its path Σ|Δs| over the stroke (the ends and the interior
+    reversals of :func:`swing_output`; the path exceeds the range when the output turns back
+    inside the swing), and with ω₁ given the time of the stroke t = (q_max − q_min)/|ω₁| and the
+    output's mean speed over it, path/t."""
+    d = study.mechanism.driver
+    lo, hi = d.q_range
+    x = swing_output(study)
+    s = x["s"]
+    path = float(np.abs(np.diff(s)).sum())
+    rows = []
+    for name, a, b, sa, sb, sign in (("forward", lo, hi, s[0], s[-1], 1.0), ("return", hi, lo, s[-1], s[0], -1.0)):
+        row = dict(stroke=name, q_from=a, q_to=b, q_from_deg=math.degrees(a), q_to_deg=math.degrees(b),
+                   output=x["column"], s_from=float(sa), s_to=float(sb), s_range=x["stroke"], s_path=path)
+        if d.omega is not None:
+            t = (hi - lo) / d.omega
+            row.update(omega=sign * d.omega, t=t, v_mean=path / t)
+        rows.append(row)
+    return pd.DataFrame(rows)
 
 
 def analog_roots(study, v_col: str) -> list[float]:
@@ -152,19 +175,29 @@ class Synthesis:
         mistakes ``build`` would)."""
         return read_printed(self.node.table("printed"), self.chosen, SY.dim_of)
 
+    def position_scalars(self) -> dict[str, float]:
+        """``export --at``: the synthesis without its check on the linkage (which needs the cycle)."""
+        out = {f"syn_{k}": float(v) for k, v in self.chosen.items()}
+        out["syn_variants"] = len(self.variants)
+        return out
+
     @cached_property
     def scalars(self) -> dict[str, float]:
         self.printed
-        out = {f"syn_{k}": float(v) for k, v in self.chosen.items()}
-        out["syn_variants"] = len(self.variants)
+        out = self.position_scalars()
         chk = self.check
         if chk and chk.get("extremes") == 2:
             out.update(check_stroke=chk["stroke"], check_K=chk["K"], check_q1=chk["q1"], check_q2=chk["q2"])
         return out
 
     def target_stroke(self) -> float:
-        """The stroke (m) or swing (rad) the synthesis was asked for."""
+        """The stroke (m) or swing (rad) the synthesis was asked for: a crank-rocker's swing ψ; a
+        slotted lever's swing when the lever is the output, the stroke H of its end when a slider
+        driven by the end is (the shaper: in the lever's extreme positions its end D is at one
+        height, so a coupler to a slider on a straight line transfers the chord H and K)."""
         x = self.inputs
-        if self.kind in ("crank_rocker", "slotted_lever"):
+        chk = self.check
+        lever_out = chk is None or str(chk.get("column", "")).startswith("phi_")
+        if self.kind == "crank_rocker" or (self.kind == "slotted_lever" and lever_out):
             return self.chosen["psi"]
         return x["H"]

@@ -91,6 +91,8 @@ def needs(study, names: Iterable[str] | None = None) -> set[str]:
     out: set[str] = set()
     for n in chosen_sections(study, names):
         out |= set(SECTIONS[n][0].NEEDS)
+    if study.has_linkage and not study.has_cycle:     # [grid] cycle = false: the sections do without it
+        out.discard("cycle")
     return out
 
 

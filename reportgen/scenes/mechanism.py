@@ -85,8 +85,9 @@ class PositionsPlan:
         k = study.kinematics
         regular = k[~k["pos"].str.startswith("д")] if k["pos"].dtype == object else k
         rows = [r for _, r in regular.iterrows()]
-        cyc = study.cycle
-        coms = traced_points(study)
+        # the trajectories over the cycle (none drawn when only single positions are solved)
+        cyc = study.cycle if study.has_cycle else None
+        coms = traced_points(study) if cyc is not None else []
         xs, ys = mechanism_points(mech, rows)
         for p in coms:
             xs += list(cyc[f"x_{p}"])
@@ -103,7 +104,8 @@ class PositionsPlan:
         if mech.driver.swing:
             # the input rocker's tip moves on an arc between the extreme positions of the swing
             r = float(np.hypot(rows[0][f"x_{tip}"] - cx, rows[0][f"y_{tip}"] - cy))
-            th = np.unwrap(np.arctan2(cyc[f"y_{tip}"].to_numpy() - cy, cyc[f"x_{tip}"].to_numpy() - cx))
+            tr = cyc if cyc is not None else k
+            th = np.unwrap(np.arctan2(tr[f"y_{tip}"].to_numpy() - cy, tr[f"x_{tip}"].to_numpy() - cx))
             cv.ax.plot(cx + r * np.cos(th), cy + r * np.sin(th), lw=0.6, color=INK, zorder=1)
         elif mech.driver.rotary:
             r = float(np.hypot(rows[0][f"x_{tip}"] - cx, rows[0][f"y_{tip}"] - cy))
@@ -112,8 +114,11 @@ class PositionsPlan:
             draw_mechanism(cv, mech, row, color=GREY, lw=0.7, labels=False, numbers=False, alpha=0.9,
                            zorder=1, com=False, supports=False, tint=False)
         s_col = output_quantity(study)[0]
-        s = cyc[s_col].to_numpy()
-        ext = [cyc.iloc[int(np.argmin(s))], cyc.iloc[int(np.argmax(s))]]
+        if cyc is not None:       # the output's extreme positions over the cycle
+            s = cyc[s_col].to_numpy()
+            ext = [cyc.iloc[int(np.argmin(s))], cyc.iloc[int(np.argmax(s))]]
+        else:
+            ext = []
         for row in ext:
             draw_mechanism(cv, mech, row, color=INK, lw=1.2, labels=False, numbers=False, zorder=3, com=False,
                            supports=False, tint=False)
@@ -123,7 +128,8 @@ class PositionsPlan:
             if j.links[0] == FRAME:
                 u = np.array([np.cos(j.angle), np.sin(j.angle)])
                 p0 = np.array([rows[0][f"x_{j.point}"], rows[0][f"y_{j.point}"]])
-                t = (np.column_stack([cyc[f"x_{j.point}"], cyc[f"y_{j.point}"]]) - p0) @ u
+                tr = cyc if cyc is not None else k
+                t = (np.column_stack([tr[f"x_{j.point}"], tr[f"y_{j.point}"]]) - p0) @ u
                 spans[j.name] = (float(t.min()), float(t.max()))
                 draw_guide(cv, mech, rows[0], j, spans[j.name])
         if self.centre_lines:

@@ -40,7 +40,7 @@ def _moving_points(study) -> list[str]:
 def _links(study):
     """Links whose angle changes (a slider on a fixed guide only translates)."""
     d = study.mechanism.driver
-    cyc = study.cycle
+    cyc = study.cycle if study.has_cycle else study.kinematics
     return [l for l in study.mechanism.moving if not (d.kind == "actuator" and l.name == d.rod)
             and float(np.abs(cyc["wq_" + l.name]).max()) > 1e-12]
 
@@ -102,7 +102,13 @@ def build(study) -> Section:
     w1_m = inline_math(r"\omega_1")
     v_m = inline_math(r"v = \omega_1 x^{\prime}")
     a_m = inline_math(r"a = \omega_1^2 x^{\prime\prime} + \varepsilon_1 x^{\prime}")
-    if mech.driver.swing:
+    if not study.has_cycle:
+        s1.paragraph(f"Механизм рассчитан в {ncount} заданных положениях {input_word(mech.driver, 'gen')} "
+                     f"(углы φ в таблицах); цикл не рассчитывается — механизм собирается не во всех положениях "
+                     f"цикла, поэтому траектории, диаграммы и крайние положения выходного звена не строятся. "
+                     f"Масштаб {mu_l}&nbsp;=&nbsp;{mu_text(plan.mu)}&nbsp;м/мм ({gost_ratio(plan.mu)}), "
+                     f"рисунок {ref('fig-positions')}.")
+    elif mech.driver.swing:
         s1.paragraph(f"План положений построен для {ncount} положений входного коромысла {mech.driver.link} в "
                      f"диапазоне его качания {swing_text(mech.driver)}, от одного крайнего положения до другого; "
                      f"на обратном ходе звенья проходят те же положения в обратном порядке. "
@@ -119,7 +125,7 @@ def build(study) -> Section:
         s1.paragraph(f"План положений построен для {ncount} значений длины гидроцилиндра от "
                      f"{fmt(lo, digits=3)} до {fmt(hi, digits=3)}&nbsp;м; масштаб {mu_l}&nbsp;=&nbsp;"
                      f"{mu_text(plan.mu)}&nbsp;м/мм (рисунок {ref('fig-positions')}).")
-    fig = s1.figure("План положений механизма и траектории центров масс" + traced, plan.svg, plan.width_mm,
+    fig = s1.figure("План положений механизма" + (traced if study.has_cycle else ""), plan.svg, plan.width_mm,
                     id="fig-positions", landscape=plan.landscape)
     if plan.landscape:      # its own page follows the first table of coordinates (not a near-empty page)
         s1.children.remove(fig)
@@ -176,7 +182,7 @@ def build(study) -> Section:
         vcols += [Column(f"vqx_{p}", f"<i>x′</i><sub>{p}</sub>", None, digits=4),
                   Column(f"vqy_{p}", f"<i>y′</i><sub>{p}</sub>", None, digits=4)]
     chunked_tables(s2, "Аналоги скоростей точек", k, vcols, lead, "tab-vq")
-    if wcols:
+    if wcols and study.has_cycle:
         curves = AnalogCurves().draw(study)
         s2.figure("Аналоги угловых скоростей звеньев " + ("в диапазоне качания входного звена" if mech.driver.swing
                                                            else "за цикл"), curves.svg, curves.width_mm, id="fig-analogs")
@@ -189,12 +195,14 @@ def build(study) -> Section:
             s3.paragraph(f"Входное коромысло качается с постоянной по модулю угловой скоростью "
                          f"{w1_m}&nbsp;=&nbsp;{fmt(w1, digits=3)}&nbsp;рад/с; значения в таблицах — для прямого хода.")
         elif rotary:
-            s3.paragraph(f"Кривошип вращается равномерно с угловой скоростью "
+            s3.paragraph(f"{'Кривошип' if study.has_cycle else 'Ведущее звено'} вращается равномерно с угловой скоростью "
                          f"{w1_m}&nbsp;=&nbsp;{fmt(w1, digits=3)}&nbsp;рад/с.")
         tv = [Column(f"v_{p}", sub("V", p), "м/с", digits=3) for p in pts]
         tv += [Column(f"w_{l.name}", sub("ω", l.name), "рад/с", digits=3) for l in _links(study)
                if not (rotary and l.name == mech.driver.link)]
         chunked_tables(s3, "Скорости точек и угловые скорости звеньев", k, tv, lead, "tab-v")
+        if mech.driver.swing:
+            _return_velocities(s3, study, lead)
         ta = [Column(f"a_{p}", sub("a", p), "м/с²", sig=4) for p in pts]
         ta += [Column(f"e_{l.name}", sub("ε", l.name), "рад/с²", sig=4) for l in _links(study)
                if not (rotary and l.name == mech.driver.link)]
@@ -226,6 +234,8 @@ def build(study) -> Section:
         s4.table(f"Ускорения по плану и аналитически (положение {pos_no(study, lab)}), м/с²", cmp_cols, aplan.table, id="tab-aplan")
 
     # ----- kinematic diagrams
+    if not study.has_cycle:        # [grid] cycle = false: single positions, no diagrams over the cycle
+        return sec
     s5 = sec.subsection("Кинематические диаграммы выходного звена", "sec-diagrams")
     diag = OutputDiagrams().draw(study)
     s_col, v_col, a_col, title = output_quantity(study)
@@ -240,6 +250,7 @@ def build(study) -> Section:
                      f"(рисунок {ref('fig-diagrams')}).")
     if mech.driver.swing:
         s5.paragraph(swing_strokes_text(study))
+        _strokes_table(s5, study, s_col)
     elif rotary:
         i_min, i_max, work, K = _strokes(study, s)
         s5.paragraph(f"Крайние положения выходного звена соответствуют углам поворота кривошипа "
@@ -284,7 +295,9 @@ def swing_strokes_text(study) -> str:
                  "ускорений зависят только от угла φ и на обоих ходах одинаковы; при обратном ходе с той же по модулю "
                  "угловой скоростью (ω<sub>1</sub> заменяется на −ω<sub>1</sub>) скорости всех точек и звеньев "
                  "v&nbsp;=&nbsp;ω<sub>1</sub>x′ меняют знак, а ускорения a&nbsp;=&nbsp;ω<sub>1</sub><sup>2</sup>x″ не меняются. "
-                 "Поэтому таблицы и диаграммы приведены для прямого хода. В крайних положениях скорость входного "
+                 "Поэтому таблицы положений, аналогов и ускорений, диаграммы и силовой расчёт приведены для прямого "
+                 f"хода, угловые скорости на обратном ходе — в таблице {ref('tab-v-return')}, оба хода — в таблице "
+                 f"{ref('tab-strokes')}. В крайних положениях скорость входного "
                  "звена меняет знак мгновенно (принятая идеализация привода); действительный привод разгоняет и "
                  "тормозит звено за конечное время, что добавляет силы инерции вблизи крайних положений.")
     if d.omega is not None:
@@ -292,6 +305,43 @@ def swing_strokes_text(study) -> str:
                      f"{fmt(sc['t_stroke'], sig=4)}&nbsp;с, время цикла {fmt(2 * sc['t_stroke'], sig=4)}&nbsp;с; прямой и "
                      "обратный ходы длятся одинаково, коэффициент изменения средней скорости K&nbsp;=&nbsp;1.")
     return " ".join(parts)
+
+
+def _return_velocities(sec: Section, study, lead: list[Column]) -> None:
+    """An input rocker's return stroke: the positions in the order they are passed, the angular
+    velocities of the links (and the output slider's velocity) with their signs."""
+    mech = study.mechanism
+    kr = study.kinematics_return
+    cols = [Column(f"w_{l.name}", sub("ω", l.name), "рад/с", digits=3) for l in _links(study)]
+    cols += [Column(f"vs_{j.name}", sub("V", j.point), "м/с", digits=3) for j in mech.prismatic if j.links[0] == FRAME]
+    lo, hi = (fmt(math.degrees(x), digits=1) for x in mech.driver.q_range)
+    sec.paragraph(f"На обратном ходе (φ от {hi}° до {lo}°) входное коромысло вращается с угловой "
+                  f"скоростью −ω<sub>1</sub>; модули скоростей точек и все ускорения те же, что на прямом ходе, "
+                  f"угловые скорости звеньев и скорости ползунов меняют знак (таблица {ref('tab-v-return')}).")
+    chunked_tables(sec, "Угловые скорости звеньев на обратном ходе входного коромысла", kr, cols, lead, "tab-v-return")
+
+
+def _strokes_table(sec: Section, study, s_col: str) -> None:
+    """The forward and return strokes of an input rocker: the input's angles, the output at the
+    start and end, its range and path, the time and the output's mean speed."""
+    df = study.strokes.copy()
+    df["name"] = df["stroke"].map({"forward": "прямой", "return": "обратный"})
+    ang = s_col.startswith("phi_")
+    conv = math.degrees if ang else (lambda x: x)
+    for c in ("s_from", "s_to", "s_range", "s_path"):
+        df[c] = df[c].map(conv)
+    unit = "град" if ang else "м"
+    sym = sub("φ", s_col[4:]) if ang else sub("s", s_col.split("_", 1)[1])
+    cols = [Column("name", "Ход"), Column("q_from_deg", "φ<sub>нач</sub>", "град", digits=1),
+            Column("q_to_deg", "φ<sub>кон</sub>", "град", digits=1),
+            Column("s_from", f"{sym} в начале", unit, digits=2 if ang else 4),
+            Column("s_to", f"{sym} в конце", unit, digits=2 if ang else 4),
+            Column("s_path", "путь выходного звена", unit, digits=2 if ang else 4)]
+    if "t" in df:
+        df["v_mean"] = df["v_mean"].map(conv)
+        cols += [Column("t", "<i>t</i>", "с", sig=4),
+                 Column("v_mean", "средняя скорость выхода", unit + "/с", sig=4)]
+    sec.table("Прямой и обратный ходы входного коромысла", cols, df, id="tab-strokes")
 
 
 def _vec_name(name: str) -> Markup:
@@ -377,6 +427,10 @@ def conclusion_lines(study) -> list[str]:
     """Key kinematic results for the ЗАКЛЮЧЕНИЕ."""
     out = []
     s_col, v_col, a_col, title = output_quantity(study)
+    if not study.has_cycle:
+        return [f"Механизм рассчитан в {len(study.kinematics)} заданных положениях (цикл не рассчитывается: "
+                f"механизм собирается не во всех его положениях); положения, скорости и ускорения — в таблицах "
+                f"раздела {ref('sec-kinematics')}."]
     cyc = study.cycle
     s = cyc[s_col]
     if s_col.startswith("phi_"):

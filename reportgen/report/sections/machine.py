@@ -4,9 +4,12 @@ numbers, or δ from a given flywheel (inverse task), the mean power, the values 
 source beside the exact ones.  ``present(study)``: the case has ``[machine]``."""
 from __future__ import annotations
 
+import numpy as np
+import pandas as pd
+
 from ...scenes.machine import EnergyDiagram
 from ...style.numbers import fmt, tex_num
-from ..document import Section, ref
+from ..document import Column, Section, ref
 from .synthesis import printed_table
 
 NEEDS = ("machine",)
@@ -32,6 +35,19 @@ def build(study) -> Section:
                   f"ΔE<sub>max</sub>&nbsp;=&nbsp;{fmt(m.dE, sig=5)}&nbsp;Дж.")
     if m.source == "C_E":
         sec.formula(r"\Delta E_{max} = C_E A", None, _t(m.dE, "Дж"))
+    if m.source == "loops":
+        df = pd.DataFrame({"k": np.arange(1, len(m.areas) + 1), "A": m.areas, "E": m.E_run[1:]})
+        sec.paragraph(f"Площади петель в порядке их следования за цикл (над линией среднего момента — со знаком «+») и "
+                      f"нарастающая сумма E<sub>k</sub> = A<sub>1</sub> + … + A<sub>k</sub> (E<sub>0</sub> = 0) — в таблице "
+                      f"{ref('tab-machine-loops')}; сумма площадей за цикл равна нулю.")
+        sec.table("Площади петель диаграммы момента и нарастающая энергия",
+                  [Column("k", "№ петли"), Column("A", "<i>A</i><sub><i>k</i></sub>", "Дж", sig=5),
+                   Column("E", "<i>E</i><sub><i>k</i></sub>", "Дж", sig=5)], df, id="tab-machine-loops")
+    if m.source == "moment":
+        t = m.table
+        sec.paragraph("Средний движущий момент за цикл (работа за цикл — точный интеграл кусочно-линейной диаграммы):")
+        sec.formula(r"M_{ср} = \frac{1}{\Phi}\int_0^{\Phi} M\,d\varphi = \frac{A}{\Phi}",
+                    rf"\frac{{{_t(t['work'])}}}{{{_t(t['phi'][-1] - t['phi'][0])}}}", _t(t["M_mean"], "Н·м"))
     if m.source in ("loops", "moment"):
         d = EnergyDiagram().draw(study)
         sec.figure("Изменение энергии за цикл", d.svg, d.width_mm, id="fig-machine-energy")
@@ -48,6 +64,9 @@ def build(study) -> Section:
         sec.formula(r"J = \frac{2\Delta E_{max}}{\omega_{max}^2 - \omega_{min}^2} = \frac{\Delta E_{max}}{\delta\,\omega_{ср}^2}",
                     rf"\frac{{2 \cdot {_t(m.dE)}}}{{{_t(m.omega_max)}^2 - {_t(m.omega_min)}^2}}", _t(m.J, "кг·м²"),
                     label="eq-machine-J")
+        if m.J_O > 0:
+            sec.paragraph("Часть этого момента инерции дают остальные вращающиеся массы вала; момент инерции маховика:")
+            sec.formula(r"J_м = J - J_O", rf"{_t(m.J)} - {_t(m.J_O)}", _t(m.J_fly, "кг·м²"))
     else:
         sec.paragraph("Задан маховик (обратная задача); коэффициент неравномерности хода:")
         sec.formula(r"\delta = \frac{\Delta E_{max}}{J\,\omega_{ср}^2}",

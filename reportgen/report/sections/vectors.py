@@ -87,7 +87,8 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
         ref = _attach(mech, link, links)
         w = float(row.get(f"w_{name}", 0.0))
         e = float(row.get(f"e_{name}", 0.0))
-        sliding_only = float(study.cycle["wq_" + name].abs().max()) < 1e-12    # a slider on the frame
+        span = study.cycle if study.has_cycle else study.kinematics
+        sliding_only = float(span["wq_" + name].abs().max()) < 1e-12    # a slider on the frame
         for p in link.points:
             if p == ref or p not in joint_pts or sliding_only:
                 continue
