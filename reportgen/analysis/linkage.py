@@ -2,7 +2,8 @@
 
 Column names are a public contract (see docs/outputs.md): for a point P ``x_P y_P`` with first
 analogs ``vqx_P vqy_P`` and second analogs ``aqx_P aqy_P``; for a link k ``phi_k wq_k eq_k``;
-for a prismatic pair J ``s_J vqs_J aqs_J``; ``mu_<group>`` the transmission angle of a dyad.
+for a prismatic pair J ``s_J vqs_J aqs_J``; ``mu_<group>`` the transmission angle of a dyad, and the equivalent transmission angle of a
+class III (Newton) group (:func:`equivalent_transmission_sine`).
 """
 from __future__ import annotations
 
@@ -394,7 +395,34 @@ def columns(model: SolverModel, res: KinematicsResult, grid: bool = True) -> dic
     for g, grp in enumerate(model.groups[:res.quality.shape[1]]):
         if grp.kind in ("RRR", "RRP"):     # a ВПВ group has no transmission angle of its own
             out["mu_" + grp.name] = np.arcsin(np.minimum(1.0, np.abs(res.quality[:, g])))
+        elif model.gkind[g] == K.G_NEWTON:
+            out["mu_" + grp.name] = np.arcsin(equivalent_transmission_sine(model, res, g))
     return out
+
+
+def equivalent_transmission_sine(model: SolverModel, res: KinematicsResult, g: int) -> np.ndarray:
+    """Transmission measure of a group solved in body coordinates (class III), per position.
+
+    Φ_x = [T | R]: T the translation columns of the group's bodies, R their angle columns.
+    The angle columns are projected on the orthogonal complement of span T (eliminating the
+    translations; independent of where each body's frame is), R⊥ = Q⊥ᵀR, and
+
+        h = |det R⊥| / ∏ ‖R⊥ e_k‖        (Hadamard ratio, 0 ≤ h ≤ 1),
+
+    invariant to the units and the frame.  For a ВВВ dyad h = |sin μ| exactly (checked to 1e-15
+    on ws000, tests/test_class3_flags.py); h → 0 at a singular position of the group (det Φ_x = 0,
+    Артоболевский, «Теория механизмов и машин», особые положения групп III класса), so
+    μ = arcsin h is reported as the group's equivalent transmission angle and judged by the same
+    thresholds as a dyad's."""
+    nbg = int(model.gnb[g])
+    J = K.group_jacobians(res.q, res.pose, model.jt, model.jb, model.jf, model.gjoint[g], model.gnj[g],
+                          model.gbody[g], model.gnb[g], model.size)
+    ang = np.arange(3 * nbg) % 3 == 2
+    Q, _ = np.linalg.qr(J[:, :, ~ang], mode="complete")
+    Rp = np.matmul(np.swapaxes(Q[:, :, 2 * nbg:], 1, 2), J[:, :, ang])
+    norms = np.prod(np.linalg.norm(Rp, axis=1), axis=1)
+    h = np.abs(np.linalg.det(Rp)) / np.where(norms > 0.0, norms, 1.0)
+    return np.minimum(1.0, np.where(norms > 0.0, h, 0.0))
 
 
 def slider_displacement(model: SolverModel, res: KinematicsResult, j):

@@ -969,3 +969,35 @@ def points_cycle(pose, d1, d2, q, pbody, ploc):
             out[i, k, 4] = d2[i, b, 0] - uy * e - ux * w * w - 2.0 * vy * w
             out[i, k, 5] = d2[i, b, 1] + ux * e - uy * w * w + 2.0 * vx * w
     return out
+
+
+@njit(cache=True, error_model="numpy")
+def group_jacobians(q, pose, jt, jb, jf, gj, nj, gb, nbg, size):
+    """The Jacobian Φ_x of one group at every solved position (N, 3·nbg, 3·nbg), the angle
+    columns divided by the size of the mechanism so that every entry is dimensionless
+    (rows: the joints' constraint equations in metres; columns: x, y, θ·size of each body)."""
+    N = q.shape[0]
+    nb = pose.shape[1]
+    n = 3 * nbg
+    out = np.zeros((N, n, n))
+    mat = np.zeros((n, n))
+    rhs = np.zeros(n)
+    coef = np.zeros((2, 6))
+    expl = np.zeros(2)
+    gam = np.zeros(2)
+    res = np.zeros(2)
+    cs = np.zeros((nb, 2))
+    col_of = -np.ones(nb, dtype=np.int64)
+    for k in range(nbg):
+        col_of[gb[k]] = k
+    cur = np.zeros((nb, 3))
+    for i in range(N):
+        for b in range(nb):
+            for c in range(3):
+                cur[b, c] = pose[i, b, c]
+        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q[i], cur, cur, cur, 0, mat, rhs, col_of,
+                      coef, expl, gam, res, True, cs)
+        for r in range(n):
+            for c in range(n):
+                out[i, r, c] = mat[r, c] / (size if c % 3 == 2 else 1.0)
+    return out
