@@ -62,6 +62,7 @@ F_JUMP = 4          # internal: Newton's correction too large against the predic
 JUMP_RATIO = 0.5    # allowed Newton correction relative to the predicted step (branch tracking)
 JUMP_ABS = 1e-9     # … plus this fraction of the size of the mechanism
 MAX_HALVINGS = 8
+HOMOTOPY_STEPS = 64  # steps of the continuation from the sketch at the first assembly
 
 CLAMP = 2e-9        # relative tolerance for a stretched/folded group (rounding, not failure)
 NEWTON_TOL = 1e-12  # residual tolerance relative to the size of the mechanism
@@ -687,6 +688,40 @@ def _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
 
 
 @njit(cache=True, error_model="numpy")
+def _solve_homotopy(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
+                    coef, expl, gam, res, cs):
+    """First assembly of a Newton group by continuation from the sketch (Newton homotopy,
+    Allgower & Georg, *Introduction to numerical continuation methods*, 2003, §1):
+    H(x, t) = Φ(x) − (1 − t)·Φ(x_sketch), t from 0 (the sketch solves it) to 1, in
+    HOMOTOPY_STEPS equal steps, each corrected by Newton.  The path starts at the sketch, so it
+    ends on the assembly the sketch draws, not on whichever one a full Newton step reaches.
+    Returns (status, amount, quality) as :func:`_solve_newton`."""
+    n = 3 * nbg
+    _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d1, 0, mat, rhs, col_of,
+                  coef, expl, gam, res, False, cs)
+    r0 = rhs[:n].copy()                      # −Φ(x_sketch)
+    for s in range(1, HOMOTOPY_STEPS + 1):
+        lam = 1.0 - s / HOMOTOPY_STEPS
+        for it in range(NEWTON_MAXIT):
+            _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d1, 0, mat, rhs, col_of,
+                          coef, expl, gam, res, True, cs)
+            rn = 0.0
+            for r in range(n):
+                rhs[r] -= lam * r0[r]
+                rn = max(rn, abs(rhs[r]))
+            if rn <= NEWTON_TOL * size:
+                break
+            if solve_dense(mat, rhs, n, 0.0) == 0.0:
+                return F_NEWTON, rn, 0.0
+            for k in range(nbg):
+                b = gb[k]
+                for c in range(3):
+                    pose[b, c] += rhs[3 * k + c]
+    return _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
+                         coef, expl, gam, res, cs)
+
+
+@njit(cache=True, error_model="numpy")
 def _pose_distance(a, b, gb, nbg, size):
     """Largest difference of the group's body poses (angles times the size: metres)."""
     d = 0.0
@@ -775,8 +810,16 @@ def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj
                                                  mat, rhs, coef, expl, gam, res, cs)
                 newton = cur.copy()
                 cur[:, :] = sketch
+                st3, amount3, qual3 = _solve_homotopy(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size,
+                                                      col_of, mat, rhs, coef, expl, gam, res, cs)
+                homot = cur.copy()
+                cur[:, :] = sketch
                 st2, amount2, qual2 = _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
                                                  mat, rhs, coef, expl, gam, res, cs)
+                if st3 == F_OK and (st2 != F_OK or _pose_distance(homot, sketch, gb, nbg, size)
+                                    < _pose_distance(cur, sketch, gb, nbg, size)):
+                    cur[:, :] = homot
+                    st2, amount2, qual2 = st3, amount3, qual3
                 if st == F_OK and (st2 != F_OK or _pose_distance(newton, sketch, gb, nbg, size)
                                    <= _pose_distance(cur, sketch, gb, nbg, size)):
                     cur[:, :] = newton
