@@ -679,10 +679,18 @@ def _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
             nu *= 2.0
             if lam > 1e30:
                 break
+    for k in range(nbg):
+        b = gb[k]
+        for c in range(3):
+            trial[k, c] = pose[b, c]
     st, a2, q2 = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
                                coef, expl, gam, res, cs)
     if st == F_OK:
         return F_OK, 0.0, 1.0
+    for k in range(nbg):            # a Newton that failed may have wandered off: the gap is
+        b = gb[k]                   # measured at the least-squares configuration
+        for c in range(3):
+            pose[b, c] = trial[k, c]
     rmax, gap = _residual_norms(jt, jb, jf, gj, nj, q, pose, res)
     return F_NEWTON, gap, 0.0
 
