@@ -55,6 +55,21 @@ def test_equivalent_measure_is_the_dyad_transmission_angle():
     assert checked >= 1
 
 
+def test_equivalent_measure_against_a_qr_formulation():
+    """Second formulation: complete QR of the translation columns (numpy), determinant of the projected
+    angle columns, against the kernel's Gram–Schmidt."""
+    s = Study(TRIAD)
+    m, res = s.model, s._cycle_solution
+    g = [k for k in range(len(m.groups)) if m.gkind[k] == K.G_NEWTON][0]
+    nbg = int(m.gnb[g])
+    J = K.group_jacobians(res.q, res.pose, m.jt, m.jb, m.jf, m.gjoint[g], m.gnj[g], m.gbody[g], m.gnb[g], m.size)
+    ang = np.arange(3 * nbg) % 3 == 2
+    Q, _ = np.linalg.qr(J[:, :, ~ang], mode="complete")
+    Rp = np.matmul(np.swapaxes(Q[:, :, 2 * nbg:], 1, 2), J[:, :, ang])
+    h = np.abs(np.linalg.det(Rp)) / np.prod(np.linalg.norm(Rp, axis=1), axis=1)
+    assert np.abs(h - L.equivalent_transmission_sine(m, res, g)).max() <= 1e-12
+
+
 @pytest.fixture(scope="module")
 def near():
     return _triad(TRIAD_LIMIT + 1e-7, FAR_SKETCH)

@@ -429,15 +429,8 @@ def equivalent_transmission_sine(model: SolverModel, res: KinematicsResult, g: i
     Артоболевский, «Теория механизмов и машин», особые положения групп III класса), so
     μ = arcsin h is reported as the group's equivalent transmission angle and judged by the same
     thresholds as a dyad's."""
-    nbg = int(model.gnb[g])
-    J = K.group_jacobians(res.q, res.pose, model.jt, model.jb, model.jf, model.gjoint[g], model.gnj[g],
-                          model.gbody[g], model.gnb[g], model.size)
-    ang = np.arange(3 * nbg) % 3 == 2
-    Q, _ = np.linalg.qr(J[:, :, ~ang], mode="complete")
-    Rp = np.matmul(np.swapaxes(Q[:, :, 2 * nbg:], 1, 2), J[:, :, ang])
-    norms = np.prod(np.linalg.norm(Rp, axis=1), axis=1)
-    h = np.abs(np.linalg.det(Rp)) / np.where(norms > 0.0, norms, 1.0)
-    return np.minimum(1.0, np.where(norms > 0.0, h, 0.0))
+    return K.group_transmission(res.q, res.pose, model.jt, model.jb, model.jf, model.gjoint[g], model.gnj[g],
+                                model.gbody[g], model.gnb[g], model.size)
 
 
 def slider_displacement(model: SolverModel, res: KinematicsResult, j):

@@ -1052,3 +1052,47 @@ def group_jacobians(q, pose, jt, jb, jf, gj, nj, gb, nbg, size):
             for c in range(n):
                 out[i, r, c] = mat[r, c] / (size if c % 3 == 2 else 1.0)
     return out
+
+
+@njit(cache=True, error_model="numpy")
+def group_transmission(q, pose, jt, jb, jf, gj, nj, gb, nbg, size):
+    """Hadamard ratio h = |det R⊥| / ∏‖R⊥e_k‖ of a group at every solved position (see
+    ``analysis.linkage.equivalent_transmission_sine``): modified Gram–Schmidt on the translation
+    columns of the scaled Φ_x (:func:`group_jacobians`), the angle columns projected off them
+    (R⊥, norms ν_k) and orthogonalised in turn (residual norms d_k); |det R⊥| = ∏ d_k."""
+    J = group_jacobians(q, pose, jt, jb, jf, gj, nj, gb, nbg, size)
+    N = q.shape[0]
+    n = 3 * nbg
+    nt = 2 * nbg
+    h = np.zeros(N)
+    basis = np.zeros((n, n))
+    w = np.zeros(n)
+    for i in range(N):
+        m = 0
+        ratio = 1.0
+        for pass_ in range(2):                  # translation columns, then angle columns
+            for c in range(n):
+                if (c % 3 == 2) != (pass_ == 1):
+                    continue
+                for r in range(n):
+                    w[r] = J[i, r, c]
+                nu = 0.0
+                for k in range(m):
+                    if pass_ == 1 and k == nt:  # ν: the norm of R⊥e_k before its own orthogonalisation
+                        nu = np.sqrt(np.sum(w * w))
+                    s = 0.0
+                    for r in range(n):
+                        s += basis[r, k] * w[r]
+                    for r in range(n):
+                        w[r] -= s * basis[r, k]
+                d = np.sqrt(np.sum(w * w))
+                if pass_ == 1:
+                    if m == nt:
+                        nu = d
+                    ratio *= d / nu if nu > 0.0 else 0.0
+                if d > 0.0:
+                    for r in range(n):
+                        basis[r, m] = w[r] / d
+                    m += 1
+        h[i] = min(1.0, ratio)
+    return h
