@@ -223,14 +223,17 @@ def test_seeded_four_bars_just_past_the_change_point():
         assert "не хватает" in str(ei.value) and "180°" in str(ei.value)
 
 
-# l_AB below which the triad of class3_triad.toml (on the assembly its Newton start reaches, x_C(0) = 1,445)
-# does not assemble at q ≈ 206°
+# l_AB below which the triad of class3_triad.toml, on its far assembly (x_C(0) = 1,445, sketched by
+# FAR_SKETCH), does not assemble at q ≈ 206°
 TRIAD_LIMIT = 0.5007181565616337
+FAR_SKETCH = {"B": [1.173, -0.336], "C": [1.445, -0.573], "D": [1.502, -0.126]}
 
 
-def _triad(l_ab: float) -> Study:
+def _triad(l_ab: float, sketch: dict | None = FAR_SKETCH) -> Study:
     data = _data("class3_triad.toml")
     data["parameters"]["l_AB"] = f"{l_ab!r} m"
+    if sketch is not None:
+        data["sketch"]["points"] = sketch
     return _study(data)
 
 
@@ -240,9 +243,10 @@ def test_class3_triad_near_its_singular_configuration(delta):
     the cycle is finite and on one branch (Newton never jumps: positions within the Taylor bound
     of the analogs), and the analogs at the stiffest position agree with the 50-digit reference
     to the conditioning of the position (measured at δ = 10⁻⁷: 1·10⁻¹² positions, 5·10⁻¹⁰ first,
-    6·10⁻¹⁰ second analogs).  Class III groups have no transmission angle and are not flagged:
-    see docs/work-precision.md, stress families."""
+    6·10⁻¹⁰ second analogs).  The group's equivalent transmission angle (Study.flags) falls
+    below 40° there and is reported; see docs/work-precision.md, stress families."""
     s = _triad(TRIAD_LIMIT + delta)
+    assert abs(s.cycle["x_C"].iloc[0] - 1.445) < 2e-3          # the sketched (far) assembly
     check_finite_and_continuous(s)
     cyc = s.cycle
     for c in cyc.columns:                       # one branch over the whole turn: the cycle closes

@@ -2,7 +2,8 @@
 
 Column names are a public contract (see docs/outputs.md): for a point P ``x_P y_P`` with first
 analogs ``vqx_P vqy_P`` and second analogs ``aqx_P aqy_P``; for a link k ``phi_k wq_k eq_k``;
-for a prismatic pair J ``s_J vqs_J aqs_J``; ``mu_<group>`` the transmission angle of a dyad.
+for a prismatic pair J ``s_J vqs_J aqs_J``; ``mu_<group>`` the transmission angle of a dyad, and the equivalent transmission angle of a
+class III (Newton) group (:func:`equivalent_transmission_sine`).
 """
 from __future__ import annotations
 
@@ -152,26 +153,41 @@ def _dyad_spec(g, model: SolverModel, bidx) -> list[int]:
 
 
 def _pose_from_sketch(model: SolverModel) -> np.ndarray:
-    """Initial body poses from the sketch (used by Newton groups at the first position)."""
+    """Initial body poses from the sketch (used by Newton groups at the first position).
+
+    A link is placed by two of its points whose global positions are known: fixed points, the
+    sketch's points, and the points of links placed before (so a coupler drawn only by its far
+    end takes its angle from the crank's pin, not 0).  The driver link takes the driver's angle
+    at the sketch position; a link with one known point keeps its angle 0."""
     pose = np.zeros((len(model.bodies), 3))
     mech = model.mech
     known = dict(mech.link(FRAME).points)      # fixed points are known exactly
     known.update(mech.sketch)
-    for link in mech.moving:
-        bi = model.body(link.name)
-        sk = [(p, known[p]) for p in link.points if p in known]
-        if not sk:
-            continue
-        if len(sk) >= 2:
-            (p1, g1), (p2, g2) = sk[0], sk[1]
-            l1, l2 = link.points[p1], link.points[p2]
-            th = math.atan2(g2[1] - g1[1], g2[0] - g1[0]) - math.atan2(l2[1] - l1[1], l2[0] - l1[0])
-        else:
-            th = pose[bi, 2]
-            p1, g1 = sk[0]
-            l1 = link.points[p1]
-        c, s = math.cos(th), math.sin(th)
-        pose[bi] = (g1[0] - (c * l1[0] - s * l1[1]), g1[1] - (s * l1[0] + c * l1[1]), th)
+    d = mech.driver
+    q0 = mech.sketch_q if mech.sketch_q is not None else default_q0(mech)
+    todo = list(mech.moving)
+    while todo:
+        placed = [lk for lk in todo if sum(p in known for p in lk.points) >= 2]
+        if not placed:
+            placed = [lk for lk in todo if any(p in known for p in lk.points)][:1] or todo[:1]
+        for link in placed:
+            todo.remove(link)
+            bi = model.body(link.name)
+            sk = [(p, known[p]) for p in link.points if p in known]
+            if not sk:
+                continue
+            if len(sk) >= 2:
+                (p1, g1), (p2, g2) = sk[0], sk[1]
+                l1, l2 = link.points[p1], link.points[p2]
+                th = math.atan2(g2[1] - g1[1], g2[0] - g1[0]) - math.atan2(l2[1] - l1[1], l2[0] - l1[0])
+            else:
+                th = d.phi0 + d.direction * q0 if d.rotary and link.name == d.link else pose[bi, 2]
+                p1, g1 = sk[0]
+                l1 = link.points[p1]
+            c, s = math.cos(th), math.sin(th)
+            pose[bi] = (g1[0] - (c * l1[0] - s * l1[1]), g1[1] - (s * l1[0] + c * l1[1]), th)
+            for p, lp in link.points.items():
+                known.setdefault(p, (pose[bi, 0] + c * lp[0] - s * lp[1], pose[bi, 1] + s * lp[0] + c * lp[1]))
     return pose
 
 
@@ -442,7 +458,27 @@ def columns(model: SolverModel, res: KinematicsResult, grid: bool = True) -> dic
     for g, grp in enumerate(model.groups[:res.quality.shape[1]]):
         if grp.kind in ("RRR", "RRP"):     # a ВПВ group has no transmission angle of its own
             out["mu_" + grp.name] = np.arcsin(np.minimum(1.0, np.abs(res.quality[:, g])))
+        elif model.gkind[g] == K.G_NEWTON:
+            out["mu_" + grp.name] = np.arcsin(equivalent_transmission_sine(model, res, g))
     return out
+
+
+def equivalent_transmission_sine(model: SolverModel, res: KinematicsResult, g: int) -> np.ndarray:
+    """Transmission measure of a group solved in body coordinates (class III), per position.
+
+    Φ_x = [T | R]: T the translation columns of the group's bodies, R their angle columns.
+    The angle columns are projected on the orthogonal complement of span T (eliminating the
+    translations; independent of where each body's frame is), R⊥ = Q⊥ᵀR, and
+
+        h = |det R⊥| / ∏ ‖R⊥ e_k‖        (Hadamard ratio, 0 ≤ h ≤ 1),
+
+    invariant to the units and the frame.  For a ВВВ dyad h = |sin μ| exactly (checked to 1e-15
+    on ws000, tests/test_class3_flags.py); h → 0 at a singular position of the group (det Φ_x = 0,
+    Артоболевский, «Теория механизмов и машин», особые положения групп III класса), so
+    μ = arcsin h is reported as the group's equivalent transmission angle and judged by the same
+    thresholds as a dyad's."""
+    return K.group_transmission(res.q, res.pose, model.jt, model.jb, model.jf, model.gjoint[g], model.gnj[g],
+                                model.gbody[g], model.gnb[g], model.size)
 
 
 def slider_displacement(model: SolverModel, res: KinematicsResult, j):

@@ -474,7 +474,9 @@ class Study:
 
     @cached_property
     def flags(self) -> dict:
-        """Singular positions and low transmission angles over the cycle."""
+        """Singular positions and low transmission angles over the cycle: of every dyad (ВВВ, ВВП)
+        and of every class III group by its equivalent transmission angle
+        (``linkage.equivalent_transmission_sine``, equal to μ for a dyad), same thresholds."""
         cyc = self.cycle
         out = {}
         for c in cyc.columns:

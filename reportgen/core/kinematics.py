@@ -62,6 +62,7 @@ F_JUMP = 4          # internal: Newton's correction too large against the predic
 JUMP_RATIO = 0.5    # allowed Newton correction relative to the predicted step (branch tracking)
 JUMP_ABS = 1e-9     # … plus this fraction of the size of the mechanism
 MAX_HALVINGS = 8
+HOMOTOPY_STEPS = 64  # steps of the continuation from the sketch at the first assembly
 
 CLAMP = 2e-9        # relative tolerance for a stretched/folded group (rounding, not failure)
 NEWTON_TOL = 1e-12  # residual tolerance relative to the size of the mechanism
@@ -678,12 +679,54 @@ def _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
             nu *= 2.0
             if lam > 1e30:
                 break
+    for k in range(nbg):
+        b = gb[k]
+        for c in range(3):
+            trial[k, c] = pose[b, c]
     st, a2, q2 = _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
                                coef, expl, gam, res, cs)
     if st == F_OK:
         return F_OK, 0.0, 1.0
+    for k in range(nbg):            # a Newton that failed may have wandered off: the gap is
+        b = gb[k]                   # measured at the least-squares configuration
+        for c in range(3):
+            pose[b, c] = trial[k, c]
     rmax, gap = _residual_norms(jt, jb, jf, gj, nj, q, pose, res)
     return F_NEWTON, gap, 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def _solve_homotopy(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
+                    coef, expl, gam, res, cs):
+    """First assembly of a Newton group by continuation from the sketch (Newton homotopy,
+    Allgower & Georg, *Introduction to numerical continuation methods*, 2003, §1):
+    H(x, t) = Φ(x) − (1 − t)·Φ(x_sketch), t from 0 (the sketch solves it) to 1, in
+    HOMOTOPY_STEPS equal steps, each corrected by Newton.  The path starts at the sketch, so it
+    ends on the assembly the sketch draws, not on whichever one a full Newton step reaches.
+    Returns (status, amount, quality) as :func:`_solve_newton`."""
+    n = 3 * nbg
+    _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d1, 0, mat, rhs, col_of,
+                  coef, expl, gam, res, False, cs)
+    r0 = rhs[:n].copy()                      # −Φ(x_sketch)
+    for s in range(1, HOMOTOPY_STEPS + 1):
+        lam = 1.0 - s / HOMOTOPY_STEPS
+        for it in range(NEWTON_MAXIT):
+            _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, d1, 0, mat, rhs, col_of,
+                          coef, expl, gam, res, True, cs)
+            rn = 0.0
+            for r in range(n):
+                rhs[r] -= lam * r0[r]
+                rn = max(rn, abs(rhs[r]))
+            if rn <= NEWTON_TOL * size:
+                break
+            if solve_dense(mat, rhs, n, 0.0) == 0.0:
+                return F_NEWTON, rn, 0.0
+            for k in range(nbg):
+                b = gb[k]
+                for c in range(3):
+                    pose[b, c] += rhs[3 * k + c]
+    return _solve_newton(jt, jb, jf, gj, nj, gb, nbg, q, pose, d1, size, col_of, mat, rhs,
+                         coef, expl, gam, res, cs)
 
 
 @njit(cache=True, error_model="numpy")
@@ -775,8 +818,16 @@ def _solve_position(qi, dq, first, jt, jb, jf, gkind, gspec, gsigma, gjoint, gnj
                                                  mat, rhs, coef, expl, gam, res, cs)
                 newton = cur.copy()
                 cur[:, :] = sketch
+                st3, amount3, qual3 = _solve_homotopy(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size,
+                                                      col_of, mat, rhs, coef, expl, gam, res, cs)
+                homot = cur.copy()
+                cur[:, :] = sketch
                 st2, amount2, qual2 = _solve_lsq(jt, jb, jf, gj, nj, gb, nbg, qi, cur, v, size, col_of,
                                                  mat, rhs, coef, expl, gam, res, cs)
+                if st3 == F_OK and (st2 != F_OK or _pose_distance(homot, sketch, gb, nbg, size)
+                                    < _pose_distance(cur, sketch, gb, nbg, size)):
+                    cur[:, :] = homot
+                    st2, amount2, qual2 = st3, amount3, qual3
                 if st == F_OK and (st2 != F_OK or _pose_distance(newton, sketch, gb, nbg, size)
                                    <= _pose_distance(cur, sketch, gb, nbg, size)):
                     cur[:, :] = newton
@@ -969,3 +1020,79 @@ def points_cycle(pose, d1, d2, q, pbody, ploc):
             out[i, k, 4] = d2[i, b, 0] - uy * e - ux * w * w - 2.0 * vy * w
             out[i, k, 5] = d2[i, b, 1] + ux * e - uy * w * w + 2.0 * vx * w
     return out
+
+
+@njit(cache=True, error_model="numpy")
+def group_jacobians(q, pose, jt, jb, jf, gj, nj, gb, nbg, size):
+    """The Jacobian Φ_x of one group at every solved position (N, 3·nbg, 3·nbg), the angle
+    columns divided by the size of the mechanism so that every entry is dimensionless
+    (rows: the joints' constraint equations in metres; columns: x, y, θ·size of each body)."""
+    N = q.shape[0]
+    nb = pose.shape[1]
+    n = 3 * nbg
+    out = np.zeros((N, n, n))
+    mat = np.zeros((n, n))
+    rhs = np.zeros(n)
+    coef = np.zeros((2, 6))
+    expl = np.zeros(2)
+    gam = np.zeros(2)
+    res = np.zeros(2)
+    cs = np.zeros((nb, 2))
+    col_of = -np.ones(nb, dtype=np.int64)
+    for k in range(nbg):
+        col_of[gb[k]] = k
+    cur = np.zeros((nb, 3))
+    for i in range(N):
+        for b in range(nb):
+            for c in range(3):
+                cur[b, c] = pose[i, b, c]
+        _group_matrix(jt, jb, jf, gj, nj, gb, nbg, q[i], cur, cur, cur, 0, mat, rhs, col_of,
+                      coef, expl, gam, res, True, cs)
+        for r in range(n):
+            for c in range(n):
+                out[i, r, c] = mat[r, c] / (size if c % 3 == 2 else 1.0)
+    return out
+
+
+@njit(cache=True, error_model="numpy")
+def group_transmission(q, pose, jt, jb, jf, gj, nj, gb, nbg, size):
+    """Hadamard ratio h = |det R⊥| / ∏‖R⊥e_k‖ of a group at every solved position (see
+    ``analysis.linkage.equivalent_transmission_sine``): modified Gram–Schmidt on the translation
+    columns of the scaled Φ_x (:func:`group_jacobians`), the angle columns projected off them
+    (R⊥, norms ν_k) and orthogonalised in turn (residual norms d_k); |det R⊥| = ∏ d_k."""
+    J = group_jacobians(q, pose, jt, jb, jf, gj, nj, gb, nbg, size)
+    N = q.shape[0]
+    n = 3 * nbg
+    nt = 2 * nbg
+    h = np.zeros(N)
+    basis = np.zeros((n, n))
+    w = np.zeros(n)
+    for i in range(N):
+        m = 0
+        ratio = 1.0
+        for pass_ in range(2):                  # translation columns, then angle columns
+            for c in range(n):
+                if (c % 3 == 2) != (pass_ == 1):
+                    continue
+                for r in range(n):
+                    w[r] = J[i, r, c]
+                nu = 0.0
+                for k in range(m):
+                    if pass_ == 1 and k == nt:  # ν: the norm of R⊥e_k before its own orthogonalisation
+                        nu = np.sqrt(np.sum(w * w))
+                    s = 0.0
+                    for r in range(n):
+                        s += basis[r, k] * w[r]
+                    for r in range(n):
+                        w[r] -= s * basis[r, k]
+                d = np.sqrt(np.sum(w * w))
+                if pass_ == 1:
+                    if m == nt:
+                        nu = d
+                    ratio *= d / nu if nu > 0.0 else 0.0
+                if d > 0.0:
+                    for r in range(n):
+                        basis[r, m] = w[r] / d
+                    m += 1
+        h[i] = min(1.0, ratio)
+    return h

@@ -263,7 +263,7 @@ def build(study) -> Section:
     if flags:
         rows = [{"g": _flag_group(study, c), "mu": v["min"], "q": v["q_min"]} for c, v in flags.items()]
         mdf = pd.DataFrame(rows)
-        s5.paragraph(f"Наименьшие за цикл углы передачи движения в диадах приведены в таблице {ref('tab-mu')}; "
+        s5.paragraph(f"Наименьшие за цикл углы передачи движения в группах (у группы III класса — эквивалентный угол по её матрице Якоби) приведены в таблице {ref('tab-mu')}; "
                      "рекомендуемое значение — не менее 40°.")
         s5.table("Наименьшие углы передачи движения", [
             Column("g", "Группа"), Column("mu", "μ<sub>min</sub>", "град", fmt=_deg),
