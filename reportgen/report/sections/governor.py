@@ -9,10 +9,15 @@ import math
 from ...scenes.governor import GovernorScheme
 from ...style.numbers import fmt, tex_num
 from ..document import Section, ref
-from .synthesis import printed_table
 
 NEEDS = ("governor",)
 TASK = "определить угловую скорость центробежного регулятора с учётом трения в шарнирах"
+
+
+def printed_angular(key: str) -> bool:
+    """Whether the printed value ``key`` is an angle (the comparison table of the answer key,
+    reportgen/report/key.py: the student's note holds no printed values)."""
+    return key in ("alpha", "R76_angle", "phi_f")
 
 
 def present(study) -> bool:
@@ -66,7 +71,6 @@ def build(study) -> Section:
                   f"{fmt(gv.cases[0]['omega'], sig=4)}&nbsp;рад/с; муфта неподвижна при "
                   f"{fmt(gv.cases[-1]['omega'], sig=4)} ≤ ω ≤ {fmt(gv.cases[1]['omega'], sig=4)}&nbsp;рад/с "
                   "(зона нечувствительности регулятора).")
-    printed_table(sec, gv.printed, "tab-governor-printed", angular=lambda k: k in ("alpha", "R76_angle", "phi_f"))
     return sec
 
 

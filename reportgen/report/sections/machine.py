@@ -7,10 +7,15 @@ from __future__ import annotations
 from ...scenes.machine import EnergyDiagram
 from ...style.numbers import fmt, tex_num
 from ..document import Section, ref
-from .synthesis import printed_table
 
 NEEDS = ("machine",)
 TASK = "определить момент инерции маховика и мощность двигателя по энергии рабочего цикла"
+
+
+def printed_angular(key: str) -> bool:
+    """Whether the printed value ``key`` is an angle (the comparison table of the answer key,
+    reportgen/report/key.py: the student's note holds no printed values)."""
+    return False
 
 
 def present(study) -> bool:
@@ -57,7 +62,6 @@ def build(study) -> Section:
         sec.paragraph("Средняя мощность двигателя — работа за цикл, делённая на время цикла:")
         sec.formula(r"N = \frac{A}{t_ц}", rf"\frac{{{_t(m.work)}}}{{{_t(m.cycle_time)}}}", _t(m.power, "Вт"),
                     label="eq-machine-N")
-    printed_table(sec, m.printed, "tab-machine-printed")
     return sec
 
 
