@@ -88,3 +88,13 @@ def test_task_printed_values_only_in_key(stem, kind):
     assert {"key-printed", f"key-printed-{kind}", f"tab-{kind}-printed"} <= _ids(build_key(st))
     note = render_html(build_report(st), for_print=False)
     assert "Напечатано" not in note and "Рабочий лист" not in note and "key-printed" not in note
+
+
+def test_motion_printed_equation_only_in_key():
+    # the worksheet's equation of motion integrated beside the correct one: key only; the note
+    # writes the method in words and the case's expressions in textbook notation
+    st = load_case(CASES / "ws001_p9_valve.toml")
+    assert {"key-printed-motion", "fig-motion-printed"} <= _ids(build_key(st))
+    note = re.sub(r"<[^>]+>", " ", render_html(build_report(st), for_print=False))
+    assert "Рунге–Кутты восьмого порядка" in note and "solve_ivp" not in note and "исходном решении" not in note
+    assert not re.search(r"\b(phi|omega|J_d)\b|\w+_\w+", note)

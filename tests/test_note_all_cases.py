@@ -45,7 +45,6 @@ BARE = re.compile(r"[a-zA-Z]+\d+|n[a-z]{2,}")      # a point label not in textbo
 # Known defects outside the drawings and text this module's author owns (session 4, issue 9):
 # case text and program notes printed in the student's note. Strict: the mark must go when fixed.
 KNOWN_TEXT = {
-    "ws001_p9_valve": "the motion section prints the case's expressions (J_d, phi, omega) and «scipy solve_ivp»",
 }
 
 

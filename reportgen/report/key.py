@@ -166,7 +166,8 @@ def _printed(study) -> Section | None:
     """Every comparison with the values printed in the source: the dynamics' table
     (``[dynamics.printed]``) and, for each task whose note section declares ``printed_angular``
     (synthesis, machine, dof, cross, governor), its analysis' ``printed`` list with the notes on
-    why the worksheet differs."""
+    why the worksheet differs; a section's own ``key_printed(sec, study)`` adds what is not a table
+    (motion: the printed equation integrated beside the correct one)."""
     sec = Section("Сравнение с напечатанными значениями", "key-printed")
     if "dynamics" in study.tasks() and study.dynamics.settings.printed:
         from .sections.dynamics import printed_block
@@ -176,11 +177,18 @@ def _printed(study) -> Section | None:
     for kind in KINDS:
         if kind.name not in study.tasks():
             continue
-        angular = getattr(importlib.import_module(f".sections.{kind.name}", __package__), "printed_angular", None)
+        mod = importlib.import_module(f".sections.{kind.name}", __package__)
+        angular, hook = getattr(mod, "printed_angular", None), getattr(mod, "key_printed", None)
         printed = getattr(study.analysis(kind.name), "printed", None) if angular is not None else None
+        if not printed and hook is None:
+            continue
+        sub = sec.subsection(kind.title, f"key-printed-{kind.name}")
         if printed:
-            printed_table(sec.subsection(kind.title, f"key-printed-{kind.name}"), printed,
-                          f"tab-{kind.name}-printed", angular)
+            printed_table(sub, printed, f"tab-{kind.name}-printed", angular)
+        if hook is not None:
+            hook(sub, study)
+        if not sub.children:
+            sec.children.remove(sub)
     return sec if sec.children else None
 
 
