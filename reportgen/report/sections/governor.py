@@ -1,7 +1,7 @@
 """Section «Центробежный регулятор с трением в шарнирах»: friction circle ρ = r·sin φ_тр, the rod's
 line of action turned by α (sin α = 2ρ/l), the sleeve's force triangle, the arm's moment equation
 about H with the friction circle solved exactly for F_и, ω; the frictionless and slowing-down
-speeds beside it; the values the worksheet measured on its drawing.  ``present``: ``[governor]``."""
+speeds beside it; the values the worksheet measured: answer key.  ``present``: ``[governor]``."""
 from __future__ import annotations
 
 import math

@@ -1,7 +1,7 @@
 """Section «Маховик машины по энергии цикла»: ΔE_max (given, C_E·A, loop areas or the
 turning-moment table), the speeds from δ, J = 2ΔE/(ω_max² − ω_min²) = ΔE/(δ·ω_ср²) with
-numbers, or δ from a given flywheel (inverse task), the mean power, the values printed in the
-source beside the exact ones.  ``present(study)``: the case has ``[machine]``."""
+numbers, or δ from a given flywheel (inverse task), the mean power (the values printed in the
+source: answer key).  ``present(study)``: the case has ``[machine]``."""
 from __future__ import annotations
 
 from ...scenes.machine import EnergyDiagram

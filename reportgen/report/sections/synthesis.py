@@ -1,7 +1,7 @@
 """Section «Синтез рычажного механизма»: the design data, θ = 180°·(K − 1)/(K + 1), the
 construction at scale, the lengths of the crank and the coupler with numbers, every solution
-variant, the check of the synthesised linkage by the engine (its stroke or swing and K) and the
-values printed in the source compared with the exact ones.
+variant, the check of the synthesised linkage by the engine (its stroke or swing and K); the
+values printed in the source are compared in the answer key.
 
 ``present(study)``: the case has ``[synthesis]``."""
 from __future__ import annotations
