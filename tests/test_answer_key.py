@@ -76,3 +76,25 @@ def test_cli_key_files(tmp_path):
     key = tmp_path / "slider_crank-key.html"
     assert key.exists()
     assert "Замыкание контуров" in key.read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize("stem,kind", [("ws001_p1_dof", "dof"), ("ws001_p3_cross", "cross"),
+                                       ("ws001_p6_six_bar", "synthesis"), ("ws001_p7_governor", "governor"),
+                                       ("ws001_p8_press", "machine")])
+def test_task_printed_values_only_in_key(stem, kind):
+    # the printed-value tables of the non-linkage tasks (with the notes why the worksheet differs)
+    # are in the key, one subsection per task, and nowhere in the student's note
+    st = load_case(CASES / f"{stem}.toml")
+    assert {"key-printed", f"key-printed-{kind}", f"tab-{kind}-printed"} <= _ids(build_key(st))
+    note = render_html(build_report(st), for_print=False)
+    assert "Напечатано" not in note and "Рабочий лист" not in note and "key-printed" not in note
+
+
+def test_motion_printed_equation_only_in_key():
+    # the worksheet's equation of motion integrated beside the correct one: key only; the note
+    # writes the method in words and the case's expressions in textbook notation
+    st = load_case(CASES / "ws001_p9_valve.toml")
+    assert {"key-printed-motion", "fig-motion-printed"} <= _ids(build_key(st))
+    note = re.sub(r"<[^>]+>", " ", render_html(build_report(st), for_print=False))
+    assert "Рунге–Кутты восьмого порядка" in note and "solve_ivp" not in note and "исходном решении" not in note
+    assert not re.search(r"\b(phi|omega|J_d)\b|\w+_\w+", note)

@@ -45,12 +45,6 @@ BARE = re.compile(r"[a-zA-Z]+\d+|n[a-z]{2,}")      # a point label not in textbo
 # Known defects outside the drawings and text this module's author owns (session 4, issue 9):
 # case text and program notes printed in the student's note. Strict: the mark must go when fixed.
 KNOWN_TEXT = {
-    "ws001_p3_cross": "the printed-value notes of the case («Рабочий лист умножает…», l_O2C) are in the "
-                      "student's note (printed_table), they belong to the answer key",
-    "ws001_p6_six_bar": "the printed-value note of the synthesis («Рабочий лист измеряет…») is in the "
-                        "student's note (printed_table)",
-    "ws001_p8_press": "the printed-value note «Рабочий лист подставляет…, ω_max» is in the student's note",
-    "ws001_p9_valve": "the motion section prints the case's expressions (J_d, phi, omega) and «scipy solve_ivp»",
 }
 
 

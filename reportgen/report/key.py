@@ -4,21 +4,24 @@
 layer as the note (reportgen/report/render.py): the given data, the key results of every section,
 the independent checks (rigidity of the links over the cycle — loop closure; Жуковский's lever and
 the power balance of the force analysis; the energy balance of the dynamics), the comparison with
-the values printed in the worksheet where the case has them (``[dynamics.printed]``), and the
+the values printed in the worksheet where the case has them (``[dynamics.printed]``, the
+``printed`` lists of synthesis, machine, dof, cross and governor), and the
 worksheet's own errors the program found.  Nothing of this belongs in the student's note.
 """
 from __future__ import annotations
 
+import importlib
 import math
 
 import numpy as np
 import pandas as pd
 from markupsafe import Markup
 
+from ..case.text import inline_html
 from ..registry import KINDS
 from ..style.numbers import fmt
 from .assemble import REFERENCES, _given_parameters, _linkage_data
-from .document import Column, Report, Section
+from .document import Column, Report, Section, ref
 from .russian import position_names
 
 CHECK_COLS = [Column("what", "Проверка", fmt=Markup), Column("value", "Наибольшее расхождение"),
@@ -160,15 +163,57 @@ def _checks(study) -> Section:
 
 
 def _printed(study) -> Section | None:
-    if "dynamics" not in study.tasks() or not study.dynamics.settings.printed:
-        return None
-    from .sections.dynamics import printed_block
-    pr = study.dynamics.printed
-    if pr is None or not len(pr):
-        return None
+    """Every comparison with the values printed in the source: the dynamics' table
+    (``[dynamics.printed]``) and, for each task whose note section declares ``printed_angular``
+    (synthesis, machine, dof, cross, governor), its analysis' ``printed`` list with the notes on
+    why the worksheet differs; a section's own ``key_printed(sec, study)`` adds what is not a table
+    (motion: the printed equation integrated beside the correct one)."""
     sec = Section("Сравнение с напечатанными значениями", "key-printed")
-    printed_block(sec, pr)
-    return sec
+    if "dynamics" in study.tasks() and study.dynamics.settings.printed:
+        from .sections.dynamics import printed_block
+        pr = study.dynamics.printed
+        if pr is not None and len(pr):
+            printed_block(sec, pr)
+    for kind in KINDS:
+        if kind.name not in study.tasks():
+            continue
+        mod = importlib.import_module(f".sections.{kind.name}", __package__)
+        angular, hook = getattr(mod, "printed_angular", None), getattr(mod, "key_printed", None)
+        printed = getattr(study.analysis(kind.name), "printed", None) if angular is not None else None
+        if not printed and hook is None:
+            continue
+        sub = sec.subsection(kind.title, f"key-printed-{kind.name}")
+        if printed:
+            printed_table(sub, printed, f"tab-{kind.name}-printed", angular)
+        if hook is not None:
+            hook(sub, study)
+        if not sub.children:
+            sec.children.remove(sub)
+    return sec if sec.children else None
+
+
+def printed_table(sec, printed: list[dict], tid: str, angular=lambda k: False) -> None:
+    """Values printed in the source beside the exact ones, with the notes (why they differ)."""
+    if not printed:
+        return
+    rows, notes = [], []
+    for p in printed:
+        ang = angular(p["key"])
+        f = ((lambda z, n=5: fmt(math.degrees(z), sig=n) + "°") if ang else
+             (lambda z, n=5: str(int(z)) if float(z).is_integer() and abs(z) < 1e6 else fmt(z, sig=n)))
+        title = inline_html(p["title"])
+        rows.append({"name": title, "printed": f(p["printed"], p["digits"]), "computed": f(p["computed"]),
+                     "rel": fmt(100 * (p["printed"] - p["computed"]) / p["computed"], sig=2) + "&nbsp;%"})
+        if p["note"]:
+            notes.append(Markup("Примечание — {}: {}").format(title, p["note"]))
+    sec.paragraph(f"Значения, напечатанные в исходном решении, сопоставлены с точными в таблице {ref(tid)}.")
+    sec.table("Сравнение с напечатанными значениями",
+              [Column("name", "Величина", fmt=Markup), Column("printed", "Напечатано"), Column("computed", "Точно"),
+               Column("rel", "Отклонение", fmt=Markup)], pd.DataFrame(rows), id=tid)
+    for n in notes:
+        sec.paragraph(n)
+
+
 
 
 def _errors(study) -> Section | None:

@@ -205,11 +205,17 @@ _UNITS_RU = {"m": "м", "mm": "мм", "cm": "см", "deg": "°", "rad": "рад"
              "Pa": "Па", "MPa": "МПа", "rpm": "об/мин"}
 
 
+_FUNCS_RU = {"sin": "sin", "cos": "cos", "tan": "tg", "cot": "ctg", "asin": "arcsin", "acos": "arccos",
+             "atan": "arctg", "atan2": "arctg", "exp": "exp", "log": "ln", "ln": "ln", "sqrt": "√",
+             "abs": "abs", "sinh": "sh", "cosh": "ch", "tanh": "th"}
+
+
 def expr_html(text: str) -> Markup:
     """A case expression in textbook notation (escaped HTML): "phi_6 = phi_P6" → φ<sub>6</sub> =
-    φ<sub>P6</sub>, "y_56 = 0.2 m" → <i>y</i><sub>56</sub> = 0,2 м; ``*`` → ·, ``>=`` → ≥."""
+    φ<sub>P6</sub>, "y_56 = 0.2 m" → <i>y</i><sub>56</sub> = 0,2 м; ``*`` → ·, ``>=`` → ≥, a power
+    ``r^2`` → <i>r</i><sup>2</sup>, functions upright in Russian notation (cos, tg, arctg, √)."""
     out = []
-    prev_number = pending = False
+    prev_number = pending = power = False
     for num, ident, op, space in _EXPR_TOKEN.findall(text):
         if space:
             if prev_number:
@@ -222,13 +228,22 @@ def expr_html(text: str) -> Markup:
             out.append(Markup(unit if unit == "°" else NBSP + unit))
             prev_number = pending = False
             continue
+        if op == "^":
+            power = True
+            continue
         if pending:
             out.append(Markup(" "))
         prev_number, pending = bool(num), False
         if num:
-            out.append(escape(num.replace(".", ",")))
+            piece = escape(num.replace(".", ","))
+        elif ident in _FUNCS_RU:
+            piece = Markup(_FUNCS_RU[ident])
         elif ident:
-            out.append(param_symbol(ident))
+            piece = param_symbol(ident)
         else:
-            out.append(escape(_OPS.get(op, {"*": "·", "-": "−"}.get(op, op))))
+            piece = escape(_OPS.get(op, {"*": "·", "-": "−"}.get(op, op)))
+        if power:
+            piece = Markup("<sup>{}</sup>").format(piece) if (num or ident) else Markup("^") + piece
+            power = False
+        out.append(piece)
     return Markup("").join(out)

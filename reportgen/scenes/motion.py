@@ -1,5 +1,5 @@
-"""φ(t) and ω(t) of the machine by the correct equation of motion and, if given, by the
-source's printed equation."""
+"""φ(t) and ω(t) of the machine by the correct equation of motion and, for the answer key
+(``printed=True``), by the source's printed equation as well."""
 from __future__ import annotations
 
 import numpy as np
@@ -11,13 +11,13 @@ from .mechanism import Drawing
 class MotionHistory:
     needs = ()
 
-    def draw(self, study) -> Drawing:
+    def draw(self, study, printed: bool = False) -> Drawing:
         h = study.motion.history
         fig = mplstyle.figure(160, 120)
         ax1, ax2 = fig.subplots(2, 1, sharex=True)
         ax1.plot(h["t"], np.degrees(h["phi"]), lw=1.3, label="верное уравнение")
         ax2.plot(h["t"], h["omega"], lw=1.3)
-        if "phi_printed" in h:
+        if printed and "phi_printed" in h:
             ax1.plot(h["t"], np.degrees(h["phi_printed"]), lw=1.0, ls="--", label="уравнение листа")
             ax2.plot(h["t"], h["omega_printed"], lw=1.0, ls="--")
             ax1.legend()

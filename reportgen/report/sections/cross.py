@@ -1,6 +1,6 @@
 """Section «Скорости механизма с крестовиной и приведённая сила»: the plan of velocities in closed
 form (v_B3, v_B3B2, ω₃ = ω₅, v_C3, v_C5, v_C4 = v_C3 + v_C5 and its check as C runs on the Thales
-circle), the force reduced to the input link by equal powers, the printed values.
+circle), the force reduced to the input link by equal powers; the printed values are compared in the answer key.
 ``present``: ``[cross]``."""
 from __future__ import annotations
 
@@ -9,10 +9,15 @@ import math
 from ...scenes.cross import CrossScheme
 from ...style.numbers import fmt, tex_num
 from ..document import Section, ref
-from .synthesis import printed_table
 
 NEEDS = ("cross",)
 TASK = "определить скорости механизма с крестовиной и приведённую силу"
+
+
+def printed_angular(key: str) -> bool:
+    """Whether the printed value ``key`` is an angle (the comparison table of the answer key,
+    reportgen/report/key.py: the student's note holds no printed values)."""
+    return False
 
 
 def present(study) -> bool:
@@ -55,7 +60,6 @@ def build(study) -> Section:
         sec.paragraph("Приведённая к звену 1 сила от момента M на валу O₂ — из равенства мощностей:")
         sec.formula(r"F_{пр} = \frac{M \omega_5}{V_A}", rf"\frac{{{_t(i['M'])} \cdot {_t(abs(r['w5']))}}}{{{_t(i['v_A'])}}}",
                     _t(r["F_red"], "Н"), label="eq-cross-F")
-    printed_table(sec, cx.printed, "tab-cross-printed")
     return sec
 
 

@@ -1,6 +1,6 @@
 """Section «Число степеней свободы механизма с высшей парой»: Chebyshev's formula before the
 replacement (with the passive freedom of each roller), the replacement of each higher pair by a
-link with two lower pairs, the formula after it, the structure graphs; printed values.
+link with two lower pairs, the formula after it, the structure graphs (printed values: answer key).
 ``present``: ``[dof]``."""
 from __future__ import annotations
 
@@ -14,9 +14,14 @@ from ...scenes.draw import gost_ratio
 from ...style.numbers import fmt
 from ..document import Column, Section, ref
 from .common import swing_text
-from .synthesis import printed_table
 
 NEEDS = ("dof",)
+
+
+def printed_angular(key: str) -> bool:
+    """Whether the printed value ``key`` is an angle (the comparison table of the answer key,
+    reportgen/report/key.py: the student's note holds no printed values)."""
+    return key in ("angle_OML", "zero_q")
 
 
 def TASK(study) -> str:
@@ -64,7 +69,6 @@ def build(study) -> Section:
                   f"пассивных W − q = {b['W_true']}: замена структурно эквивалентна.")
     if d.zero is not None:
         _zero_speed(sec, study)
-    printed_table(sec, d.printed, "tab-dof-printed", angular=lambda k: k in ("angle_OML", "zero_q"))
     return sec
 
 

@@ -1,7 +1,7 @@
 """Section «Центробежный регулятор с трением в шарнирах»: friction circle ρ = r·sin φ_тр, the rod's
 line of action turned by α (sin α = 2ρ/l), the sleeve's force triangle, the arm's moment equation
 about H with the friction circle solved exactly for F_и, ω; the frictionless and slowing-down
-speeds beside it; the values the worksheet measured on its drawing.  ``present``: ``[governor]``."""
+speeds beside it; the values the worksheet measured: answer key.  ``present``: ``[governor]``."""
 from __future__ import annotations
 
 import math
@@ -9,10 +9,15 @@ import math
 from ...scenes.governor import GovernorScheme
 from ...style.numbers import fmt, tex_num
 from ..document import Section, ref
-from .synthesis import printed_table
 
 NEEDS = ("governor",)
 TASK = "определить угловую скорость центробежного регулятора с учётом трения в шарнирах"
+
+
+def printed_angular(key: str) -> bool:
+    """Whether the printed value ``key`` is an angle (the comparison table of the answer key,
+    reportgen/report/key.py: the student's note holds no printed values)."""
+    return key in ("alpha", "R76_angle", "phi_f")
 
 
 def present(study) -> bool:
@@ -66,7 +71,6 @@ def build(study) -> Section:
                   f"{fmt(gv.cases[0]['omega'], sig=4)}&nbsp;рад/с; муфта неподвижна при "
                   f"{fmt(gv.cases[-1]['omega'], sig=4)} ≤ ω ≤ {fmt(gv.cases[1]['omega'], sig=4)}&nbsp;рад/с "
                   "(зона нечувствительности регулятора).")
-    printed_table(sec, gv.printed, "tab-governor-printed", angular=lambda k: k in ("alpha", "R76_angle", "phi_f"))
     return sec
 
 

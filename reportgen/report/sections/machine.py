@@ -1,7 +1,7 @@
 """Section «Маховик машины по энергии цикла»: ΔE_max (given, C_E·A, loop areas or the
 turning-moment table), the speeds from δ, J = 2ΔE/(ω_max² − ω_min²) = ΔE/(δ·ω_ср²) with
-numbers, or δ from a given flywheel (inverse task), the mean power, the values printed in the
-source beside the exact ones.  ``present(study)``: the case has ``[machine]``."""
+numbers, or δ from a given flywheel (inverse task), the mean power (the values printed in the
+source: answer key).  ``present(study)``: the case has ``[machine]``."""
 from __future__ import annotations
 
 import numpy as np
@@ -10,10 +10,15 @@ import pandas as pd
 from ...scenes.machine import EnergyDiagram
 from ...style.numbers import fmt, tex_num
 from ..document import Column, Section, ref
-from .synthesis import printed_table
 
 NEEDS = ("machine",)
 TASK = "определить момент инерции маховика и мощность двигателя по энергии рабочего цикла"
+
+
+def printed_angular(key: str) -> bool:
+    """Whether the printed value ``key`` is an angle (the comparison table of the answer key,
+    reportgen/report/key.py: the student's note holds no printed values)."""
+    return False
 
 
 def present(study) -> bool:
@@ -76,7 +81,6 @@ def build(study) -> Section:
         sec.paragraph("Средняя мощность двигателя — работа за цикл, делённая на время цикла:")
         sec.formula(r"N = \frac{A}{t_ц}", rf"\frac{{{_t(m.work)}}}{{{_t(m.cycle_time)}}}", _t(m.power, "Вт"),
                     label="eq-machine-N")
-    printed_table(sec, m.printed, "tab-machine-printed")
     return sec
 
 

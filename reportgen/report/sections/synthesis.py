@@ -1,7 +1,7 @@
 """Section «Синтез рычажного механизма»: the design data, θ = 180°·(K − 1)/(K + 1), the
 construction at scale, the lengths of the crank and the coupler with numbers, every solution
-variant, the check of the synthesised linkage by the engine (its stroke or swing and K) and the
-values printed in the source compared with the exact ones.
+variant, the check of the synthesised linkage by the engine (its stroke or swing and K); the
+values printed in the source are compared in the answer key.
 
 ``present(study)``: the case has ``[synthesis]``."""
 from __future__ import annotations
@@ -12,11 +12,11 @@ import pandas as pd
 from markupsafe import Markup, escape
 
 from ...case import synthesis as SY
-from ...case.text import inline_html
 from ...scenes.synthesis import SynthesisConstruction
 from ...style.numbers import fmt, tex_num
 from ..document import Column, Section, ref
 from ..formulas import inline_math
+from ..russian import plural
 
 NEEDS = ("synthesis",)
 TASK = "выполнить синтез рычажного механизма по коэффициенту изменения средней скорости выходного звена"
@@ -36,6 +36,12 @@ _INPUT_RU = {"K": ("K", "коэффициент изменения средне�
 _R = r"R = \frac{|B_1B_2|}{2\sin\theta}"
 _RC = r"R\cos\theta"
 _H6 = r"H = 2 l_3 \sin(\psi/2)"
+
+
+def printed_angular(key: str) -> bool:
+    """Whether the printed value ``key`` is an angle (the comparison table of the answer key,
+    reportgen/report/key.py: the student's note holds no printed values)."""
+    return SY.dim_of(key) == SY.U.ANGLE
 
 
 def present(study) -> bool:
@@ -75,7 +81,6 @@ def build(study) -> Section:
     _construction(sec, study, kind, x, v)
     _variants(sec, kind, v, vs)
     _check(sec, study, sy)
-    _printed(sec, sy)
     return sec
 
 
@@ -132,7 +137,7 @@ def _locus_ru(kind, x) -> str:
 def _variants(sec, kind, v, vs) -> None:
     if kind == "slotted_lever":
         return
-    sec.paragraph(f"Задача имеет {len(vs)} вариант(а) решения (таблица {ref('tab-syn-var')}); "
+    sec.paragraph(f"Задача имеет {plural(len(vs), 'вариант', 'варианта', 'вариантов')} решения (таблица {ref('tab-syn-var')}); "
                   f"варианты, симметричные относительно оси, дают одинаковые длины. Принят вариант {v['variant']}.")
     df = pd.DataFrame(vs)
     df["mark"] = ["принят" if w == v["variant"] else "" for w in df["variant"]]
@@ -155,32 +160,6 @@ def _check(sec, study, sy) -> None:
         f"крайние положения выходного звена ({escape(chk['title'])}) найдены как корни первой передаточной "
         f"функции (методом Брента, точно). Получены {what} {show(chk['stroke'])} (задан {show(target)}) и "
         f"K&nbsp;=&nbsp;{fmt(chk['K'], sig=10)} (задан {fmt(sy.inputs['K'], sig=10)}): синтез выполнен точно.")
-
-
-def _printed(sec, sy) -> None:
-    printed_table(sec, sy.printed, "tab-syn-printed", lambda k: SY.dim_of(k) == SY.U.ANGLE)
-
-
-def printed_table(sec, printed: list[dict], tid: str, angular=lambda k: False) -> None:
-    """Values printed in the source beside the exact ones, with the notes (why they differ)."""
-    if not printed:
-        return
-    rows, notes = [], []
-    for p in printed:
-        ang = angular(p["key"])
-        f = ((lambda z, n=5: fmt(math.degrees(z), sig=n) + "°") if ang else
-             (lambda z, n=5: str(int(z)) if float(z).is_integer() and abs(z) < 1e6 else fmt(z, sig=n)))
-        title = inline_html(p["title"])
-        rows.append({"name": title, "printed": f(p["printed"], p["digits"]), "computed": f(p["computed"]),
-                     "rel": fmt(100 * (p["printed"] - p["computed"]) / p["computed"], sig=2) + "&nbsp;%"})
-        if p["note"]:
-            notes.append(Markup("Примечание — {}: {}").format(title, p["note"]))
-    sec.paragraph(f"Значения, напечатанные в исходном решении, сопоставлены с точными в таблице {ref(tid)}.")
-    sec.table("Сравнение с напечатанными значениями",
-              [Column("name", "Величина", fmt=Markup), Column("printed", "Напечатано"), Column("computed", "Точно"),
-               Column("rel", "Отклонение", fmt=Markup)], pd.DataFrame(rows), id=tid)
-    for n in notes:
-        sec.paragraph(n)
 
 
 def conclusion_lines(study) -> list[str]:
