@@ -7,6 +7,7 @@ at its own scale, u = product of the stage ratios read off the drawings).  They 
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -15,6 +16,7 @@ from ..analysis.train import FRAME, pitch_points, ratio_chain
 from ..style import mplstyle
 from ..style.numbers import fmt
 from .draw import GREY, INK
+from .labels import tex_point
 
 __all__ = ["TrainPicture", "train_picture", "StagePlans", "stage_plans", "declutter", "text_overlaps"]
 
@@ -91,6 +93,12 @@ def declutter(fig, texts, pad_pt: float = 1.0) -> None:
         placed.append(bb)
 
 
+def _name(member: str) -> str:
+    """A member's label in textbook notation: H1 → H₁ (a letter with its index as a subscript);
+    names of another shape (1, 2′, sun) as written."""
+    return tex_point(member) if re.fullmatch(r"[A-Za-z]+\d+", member) else member
+
+
 def _scheme(ax, m, y, col, colors, dx, labels):
     """The scheme in the plane of the axes: every element off the central axis (y = 0) is drawn
     at y and mirrored at −y; labels on the upper image only."""
@@ -109,10 +117,10 @@ def _scheme(ax, m, y, col, colors, dx, labels):
                 for sg in (1, -1):
                     ax.plot([x - tick, x + tick], [yc + sg * r] * 2, color=c, lw=1.2)
             if s == 1 and wh.internal:          # beside the rim's back line, inside the ring
-                labels.append(ax.annotate(name, (x + 0.4 * dx, yc + r), xytext=(3, -11),
+                labels.append(ax.annotate(_name(name), (x + 0.4 * dx, yc + r), xytext=(3, -11),
                                           textcoords="offset points", fontsize=9, color=c))
             elif s == 1:
-                labels.append(ax.annotate(name, (x, yc + r), xytext=(-9, 2), textcoords="offset points",
+                labels.append(ax.annotate(_name(name), (x, yc + r), xytext=(-9, 2), textcoords="offset points",
                                           fontsize=9, color=c))
     order = list(m.members)
     for mem, axis in m.members.items():
@@ -131,7 +139,7 @@ def _scheme(ax, m, y, col, colors, dx, labels):
                     ax.plot([x0, max(xa) + 0.25 * dx], [s * y[a]] * 2, color=c, lw=1.6)
             for s in sides:
                 ax.plot([x0 - 0.5 * dx, x0], [s * y[axis]] * 2, color=c, lw=1.6)
-            labels.append(ax.annotate(mem, (x0, y[axis]), xytext=(-14, 3), textcoords="offset points",
+            labels.append(ax.annotate(_name(mem), (x0, y[axis]), xytext=(-14, 3), textcoords="offset points",
                                       fontsize=9, color=c))
         elif xs:
             for s in sides:
@@ -196,7 +204,7 @@ def train_picture(train) -> TrainPicture:
         yy = np.array([min(ys), max(ys)])
         vv = [vel(mem, t) for t in yy]
         av.plot(vv, yy, color=colors[mem], lw=1.4)
-        vlabels.append(av.annotate(mem, (vv[1], yy[1]), xytext=(2, 2), textcoords="offset points",
+        vlabels.append(av.annotate(_name(mem), (vv[1], yy[1]), xytext=(2, 2), textcoords="offset points",
                                    fontsize=8, color=colors[mem]))
     for (a, b), yp in pp.items():
         vp = vel(m.wheels[a].member, yp)
@@ -219,7 +227,7 @@ def train_picture(train) -> TrainPicture:
     plabels = []
     for n in m.members:
         ap.plot([0, seg[n]], [h, 0], color=colors[n], lw=1.2)
-        plabels.append(ap.annotate(n, (seg[n], 0), xytext=(0, -10), textcoords="offset points", fontsize=8,
+        plabels.append(ap.annotate(_name(n), (seg[n], 0), xytext=(0, -10), textcoords="offset points", fontsize=8,
                                    color=colors[n], ha="center"))
     ap.axhline(0, color=INK, lw=0.8)
     ap.plot([0], [h], "o", ms=3, color=INK)
