@@ -1,7 +1,8 @@
 """The synthesis construction at scale (Артоболевский § 25; Попов, Тимофеев, гл. 2): the extreme
 positions of the output link, the chord seen from the crank centre under θ = 180°·(K − 1)/(K + 1),
 the θ-circle(s), every variant's crank centre (numbered), and for the chosen variant the
-extended and folded crank–coupler lines with the crank circle."""
+extended and folded crank–coupler lines with the crank circle; for the shaper (slotted lever,
+coupler, ram) the coupler and the ram at both extremes, the ram's guide, the sag f and the stroke H."""
 from __future__ import annotations
 
 import math
@@ -24,6 +25,15 @@ def _pt(cv: Canvas, p, name: str, dx=1.5, dy=1.5, filled=True, color=INK):
 
 def _seg(cv: Canvas, p, q, lw=1.4, ls="-", color=INK, z=3):
     cv.ax.plot([p[0], q[0]], [p[1], q[1]], lw=lw, ls=ls, color=color, zorder=z)
+
+
+def _dim(cv: Canvas, a, b, label: str, **text):
+    """A dimension line a ↔ b with its label at the middle (``text``: offset and alignment)."""
+    cv.ax.annotate("", xy=b, xytext=a, xycoords="data",
+                   arrowprops=dict(arrowstyle="<->", lw=0.7, shrinkA=0, shrinkB=0))
+    dx, dy = text.pop("dx", 0.0), text.pop("dy", 1.0)
+    cv.ax.text((a[0] + b[0]) / 2 + cv.mm(dx), (a[1] + b[1]) / 2 + cv.mm(dy), label, fontsize=_FS,
+               **({"ha": "center"} | text))
 
 
 def _angle(cv: Canvas, o, p, q, label: str, r_mm=10.0):
@@ -115,8 +125,7 @@ class SynthesisConstruction:
         a, b = [(p[0] + nx * off, p[1] + ny * off) for p in es]
         for p, q in zip(es, (a, b)):
             _seg(cv, (p[0] + nx * cv.mm(3.5), p[1] + ny * cv.mm(3.5)), (q[0] + nx * cv.mm(1.5), q[1] + ny * cv.mm(1.5)), lw=0.5)
-        cv.ax.annotate("", xy=b, xytext=a, arrowprops=dict(arrowstyle="<->", lw=0.7, shrinkA=0, shrinkB=0))
-        cv.ax.text((a[0] + b[0]) / 2, (a[1] + b[1]) / 2 + cv.mm(1), "H", fontsize=_FS, ha="center")
+        _dim(cv, a, b, "H")
         # the sag f of the arc of D (from its chord D₁D₂ to its top at the lever's mid position),
         # dimensioned left of D₁ on the chord's and the top's extension lines
         y0, y1 = l * math.cos(h), l
@@ -124,8 +133,7 @@ class SynthesisConstruction:
         _seg(cv, (-cv.mm(1.5), y1), (x1 - cv.mm(10), y1), lw=0.5)
         _seg(cv, (x1 - cv.mm(1.5), y0), (x1 - cv.mm(10), y0), lw=0.5)
         xd = x1 - cv.mm(8)
-        cv.ax.annotate("", xy=(xd, y1), xytext=(xd, y0), arrowprops=dict(arrowstyle="<->", lw=0.7, shrinkA=0, shrinkB=0))
-        cv.ax.text(xd - cv.mm(1), (y0 + y1) / 2, "f", fontsize=_FS, ha="right", va="center")
+        _dim(cv, (xd, y0), (xd, y1), "f", dx=-1, dy=0, ha="right", va="center")
 
     # ---------------------------------------------------------------- extents
     @staticmethod
@@ -217,9 +225,7 @@ class SynthesisConstruction:
         yd = y - cv.mm(9)
         for c in (c1, c2):
             _seg(cv, c, (c[0], yd - cv.mm(1.5)), lw=0.5)
-        cv.ax.annotate("", xy=(c2[0], yd), xytext=(c1[0], yd), xycoords="data",
-                       arrowprops=dict(arrowstyle="<->", lw=0.7, shrinkA=0, shrinkB=0))
-        cv.ax.text((c1[0] + c2[0]) / 2, yd + cv.mm(1), "H", fontsize=_FS, ha="center")
+        _dim(cv, (c1[0], yd), (c2[0], yd), "H")
 
     def _slider_crank(self, cv, v, vs):
         c1, c2 = (v["x_C1"], 0.0), (v["x_C2"], 0.0)
