@@ -173,3 +173,34 @@ def test_shaper_ram_stroke_is_the_chord_of_the_lever_end():
     assert xs[1] - xs[0] == pytest.approx(0.4, abs=1e-15)
     assert chk["stroke"] == pytest.approx(xs[1] - xs[0], abs=1e-12) and chk["K"] == pytest.approx(1.5, abs=1e-10)
     assert max(chk["s1"], chk["s2"]) == pytest.approx(xs[1], abs=1e-12)
+
+
+def test_shaper_construction_draws_the_ram_at_both_extremes():
+    """The synthesis drawing of the shaper shows the coupler and the ram in both extreme
+    positions: the ram's points E₁, E₂ lie on the synthesised guide y_E = l(1 + cos(θ/2))/2 (the
+    middle of the sag of the arc of D), the lever's end at the synthesised D₁, D₂, E₁E₂ = H, the
+    coupler length |DE| = 0,3·l, and the labels E₁, E₂ and the dimensions H, f are drawn."""
+    from reportgen.scenes.synthesis import SynthesisConstruction
+    st = load_case(CASES / "synth_shaper.toml")
+    v = st.synthesis.chosen
+    l, h = v["l"], v["theta"] / 2
+    ram = SynthesisConstruction._ram(st)
+    assert ram is not None and (ram["D"], ram["E"]) == ("D", "E")
+    y_E = l * (1 + math.cos(h)) / 2
+    es = [(r["x_E"], r["y_E"]) for r in ram["rows"]]
+    ds = [(r["x_D"], r["y_D"]) for r in ram["rows"]]
+    for (xd, yd), s in zip(ds, (-1.0, 1.0)):
+        assert xd == pytest.approx(s * l * math.sin(h), abs=1e-9) and yd == pytest.approx(l * math.cos(h), abs=1e-9)
+    for p, q in zip(ds, es):
+        assert q[1] == pytest.approx(y_E, abs=1e-9)
+        assert _dist(p, q) == pytest.approx(0.3 * l, abs=1e-12)
+    assert es[1][0] - es[0][0] == pytest.approx(v["H"], abs=1e-9)
+    svg = SynthesisConstruction().draw(st).svg.decode()
+    for name in ("E₁", "E₂", "D₁", "D₂", "<!-- H -->", "<!-- f -->"):
+        assert name in svg
+
+
+def test_slotted_lever_alone_has_no_ram():
+    from reportgen.scenes.synthesis import SynthesisConstruction
+    st = load_case(CASES / "synth_slotted_lever.toml")
+    assert SynthesisConstruction._ram(st) is None

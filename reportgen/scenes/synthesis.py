@@ -1,7 +1,8 @@
 """The synthesis construction at scale (Артоболевский § 25; Попов, Тимофеев, гл. 2): the extreme
 positions of the output link, the chord seen from the crank centre under θ = 180°·(K − 1)/(K + 1),
 the θ-circle(s), every variant's crank centre (numbered), and for the chosen variant the
-extended and folded crank–coupler lines with the crank circle."""
+extended and folded crank–coupler lines with the crank circle; for the shaper (slotted lever,
+coupler, ram) the coupler and the ram at both extremes, the ram's guide, the sag f and the stroke H."""
 from __future__ import annotations
 
 import math
@@ -10,7 +11,8 @@ import numpy as np
 from matplotlib.patches import Arc, Circle
 
 from ..core import synthesis as S
-from .draw import GREY, INK, Canvas
+from ..mechanism.model import FRAME
+from .draw import GREY, INK, Canvas, _block, centre_line
 from .mechanism import Drawing
 
 _FS = 9
@@ -23,6 +25,15 @@ def _pt(cv: Canvas, p, name: str, dx=1.5, dy=1.5, filled=True, color=INK):
 
 def _seg(cv: Canvas, p, q, lw=1.4, ls="-", color=INK, z=3):
     cv.ax.plot([p[0], q[0]], [p[1], q[1]], lw=lw, ls=ls, color=color, zorder=z)
+
+
+def _dim(cv: Canvas, a, b, label: str, **text):
+    """A dimension line a ↔ b with its label at the middle (``text``: offset and alignment)."""
+    cv.ax.annotate("", xy=b, xytext=a, xycoords="data",
+                   arrowprops=dict(arrowstyle="<->", lw=0.7, shrinkA=0, shrinkB=0))
+    dx, dy = text.pop("dx", 0.0), text.pop("dy", 1.0)
+    cv.ax.text((a[0] + b[0]) / 2 + cv.mm(dx), (a[1] + b[1]) / 2 + cv.mm(dy), label, fontsize=_FS,
+               **({"ha": "center"} | text))
 
 
 def _angle(cv: Canvas, o, p, q, label: str, r_mm=10.0):
@@ -46,11 +57,83 @@ class SynthesisConstruction:
     def draw(self, study) -> Drawing:
         sy = study.synthesis
         kind, v, vs = sy.kind, sy.chosen, sy.variants
+        ram = self._ram(study) if kind == "slotted_lever" else None
         pts = self._points(kind, v, vs)
+        if ram:
+            pts += [(r["x_" + ram["E"]], r["y_" + ram["E"]]) for r in ram["rows"]]
         xs, ys = zip(*pts)
         cv = Canvas.fit(xs, ys, avail_w=150, avail_h=170, margin_mm=14)
         getattr(self, "_" + kind)(cv, v, vs)
+        if ram:
+            self._shaper(cv, v, ram)
         return Drawing(cv.svg(), cv.width_mm, cv.mu)
+
+    # ---------------------------------------------------------------- the shaper's ram
+    @staticmethod
+    def _ram(study) -> dict | None:
+        """The shaper six-bar (slotted lever + coupler + ram): when the engine's output is a slider
+        on the frame coupled to the lever's end, the linkage's positions at the two extremes
+        found by the check (the roots of the ram's first analog), if the lever's end there is at
+        the synthesised points D₁, D₂ (the case's frame is the synthesis frame)."""
+        sy = study.synthesis
+        chk = sy.check
+        if not chk or chk.get("extremes") != 2 or not chk["column"].startswith("s_"):
+            return None
+        mech = study.mechanism
+        j = next((p for p in mech.prismatic if p.name == chk["column"][2:] and p.links[0] == FRAME), None)
+        if j is None:
+            return None
+        slider, e = j.links[1], j.point
+        rod = next((r for r in mech.joints if r.kind == "R" and r.point == e and slider in r.links), None)
+        if rod is None:
+            return None
+        coupler = next(l for l in rod.links if l != slider)
+        d = next((r.point for r in mech.joints if r.kind == "R" and coupler in r.links and r.point != e), None)
+        if d is None:
+            return None
+        rows = [row for _, row in study.at(np.array([chk["q1"], chk["q2"]])).iterrows()]
+        v = sy.chosen
+        h, l = v["theta"] / 2, v["l"]
+        ends = {(-l * math.sin(h), l * math.cos(h)), (l * math.sin(h), l * math.cos(h))}
+        got = [(r["x_" + d], r["y_" + d]) for r in rows]
+        if not all(min(math.hypot(x - p[0], y - p[1]) for p in ends) < 1e-9 * l for x, y in got):
+            return None
+        rows.sort(key=lambda r: r["x_" + d])        # D₁ (left) first, as in the construction
+        return dict(rows=rows, D=d, E=e, joint=j, mech=mech)
+
+    @staticmethod
+    def _shaper(cv, v, ram):
+        """Both extreme positions of the lever's end D with the coupler DE and the ram E on its
+        guide (the ram's axis dash-dot, ГОСТ 2.303 thin); the arc of D with its sag
+        f = l·(1 − cos(θ/2)) and the ram's stroke H = E₁E₂ dimensioned."""
+        h, l = v["theta"] / 2, v["l"]
+        rows, d, e, j = ram["rows"], ram["D"], ram["E"], ram["joint"]
+        cv.ax.add_patch(Arc((0.0, 0.0), 2 * l, 2 * l, theta1=90 - math.degrees(h), theta2=90 + math.degrees(h),
+                            lw=0.8, ls="--", color=INK))
+        ux, uy = math.cos(j.angle), math.sin(j.angle)
+        es = [(r["x_" + e], r["y_" + e]) for r in rows]
+        s = [(p[0] - es[0][0]) * ux + (p[1] - es[0][1]) * uy for p in es]
+        lo, hi = min(s) - cv.mm(16), max(s) + cv.mm(16)
+        centre_line(cv, es[0][0] + ux * lo, es[0][1] + uy * lo, es[0][0] + ux * hi, es[0][1] + uy * hi)
+        for k, (r, p) in enumerate(zip(rows, es), 1):
+            _seg(cv, (r["x_" + d], r["y_" + d]), p, lw=1.4)
+            _block(cv, p[0], p[1], j.angle, INK, 1.4, 1.0, 4)
+            _pt(cv, p, f"{e}{'₁₂'[k - 1]}", dx=5, dy=2)
+        # the ram's stroke H between its extreme positions, above the guide
+        nx, ny = -uy, ux
+        off = cv.mm(12)
+        a, b = [(p[0] + nx * off, p[1] + ny * off) for p in es]
+        for p, q in zip(es, (a, b)):
+            _seg(cv, (p[0] + nx * cv.mm(3.5), p[1] + ny * cv.mm(3.5)), (q[0] + nx * cv.mm(1.5), q[1] + ny * cv.mm(1.5)), lw=0.5)
+        _dim(cv, a, b, "H")
+        # the sag f of the arc of D (from its chord D₁D₂ to its top at the lever's mid position),
+        # dimensioned left of D₁ on the chord's and the top's extension lines
+        y0, y1 = l * math.cos(h), l
+        x1 = -l * math.sin(h)
+        _seg(cv, (-cv.mm(1.5), y1), (x1 - cv.mm(10), y1), lw=0.5)
+        _seg(cv, (x1 - cv.mm(1.5), y0), (x1 - cv.mm(10), y0), lw=0.5)
+        xd = x1 - cv.mm(8)
+        _dim(cv, (xd, y0), (xd, y1), "f", dx=-1, dy=0, ha="right", va="center")
 
     # ---------------------------------------------------------------- extents
     @staticmethod
@@ -142,9 +225,7 @@ class SynthesisConstruction:
         yd = y - cv.mm(9)
         for c in (c1, c2):
             _seg(cv, c, (c[0], yd - cv.mm(1.5)), lw=0.5)
-        cv.ax.annotate("", xy=(c2[0], yd), xytext=(c1[0], yd), xycoords="data",
-                       arrowprops=dict(arrowstyle="<->", lw=0.7, shrinkA=0, shrinkB=0))
-        cv.ax.text((c1[0] + c2[0]) / 2, yd + cv.mm(1), "H", fontsize=_FS, ha="center")
+        _dim(cv, (c1[0], yd), (c2[0], yd), "H")
 
     def _slider_crank(self, cv, v, vs):
         c1, c2 = (v["x_C1"], 0.0), (v["x_C2"], 0.0)
