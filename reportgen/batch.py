@@ -49,6 +49,7 @@ class Outcome:
     error: str = ""
     worker: int = 0  # process id of the worker that built it
     peak_rss_mb: float = 0.0  # that worker's peak memory after this variant
+    cpu_seconds: float = 0.0  # CPU time (user + sys) of the worker for this variant
 
 
 MAX_VARIANTS = 1000  # rows of one table
@@ -187,18 +188,20 @@ def _init_worker() -> None:
     matplotlib and loaded by WeasyPrint, the templates compiled. Every variant a worker
     builds afterwards reuses them, the parsed formula images (see ``render._layout``,
     :class:`_TouchedCache`) and the parsed mathtext labels (:func:`_share_mathtext`)."""
-    from .report import assemble  # noqa: F401  (sections, formulas, ziamath)
-    from .report import render
     from .report.parallel import set_note_jobs
-    from .style import mplstyle
-    from .warmup import warmup
+    from .warmup import warm_report, warmup
     set_note_jobs(1)  # the workers are the parallelism: no pool of layout processes inside one
-    mplstyle.apply_style()
-    _share_mathtext()
-    render._IMAGE_CACHE = _TouchedCache(render._IMAGE_CACHE)
-    render._font_config()
-    render._get_env()
+    warm_report()
+    _share_between_variants()
     warmup()
+
+
+def _share_between_variants() -> None:
+    """Caches of this process kept from one variant to the next (idempotent)."""
+    from .report import render
+    _share_mathtext()
+    if not isinstance(render._IMAGE_CACHE, _TouchedCache):
+        render._IMAGE_CACHE = _TouchedCache(render._IMAGE_CACHE)
 
 
 MATHTEXT_CACHE = 2048  # parsed labels kept by a worker (ws000: about 160 distinct per note)
@@ -281,6 +284,7 @@ def _peak_rss_mb() -> float:
 def run_variant(v: Variant, out_dir: str, formats: tuple[str, ...], sections, key: bool = False,
                 sheets: bool = False) -> Outcome:
     t0 = time.perf_counter()
+    c0 = time.process_time()
     try:
         from .analysis.study import Study
         from .report.assemble import build_report
@@ -305,6 +309,7 @@ def run_variant(v: Variant, out_dir: str, formats: tuple[str, ...], sections, ke
     except Exception as e:  # one broken variant must not stop the class
         out = Outcome(v.name, False, "", [], time.perf_counter() - t0, f"внутренняя ошибка: {type(e).__name__}: {e}")
     _after_variant()
+    out.cpu_seconds = round(time.process_time() - c0, 2)
     out.worker = os.getpid()
     out.peak_rss_mb = _peak_rss_mb()
     return out
@@ -353,6 +358,7 @@ def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
         if jobs == 1:
             saved = parallel._JOBS
             set_note_jobs(1)  # --jobs 1: one process in all
+        _share_between_variants()
         try:
             for v in variants:
                 results.append(run_variant(v, str(out_dir), formats, sections, key, sheets))
@@ -382,6 +388,8 @@ def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
     manifest = {"tool": "reportgen", "variants": [asdict(r) for r in results],
                 "ok": sum(r.ok for r in results), "failed": sum(not r.ok for r in results),
                 "workers": [{"pid": pid, "variants": sum(r.worker == pid for r in results),
-                             "peak_rss_mb": peak} for pid, peak in sorted(peaks.items())]}
+                             "peak_rss_mb": peak,
+                             "cpu_seconds": round(sum(r.cpu_seconds for r in results if r.worker == pid), 2)}
+                            for pid, peak in sorted(peaks.items())]}
     atomic_write(out_dir / "manifest.json", json.dumps(manifest, ensure_ascii=False, indent=2) + "\n")
     return results

@@ -169,9 +169,10 @@ def _check_linkage(study) -> None:
 
 
 def cmd_warmup(args) -> int:
-    from .warmup import warmup
+    from .warmup import warm_report, warmup
     warmup()
-    print("Ядра numba скомпилированы и сохранены в кэше.")
+    warm_report()
+    print("Ядра numba скомпилированы и сохранены в кэше; шрифты и шаблоны отчёта загружены.")
     return 0
 
 
