@@ -359,7 +359,10 @@ def main(argv=None) -> None:
         if "pdf" in parts:
             res["pdf"] = bench_pdf_vs_plain() | {"command": "python bench/bench_cli.py --only pdf"}
         if "fresh" in parts:
-            res["fresh"] = bench_fresh(tmp)
+            try:
+                res["fresh"] = bench_fresh(tmp)
+            except (SystemExit, subprocess.CalledProcessError, OSError) as e:  # keep the other figures
+                print(f"fresh: не измерено: {e}", file=sys.stderr)
     res["load_average_after"] = [round(x, 2) for x in os.getloadavg()]
     res["date"] = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
     dest.parent.mkdir(parents=True, exist_ok=True)
