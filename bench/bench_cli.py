@@ -232,7 +232,8 @@ def write_doc(res: dict) -> Path:
         r = res[key]
         cpu = r.get("cpu_median_s", r.get("cpu_s"))
         load = r.get("load_average")
-        extra = (f"{_fmt(cpu)} с" if cpu is not None else "—") + (f" (load {_fmt(load[0])})" if load else "")
+        when = ([f"load {_fmt(load[0])}"] if load else []) + ([r["date"]] if r.get("date") else [])
+        extra = (f"{_fmt(cpu)} с" if cpu is not None else "—") + (f" ({', '.join(when)})" if when else "")
         rows.append(f"| {name} | {_fmt(value)} с | {extra} | ≤ {_fmt(target)} с | {ok} | `{command}` |")
 
     if "help" in res:
@@ -254,7 +255,8 @@ def write_doc(res: dict) -> Path:
         r = res["fresh"]
         rows.append(f"| `make report` на новой копии (установка {_fmt(f['setup_s'])} с + первая сборка "
                     f"{_fmt(f['first_build_s'])} с) | {_fmt(f['make_report_s'])} с | "
-                    f"{_fmt(f['setup_cpu_s'] + f['first_build_cpu_s'])} с (load {_fmt(r['load_average'][0])}) | "
+                    f"{_fmt(f['setup_cpu_s'] + f['first_build_cpu_s'])} с (load {_fmt(r['load_average'][0])}"
+                    f"{', ' + r['date'] if r.get('date') else ''}) | "
                     f"≤ {_fmt(TARGETS['fresh'])} с | {'да' if f['make_report_s'] <= TARGETS['fresh'] else 'нет'} | "
                     f"`{f['command']}` |")
         ratio = f.get("first_over_warm") or 0.0
@@ -272,7 +274,7 @@ def write_doc(res: dict) -> Path:
         "(`bench/results/build.json`).",
         "",
         f"Машина: {m['nproc']} ядра, {m['cpu']}, ОЗУ {_fmt(m['ram_gb'])} ГБ; Python {m['python']},",
-        f"WeasyPrint {m['weasyprint']}; {m['platform']}. Дата замера: {res.get('date', '')}.",
+        f"WeasyPrint {m['weasyprint']}; {m['platform']}. Дата последнего замера: {res.get('date', '')} (у каждой строки — своя дата в столбце ЦП).",
         f"Средняя загрузка (load average 1/5/15 мин) до замера: {res['load_average_before']}, после: "
         f"{res['load_average_after']}."
         + (" **Замер сделан под нагрузкой** (машину делили другие процессы): времена завышены."
@@ -365,6 +367,9 @@ def main(argv=None) -> None:
                 print(f"fresh: не измерено: {e}", file=sys.stderr)
     res["load_average_after"] = [round(x, 2) for x in os.getloadavg()]
     res["date"] = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+    for part in parts:  # the date of each figure: a partial run keeps the older ones
+        if isinstance(res.get(part), dict):
+            res[part]["date"] = res["date"]
     dest.parent.mkdir(parents=True, exist_ok=True)
     dest.write_text(json.dumps(res, ensure_ascii=False, indent=2) + "\n", encoding="utf-8")
     print(json.dumps({k: v for k, v in res.items() if k != "machine"}, ensure_ascii=False, indent=1))
