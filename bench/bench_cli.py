@@ -2,13 +2,17 @@
 
 Usage (from the repository root; ``make bench`` runs it)::
 
-    python bench/bench_cli.py            # everything (about 10 minutes on 2 cores)
-    python bench/bench_cli.py --only help,export,build,first,pdf
+    python bench/bench_cli.py            # everything (about 10 minutes on 2 quiet cores)
+    python bench/bench_cli.py --only help,export,build,first,batch,pdf,fresh
     python bench/bench_cli.py --batch-variants 10   # a smaller class
 
 Writes ``bench/results/cli.json`` and ``docs/performance.md``. Every command runs in a fresh
 interpreter (``python -m reportgen.cli …`` with this checkout first on ``sys.path``), so the
-figures include imports, numba's on-disk cache and the fonts, as a user sees them.
+figures include imports, numba's on-disk cache and the fonts, as a user sees them. ``fresh``
+clones this checkout into a temporary folder and runs ``make setup`` there (a new .venv from
+PyPI with pip's cache off, new user caches), then the first and a second ``reportgen build`` of
+the default case: ``make report`` on a fresh machine, timed in its two steps (the Debian
+packages of ``scripts/setup.sh`` are installed once per machine and are not re-installed).
 """
 from __future__ import annotations
 
@@ -28,8 +32,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 CASE = "cases/ws000_six_bar.toml"
 CLASS = "cases/class_six_bar.csv"
-PARTS = ("help", "export", "build", "first", "batch", "pdf")
-TARGETS = {"help": 0.5, "export": 2.0, "build": 8.0, "first": 15.0, "batch": 120.0, "pdf_ratio": 1.3}
+DEFAULT_CASE = "cases/ws000_six_bar_corrected.toml"  # what `make report` builds (Makefile CASE)
+PARTS = ("help", "export", "build", "first", "batch", "pdf", "fresh")
+TARGETS = {"help": 0.5, "export": 2.0, "build": 8.0, "first": 15.0, "batch": 120.0, "pdf_ratio": 1.3,
+           "fresh": 90.0, "first_over_warm": 2.0}
 
 
 def machine() -> dict:
@@ -55,6 +61,7 @@ def machine() -> dict:
 
 def _env(**extra) -> dict:
     env = dict(os.environ, PYTHONPATH=str(ROOT), CI="1")
+    env.pop("PYTHONDONTWRITEBYTECODE", None)  # a user's Python keeps the bytecode of reportgen
     env.update(extra)
     return env
 
@@ -103,13 +110,59 @@ def bench_batch(tmp: Path, n: int) -> dict:
     load = os.getloadavg()[0]
     dt = run(args)
     m = json.loads((out / "manifest.json").read_text(encoding="utf-8"))
+    # The workers are children of multiprocessing's fork server, not counted in RUSAGE_CHILDREN
+    # of the command: their CPU time per variant is in the manifest (cpu_seconds).
+    cpu = [v.get("cpu_seconds", 0.0) for v in m["variants"] if v["ok"]]
     return {"variants": len(good), "ok": m["ok"], "wall_s": round(dt, 1), "jobs": 2,
-            # CPU not recorded: the workers are children of multiprocessing's fork server, whose
-            # children are not counted in RUSAGE_CHILDREN of the command
             "load_average": [round(load, 2), round(os.getloadavg()[0], 2)],
             "per_variant_s": round(dt / max(1, len(good)), 2),
+            "cpu_s": round(sum(cpu) + CPU[-1], 1),  # the workers' variants + the command itself
+            "variant_cpu_median_s": round(statistics.median(cpu), 2) if cpu else None,
+            "variant_cpu_first_s": cpu[0] if cpu else None,
             "workers": m.get("workers", []),
             "command": f"reportgen batch <первые {len(good)} строк {CLASS}> --base {CASE} -o out --jobs 2"}
+
+
+def _timed(cmd: list[str], cwd: Path, env: dict) -> tuple[float, float]:
+    """Wall and CPU seconds (user + sys of the command and its children) of ``cmd``."""
+    import resource
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    p = subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
+    dt = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if p.returncode != 0:
+        raise SystemExit(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stdout[-2000:]}\n{p.stderr[-4000:]}")
+    return dt, after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime
+
+
+def bench_fresh(tmp: Path) -> dict:
+    """``make report`` on a fresh clone: ``make setup`` (new .venv, every wheel downloaded with
+    pip's cache off, numba kernels compiled, font list built), then the first ``reportgen
+    build`` of the default case, then a second one (warm) for the ratio."""
+    clone = tmp / "fresh"
+    subprocess.run(["git", "clone", "-q", str(ROOT), str(clone)], check=True)
+    cache = tmp / "fresh-cache"  # a new user: no matplotlib font list, formulas, split points
+    cache.mkdir()
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("PYTHONPATH", "VIRTUAL_ENV", "PYTHONDONTWRITEBYTECODE", "REPORTGEN_CACHE", "MPLCONFIGDIR",
+                        "NUMBA_CACHE_DIR", "SOURCE_DATE_EPOCH")}
+    env.update(XDG_CACHE_HOME=str(cache), PIP_NO_CACHE_DIR="1", CI="1")
+    env["PATH"] = os.pathsep.join(p for p in env.get("PATH", "").split(os.pathsep) if ".venv" not in p)
+    load0 = os.getloadavg()[0]
+    setup_s, setup_cpu = _timed(["make", "setup"], clone, env)
+    build = [str(clone / ".venv" / "bin" / "reportgen"), "build", DEFAULT_CASE]
+    first_s, first_cpu = _timed(build, clone, env)
+    warm_s, warm_cpu = _timed(build, clone, env)
+    return {"setup_s": round(setup_s, 1), "setup_cpu_s": round(setup_cpu, 1),
+            "first_build_s": round(first_s, 1), "first_build_cpu_s": round(first_cpu, 1),
+            "warm_build_s": round(warm_s, 1), "warm_build_cpu_s": round(warm_cpu, 1),
+            "make_report_s": round(setup_s + first_s, 1),
+            "first_over_warm": round(first_s / warm_s, 2) if warm_s else None,
+            "load_average": [round(load0, 2), round(os.getloadavg()[0], 2)],
+            "case": DEFAULT_CASE,
+            "command": "git clone . /tmp/x && cd /tmp/x && PIP_NO_CACHE_DIR=1 XDG_CACHE_HOME=$(mktemp -d) "
+                       "/usr/bin/time make report"}
 
 
 def bench_pdf_vs_plain() -> dict:
@@ -179,7 +232,8 @@ def write_doc(res: dict) -> Path:
         r = res[key]
         cpu = r.get("cpu_median_s", r.get("cpu_s"))
         load = r.get("load_average")
-        extra = (f"{_fmt(cpu)} с" if cpu is not None else "—") + (f" (load {_fmt(load[0])})" if load else "")
+        when = ([f"load {_fmt(load[0])}"] if load else []) + ([r["date"]] if r.get("date") else [])
+        extra = (f"{_fmt(cpu)} с" if cpu is not None else "—") + (f" ({', '.join(when)})" if when else "")
         rows.append(f"| {name} | {_fmt(value)} с | {extra} | ≤ {_fmt(target)} с | {ok} | `{command}` |")
 
     if "help" in res:
@@ -196,16 +250,31 @@ def write_doc(res: dict) -> Path:
     if "batch" in res:
         b = res["batch"]
         row(f"пакет из {b['variants']} вариантов, 2 процесса", "batch", b["wall_s"], TARGETS["batch"], b["command"])
+    if "fresh" in res:
+        f = res["fresh"]
+        r = res["fresh"]
+        rows.append(f"| `make report` на новой копии (установка {_fmt(f['setup_s'])} с + первая сборка "
+                    f"{_fmt(f['first_build_s'])} с) | {_fmt(f['make_report_s'])} с | "
+                    f"{_fmt(f['setup_cpu_s'] + f['first_build_cpu_s'])} с (load {_fmt(r['load_average'][0])}"
+                    f"{', ' + r['date'] if r.get('date') else ''}) | "
+                    f"≤ {_fmt(TARGETS['fresh'])} с | {'да' if f['make_report_s'] <= TARGETS['fresh'] else 'нет'} | "
+                    f"`{f['command']}` |")
+        ratio = f.get("first_over_warm") or 0.0
+        rows.append(f"| первая сборка после установки / повторная ({f['case']}) | {_fmt(f['first_build_s'])} с / "
+                    f"{_fmt(f['warm_build_s'])} с = {_fmt(ratio)} | {_fmt(f['first_build_cpu_s'])} с / "
+                    f"{_fmt(f['warm_build_cpu_s'])} с | ≤ {_fmt(TARGETS['first_over_warm'])} | "
+                    f"{'да' if ratio <= TARGETS['first_over_warm'] else 'нет'} | то же, затем ещё раз "
+                    f"`.venv/bin/reportgen build {f['case']}` |")
     lines = [
-        "# Производительность",
+        BEGIN,
         "",
-        "Все цифры ниже измерены командой `make bench` (`python bench/bench_cli.py`; результаты в",
+        "Все цифры этой таблицы измерены командой `make bench` (`python bench/bench_cli.py`; результаты в",
         "`bench/results/cli.json`), каждая команда запускается в новом процессе `python -m reportgen.cli`,",
         "как её запускает пользователь. Поэтапные времена внутри процесса: `python bench/bench_build.py`",
         "(`bench/results/build.json`).",
         "",
         f"Машина: {m['nproc']} ядра, {m['cpu']}, ОЗУ {_fmt(m['ram_gb'])} ГБ; Python {m['python']},",
-        f"WeasyPrint {m['weasyprint']}; {m['platform']}. Дата замера: {res.get('date', '')}.",
+        f"WeasyPrint {m['weasyprint']}; {m['platform']}. Дата последнего замера: {res.get('date', '')} (у каждой строки — своя дата в столбце ЦП).",
         f"Средняя загрузка (load average 1/5/15 мин) до замера: {res['load_average_before']}, после: "
         f"{res['load_average_after']}."
         + (" **Замер сделан под нагрузкой** (машину делили другие процессы): времена завышены."
@@ -216,8 +285,13 @@ def write_doc(res: dict) -> Path:
         *rows,
     ]
     if "batch" in res and res["batch"].get("workers"):
-        peaks = ", ".join(f"{_fmt(w['peak_rss_mb'])} МБ ({w['variants']} вар.)" for w in res["batch"]["workers"])
+        b = res["batch"]
+        peaks = ", ".join(f"{_fmt(w['peak_rss_mb'])} МБ ({w['variants']} вар.)" for w in b["workers"])
         lines += ["", f"Пиковая память рабочих процессов пакета (из `manifest.json`, поле `workers`): {peaks}."]
+        if b.get("variant_cpu_median_s") is not None:
+            lines += [f"Процессорное время одного варианта в рабочем процессе (`cpu_seconds` в `manifest.json`): "
+                      f"медиана {_fmt(b['variant_cpu_median_s'])} с, первый вариант {_fmt(b['variant_cpu_first_s'])} с; "
+                      f"всего {_fmt(b['cpu_s'])} с ЦП за {_fmt(b['wall_s'])} с стен."]
     if "pdf" in res:
         p = res["pdf"]
         lines += ["", "PDF записки ws000 против WeasyPrint на простом документе того же объёма (только текст, те же",
@@ -229,12 +303,21 @@ def write_doc(res: dict) -> Path:
                   f"отношение {_fmt(p['ratio'])} (цель ≤ {_fmt(TARGETS['pdf_ratio'])}). "
                   + (f"Load average при замере: {_fmt(p['load_average'][0])}. " if p.get("load_average") else "")
                   + f"Команда: `{p['command']}`."]
-    if res.get("notes"):
-        lines += ["", *res["notes"]]
-    lines.append("")
+    lines += ["", END]
     dest = ROOT / "docs" / "performance.md"
-    dest.write_text("\n".join(lines), encoding="utf-8")
+    text = dest.read_text(encoding="utf-8") if dest.exists() else "# Производительность\n\n"
+    block = "\n".join(lines)
+    if BEGIN in text and END in text:  # only this generated block is replaced, the rest is kept
+        head, rest = text.split(BEGIN, 1)
+        text = head + block + rest.split(END, 1)[1]
+    else:
+        text = text.rstrip("\n") + "\n\n" + block + "\n"
+    dest.write_text(text, encoding="utf-8")
     return dest
+
+
+BEGIN = "<!-- bench/bench_cli.py: начало (этот блок пишет `make bench`) -->"
+END = "<!-- bench/bench_cli.py: конец -->"
 
 
 def main(argv=None) -> None:
@@ -277,8 +360,16 @@ def main(argv=None) -> None:
             res["batch"] = bench_batch(tmp, a.batch_variants)
         if "pdf" in parts:
             res["pdf"] = bench_pdf_vs_plain() | {"command": "python bench/bench_cli.py --only pdf"}
+        if "fresh" in parts:
+            try:
+                res["fresh"] = bench_fresh(tmp)
+            except (SystemExit, subprocess.CalledProcessError, OSError) as e:  # keep the other figures
+                print(f"fresh: не измерено: {e}", file=sys.stderr)
     res["load_average_after"] = [round(x, 2) for x in os.getloadavg()]
     res["date"] = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+    for part in parts:  # the date of each figure: a partial run keeps the older ones
+        if isinstance(res.get(part), dict):
+            res[part]["date"] = res["date"]
     dest.parent.mkdir(parents=True, exist_ok=True)
     dest.write_text(json.dumps(res, ensure_ascii=False, indent=2) + "\n", encoding="utf-8")
     print(json.dumps({k: v for k, v in res.items() if k != "machine"}, ensure_ascii=False, indent=1))

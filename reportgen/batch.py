@@ -7,6 +7,7 @@ atomically; the manifest lists variant, input hash, output files and seconds.
 from __future__ import annotations
 
 import csv
+import functools
 import io
 import json
 import multiprocessing
@@ -48,6 +49,7 @@ class Outcome:
     error: str = ""
     worker: int = 0  # process id of the worker that built it
     peak_rss_mb: float = 0.0  # that worker's peak memory after this variant
+    cpu_seconds: float = 0.0  # CPU time (user + sys) of the worker for this variant
 
 
 MAX_VARIANTS = 1000  # rows of one table
@@ -184,17 +186,93 @@ def _init_worker() -> None:
     """Warm-up, once per worker process (the pool keeps its workers for the whole class):
     heavy imports, numba kernels from the on-disk cache, the report's fonts registered with
     matplotlib and loaded by WeasyPrint, the templates compiled. Every variant a worker
-    builds afterwards reuses them, and the parsed formula images (see ``render._layout``)."""
-    from .report import assemble  # noqa: F401  (sections, formulas, ziamath)
-    from .report import render
+    builds afterwards reuses them, the parsed formula images (see ``render._layout``,
+    :class:`_TouchedCache`) and the parsed mathtext labels (:func:`_share_mathtext`)."""
     from .report.parallel import set_note_jobs
-    from .style import mplstyle
-    from .warmup import warmup
+    from .warmup import warm_report, warmup
     set_note_jobs(1)  # the workers are the parallelism: no pool of layout processes inside one
-    mplstyle.apply_style()
-    render._font_config()
-    render._get_env()
+    warm_report()
+    _share_between_variants()
     warmup()
+
+
+def _share_between_variants() -> None:
+    """Caches of this process kept from one variant to the next (idempotent)."""
+    from .report import render
+    _share_mathtext()
+    if not isinstance(render._IMAGE_CACHE, _TouchedCache):
+        render._IMAGE_CACHE = _TouchedCache(render._IMAGE_CACHE)
+
+
+MATHTEXT_CACHE = 2048  # parsed labels kept by a worker (ws000: about 160 distinct per note)
+
+
+def _share_mathtext() -> None:
+    """matplotlib keeps the last 50 parsed mathtext strings (``MathTextParser._parse_cached``,
+    an ``lru_cache(50)``); a note of ws000 draws about 160 distinct labels 440 times, so most
+    are parsed again, in every variant. A larger cache of the same function keeps them for the
+    worker's life: the labels of the next variant are the same strings (ω₂, ε₃, V_B …), and the
+    parse of a string does not depend on anything but the cache key (same results as before)."""
+    from matplotlib import mathtext
+
+    cached = mathtext.MathTextParser._parse_cached
+    info = getattr(cached, "cache_info", None)
+    if info is not None and info().maxsize is not None and info().maxsize < MATHTEXT_CACHE:
+        mathtext.MathTextParser._parse_cached = functools.lru_cache(MATHTEXT_CACHE)(cached.__wrapped__)
+
+
+class _TouchedCache(dict):
+    """WeasyPrint's image cache of a batch worker (a dict keyed by the image's ``data:`` URL)
+    that remembers which keys the current variant used. After a variant, :meth:`keep_touched`
+    drops what it did not use: the previous variant's figures (never seen again, the geometry
+    differs) go, the formulas every variant shows stay (ws000: 178 entries after every variant).
+    Without it the cache holds the parsed figures of every variant built so far, up to 2000
+    entries, and is then emptied whole (formulas too)."""
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        self.touched: set = set(self)
+
+    def __contains__(self, key):
+        hit = super().__contains__(key)
+        if hit:
+            self.touched.add(key)
+        return hit
+
+    def __getitem__(self, key):
+        self.touched.add(key)
+        return super().__getitem__(key)
+
+    def __setitem__(self, key, value):
+        self.touched.add(key)
+        super().__setitem__(key, value)
+
+    def get(self, key, default=None):
+        if super().__contains__(key):
+            self.touched.add(key)
+        return super().get(key, default)
+
+    def keep_touched(self) -> int:
+        """Drop the entries not used since the last call; returns how many were dropped."""
+        stale = [k for k in self if k not in self.touched]
+        for k in stale:
+            del self[k]
+        self.touched = set()
+        return len(stale)
+
+
+def _after_variant() -> None:
+    """Release what one variant left behind in a kept worker: unused parsed images, closed
+    matplotlib figures, WeasyPrint documents held by reference cycles."""
+    import gc
+
+    from .report import render
+    cache = render._IMAGE_CACHE
+    if isinstance(cache, _TouchedCache):
+        cache.keep_touched()
+    if "matplotlib.pyplot" in sys.modules:
+        sys.modules["matplotlib.pyplot"].close("all")
+    gc.collect()
 
 
 def _peak_rss_mb() -> float:
@@ -207,6 +285,7 @@ def _peak_rss_mb() -> float:
 def run_variant(v: Variant, out_dir: str, formats: tuple[str, ...], sections, key: bool = False,
                 sheets: bool = False) -> Outcome:
     t0 = time.perf_counter()
+    c0 = time.process_time()
     try:
         from .analysis.study import Study
         from .report.assemble import build_report
@@ -230,6 +309,8 @@ def run_variant(v: Variant, out_dir: str, formats: tuple[str, ...], sections, ke
         out = Outcome(v.name, False, "", [], time.perf_counter() - t0, str(e))
     except Exception as e:  # one broken variant must not stop the class
         out = Outcome(v.name, False, "", [], time.perf_counter() - t0, f"внутренняя ошибка: {type(e).__name__}: {e}")
+    _after_variant()
+    out.cpu_seconds = round(time.process_time() - c0, 2)
     out.worker = os.getpid()
     out.peak_rss_mb = _peak_rss_mb()
     return out
@@ -278,6 +359,7 @@ def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
         if jobs == 1:
             saved = parallel._JOBS
             set_note_jobs(1)  # --jobs 1: one process in all
+        _share_between_variants()
         try:
             for v in variants:
                 results.append(run_variant(v, str(out_dir), formats, sections, key, sheets))
@@ -307,6 +389,8 @@ def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
     manifest = {"tool": "reportgen", "variants": [asdict(r) for r in results],
                 "ok": sum(r.ok for r in results), "failed": sum(not r.ok for r in results),
                 "workers": [{"pid": pid, "variants": sum(r.worker == pid for r in results),
-                             "peak_rss_mb": peak} for pid, peak in sorted(peaks.items())]}
+                             "peak_rss_mb": peak,
+                             "cpu_seconds": round(sum(r.cpu_seconds for r in results if r.worker == pid), 2)}
+                            for pid, peak in sorted(peaks.items())]}
     atomic_write(out_dir / "manifest.json", json.dumps(manifest, ensure_ascii=False, indent=2) + "\n")
     return results

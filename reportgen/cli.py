@@ -173,9 +173,16 @@ def _check_linkage(study) -> None:
 
 
 def cmd_warmup(args) -> int:
+    import subprocess
     from .warmup import warmup
+    # the report stack (font list, fonts, templates, bytecode) is loaded by a second process while
+    # this one compiles the numba kernels: the two do not depend on each other
+    report = subprocess.Popen([sys.executable, "-c", "from reportgen.warmup import warm_report; warm_report()"])
     warmup()
-    print("Ядра numba скомпилированы и сохранены в кэше.")
+    if report.wait() != 0:
+        print("Не удалось загрузить шрифты и шаблоны отчёта (см. сообщение выше).", file=sys.stderr)
+        return 1
+    print("Ядра numba скомпилированы и сохранены в кэше; шрифты и шаблоны отчёта загружены.")
     return 0
 
 

