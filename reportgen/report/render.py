@@ -514,7 +514,13 @@ def _get_env() -> jinja2.Environment:
 
 
 _REF = re.compile(r'<a class="ref" href="#([^"]+)"></a>')
-_REF_AFTER_WORD = re.compile(r'(\w) <a class="ref" href="#([^"]+)">')
+# (a pattern that starts with a literal is found by a fast scan; the word character before the
+# space is checked in the replacement)
+_REF_AFTER_WORD = re.compile(r' <a class="ref" href="#([^"]+)">')
+_WORD_CHAR = re.compile(r"\w")
+# a data: URL (an image or an embedded font) and its stand-in while the text is processed
+_DATA_URL = re.compile(r"data:[^\"')\s<>]+")
+_STASHED = re.compile("\x00(\\d+)\x00")
 _TAG_SPLIT = re.compile(r"(<[^>]*>)")
 _SUP_RUN = re.compile(r"[⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺]+")
 _NB = r"(?:&nbsp;|&#160;|\u00a0)"
@@ -544,12 +550,39 @@ def _fill_refs(html: str, targets: dict[str, str]) -> str:
         return f'<a class="ref" href="#{tid}">{_html.escape(targets[tid])}</a>'
 
     out = _REF.sub(repl, html)
+
     # «в таблице 1.1»: a no-break space between the word and the number, as the
     # first character of the link (see _typography for why not before it)
-    out = _REF_AFTER_WORD.sub(r'\1<a class="ref" href="#\2">&#160;', out)
+    def after_word(m):
+        i = m.start()
+        if i and _WORD_CHAR.match(out, i - 1):
+            return f'<a class="ref" href="#{m.group(1)}">&#160;'
+        return m.group(0)
+
+    out = _REF_AFTER_WORD.sub(after_word, out)
     if missing:
         raise KeyError("Ссылки на несуществующие объекты: " + ", ".join(sorted(set(missing))))
     return out
+
+
+def _stash_data_urls(html: str) -> tuple[str, list[str]]:
+    """``data:`` URLs (images, embedded fonts: most of the bytes of a note) replaced by short
+    stand-ins while references and typography are processed, which look at the text only:
+    their regular expressions then scan a tenth of the bytes. Nothing is stashed when the
+    HTML holds the stand-in's NUL character already."""
+    if "\x00" in html:
+        return html, []
+    urls: list[str] = []
+
+    def stash(m):
+        urls.append(m.group(0))
+        return f"\x00{len(urls) - 1}\x00"
+
+    return _DATA_URL.sub(stash, html), urls
+
+
+def _restore_data_urls(html: str, urls: list[str]) -> str:
+    return _STASHED.sub(lambda m: urls[int(m.group(1))], html) if urls else html
 
 
 def _typography(html: str) -> str:
@@ -651,8 +684,9 @@ class _Views:
         ctx.update(css=Markup(css), front=front, toc_pages=toc_pages,
                    body=ctx["body"] if body is None else body)
         html = env.get_template("base.html.j2").render(**ctx)
+        html, urls = _stash_data_urls(html)
         html = _fill_refs(html, self.builder.targets)
-        return _typography(html)
+        return _restore_data_urls(_typography(html), urls)
 
 
 def _views(report: Report, *, for_print: bool, splits=None) -> _Views:
