@@ -9,20 +9,24 @@ written to PDF there, and joined in order:
 
 1. every body part is laid out and written without a page number in its footer
    (its first page number is not known until the parts before it are laid out);
-2. the front matter (title page, assignment, СОДЕРЖАНИЕ) is laid out in the
-   parent meanwhile with placeholder numbers, to learn its page count; then
-   again with the contents' page numbers as text (``data-page``), taken from
-   the anchors of the headings in the parts;
-3. the page numbers of the body pages come from a third small document with as
-   many empty pages as the note, the same ``@page`` rules and the usual
-   ``counter(page)`` footer: each of its pages is drawn over the note's page of
-   the same number;
+2. the title page with the assignment is one more such part (laid out once), and
+   СОДЕРЖАНИЕ is laid out meanwhile with placeholder numbers, to learn its page
+   count; then again with the page numbers of the headings as text
+   (``data-page``), taken from the anchors of the headings in the parts;
+3. the page numbers come from a third small document with as many empty pages
+   as the note, the same ``@page`` rules (no number on the first page) and the
+   usual ``counter(page)`` footer: each of its pages is drawn over the note's
+   page of the same number;
 4. internal links (contents entries, cross-references) and the outline
    (bookmarks, from WeasyPrint's own bookmark tree of each part) are written by
    pypdf with explicit destinations, so they point across parts.
 
 The workers are forked (POSIX): they inherit the imports, the fonts, the parsed
-images and the report itself, so a pool costs milliseconds. The joined bytes do
+images and the report itself, so a pool costs milliseconds. The CLI starts them
+before anything else (:func:`start_pool`): they import WeasyPrint on the second
+core while the parent imports the rest, computes and builds the sections, and
+the parent never imports WeasyPrint; such workers get each part's HTML with its
+task. The joined bytes do
 not depend on the number of workers (each part is laid out and written alone
 either way), and are the same from build to build (fixed font time stamp, no
 date, no random file identifier).
@@ -43,7 +47,7 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:  # the CLI imports this module before anything heavy (start_pool)
     from .document import Report
 
-__all__ = ["note_jobs", "set_note_jobs", "can_split", "PartsJob"]
+__all__ = ["note_jobs", "set_note_jobs", "can_split", "PartsJob", "start_pool", "stop_pool"]
 
 PX_PT = 0.75  # CSS px → PDF pt (WeasyPrint: 96 px per inch)
 PLACEHOLDER = "00"  # width of a page number in the contents before the numbers are known
