@@ -61,18 +61,29 @@ def _sections(text: str | None):
 
 def cmd_build(args) -> int:
     import time
-    from .analysis.study import Study
-    from .report.assemble import build_report
-    from .report.render import build_outputs
     t0 = time.perf_counter()
+    from .report import parallel
     if args.jobs is not None:
         if args.jobs < 1:
             raise CaseError("число процессов должно быть не меньше 1", key="--jobs", got=str(args.jobs),
                             expected="целое число ≥ 1")
-        from .report.parallel import set_note_jobs
-        set_note_jobs(args.jobs)
+        parallel.set_note_jobs(args.jobs)
     formats = _formats(args.format)
     out = _out_dir(Path(args.output))
+    if "pdf" in formats:
+        # the layout workers import WeasyPrint while this process imports the rest
+        parallel.start_pool()
+    try:
+        return _build(args, formats, out, t0)
+    finally:
+        parallel.stop_pool()
+
+
+def _build(args, formats, out: Path, t0: float) -> int:
+    import time
+    from .analysis.study import Study
+    from .report.assemble import build_report
+    from .report.render import build_outputs
     study = Study(args.case)
     report = build_report(study, _sections(args.sections))
     _check_finite(study, partial=args.sections is not None)

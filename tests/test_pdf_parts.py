@@ -213,3 +213,35 @@ def test_build_jobs_must_be_positive(tmp_path, capsys):
 
     assert main(["build", str(CASES / "ws004_slotted_lever.toml"), "--jobs", "0", "-o", str(tmp_path)]) == 2
     assert "--jobs" in capsys.readouterr().err
+
+
+def test_early_workers_give_the_same_bytes(built, tmp_path, monkeypatch):
+    """Workers started before the report exists (the CLI's ``start_pool``) get the HTML with
+    each task; with no split points remembered (a new cache folder, nothing in the process) the
+    parts come back for another pass and are rendered again here: the same bytes all the same."""
+    from reportgen.analysis.study import Study
+    from reportgen.report.assemble import build_report
+
+    monkeypatch.setenv("REPORTGEN_CACHE", str(tmp_path / "cache"))
+    monkeypatch.setattr(render, "_SPLIT_MEMO", {})
+    parallel.set_note_jobs(1)  # the sections built here: only the layout goes to the workers
+    parallel.start_pool(2)
+    try:
+        report = build_report(Study(CASES / "ws004_slotted_lever.toml"), SECTIONS)
+        path = render.write_pdf(report, tmp_path / "early.pdf", jobs=2)
+        passes = render.last_stats.passes
+    finally:
+        parallel.stop_pool()
+        parallel.set_note_jobs(None)
+    assert passes > 1  # the parent-driven passes were exercised
+    assert path.read_bytes() == built["two"].read_bytes()
+
+
+def test_data_urls_stashed_and_restored():
+    html = ('<p>см. <a class="ref" href="#f1"></a></p><img src="data:image/svg+xml;base64,QUJD">'
+            '<style>@font-face{src:url("data:font/ttf;base64,AAAA")}</style>')
+    stashed, urls = render._stash_data_urls(html)
+    assert urls == ["data:image/svg+xml;base64,QUJD", "data:font/ttf;base64,AAAA"]
+    assert "data:" not in stashed
+    assert render._restore_data_urls(stashed, urls) == html
+    assert render._stash_data_urls("a\x00b") == ("a\x00b", [])

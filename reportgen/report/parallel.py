@@ -9,20 +9,24 @@ written to PDF there, and joined in order:
 
 1. every body part is laid out and written without a page number in its footer
    (its first page number is not known until the parts before it are laid out);
-2. the front matter (title page, assignment, СОДЕРЖАНИЕ) is laid out in the
-   parent meanwhile with placeholder numbers, to learn its page count; then
-   again with the contents' page numbers as text (``data-page``), taken from
-   the anchors of the headings in the parts;
-3. the page numbers of the body pages come from a third small document with as
-   many empty pages as the note, the same ``@page`` rules and the usual
-   ``counter(page)`` footer: each of its pages is drawn over the note's page of
-   the same number;
+2. the title page with the assignment is one more such part (laid out once), and
+   СОДЕРЖАНИЕ is laid out meanwhile with placeholder numbers, to learn its page
+   count; then again with the page numbers of the headings as text
+   (``data-page``), taken from the anchors of the headings in the parts;
+3. the page numbers come from a third small document with as many empty pages
+   as the note, the same ``@page`` rules (no number on the first page) and the
+   usual ``counter(page)`` footer: each of its pages is drawn over the note's
+   page of the same number;
 4. internal links (contents entries, cross-references) and the outline
    (bookmarks, from WeasyPrint's own bookmark tree of each part) are written by
    pypdf with explicit destinations, so they point across parts.
 
 The workers are forked (POSIX): they inherit the imports, the fonts, the parsed
-images and the report itself, so a pool costs milliseconds. The joined bytes do
+images and the report itself, so a pool costs milliseconds. The CLI starts them
+before anything else (:func:`start_pool`): they import WeasyPrint on the second
+core while the parent imports the rest, computes and builds the sections, and
+the parent never imports WeasyPrint; such workers get each part's HTML with its
+task. The joined bytes do
 not depend on the number of workers (each part is laid out and written alone
 either way), and are the same from build to build (fixed font time stamp, no
 date, no random file identifier).
@@ -38,10 +42,12 @@ import multiprocessing
 import os
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
-from .document import Report
+if TYPE_CHECKING:  # the CLI imports this module before anything heavy (start_pool)
+    from .document import Report
 
-__all__ = ["note_jobs", "set_note_jobs", "can_split", "PartsJob"]
+__all__ = ["note_jobs", "set_note_jobs", "can_split", "PartsJob", "start_pool", "stop_pool"]
 
 PX_PT = 0.75  # CSS px → PDF pt (WeasyPrint: 96 px per inch)
 PLACEHOLDER = "00"  # width of a page number in the contents before the numbers are known
@@ -77,7 +83,70 @@ def can_split(opts: dict) -> bool:
     return bool(opts["section_new_page"]) and not opts["eskd_frame"]
 
 
+# ---------------------------------------------------------------- the workers
+
+_POOL = None  # workers started early by the CLI (start_pool), used by every PartsJob of the process
+_POOL_JOBS = 0
+
+
+def start_pool(jobs: int | None = None) -> None:
+    """Start the layout workers now, before the report exists: the CLI calls it first thing,
+    so the workers import WeasyPrint and load the fonts while the parent imports the rest,
+    computes the case and builds the sections (the second core is idle meanwhile). Such
+    workers get each part's HTML with its task (they have no report to render it from); a
+    part whose tables need another layout pass is rendered again here and sent back. Nothing
+    happens with one process or without ``fork``; :func:`stop_pool` ends the workers."""
+    global _POOL, _POOL_JOBS
+    n = note_jobs() if jobs is None else max(1, int(jobs))
+    if _POOL is not None or n < 2 or "fork" not in multiprocessing.get_all_start_methods():
+        return
+    if os.environ.get("REPORTGEN_PARTS", "1") == "0":
+        return
+    _POOL = multiprocessing.get_context("fork").Pool(n, initializer=_warm_worker)
+    _POOL_JOBS = n
+
+
+def stop_pool() -> None:
+    """End the workers of :func:`start_pool` (if any)."""
+    global _POOL, _POOL_JOBS
+    if _POOL is not None:
+        _POOL.terminate()
+        _POOL.join()
+    _POOL, _POOL_JOBS = None, 0
+
+
+def _warm_worker() -> None:
+    """Initializer of an early worker: WeasyPrint imported, the fonts loaded, the user-agent
+    stylesheet parsed. A failure here is left to the first task (which then fails, and the
+    parent lays the part out itself and reports the error as a build in one process does)."""
+    try:
+        from .render import _font_config, _html_class, _quiet_weasyprint
+
+        _quiet_weasyprint()
+        _html_class()
+        _font_config()
+    except Exception:
+        pass
+
+
 # ---------------------------------------------------------------- one part (in a worker)
+
+HEAD = -2  # task index of the title page and the assignment (laid out once, no numbers of its own)
+TOC = -1  # task index of СОДЕРЖАНИЕ
+NUMBERS = -3  # task index of the page-number document (_numbers_html)
+
+
+@dataclass
+class _Task:
+    """One document to lay out: body part ``index`` (0, 1, …) or :data:`HEAD`, :data:`TOC`,
+    :data:`NUMBERS` (laid out once: their tables are never split)."""
+
+    index: int
+    html: str
+    splits: dict
+    key: str = ""
+    known: bool = False
+    passes: int = 0  # layout passes made before (by an early worker, see start_pool)
 
 
 @dataclass
@@ -97,6 +166,7 @@ class _Laid:
     key: str = ""
     known: bool = False  # split points were remembered
     refused: list = field(default_factory=list)  # URLs the fetcher refused (safety.refused)
+    resplit: dict | None = None  # an early worker asks for the part rendered with these split points
 
 
 def _outline(tree) -> list:
@@ -119,24 +189,20 @@ def _facts(document) -> tuple[list, dict, list, list]:
     return heights, anchors, links, outline
 
 
-def _part_html(report: Report, index: int | None, splits: dict, toc_pages: dict | None = None) -> str:
-    """The print HTML of body part ``index`` (``None``: the front matter) with ``splits``."""
+def _part_html(report, index: int, splits: dict) -> str:
+    """The print HTML of body part ``index`` with ``splits``."""
     from .render import _views
 
     views = _views(report, for_print=True, splits=splits)
-    if index is None:
-        return views.html(body=[], toc_pages=toc_pages)
     return views.html(front=False, body=[views.ctx["body"][index]], chunk=True)
 
 
 def _lay_out(html: str):
-    from weasyprint import HTML
-
-    from .render import TEMPLATES_DIR, _font_config, _image_cache, _quiet_weasyprint
+    from .render import TEMPLATES_DIR, _font_config, _html_class, _image_cache, _quiet_weasyprint
     from .safety import url_fetcher
 
     _quiet_weasyprint()
-    return HTML(string=html, base_url=str(TEMPLATES_DIR), url_fetcher=url_fetcher()).render(
+    return _html_class()(string=html, base_url=str(TEMPLATES_DIR), url_fetcher=url_fetcher()).render(
         font_config=_font_config(), cache=_image_cache())
 
 
@@ -147,7 +213,7 @@ def _write(document) -> bytes:
         return document.write_pdf()
 
 
-def _lay_out_in_worker(task: tuple) -> _Laid | None:
+def _lay_out_in_worker(task: _Task) -> _Laid | None:
     """:func:`lay_out_part` in a worker; ``None`` when it failed (the parent lays the part out
     again itself, so the error is raised there as in a build in one process)."""
     try:
@@ -156,23 +222,26 @@ def _lay_out_in_worker(task: tuple) -> _Laid | None:
         return None
 
 
-def lay_out_part(task: tuple) -> _Laid:
-    """Lay out body part ``index`` (its table split passes included) and write it."""
+def lay_out_part(task: _Task) -> _Laid:
+    """Lay out one document of the note (a body part with its table split passes) and write it.
+    In an early worker (no report here) a part that needs another pass comes back with
+    ``resplit``: the parent renders it with those split points and sends it again."""
+    from . import safety
     from .render import MAX_PASSES, _next_splits, _page_rows
 
-    from . import safety
-
-    index, html, splits, key, known = task
-    splits = dict(splits)
+    index, html, splits = task.index, task.html, dict(task.splits)
     seen = len(safety.refused)
     t0 = time.perf_counter()
-    passes = 0
+    passes = task.passes
     while True:
         document = _lay_out(html)
         passes += 1
-        new = _next_splits(document, splits)
+        new = _next_splits(document, splits) if index >= 0 else None
         if new is None or passes >= MAX_PASSES:
             break
+        if _REPORT is None:
+            return _Laid(index, b"", [], {}, [], [], {}, passes, time.perf_counter() - t0, 0.0,
+                         task.key, task.known, resplit=new)
         splits = new
         html = _part_html(_REPORT, index, splits)
     t1 = time.perf_counter()
@@ -181,7 +250,8 @@ def lay_out_part(task: tuple) -> _Laid:
     heights, anchors, links, outline = _facts(document)
     mine = {tid: list(splits[tid]) for tid in _page_rows(document) if tid in splits}
     refused = list(safety.refused[seen:] if len(safety.refused) >= seen else safety.refused)
-    return _Laid(index, pdf, heights, anchors, links, outline, mine, passes, t1 - t0, t2 - t1, key, known, refused)
+    return _Laid(index, pdf, heights, anchors, links, outline, mine, passes, t1 - t0, t2 - t1,
+                 task.key, task.known, refused)
 
 
 # ---------------------------------------------------------------- the whole note (parent)
@@ -197,17 +267,26 @@ class PartsStats:
     seconds_html: float = 0.0
     seconds_layout: float = 0.0  # summed over the parts (CPU of the workers)
     seconds_write: float = 0.0
-    seconds_front: float = 0.0
+    seconds_front: float = 0.0  # title page, assignment and contents (layout + write)
     seconds_join: float = 0.0
+    seconds_wait: float = 0.0  # the parent waiting for the workers in finish()
     part_seconds: list = field(default_factory=list)
 
 
 class PartsJob:
     """``PartsJob(report, jobs)`` starts laying out the parts (in the background when
     ``jobs > 1``); :meth:`finish` returns the joined PDF bytes. Between the two the caller
-    may do other work (the screen HTML)."""
+    may do other work (the screen HTML).
+
+    The documents laid out: the title page with the assignment (:data:`HEAD`, laid out once:
+    no page number of its own), every body part, and СОДЕРЖАНИЕ (:data:`TOC`) twice, first with
+    placeholder numbers (its page count) and then, when the parts are laid out, with the page
+    numbers of the headings. The workers are those of :func:`start_pool` when the CLI started
+    them, else a pool forked here (the workers inherit the report)."""
 
     def __init__(self, report: Report, jobs: int):
+        import queue
+
         from .render import _check_glyphs, _recall_splits, _split_key, _views
 
         global _REPORT
@@ -227,97 +306,149 @@ class PartsJob:
         else:
             htmls = bare
         self.views = views
-        self.front_html = lambda toc_pages: views.html(body=[], toc_pages=toc_pages)
+        # (``toc_pages`` given: no empty <main> after the assignment, which would be a blank page)
+        head = views.html(body=[], toc=False, toc_pages={}, chunk=True) \
+            if views.ctx["title_page"] or views.ctx["show_assignment"] else None
         placeholder = {e["id"]: PLACEHOLDER for e in views.builder.toc}
-        front = self.front_html(placeholder)
-        _check_glyphs(front + "".join(htmls), views.family)
+        toc = self._toc_html(placeholder)
+        _check_glyphs((head or "") + toc + "".join(htmls), views.family)
         self.stats = PartsStats(parts=len(body), jobs=jobs, seconds_html=time.perf_counter() - t0)
-        # the largest parts first: with a pool that takes the next task when a worker is free,
-        # this is the longest-processing-time-first schedule
-        tasks = [(i, htmls[i], {t: c for t, c in splits.items()}, keys[i], bool(known[i]))
-                 for i in range(len(body))]
-        tasks.sort(key=lambda t: (-_cost(t[1]), t[0]))
+        tasks = [_Task(i, htmls[i], dict(splits), keys[i], bool(known[i])) for i in range(len(body))]
+        if head is not None:
+            tasks.append(_Task(HEAD, head, {}))
+        tasks.append(_Task(TOC, toc, {}))
+        # the largest documents first: with a pool that takes the next task when a worker is
+        # free, this is the longest-processing-time-first schedule
+        tasks.sort(key=lambda t: (-_cost(t.html), t.index))
         _REPORT = report
+        self.done: dict[int, _Laid] = {}
+        self.waiting: set[int] = set()
+        self.results: queue.Queue = queue.Queue()
+        self.own_pool = None
         self.pool = None
-        self.pending = None
-        self.tasks = tasks
-        if jobs > 1 and len(tasks) > 1:
+        if _POOL is not None and jobs > 1:
+            self.pool = _POOL
+        elif jobs > 1 and len(tasks) > 1:
             from .render import _font_config
 
             _font_config()  # loaded once, inherited by the workers
-            self.pool = multiprocessing.get_context("fork").Pool(min(jobs, len(tasks)))
-            self.pending = self.pool.map_async(_lay_out_in_worker, tasks, chunksize=1)
-        t1 = time.perf_counter()
-        self.front_doc = _lay_out(front)  # page count of the front matter, meanwhile
-        self.stats.seconds_front += time.perf_counter() - t1
+            self.own_pool = self.pool = multiprocessing.get_context("fork").Pool(min(jobs, len(tasks)))
+        self.tasks = tasks
+        for t in tasks:
+            self._submit(t)
+
+    def _toc_html(self, toc_pages: dict) -> str:
+        return self.views.html(head=False, body=[], toc_pages=toc_pages, chunk=True)
+
+    def _submit(self, task: _Task) -> None:
+        self.waiting.add(task.index)
+        if self.pool is None:
+            self.results.put((task, None, False))  # laid out here, in finish()
+            return
+        self.pool.apply_async(_lay_out_in_worker, (task,),
+                              callback=lambda r, t=task: self.results.put((t, r, True)),
+                              error_callback=lambda e, t=task: self.results.put((t, None, True)))
+
+    def _collect(self, index: int | None = None) -> None:
+        """Wait for the tasks (all, or until ``index`` is done): a failed one is laid out here
+        (its error raised as in one process), a part asking for other split points rendered
+        again and sent back."""
+        t0 = time.perf_counter()
+        while self.waiting and (index is None or index in self.waiting):
+            task, laid, remote = self.results.get()
+            if laid is None:
+                if remote:
+                    task = _Task(task.index, task.html, task.splits, task.key, task.known)
+                laid = lay_out_part(task)
+            if laid.resplit is not None:
+                self.waiting.discard(task.index)
+                self._submit(_Task(task.index, _part_html(self.report, task.index, laid.resplit),
+                                   laid.resplit, task.key, task.known, laid.passes))
+                continue
+            self.waiting.discard(task.index)
+            self.done[task.index] = laid
+        self.stats.seconds_wait += time.perf_counter() - t0
+
+    def _run(self, task: _Task) -> _Laid:
+        self._submit(task)
+        self._collect(task.index)
+        return self.done.pop(task.index)
 
     def _results(self) -> list[_Laid]:
         from . import safety
 
         try:
-            if self.pending is not None:
-                laid = self.pending.get()
-                laid = [r if r is not None else lay_out_part(t) for r, t in zip(laid, self.tasks)]
-                for p in sorted(laid, key=lambda r: r.index):  # what the workers refused, recorded here
-                    safety.refused.extend(p.refused)
-                del safety.refused[:-100]
-            else:
-                laid = [lay_out_part(t) for t in self.tasks]
-        finally:
+            self._collect()
+        except BaseException:
             self.close()
-        return sorted(laid, key=lambda r: r.index)
+            raise
+        parts = sorted((r for i, r in self.done.items() if i >= 0), key=lambda r: r.index)
+        if self.pool is not None:
+            for p in sorted(self.done.values(), key=lambda r: r.index):  # what the workers refused
+                safety.refused.extend(p.refused)
+            del safety.refused[:-100]
+        return parts
 
     def close(self) -> None:
-        """Stop the workers (after :meth:`finish`, or when the build failed before it)."""
+        """Stop the workers forked here (after :meth:`finish`, or when the build failed before
+        it); those of :func:`start_pool` stay for the next note of the process."""
         global _REPORT
-        if self.pool is not None:
-            self.pool.terminate()
-            self.pool.join()
-            self.pool = None
+        if self.own_pool is not None:
+            self.own_pool.terminate()
+            self.own_pool.join()
+            self.own_pool = None
+        self.pool = None
         _REPORT = None
 
     def finish(self) -> bytes:
         from .render import _remember_splits
 
-        parts = self._results()
-        st = self.stats
-        for p in parts:
-            st.seconds_layout += p.seconds_layout
-            st.seconds_write += p.seconds_write
-            st.passes = max(st.passes, p.passes)
-            st.splits.update(p.splits)
-            st.part_seconds.append(round(p.seconds_layout + p.seconds_write, 3))
-            if p.splits and not (p.known and p.passes == 1):
-                _remember_splits(p.key, p.splits)
-        t0 = time.perf_counter()
-        front_doc = self.front_doc
-        for _ in range(MAX_FRONT_PASSES):
-            n_front = len(front_doc.pages)
-            starts, n = [], n_front
+        try:
+            parts = self._results()
+            st = self.stats
             for p in parts:
-                starts.append(n)
-                n += len(p.heights)
-            toc_pages = {}
-            for e in self.views.builder.toc:
-                for p, s in zip(parts, starts):
-                    if e["id"] in p.anchors:
-                        toc_pages[e["id"]] = str(s + p.anchors[e["id"]][0] + 1)
-                        break
-            front_doc = _lay_out(self.front_html(toc_pages))
-            if len(front_doc.pages) == n_front:
-                break
-        front_pdf = _write(front_doc)
-        heights, anchors, links, outline = _facts(front_doc)
-        front = _Laid(-1, front_pdf, heights, anchors, links, outline, {})
-        # the pages turned to landscape (a wide figure) get their footer number on a landscape page
-        turned = {i for i, h in enumerate(h for p in [front] + parts for h in p.heights) if h < LANDSCAPE_BELOW}
-        numbers = _numbers_pdf(self.views, n, turned)
-        st.seconds_front += time.perf_counter() - t0
-        t0 = time.perf_counter()
-        pdf = join([front] + parts, numbers, first_numbered=len(front.heights))
-        st.seconds_join = time.perf_counter() - t0
-        st.pages = n
-        return pdf
+                st.seconds_layout += p.seconds_layout
+                st.seconds_write += p.seconds_write
+                st.passes = max(st.passes, p.passes)
+                st.splits.update(p.splits)
+                st.part_seconds.append(round(p.seconds_layout + p.seconds_write, 3))
+                if p.splits and not (p.known and p.passes == 1):
+                    _remember_splits(p.key, p.splits)
+            head = self.done.get(HEAD)
+            toc = self.done[TOC]
+            front = [head] if head is not None else []
+            st.seconds_front = sum(p.seconds_layout + p.seconds_write for p in front + [toc])
+            t0 = time.perf_counter()
+            n_head = len(head.heights) if head is not None else 0
+            for _ in range(MAX_FRONT_PASSES):
+                n_toc = len(toc.heights)
+                starts, n = [], n_head + n_toc
+                for p in parts:
+                    starts.append(n)
+                    n += len(p.heights)
+                toc_pages = {}
+                for e in self.views.builder.toc:
+                    for p, s in zip(parts, starts):
+                        if e["id"] in p.anchors:
+                            toc_pages[e["id"]] = str(s + p.anchors[e["id"]][0] + 1)
+                            break
+                toc = self._run(_Task(TOC, self._toc_html(toc_pages), {}))
+                if len(toc.heights) == n_toc:
+                    break
+            # the pages turned to landscape (a wide figure) get their footer number on a landscape page
+            turned = {i for i, h in enumerate(h for p in front + [toc] + parts for h in p.heights)
+                      if h < LANDSCAPE_BELOW}
+            numbers = _numbers_pdf(self.views, n, turned, self._run)
+            st.seconds_front += time.perf_counter() - t0
+            t0 = time.perf_counter()
+            # every page gets its number from the page-number document, whose first page (as
+            # the note's first page, ``@page :first``) has none
+            pdf = join(front + [toc] + parts, numbers, first_numbered=1)
+            st.seconds_join = time.perf_counter() - t0
+            st.pages = n
+            return pdf
+        finally:
+            self.close()
 
 
 def _cost(html: str) -> float:
@@ -377,19 +508,18 @@ def _overlay(writer, page, over, name: str) -> None:
 _NUMBERS_MEMO: dict[str, bytes] = {}
 
 
-def _numbers_pdf(views, n: int, turned: frozenset | set = frozenset()) -> bytes:
+def _numbers_pdf(views, n: int, turned: frozenset | set = frozenset(), run=None) -> bytes:
     """The PDF of :func:`_numbers_html`, remembered in the process and in the cache folder
     (``<cache>/pages``): it depends on the page setup and the count only, and WeasyPrint
-    writes it byte for byte the same, so a remembered one changes nothing in the note."""
+    writes it byte for byte the same, so a remembered one changes nothing in the note.
+    ``run`` lays a task out (a worker of the job); by default here."""
     import hashlib
 
-    import weasyprint
-
     from .formulas import _cache_dir
-    from .render import _atomic_write
+    from .render import _atomic_write, weasyprint_version
 
     html = _numbers_html(views, n, turned)
-    key = hashlib.sha256(f"{weasyprint.__version__}|{html}".encode("utf-8")).hexdigest()
+    key = hashlib.sha256(f"{weasyprint_version()}|{html}".encode("utf-8")).hexdigest()
     if key in _NUMBERS_MEMO:
         return _NUMBERS_MEMO[key]
     folder = _cache_dir()
@@ -401,7 +531,7 @@ def _numbers_pdf(views, n: int, turned: frozenset | set = frozenset()) -> bytes:
         except OSError:
             pdf = None
     if not pdf or not pdf.startswith(b"%PDF"):
-        pdf = _write(_lay_out(html))
+        pdf = (run or lay_out_part)(_Task(NUMBERS, html, {})).pdf
         if path is not None:
             try:
                 _atomic_write(path, pdf)
