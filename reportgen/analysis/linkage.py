@@ -366,10 +366,13 @@ def solve_continued(model: SolverModel, q, base: KinematicsResult, period: float
         check_failure(model, q[i:i + 1], np.array([fail[0], 0.0, fail[2], fail[3]]),
                       None if labels is None else [labels[i]])
         rows.append((pose[1], d1[1], d2[1], qual[1]))
-    pose = np.array([r[0] for r in rows])
-    d1 = np.array([r[1] for r in rows])
-    d2 = np.array([r[2] for r in rows])
-    qual = np.array([r[3] for r in rows])
+    return _from_rows(model, q, rows)
+
+
+def _from_rows(model: SolverModel, q: np.ndarray, rows: list) -> KinematicsResult:
+    """The result of positions solved one by one: rows of (pose, first analogs, second analogs,
+    quality) at ``q``, with the points' coordinates and analogs."""
+    pose, d1, d2, qual = (np.array([r[j] for r in rows]) for j in range(4))
     pts = K.points_cycle(pose, d1, d2, q, model.pbody, model.ploc)
     return KinematicsResult(q, pose, d1, d2, qual, pts)
 
@@ -414,12 +417,7 @@ def solve_from_sketch(model: SolverModel, q, q0: float, step: float, period: flo
             pose, d1, d2, qual, fail = run_kernel(model, qt)
             check_failure(model, q[i:i + 1], fail, None if labels is None else [labels[i]])
             rows[i] = (pose[0], d1[0], d2[0], qual[0])
-    pose = np.array([r[0] for r in rows])
-    d1 = np.array([r[1] for r in rows])
-    d2 = np.array([r[2] for r in rows])
-    qual = np.array([r[3] for r in rows])
-    pts = K.points_cycle(pose, d1, d2, q, model.pbody, model.ploc)
-    return KinematicsResult(q, pose, d1, d2, qual, pts)
+    return _from_rows(model, q, rows)
 
 
 def _unwrap(th: np.ndarray, grid: bool) -> np.ndarray:

@@ -128,7 +128,7 @@ APPENDIX_LETTERS = "АБВГДЕЖИКЛМНПРСТУФХЦШЩЭЮЯ"
 PAGE_W_MM, PAGE_H_MM = 210.0, 297.0
 PT_MM = 25.4 / 72
 
-MAX_PASSES = 8
+MAX_PASSES = 16
 MIN_PART_ROWS = 3  # fewest rows of a table left on a page before «Продолжение таблицы»
 
 
@@ -955,6 +955,13 @@ def _next_splits(document, splits: dict[str, list[int]],
     changed = False
     for tid, where in rows.items():
         n = max(where) + 1
+        if changed:
+            # an earlier table changed in this pass, so where this one starts is not known yet:
+            # its split points are decided afresh in the next pass (kept ones may cut it early
+            # and leave a page half empty, new ones may move it to a new page for nothing)
+            if tid in splits:
+                del result[tid]
+            continue
         lead = [0] if 0 in splits.get(tid, ()) else []
         cuts = sorted(c for c in set(splits.get(tid, ())) if 0 < c < n)
         if not cuts:
@@ -963,11 +970,6 @@ def _next_splits(document, splits: dict[str, list[int]],
             if not starts:
                 continue
             if starts[0] < min_rows and not lead and n > min_rows:
-                if changed:
-                    # an earlier table changed in this pass, so where this one starts is not
-                    # known yet: moving it to a new page now may leave a page half empty
-                    # (decided in the next pass)
-                    continue
                 result[tid] = [0]  # too few rows would stay: start on a new page
             else:
                 result[tid] = lead + _tidy_cuts(starts, n, min_rows)

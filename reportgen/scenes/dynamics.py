@@ -154,9 +154,18 @@ class WittenbauerDiagram:
         ax.plot(J, T, lw=1.4, color=INK, label="$\\Delta T(J_{II})$")
         t = d.table
         ax.plot(t["J_II"], t["A_sum"], "o", ms=3, color=INK)
+        # positions whose points coincide (the curve passes one point twice) share one label «3, 9»
+        scale = np.array([max(np.ptp(J), 1e-300), max(np.ptp(T), 1e-300)])
+        groups: list[tuple[np.ndarray, list[str]]] = []
         for _, r in t.iterrows():
-            ax.annotate(str(r["pos"]), (r["J_II"], r["A_sum"]), xytext=(3, 3), textcoords="offset points",
-                        fontsize=7)
+            xy = np.array([r["J_II"], r["A_sum"]], dtype=float)
+            near = next((g for g in groups if np.all(np.abs(g[0] - xy) < 0.005 * scale)), None)
+            if near is None:
+                groups.append((xy, [str(r["pos"])]))
+            else:
+                near[1].append(str(r["pos"]))
+        for xy, names in groups:
+            ax.annotate(", ".join(names), tuple(xy), xytext=(3, 3), textcoords="offset points", fontsize=7)
         jmax = float(J.max()) * 1.08
         jj = np.array([0.0, jmax])
         ax.plot(jj, wi.upper_tangent(jj), lw=1.0, color="#b2182b",

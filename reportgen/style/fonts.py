@@ -183,6 +183,16 @@ def _subset_woff(path: Path) -> bytes:
     return buf.getvalue()
 
 
+SYMBOLS_SUFFIX = " Symbols"
+
+
+def symbol_family() -> FontFamily | None:
+    """STIXGeneral (bundled with matplotlib): the second family of the note, for the few math
+    symbols the body face lacks (∥, ⊥, ∓ in Liberation Serif), so that no glyph comes from
+    whatever fontconfig finds on the machine."""
+    return next((f for f in candidates() if f.name == "STIXGeneral" and f.regular.exists()), None)
+
+
 def font_face_css(family: FontFamily | None = None, *, embed: bool = False,
                   css_family: str = CSS_FAMILY) -> str:
     """``@font-face`` rules for the four faces.
@@ -198,8 +208,12 @@ def font_face_css(family: FontFamily | None = None, *, embed: bool = False,
         "italic": ("normal", "italic"),
         "bold_italic": ("bold", "italic"),
     }
-    for face, (weight, style) in styles.items():
-        path = getattr(family, face)
+    faces = [(css_family, family)]
+    symbols = symbol_family()
+    if symbols is not None and symbols.name != family.name:
+        faces.append((css_family + SYMBOLS_SUFFIX, symbols))
+    for (name, fam), (face, (weight, style)) in ((f, st) for f in faces for st in styles.items()):
+        path = getattr(fam, face)
         if embed:
             data = base64.b64encode(_subset_woff(path)).decode("ascii")
             src = f'url("data:font/woff;base64,{data}") format("woff")'
@@ -207,6 +221,6 @@ def font_face_css(family: FontFamily | None = None, *, embed: bool = False,
             src = f'url("{path.resolve().as_uri()}")'
         rules.append(
             "@font-face { font-family: \"%s\"; src: %s; font-weight: %s; font-style: %s; }"
-            % (css_family, src, weight, style)
+            % (name, src, weight, style)
         )
     return "\n".join(rules)
