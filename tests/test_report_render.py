@@ -416,7 +416,12 @@ def test_fonts_cover_russian_and_greek():
                 "αβγδεζηθικλμνξοπρστυφχψωΔΣΦΩ«»—–№°±×·−\u00a0\u202f²³")
     assert fonts.missing_glyphs(alphabet, family) == {}
     css = fonts.font_face_css(family, embed=False)
-    assert css.count("@font-face") == 4 and "file://" in css
+    # four faces of the body family, and four of the bundled STIXGeneral for the math symbols the
+    # body face lacks (∥, ⊥, ∓), so that no glyph comes from fontconfig
+    symbols = fonts.symbol_family()
+    assert symbols is not None and fonts.missing_glyphs("∥⊥∓", symbols) == {}
+    assert css.count("@font-face") == 8 and "file://" in css
+    assert css.count(f'"{fonts.CSS_FAMILY}{fonts.SYMBOLS_SUFFIX}"') == 4
 
 
 def test_matplotlib_svg_is_deterministic_with_comma_ticks():

@@ -190,7 +190,12 @@ def symbol_family() -> FontFamily | None:
     """STIXGeneral (bundled with matplotlib): the second family of the note, for the few math
     symbols the body face lacks (∥, ⊥, ∓ in Liberation Serif), so that no glyph comes from
     whatever fontconfig finds on the machine."""
-    return next((f for f in candidates() if f.name == "STIXGeneral" and f.regular.exists()), None)
+    stix = next((f for f in candidates() if f.name == "STIXGeneral" and f.regular.exists()), None)
+    if stix is None:
+        return None
+    # its italic faces lack the operators; operators are upright anyway, so the upright faces
+    # serve the italic styles too
+    return FontFamily(stix.name, stix.regular, stix.bold, stix.regular, stix.bold)
 
 
 def font_face_css(family: FontFamily | None = None, *, embed: bool = False,
