@@ -349,12 +349,25 @@ def slim(svg: bytes) -> bytes:
         block = ET.Element(_DEFS)
         block.extend(styles + rest)
         root.insert(0, block)
+    xlink = False
     for el in root.iter():
         el.tail = None
-        if el.tag is not ET.Comment and el.text is not None and not el.text.strip() \
-                and el.tag != _S + "style":
+        if el.tag is ET.Comment:
+            continue
+        if el.text is not None and not el.text.strip() and el.tag != _S + "style":
             el.text = None
-    ET.register_namespace("", SVG_NS)
-    ET.register_namespace("xlink", XLINK_NS)
-    body = ET.tostring(root, encoding="unicode", short_empty_elements=True)
+        # names written without ElementTree's namespace prefixes (ns0:): the SVG namespace is
+        # the default one, xlink's prefix is declared below when a <use> is left
+        if el.tag.startswith(_S):
+            el.tag = el.tag[len(_S):]
+        if HREF in el.attrib:
+            el.set("xlink:href", el.attrib.pop(HREF))
+            xlink = True
+    attrs = dict(root.attrib)
+    root.attrib.clear()
+    root.set("xmlns", SVG_NS)
+    if xlink:
+        root.set("xmlns:xlink", XLINK_NS)
+    root.attrib.update(attrs)
+    body = ET.tostring(root, encoding="unicode")
     return ('<?xml version="1.0" encoding="utf-8" standalone="no"?>\n' + body + "\n").encode("utf-8")
