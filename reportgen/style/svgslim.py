@@ -156,11 +156,19 @@ def _write_path(segments: list, m: Matrix, fmt=_num) -> str:
     a, b, c, d, e, f = m
     parts = []
     for cmd, nums in segments:
-        parts.append(cmd)
-        for i in range(0, len(nums), 2):
-            x, y = nums[i], nums[i + 1]
-            parts.append(fmt(a * x + c * y + e) + " " + fmt(b * x + d * y + f))
-    return " ".join(parts)
+        pts = [fmt(a * nums[i] + c * nums[i + 1] + e) + " " + fmt(b * nums[i] + d * nums[i + 1] + f)
+               for i in range(0, len(nums), 2)]
+        parts.append(cmd + " ".join(pts))
+    return "".join(parts)
+
+
+_AROUND_COMMAND = re.compile(r"\s*([A-Za-z])\s*")
+_SPACES = re.compile(r"\s+")
+
+
+def _compact(d: str) -> str:
+    """Path data without the blanks around command letters (the numbers as they are)."""
+    return _AROUND_COMMAND.sub(r"\1", _SPACES.sub(" ", d)).strip()
 
 
 def _style(text: str | None) -> dict[str, str]:
@@ -223,7 +231,7 @@ class _Slimmer:
         steps = [use.get("transform"), None if float(x) == float(y) == 0 else f"translate({x} {y})",
                  ref.get("transform")]
         path = ET.Element(_PATH)
-        path.set("d", ref.get("d"))
+        path.set("d", _compact(ref.get("d")))
         if any(steps):
             path.set("transform", " ".join(t for t in steps if t))
         style = _merged_style(use.get("style"), ref.get("style"))
@@ -267,7 +275,7 @@ class _Slimmer:
         frame, unit = _frame(outer)
         inv = (1 / unit, 0.0, 0.0, 1 / unit, 0.0, 0.0)
         path = ET.Element(_PATH)
-        path.set("d", " ".join(_write_path(segs, _mul(inv, m)) for m, segs in glyphs))
+        path.set("d", "".join(_write_path(segs, _mul(inv, m)) for m, segs in glyphs))
         if unit == 1.0:
             if g.get("transform"):
                 path.set("transform", g.get("transform"))
@@ -299,6 +307,8 @@ class _Slimmer:
                 if p is not None:
                     out.append(ch if p is False else p)
             else:
+                if ch.tag == _PATH and ch.get("d"):
+                    ch.set("d", _compact(ch.get("d")))
                 if len(ch) and ch.tag != _DEFS:
                     ch[:] = self.children(ch, stroked or _strokes(ch.get("style")))
                 out.append(ch)
