@@ -11,7 +11,7 @@ from markupsafe import Markup
 
 from ...analysis.plans import output_quantity
 from ...mechanism.model import FRAME
-from ...scenes.diagrams import AnalogCurves, OutputDiagrams
+from ...scenes.diagrams import AnalogCurves, OutputDiagrams, output_displacement, output_index
 from ...scenes.mechanism import PositionsPlan, traced_points
 from ...scenes.plans import MIN_MM, READ_MM, PlanScene
 from ...scenes.draw import gost_ratio, mu_text
@@ -280,12 +280,22 @@ def build(study) -> Section:
     cyc = study.cycle
     s = cyc[s_col].to_numpy()
     stroke = float(s.max() - s.min())
+    n = output_index(study, s_col)
+    _, i0 = output_displacement(study, s_col)
+    q0 = cyc["q"].iloc[i0]
+    at = (f"φ&nbsp;=&nbsp;{fmt(math.degrees(q0), digits=1)}°" if mech.driver.swing
+          else f"φ&nbsp;=&nbsp;{_turn(q0 - study.grid.start)}°" if rotary
+          else f"<i>S</i>&nbsp;=&nbsp;{fmt(q0, digits=4)}&nbsp;м")
     if s_col.startswith("phi_"):
         s5.paragraph(f"Выходное звено — {title}; размах качания {fmt(math.degrees(stroke), digits=2)}° "
-                     f"(рисунок {ref('fig-diagrams')}).")
+                     f"(рисунок {ref('fig-diagrams')}). Угол поворота ψ{n}&nbsp;=&nbsp;φ{n}&nbsp;−&nbsp;φ{n}<sub>min</sub> "
+                     f"на диаграмме отсчитывается от крайнего положения при {at}, угловые скорость и "
+                     f"ускорение — в направлении отсчёта угла φ{n}.")
     else:
         s5.paragraph(f"Выходное звено — {title}; ход <i>H</i>&nbsp;=&nbsp;{fmt(stroke, digits=4)}&nbsp;м "
-                     f"(рисунок {ref('fig-diagrams')}).")
+                     f"(рисунок {ref('fig-diagrams')}). Перемещение <i>s</i>{n} на диаграмме отсчитывается от "
+                     f"крайнего положения при {at} (0&nbsp;≤&nbsp;<i>s</i>{n}&nbsp;≤&nbsp;<i>H</i>), скорость и "
+                     f"ускорение — в том же направлении.")
     if mech.driver.swing:
         s5.paragraph(swing_strokes_text(study))
         _strokes_table(s5, study, s_col)

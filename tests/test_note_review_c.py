@@ -1,0 +1,57 @@
+"""Defects left open after session 5's page-by-page review of the notes (#9), each test failing on
+what the review found: ws004's kinematic diagram plotting the slider's coordinate where the caption
+promises its displacement, …"""
+import re
+
+import numpy as np
+import pytest
+
+from conftest import CASES
+from reportgen.report.document import Paragraph
+from notehelpers import blocks
+
+
+def _plain(html) -> str:
+    return re.sub(r"<[^>]+>", "", str(html)).replace("&nbsp;", "\u00a0")
+
+
+@pytest.fixture(scope="module")
+def slotted():
+    from reportgen import load_case
+    return load_case(CASES / "ws004_slotted_lever.toml")
+
+
+# --------------------------------------------------------------------------------------------
+# 1. the kinematic diagram plots the displacement from an extreme position, in textbook notation
+# --------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("case", ["ws004_slotted_lever.toml", "slider_crank.toml", "ws002_tractor_hitch.toml",
+                                  "four_bar.toml"])
+def test_diagram_plots_displacement_from_extreme(case, captured):
+    from reportgen import load_case
+    from reportgen.analysis.plans import output_quantity
+    from reportgen.scenes.diagrams import OutputDiagrams
+    study = load_case(CASES / case)
+    OutputDiagrams().draw(study)
+    ax = captured[-1].axes[0]
+    y = ax.lines[0].get_ydata()
+    s_col = output_quantity(study)[0]
+    raw = study.cycle[s_col].to_numpy()
+    raw = np.degrees(np.unwrap(raw)) if s_col.startswith("phi_") else raw
+    stroke = raw.max() - raw.min()
+    # independent of the scene: the curve starts at 0 in one extreme and reaches the stroke in the other
+    assert min(y) == pytest.approx(0.0, abs=1e-12)
+    assert max(y) == pytest.approx(stroke, rel=1e-12)
+    assert np.allclose(y, raw - raw.min(), rtol=0, atol=1e-9 * max(stroke, 1))
+    label = ax.get_ylabel()
+    assert re.match(r"^(s|ψ)[₀-₉]+, (м|град)$", label), label
+    # velocity and acceleration carry the same subscript
+    sub = label.split(",")[0][1:]
+    assert all(sub in a.get_ylabel() for a in captured[-1].axes[1:])
+
+
+def test_diagram_text_names_the_origin(slotted):
+    from reportgen.report.sections import kinematics
+    sec = kinematics.build(slotted)
+    text = " ".join(_plain(b.html) for b in blocks(sec) if isinstance(b, Paragraph))
+    assert "Перемещение s₅ на диаграмме" in text
+    assert "отсчитывается от крайнего положения при φ\u00a0=\u00a00,0°" in text
