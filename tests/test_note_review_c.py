@@ -55,3 +55,35 @@ def test_diagram_text_names_the_origin(slotted):
     text = " ".join(_plain(b.html) for b in blocks(sec) if isinstance(b, Paragraph))
     assert "Перемещение s₅ на диаграмме" in text
     assert "отсчитывается от крайнего положения при φ\u00a0=\u00a00,0°" in text
+
+
+# --------------------------------------------------------------------------------------------
+# 2. the note under a table stays with the table; a short table moved to a new page takes its
+#    announcing paragraph along (ws004: «Примечание — …» alone on p. 19 under table 2.12 of p. 18,
+#    then the table on p. 19 and its paragraph on p. 18)
+# --------------------------------------------------------------------------------------------
+def _pages(sec):
+    from reportgen.report import render
+    from reportgen.report.document import Report
+    r = Report(meta={}, assignment=[], introduction=[], sections=[sec], conclusion=[],
+               references=[], options={"title_page": False, "assignment_page": False})
+    doc, _ = render._layout(r, render._font_config())
+    return [" ".join(b.text for b in page._page_box.descendants() if getattr(b, "text", None))
+            for page in doc.pages]
+
+
+@pytest.mark.parametrize("filler", range(27, 33))
+def test_table_note_and_lead_paragraph_kept_with_table(filler):
+    import pandas as pd
+    from reportgen.report.document import Column, Section
+    s = Section("Раздел", "s")
+    for _ in range(filler):
+        s.paragraph("Строка текста для заполнения страницы.")
+    s.paragraph("АБЗАЦ углы приведены в таблице.")
+    s.table("Наименьшие углы", [Column("g", "Группа"), Column("mu", "μ", "град", digits=1)],
+            pd.DataFrame({"g": ["(2,3)", "(4,5)"], "mu": [90.0, 66.2]}), id="tab-mu",
+            note="ПРИМЕЧ " + "пояснение к таблице в несколько строк текста " * 4)
+    pages = _pages(s)
+    where = lambda word: [i for i, p in enumerate(pages) if word in p]
+    assert where("ПРИМЕЧ") == where("(4,5)"), [p[-120:] for p in pages]
+    assert where("АБЗАЦ") == where("Наименьшие углы"), [p[-120:] for p in pages]
