@@ -87,3 +87,37 @@ def test_table_note_and_lead_paragraph_kept_with_table(filler):
     where = lambda word: [i for i, p in enumerate(pages) if word in p]
     assert where("ПРИМЕЧ") == where("(4,5)"), [p[-120:] for p in pages]
     assert where("АБЗАЦ") == where("Наименьшие углы"), [p[-120:] for p in pages]
+
+
+# --------------------------------------------------------------------------------------------
+# 3. no two force arrows of a group drawing lie on each other (slider-crank, group (2,3): Φ₃
+#    was drawn along R^n₁₂, moved off G₃ onto the other side; the dashed R₃₂ then along Φ₃)
+# --------------------------------------------------------------------------------------------
+def _cross_steeply(a0, a1, b0, b1) -> bool:
+    """The segments cross inside both at more than 15° (read apart however near they run)."""
+    d, e, w = a1 - a0, b1 - b0, b0 - a0
+    den = d[0] * e[1] - d[1] * e[0]
+    if abs(den) <= np.sin(np.radians(15)) * np.linalg.norm(d) * np.linalg.norm(e):
+        return False
+    t, u = (w[0] * e[1] - w[1] * e[0]) / den, (w[0] * d[1] - w[1] * d[0]) / den
+    return 0 < t < 1 and 0 < u < 1
+
+
+@pytest.mark.parametrize("case", ["slider_crank.toml", "crank_press.toml"])
+def test_group_force_arrows_apart(case, captured):
+    from reportgen import load_case
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.forces import GroupForces
+    from reportgen.scenes.labels import check_figure
+    from notehelpers import arrows_mm, share_near
+    st = load_case(CASES / case)
+    for gi in range(len(st.forces.model.groups)):
+        d = GroupForces(chosen_position(st), gi, landscape=True).draw(st)
+        fig = captured[-1]
+        arrows = [s for s in arrows_mm(fig) if np.linalg.norm(s[1] - s[0]) > 2.0]
+        assert len(arrows) >= len([v for v in d.vectors if np.hypot(*v.F) > 0])
+        for i, (a0, a1) in enumerate(arrows):
+            for j, (b0, b1) in enumerate(arrows):
+                if i != j and np.linalg.norm(a1 - a0) <= np.linalg.norm(b1 - b0):
+                    assert share_near(a0, a1, b0, b1) <= 0.25 or _cross_steeply(a0, a1, b0, b1), (gi, i, j)
+        assert check_figure(fig) == []

@@ -774,21 +774,60 @@ def _inset_sides(pts: np.ndarray, offset: float, near: float) -> list[tuple[np.n
     """The sides of an enlarged chain as drawn: (start, end, moved). A side that would cover more
     than a fifth of an earlier side (the chain folds back on itself: G₃ and Φ₃ nearly opposite) is
     moved ``offset`` beside itself, away from that side, as the main polygon's closing side is
-    (``_clear_of_sides``); it is joined to its vertices by thin lines."""
+    (``_clear_of_sides``), or twice as far or to the other side when that place covers a side
+    too; it is joined to its vertices by thin lines. Sides shorter than 2·``near`` (drawn in an
+    enlarged inset) neither cover nor are covered, and a side meeting the previous one at their
+    common vertex is not covered by it there (1,5·``near`` of both left out)."""
     out: list[tuple[np.ndarray, np.ndarray, bool]] = []
+    trim = 1.5 * near
+
+    def cut(p, q, ends):
+        """The segment pq without ``trim`` at each of its ends touching ``ends`` (a common vertex)."""
+        L = float(np.hypot(*(q - p)))
+        u = (q - p) / (L or 1.0) * trim
+        at_p = any(float(np.hypot(*(p - e))) < 2.0 * near for e in ends)
+        at_q = any(float(np.hypot(*(q - e))) < 2.0 * near for e in ends)
+        if L <= trim * (at_p + at_q):
+            return None
+        return (p + u if at_p else p, q - u if at_q else q)
+
+    def hit(a, b):
+        for s0, s1, _ in out:
+            if float(np.hypot(*(s1 - s0))) < 2.0 * near:
+                continue
+            mine, theirs = cut(a, b, (s0, s1)), cut(s0, s1, (a, b))
+            if mine is None or theirs is None or _crossing(*mine, *theirs):
+                continue
+            if covered(*mine, *theirs, near) > 0.2 or covered(*theirs, *mine, near) > 0.2:
+                return s0, s1
+        return None
+
     for n in range(len(pts) - 1):
         a, b = pts[n], pts[n + 1]
-        hit = next(((s0, s1) for s0, s1, _ in out
-                    if covered(a, b, s0, s1, near) > 0.2 or covered(s0, s1, a, b, near) > 0.2), None)
-        if hit is None:
+        first = hit(a, b) if float(np.hypot(*(b - a))) >= 2.0 * near else None
+        if first is None:
             out.append((a, b, False))
             continue
         d = b - a
         nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
-        if ((hit[0] + hit[1]) / 2 - (a + b) / 2) @ nrm > 0:
+        if ((first[0] + first[1]) / 2 - (a + b) / 2) @ nrm > 0:
             nrm = -nrm
-        out.append((a + nrm * offset, b + nrm * offset, True))
+        off = next((nrm * offset * k for k in (1.0, -1.0, 2.0, -2.0)
+                    if hit(a + nrm * offset * k, b + nrm * offset * k) is None), nrm * offset)
+        out.append((a + off, b + off, True))
     return out
+
+
+def _crossing(a0, a1, b0, b1, min_sin: float = 0.25) -> bool:
+    """Whether the segments cross inside both at an angle over ≈ 15° (sin > ``min_sin``): such
+    sides are read apart however near they run around the crossing."""
+    d, e = a1 - a0, b1 - b0
+    den = float(d[0] * e[1] - d[1] * e[0])
+    if abs(den) <= min_sin * float(np.hypot(*d) * np.hypot(*e)):
+        return False
+    w = b0 - a0
+    t, u = (w[0] * e[1] - w[1] * e[0]) / den, (w[0] * d[1] - w[1] * d[0]) / den
+    return 0.0 < t < 1.0 and 0.0 < u < 1.0
 
 
 def _draw_inset(cv, seq, inset) -> None:
@@ -841,17 +880,21 @@ def _opposes_load(v, ext) -> bool:
 
 def _clear_of_sides(start, end, poly, offset: float, near: float):
     """The closing side start→end of a link's polygon, moved ``offset`` beside itself (away from
-    the polygon's middle) when it would cover more than a fifth of a side of the polygon (an
-    inner reaction nearly collinear with an outer one: a link loaded almost by two forces):
-    (start, end, moved)."""
-    if not any(covered(start, end, poly[i], poly[i + 1], near) > 0.2 or covered(poly[i], poly[i + 1], start, end, near) > 0.2
-               for i in range(len(poly) - 1)):
+    the polygon's middle; twice as far, or to the other side, when that place still covers a side)
+    when it would cover more than a fifth of a side of the polygon (an inner reaction nearly
+    collinear with an outer one: a link loaded almost by two forces): (start, end, moved)."""
+    def hits(s, e):
+        return any(covered(s, e, poly[i], poly[i + 1], near) > 0.2 or covered(poly[i], poly[i + 1], s, e, near) > 0.2
+                   for i in range(len(poly) - 1))
+    if not hits(start, end):
         return start, end, False
     d = end - start
     nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
     if (poly.mean(axis=0) - (start + end) / 2) @ nrm > 0:
         nrm = -nrm
-    return start + nrm * offset, end + nrm * offset, True
+    off = next((nrm * offset * k for k in (1.0, 2.0, -1.0, -2.0)
+                if not hits(start + nrm * offset * k, end + nrm * offset * k)), nrm * offset)
+    return start + off, end + off, True
 
 
 SCHEME_SHIFT_MM = 2.5   # a scheme's arrow along another one at the same point is drawn this far beside it
