@@ -121,3 +121,36 @@ def test_group_force_arrows_apart(case, captured):
                 if i != j and np.linalg.norm(a1 - a0) <= np.linalg.norm(b1 - b0):
                     assert share_near(a0, a1, b0, b1) <= 0.25 or _cross_steeply(a0, a1, b0, b1), (gi, i, j)
         assert check_figure(fig) == []
+
+
+# --------------------------------------------------------------------------------------------
+# 4. ws002: the long thin Жуковский lever had the images 34 and 45 a millimetre apart near the
+#    pole, labels stacked; crowded images are now shown in an enlarged view as on the plans
+# --------------------------------------------------------------------------------------------
+def test_thin_lever_crowded_images_enlarged(captured):
+    from reportgen import load_case
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.forces import ZhukovskyLever
+    from reportgen.scenes.labels import check_figure
+    st = load_case(CASES / "ws002_tractor_hitch.toml")
+    d = ZhukovskyLever(chosen_position(st), landscape=True).draw(st)
+    fig = captured[-1]
+    assert check_figure(fig) == []
+    # the images as the plan of velocity analogs gives them (independent of the scene), on print
+    row = st.forces.details(chosen_position(st))["cols"]
+    img = {p: np.array([row[f"vqx_{p}"], row[f"vqy_{p}"]]) / d.mu for p in ("34", "45")}
+    gap = float(np.hypot(*(img["34"] - img["45"])))
+    assert gap < 3.0                                # crowded at the lever's scale
+    ins = [i for i in d.insets if {"34", "45"} <= set(i.tips)]
+    assert ins and ins[0].k * gap >= 3.0            # and apart in the enlarged view
+    texts = [t.get_text() for t in fig.axes[0].texts]
+    assert any("(×" in t for t in texts)
+    assert sum(t == "$34$" for t in texts) == 1     # labelled once: in the view, not on the lever too
+
+
+def test_lever_text_names_the_enlarged_view():
+    from reportgen import load_case
+    from reportgen.report.sections import forces
+    st = load_case(CASES / "ws002_tractor_hitch.toml")
+    text = " ".join(_plain(b.html) for b in blocks(forces.build(st)) if isinstance(b, Paragraph))
+    assert "выносным элементом А (μv/5" in text

@@ -18,13 +18,14 @@ import pandas as pd
 from matplotlib.patches import Arc
 
 from ..analysis.forces import crank_pin, lever_points
-from ..analysis.plans import READ_MM, drawn, velocity_plan
+from ..analysis.plans import READ_MM, Plan, drawn, velocity_plan
 from ..core import kinetostatics as KS
 from ..style import mplstyle
 from ..style.numbers import fmt
 from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow, draw_mechanism, gost_scale, nice_scale
 from .labels import tex_point
 from .mechanism import LANDSCAPE_GAIN, LANDSCAPE_H, LANDSCAPE_W, Drawing
+from .plans import INSET_MARKS, PlanScene, find_insets
 
 BLUE = "#1f4e9c"
 RED = "#b2182b"
@@ -931,6 +932,7 @@ class LeverDrawing(Drawing):
     graphic: float = 0.0                # the balancing force found on the drawing: −Σ F·h / h_ур
     arm_exact_mm: float = 0.0
     forces_turned: bool = False         # the plan unturned, the forces turned by 90° clockwise
+    insets: list = field(default_factory=list)   # enlarged views of crowded images (scenes.plans.Inset)
 
 
 class ZhukovskyLever:
@@ -1009,13 +1011,22 @@ class ZhukovskyLever:
             bal = [(lab, back(pt), back(F), b) for lab, pt, F, b in bal]
             tips = np.array([[t[1], -t[0]] for t in tips])
         landscape = False
+        insets = []
         if self.mu is None:
             # on a landscape page when that enlarges the lever at least LANDSCAPE_GAIN times
             wide = dict(avail_w=LANDSCAPE_W, avail_h=LANDSCAPE_H - 32, margin_mm=16, page_w=LANDSCAPE_W)
             landscape = self.landscape and (Canvas.scale(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16)
                          >= LANDSCAPE_GAIN * Canvas.scale(tips[:, 0], tips[:, 1], **wide))
-            cv = (Canvas.fit(tips[:, 0], tips[:, 1], **wide) if landscape
-                  else Canvas.fit(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16))
+            page = wide if landscape else dict(avail_w=160, avail_h=170, margin_mm=16)
+            mu = Canvas.scale(tips[:, 0], tips[:, 1], **page)
+            # crowded images (a long thin lever: points a millimetre apart near the pole) shown
+            # enlarged as on the plans, ГОСТ 2.305 выносные элементы
+            lever_plan = Plan(plan.kind, {k: v for k, v in rot.items() if k in plan.tips}, plan.segments,
+                              plan.point_of_tip)
+            max_w = LANDSCAPE_W if landscape else 165.0
+            insets = find_insets(lever_plan, mu, max_w - 32)
+            box = np.vstack([tips] + [[i.at - i.radius * i.k - i.pad, i.at + i.radius * i.k + i.pad] for i in insets])
+            cv = Canvas(box[:, 0].min(), box[:, 0].max(), box[:, 1].min(), box[:, 1].max(), mu, 16, max_w=max_w)
         else:
             cv = Canvas(tips[:, 0].min(), tips[:, 0].max(), tips[:, 1].min(), tips[:, 1].max(), self.mu, 16, max_w=1e4)
         ax = cv.ax
@@ -1025,11 +1036,16 @@ class ZhukovskyLever:
             ax.plot([p0[0], p1[0]], [p0[1], p1[1]], color=GREY if seg.kind == "abs" else INK,
                     lw=0.8 if seg.kind == "abs" else 1.2, ls="--" if seg.kind == "abs" else "-", zorder=2)
         ax.plot([0], [0], "o", ms=3, color=INK)
-        cv.labels.add(0.0, 0.0, "$p$", prefer=(-1, -1), fontsize=10)
+        hidden = {lab for i in insets for lab in i.tips}
+        if "p" not in hidden:
+            cv.labels.add(0.0, 0.0, "$p$", prefer=(-1, -1), fontsize=10)
         for lab, v in rot.items():
-            if lab not in plan.point_of_tip or np.hypot(*v) < 1e-12:
+            if lab not in plan.point_of_tip or np.hypot(*v) < 1e-12 or lab in hidden:
                 continue
             cv.labels.add(v[0], v[1], tex_point(lab, lower=True), prefer=v, fontsize=10, color=GREY)
+        for n, ins in enumerate(insets):
+            ins.mark = INSET_MARKS[n % len(INSET_MARKS)]
+            PlanScene(self.label, "velocity")._draw_inset(cv, lever_plan, ins, "$p$")
         Fmax = max([float(np.hypot(*it[2])) for it in items + bal] + [1e-12])
         rows = []
         for lab, p, F, is_bal in items + bal:
@@ -1053,7 +1069,7 @@ class ZhukovskyLever:
         graph = -total / arm_read if abs(arm_read) > 0 else 0.0
         return LeverDrawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape, moments=table, analog=analog,
                             arm_mm=arm_read,
-                            graphic=graph, arm_exact_mm=arm_mm, forces_turned=turned)
+                            graphic=graph, arm_exact_mm=arm_mm, forces_turned=turned, insets=insets)
 
 
 def _points(mech) -> list[str]:

@@ -489,7 +489,7 @@ def _insets_text(drawing, what: str, sym: str, unit: str) -> str:
     scales μ/k; empty when the plan has none."""
     if not drawing.insets:
         return ""
-    parts = [f"{i.mark} (μ<sub>{sym}</sub>/{mu_text(i.k)} = {mu_text(drawing.mu / i.k)}&nbsp;{unit})"
+    parts = [f"{i.mark} (<span class=\"nowrap\">μ<sub>{sym}</sub>/{mu_text(i.k)}</span> = {mu_text(drawing.mu / i.k)}&nbsp;{unit})"
              for i in drawing.insets]
     what_el = "выносным элементом" if len(parts) == 1 else "выносными элементами"
     return (f" Короткие векторы и близко лежащие точки плана {what} обведены и показаны крупнее "
