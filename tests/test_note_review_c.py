@@ -154,3 +154,42 @@ def test_lever_text_names_the_enlarged_view():
     st = load_case(CASES / "ws002_tractor_hitch.toml")
     text = " ".join(_plain(b.html) for b in blocks(forces.build(st)) if isinstance(b, Paragraph))
     assert "выносным элементом А (μv/5" in text
+
+
+# --------------------------------------------------------------------------------------------
+# 5. the conclusion judges the output's speed only against a limit the case gives
+# --------------------------------------------------------------------------------------------
+def _with_report(tmp_path, case: str, extra: str):
+    from reportgen import load_case
+    text = (CASES / case).read_text(encoding="utf-8")
+    p = tmp_path / case
+    p.write_text(text + "\n[report]\n" + extra + "\n", encoding="utf-8")
+    return load_case(p)
+
+
+def test_output_speed_judged_against_the_case_limit(tmp_path):
+    from reportgen import load_case
+    from reportgen.report.sections import kinematics
+    plain = " ".join(kinematics.conclusion_lines(load_case(CASES / "slider_crank.toml")))
+    assert "[v]" not in plain and "допускаемой скорост" not in plain   # no limit given: no verdict
+    st = _with_report(tmp_path, "slider_crank.toml", 'output_v_limit = "10 m/s"')
+    vmax = float(st.cycle["vs_30"].abs().max())                    # independent: the slider's column
+    assert 10.0 < vmax
+    text = _plain(" ".join(kinematics.conclusion_lines(st)))
+    w_ok = 150.0 * 10.0 / vmax
+    assert "превышает допускаемую [v]\u00a0=\u00a010\u00a0м/с" in text
+    assert f"ω1\u00a0≤\u00a0{w_ok:.3g}".replace(".", ",") in text.replace("ω₁", "ω1"), text
+    st = _with_report(tmp_path, "slider_crank.toml", 'output_v_limit = "30 m/s"')
+    text = _plain(" ".join(kinematics.conclusion_lines(st)))
+    assert "не превышает допускаемой [v]\u00a0=\u00a030\u00a0м/с" in text
+
+
+def test_output_speed_limit_of_a_rocker_in_rad_per_s(tmp_path):
+    from reportgen.errors import CaseError
+    from reportgen.report.sections import kinematics
+    st = _with_report(tmp_path, "four_bar.toml", 'output_v_limit = "1000 rad/s"')
+    if st.mechanism.driver.omega is not None:
+        assert "рад/с" in " ".join(kinematics.conclusion_lines(st))
+    st = _with_report(tmp_path, "four_bar.toml", 'output_v_limit = "2 m/s"')
+    with pytest.raises(CaseError):
+        kinematics.conclusion_lines(st)

@@ -553,6 +553,40 @@ def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
         sec.formula(*fs)
 
 
+def output_v_limit(study) -> float | None:
+    """``[report] output_v_limit``: the admissible speed of the output link given by the case (a
+    slider's m/s, a rocker's rad/s), or None."""
+    from ...case import units as U
+    s_col = output_quantity(study)[0]
+    dim = U.ANGULAR_VELOCITY if s_col.startswith("phi_") else U.VELOCITY
+    return study.root.table("report").quantity("output_v_limit", dim, study.params, positive=True)
+
+
+def _speed_verdict(study) -> list[str]:
+    """The output's largest speed over the cycle against the admissible one the case gives
+    (``output_v_limit``); since every speed of the mechanism is proportional to ω₁, an exceeded
+    limit is met by ω₁ ≤ ω₁·[v]/v_max. Nothing when the case gives no limit (no invented norm)."""
+    lim = output_v_limit(study)
+    d = study.mechanism.driver
+    if lim is None or d.omega is None or not d.rotary or d.swing:
+        return []
+    s_col, _, _, _ = output_quantity(study)
+    pre, _, name = s_col.partition("_")
+    vcol = {"phi": "w", "s": "vs", "x": "vx", "y": "vy"}[pre] + "_" + name
+    vmax = float(study.cycle[vcol].abs().max())
+    unit = "рад/с" if pre == "phi" else "м/с"
+    what = "угловая скорость выходного звена" if pre == "phi" else "скорость выходного звена"
+    # a slider's largest speed is stated in the line before (conclusion_lines)
+    head = "Эта скорость" if pre == "s" else f"Наибольшая {what} {fmt(vmax, sig=3)}&nbsp;{unit}"
+    limit = f"[<i>v</i>]&nbsp;=&nbsp;{fmt_given(lim)}&nbsp;{unit}"
+    if vmax <= lim:
+        return [f"{head} не превышает допускаемой {limit} ({fmt(100 * vmax / lim, digits=0)}&nbsp;% от неё)."]
+    w = abs(float(d.omega))
+    return [f"{head} превышает допускаемую {limit} в {fmt(vmax / lim, sig=3)} раза: все скорости механизма "
+            f"пропорциональны ω<sub>1</sub>, поэтому угловую скорость {input_word(d, 'gen')} следует уменьшить до "
+            f"ω<sub>1</sub>&nbsp;≤&nbsp;{fmt(w * lim / vmax, sig=3)}&nbsp;рад/с (или изменить размеры механизма)."]
+
+
 def _speed_lines(study) -> list[str]:
     """The speeds a designer weighs, stated with their values: the mean speeds of the output's two
     strokes v = H·ω₁/φ (φ — the crank's turn over the stroke, study ``output_v_work`` /
@@ -598,6 +632,7 @@ def conclusion_lines(study) -> list[str]:
         n = s_col[2:]
         out.append(f"Наибольшая скорость выходного звена {fmt(cyc['vs_' + n].abs().max(), digits=3)}&nbsp;м/с, "
                    f"наибольшее ускорение {fmt(cyc['as_' + n].abs().max(), sig=4)}&nbsp;м/с².")
+    out += _speed_verdict(study)
     out += _speed_lines(study)
     fine = []       # groups whose μ_min ≥ 40°: one sentence for all of them, not one each
     for c, v in study.flags.items():
