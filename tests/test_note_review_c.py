@@ -193,3 +193,38 @@ def test_output_speed_limit_of_a_rocker_in_rad_per_s(tmp_path):
     st = _with_report(tmp_path, "four_bar.toml", 'output_v_limit = "2 m/s"')
     with pytest.raises(CaseError):
         kinematics.conclusion_lines(st)
+
+
+@pytest.mark.parametrize("filler", range(22, 28))
+def test_heading_paragraph_and_short_table_kept_together(filler):
+    """The slotting machine's «1.1 Звенья и кинематические пары» stood alone at the foot of p. 5:
+    its paragraph had been sent to the next page with the short table it announces."""
+    import pandas as pd
+    from reportgen.report.document import Column, Section
+    s = Section("Раздел", "s")
+    for _ in range(filler):
+        s.paragraph("Строка текста для заполнения страницы.")
+    sub = s.subsection("ПОДРАЗДЕЛ звенья", "s-sub")
+    sub.paragraph("АБЗАЦ звенья перечислены в таблице.")
+    sub.table("Звенья механизма", [Column("n", "Номер"), Column("t", "Название")],
+              pd.DataFrame({"n": ["1", "2", "3", "4", "5"], "t": ["кривошип", "шатун", "коромысло", "шатун", "ползун"]}),
+              id="tab-links")
+    pages = _pages(s)
+    where = lambda word: [i for i, p in enumerate(pages) if word in p]
+    assert where("ПОДРАЗДЕЛ")[-1:] == where("АБЗАЦ") == where("Звенья механизма"), [p[-150:] for p in pages]
+
+
+# --------------------------------------------------------------------------------------------
+# 6. review of a mechanism not in cases/ before (cases/slotting_machine.toml: a crank-rocker with
+#    a slider driven from the rocker's second arm)
+# --------------------------------------------------------------------------------------------
+def test_link_omega_from_its_own_group():
+    """ω₃ of the rocker was written ω₃ = V_DC/l_CD: D is the pair of the later group (4,5), whose
+    velocity is found from ω₃ itself; the group (2,3) gives V_BC, so ω₃ = V_BC/l_CB."""
+    from reportgen import load_case
+    from reportgen.report.document import FormulaBlock
+    from reportgen.report.sections import kinematics
+    st = load_case(CASES / "slotting_machine.toml")
+    fs = [f.symbolic for b in blocks(kinematics.build(st)) if isinstance(b, FormulaBlock) for f in b.formulas]
+    assert r"\omega_{3} = \frac{V_{BC}}{l_{CB}}" in fs
+    assert r"\varepsilon_{3} = \frac{a^{\tau}_{BC}}{l_{CB}}" in fs

@@ -516,12 +516,19 @@ def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
     # value and length (ω = V/l of the same numbers, not the analytic ω next to a drawn V)
     fs = []
     aseg = {s.name: s for s in aplan.plan.segments}
+    # a link's ω from the relative velocity its own group's equations give (ω₃ = V_BC/l_CB of the
+    # rocker of group (2,3)), not from a point of a later group's pair found from it (V_DC)
+    rank = {FRAME: -1}
+    for k, g in enumerate(study.structure.groups):
+        rank.update({l: k for l in g.links})
     for link in mech.moving:
         if d.rotary and link.name == d.link:
             continue
         joints = {j.point for j in mech.joints}
+        own = {j.point for j in mech.joints if link.name in j.links
+               and all(rank.get(l, -1) <= rank.get(link.name, -1) for l in j.links)}
         rel = [s for s in vplan.plan.segments if s.kind == "rel" and s.link == link.name]
-        rel.sort(key=lambda s: (s.end not in joints, -s.length))
+        rel.sort(key=lambda s: (s.end not in own, s.end not in joints, -s.length))
         if not rel or abs(row[f"w_{link.name}"]) < 1e-12 and float(np.abs(study.cycle["wq_" + link.name]).max()) < 1e-12:
             continue
         s0 = rel[0]
