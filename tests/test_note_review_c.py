@@ -228,3 +228,15 @@ def test_link_omega_from_its_own_group():
     fs = [f.symbolic for b in blocks(kinematics.build(st)) if isinstance(b, FormulaBlock) for f in b.formulas]
     assert r"\omega_{3} = \frac{V_{BC}}{l_{CB}}" in fs
     assert r"\varepsilon_{3} = \frac{a^{\tau}_{BC}}{l_{CB}}" in fs
+
+
+def test_centre_of_mass_column_in_textbook_notation():
+    """Table 3.1 printed the centres of mass as plain «S2», «S4»."""
+    from reportgen import load_case
+    from reportgen.report.document import Table
+    from reportgen.report.sections import dynamics
+    st = load_case(CASES / "slotting_machine.toml")
+    tab = next(b for b in blocks(dynamics.build(st)) if isinstance(b, Table) and b.id == "tab-dyn-links")
+    col = next(c for c in tab.columns if c.key == "S")
+    assert str(col.format("S2")) == "<i>S</i><sub>2</sub>" and str(col.format("—")) == "—"
+    assert "&lt;" in str(col.format("S<b>2")) and "<b>" not in str(col.format("S<b>2"))

@@ -23,7 +23,8 @@ from ...style.numbers import fmt, fmt_given, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import condition_html, expr_html, plural
-from .common import MAX_COLS, as_written, chosen_position, chunked_tables, sub, tex_point, pos_fmt, pos_no
+from .common import (MAX_COLS, as_written, chosen_position, chunked_tables, html_point, sub, tex_point, pos_fmt,
+                     pos_no)
 
 NEEDS = ("kinematics", "cycle", "dynamics")
 
@@ -252,7 +253,9 @@ def _model(sec: Section, study, d) -> None:
     if rows:
         s.table("Инерционные параметры звеньев в динамической модели", [
             Column("n", "Звено"), Column("title", "Название"), Column("m", "<i>m</i>", "кг", sig=4),
-            Column("J", _h("J", "S"), "кг·м²", sig=4), Column("S", "Центр масс"), Column("group", "Группа")],
+            Column("J", _h("J", "S"), "кг·м²", sig=4), Column("S", "Центр масс",
+                                                                  fmt=lambda v: Markup(html_point(escape(v))) if v[:1].isalpha() else v),
+            Column("group", "Группа")],
             pd.DataFrame(rows), id="tab-dyn-links")
     JO = fmt(st.J_O, sig=4, unit="кг·м²")
     extra = ""

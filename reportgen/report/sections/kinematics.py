@@ -85,6 +85,13 @@ def _quick_return(fast: float, K: float) -> str:
             f"{fmt(K, digits=2)} раза быстрее, что сокращает время цикла.")
 
 
+def _in_tables(ids: list[str]) -> str:
+    """«таблице 2.1» for one table, «таблицах 2.1 и 2.2» (or «2.1–2.3») for the parts of a wide one."""
+    if len(ids) == 1:
+        return f"таблице {ref(ids[0])}"
+    return f"таблицах {ref(ids[0])}{' и ' if len(ids) == 2 else '–'}{ref(ids[-1])}"
+
+
 def _rotates(study, link: str) -> bool:
     """The link turns somewhere in the cycle (a guide on it gives a Coriolis acceleration)."""
     return float(np.abs(study.cycle["wq_" + link]).max()) > 1e-12
@@ -182,9 +189,9 @@ def build(study) -> Section:
     for c in k.columns:
         if c.startswith("phi_") and c[4:] not in [l.name for l in mech.links]:
             angle_cols.append(Column(c, sub("φ", c[4:]), "град", fmt=_deg))
-    chunked_tables(s1, "Углы звеньев" + (" и перемещения в поступательных парах" if mech.prismatic else ""),
-                   k, angle_cols, lead, "tab-angles")
-    s1.paragraph(f"Координаты точек приведены в таблице {ref(ids[0])}, углы звеньев — в таблице {ref('tab-angles' if len(angle_cols) <= 8 else 'tab-angles-1')}.")
+    a_ids = chunked_tables(s1, "Углы звеньев" + (" и перемещения в поступательных парах" if mech.prismatic else ""),
+                           k, angle_cols, lead, "tab-angles")
+    s1.paragraph(f"Координаты точек приведены в {_in_tables(ids)}, углы звеньев — в {_in_tables(a_ids)}.")
 
     # ----- analogs
     s2 = sec.subsection("Аналоги скоростей и ускорений", "sec-analogs")
@@ -288,14 +295,14 @@ def build(study) -> Section:
           else f"<i>S</i>&nbsp;=&nbsp;{fmt(q0, digits=4)}&nbsp;м")
     if s_col.startswith("phi_"):
         s5.paragraph(f"Выходное звено — {title}; размах качания {fmt(math.degrees(stroke), digits=2)}° "
-                     f"(рисунок {ref('fig-diagrams')}). Угол поворота ψ{n}&nbsp;=&nbsp;φ{n}&nbsp;−&nbsp;φ{n}<sub>min</sub> "
-                     f"на диаграмме отсчитывается от крайнего положения при {at}, угловые скорость и "
-                     f"ускорение — в направлении отсчёта угла φ{n}.")
+                     f"(рисунок {ref('fig-diagrams')}).")
+        origin = (f"Угол поворота ψ{n}&nbsp;=&nbsp;φ{n}&nbsp;−&nbsp;φ{n}<sub>min</sub> на диаграмме отсчитывается "
+                  f"от крайнего положения при {at}, угловые скорость и ускорение — в направлении отсчёта угла φ{n}.")
     else:
         s5.paragraph(f"Выходное звено — {title}; ход <i>H</i>&nbsp;=&nbsp;{fmt(stroke, digits=4)}&nbsp;м "
-                     f"(рисунок {ref('fig-diagrams')}). Перемещение <i>s</i>{n} на диаграмме отсчитывается от "
-                     f"крайнего положения при {at} (0&nbsp;≤&nbsp;<i>s</i>{n}&nbsp;≤&nbsp;<i>H</i>), скорость и "
-                     f"ускорение — в том же направлении.")
+                     f"(рисунок {ref('fig-diagrams')}).")
+        origin = (f"Перемещение <i>s</i>{n} на диаграмме отсчитывается от крайнего положения при {at} "
+                  f"(0&nbsp;≤&nbsp;<i>s</i>{n}&nbsp;≤&nbsp;<i>H</i>), скорость и ускорение — в том же направлении.")
     if mech.driver.swing:
         s5.paragraph(swing_strokes_text(study))
         _strokes_table(s5, study, s_col)
@@ -306,6 +313,7 @@ def build(study) -> Section:
                      f"{_turn(cyc['q'].iloc[i_max] - study.grid.start)}°; угол перекрытия "
                      f"θ&nbsp;=&nbsp;{fmt(abs(180 - work), digits=1)}°, коэффициент изменения средней скорости "
                      f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}." + _quick_return(work, K))
+    s5.paragraph(origin)
     s5.figure("Кинематические диаграммы выходного звена", diag.svg, diag.width_mm, id="fig-diagrams")
     flags = study.flags
     guides, guide_note = _guide_transmission(study)
