@@ -240,3 +240,17 @@ def test_centre_of_mass_column_in_textbook_notation():
     col = next(c for c in tab.columns if c.key == "S")
     assert str(col.format("S2")) == "<i>S</i><sub>2</sub>" and str(col.format("—")) == "—"
     assert "&lt;" in str(col.format("S<b>2")) and "<b>" not in str(col.format("S<b>2"))
+
+
+def test_load_table_points_in_textbook_notation():
+    """Table 3.2 printed «S2, звено 2» and «g = 9,810 м/с²» (given 9.81)."""
+    from reportgen import load_case
+    from reportgen.report.document import Table
+    from reportgen.report.sections import dynamics
+    st = load_case(CASES / "slotting_machine.toml")
+    sec = dynamics.build(st)
+    tab = next(b for b in blocks(sec) if isinstance(b, Table) and b.id == "tab-dyn-loads")
+    where = [str(v) for v in tab.data["where"]]
+    assert "<i>S</i><sub>2</sub>, звено 2" in where and not any(w.startswith("S2") for w in where)
+    text = " ".join(b.html for b in blocks(sec) if isinstance(b, Paragraph))
+    assert "<i>g</i>&nbsp;=&nbsp;9,81&nbsp;м/с²" in text

@@ -268,13 +268,14 @@ def _model(sec: Section, study, d) -> None:
     lrows = []
     for ld in d.loads.loads:
         lrows.append({"name": ld.name, "what": Markup(ld.title).striptags(),
-                      "where": (f"{ld.point}, звено {ld.link}" if ld.point else f"звено {ld.link}"),
+                      "where": (Markup("{}, звено {}").format(Markup(html_point(escape(ld.point))), ld.link)
+                                if ld.point else Markup("звено {}").format(ld.link)),
                       "law": _law(ld)})
     if lrows:
         s.paragraph(f"Внешние нагрузки машины перечислены в таблице {ref('tab-dyn-loads')}. Силы тяжести "
-                    f"вычислены при g&nbsp;=&nbsp;{fmt(d.loads.g, sig=4)}&nbsp;м/с².")
+                    f"вычислены при <i>g</i>&nbsp;=&nbsp;{fmt_given(d.loads.g)}&nbsp;м/с².")
         s.table("Нагрузки, действующие на звенья", [
-            Column("name", "Обозначение", fmt=lambda v: Markup(html_label(v))), Column("what", "Нагрузка"), Column("where", "Точка приложения"),
+            Column("name", "Обозначение", fmt=lambda v: Markup(html_label(v))), Column("what", "Нагрузка"), Column("where", "Точка приложения", fmt=Markup),
             Column("law", "Закон изменения", fmt=Markup)], pd.DataFrame(lrows), id="tab-dyn-loads")
     if d.breaks.size:
         pts = ", ".join(_phase_deg(study, q) for q in d.breaks)
