@@ -254,3 +254,20 @@ def test_load_table_points_in_textbook_notation():
     assert "<i>S</i><sub>2</sub>, звено 2" in where and not any(w.startswith("S2") for w in where)
     text = " ".join(b.html for b in blocks(sec) if isinstance(b, Paragraph))
     assert "<i>g</i>&nbsp;=&nbsp;9,81&nbsp;м/с²" in text
+
+
+@pytest.mark.parametrize("case", ["slotting_machine.toml", "ws000_six_bar_corrected.toml"])
+def test_energy_legend_clear_of_the_extremes_notes(case, captured):
+    """Fig. 3.4 of the slotting machine: the legend (lower left) hid «ΔT_I min = −38,135 Дж» of a
+    minimum at φ = 33,6°."""
+    from reportgen import load_case
+    from reportgen.scenes.dynamics import EnergyCurves
+    st = load_case(CASES / case)
+    EnergyCurves().draw(st)
+    fig = captured[-1]
+    ax = fig.axes[0]
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    r = FigureCanvasAgg(fig).get_renderer()
+    leg = ax.get_legend().get_window_extent(r)
+    notes = [t.get_window_extent(r) for t in ax.texts if "Delta T" in t.get_text()]
+    assert len(notes) == 2 and not any(leg.overlaps(n) for n in notes)
