@@ -271,3 +271,12 @@ def test_energy_legend_clear_of_the_extremes_notes(case, captured):
     leg = ax.get_legend().get_window_extent(r)
     notes = [t.get_window_extent(r) for t in ax.texts if "Delta T" in t.get_text()]
     assert len(notes) == 2 and not any(leg.overlaps(n) for n in notes)
+
+
+def test_given_delta_and_speed_as_written():
+    """«δ = 0,04000 при … (n = 80,0 об/мин)» for a case giving delta = 0.04, n = 80 rpm."""
+    from reportgen import load_case
+    from reportgen.report.sections import dynamics
+    st = load_case(CASES / "slotting_machine.toml")
+    text = " ".join(b.html for b in blocks(dynamics.build(st)) if isinstance(b, Paragraph))
+    assert "хода δ&nbsp;=&nbsp;0,04 при" in text and "(<i>n</i>&nbsp;=&nbsp;80&nbsp;об/мин)" in text

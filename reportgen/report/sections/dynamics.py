@@ -511,9 +511,9 @@ def _flywheel(sec, study, d) -> None:
                     f"ω<sub>min</sub>&nbsp;=&nbsp;{fmt(inv.omega_min, sig=5)}&nbsp;рад/с и коэффициент неравномерности хода "
                     f"δ&nbsp;=&nbsp;(ω<sub>max</sub>&nbsp;−&nbsp;ω<sub>min</sub>)/ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(dl, sig=4)}. "
                     "Для проверки ниже решена прямая задача с этим δ: точный способ возвращает заданный маховик.")
-    s.paragraph(f"{'Найденный' if d.inverse is not None else 'Требуемый'} коэффициент неравномерности хода δ&nbsp;=&nbsp;{fmt(dl, sig=4)} при средней угловой "
+    s.paragraph(f"{'Найденный' if d.inverse is not None else 'Требуемый'} коэффициент неравномерности хода δ&nbsp;=&nbsp;{fmt(dl, sig=4) if d.inverse is not None else as_written(dl)} при средней угловой "
                 f"скорости ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(w, digits=3)}&nbsp;рад/с "
-                f"(n&nbsp;=&nbsp;{fmt(w * 30 / math.pi, digits=1)}&nbsp;об/мин); "
+                f"(<i>n</i>&nbsp;=&nbsp;{fmt_given(w * 30 / math.pi)}&nbsp;об/мин); "
                 f"{_im('delta')}, "
                 f"{_im('wm')}. "
                 f"Момент инерции {inline_math('J_I')} найден тремя способами; в дальнейших расчётах принято "
