@@ -280,3 +280,14 @@ def test_given_delta_and_speed_as_written():
     st = load_case(CASES / "slotting_machine.toml")
     text = " ".join(b.html for b in blocks(dynamics.build(st)) if isinstance(b, Paragraph))
     assert "хода δ&nbsp;=&nbsp;0,04 при" in text and "(<i>n</i>&nbsp;=&nbsp;80&nbsp;об/мин)" in text
+
+
+def test_given_delta_substituted_as_written():
+    """(3.22), (3.24) substituted «8,378²·0,04000» for the given δ = 0.04."""
+    from reportgen import load_case
+    from reportgen.report.document import FormulaBlock
+    from reportgen.report.sections import dynamics
+    st = load_case(CASES / "slotting_machine.toml")
+    subs = [f.substituted for b in blocks(dynamics.build(st)) if isinstance(b, FormulaBlock) for f in b.formulas
+            if f.symbolic.startswith("J_I =")]
+    assert len(subs) == 2 and all(s.endswith(r"\cdot 0{,}04}") for s in subs), subs

@@ -498,6 +498,10 @@ def _flywheel(sec, study, d) -> None:
     r = d.result
     me, wi, ex = r.mertsalov, r.wittenbauer, r.exact
     w, dl = st.omega_m, st.delta
+    # a given δ substituted as the case writes it (0,04, not 0,04000); a found one to 4 digits
+    dl_w = as_written(dl)
+    dl_tex = (_t(dl, sig=4) if d.inverse is not None
+              else _t(dl, sig=None, digits=len(dl_w.split(",")[1]) if "," in dl_w else 0))
     if d.inverse is not None:
         inv, u = d.inverse, st.ratio
         shaft = (f"на валу, вращающемся в u&nbsp;=&nbsp;{_ratio(u)} раза быстрее кривошипа; приведённый к валу "
@@ -527,7 +531,7 @@ def _flywheel(sec, study, d) -> None:
               Formula(r"\Delta T_{I\,min}", None, _t(me.dT_I_min, sig=5, unit="Дж")),
               Formula(r"J_I = \frac{\Delta T_{I\,max} - \Delta T_{I\,min}}{\omega_{\text{ср}}^2\,\delta}",
                       rf"\frac{{{_t(me.dT_I_max, sig=5, paren=True)} - {_t(me.dT_I_min, sig=5, paren=True)}}}"
-                      rf"{{{_t(w, digits=3)}^2 \cdot {_t(dl, sig=4)}}}",
+                      rf"{{{_t(w, digits=3)}^2 \cdot {dl_tex}}}",
                       _t(me.J_I, sig=5, unit="кг·м²"), label="eq-JI-mertsalov"))
     s.paragraph(f"Экстремумы Δ<i>T</i><sub>I</sub> найдены по всему циклу решением уравнения "
                 f"{_im('mert_ext')} "
@@ -542,7 +546,7 @@ def _flywheel(sec, study, d) -> None:
                       r"\quad \mathrm{tg}\,\psi_{min} = \frac{\mu_J}{2\mu_T}\,\omega_{\text{ср}}^2 \left(1 - \frac{\delta}{2}\right)^2",
                       label="eq-witt-slopes"),
               Formula(r"J_I = \frac{KL}{\omega_{\text{ср}}^2\,\delta}",
-                      rf"\frac{{{_t(wi.KL, sig=5)}}}{{{_t(w, digits=3)}^2 \cdot {_t(dl, sig=4)}}}",
+                      rf"\frac{{{_t(wi.KL, sig=5)}}}{{{_t(w, digits=3)}^2 \cdot {dl_tex}}}",
                       _t(wi.J_I, sig=5, unit="кг·м²"), label="eq-JI-witt"))
     s.figure("Диаграмма энергия–масса (диаграмма Виттенбауэра) с касательными", fig.svg, fig.width_mm,
              id="fig-dyn-witt")
@@ -721,7 +725,7 @@ def _motion(sec, study, d, tab, mot, lab, row, lead) -> None:
                 f"φ&nbsp;=&nbsp;{_phase_deg(study, sc['q_omega_max'])}, ω<sub>min</sub>&nbsp;=&nbsp;"
                 f"{fmt(sc['omega_min'], sig=5)}&nbsp;рад/с при φ&nbsp;=&nbsp;{_phase_deg(study, sc['q_omega_min'])}; "
                 f"коэффициент неравномерности точного движения с принятым J<sub>I</sub> — "
-                f"{fmt(r.delta_achieved, digits=5)} (задан {fmt(st.delta, sig=4)}). Значения по положениям — в "
+                f"{fmt(r.delta_achieved, digits=5)} (задан {as_written(st.delta)}). Значения по положениям — в "
                 f"таблице {ref(ids[0])}, графики — на рисунке {ref('fig-dyn-w')}.")
     s.figure("Угловая скорость и угловое ускорение звена приведения", fig.svg, fig.width_mm, id="fig-dyn-w")
     # true motion
