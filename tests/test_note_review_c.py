@@ -291,3 +291,26 @@ def test_given_delta_substituted_as_written():
     subs = [f.substituted for b in blocks(dynamics.build(st)) if isinstance(b, FormulaBlock) for f in b.formulas
             if f.symbolic.startswith("J_I =")]
     assert len(subs) == 2 and all(s.endswith(r"\cdot 0{,}04}") for s in subs), subs
+
+
+def test_slider_load_not_drawn_along_the_rod(captured):
+    """Slotting machine, group (4,5): the cutting force P_рез at E (upwards) was drawn from E up
+    along the rod ED, its head among S₄'s labels; a load whose arrow would lie along a link of the
+    group (and not so when reversed) is drawn ending at its point."""
+    from reportgen import load_case
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.forces import GroupForces
+    from reportgen.scenes.labels import check_figure
+    from notehelpers import arrows_mm, share_near
+    st = load_case(CASES / "slotting_machine.toml")
+    lab = chosen_position(st)
+    gi = next(i for i, g in enumerate(st.forces.model.groups) if set(g.links) == {"4", "5"})
+    GroupForces(lab, gi, landscape=True).draw(st)
+    fig = captured[-1]
+    ax = fig.axes[0]
+    cols = st.forces.details(lab)["cols"]
+    px = fig.dpi / 25.4
+    D, E = (ax.transData.transform((cols[f"x_{p}"], cols[f"y_{p}"])) / px for p in ("D", "E"))
+    long_ = [(a, b) for a, b in arrows_mm(fig) if np.linalg.norm(b - a) > 10.0]
+    assert long_ and all(share_near(a, b, D, E, near=2.0) <= 0.25 for a, b in long_)
+    assert check_figure(fig) == []

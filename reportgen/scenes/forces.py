@@ -340,6 +340,11 @@ class GroupForces:
         draw_mechanism(cv, mech, cols, only=set(g.links), supports=False, lw=1.4, com=True)
         lengths = _scheme_arrows(ext, Fmax, mu_l)
         scheme: list[tuple[np.ndarray, np.ndarray]] = []     # arrows drawn on the scheme
+        # the links' lines (every pair of a link's points): a load drawn along one is turned to end
+        # at its point (a slider's resistance pushing up the rod's line)
+        bars = [(np.array([cols["x_" + a], cols["y_" + a]]), np.array([cols["x_" + b], cols["y_" + b]]))
+                for l in g.links for k, a in enumerate(list(mech.link(l).points))
+                for b in list(mech.link(l).points)[k + 1:]]
         for i, v in enumerate(ext):
             n = float(np.hypot(*v.F))
             if i not in lengths:
@@ -347,9 +352,14 @@ class GroupForces:
             L = lengths[i] * mu_l
             color = {"load": INK, "known": INK, "unknown": BLUE}[v.role]
             ex, ey = v.F[0] / n, v.F[1] / n
+            def on_bar(sign):
+                tip = np.array([v.at[0] + sign * ex * L, v.at[1] + sign * ey * L])
+                return any(covered(np.asarray(v.at, float), tip, b0, b1, cv.mm(NEAR_MM)) > 0.2
+                           for b0, b1 in bars if float(np.hypot(*(b1 - b0))) > 0)
+            along = v.role == "load" and on_bar(1.0) and not on_bar(-1.0)
             # loads start at their point, reactions end at the pair; a reaction opposite to a load
             # at its point (R₀₅ against G₅) starts there too, so that the two do not cover each other
-            if v.role == "load" or _opposes_load(v, ext):
+            if (v.role == "load" and not along) or _opposes_load(v, ext):
                 a0, a1 = v.at, (v.at[0] + ex * L, v.at[1] + ey * L)
                 lx, ly, pref = a1[0], a1[1], (ex, ey)
             else:

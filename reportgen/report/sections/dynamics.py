@@ -674,14 +674,14 @@ def _dimensions(sec, study, d) -> None:
     ]
     s.paragraph(f"Варианты маховика сопоставлены в таблице {ref('tab-dyn-fw')}; окружная скорость обода "
                 f"{_im('vrim_u') if u != 1.0 else _im('vrim')} сравнивается с допускаемой "
-                f"[v]&nbsp;=&nbsp;{fmt(fw.v_limit, sig=3)}&nbsp;м/с.")
+                f"[v]&nbsp;=&nbsp;{fmt_given(fw.v_limit)}&nbsp;м/с.")
     s.table("Размеры и масса маховика", [
         Column("v", "Вариант"), Column("D", "<i>D</i>", "м", digits=3), Column("d", "<i>D</i><sub>1</sub>", "м", digits=3),
         Column("b", "<i>b</i>", "м", digits=3), Column("m", "<i>m</i>", "кг", sig=4),
         Column("u", "<i>v</i>", "м/с", digits=2)], pd.DataFrame(rows), id="tab-dyn-fw")
     if fw.any_exceeds:
         s.paragraph(f"<b>Внимание:</b> окружная скорость обода превышает допускаемую "
-                    f"{fmt(fw.v_limit, sig=3)}&nbsp;м/с — маховик следует установить на более медленный вал "
+                    f"{fmt_given(fw.v_limit)}&nbsp;м/с — маховик следует установить на более медленный вал "
                     "или выполнить из более прочного материала.")
     else:
         s.paragraph("Окружная скорость обода всех вариантов меньше допускаемой.")
@@ -836,9 +836,9 @@ def conclusion_lines(study) -> list[str]:
         v = max(fw.rim.v_rim, fw.disk.v_rim)
         if math.isfinite(v):
             formula = "u·ω<sub>max</sub>·D/2" if u != 1.0 else "ω<sub>max</sub>·D/2"
-            verdict = (f"превышает допускаемую [v]&nbsp;=&nbsp;{fmt(fw.v_limit, sig=3)}&nbsp;м/с: обод следует "
+            verdict = (f"превышает допускаемую [v]&nbsp;=&nbsp;{fmt_given(fw.v_limit)}&nbsp;м/с: обод следует "
                        "сделать меньшего диаметра и большей ширины или стальным" if fw.any_exceeds else
-                       f"не превышает допускаемой [v]&nbsp;=&nbsp;{fmt(fw.v_limit, sig=3)}&nbsp;м/с")
+                       f"не превышает допускаемой [v]&nbsp;=&nbsp;{fmt_given(fw.v_limit)}&nbsp;м/с")
             where = " (маховик на валу, вращающемся в u раз быстрее кривошипа)" if u != 1.0 else ""
             out.append(f"Наибольшая окружная скорость обода{where} v&nbsp;=&nbsp;{formula}&nbsp;=&nbsp;"
                        f"{fmt(v, sig=3)}&nbsp;м/с {verdict}.")
