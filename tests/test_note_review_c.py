@@ -314,3 +314,17 @@ def test_slider_load_not_drawn_along_the_rod(captured):
     long_ = [(a, b) for a, b in arrows_mm(fig) if np.linalg.norm(b - a) > 10.0]
     assert long_ and all(share_near(a, b, D, E, near=2.0) <= 0.25 for a, b in long_)
     assert check_figure(fig) == []
+
+
+def test_lever_table_without_zero_force_rows():
+    """Table 4.12 of the slotting machine listed M′_Φ1, M″_Φ1 (the couple of the crank's inertia
+    moment 0,0012 Н·м) as rows «0 | 65,5 | 0,0»; the products still sum to zero."""
+    from reportgen import load_case
+    from reportgen.report.document import Table
+    from reportgen.report.sections import forces
+    st = load_case(CASES / "slotting_machine.toml")
+    tab = next(b for b in blocks(forces.build(st)) if isinstance(b, Table) and b.id == "tab-frc-lever")
+    col = {c.key: c for c in tab.columns}
+    printed = [col["F"].format(v) for v in tab.data["F"]]
+    assert all(p.strip("0,") for p in printed), printed
+    assert abs(float(tab.data["Fh"].sum())) < 1e-6 * float(tab.data["Fh"].abs().max())
