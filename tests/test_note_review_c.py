@@ -328,3 +328,16 @@ def test_lever_table_without_zero_force_rows():
     printed = [col["F"].format(v) for v in tab.data["F"]]
     assert all(p.strip("0,") for p in printed), printed
     assert abs(float(tab.data["Fh"].sum())) < 1e-6 * float(tab.data["Fh"].abs().max())
+
+
+def test_reaction_curves_all_told_apart(captured):
+    """Fig. 4.5 of the slotting machine: seven pairs, six colours — R₀₁ and R₀₅ were both solid black."""
+    from reportgen import load_case
+    from reportgen.scenes.forces import ReactionCurves
+    from matplotlib.colors import to_hex
+    st = load_case(CASES / "slotting_machine.toml")
+    ReactionCurves().draw(st)
+    lines = [l for l in captured[-1].axes[0].lines if not l.get_label().startswith("_")]
+    assert len(lines) == 7
+    looks = {(to_hex(l.get_color()), l.get_linestyle()) for l in lines}
+    assert len(looks) == len(lines)

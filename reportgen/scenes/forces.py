@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import NamedTuple
 
+import matplotlib
 import numpy as np
 import pandas as pd
 from matplotlib.patches import Arc
@@ -1119,11 +1120,17 @@ class ReactionCurves:
         x, xlabel, step = _x(study, cyc)
         fig = mplstyle.figure(160, 150)
         ax1, ax2 = fig.subplots(2, 1, sharex=True, height_ratios=[3, 2])
+        # more pairs than colours in the cycle: the next round of colours dashed, then dotted, so
+        # that no two curves look alike (R₀₁ and R₀₅ both black in the slotting machine's seven)
+        colours = len(matplotlib.rcParams["axes.prop_cycle"])
+        n = 0
         for p in f.model.pairs:
             if p.kind == KS.K_MOM:
                 continue
             key = shown_key(f, p)
-            ax1.plot(x, cyc["R_" + key] / 1e3, lw=1.2, label=pair_label(*key.split("_")[:2]))
+            ax1.plot(x, cyc["R_" + key] / 1e3, lw=1.2, ls=("-", "--", ":", "-.")[(n // colours) % 4],
+                     label=pair_label(*key.split("_")[:2]))
+            n += 1
         ax1.set_ylabel("$R$, кН")
         ax1.legend(ncols=6, fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), frameon=False)
         m_bal = math_label("Mур")            # $M_{\mathrm{ур}}$: the symbol of the text, not a plain «Mур»
