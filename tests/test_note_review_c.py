@@ -341,3 +341,21 @@ def test_reaction_curves_all_told_apart(captured):
     assert len(lines) == 7
     looks = {(to_hex(l.get_color()), l.get_linestyle()) for l in lines}
     assert len(looks) == len(lines)
+
+
+def test_reaction_component_identically_zero_left_out():
+    """Table 4.9 of the slotting machine printed R₀₅y = 0,0 in all twelve rows (a slider on a
+    vertical guide is pressed horizontally); the column is left out with a note."""
+    from reportgen import load_case
+    from reportgen.report.document import Table
+    from reportgen.report.sections import forces
+    st = load_case(CASES / "slotting_machine.toml")
+    tabs = [b for b in blocks(forces.build(st)) if isinstance(b, Table) and (b.id or "").startswith("tab-frc-comp")]
+    keys = [c.key for t in tabs for c in t.columns]
+    assert "Rx_0_5" in keys or any(k.startswith("Rx_") and k.endswith("5") for k in keys)
+    assert not any(k.startswith("Ry_") and float(np.abs(st.forces.cycle[k]).max()) == 0.0 for k in keys
+                   if k in st.forces.cycle)
+    assert "во всех положениях" in str(tabs[-1].note)
+    for k in keys:                                        # independent: what remains is not all zero
+        if k in tabs[0].data:
+            assert float(np.abs(tabs[0].data[k].to_numpy(dtype=float)).max()) > 0

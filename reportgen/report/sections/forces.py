@@ -25,7 +25,7 @@ from ...style.numbers import fmt, shared_decimals, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import plural
-from .kinematics import _insets_text
+from .kinematics import _insets_text, _zero_note, zero_columns
 from .common import (chosen_position, chunked_tables, input_word, pair_label, pos_fmt, pos_no, q_degrees, q_header,
                      html_point, sub, tex_point)
 
@@ -552,7 +552,9 @@ def _reactions(sec: Section, study, f) -> None:
     for c in comp + mag:
         if c.unit == "Н":          # forces: one number of decimals in every reaction table of the note
             c.sig, c.digits = None, nd
-    ids = chunked_tables(s, "Составляющие реакций в кинематических парах", tab, comp, lead, "tab-frc-comp", per=6)
+    comp, zero = zero_columns(tab, comp)     # R₀₅y of a slider on a vertical guide: 0 in every position
+    ids = chunked_tables(s, "Составляющие реакций в кинематических парах", tab, comp, lead, "tab-frc-comp", per=6,
+                         note=_zero_note(zero))
     ids2 = chunked_tables(s, "Модули реакций в кинематических парах", tab, mag, lead, "tab-frc-mag", per=6)
     note = ""
     declared = {p.name for p in f.model.pairs}
