@@ -328,6 +328,7 @@ def test_lever_table_without_zero_force_rows():
     printed = [col["F"].format(v) for v in tab.data["F"]]
     assert all(p.strip("0,") for p in printed), printed
     assert abs(float(tab.data["Fh"].sum())) < 1e-6 * float(tab.data["Fh"].abs().max())
+    assert not any("Phi 1" in str(v) or "Φ1" in str(v) for v in tab.data["label"])   # nor drawn on the lever
 
 
 def test_reaction_curves_all_told_apart(captured):

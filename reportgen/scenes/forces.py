@@ -22,7 +22,7 @@ from ..analysis.forces import crank_pin, lever_points
 from ..analysis.plans import READ_MM, Plan, drawn, velocity_plan
 from ..core import kinetostatics as KS
 from ..style import mplstyle
-from ..style.numbers import fmt
+from ..style.numbers import fmt, shared_decimals
 from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow, draw_mechanism, gost_scale, nice_scale
 from .labels import tex_point
 from .mechanism import LANDSCAPE_GAIN, LANDSCAPE_H, LANDSCAPE_W, Drawing
@@ -1058,10 +1058,13 @@ class ZhukovskyLever:
             ins.mark = INSET_MARKS[n % len(INSET_MARKS)]
             PlanScene(self.label, "velocity")._draw_inset(cv, lever_plan, ins, "$p$")
         Fmax = max([float(np.hypot(*it[2])) for it in items + bal] + [1e-12])
+        # a load that the moments' table prints as 0 Н (the couple of a crank's inertia moment of
+        # 0,001 Н·м among forces of kilonewtons) is neither drawn nor listed
+        dec = shared_decimals([float(np.hypot(*it[2])) for it in items + bal])
         rows = []
         for lab, p, F, is_bal in items + bal:
             n = float(np.hypot(*F))
-            if n < 1e-9 * Fmax:
+            if n < 1e-9 * Fmax or (not is_bal and round(n, dec) == 0):
                 continue
             L = cv.mm(_arrow_mm(n, Fmax) * 0.8)
             color = RED if is_bal else INK

@@ -623,10 +623,6 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     h_r = np.round(np.abs(mt["h"].to_numpy(float)), 1)
     mt["h"] = h_r
     mt["Fh"] = np.sign(mt["Fh"].to_numpy(float)) * F_r * h_r
-    # a load that prints as 0 Н (the couple of a crank's inertia moment of 0,001 Н·м) adds nothing
-    # to the sum: left out of the table, not written as a row of zeros
-    mt = mt[(F_r > 0) | mt["balancing"].astype(bool).to_numpy()].reset_index(drop=True)
-    h_r = mt["h"].to_numpy(float)
     arm = round(abs(float(lever.arm_mm)), 1) * (1.0 if lever.arm_mm >= 0 else -1.0)
     # the balancing force's rows hold the value the lever gives (F_ур = −ΣF_i·h_i / Σ±h of its
     # rows: one row for a crank's force, two for an actuator's pair), so the column of products
