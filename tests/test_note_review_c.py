@@ -1,6 +1,11 @@
-"""Defects left open after session 5's page-by-page review of the notes (#9), each test failing on
-what the review found: ws004's kinematic diagram plotting the slider's coordinate where the caption
-promises its displacement, …"""
+"""Defects left open after session 5's page-by-page review of the notes (#9) and found in session
+6's review of a mechanism new to cases/ (the slotting machine), each test failing on what the
+review found: ws004's kinematic diagram plotting the slider's coordinate where the caption promises
+its displacement; a table's note or announcing paragraph (and heading) parted from the table; the
+slider-crank's Φ₃ drawn on R^n₁₂; ws002's thin Жуковский lever with images a millimetre apart; the
+output's speed never judged against a limit; ω₃ from a later group's pair; plain «S2» in tables;
+a legend over ΔT_I min; δ printed 0,04000; P_рез drawn along the rod; zero rows and columns;
+two reaction curves alike."""
 import re
 
 import numpy as np
