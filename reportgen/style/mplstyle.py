@@ -106,6 +106,55 @@ def style_rc() -> dict:
 def apply_style() -> None:
     """Put the report style into ``matplotlib.rcParams`` (idempotent)."""
     matplotlib.rcParams.update(style_rc())
+    share_mathtext()
+
+
+MATHTEXT_CACHE = 4096  # parsed mathtext strings kept by a process (ws000's note: about 600)
+
+
+def share_mathtext() -> None:
+    """One cache of parsed mathtext for the whole process (idempotent).
+
+    matplotlib caches ``MathTextParser._parse_cached`` in an ``lru_cache(50)`` keyed by the
+    parser itself, and every renderer makes its own parser (``RendererBase._text2path``,
+    ``RendererAgg.mathtext_parser``): the label placer's Agg renderer, savefig's SVG renderer
+    and each renderer the layout engine asks for. So a label was parsed again for every renderer
+    that measured or drew it (ws000's dynamics: 25 distinct strings parsed 78 times, most of
+    the section's time). Here the cache is keyed by what the parse depends on instead of the
+    parser: the output type (vector or raster), the string, dpi, font properties, antialiasing,
+    glyph flags and the ``mathtext.*`` and hinting settings; a parse is the same whichever
+    parser of the same output type ran it, so the figures do not change.
+    """
+    from matplotlib import mathtext
+
+    if getattr(mathtext.MathTextParser._parse_cached, "_reportgen_shared", False):
+        return
+    parse = mathtext.MathTextParser._parse_cached
+    parse = getattr(parse, "__wrapped__", parse)       # matplotlib's own function, without its cache
+    canonical = {}
+
+    @functools.lru_cache(MATHTEXT_CACHE)
+    def parsed(kind, s, dpi, prop, antialiased, load_glyph_flags, rc):
+        parser = canonical.get(kind)
+        if parser is None:
+            parser = canonical[kind] = mathtext.MathTextParser("path" if kind == "vector" else "agg")
+        return parse(parser, s, dpi, prop, antialiased, load_glyph_flags)
+
+    def shared(self, s, dpi, prop, antialiased, load_glyph_flags):
+        rc = matplotlib.rcParams
+        key = tuple(tuple(v) if isinstance(v, list) else v for v in map(rc.__getitem__, _MATHTEXT_RC))
+        return parsed(self._output_type, s, dpi, prop, antialiased, load_glyph_flags, key)
+
+    shared._reportgen_shared = True
+    shared.cache_info = parsed.cache_info
+    mathtext.MathTextParser._parse_cached = shared
+
+
+# the settings a parse reads besides its arguments (the fonts of the custom set, fallback, hinting)
+_MATHTEXT_RC = ("mathtext.fontset", "mathtext.rm", "mathtext.it", "mathtext.bf", "mathtext.bfit",
+                "mathtext.sf", "mathtext.tt", "mathtext.cal", "mathtext.fallback", "mathtext.default",
+                "text.hinting", "text.hinting_factor", "text.kerning_factor", "font.family",
+                "font.serif", "font.sans-serif", "font.monospace", "font.cursive", "font.fantasy")
 
 
 @contextlib.contextmanager
