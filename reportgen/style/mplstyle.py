@@ -107,6 +107,7 @@ def apply_style() -> None:
     """Put the report style into ``matplotlib.rcParams`` (idempotent)."""
     matplotlib.rcParams.update(style_rc())
     share_mathtext()
+    share_svg_text_metrics()
 
 
 MATHTEXT_CACHE = 4096  # parsed mathtext strings kept by a process (ws000's note: about 600)
@@ -141,13 +142,49 @@ def share_mathtext() -> None:
         return parse(parser, s, dpi, prop, antialiased, load_glyph_flags)
 
     def shared(self, s, dpi, prop, antialiased, load_glyph_flags):
-        rc = matplotlib.rcParams
-        key = tuple(tuple(v) if isinstance(v, list) else v for v in map(rc.__getitem__, _MATHTEXT_RC))
-        return parsed(self._output_type, s, dpi, prop, antialiased, load_glyph_flags, key)
+        return parsed(self._output_type, s, dpi, prop, antialiased, load_glyph_flags, _rc_key())
 
     shared._reportgen_shared = True
     shared.cache_info = parsed.cache_info
     mathtext.MathTextParser._parse_cached = shared
+
+
+def share_svg_text_metrics() -> None:
+    """One cache of text extents for every SVG renderer of the process (idempotent).
+
+    matplotlib caches a text's width, height and descent per renderer instance
+    (``text._get_text_metrics_with_cache``), and ``savefig`` of a figure with a layout engine
+    makes three SVG renderers (one to draw, one for the layout pass before the drawing, one for
+    the layout during it): every tick label and legend entry was measured three times in every
+    figure. An SVG renderer measures with its ``TextToPath`` at a fixed 72 dpi and nothing of
+    its own, so one shared ``TextToPath`` gives the same extents; other renderers (Agg for
+    the label placer) keep matplotlib's cache.
+    """
+    from matplotlib import text as mtext
+    from matplotlib.backends.backend_svg import RendererSVG
+    from matplotlib.textpath import TextToPath
+
+    if getattr(mtext._get_text_metrics_with_cache, "_reportgen_shared", False):
+        return
+    original = mtext._get_text_metrics_with_cache
+    measure = TextToPath()
+
+    @functools.lru_cache(MATHTEXT_CACHE)
+    def svg_metrics(text, fontprop, ismath, dpi, rc):
+        return measure.get_text_width_height_descent(text, fontprop, ismath)
+
+    def metrics(renderer, text, fontprop, ismath, dpi):
+        if type(renderer) is RendererSVG and ismath != "TeX":
+            return svg_metrics(text, fontprop.copy(), ismath, dpi, _rc_key())
+        return original(renderer, text, fontprop, ismath, dpi)
+
+    metrics._reportgen_shared = True
+    mtext._get_text_metrics_with_cache = metrics
+
+
+def _rc_key() -> tuple:
+    rc = matplotlib.rcParams
+    return tuple(tuple(v) if isinstance(v, list) else v for v in map(rc.__getitem__, _MATHTEXT_RC))
 
 
 # the settings a parse reads besides its arguments (the fonts of the custom set, fallback, hinting)
