@@ -146,6 +146,7 @@ def share_mathtext() -> None:
 
     shared._reportgen_shared = True
     shared.cache_info = parsed.cache_info
+    shared.__wrapped__ = parse
     mathtext.MathTextParser._parse_cached = shared
 
 
