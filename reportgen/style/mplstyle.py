@@ -202,11 +202,35 @@ def style():
         yield
 
 
+class _Figure(Figure):
+    """A figure that skips the artists in ``savefig``'s draw before the drawing.
+
+    With a layout engine, ``savefig`` draws the figure twice: first with every ``draw_*`` of the
+    renderer disabled (``RendererBase._draw_disabled``), only so that the layout runs once
+    before the real drawing runs it again; then for real. The first pass here runs the layout
+    alone, without drawing every artist into nothing."""
+
+    def draw(self, renderer):
+        if self.axes and self.get_layout_engine() is not None and _disabled(renderer):
+            self.get_layout_engine().execute(self)
+            return
+        super().draw(renderer)
+
+
+def _disabled(renderer) -> bool:
+    """The renderer's drawing is switched off (``_draw_disabled`` puts no-ops on the instance;
+    a vector backend's ``MixedModeRenderer`` passes them on to its vector renderer)."""
+    from matplotlib.backends.backend_mixed import MixedModeRenderer
+    if isinstance(renderer, MixedModeRenderer):
+        renderer = renderer._renderer
+    return "draw_path" in getattr(renderer, "__dict__", {})
+
+
 def figure(width_mm: float = 160, height_mm: float = 90, **kw) -> Figure:
     """A new OO figure of the given printed size (constrained layout)."""
     apply_style()
     kw.setdefault("layout", "constrained")
-    return Figure(figsize=(width_mm * MM, height_mm * MM), **kw)
+    return _Figure(figsize=(width_mm * MM, height_mm * MM), **kw)
 
 
 def localize_axes(ax, digits: int | None = None) -> None:
