@@ -125,7 +125,30 @@ class _Segs:
         idx = np.concatenate([self.short[lo:hi], self.rest])
         near = ((self.xmax[idx] >= x0) & (self.xmin[idx] <= x1) & (self.ymax[idx] >= y0)
                 & (self.ymin[idx] <= y1)) | self.odd[idx]
-        return _crossings(self.segs[idx[near]], bb)
+        idx = idx[near]
+        if len(idx) <= 32 and not self.odd[idx].any():
+            return _crossings_few(self.segs[idx].tolist(), x0, y0, x1, y1)
+        return _crossings(self.segs[idx], bb)
+
+
+def _crossings_few(segs: list, x0: float, y0: float, x1: float, y1: float) -> int:
+    """:func:`_crossings` of a few finite segments against the padded rectangle, one by one
+    (the same arithmetic, without the cost of 30 array operations on a handful of rows)."""
+    n = 0
+    for sx, sy, ex, ey in segs:
+        dx, dy = ex - sx, ey - sy
+        t0, t1 = 0.0, 1.0
+        for p, q in ((-dx, sx - x0), (dx, x1 - sx), (-dy, sy - y0), (dy, y1 - sy)):
+            if abs(p) < 1e-12:
+                if q < 0:
+                    break
+            elif p < 0:
+                t0 = max(t0, q / p)
+            else:
+                t1 = min(t1, q / p)
+        else:
+            n += t0 <= t1
+    return n
 
 
 def _crossings(segs: np.ndarray, bb) -> int:
@@ -164,15 +187,27 @@ class _Extent:
         if t.get_visible() and t.get_text() != "":
             t._renderer = renderer
             self.box, _, _ = t._get_layout(renderer)
+            self.corners = self.box.get_points().ravel().tolist()
             self.tr = t.get_transform()
 
-    def at(self, xy):
+    def at(self, xy) -> "_Box":
         """The extent with the text at ``xy`` (data coordinates)."""
         if self.box is None:
             self.t.set_position(xy)
-            return self.t.get_window_extent(self.renderer)
+            return _Box(*self.t.get_window_extent(self.renderer).get_points().ravel().tolist())
         x, y = self.tr.transform((float(xy[0]), float(xy[1])))
-        return self.box.translated(x, y)
+        bx0, by0, bx1, by1 = self.corners
+        return _Box(bx0 + x, by0 + y, bx1 + x, by1 + y)
+
+
+class _Box:
+    """A rectangle in display coordinates as four floats (what the placer reads of a ``Bbox``,
+    without its transform machinery: each ``Bbox.x0`` is a method call and an array look-up)."""
+
+    __slots__ = ("x0", "y0", "x1", "y1")
+
+    def __init__(self, x0: float, y0: float, x1: float, y1: float):
+        self.x0, self.y0, self.x1, self.y1 = x0, y0, x1, y1
 
 
 class LabelPlacer:
@@ -216,7 +251,7 @@ class LabelPlacer:
         inv = ax.transData.inverted()
         figbox = fig.bbox
         px_mm = fig.dpi / 25.4
-        placed = [(b, 0.0) for b in self.avoid_boxes]      # (box, clearance in px)
+        placed = [(_Box(b.x0, b.y0, b.x1, b.y1), 0.0) for b in self.avoid_boxes]      # (box, clearance in px)
         hard = self.gap_mm * px_mm      # the placer's least gap between any two labels (a must)
         out = []
         for it in self.items:
