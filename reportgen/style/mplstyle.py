@@ -207,11 +207,13 @@ class _Figure(Figure):
 
     With a layout engine, ``savefig`` draws the figure twice: first with every ``draw_*`` of the
     renderer disabled (``RendererBase._draw_disabled``), only so that the layout runs once
-    before the real drawing runs it again; then for real. The first pass here runs the layout
-    alone, without drawing every artist into nothing."""
+    before the real drawing (which keeps that layout); then for real. The first pass here runs
+    the layout alone, without drawing every artist into nothing. Other draws with drawing
+    disabled (``draw_without_rendering``, to update the artists' state) stay whole."""
 
     def draw(self, renderer):
-        if self.axes and self.get_layout_engine() is not None and _disabled(renderer):
+        if (self.axes and self.get_layout_engine() is not None and getattr(self.canvas, "_is_saving", False)
+                and _disabled(renderer)):
             self.get_layout_engine().execute(self)
             return
         super().draw(renderer)
