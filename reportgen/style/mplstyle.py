@@ -135,14 +135,14 @@ def share_mathtext() -> None:
     canonical = {}
 
     @functools.lru_cache(MATHTEXT_CACHE)
-    def parsed(kind, s, dpi, prop, antialiased, load_glyph_flags, rc):
+    def parsed(kind, s, dpi, prop, rest, rc):
         parser = canonical.get(kind)
         if parser is None:
             parser = canonical[kind] = mathtext.MathTextParser("path" if kind == "vector" else "agg")
-        return parse(parser, s, dpi, prop, antialiased, load_glyph_flags)
+        return parse(parser, s, dpi, prop, *rest)
 
-    def shared(self, s, dpi, prop, antialiased, load_glyph_flags):
-        return parsed(self._output_type, s, dpi, prop, antialiased, load_glyph_flags, _rc_key())
+    def shared(self, s, dpi, prop, *rest):     # rest: antialiased (and glyph flags since 3.10)
+        return parsed(self._output_type, s, dpi, prop, rest, _rc_key())
 
     shared._reportgen_shared = True
     shared.cache_info = parsed.cache_info
