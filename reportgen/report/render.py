@@ -38,6 +38,7 @@ a fixed date (:func:`_fixed_font_timestamp`).
 from __future__ import annotations
 
 import contextlib
+import functools
 import hashlib
 import html as _html
 import json
@@ -717,6 +718,62 @@ class _Views:
         return _restore_data_urls(_typography(html), urls)
 
 
+_WOFF_CACHE_VERSION = 1
+_WOFF_MEMO: dict[Path, bytes] = {}
+
+
+def _woff_key(path: Path) -> str:
+    """Key of a font's subset: the font file's bytes, the code and ranges that subset it, and
+    the fontTools version that does."""
+    import inspect
+
+    import fontTools
+
+    h = hashlib.sha256(f"{_WOFF_CACHE_VERSION}|{fontTools.version}|{fonts._SUBSET_RANGES!r}|".encode())
+    h.update(inspect.getsource(fonts._subset_woff).encode("utf-8"))
+    h.update(Path(path).read_bytes())
+    return h.hexdigest()
+
+
+def _is_woff(data: bytes) -> bool:
+    """A whole WOFF file: its signature, and the length its header gives."""
+    return len(data) >= 44 and data[:4] == b"wOFF" and int.from_bytes(data[8:12], "big") == len(data)
+
+
+def _embedded_woff(path: Path) -> bytes:
+    """:func:`reportgen.style.fonts._subset_woff` of a face of the screen HTML, kept in the
+    process and in the cache folder (``<cache>/fonts``): subsetting the eight faces costs about
+    a second of CPU, the same bytes every time (the subsetter is deterministic), so the
+    screen HTML is the same with a cached subset as without."""
+    path = Path(path)
+    data = _WOFF_MEMO.get(path)
+    if data is not None:
+        return data
+    folder = _formula_cache_dir()
+    file = None
+    if folder is not None:
+        try:
+            file = folder.parent / "fonts" / f"{_woff_key(path)}.woff"
+            data = file.read_bytes()
+        except OSError:
+            data = None
+    if data is None or not _is_woff(data):
+        data = fonts._subset_woff(path)
+        if file is not None:
+            try:
+                _atomic_write(file, data)
+            except OSError:
+                pass  # a read-only cache folder is no reason to fail a report
+    _WOFF_MEMO[path] = data
+    return data
+
+
+@functools.lru_cache(maxsize=8)
+def _font_css(family, embed: bool) -> str:
+    """The ``@font-face`` rules of the note (``embed``: the subset faces as ``data:`` URLs)."""
+    return fonts.font_face_css(family, embed=embed, woff=_embedded_woff)
+
+
 def _views(report: Report, *, for_print: bool, splits=None) -> _Views:
     opts = resolve_options(report.options)
     family = fonts.find_serif(opts["font"])
@@ -735,7 +792,7 @@ def _views(report: Report, *, for_print: bool, splits=None) -> _Views:
         "o": opts,
         "meta": meta,
         "for_print": for_print,
-        "font_css": Markup(fonts.font_face_css(family, embed=not for_print)),
+        "font_css": Markup(_font_css(family, not for_print)),
         "css_ctx": css_ctx,
         "title_page": title_on,
         "assignment": assignment,

@@ -204,11 +204,13 @@ def symbol_family() -> FontFamily | None:
 
 
 def font_face_css(family: FontFamily | None = None, *, embed: bool = False,
-                  css_family: str = CSS_FAMILY) -> str:
+                  css_family: str = CSS_FAMILY, woff=None) -> str:
     """``@font-face`` rules for the four faces.
 
     ``embed=False``: ``file://`` URLs (for WeasyPrint, which subsets itself);
-    ``embed=True``: subset WOFF fonts as ``data:`` URLs (self-contained HTML).
+    ``embed=True``: subset WOFF fonts as ``data:`` URLs (self-contained HTML), from
+    ``woff(path)`` (default :func:`_subset_woff`; the report passes one that keeps the
+    subsets in its cache folder).
     """
     family = family or find_serif()
     rules = []
@@ -225,7 +227,7 @@ def font_face_css(family: FontFamily | None = None, *, embed: bool = False,
     for (name, fam), (face, (weight, style)) in ((f, st) for f in faces for st in styles.items()):
         path = getattr(fam, face)
         if embed:
-            data = base64.b64encode(_subset_woff(path)).decode("ascii")
+            data = base64.b64encode((woff or _subset_woff)(path)).decode("ascii")
             src = f'url("data:font/woff;base64,{data}") format("woff")'
         else:
             src = f'url("{path.resolve().as_uri()}")'
