@@ -611,6 +611,33 @@ def _restore_data_urls(html: str, urls: list[str]) -> str:
     return _STASHED.sub(lambda m: urls[int(m.group(1))], html) if urls else html
 
 
+def _sup(m: re.Match) -> str:
+    run = m.group(0)
+    if set(run) <= set("¹²³"):
+        return run
+    return "<sup>" + run.translate(_SUP_PLAIN) + "</sup>"
+
+
+def _fix_text(text: str) -> str:
+    """The fixes of :func:`_typography` in one text node (a pure function of the text)."""
+    text = _NUM_UNIT.sub("\\1\u00a0", text)   # «8 мм» written with a plain space
+    if text.startswith(" —"):   # a dash after a symbol never starts a line («<i>ω</i> — угловая скорость»)
+        text = "\u00a0" + text[1:]
+    text = _EQ_NUMBER.sub("\u00a0=\u00a0", text)
+    text = _UNIT_SLASH.sub(r'<span class="nobr">\1 \3</span>', text)
+    text = _UNIT_SLASH_BARE.sub(r'<span class="nobr">\1</span>', text)
+    text = _UNIT_DOT.sub(lambda m: '<span class="nobr">' + re.sub(r"\s", "\u00a0", m.group(0)) + "</span>"
+                         if "<span" not in m.group(0) else m.group(0), text)
+    text = _INITIALS.sub(lambda m: re.sub(r"\s", "\u00a0", m.group(0)), text)
+    return _SUP_RUN.sub(_sup, text)
+
+
+# text node → its fixed text: a note is rendered several times (the print parts before and
+# after their split points are known, the screen HTML), with the same text nodes each time
+_FIXED_TEXT: dict[str, str] = {}
+_FIXED_TEXT_MAX = 200_000
+
+
 def _typography(html: str) -> str:
     """Typographic fixes in text nodes.
 
@@ -621,24 +648,9 @@ def _typography(html: str) -> str:
     * a no-break space before an inline element becomes a nowrap span
       (works around a WeasyPrint 70 line-breaking bug, see below).
     """
-
-    def fix_text(text: str) -> str:
-        def repl(m):
-            run = m.group(0)
-            if set(run) <= set("¹²³"):
-                return run
-            return "<sup>" + run.translate(_SUP_PLAIN) + "</sup>"
-
-        text = _NUM_UNIT.sub("\\1\u00a0", text)   # «8 мм» written with a plain space
-        if text.startswith(" —"):   # a dash after a symbol never starts a line («<i>ω</i> — угловая скорость»)
-            text = "\u00a0" + text[1:]
-        text = _EQ_NUMBER.sub("\u00a0=\u00a0", text)
-        text = _UNIT_SLASH.sub(r'<span class="nobr">\1 \3</span>', text)
-        text = _UNIT_SLASH_BARE.sub(r'<span class="nobr">\1</span>', text)
-        text = _UNIT_DOT.sub(lambda m: '<span class="nobr">' + re.sub(r"\s", "\u00a0", m.group(0)) + "</span>"
-                             if "<span" not in m.group(0) else m.group(0), text)
-        text = _INITIALS.sub(lambda m: re.sub(r"\s", "\u00a0", m.group(0)), text)
-        return _SUP_RUN.sub(repl, text)
+    fixed = _FIXED_TEXT
+    if len(fixed) > _FIXED_TEXT_MAX:
+        fixed.clear()
 
     # A no-break space right before an inline element («=&nbsp;<img>»,
     # «таблицы&nbsp;<a>») makes WeasyPrint 70 break lines wrongly: it
@@ -658,7 +670,10 @@ def _typography(html: str) -> str:
                 in_style = False
             continue
         if not in_style and piece:
-            pieces[i] = fix_text(piece)
+            text = fixed.get(piece)
+            if text is None:
+                text = fixed[piece] = _fix_text(piece)
+            pieces[i] = text
     return "".join(pieces)
 
 
@@ -669,7 +684,8 @@ def _visible_text(html: str) -> str:
 
 
 def _check_glyphs(html: str, family: fonts.FontFamily) -> None:
-    missing = fonts.check_text(_visible_text(html), family)
+    # (the set of characters: the check looks at each character once, whatever the length)
+    missing = fonts.check_text("".join(set(_visible_text(html))), family)
     if missing:
         chars = " ".join(f"{c} (U+{ord(c):04X})" for c in missing)
         warnings.warn(f"В шрифте «{family.name}» нет символов: {chars}; они будут "
