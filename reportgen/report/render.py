@@ -266,6 +266,7 @@ class _Builder:
         self.eq_max_em = (opts["text_width_mm"] - 2 * opts["eq_number_width_mm"]) / (
             opts["font_size_pt"] * PT_MM)
         self.tables: dict[str, int] = {}  # table key -> number of rows
+        self.table_rows: dict[str, tuple] = {}  # table key -> (view, rows, caption, continuation)
         self.unnumbered = False  # blocks of the «Задание» page carry no numbers
         self._units_row = False
 
@@ -432,20 +433,32 @@ class _Builder:
                          "cls": "hl" if i in highlight else "",
                          "cells": cells})
         self.tables[tid] = len(rows)
+        note = None
+        if tab.note:
+            note = Markup("{}{}").format(self.o["note_word"], " — ") + Markup(tab.note)
+        view = _TableView(tid, tid, len(header), header, units, [], note)
+        self.table_rows[tid] = (view, rows, self.caption("table_word", number, tab.caption),
+                                Markup("{} {}").format(self.o["continuation_words"], number))
+        self._cut(tid)
+        return view
+
+    def _cut(self, tid: str) -> None:
+        """The parts of table ``tid`` at its split points (``self.splits``)."""
+        view, rows, caption, continued = self.table_rows[tid]
         cuts = [0] + sorted(s for s in set(self.splits.get(tid, ())) if 0 < s < len(rows))
         parts = []
         for k, start in enumerate(cuts):
             end = cuts[k + 1] if k + 1 < len(cuts) else len(rows)
-            if k == 0:
-                cap = self.caption("table_word", number, tab.caption)
-            else:
-                cap = Markup("{} {}").format(self.o["continuation_words"], number)
-            parts.append(_Part(cap, k > 0, rows[start:end],
+            parts.append(_Part(caption if k == 0 else continued, k > 0, rows[start:end],
                                k == 0 and 0 in self.splits.get(tid, ())))
-        note = None
-        if tab.note:
-            note = Markup("{}{}").format(self.o["note_word"], " — ") + Markup(tab.note)
-        return _TableView(tid, tid, len(header), header, units, parts, note)
+        view.parts = parts
+
+    def resplit(self, splits: dict[str, list[int]] | None) -> None:
+        """Cut every table at other split points: the views are those of a builder made with
+        ``splits`` (the numbering and the rows do not depend on them)."""
+        self.splits = splits or {}
+        for tid in self.table_rows:
+            self._cut(tid)
 
     def formula(self, f) -> _EqView:
         n = self._next("eq")
@@ -820,11 +833,16 @@ def _views(report: Report, *, for_print: bool, splits=None) -> _Views:
     return _Views(opts, family, builder, ctx)
 
 
-def _render(report: Report, *, for_print: bool, splits=None) -> tuple[str, _Builder]:
-    views = _views(report, for_print=for_print, splits=splits)
+def _checked_html(views: _Views) -> str:
+    """The whole document of ``views``, its characters checked against the fonts."""
     html = views.html()
     _check_glyphs(html, views.family)
-    return html, views.builder
+    return html
+
+
+def _render(report: Report, *, for_print: bool, splits=None) -> tuple[str, _Builder]:
+    views = _views(report, for_print=for_print, splits=splits)
+    return _checked_html(views), views.builder
 
 
 def render_html(report: Report, *, for_print: bool) -> str:
@@ -1189,9 +1207,11 @@ def _layout(report: Report, font_config):
     stats = RenderStats()
     document = None
     key = None
+    views = _views(report, for_print=True, splits=splits)
     for i in range(MAX_PASSES):
         t0 = time.perf_counter()
-        html, _builder = _render(report, for_print=True, splits=splits)
+        views.builder.resplit(splits)  # (numbering and rows do not depend on the split points)
+        html = _checked_html(views)
         if i == 0:
             # The same report laid out again (batch re-runs, determinism checks)
             # starts from the split points found last time; the final layout
@@ -1200,7 +1220,8 @@ def _layout(report: Report, font_config):
             known = _recall_splits(key)
             if known:
                 splits = {k: list(v) for k, v in known.items()}
-                html, _builder = _render(report, for_print=True, splits=splits)
+                views.builder.resplit(splits)
+                html = _checked_html(views)
         t1 = time.perf_counter()
         document = HTML(string=html, base_url=str(TEMPLATES_DIR), url_fetcher=fetcher).render(
             font_config=font_config, cache=image_cache)
