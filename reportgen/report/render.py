@@ -527,9 +527,26 @@ def _walk(builder: _Builder, report: Report):
 # ---------------------------------------------------------------- templates
 
 
+def _bytecode_cache() -> jinja2.BytecodeCache | None:
+    """The compiled templates kept in the cache folder (``<cache>/jinja``): compiling them
+    costs a fresh process about 0,05 s of CPU. Jinja checks an entry against the template's
+    source and the Python version, so a stale one is compiled again; none when the cache is
+    off or its folder cannot be made."""
+    folder = _formula_cache_dir()
+    if folder is None:
+        return None
+    folder = folder.parent / "jinja"
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return None
+    return jinja2.FileSystemBytecodeCache(str(folder))
+
+
 def _env() -> jinja2.Environment:
     env = jinja2.Environment(
         loader=jinja2.FileSystemLoader(str(TEMPLATES_DIR)),
+        bytecode_cache=_bytecode_cache(),
         autoescape=jinja2.select_autoescape(["html", "j2"], default_for_string=True),
         undefined=jinja2.StrictUndefined,
         trim_blocks=True,
