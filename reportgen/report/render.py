@@ -715,7 +715,7 @@ def _visible_text(html: str) -> str:
 
 def _check_glyphs(html: str, family: fonts.FontFamily) -> None:
     # (the set of characters: the check looks at each character once, whatever the length)
-    missing = fonts.check_text("".join(set(_visible_text(html))), family)
+    missing = fonts.check_text("".join(set(_visible_text(html))), family, cmap=_font_cmap)
     if missing:
         chars = " ".join(f"{c} (U+{ord(c):04X})" for c in missing)
         warnings.warn(f"В шрифте «{family.name}» нет символов: {chars}; они будут "
@@ -812,6 +812,40 @@ def _embedded_woff(path: Path) -> bytes:
                 pass  # a read-only cache folder is no reason to fail a report
     _WOFF_MEMO[path] = data
     return data
+
+
+_CMAP_MEMO: dict[Path, frozenset] = {}
+
+
+def _font_cmap(path: Path) -> frozenset[int]:
+    """:func:`reportgen.style.fonts._cmap` (the code points a face draws, for the glyph check)
+    kept in the process and in the cache folder (``<cache>/fonts``, keyed by the font's bytes):
+    a fresh process then need not import fontTools and parse the font (about 0,1 s of CPU)."""
+    path = Path(path)
+    known = _CMAP_MEMO.get(path)
+    if known is not None:
+        return known
+    folder = _formula_cache_dir()
+    file = None
+    if folder is not None:
+        try:
+            data = Path(path).read_bytes()
+            key = hashlib.sha256(f"cmap|{_WOFF_CACHE_VERSION}|".encode() + data).hexdigest()
+            file = folder.parent / "fonts" / f"{key}.cmap.json"
+            codes = json.loads(file.read_text(encoding="ascii"))
+            if isinstance(codes, list) and codes and all(isinstance(c, int) for c in codes):
+                known = frozenset(codes)
+        except (OSError, ValueError):
+            known = None
+    if known is None:
+        known = fonts._cmap(path)
+        if file is not None:
+            try:
+                _atomic_write(file, json.dumps(sorted(known)).encode("ascii"))
+            except OSError:
+                pass  # a read-only cache folder is no reason to fail a report
+    _CMAP_MEMO[path] = known
+    return known
 
 
 @functools.lru_cache(maxsize=8)
