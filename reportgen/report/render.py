@@ -1364,10 +1364,34 @@ def write_pdf(report: Report, path, *, jobs: int | None = None) -> Path:
     return _atomic_write(Path(path), pdf)
 
 
+@contextlib.contextmanager
+def _older_objects_frozen():
+    """The objects alive on entry (the study, the report, the imported modules: some hundred
+    thousand) left out of the garbage collector's passes until exit (``gc.freeze``): rendering
+    the HTML allocates enough to start several full collections, each of which would walk them
+    all again. On exit they are collected as before (``gc.unfreeze``); nothing is done when
+    something else has frozen objects already."""
+    import gc
+
+    if gc.get_freeze_count():
+        yield
+        return
+    gc.freeze()
+    try:
+        yield
+    finally:
+        gc.unfreeze()
+
+
 def build_outputs(report: Report, out_dir, stem: str,
                   formats=("pdf", "html")) -> dict[str, Path]:
     """Write ``out_dir/stem.pdf`` and/or ``out_dir/stem.html``; returns the paths. The parts of
     the PDF are laid out by the workers while this process writes the HTML."""
+    with _older_objects_frozen():
+        return _build_outputs(report, out_dir, stem, formats)
+
+
+def _build_outputs(report: Report, out_dir, stem: str, formats) -> dict[str, Path]:
     from .safety import write_together
     for f in formats:
         if f not in ("pdf", "html"):
