@@ -648,8 +648,15 @@ def _sup(m: re.Match) -> str:
     return "<sup>" + run.translate(_SUP_PLAIN) + "</sup>"
 
 
+# every fix below needs one of these characters (a space, a no-break space or entity, «·», the
+# full stop of initials, a superscript): a text node without them (a number) is left as it is
+_FIXABLE = re.compile("[ \u00a0&·.⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺]")
+
+
 def _fix_text(text: str) -> str:
     """The fixes of :func:`_typography` in one text node (a pure function of the text)."""
+    if not _FIXABLE.search(text):
+        return text
     text = _NUM_UNIT.sub("\\1\u00a0", text)   # «8 мм» written with a plain space
     if text.startswith(" —"):   # a dash after a symbol never starts a line («<i>ω</i> — угловая скорость»)
         text = "\u00a0" + text[1:]
