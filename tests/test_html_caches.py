@@ -116,3 +116,13 @@ def test_typography_memo_and_shortcut_change_nothing(monkeypatch):
     monkeypatch.setattr(render, "_FIXABLE", __import__("re").compile(""))   # every node through every fix
     assert render._typography(html) == first
     render._FIXED_TEXT.clear()
+
+
+def test_cells_shared_by_the_print_and_screen_views_change_nothing():
+    report = build_demo_report(30)
+    alone = [render.render_html(report, for_print=p) for p in (True, False)]
+    with render._build_scope():
+        shared = [render.render_html(report, for_print=p) for p in (True, False)]
+        assert render._SHARED_CELLS                               # (the cells were shared)
+    assert render._SHARED_CELLS is None
+    assert shared == alone

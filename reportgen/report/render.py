@@ -249,6 +249,37 @@ def column_decimals(col: Column, values) -> int | None:
     return max(0, col.sig - 1 - math.floor(math.log10(big)))
 
 
+# id(table) -> (table, its cells) while build_outputs runs: the print parts and the screen
+# HTML of one build format every cell once (see _cells_shared)
+_SHARED_CELLS: dict | None = None
+
+
+def _table_cells(tab: Table, make) -> tuple:
+    """``make(tab)``, or what it gave for this very table earlier in the same build."""
+    shared = _SHARED_CELLS
+    if shared is None:
+        return make(tab)
+    hit = shared.get(id(tab))
+    if hit is not None and hit[0] is tab:
+        return hit[1]
+    out = make(tab)
+    shared[id(tab)] = (tab, out)
+    return out
+
+
+@contextlib.contextmanager
+def _cells_shared():
+    """Within: the cells of a table formatted once, for the print and the screen views alike
+    (they differ in the row ids only, which are not kept)."""
+    global _SHARED_CELLS
+    before = _SHARED_CELLS
+    _SHARED_CELLS = {} if before is None else before
+    try:
+        yield
+    finally:
+        _SHARED_CELLS = before
+
+
 class _Builder:
     """Numbers the document and turns the model into template views."""
 
@@ -386,12 +417,10 @@ class _Builder:
             head = head + Markup(", ") + escape(col.unit)
         return head
 
-    def table(self, tab: Table) -> _TableView:
-        number = self._next("tab")
-        tid = tab.id or self._auto_id("tab")
-        self._register(tid, number)
+    def _cells(self, tab: Table) -> tuple[list, list | None, list]:
+        """The header, the units row (or None) and the cells of every row of a table: the same
+        in the print and the screen HTML."""
         df = tab.data
-        self._units_row = bool(tab.units_row)
         header = []
         units = [] if tab.units_row else None
         if tab.index_header is not None:
@@ -404,8 +433,7 @@ class _Builder:
             header.append((self.header_cell(col), ""))
             if units is not None:
                 units.append(escape(col.unit or ""))
-        highlight = set(int(i) for i in tab.highlight_rows)
-        rows = []
+        body = []
         cols = [(c, df[c.key].tolist()) for c in tab.columns]
         cols = [(c if (k := column_decimals(c, vals)) is None else replace(c, digits=k),
                  vals) for c, vals in cols]
@@ -429,9 +457,19 @@ class _Builder:
                     cells.append((escape(col.format(v)), "num" if _is_number(v) else "text"))
                 else:
                     cells.append((escape(str(v)), "text"))
-            rows.append({"id": f"{tid}__r{i}" if self.for_print else None,
-                         "cls": "hl" if i in highlight else "",
-                         "cells": cells})
+            body.append(cells)
+        return header, units, body
+
+    def table(self, tab: Table) -> _TableView:
+        number = self._next("tab")
+        tid = tab.id or self._auto_id("tab")
+        self._register(tid, number)
+        self._units_row = bool(tab.units_row)
+        header, units, body = _table_cells(tab, self._cells)
+        highlight = set(int(i) for i in tab.highlight_rows)
+        rows = [{"id": f"{tid}__r{i}" if self.for_print else None,
+                 "cls": "hl" if i in highlight else "",
+                 "cells": cells} for i, cells in enumerate(body)]
         self.tables[tid] = len(rows)
         note = None
         if tab.note:
@@ -1394,8 +1432,16 @@ def build_outputs(report: Report, out_dir, stem: str,
                   formats=("pdf", "html")) -> dict[str, Path]:
     """Write ``out_dir/stem.pdf`` and/or ``out_dir/stem.html``; returns the paths. The parts of
     the PDF are laid out by the workers while this process writes the HTML."""
-    with _older_objects_frozen():
+    with _build_scope():
         return _build_outputs(report, out_dir, stem, formats)
+
+
+@contextlib.contextmanager
+def _build_scope():
+    """What one build's HTML stages share: the older objects left out of the garbage
+    collector's passes, the tables' cells formatted once."""
+    with _older_objects_frozen(), _cells_shared():
+        yield
 
 
 def _build_outputs(report: Report, out_dir, stem: str, formats) -> dict[str, Path]:
