@@ -35,7 +35,6 @@ import warnings
 from pathlib import Path
 from dataclasses import dataclass, field
 
-import ziamath as zm
 from markupsafe import Markup
 
 from ..style import fonts
@@ -58,10 +57,13 @@ MATH_SCALE = 0.93  # rendered formula size relative to the text size (em per REF
 _configured = False
 
 
-def _configure() -> None:
+def _configure():
+    """ziamath, imported on first use (a quarter of a second; most notes set every formula as
+    text and never draw one) and configured once."""
     global _configured
+    import ziamath as zm
     if _configured:
-        return
+        return zm
     zm.config.svg2 = False  # plain paths: no <symbol>/<use> ids shared across formulas
     zm.config.decimal_separator = ","
     try:
@@ -70,6 +72,7 @@ def _configure() -> None:
     except FileNotFoundError:  # pragma: no cover - falls back to STIX Two Math
         pass
     _configured = True
+    return zm
 
 
 @dataclass
@@ -186,7 +189,7 @@ def render_latex(tex: str, *, inline: bool = False, size: float | None = None
     (for ``vertical-align``). Cached; ziamath with ``svg2=False`` and a decimal
     comma.
     """
-    _configure()
+    zm = _configure()
     size = size or REF_PX
     key = hashlib.sha256(repr((tex, inline, size, zm.__version__, _CACHE_VERSION)).encode()).hexdigest()
     svg = _disk_get(key)
