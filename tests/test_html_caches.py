@@ -126,3 +126,17 @@ def test_cells_shared_by_the_print_and_screen_views_change_nothing():
         assert render._SHARED_CELLS                               # (the cells were shared)
     assert render._SHARED_CELLS is None
     assert shared == alone
+
+
+def test_warm_caches_fills_the_cache_folder_with_what_a_build_reads(cache, monkeypatch):
+    monkeypatch.setattr(render, "_ENV", None)   # (the templates' environment is made once a process)
+    render.warm_caches()
+    assert len(list((cache / "fonts").glob("*.woff"))) >= 4
+    assert len(list((cache / "fonts").glob("*.cmap.json"))) >= 1
+    assert list((cache / "jinja").iterdir())
+    family = fonts.find_serif()
+    render._WOFF_MEMO.clear()
+    render._font_css.cache_clear()
+    assert render._font_css(family, True) == fonts.font_face_css(family, embed=True)   # read back
+    monkeypatch.setenv("REPORTGEN_CACHE", "off")
+    render.warm_caches()                                        # nothing to fill

@@ -899,6 +899,22 @@ def _font_css(family, embed: bool) -> str:
     return fonts.font_face_css(family, embed=embed, woff=_embedded_woff)
 
 
+def warm_caches() -> None:
+    """Fill the cache folder with what the HTML of every build reads from it (``reportgen
+    warmup``, a batch worker's start): the compiled templates, the subset faces of the screen
+    HTML and the faces' code points. Nothing when the cache is off."""
+    if _formula_cache_dir() is None:
+        return
+    env = _get_env()
+    for name in env.list_templates(filter_func=lambda n: n.endswith((".j2", ".css"))):
+        env.get_template(name)
+    family = fonts.find_serif()
+    _font_css(family, True)
+    for fam in (family, fonts.symbol_family()):
+        if fam is not None:
+            _font_cmap(fam.regular)
+
+
 def _views(report: Report, *, for_print: bool, splits=None) -> _Views:
     opts = resolve_options(report.options)
     family = fonts.find_serif(opts["font"])
