@@ -31,6 +31,14 @@ Split points are remembered per unsplit HTML (sha256), in the process and in the
 cache folder (``<cache>/splits``), so laying out the same report again, in the
 same process or in a later ``reportgen build``, takes one pass.
 
+What does not change between builds is kept in the same cache folder, each entry keyed by
+everything it is made from, so a cached one gives the same bytes as a fresh one (tests/
+test_html_caches.py): the subset faces of the screen HTML and the faces' code points
+(``<cache>/fonts``), the compiled templates (``<cache>/jinja``); the formulas typeset as HTML
+are kept by :mod:`reportgen.report.formulas` (``<cache>/mathhtml``). Within one build
+(:func:`build_outputs`) the print parts and the screen HTML share the tables' cells, and the
+text nodes fixed by the typography are remembered by the process.
+
 A PDF is byte-identical from build to build: the subset fonts are stamped with
 a fixed date (:func:`_fixed_font_timestamp`).
 """
@@ -831,66 +839,61 @@ def _is_woff(data: bytes) -> bool:
     return len(data) >= 44 and data[:4] == b"wOFF" and int.from_bytes(data[8:12], "big") == len(data)
 
 
-def _embedded_woff(path: Path) -> bytes:
-    """:func:`reportgen.style.fonts._subset_woff` of a face of the screen HTML, kept in the
-    process and in the cache folder (``<cache>/fonts``): subsetting the eight faces costs about
-    a second of CPU, the same bytes every time (the subsetter is deterministic), so the
-    screen HTML is the same with a cached subset as without."""
+def _font_derived(memo: dict, path: Path, suffix: str, key, compute, decode, encode):
+    """``compute(path)`` for a font file, kept in ``memo`` and in the cache folder as
+    ``<cache>/fonts/<key(path)><suffix>`` (``encode``d; ``decode`` gives ``None`` for a damaged
+    file, which is computed again)."""
     path = Path(path)
-    data = _WOFF_MEMO.get(path)
-    if data is not None:
-        return data
+    value = memo.get(path)
+    if value is not None:
+        return value
     folder = _formula_cache_dir()
     file = None
     if folder is not None:
         try:
-            file = folder.parent / "fonts" / f"{_woff_key(path)}.woff"
-            data = file.read_bytes()
-        except OSError:
-            data = None
-    if data is None or not _is_woff(data):
-        data = fonts._subset_woff(path)
+            file = folder.parent / "fonts" / f"{key(path)}{suffix}"
+            value = decode(file.read_bytes())
+        except (OSError, ValueError):
+            value = None
+    if value is None:
+        value = compute(path)
         if file is not None:
             try:
-                _atomic_write(file, data)
+                _atomic_write(file, encode(value))
             except OSError:
                 pass  # a read-only cache folder is no reason to fail a report
-    _WOFF_MEMO[path] = data
-    return data
+    memo[path] = value
+    return value
+
+
+def _embedded_woff(path: Path) -> bytes:
+    """:func:`reportgen.style.fonts._subset_woff` of a face of the screen HTML, kept in the
+    process and in the cache folder (``<cache>/fonts``): subsetting the faces costs about a
+    second of CPU, the same bytes every time (the subsetter is deterministic), so the screen
+    HTML is the same with a cached subset as without."""
+    return _font_derived(_WOFF_MEMO, path, ".woff", _woff_key, fonts._subset_woff,
+                         lambda data: data if _is_woff(data) else None, bytes)
 
 
 _CMAP_MEMO: dict[Path, frozenset] = {}
+
+
+def _cmap_key(path: Path) -> str:
+    return hashlib.sha256(f"cmap|{_WOFF_CACHE_VERSION}|".encode() + Path(path).read_bytes()).hexdigest()
+
+
+def _cmap_decode(data: bytes) -> frozenset[int] | None:
+    codes = json.loads(data.decode("ascii"))
+    ok = isinstance(codes, list) and codes and all(isinstance(c, int) for c in codes)
+    return frozenset(codes) if ok else None
 
 
 def _font_cmap(path: Path) -> frozenset[int]:
     """:func:`reportgen.style.fonts._cmap` (the code points a face draws, for the glyph check)
     kept in the process and in the cache folder (``<cache>/fonts``, keyed by the font's bytes):
     a fresh process then need not import fontTools and parse the font (about 0,1 s of CPU)."""
-    path = Path(path)
-    known = _CMAP_MEMO.get(path)
-    if known is not None:
-        return known
-    folder = _formula_cache_dir()
-    file = None
-    if folder is not None:
-        try:
-            data = Path(path).read_bytes()
-            key = hashlib.sha256(f"cmap|{_WOFF_CACHE_VERSION}|".encode() + data).hexdigest()
-            file = folder.parent / "fonts" / f"{key}.cmap.json"
-            codes = json.loads(file.read_text(encoding="ascii"))
-            if isinstance(codes, list) and codes and all(isinstance(c, int) for c in codes):
-                known = frozenset(codes)
-        except (OSError, ValueError):
-            known = None
-    if known is None:
-        known = fonts._cmap(path)
-        if file is not None:
-            try:
-                _atomic_write(file, json.dumps(sorted(known)).encode("ascii"))
-            except OSError:
-                pass  # a read-only cache folder is no reason to fail a report
-    _CMAP_MEMO[path] = known
-    return known
+    return _font_derived(_CMAP_MEMO, path, ".cmap.json", _cmap_key, fonts._cmap, _cmap_decode,
+                         lambda codes: json.dumps(sorted(codes)).encode("ascii"))
 
 
 @functools.lru_cache(maxsize=8)
