@@ -140,3 +140,22 @@ def test_warm_caches_fills_the_cache_folder_with_what_a_build_reads(cache, monke
     assert render._font_css(family, True) == fonts.font_face_css(family, embed=True)   # read back
     monkeypatch.setenv("REPORTGEN_CACHE", "off")
     render.warm_caches()                                        # nothing to fill
+
+
+def test_a_read_only_cache_folder_does_not_fail_the_html(cache, monkeypatch):
+    import os
+    import stat
+
+    if os.geteuid() == 0:   # (root writes into a read-only folder anyway: the write is made to fail)
+        monkeypatch.setattr(render, "_atomic_write", lambda *a: (_ for _ in ()).throw(PermissionError()))
+        monkeypatch.setattr("tempfile.NamedTemporaryFile", lambda *a, **k: (_ for _ in ()).throw(PermissionError()))
+    for sub in ("fonts", "jinja", "mathhtml"):
+        (cache / sub).mkdir(parents=True)
+        (cache / sub).chmod(stat.S_IRUSR | stat.S_IXUSR)
+    monkeypatch.setattr(render, "_ENV", None)
+    try:
+        html = render.render_html(build_demo_report(5), for_print=False)
+    finally:
+        for sub in ("fonts", "jinja", "mathhtml"):
+            (cache / sub).chmod(stat.S_IRWXU)
+    assert html.startswith("<!DOCTYPE html>")
