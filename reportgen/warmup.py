@@ -79,4 +79,4 @@ def warm_report() -> None:
 
     mplstyle.apply_style()
     render._font_config()
-    render._get_env()
+    render.warm_caches()

@@ -189,11 +189,15 @@ def _facts(document) -> tuple[list, dict, list, list]:
     return heights, anchors, links, outline
 
 
-def _part_html(report, index: int, splits: dict) -> str:
-    """The print HTML of body part ``index`` with ``splits``."""
+def _part_html(report, index: int, splits: dict, views=None) -> str:
+    """The print HTML of body part ``index`` with ``splits``, from ``views`` (the print views of
+    ``report``, cut again at ``splits``) or views made here."""
     from .render import _views
 
-    views = _views(report, for_print=True, splits=splits)
+    if views is None:
+        views = _views(report, for_print=True, splits=splits)
+    else:
+        views.builder.resplit(splits)
     return views.html(front=False, body=[views.ctx["body"][index]], chunk=True)
 
 
@@ -299,8 +303,7 @@ class PartsJob:
         known = [_recall_splits(k) or {} for k in keys]
         splits = {tid: cuts for part in known for tid, cuts in part.items()}
         if splits:
-            views = _views(report, for_print=True, splits=splits)
-            body = views.ctx["body"]
+            views.builder.resplit(splits)  # (the same views: numbering and rows do not change)
             htmls = [views.html(front=False, body=[node], chunk=True) if known[i] else bare[i]
                      for i, node in enumerate(body)]
         else:
@@ -362,7 +365,7 @@ class PartsJob:
                 laid = lay_out_part(task)
             if laid.resplit is not None:
                 self.waiting.discard(task.index)
-                self._submit(_Task(task.index, _part_html(self.report, task.index, laid.resplit),
+                self._submit(_Task(task.index, _part_html(self.report, task.index, laid.resplit, self.views),
                                    laid.resplit, task.key, task.known, laid.passes))
                 continue
             self.waiting.discard(task.index)
