@@ -29,7 +29,10 @@ table of contents come from CSS ``target-counter`` (print only).
 
 Split points are remembered per unsplit HTML (sha256), in the process and in the
 cache folder (``<cache>/splits``), so laying out the same report again, in the
-same process or in a later ``reportgen build``, takes one pass.
+same process or in a later ``reportgen build``, takes one pass. Those of a similar
+HTML (another variant of a class, a case with one length changed) are a guess,
+kept only when the passes from none provably give them (:func:`_cold_split_layout`):
+the bytes do not depend on what was remembered.
 
 A PDF is byte-identical from build to build: the subset fonts are stamped with
 a fixed date (:func:`_fixed_font_timestamp`).
@@ -1158,8 +1161,10 @@ def _cold_split_layout(document, splits: dict[str, list[int]],
         except (AttributeError, TypeError):
             tops.append(None)
         for name, pos in page.anchors.items():
-            if name in rows and len(pos) >= 4:
+            if name in splits and len(pos) >= 4:
                 table_tops.setdefault(name, pos[1])
+    if any(0 in splits[tid] for tid in table_tops):
+        return None  # a table (rows or not) moved to a new page
     out = {}
     for tid, where in rows.items():
         n = max(where) + 1
