@@ -75,8 +75,10 @@ def test_guess_that_needs_another_pass_is_dropped():
 
 
 def test_shape_key_ignores_numbers_and_images():
-    a = '<td class="num">12,5</td><img src="data:image/svg+xml;base64,QUJD"><h2>2.1 Кинематика</h2>'
-    b = '<td class="num">3,75</td><img src="data:image/svg+xml;base64,WFla"><h2>2.1 Кинематика</h2>'
+    a = ('<td class="num">12,5</td><td>\u22120,4</td><p>R = 1\u202f234 Н, +0,3 %</p>'
+         '<img src="data:image/svg+xml;base64,QUJD" style="width:80.0mm"><h2>2.1 Кинематика</h2>')
+    b = ('<td class="num">3,75</td><td>0,5</td><p>R = 987 Н, \u22120,1 %</p>'
+         '<img src="data:image/svg+xml;base64,WFla" style="width:80mm"><h2>2.1 Кинематика</h2>')
     assert render._shape_key(a) == render._shape_key(b)
     assert render._shape_key(a) != render._shape_key(a.replace("Кинематика", "Динамика"))
     assert render._split_key(a) != render._split_key(b)
