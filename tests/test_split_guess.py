@@ -80,6 +80,8 @@ def test_shape_key_ignores_numbers_and_images():
     b = ('<td class="num">3,75</td><td>0,5</td><p>R = 987 Н, \u22120,1 %</p>'
          '<img src="data:image/svg+xml;base64,WFla" style="width:80mm"><h2>2.1 Кинематика</h2>')
     assert render._shape_key(a) == render._shape_key(b)
+    assert render._shape_key('<meta name="author" content="Иванов И. И.">' + a) == render._shape_key(
+        '<meta name="author" content="Петров П. П.">' + b)
     assert render._shape_key(a) != render._shape_key(a.replace("Кинематика", "Динамика"))
     assert render._split_key(a) != render._split_key(b)
 

@@ -888,19 +888,19 @@ def _split_key(html: str) -> str:
     return h.hexdigest()
 
 
-_DATA_URL = re.compile(r"data:[^\"')\s]+")
+_SHAPE_DROP = re.compile(r"data:[^\"')\s]+|<title>[^<]*</title>|<meta [^>]*>")
 _NUMBER = re.compile("[\u2212+\\-]?\\d[\\d\u00a0\u2009\u202f ,.]*")  # sign, digits, groups, decimals
 
 
 def _shape_key(html: str) -> str:
     """Key of a *guess* of the split points: the print HTML with every ``data:`` URL (figures,
-    formulas) left out and every number (its sign, digit groups and decimals) written as ``0``,
+    formulas), the title and the ``<meta>`` tags (the student's name) left out and every number (its sign, digit groups and decimals) written as ``0``,
     so the variants of one case (other numbers, the same tables) and a student's case after a
     changed length share it. Split
     points found under it are only a guess: :func:`_cold_split_layout` decides whether a layout
     made with them is the one the passes from no split points give."""
     h = hashlib.sha256(f"shape|{_SPLIT_CACHE_VERSION}|{weasyprint_version()}|".encode())
-    h.update(_NUMBER.sub("0", _DATA_URL.sub("data:", html)).encode("utf-8"))
+    h.update(_NUMBER.sub("0", _SHAPE_DROP.sub("data:", html)).encode("utf-8"))
     return h.hexdigest()
 
 
