@@ -148,3 +148,30 @@ def test_wrong_guess_costs_passes_never_a_page(empty_cache):
         f.write_text("{damaged", encoding="utf-8")
     cold, cold_passes, cold_splits = _pdf(other, tmp / "b-cold.pdf")
     assert cold_passes == [2] and cold_splits == splits and cold == guessed
+
+
+def test_real_variant_after_another(empty_cache):
+    """The one real check: the kinematics of two variants of ws000 (the class table's rows 02
+    and 03): the second takes its long tables' split points from the first, lays the part out
+    once, and its PDF is the bytes of the second built with nothing remembered."""
+    from conftest import CASES
+
+    from reportgen.analysis.study import Study
+    from reportgen.case.load import load_spec
+    from reportgen.report.assemble import build_report
+
+    tmp = empty_cache
+
+    def note(l_oa: str, l_ab: str, y_h: str):
+        spec = load_spec(CASES / "ws000_six_bar.toml", {"l_OA": l_oa, "l_AB": l_ab, "Y_H": y_h})
+        return build_report(Study(spec), ["structure", "kinematics"])
+
+    _a, a_passes, a_splits = _pdf(note("0.303 m", "1.410 m", "0.87 m"), tmp / "a.pdf")
+    b = note("0.306 m", "1.420 m", "0.89 m")
+    guessed, b_passes, b_splits = _pdf(b, tmp / "b.pdf")
+    render._SPLIT_MEMO.clear()
+    (tmp / "cache").rename(tmp / "old")
+    cold, cold_passes, cold_splits = _pdf(b, tmp / "b-cold.pdf")
+    long = [i for i, n in enumerate(cold_passes) if n > 1]
+    assert long and all(b_passes[i] < cold_passes[i] for i in long), (b_passes, cold_passes)
+    assert b_splits == cold_splits and guessed == cold

@@ -247,7 +247,9 @@ def lay_out_part(task: _Task) -> _Laid:
         elif start:
             held = _start_holds(document, splits, start)
             if held is not None:
-                splits.update({tid: held.get(tid, []) for tid in _page_rows(document)})
+                for tid in _page_rows(document):  # the part's tables as the passes from none leave them
+                    splits.pop(tid, None)
+                splits.update(held)
                 break
             new, start = {}, ""  # dropped: the passes start from none
         else:

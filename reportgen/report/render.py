@@ -894,9 +894,9 @@ _NUMBER = re.compile("[\u2212+\\-]?\\d[\\d\u00a0\u2009\u202f ,.]*")  # sign, dig
 
 def _shape_key(html: str) -> str:
     """Key of a *guess* of the split points: the print HTML with every ``data:`` URL (figures,
-    formulas), the title and the ``<meta>`` tags (the student's name) left out and every number (its sign, digit groups and decimals) written as ``0``,
-    so the variants of one case (other numbers, the same tables) and a student's case after a
-    changed length share it. Split
+    formulas), the title and the ``<meta>`` tags (the student's name) left out and every number
+    (its sign, digit groups and decimals) written as ``0``, so the variants of one case (other
+    numbers, the same tables) and a student's case after a changed length share it. Split
     points found under it are only a guess: :func:`_cold_split_layout` decides whether a layout
     made with them is the one the passes from no split points give."""
     h = hashlib.sha256(f"shape|{_SPLIT_CACHE_VERSION}|{weasyprint_version()}|".encode())
@@ -1143,7 +1143,10 @@ def _cold_split_layout(document, splits: dict[str, list[int]],
 
     Induction on the pages: before a table's first page both documents are the same HTML laid
     out from the same place; on a split table's pages the rows are at the same places (3, and
-    a row's height does not depend on the page, the assumption every pass makes), each page
+    a row's height depends neither on its page nor on the rows that share its part: the
+    assumption every pass makes; WeasyPrint's automatic column widths come from the rows of
+    the part, so a header wrapping otherwise in a part fails 3, but a whole table whose
+    columns differ from those of every part is not seen here), each page
     holds in pass 1 the rows the part holds (they fit there, and the next does not by 4), so
     pass 1's cuts are the guessed ones (2) and the table ends at the same place; an unsplit
     table fits its page in both. So pass 1 cuts at ``splits``, pass 2 renders the same HTML
