@@ -962,7 +962,7 @@ def _start_holds(document, splits: dict[str, list[int]], start: str):
     """The split points to keep when the layout made from a remembered ``start`` is the one the
     passes from none give (see :func:`_start_splits`), else ``None``."""
     if start == "known":
-        return splits if _next_splits(document, splits) is None else None
+        return {k: list(v) for k, v in splits.items()} if _next_splits(document, splits) is None else None
     return _cold_split_layout(document, splits)
 
 
