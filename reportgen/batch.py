@@ -49,6 +49,7 @@ class Outcome:
     worker: int = 0  # process id of the worker that built it
     peak_rss_mb: float = 0.0  # that worker's peak memory after this variant
     cpu_seconds: float = 0.0  # CPU time (user + sys) of the worker for this variant
+    layout_passes: list[int] = field(default_factory=list)  # WeasyPrint layouts of each part of the PDF
 
 
 MAX_VARIANTS = 1000  # rows of one table
@@ -293,6 +294,10 @@ def run_variant(v: Variant, out_dir: str, formats: tuple[str, ...], sections, ke
             from .sheets import build_sheets
             files["sheets"] = build_sheets(study, Path(out_dir), stem)
         out = Outcome(v.name, True, spec.digest(), [str(p) for p in files.values()], time.perf_counter() - t0)
+        if "pdf" in formats:
+            from .report import render
+            st = render.last_stats
+            out.layout_passes = list(st.parts.part_passes) if st.parts is not None else [st.passes]
     except CaseError as e:
         out = Outcome(v.name, False, "", [], time.perf_counter() - t0, str(_against_row(e, v)))
     except ReportgenError as e:

@@ -29,7 +29,10 @@ table of contents come from CSS ``target-counter`` (print only).
 
 Split points are remembered per unsplit HTML (sha256), in the process and in the
 cache folder (``<cache>/splits``), so laying out the same report again, in the
-same process or in a later ``reportgen build``, takes one pass.
+same process or in a later ``reportgen build``, takes one pass. Those of a similar
+HTML (another variant of a class, a case with one length changed) are a guess,
+kept only when the passes from none provably give them (:func:`_cold_split_layout`):
+the bytes do not depend on what was remembered.
 
 What does not change between builds is kept in the same cache folder, each entry keyed by
 everything it is made from, so a cached one gives the same bytes as a fresh one (tests/
@@ -139,6 +142,7 @@ PT_MM = 25.4 / 72
 
 MAX_PASSES = 12
 MIN_PART_ROWS = 3  # fewest rows of a table left on a page before «Продолжение таблицы»
+LEAD_TABLE_ROWS = 6  # a paragraph before a one-part table of at most this many rows keeps with it (_blocks.html.j2)
 
 
 def resolve_options(options: dict | None) -> dict:
@@ -1061,7 +1065,7 @@ _ROW_ANCHOR = re.compile(r"^(.+)__r(\d+)$")
 _SPLIT_MEMO: dict[str, dict[str, list[int]]] = {}  # sha256 of the unsplit print HTML -> splits
 
 
-_SPLIT_CACHE_VERSION = 1
+_SPLIT_CACHE_VERSION = 2  # 2: only the split points of the passes from none are remembered
 
 
 _DATA_SVG = re.compile(r"data:image/svg\+xml;base64,([A-Za-z0-9+/=]+)")
@@ -1101,6 +1105,22 @@ def _split_key(html: str) -> str:
     return h.hexdigest()
 
 
+_SHAPE_DROP = re.compile(r"data:[^\"')\s]+|<title>[^<]*</title>|<meta [^>]*>")
+_NUMBER = re.compile("[\u2212+\\-]?\\d[\\d\u00a0\u2009\u202f ,.]*")  # sign, digits, groups, decimals
+
+
+def _shape_key(html: str) -> str:
+    """Key of a *guess* of the split points: the print HTML with every ``data:`` URL (figures,
+    formulas), the title and the ``<meta>`` tags (the student's name) left out and every number
+    (its sign, digit groups and decimals) written as ``0``, so the variants of one case (other
+    numbers, the same tables) and a student's case after a changed length share it. Split
+    points found under it are only a guess: :func:`_cold_split_layout` decides whether a layout
+    made with them is the one the passes from no split points give."""
+    h = hashlib.sha256(f"shape|{_SPLIT_CACHE_VERSION}|{weasyprint_version()}|".encode())
+    h.update(_NUMBER.sub("0", _SHAPE_DROP.sub("data:", html)).encode("utf-8"))
+    return h.hexdigest()
+
+
 def _split_file(key: str) -> Path | None:
     """``<cache>/splits/<key>.json`` in the cache folder of the formulas (REPORTGEN_CACHE or
     XDG_CACHE_HOME/reportgen; none when the cache is off)."""
@@ -1111,8 +1131,10 @@ def _split_file(key: str) -> Path | None:
 def _recall_splits(key: str) -> dict[str, list[int]] | None:
     """Split points found for this HTML before, in this process or (the CLI) an earlier one.
 
-    They only save layout passes: the layout made with them is checked as any other, so a
-    stale or damaged entry costs a pass, never a wrong page."""
+    They only save layout passes. Only the split points the passes from none gave are
+    remembered (:func:`_start_splits`), so an entry under the exact key is that result and its
+    layout is a fixed point; one that is not (stale, damaged) is dropped and the passes start
+    from none: a pass lost, never a different page."""
     known = _SPLIT_MEMO.get(key)
     if known is None:
         path = _split_file(key)
@@ -1137,6 +1159,40 @@ def _remember_splits(key: str, splits: dict[str, list[int]]) -> None:
         _atomic_write(path, json.dumps(_SPLIT_MEMO[key], sort_keys=True).encode("utf-8"))
     except OSError:
         pass  # a read-only cache folder is no reason to fail a report
+
+
+def _start_splits(html: str) -> tuple[str, str, dict[str, list[int]], str]:
+    """``(key, shape, splits, start)`` for the unsplit print HTML of a note or part: the split
+    points remembered under its exact key (``start`` "known"), else those of a similar HTML
+    under its shape key (:func:`_shape_key`, ``start`` "guess"), else none (""). A known start
+    is kept when its layout is a fixed point of :func:`_next_splits`, a guess only when
+    :func:`_cold_split_layout` proves it; otherwise the passes start again from none."""
+    key, shape = _split_key(html), _shape_key(html)
+    known = _recall_splits(key)
+    if known:
+        return key, shape, known, "known"
+    guess = _recall_splits(shape)
+    return key, shape, guess or {}, "guess" if guess else ""
+
+
+def _start_holds(document, splits: dict[str, list[int]], start: str):
+    """The split points to keep when the layout made from a remembered ``start`` is the one the
+    passes from none give (see :func:`_start_splits`), else ``None``."""
+    if start == "known":
+        return {k: list(v) for k, v in splits.items()} if _next_splits(document, splits) is None else None
+    return _cold_split_layout(document, splits)
+
+
+def _remember_result(key: str, shape: str, splits: dict[str, list[int]], start: str,
+                     guessable: bool) -> None:
+    """Remember the split points the passes from none gave (or a start proved equal to them)
+    under the exact key, and under the shape key when a similar HTML may take them as a guess
+    (:func:`_cold_split_layout` proved them for this one: others would only cost a pass)."""
+    if not splits or start == "known":
+        return
+    _remember_splits(key, splits)
+    if guessable:
+        _remember_splits(shape, splits)
 
 
 def _page_rows(document, with_boxes: bool = False):
@@ -1273,6 +1329,91 @@ def _next_splits(document, splits: dict[str, list[int]],
     return result if changed else None
 
 
+SPLIT_EPS = 0.01  # CSS px: heights equal, and a row not fitting, only beyond this
+
+
+def _cold_split_layout(document, splits: dict[str, list[int]],
+                       min_rows: int = MIN_PART_ROWS) -> dict[str, list[int]] | None:
+    """The split points of ``document`` (laid out with ``splits``, a guess) when they are
+    provably those the passes from no split points converge to, else ``None`` (the guess is
+    then dropped and the passes start from none: a guess costs passes, never a page).
+
+    The passes from none (:func:`_next_splits`): pass 1 lays every table out whole and cuts it
+    at the first row of each later page (WeasyPrint repeats the whole ``<thead>``, the table's
+    own caption included, at the top of those pages); pass 2 lays out those parts. Pass 2 gives
+    the document of ``splits`` exactly, and stops there, when:
+
+    1. ``document`` is a fixed point: ``_next_splits(document, splits)`` is ``None`` (no part
+       spans two pages, no cut leaves a page largely empty);
+    2. no table starts on a new page (split point 0) and every split table keeps at least
+       ``min_rows`` rows in its first and in its last part: then pass 1 takes neither the
+       «start on a new page» branch nor :func:`_tidy_cuts` (which make a cold cut loose), and
+       the table has more than :data:`LEAD_TABLE_ROWS` rows, so the paragraph before it is
+       the same in both (``p.lead`` of the template);
+    3. every continuation part starts as a whole table's repeated header does: its first row
+       lies as far below the page's content top as the table's first row lies below the table
+       (the «Продолжение таблицы N» caption as high as the table's own caption): the rows of
+       a page are where pass 1 puts them;
+    4. every cut is tight: the row at a cut, put right under the row before it (border
+       spacing 0, borders inside the cells), would end below that page's content bottom, so
+       pass 1 could not have kept it on that page (WeasyPrint moves a row that ends lower).
+
+    Induction on the pages: before a table's first page both documents are the same HTML laid
+    out from the same place; on a split table's pages the rows are at the same places (3, and
+    a row's height depends neither on its page nor on the rows that share its part: the
+    assumption every pass makes; WeasyPrint's automatic column widths come from the rows of
+    the part, so a header wrapping otherwise in a part fails 3, but a whole table whose
+    columns differ from those of every part is not seen here), each page
+    holds in pass 1 the rows the part holds (they fit there, and the next does not by 4), so
+    pass 1's cuts are the guessed ones (2) and the table ends at the same place; an unsplit
+    table fits its page in both. So pass 1 cuts at ``splits``, pass 2 renders the same HTML
+    and, by 1, is the last. A layout failing any condition may still be the cold one (a
+    two-line caption, a table moved to a new page): it is then made again from no split
+    points. Returns the split points in the form the passes give (tables with cuts only)."""
+    if _next_splits(document, splits, min_rows) is not None:
+        return None
+    rows, boxes = _page_rows(document, with_boxes=True)
+    tops, bottoms = [], _content_bottoms(document)
+    table_tops = {}
+    for page in document.pages:
+        box = getattr(page, "_page_box", None)
+        try:
+            tops.append(box.content_box_y())
+        except (AttributeError, TypeError):
+            tops.append(None)
+        for name, pos in page.anchors.items():
+            if name in splits and len(pos) >= 4:
+                table_tops.setdefault(name, pos[1])
+    if any(0 in splits[tid] for tid in table_tops):
+        return None  # a table (rows or not) moved to a new page
+    out = {}
+    for tid, where in rows.items():
+        n = max(where) + 1
+        given = set(splits.get(tid, ()))
+        if 0 in given:
+            return None
+        cuts = sorted(c for c in given if 0 < c < n)
+        if not cuts:
+            continue
+        rb = boxes.get(tid, {})
+        if (set(where) != set(range(n)) or set(rb) != set(range(n)) or n <= LEAD_TABLE_ROWS
+                or cuts[0] < min_rows or n - cuts[-1] < min_rows or tid not in table_tops):
+            return None
+        head = rb[0][0] - table_tops[tid]
+        for c in cuts:
+            page, before = where[c], where[c - 1]
+            top = tops[page] if page < len(tops) else None
+            bottom = bottoms[before] if before < len(bottoms) else None
+            if page != before + 1 or top is None or bottom is None:
+                return None
+            if abs(rb[c][0] - top - head) > SPLIT_EPS:
+                return None  # the continuation's header is not as high as the repeated one
+            if not rb[c - 1][1] + (rb[c][1] - rb[c][0]) > bottom + SPLIT_EPS:
+                return None  # the row would fit on the page before: pass 1 keeps it there
+        out[tid] = cuts
+    return out
+
+
 _IMAGE_CACHE: dict = {}
 _IMAGE_CACHE_MAX = 2000
 
@@ -1332,20 +1473,19 @@ def _layout(report: Report, font_config):
     splits: dict[str, list[int]] = {}
     stats = RenderStats()
     document = None
-    key = None
+    key = shape = None
+    start = ""
     views = _views(report, for_print=True, splits=splits)
     for i in range(MAX_PASSES):
         t0 = time.perf_counter()
         views.builder.resplit(splits)  # (numbering and rows do not depend on the split points)
         html = _checked_html(views)
         if i == 0:
-            # The same report laid out again (batch re-runs, determinism checks)
-            # starts from the split points found last time; the final layout
-            # is verified below all the same.
-            key = _split_key(html)
-            known = _recall_splits(key)
-            if known:
-                splits = {k: list(v) for k, v in known.items()}
+            # The same report laid out again (batch re-runs, determinism checks), or a similar
+            # one (another variant, a changed length), starts from split points remembered;
+            # they are kept only when the passes from none provably give them.
+            key, shape, splits, start = _start_splits(html)
+            if start:
                 views.builder.resplit(splits)
                 html = _checked_html(views)
         t1 = time.perf_counter()
@@ -1355,14 +1495,22 @@ def _layout(report: Report, font_config):
         stats.passes += 1
         stats.seconds_html += t1 - t0
         stats.seconds_layout += t2 - t1
+        if start:
+            held = _start_holds(document, splits, start)
+            if held is not None:
+                splits = held
+                break
+            splits, start = {}, ""  # dropped: the passes start from none
+            continue
         new = _next_splits(document, splits)
         if new is None:
             break
         splits = new
     else:
         log.warning("Разбиение таблиц не сошлось за %d проходов", MAX_PASSES)
-    if key is not None and splits:
-        _remember_splits(key, splits)
+    if key is not None:
+        _remember_result(key, shape, splits, start,
+                         start == "guess" or _cold_split_layout(document, splits) is not None)
     stats.pages = len(document.pages)
     stats.splits = splits
     return document, stats
