@@ -1,6 +1,10 @@
 """«Skip what a scene doesn't need», measured: time and computed stages of a note by sections.
 
-Usage: ``.venv/bin/python bench/bench_sections.py [CASE] [--runs 3] [--pdf]``
+Usage: ``.venv/bin/python bench/bench_sections.py [CASE] [--runs 3] [--pdf]``;
+``--figures``: instead, the CPU of building each section (its figures, tables and text) of a
+Study whose results are computed — *cold*, the first build in a process forked from the one that
+computed (as the CLI's section workers: ``report.assemble._build_sections``), and *warm*, the
+median of ``--runs`` builds after it in one process; written to ``output/bench/section_cpu.csv``
 (default case cases/ws000_six_bar_corrected.toml; also run by ``bench/work_precision.py``);
 writes ``output/bench/sections.csv`` and ``sections.md`` (with ``--pdf``: ``sections_pdf.*``) and
 prints a table.
@@ -102,6 +106,40 @@ def rows(case: Path, runs: int, pdf: bool) -> list[dict]:
     return out
 
 
+_STUDY = None  # the study whose sections are built: inherited by the forked process
+
+
+def _cold(name: str) -> float:
+    from reportgen.report.assemble import SECTIONS
+    c0 = time.process_time()
+    SECTIONS[name][0].build(_STUDY)
+    return time.process_time() - c0
+
+
+def section_cpu(case: Path, runs: int) -> list[dict]:
+    """CPU seconds of ``build(study)`` of every section of the case, cold and warm."""
+    global _STUDY
+    import multiprocessing
+
+    from reportgen.analysis.study import Study
+    from reportgen.report.assemble import SECTIONS, _freeze_inherited, chosen_sections, needs
+    _STUDY = study = Study(case)
+    names = chosen_sections(study, None)
+    for need in sorted(needs(study, names)):
+        getattr(study, need)
+    out = []
+    for name in names:
+        with multiprocessing.get_context("fork").Pool(1, initializer=_freeze_inherited) as pool:
+            cold = pool.apply(_cold, (name,))
+        SECTIONS[name][0].build(study)                        # warm-up of this process
+        warm = [_cold(name) for _ in range(runs)]
+        out.append(dict(case=case.name, section=name, cold_cpu_s=round(cold, 3),
+                        warm_cpu_s=round(statistics.median(warm), 3), runs=runs))
+        print(f"{name:12s} холодный {cold:6.3f} с ЦП   тёплый (медиана {runs}) {statistics.median(warm):6.3f} с ЦП",
+              flush=True)
+    return out
+
+
 def write(rows_: list[dict], path: Path) -> None:
     with path.open("w", newline="", encoding="utf-8") as f:
         w = csv.DictWriter(f, fieldnames=list(rows_[0]))
@@ -125,8 +163,14 @@ def main(argv=None) -> list[dict]:
     ap.add_argument("case", nargs="?", default=DEFAULT_CASE)
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--pdf", action="store_true", help="записка с PDF (долго: 10–40 с на сборку)")
+    ap.add_argument("--figures", action="store_true",
+                    help="время ЦП построения каждого раздела (рисунки, таблицы, текст): холодное и тёплое")
     args = ap.parse_args(argv)
     OUT.mkdir(parents=True, exist_ok=True)
+    if args.figures:
+        r = section_cpu(ROOT / args.case, args.runs)
+        write(r, OUT / "section_cpu.csv")
+        return r
     r = rows(ROOT / args.case, args.runs, args.pdf)
     stem = "sections_pdf" if args.pdf else "sections"
     write(r, OUT / f"{stem}.csv")

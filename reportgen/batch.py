@@ -7,7 +7,6 @@ atomically; the manifest lists variant, input hash, output files and seconds.
 from __future__ import annotations
 
 import csv
-import functools
 import io
 import json
 import multiprocessing
@@ -50,6 +49,7 @@ class Outcome:
     worker: int = 0  # process id of the worker that built it
     peak_rss_mb: float = 0.0  # that worker's peak memory after this variant
     cpu_seconds: float = 0.0  # CPU time (user + sys) of the worker for this variant
+    layout_passes: list[int] = field(default_factory=list)  # WeasyPrint layouts of each part of the PDF
 
 
 MAX_VARIANTS = 1000  # rows of one table
@@ -204,21 +204,12 @@ def _share_between_variants() -> None:
         render._IMAGE_CACHE = _TouchedCache(render._IMAGE_CACHE)
 
 
-MATHTEXT_CACHE = 2048  # parsed labels kept by a worker (ws000: about 160 distinct per note)
-
-
 def _share_mathtext() -> None:
-    """matplotlib keeps the last 50 parsed mathtext strings (``MathTextParser._parse_cached``,
-    an ``lru_cache(50)``); a note of ws000 draws about 160 distinct labels 440 times, so most
-    are parsed again, in every variant. A larger cache of the same function keeps them for the
-    worker's life: the labels of the next variant are the same strings (ω₂, ε₃, V_B …), and the
-    parse of a string does not depend on anything but the cache key (same results as before)."""
-    from matplotlib import mathtext
-
-    cached = mathtext.MathTextParser._parse_cached
-    info = getattr(cached, "cache_info", None)
-    if info is not None and info().maxsize is not None and info().maxsize < MATHTEXT_CACHE:
-        mathtext.MathTextParser._parse_cached = functools.lru_cache(MATHTEXT_CACHE)(cached.__wrapped__)
+    """The parsed mathtext labels kept for the worker's life (one cache for the process:
+    :func:`reportgen.style.mplstyle.share_mathtext`): the labels of the next variant are the
+    same strings (ω₂, ε₃, V_B …)."""
+    from .style.mplstyle import share_mathtext
+    share_mathtext()
 
 
 class _TouchedCache(dict):
@@ -303,6 +294,10 @@ def run_variant(v: Variant, out_dir: str, formats: tuple[str, ...], sections, ke
             from .sheets import build_sheets
             files["sheets"] = build_sheets(study, Path(out_dir), stem)
         out = Outcome(v.name, True, spec.digest(), [str(p) for p in files.values()], time.perf_counter() - t0)
+        if "pdf" in formats:
+            from .report import render
+            st = render.last_stats
+            out.layout_passes = list(st.parts.part_passes) if st.parts is not None else [st.passes]
     except CaseError as e:
         out = Outcome(v.name, False, "", [], time.perf_counter() - t0, str(_against_row(e, v)))
     except ReportgenError as e:

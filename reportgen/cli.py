@@ -192,9 +192,15 @@ def cmd_warmup(args) -> int:
     # the report stack (font list, fonts, templates, bytecode) is loaded by a second process while
     # this one compiles the numba kernels: the two do not depend on each other
     report = subprocess.Popen([sys.executable, "-c", "from reportgen.warmup import warm_report; warm_report()"])
-    warmup()
-    if report.wait() != 0:
-        print("Не удалось загрузить шрифты и шаблоны отчёта (см. сообщение выше).", file=sys.stderr)
+    # the general kinematics kernel (two thirds of the numba compile time) in a third process
+    general = subprocess.Popen([sys.executable, "-c", "from reportgen.warmup import compile_general; "
+                                "compile_general()"])
+    warmup(general=False)
+    failed = [text for proc, text in ((general, "скомпилировать общее ядро кинематики"),
+                                      (report, "загрузить шрифты и шаблоны отчёта")) if proc.wait() != 0]
+    for text in failed:
+        print(f"Не удалось {text} (см. сообщение выше).", file=sys.stderr)
+    if failed:
         return 1
     print("Ядра numba скомпилированы и сохранены в кэше; шрифты и шаблоны отчёта загружены.")
     return 0

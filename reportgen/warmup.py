@@ -22,20 +22,44 @@ _TINY = {
     ],
     "driver": {"type": "crank", "link": "1", "omega": 10.0},
     "grid": {"positions": 12, "cycle_points": 72},
+    # a load switched on the working stroke and a flywheel: the extremum searches of the
+    # dynamics are compiled too (the first real note would otherwise compile them)
+    "loads": {"g": "10 m/s^2", "force": [
+        {"name": "F", "link": "3", "point": "B", "magnitude": "100 N", "direction": "x",
+         "against": "motion", "when": "vqx_B >= 0"}]},
+    "dynamics": {"n": "60 rpm", "delta": 0.1, "J_O": "0.1 kg*m^2", "method": "mertsalov"},
 }
 
 
-def warmup() -> None:
-    """Run the kinematics and every registered analysis that has a ``warmup(study)`` hook."""
+def _tiny_study():
+    from .analysis.study import Study
+    return Study(CaseSpec(Path("warmup.toml"), _TINY))
+
+
+def compile_general() -> None:
+    """Compile (or load) the general kinematics kernel alone: the largest of the kernels
+    (about two thirds of the compile time), so ``reportgen warmup`` compiles it in a second
+    process while the first compiles the rest."""
+    from .analysis import linkage as L
+    s = _tiny_study()
+    q = s.grid.cycle[:2]
+    L.solve_general(s.model, q, len(s.model.groups), s.model.gsigma, s.model.pose0)
+
+
+def warmup(general: bool = True) -> None:
+    """Run the kinematics and every registered analysis that has a ``warmup(study)`` hook
+    (the general kinematics kernel too unless ``general`` is false: :func:`compile_general`
+    then runs in another process)."""
     import importlib
 
     from .analysis import linkage as L
-    from .analysis.study import Study
     from .registry import KINDS
-    s = Study(CaseSpec(Path("warmup.toml"), _TINY))
+    s = _tiny_study()
     s.kinematics
-    L.compile_kernels(s.model, s.grid.cycle)
+    if general:
+        L.compile_kernels(s.model, s.grid.cycle)
     s.cycle
+    s.dynamics.tables()
     for kind in KINDS:
         module, cls = kind.analysis.split(":")
         hook = getattr(getattr(importlib.import_module(f"reportgen.analysis.{module}"), cls), "warmup", None)
@@ -55,4 +79,4 @@ def warm_report() -> None:
 
     mplstyle.apply_style()
     render._font_config()
-    render._get_env()
+    render.warm_caches()

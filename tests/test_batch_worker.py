@@ -21,23 +21,31 @@ def test_image_cache_keeps_what_the_last_variant_used():
     assert set(cache) == {"formula", "figure 2"}
 
 
-def test_mathtext_cache_is_larger_and_gives_the_same_parse(monkeypatch):
+def test_mathtext_cache_is_shared_and_gives_the_same_parse(monkeypatch):
+    """One parse cache for the process, whichever parser (renderer) asks: a label measured by
+    the label placer's Agg renderer and drawn by each SVG renderer of savefig is parsed once per
+    dpi, size and font, with the same result as matplotlib's own parse."""
     from matplotlib import mathtext
     from matplotlib.font_manager import FontProperties
 
-    monkeypatch.setattr(mathtext.MathTextParser, "_parse_cached", mathtext.MathTextParser._parse_cached)
-    small = mathtext.MathTextParser("path")
-    before = small.parse(r"$\omega_{2}$", 72, FontProperties(size=10))
+    from reportgen.style import mplstyle
+
+    own = getattr(mathtext.MathTextParser._parse_cached, "__wrapped__", None)
+    own = own or mathtext.MathTextParser._parse_cached
+    monkeypatch.setattr(mathtext.MathTextParser, "_parse_cached", own)   # matplotlib's, uncached
+    before = mathtext.MathTextParser("path").parse(r"$\omega_{2}$", 72, FontProperties(size=10))
     batch._share_mathtext()
-    info = mathtext.MathTextParser._parse_cached.cache_info()
-    assert info.maxsize == batch.MATHTEXT_CACHE
+    shared = mathtext.MathTextParser._parse_cached
     batch._share_mathtext()  # idempotent: not wrapped twice
-    assert not hasattr(mathtext.MathTextParser._parse_cached.__wrapped__, "cache_info")  # one cache, not two
-    assert mathtext.MathTextParser._parse_cached.cache_info().maxsize == batch.MATHTEXT_CACHE
-    parser = mathtext.MathTextParser("path")
+    assert mathtext.MathTextParser._parse_cached is shared
+    assert shared.cache_info().maxsize == mplstyle.MATHTEXT_CACHE
     labels = [f"$x_{{{i}}}$" for i in range(200)]
-    for s in labels + labels:
-        parser.parse(s, 72, FontProperties(size=10))
-    assert mathtext.MathTextParser._parse_cached.cache_info().hits >= len(labels)
-    after = parser.parse(r"$\omega_{2}$", 72, FontProperties(size=10))
+    hits = shared.cache_info().hits
+    for s in labels + labels:   # a new parser for every call, as a new renderer makes
+        mathtext.MathTextParser("path").parse(s, 72, FontProperties(size=10))
+    assert shared.cache_info().hits - hits >= len(labels)
+    after = mathtext.MathTextParser("path").parse(r"$\omega_{2}$", 72, FontProperties(size=10))
     assert (after.width, after.height, after.depth) == (before.width, before.height, before.depth)
+    assert [g[1:] for g in after.glyphs] == [g[1:] for g in before.glyphs]
+    raster = mathtext.MathTextParser("agg").parse(r"$\omega_{2}$", 72, FontProperties(size=10))
+    assert type(raster).__name__ == "RasterParse"   # the output type is part of the key

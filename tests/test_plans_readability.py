@@ -131,5 +131,5 @@ def test_insets_named_in_the_text(ws000):
     d = _plan(ws000, "acceleration").draw(ws000)
     text = _insets_text(d, "ускорений", "a", "м·с⁻²/мм")
     ins = d.insets[0]
-    assert f"выносным элементом {ins.mark} (μ<sub>a</sub>/{ins.k:g} = " in text
+    assert f"выносным элементом {ins.mark} (<span class=\"nowrap\">μ<sub>a</sub>/{ins.k:g}</span> = " in text
     assert _insets_text(SimpleNamespace(insets=[], mu=1.0), "скоростей", "v", "м·с⁻¹/мм") == ""

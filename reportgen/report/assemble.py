@@ -126,6 +126,15 @@ def _build_one(name: str):
         return None
 
 
+def _freeze_inherited() -> None:
+    """In a forked worker: the objects inherited from the parent (the study, its tables, the
+    imported modules: about 260 000) are moved out of the garbage collector's sight, so its
+    collections while the figures are drawn scan only the worker's own objects (a tenth of a
+    section's CPU time otherwise) and do not copy the parent's pages."""
+    import gc
+    gc.freeze()
+
+
 def _build_sections(study, names: list[str]) -> list:
     """Every chosen section built (``build(study)``: its text, tables and figures), in a pool
     of forked processes when more than one may lay out a note
@@ -143,7 +152,7 @@ def _build_sections(study, names: list[str]) -> list:
     import multiprocessing
     _STUDY = study
     try:
-        with multiprocessing.get_context("fork").Pool(jobs) as pool:
+        with multiprocessing.get_context("fork").Pool(jobs, initializer=_freeze_inherited) as pool:
             # the heaviest sections first (figures, tables): the order of the registry's tasks
             order = sorted(range(len(names)), key=lambda i: (-_WEIGHT.get(names[i], 1), i))
             done = dict(zip(order, pool.map(_build_one, [names[i] for i in order], chunksize=1)))

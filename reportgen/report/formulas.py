@@ -35,7 +35,6 @@ import warnings
 from pathlib import Path
 from dataclasses import dataclass, field
 
-import ziamath as zm
 from markupsafe import Markup
 
 from ..style import fonts
@@ -58,10 +57,13 @@ MATH_SCALE = 0.93  # rendered formula size relative to the text size (em per REF
 _configured = False
 
 
-def _configure() -> None:
+def _configure():
+    """ziamath, imported on first use (a quarter of a second; most notes set every formula as
+    text and never draw one) and configured once."""
     global _configured
+    import ziamath as zm
     if _configured:
-        return
+        return zm
     zm.config.svg2 = False  # plain paths: no <symbol>/<use> ids shared across formulas
     zm.config.decimal_separator = ","
     try:
@@ -70,6 +72,7 @@ def _configure() -> None:
     except FileNotFoundError:  # pragma: no cover - falls back to STIX Two Math
         pass
     _configured = True
+    return zm
 
 
 @dataclass
@@ -186,7 +189,7 @@ def render_latex(tex: str, *, inline: bool = False, size: float | None = None
     (for ``vertical-align``). Cached; ziamath with ``svg2=False`` and a decimal
     comma.
     """
-    _configure()
+    zm = _configure()
     size = size or REF_PX
     key = hashlib.sha256(repr((tex, inline, size, zm.__version__, _CACHE_VERSION)).encode()).hexdigest()
     svg = _disk_get(key)
@@ -222,6 +225,63 @@ def _svg_only() -> bool:
     return os.environ.get("REPORTGEN_MATH", "").lower() == "svg"
 
 
+_TYPESET_CACHE_VERSION = 1
+
+
+@functools.lru_cache(maxsize=1)
+def _typeset_salt() -> bytes:
+    """What a typeset formula depends on besides its LaTeX: the typesetter's code (the bytes
+    of ``mathhtml.py``), latex2mathml's version and the font files whose advance widths give
+    its width."""
+    import latex2mathml
+
+    from . import mathhtml
+
+    h = hashlib.sha256(f"{_TYPESET_CACHE_VERSION}|{latex2mathml.__version__}|".encode())
+    h.update(Path(mathhtml.__file__).read_bytes())
+    fam = fonts.find_serif()
+    for face in (fam.regular, fam.italic):
+        h.update(Path(face).read_bytes())
+    return h.digest()
+
+
+@functools.lru_cache(maxsize=4096)
+def _typeset(tex: str, display: bool):
+    """:func:`reportgen.report.mathhtml.convert`, kept in the cache folder too
+    (``<cache>/mathhtml``): converting the formulas of a note costs about 0,3 s of CPU in a
+    fresh process and gives the same markup and extent every time, so a cached formula
+    changes no byte of the note. A missing or damaged entry is converted again."""
+    import json
+
+    from . import mathhtml
+
+    d = _cache_dir()
+    file = None
+    if d is not None:
+        key = hashlib.sha256(_typeset_salt() + repr((tex, display)).encode("utf-8")).hexdigest()
+        file = d.parent / "mathhtml" / key[:2] / f"{key}.json"
+        try:
+            data = json.loads(file.read_text(encoding="utf-8"))
+            if data["tex"] == tex and data["display"] == display:
+                return mathhtml.MathHtml(Markup(data["html"]), mathhtml.Box(*map(float, data["box"])), tex)
+        except (OSError, ValueError, KeyError, TypeError):
+            pass
+    out = mathhtml.convert(tex, display)  # raises Unsupported: nothing is kept
+    if file is not None:
+        b = out.box
+        text = json.dumps({"tex": tex, "display": display, "html": str(out.html), "box": [b.w, b.h, b.d]},
+                          ensure_ascii=False)
+        try:
+            file.parent.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(dir=file.parent, suffix=".tmp")
+            with os.fdopen(fd, "w", encoding="utf-8") as f:
+                f.write(text)
+            os.replace(tmp, file)
+        except OSError:
+            pass  # a read-only cache folder is no reason to fail a report
+    return out
+
+
 def _math(tex: str, inline: bool = False):
     """The formula as :class:`~reportgen.report.mathhtml.MathHtml`, or as a ziamath
     :class:`FormulaImage` when the HTML typesetter does not handle it (counted in
@@ -230,7 +290,7 @@ def _math(tex: str, inline: bool = False):
         from . import mathhtml
 
         try:
-            return mathhtml.convert(tex, not inline)
+            return _typeset(tex, not inline)
         except mathhtml.Unsupported as exc:
             if tex not in fallbacks:
                 warnings.warn(f"Формула {tex!r} нарисована ziamath (картинкой), а не набрана текстом: {exc}",

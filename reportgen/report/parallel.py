@@ -145,8 +145,9 @@ class _Task:
     html: str
     splits: dict
     key: str = ""
-    known: bool = False
+    start: str = ""  # the split points are remembered: "known" (this HTML) or "guess" (render._start_splits)
     passes: int = 0  # layout passes made before (by an early worker, see start_pool)
+    shape: str = ""
 
 
 @dataclass
@@ -164,9 +165,11 @@ class _Laid:
     seconds_layout: float = 0.0
     seconds_write: float = 0.0
     key: str = ""
-    known: bool = False  # split points were remembered
+    start: str = ""  # the remembered split points kept ("known", "guess") or none ("")
     refused: list = field(default_factory=list)  # URLs the fetcher refused (safety.refused)
     resplit: dict | None = None  # an early worker asks for the part rendered with these split points
+    shape: str = ""
+    guessable: bool = False  # the split points may be a guess for a similar part (render._cold_split_layout)
 
 
 def _outline(tree) -> list:
@@ -189,11 +192,15 @@ def _facts(document) -> tuple[list, dict, list, list]:
     return heights, anchors, links, outline
 
 
-def _part_html(report, index: int, splits: dict) -> str:
-    """The print HTML of body part ``index`` with ``splits``."""
+def _part_html(report, index: int, splits: dict, views=None) -> str:
+    """The print HTML of body part ``index`` with ``splits``, from ``views`` (the print views of
+    ``report``, cut again at ``splits``) or views made here."""
     from .render import _views
 
-    views = _views(report, for_print=True, splits=splits)
+    if views is None:
+        views = _views(report, for_print=True, splits=splits)
+    else:
+        views.builder.resplit(splits)
     return views.html(front=False, body=[views.ctx["body"][index]], chunk=True)
 
 
@@ -224,24 +231,38 @@ def _lay_out_in_worker(task: _Task) -> _Laid | None:
 
 def lay_out_part(task: _Task) -> _Laid:
     """Lay out one document of the note (a body part with its table split passes) and write it.
-    In an early worker (no report here) a part that needs another pass comes back with
-    ``resplit``: the parent renders it with those split points and sends it again."""
+    A part starting from remembered split points (``task.start``) keeps them only when
+    :func:`~reportgen.report.render._start_holds` says the passes from none give them; else
+    the passes start from none. In an early worker (no report here) a part that needs another
+    pass comes back with ``resplit``: the parent renders it with those split points and sends
+    it again."""
     from . import safety
-    from .render import MAX_PASSES, _next_splits, _page_rows
+    from .render import MAX_PASSES, _cold_split_layout, _next_splits, _page_rows, _start_holds
 
-    index, html, splits = task.index, task.html, dict(task.splits)
+    index, html, splits, start = task.index, task.html, dict(task.splits), task.start
     seen = len(safety.refused)
     t0 = time.perf_counter()
     passes = task.passes
     while True:
         document = _lay_out(html)
         passes += 1
-        new = _next_splits(document, splits) if index >= 0 else None
+        if index < 0:
+            new = None
+        elif start:
+            held = _start_holds(document, splits, start)
+            if held is not None:
+                for tid in _page_rows(document):  # the part's tables as the passes from none leave them
+                    splits.pop(tid, None)
+                splits.update(held)
+                break
+            new, start = {}, ""  # dropped: the passes start from none
+        else:
+            new = _next_splits(document, splits)
         if new is None or passes >= MAX_PASSES:
             break
         if _REPORT is None:
             return _Laid(index, b"", [], {}, [], [], {}, passes, time.perf_counter() - t0, 0.0,
-                         task.key, task.known, resplit=new)
+                         task.key, start, resplit=new, shape=task.shape)
         splits = new
         html = _part_html(_REPORT, index, splits)
     t1 = time.perf_counter()
@@ -250,8 +271,9 @@ def lay_out_part(task: _Task) -> _Laid:
     heights, anchors, links, outline = _facts(document)
     mine = {tid: list(splits[tid]) for tid in _page_rows(document) if tid in splits}
     refused = list(safety.refused[seen:] if len(safety.refused) >= seen else safety.refused)
+    guessable = index >= 0 and start != "known" and _cold_split_layout(document, splits) is not None
     return _Laid(index, pdf, heights, anchors, links, outline, mine, passes, t1 - t0, t2 - t1,
-                 task.key, task.known, refused)
+                 task.key, start, refused, shape=task.shape, guessable=guessable)
 
 
 # ---------------------------------------------------------------- the whole note (parent)
@@ -262,7 +284,8 @@ class PartsStats:
     parts: int = 0
     jobs: int = 1
     pages: int = 0
-    passes: int = 0
+    passes: int = 0  # the most layout passes of a part
+    part_passes: list = field(default_factory=list)  # layout passes of each body part, in order
     splits: dict = field(default_factory=dict)
     seconds_html: float = 0.0
     seconds_layout: float = 0.0  # summed over the parts (CPU of the workers)
@@ -287,7 +310,7 @@ class PartsJob:
     def __init__(self, report: Report, jobs: int):
         import queue
 
-        from .render import _check_glyphs, _recall_splits, _split_key, _views
+        from .render import _check_glyphs, _start_splits, _views
 
         global _REPORT
         t0 = time.perf_counter()
@@ -295,12 +318,12 @@ class PartsJob:
         views = _views(report, for_print=True, splits={})
         body = views.ctx["body"]
         bare = [views.html(front=False, body=[node], chunk=True) for node in body]
-        keys = [_split_key(h) for h in bare]
-        known = [_recall_splits(k) or {} for k in keys]
+        starts = [_start_splits(h) for h in bare]  # (key, shape, split points, start) per part
+        known = [{tid: cuts for tid, cuts in s[2].items() if f'id="{tid}"' in h}  # its own tables only
+                 for s, h in zip(starts, bare)]
         splits = {tid: cuts for part in known for tid, cuts in part.items()}
         if splits:
-            views = _views(report, for_print=True, splits=splits)
-            body = views.ctx["body"]
+            views.builder.resplit(splits)  # (the same views: numbering and rows do not change)
             htmls = [views.html(front=False, body=[node], chunk=True) if known[i] else bare[i]
                      for i, node in enumerate(body)]
         else:
@@ -313,7 +336,8 @@ class PartsJob:
         toc = self._toc_html(placeholder)
         _check_glyphs((head or "") + toc + "".join(htmls), views.family)
         self.stats = PartsStats(parts=len(body), jobs=jobs, seconds_html=time.perf_counter() - t0)
-        tasks = [_Task(i, htmls[i], dict(splits), keys[i], bool(known[i])) for i in range(len(body))]
+        tasks = [_Task(i, htmls[i], dict(splits), starts[i][0], starts[i][3] if known[i] else "", shape=starts[i][1])
+                 for i in range(len(body))]
         if head is not None:
             tasks.append(_Task(HEAD, head, {}))
         tasks.append(_Task(TOC, toc, {}))
@@ -358,12 +382,12 @@ class PartsJob:
             task, laid, remote = self.results.get()
             if laid is None:
                 if remote:
-                    task = _Task(task.index, task.html, task.splits, task.key, task.known)
+                    task = _Task(task.index, task.html, task.splits, task.key, task.start, shape=task.shape)
                 laid = lay_out_part(task)
             if laid.resplit is not None:
                 self.waiting.discard(task.index)
-                self._submit(_Task(task.index, _part_html(self.report, task.index, laid.resplit),
-                                   laid.resplit, task.key, task.known, laid.passes))
+                self._submit(_Task(task.index, _part_html(self.report, task.index, laid.resplit, self.views),
+                                   laid.resplit, task.key, laid.start, laid.passes, task.shape))
                 continue
             self.waiting.discard(task.index)
             self.done[task.index] = laid
@@ -401,7 +425,7 @@ class PartsJob:
         _REPORT = None
 
     def finish(self) -> bytes:
-        from .render import _remember_splits
+        from .render import _remember_result
 
         try:
             parts = self._results()
@@ -412,8 +436,8 @@ class PartsJob:
                 st.passes = max(st.passes, p.passes)
                 st.splits.update(p.splits)
                 st.part_seconds.append(round(p.seconds_layout + p.seconds_write, 3))
-                if p.splits and not (p.known and p.passes == 1):
-                    _remember_splits(p.key, p.splits)
+                st.part_passes.append(p.passes)
+                _remember_result(p.key, p.shape, p.splits, p.start, p.guessable)
             head = self.done.get(HEAD)
             toc = self.done[TOC]
             front = [head] if head is not None else []

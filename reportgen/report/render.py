@@ -29,7 +29,18 @@ table of contents come from CSS ``target-counter`` (print only).
 
 Split points are remembered per unsplit HTML (sha256), in the process and in the
 cache folder (``<cache>/splits``), so laying out the same report again, in the
-same process or in a later ``reportgen build``, takes one pass.
+same process or in a later ``reportgen build``, takes one pass. Those of a similar
+HTML (another variant of a class, a case with one length changed) are a guess,
+kept only when the passes from none provably give them (:func:`_cold_split_layout`):
+the bytes do not depend on what was remembered.
+
+What does not change between builds is kept in the same cache folder, each entry keyed by
+everything it is made from, so a cached one gives the same bytes as a fresh one (tests/
+test_html_caches.py): the subset faces of the screen HTML and the faces' code points
+(``<cache>/fonts``), the compiled templates (``<cache>/jinja``); the formulas typeset as HTML
+are kept by :mod:`reportgen.report.formulas` (``<cache>/mathhtml``). Within one build
+(:func:`build_outputs`) the print parts and the screen HTML share the tables' cells, and the
+text nodes fixed by the typography are remembered by the process.
 
 A PDF is byte-identical from build to build: the subset fonts are stamped with
 a fixed date (:func:`_fixed_font_timestamp`).
@@ -38,6 +49,7 @@ a fixed date (:func:`_fixed_font_timestamp`).
 from __future__ import annotations
 
 import contextlib
+import functools
 import hashlib
 import html as _html
 import json
@@ -130,6 +142,7 @@ PT_MM = 25.4 / 72
 
 MAX_PASSES = 12
 MIN_PART_ROWS = 3  # fewest rows of a table left on a page before «Продолжение таблицы»
+LEAD_TABLE_ROWS = 6  # a paragraph before a one-part table of at most this many rows keeps with it (_blocks.html.j2)
 
 
 def resolve_options(options: dict | None) -> dict:
@@ -248,6 +261,37 @@ def column_decimals(col: Column, values) -> int | None:
     return max(0, col.sig - 1 - math.floor(math.log10(big)))
 
 
+# id(table) -> (table, its cells) while build_outputs runs: the print parts and the screen
+# HTML of one build format every cell once (see _cells_shared)
+_SHARED_CELLS: dict | None = None
+
+
+def _table_cells(tab: Table, make) -> tuple:
+    """``make(tab)``, or what it gave for this very table earlier in the same build."""
+    shared = _SHARED_CELLS
+    if shared is None:
+        return make(tab)
+    hit = shared.get(id(tab))
+    if hit is not None and hit[0] is tab:
+        return hit[1]
+    out = make(tab)
+    shared[id(tab)] = (tab, out)
+    return out
+
+
+@contextlib.contextmanager
+def _cells_shared():
+    """Within: the cells of a table formatted once, for the print and the screen views alike
+    (they differ in the row ids only, which are not kept)."""
+    global _SHARED_CELLS
+    before = _SHARED_CELLS
+    _SHARED_CELLS = {} if before is None else before
+    try:
+        yield
+    finally:
+        _SHARED_CELLS = before
+
+
 class _Builder:
     """Numbers the document and turns the model into template views."""
 
@@ -265,6 +309,7 @@ class _Builder:
         self.eq_max_em = (opts["text_width_mm"] - 2 * opts["eq_number_width_mm"]) / (
             opts["font_size_pt"] * PT_MM)
         self.tables: dict[str, int] = {}  # table key -> number of rows
+        self.table_rows: dict[str, tuple] = {}  # table key -> (view, rows, caption, continuation)
         self.unnumbered = False  # blocks of the «Задание» page carry no numbers
         self._units_row = False
 
@@ -384,12 +429,10 @@ class _Builder:
             head = head + Markup(", ") + escape(col.unit)
         return head
 
-    def table(self, tab: Table) -> _TableView:
-        number = self._next("tab")
-        tid = tab.id or self._auto_id("tab")
-        self._register(tid, number)
+    def _cells(self, tab: Table) -> tuple[list, list | None, list]:
+        """The header, the units row (or None) and the cells of every row of a table: the same
+        in the print and the screen HTML."""
         df = tab.data
-        self._units_row = bool(tab.units_row)
         header = []
         units = [] if tab.units_row else None
         if tab.index_header is not None:
@@ -402,8 +445,7 @@ class _Builder:
             header.append((self.header_cell(col), ""))
             if units is not None:
                 units.append(escape(col.unit or ""))
-        highlight = set(int(i) for i in tab.highlight_rows)
-        rows = []
+        body = []
         cols = [(c, df[c.key].tolist()) for c in tab.columns]
         cols = [(c if (k := column_decimals(c, vals)) is None else replace(c, digits=k),
                  vals) for c, vals in cols]
@@ -427,24 +469,46 @@ class _Builder:
                     cells.append((escape(col.format(v)), "num" if _is_number(v) else "text"))
                 else:
                     cells.append((escape(str(v)), "text"))
-            rows.append({"id": f"{tid}__r{i}" if self.for_print else None,
-                         "cls": "hl" if i in highlight else "",
-                         "cells": cells})
+            body.append(cells)
+        return header, units, body
+
+    def table(self, tab: Table) -> _TableView:
+        number = self._next("tab")
+        tid = tab.id or self._auto_id("tab")
+        self._register(tid, number)
+        self._units_row = bool(tab.units_row)
+        header, units, body = _table_cells(tab, self._cells)
+        highlight = set(int(i) for i in tab.highlight_rows)
+        rows = [{"id": f"{tid}__r{i}" if self.for_print else None,
+                 "cls": "hl" if i in highlight else "",
+                 "cells": cells} for i, cells in enumerate(body)]
         self.tables[tid] = len(rows)
+        note = None
+        if tab.note:
+            note = Markup("{}{}").format(self.o["note_word"], " — ") + Markup(tab.note)
+        view = _TableView(tid, tid, len(header), header, units, [], note)
+        self.table_rows[tid] = (view, rows, self.caption("table_word", number, tab.caption),
+                                Markup("{} {}").format(self.o["continuation_words"], number))
+        self._cut(tid)
+        return view
+
+    def _cut(self, tid: str) -> None:
+        """The parts of table ``tid`` at its split points (``self.splits``)."""
+        view, rows, caption, continued = self.table_rows[tid]
         cuts = [0] + sorted(s for s in set(self.splits.get(tid, ())) if 0 < s < len(rows))
         parts = []
         for k, start in enumerate(cuts):
             end = cuts[k + 1] if k + 1 < len(cuts) else len(rows)
-            if k == 0:
-                cap = self.caption("table_word", number, tab.caption)
-            else:
-                cap = Markup("{} {}").format(self.o["continuation_words"], number)
-            parts.append(_Part(cap, k > 0, rows[start:end],
+            parts.append(_Part(caption if k == 0 else continued, k > 0, rows[start:end],
                                k == 0 and 0 in self.splits.get(tid, ())))
-        note = None
-        if tab.note:
-            note = Markup("{}{}").format(self.o["note_word"], " — ") + Markup(tab.note)
-        return _TableView(tid, tid, len(header), header, units, parts, note)
+        view.parts = parts
+
+    def resplit(self, splits: dict[str, list[int]] | None) -> None:
+        """Cut every table at other split points: the views are those of a builder made with
+        ``splits`` (the numbering and the rows do not depend on them)."""
+        self.splits = splits or {}
+        for tid in self.table_rows:
+            self._cut(tid)
 
     def formula(self, f) -> _EqView:
         n = self._next("eq")
@@ -513,9 +577,37 @@ def _walk(builder: _Builder, report: Report):
 # ---------------------------------------------------------------- templates
 
 
+def _bytecode_cache() -> jinja2.BytecodeCache | None:
+    """The compiled templates kept in the cache folder (``<cache>/jinja``): compiling them
+    costs a fresh process about 0,05 s of CPU. Jinja checks an entry against the template's
+    source and the Python version, so a stale one is compiled again; none when the cache is
+    off or its folder cannot be made."""
+    folder = _formula_cache_dir()
+    if folder is None:
+        return None
+    folder = folder.parent / "jinja"
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return None
+    return _BytecodeCache(str(folder))
+
+
+class _BytecodeCache(jinja2.FileSystemBytecodeCache):
+    """Jinja's cache of compiled templates in a folder (atomic writes; an entry that does not
+    match the source is compiled again), which a read-only folder does not fail."""
+
+    def dump_bytecode(self, bucket) -> None:
+        try:
+            super().dump_bytecode(bucket)
+        except OSError:
+            pass  # a read-only cache folder is no reason to fail a report
+
+
 def _env() -> jinja2.Environment:
     env = jinja2.Environment(
         loader=jinja2.FileSystemLoader(str(TEMPLATES_DIR)),
+        bytecode_cache=_bytecode_cache(),
         autoescape=jinja2.select_autoescape(["html", "j2"], default_for_string=True),
         undefined=jinja2.StrictUndefined,
         trim_blocks=True,
@@ -610,6 +702,40 @@ def _restore_data_urls(html: str, urls: list[str]) -> str:
     return _STASHED.sub(lambda m: urls[int(m.group(1))], html) if urls else html
 
 
+def _sup(m: re.Match) -> str:
+    run = m.group(0)
+    if set(run) <= set("¹²³"):
+        return run
+    return "<sup>" + run.translate(_SUP_PLAIN) + "</sup>"
+
+
+# every fix below needs one of these characters (a space, a no-break space or entity, «·», the
+# full stop of initials, a superscript): a text node without them (a number) is left as it is
+_FIXABLE = re.compile("[ \u00a0&·.⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺]")
+
+
+def _fix_text(text: str) -> str:
+    """The fixes of :func:`_typography` in one text node (a pure function of the text)."""
+    if not _FIXABLE.search(text):
+        return text
+    text = _NUM_UNIT.sub("\\1\u00a0", text)   # «8 мм» written with a plain space
+    if text.startswith(" —"):   # a dash after a symbol never starts a line («<i>ω</i> — угловая скорость»)
+        text = "\u00a0" + text[1:]
+    text = _EQ_NUMBER.sub("\u00a0=\u00a0", text)
+    text = _UNIT_SLASH.sub(r'<span class="nobr">\1 \3</span>', text)
+    text = _UNIT_SLASH_BARE.sub(r'<span class="nobr">\1</span>', text)
+    text = _UNIT_DOT.sub(lambda m: '<span class="nobr">' + re.sub(r"\s", "\u00a0", m.group(0)) + "</span>"
+                         if "<span" not in m.group(0) else m.group(0), text)
+    text = _INITIALS.sub(lambda m: re.sub(r"\s", "\u00a0", m.group(0)), text)
+    return _SUP_RUN.sub(_sup, text)
+
+
+# text node → its fixed text: a note is rendered several times (the print parts before and
+# after their split points are known, the screen HTML), with the same text nodes each time
+_FIXED_TEXT: dict[str, str] = {}
+_FIXED_TEXT_MAX = 200_000
+
+
 def _typography(html: str) -> str:
     """Typographic fixes in text nodes.
 
@@ -620,24 +746,9 @@ def _typography(html: str) -> str:
     * a no-break space before an inline element becomes a nowrap span
       (works around a WeasyPrint 70 line-breaking bug, see below).
     """
-
-    def fix_text(text: str) -> str:
-        def repl(m):
-            run = m.group(0)
-            if set(run) <= set("¹²³"):
-                return run
-            return "<sup>" + run.translate(_SUP_PLAIN) + "</sup>"
-
-        text = _NUM_UNIT.sub("\\1\u00a0", text)   # «8 мм» written with a plain space
-        if text.startswith(" —"):   # a dash after a symbol never starts a line («<i>ω</i> — угловая скорость»)
-            text = "\u00a0" + text[1:]
-        text = _EQ_NUMBER.sub("\u00a0=\u00a0", text)
-        text = _UNIT_SLASH.sub(r'<span class="nobr">\1 \3</span>', text)
-        text = _UNIT_SLASH_BARE.sub(r'<span class="nobr">\1</span>', text)
-        text = _UNIT_DOT.sub(lambda m: '<span class="nobr">' + re.sub(r"\s", "\u00a0", m.group(0)) + "</span>"
-                             if "<span" not in m.group(0) else m.group(0), text)
-        text = _INITIALS.sub(lambda m: re.sub(r"\s", "\u00a0", m.group(0)), text)
-        return _SUP_RUN.sub(repl, text)
+    fixed = _FIXED_TEXT
+    if len(fixed) > _FIXED_TEXT_MAX:
+        fixed.clear()
 
     # A no-break space right before an inline element («=&nbsp;<img>»,
     # «таблицы&nbsp;<a>») makes WeasyPrint 70 break lines wrongly: it
@@ -657,7 +768,10 @@ def _typography(html: str) -> str:
                 in_style = False
             continue
         if not in_style and piece:
-            pieces[i] = fix_text(piece)
+            text = fixed.get(piece)
+            if text is None:
+                text = fixed[piece] = _fix_text(piece)
+            pieces[i] = text
     return "".join(pieces)
 
 
@@ -668,7 +782,8 @@ def _visible_text(html: str) -> str:
 
 
 def _check_glyphs(html: str, family: fonts.FontFamily) -> None:
-    missing = fonts.check_text(_visible_text(html), family)
+    # (the set of characters: the check looks at each character once, whatever the length)
+    missing = fonts.check_text("".join(set(_visible_text(html))), family, cmap=_font_cmap)
     if missing:
         chars = " ".join(f"{c} (U+{ord(c):04X})" for c in missing)
         warnings.warn(f"В шрифте «{family.name}» нет символов: {chars}; они будут "
@@ -717,6 +832,107 @@ class _Views:
         return _restore_data_urls(_typography(html), urls)
 
 
+_WOFF_CACHE_VERSION = 1
+_WOFF_MEMO: dict[Path, bytes] = {}
+
+
+def _woff_key(path: Path) -> str:
+    """Key of a font's subset: the font file's bytes, the code and ranges that subset it, and
+    the fontTools version that does."""
+    import inspect
+
+    import fontTools
+
+    h = hashlib.sha256(f"{_WOFF_CACHE_VERSION}|{fontTools.version}|{fonts._SUBSET_RANGES!r}|".encode())
+    h.update(inspect.getsource(fonts._subset_woff).encode("utf-8"))
+    h.update(Path(path).read_bytes())
+    return h.hexdigest()
+
+
+def _is_woff(data: bytes) -> bool:
+    """A whole WOFF file: its signature, and the length its header gives."""
+    return len(data) >= 44 and data[:4] == b"wOFF" and int.from_bytes(data[8:12], "big") == len(data)
+
+
+def _font_derived(memo: dict, path: Path, suffix: str, key, compute, decode, encode):
+    """``compute(path)`` for a font file, kept in ``memo`` and in the cache folder as
+    ``<cache>/fonts/<key(path)><suffix>`` (``encode``d; ``decode`` gives ``None`` for a damaged
+    file, which is computed again)."""
+    path = Path(path)
+    value = memo.get(path)
+    if value is not None:
+        return value
+    folder = _formula_cache_dir()
+    file = None
+    if folder is not None:
+        try:
+            file = folder.parent / "fonts" / f"{key(path)}{suffix}"
+            value = decode(file.read_bytes())
+        except (OSError, ValueError):
+            value = None
+    if value is None:
+        value = compute(path)
+        if file is not None:
+            try:
+                _atomic_write(file, encode(value))
+            except OSError:
+                pass  # a read-only cache folder is no reason to fail a report
+    memo[path] = value
+    return value
+
+
+def _embedded_woff(path: Path) -> bytes:
+    """:func:`reportgen.style.fonts._subset_woff` of a face of the screen HTML, kept in the
+    process and in the cache folder (``<cache>/fonts``): subsetting the faces costs about a
+    second of CPU, the same bytes every time (the subsetter is deterministic), so the screen
+    HTML is the same with a cached subset as without."""
+    return _font_derived(_WOFF_MEMO, path, ".woff", _woff_key, fonts._subset_woff,
+                         lambda data: data if _is_woff(data) else None, bytes)
+
+
+_CMAP_MEMO: dict[Path, frozenset] = {}
+
+
+def _cmap_key(path: Path) -> str:
+    return hashlib.sha256(f"cmap|{_WOFF_CACHE_VERSION}|".encode() + Path(path).read_bytes()).hexdigest()
+
+
+def _cmap_decode(data: bytes) -> frozenset[int] | None:
+    codes = json.loads(data.decode("ascii"))
+    ok = isinstance(codes, list) and codes and all(isinstance(c, int) for c in codes)
+    return frozenset(codes) if ok else None
+
+
+def _font_cmap(path: Path) -> frozenset[int]:
+    """:func:`reportgen.style.fonts._cmap` (the code points a face draws, for the glyph check)
+    kept in the process and in the cache folder (``<cache>/fonts``, keyed by the font's bytes):
+    a fresh process then need not import fontTools and parse the font (about 0,1 s of CPU)."""
+    return _font_derived(_CMAP_MEMO, path, ".cmap.json", _cmap_key, fonts._cmap, _cmap_decode,
+                         lambda codes: json.dumps(sorted(codes)).encode("ascii"))
+
+
+@functools.lru_cache(maxsize=8)
+def _font_css(family, embed: bool) -> str:
+    """The ``@font-face`` rules of the note (``embed``: the subset faces as ``data:`` URLs)."""
+    return fonts.font_face_css(family, embed=embed, woff=_embedded_woff)
+
+
+def warm_caches() -> None:
+    """Fill the cache folder with what the HTML of every build reads from it (``reportgen
+    warmup``, a batch worker's start): the compiled templates, the subset faces of the screen
+    HTML and the faces' code points. Nothing when the cache is off."""
+    if _formula_cache_dir() is None:
+        return
+    env = _get_env()
+    for name in env.list_templates(filter_func=lambda n: n.endswith((".j2", ".css"))):
+        env.get_template(name)
+    family = fonts.find_serif()
+    _font_css(family, True)
+    for fam in (family, fonts.symbol_family()):
+        if fam is not None:
+            _font_cmap(fam.regular)
+
+
 def _views(report: Report, *, for_print: bool, splits=None) -> _Views:
     opts = resolve_options(report.options)
     family = fonts.find_serif(opts["font"])
@@ -735,7 +951,7 @@ def _views(report: Report, *, for_print: bool, splits=None) -> _Views:
         "o": opts,
         "meta": meta,
         "for_print": for_print,
-        "font_css": Markup(fonts.font_face_css(family, embed=not for_print)),
+        "font_css": Markup(_font_css(family, not for_print)),
         "css_ctx": css_ctx,
         "title_page": title_on,
         "assignment": assignment,
@@ -747,11 +963,16 @@ def _views(report: Report, *, for_print: bool, splits=None) -> _Views:
     return _Views(opts, family, builder, ctx)
 
 
-def _render(report: Report, *, for_print: bool, splits=None) -> tuple[str, _Builder]:
-    views = _views(report, for_print=for_print, splits=splits)
+def _checked_html(views: _Views) -> str:
+    """The whole document of ``views``, its characters checked against the fonts."""
     html = views.html()
     _check_glyphs(html, views.family)
-    return html, views.builder
+    return html
+
+
+def _render(report: Report, *, for_print: bool, splits=None) -> tuple[str, _Builder]:
+    views = _views(report, for_print=for_print, splits=splits)
+    return _checked_html(views), views.builder
 
 
 def render_html(report: Report, *, for_print: bool) -> str:
@@ -844,7 +1065,7 @@ _ROW_ANCHOR = re.compile(r"^(.+)__r(\d+)$")
 _SPLIT_MEMO: dict[str, dict[str, list[int]]] = {}  # sha256 of the unsplit print HTML -> splits
 
 
-_SPLIT_CACHE_VERSION = 1
+_SPLIT_CACHE_VERSION = 2  # 2: only the split points of the passes from none are remembered
 
 
 _DATA_SVG = re.compile(r"data:image/svg\+xml;base64,([A-Za-z0-9+/=]+)")
@@ -884,6 +1105,22 @@ def _split_key(html: str) -> str:
     return h.hexdigest()
 
 
+_SHAPE_DROP = re.compile(r"data:[^\"')\s]+|<title>[^<]*</title>|<meta [^>]*>")
+_NUMBER = re.compile("[\u2212+\\-]?\\d[\\d\u00a0\u2009\u202f ,.]*")  # sign, digits, groups, decimals
+
+
+def _shape_key(html: str) -> str:
+    """Key of a *guess* of the split points: the print HTML with every ``data:`` URL (figures,
+    formulas), the title and the ``<meta>`` tags (the student's name) left out and every number
+    (its sign, digit groups and decimals) written as ``0``, so the variants of one case (other
+    numbers, the same tables) and a student's case after a changed length share it. Split
+    points found under it are only a guess: :func:`_cold_split_layout` decides whether a layout
+    made with them is the one the passes from no split points give."""
+    h = hashlib.sha256(f"shape|{_SPLIT_CACHE_VERSION}|{weasyprint_version()}|".encode())
+    h.update(_NUMBER.sub("0", _SHAPE_DROP.sub("data:", html)).encode("utf-8"))
+    return h.hexdigest()
+
+
 def _split_file(key: str) -> Path | None:
     """``<cache>/splits/<key>.json`` in the cache folder of the formulas (REPORTGEN_CACHE or
     XDG_CACHE_HOME/reportgen; none when the cache is off)."""
@@ -894,8 +1131,10 @@ def _split_file(key: str) -> Path | None:
 def _recall_splits(key: str) -> dict[str, list[int]] | None:
     """Split points found for this HTML before, in this process or (the CLI) an earlier one.
 
-    They only save layout passes: the layout made with them is checked as any other, so a
-    stale or damaged entry costs a pass, never a wrong page."""
+    They only save layout passes. Only the split points the passes from none gave are
+    remembered (:func:`_start_splits`), so an entry under the exact key is that result and its
+    layout is a fixed point; one that is not (stale, damaged) is dropped and the passes start
+    from none: a pass lost, never a different page."""
     known = _SPLIT_MEMO.get(key)
     if known is None:
         path = _split_file(key)
@@ -920,6 +1159,40 @@ def _remember_splits(key: str, splits: dict[str, list[int]]) -> None:
         _atomic_write(path, json.dumps(_SPLIT_MEMO[key], sort_keys=True).encode("utf-8"))
     except OSError:
         pass  # a read-only cache folder is no reason to fail a report
+
+
+def _start_splits(html: str) -> tuple[str, str, dict[str, list[int]], str]:
+    """``(key, shape, splits, start)`` for the unsplit print HTML of a note or part: the split
+    points remembered under its exact key (``start`` "known"), else those of a similar HTML
+    under its shape key (:func:`_shape_key`, ``start`` "guess"), else none (""). A known start
+    is kept when its layout is a fixed point of :func:`_next_splits`, a guess only when
+    :func:`_cold_split_layout` proves it; otherwise the passes start again from none."""
+    key, shape = _split_key(html), _shape_key(html)
+    known = _recall_splits(key)
+    if known:
+        return key, shape, known, "known"
+    guess = _recall_splits(shape)
+    return key, shape, guess or {}, "guess" if guess else ""
+
+
+def _start_holds(document, splits: dict[str, list[int]], start: str):
+    """The split points to keep when the layout made from a remembered ``start`` is the one the
+    passes from none give (see :func:`_start_splits`), else ``None``."""
+    if start == "known":
+        return {k: list(v) for k, v in splits.items()} if _next_splits(document, splits) is None else None
+    return _cold_split_layout(document, splits)
+
+
+def _remember_result(key: str, shape: str, splits: dict[str, list[int]], start: str,
+                     guessable: bool) -> None:
+    """Remember the split points the passes from none gave (or a start proved equal to them)
+    under the exact key, and under the shape key when a similar HTML may take them as a guess
+    (:func:`_cold_split_layout` proved them for this one: others would only cost a pass)."""
+    if not splits or start == "known":
+        return
+    _remember_splits(key, splits)
+    if guessable:
+        _remember_splits(shape, splits)
 
 
 def _page_rows(document, with_boxes: bool = False):
@@ -1056,6 +1329,91 @@ def _next_splits(document, splits: dict[str, list[int]],
     return result if changed else None
 
 
+SPLIT_EPS = 0.01  # CSS px: heights equal, and a row not fitting, only beyond this
+
+
+def _cold_split_layout(document, splits: dict[str, list[int]],
+                       min_rows: int = MIN_PART_ROWS) -> dict[str, list[int]] | None:
+    """The split points of ``document`` (laid out with ``splits``, a guess) when they are
+    provably those the passes from no split points converge to, else ``None`` (the guess is
+    then dropped and the passes start from none: a guess costs passes, never a page).
+
+    The passes from none (:func:`_next_splits`): pass 1 lays every table out whole and cuts it
+    at the first row of each later page (WeasyPrint repeats the whole ``<thead>``, the table's
+    own caption included, at the top of those pages); pass 2 lays out those parts. Pass 2 gives
+    the document of ``splits`` exactly, and stops there, when:
+
+    1. ``document`` is a fixed point: ``_next_splits(document, splits)`` is ``None`` (no part
+       spans two pages, no cut leaves a page largely empty);
+    2. no table starts on a new page (split point 0) and every split table keeps at least
+       ``min_rows`` rows in its first and in its last part: then pass 1 takes neither the
+       «start on a new page» branch nor :func:`_tidy_cuts` (which make a cold cut loose), and
+       the table has more than :data:`LEAD_TABLE_ROWS` rows, so the paragraph before it is
+       the same in both (``p.lead`` of the template);
+    3. every continuation part starts as a whole table's repeated header does: its first row
+       lies as far below the page's content top as the table's first row lies below the table
+       (the «Продолжение таблицы N» caption as high as the table's own caption): the rows of
+       a page are where pass 1 puts them;
+    4. every cut is tight: the row at a cut, put right under the row before it (border
+       spacing 0, borders inside the cells), would end below that page's content bottom, so
+       pass 1 could not have kept it on that page (WeasyPrint moves a row that ends lower).
+
+    Induction on the pages: before a table's first page both documents are the same HTML laid
+    out from the same place; on a split table's pages the rows are at the same places (3, and
+    a row's height depends neither on its page nor on the rows that share its part: the
+    assumption every pass makes; WeasyPrint's automatic column widths come from the rows of
+    the part, so a header wrapping otherwise in a part fails 3, but a whole table whose
+    columns differ from those of every part is not seen here), each page
+    holds in pass 1 the rows the part holds (they fit there, and the next does not by 4), so
+    pass 1's cuts are the guessed ones (2) and the table ends at the same place; an unsplit
+    table fits its page in both. So pass 1 cuts at ``splits``, pass 2 renders the same HTML
+    and, by 1, is the last. A layout failing any condition may still be the cold one (a
+    two-line caption, a table moved to a new page): it is then made again from no split
+    points. Returns the split points in the form the passes give (tables with cuts only)."""
+    if _next_splits(document, splits, min_rows) is not None:
+        return None
+    rows, boxes = _page_rows(document, with_boxes=True)
+    tops, bottoms = [], _content_bottoms(document)
+    table_tops = {}
+    for page in document.pages:
+        box = getattr(page, "_page_box", None)
+        try:
+            tops.append(box.content_box_y())
+        except (AttributeError, TypeError):
+            tops.append(None)
+        for name, pos in page.anchors.items():
+            if name in splits and len(pos) >= 4:
+                table_tops.setdefault(name, pos[1])
+    if any(0 in splits[tid] for tid in table_tops):
+        return None  # a table (rows or not) moved to a new page
+    out = {}
+    for tid, where in rows.items():
+        n = max(where) + 1
+        given = set(splits.get(tid, ()))
+        if 0 in given:
+            return None
+        cuts = sorted(c for c in given if 0 < c < n)
+        if not cuts:
+            continue
+        rb = boxes.get(tid, {})
+        if (set(where) != set(range(n)) or set(rb) != set(range(n)) or n <= LEAD_TABLE_ROWS
+                or cuts[0] < min_rows or n - cuts[-1] < min_rows or tid not in table_tops):
+            return None
+        head = rb[0][0] - table_tops[tid]
+        for c in cuts:
+            page, before = where[c], where[c - 1]
+            top = tops[page] if page < len(tops) else None
+            bottom = bottoms[before] if before < len(bottoms) else None
+            if page != before + 1 or top is None or bottom is None:
+                return None
+            if abs(rb[c][0] - top - head) > SPLIT_EPS:
+                return None  # the continuation's header is not as high as the repeated one
+            if not rb[c - 1][1] + (rb[c][1] - rb[c][0]) > bottom + SPLIT_EPS:
+                return None  # the row would fit on the page before: pass 1 keeps it there
+        out[tid] = cuts
+    return out
+
+
 _IMAGE_CACHE: dict = {}
 _IMAGE_CACHE_MAX = 2000
 
@@ -1115,19 +1473,21 @@ def _layout(report: Report, font_config):
     splits: dict[str, list[int]] = {}
     stats = RenderStats()
     document = None
-    key = None
+    key = shape = None
+    start = ""
+    views = _views(report, for_print=True, splits=splits)
     for i in range(MAX_PASSES):
         t0 = time.perf_counter()
-        html, _builder = _render(report, for_print=True, splits=splits)
+        views.builder.resplit(splits)  # (numbering and rows do not depend on the split points)
+        html = _checked_html(views)
         if i == 0:
-            # The same report laid out again (batch re-runs, determinism checks)
-            # starts from the split points found last time; the final layout
-            # is verified below all the same.
-            key = _split_key(html)
-            known = _recall_splits(key)
-            if known:
-                splits = {k: list(v) for k, v in known.items()}
-                html, _builder = _render(report, for_print=True, splits=splits)
+            # The same report laid out again (batch re-runs, determinism checks), or a similar
+            # one (another variant, a changed length), starts from split points remembered;
+            # they are kept only when the passes from none provably give them.
+            key, shape, splits, start = _start_splits(html)
+            if start:
+                views.builder.resplit(splits)
+                html = _checked_html(views)
         t1 = time.perf_counter()
         document = HTML(string=html, base_url=str(TEMPLATES_DIR), url_fetcher=fetcher).render(
             font_config=font_config, cache=image_cache)
@@ -1135,14 +1495,22 @@ def _layout(report: Report, font_config):
         stats.passes += 1
         stats.seconds_html += t1 - t0
         stats.seconds_layout += t2 - t1
+        if start:
+            held = _start_holds(document, splits, start)
+            if held is not None:
+                splits = held
+                break
+            splits, start = {}, ""  # dropped: the passes start from none
+            continue
         new = _next_splits(document, splits)
         if new is None:
             break
         splits = new
     else:
         log.warning("Разбиение таблиц не сошлось за %d проходов", MAX_PASSES)
-    if key is not None and splits:
-        _remember_splits(key, splits)
+    if key is not None:
+        _remember_result(key, shape, splits, start,
+                         start == "guess" or _cold_split_layout(document, splits) is not None)
     stats.pages = len(document.pages)
     stats.splits = splits
     return document, stats
@@ -1219,10 +1587,42 @@ def write_pdf(report: Report, path, *, jobs: int | None = None) -> Path:
     return _atomic_write(Path(path), pdf)
 
 
+@contextlib.contextmanager
+def _older_objects_frozen():
+    """The objects alive on entry (the study, the report, the imported modules: some hundred
+    thousand) left out of the garbage collector's passes until exit (``gc.freeze``): rendering
+    the HTML allocates enough to start several full collections, each of which would walk them
+    all again. On exit they are collected as before (``gc.unfreeze``); nothing is done when
+    something else has frozen objects already."""
+    import gc
+
+    if gc.get_freeze_count():
+        yield
+        return
+    gc.freeze()
+    try:
+        yield
+    finally:
+        gc.unfreeze()
+
+
 def build_outputs(report: Report, out_dir, stem: str,
                   formats=("pdf", "html")) -> dict[str, Path]:
     """Write ``out_dir/stem.pdf`` and/or ``out_dir/stem.html``; returns the paths. The parts of
     the PDF are laid out by the workers while this process writes the HTML."""
+    with _build_scope():
+        return _build_outputs(report, out_dir, stem, formats)
+
+
+@contextlib.contextmanager
+def _build_scope():
+    """What one build's HTML stages share: the older objects left out of the garbage
+    collector's passes, the tables' cells formatted once."""
+    with _older_objects_frozen(), _cells_shared():
+        yield
+
+
+def _build_outputs(report: Report, out_dir, stem: str, formats) -> dict[str, Path]:
     from .safety import write_together
     for f in formats:
         if f not in ("pdf", "html"):

@@ -110,7 +110,7 @@ def validate_options(options: Mapping[str, Any] | None, *, file: str | None = No
     return out
 
 
-REPORT_KEYS = ["position", "output", "output_title", "options", "sections"]
+REPORT_KEYS = ["position", "output", "output_title", "output_v_limit", "options", "sections"]
 
 
 def section_names() -> list[str]:

@@ -7,6 +7,7 @@ import numpy as np
 
 from ..analysis.plans import output_quantity
 from ..style import mplstyle
+from ..mechanism.model import FRAME
 from .draw import SUBSCRIPT
 from .mechanism import Drawing
 
@@ -40,9 +41,31 @@ def _xaxis(study, cyc):
     return q_axis(study, cyc["q"].to_numpy()), "S, м", None
 
 
+def output_index(study, s_col: str) -> str:
+    """The subscript of the output's symbols: the moving link of a slider's pair (s_J), the rocker
+    (phi_L) or the point (x_P, y_P), as the tables name them (s₅, φ₃, s_D)."""
+    pre, _, name = s_col.partition("_")
+    if pre == "s":
+        j = next((j for j in study.mechanism.joints if j.name == name), None)
+        name = next((l for l in j.links if l != FRAME), name) if j is not None else name
+    return name.translate(SUBSCRIPT) if name.isdigit() else ""
+
+
+def output_displacement(study, s_col: str) -> tuple[np.ndarray, int]:
+    """The output's displacement over the cycle measured from its extreme position of least
+    coordinate (s = x − x_min ∈ [0, H], a rocker's ψ = φ − φ_min), as the textbook's kinematic
+    diagram plots it (Артоболевский, § «Кинематические диаграммы»), and that position's cycle
+    index. The shift keeps v = ds/dt and a equal to the tables' signed values."""
+    s = study.cycle[s_col].to_numpy()
+    if s_col.startswith("phi_"):
+        s = np.unwrap(s)
+    i0 = int(np.argmin(s))
+    return s - s[i0], i0
+
+
 class OutputDiagrams:
     """s(φ), v(φ), a(φ) of the output link (true values when ω is known, analogs otherwise),
-    with the report positions marked."""
+    s measured from the output's extreme position, with the report positions marked."""
 
     needs = ("cycle", "kinematics")
 
@@ -58,17 +81,19 @@ class OutputDiagrams:
             v, a = cyc[f"{vname}_{name}"], cyc[f"{aname}_{name}"]
         else:
             v, a = cyc[v_col], cyc[a_col]
-        s = cyc[s_col].to_numpy()
+        s, i0 = output_displacement(study, s_col)
         if angular:
             s = np.degrees(s)
         rotary = study.mechanism.driver.rotary
+        n = output_index(study, s_col)
         if true:
-            units = ("φ, град", "ω, рад/с", "ε, рад/с²") if angular else ("s, м", "v, м/с", "a, м/с²")
+            units = ((f"ψ{n}, град", f"ω{n}, рад/с", f"ε{n}, рад/с²") if angular
+                     else (f"s{n}, м", f"v{n}, м/с", f"a{n}, м/с²"))
         elif angular:
             # the radian is dimensionless: d/dφ keeps the unit (as the tables of analogs print it)
-            units = ("φ, град", "φ′" + ("" if rotary else ", 1/м"), "φ″" + ("" if rotary else ", 1/м²"))
+            units = (f"ψ{n}, град", f"ψ′{n}" + ("" if rotary else ", 1/м"), f"ψ″{n}" + ("" if rotary else ", 1/м²"))
         else:
-            units = ("s, м", "s′" + (", м" if rotary else ""), "s″" + (", м" if rotary else ", 1/м"))
+            units = (f"s{n}, м", f"s′{n}" + (", м" if rotary else ""), f"s″{n}" + (", м" if rotary else ", 1/м"))
         fig = mplstyle.figure(160, 175)
         axs = fig.subplots(3, 1, sharex=True)
         kin = study.kinematics

@@ -6,6 +6,7 @@ import itertools
 import math
 
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.collections import LineCollection
 from matplotlib.patches import Circle, Polygon, Rectangle
 from matplotlib.transforms import Affine2D
@@ -91,6 +92,16 @@ def mu_text(mu: float) -> str:
     return txt.replace(".", ",")
 
 
+class _ScaleAxes(Axes):
+    """The axes of an exact-scale drawing: its limits are set once from the scale and never
+    follow the data, so adding a patch does not compute the patch's extent for the data limits
+    (``Axes._update_patch_limits``: the Bézier extrema of every circle, arc and arrow, a tenth of
+    a drawing's time) — nothing reads those limits."""
+
+    def _update_patch_limits(self, patch):
+        pass
+
+
 class Canvas:
     """A figure whose axes map 1 mm of the printed page to μ units exactly (the figure must be
     placed in the report at ``width_mm``)."""
@@ -105,7 +116,7 @@ class Canvas:
         self.height_mm = max(h, 30.0)
         extra_h = (self.height_mm - h) / 2 * mu
         self.fig = mplstyle.figure(self.width_mm, self.height_mm, layout=None)
-        self.ax = self.fig.add_axes((0, 0, 1, 1))
+        self.ax = self.fig.add_axes((0, 0, 1, 1), axes_class=_ScaleAxes)
         self.ax.set_xlim(xmin - margin_mm * mu - extra_w, xmax + margin_mm * mu + extra_w)
         self.ax.set_ylim(ymin - margin_mm * mu - extra_h, ymax + margin_mm * mu + extra_h)
         self.ax.set_aspect("equal")
@@ -149,7 +160,7 @@ class Panel:
         fw, fh = fig.get_figwidth() * 25.4, fig.get_figheight() * 25.4
         left, bottom, w, h = rect_mm
         self.mu = mu
-        self.ax = fig.add_axes((left / fw, bottom / fh, w / fw, h / fh))
+        self.ax = fig.add_axes((left / fw, bottom / fh, w / fw, h / fh), axes_class=_ScaleAxes)
         self.ax.set_xlim(centre[0] - w / 2 * mu, centre[0] + w / 2 * mu)
         self.ax.set_ylim(centre[1] - h / 2 * mu, centre[1] + h / 2 * mu)
         self.ax.axis("off")

@@ -134,7 +134,10 @@ class EnergyCurves:
         ax.margins(y=0.2)             # room for the notes of the extremes inside the axes
         _xaxis(ax, study)
         ax.set_ylabel("Дж")
-        ax.legend(fontsize=9, loc="lower left")
+        # in the lower corner away from the minimum, whose note the legend would hide
+        lo, hi = ax.get_xlim()
+        left = _x(study, sc["q_dT_I_min"]) < (lo + hi) / 2
+        ax.legend(fontsize=9, loc="lower right" if left else "lower left")
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 

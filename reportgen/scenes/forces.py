@@ -13,18 +13,20 @@ from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import NamedTuple
 
+import matplotlib
 import numpy as np
 import pandas as pd
 from matplotlib.patches import Arc
 
 from ..analysis.forces import crank_pin, lever_points
-from ..analysis.plans import READ_MM, drawn, velocity_plan
+from ..analysis.plans import READ_MM, Plan, drawn, velocity_plan
 from ..core import kinetostatics as KS
 from ..style import mplstyle
-from ..style.numbers import fmt
+from ..style.numbers import fmt, shared_decimals
 from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow, draw_mechanism, gost_scale, nice_scale
 from .labels import tex_point
 from .mechanism import LANDSCAPE_GAIN, LANDSCAPE_H, LANDSCAPE_W, Drawing
+from .plans import INSET_MARKS, PlanScene, find_insets
 
 BLUE = "#1f4e9c"
 RED = "#b2182b"
@@ -339,6 +341,11 @@ class GroupForces:
         draw_mechanism(cv, mech, cols, only=set(g.links), supports=False, lw=1.4, com=True)
         lengths = _scheme_arrows(ext, Fmax, mu_l)
         scheme: list[tuple[np.ndarray, np.ndarray]] = []     # arrows drawn on the scheme
+        # the links' lines (every pair of a link's points): a load drawn along one is turned to end
+        # at its point (a slider's resistance pushing up the rod's line)
+        bars = [(np.array([cols["x_" + a], cols["y_" + a]]), np.array([cols["x_" + b], cols["y_" + b]]))
+                for l in g.links for k, a in enumerate(list(mech.link(l).points))
+                for b in list(mech.link(l).points)[k + 1:]]
         for i, v in enumerate(ext):
             n = float(np.hypot(*v.F))
             if i not in lengths:
@@ -346,9 +353,14 @@ class GroupForces:
             L = lengths[i] * mu_l
             color = {"load": INK, "known": INK, "unknown": BLUE}[v.role]
             ex, ey = v.F[0] / n, v.F[1] / n
+            def on_bar(sign):
+                tip = np.array([v.at[0] + sign * ex * L, v.at[1] + sign * ey * L])
+                return any(covered(np.asarray(v.at, float), tip, b0, b1, cv.mm(NEAR_MM)) > 0.2
+                           for b0, b1 in bars if float(np.hypot(*(b1 - b0))) > 0)
+            along = v.role == "load" and on_bar(1.0) and not on_bar(-1.0)
             # loads start at their point, reactions end at the pair; a reaction opposite to a load
             # at its point (R₀₅ against G₅) starts there too, so that the two do not cover each other
-            if v.role == "load" or _opposes_load(v, ext):
+            if (v.role == "load" and not along) or _opposes_load(v, ext):
                 a0, a1 = v.at, (v.at[0] + ex * L, v.at[1] + ey * L)
                 lx, ly, pref = a1[0], a1[1], (ex, ey)
             else:
@@ -774,21 +786,60 @@ def _inset_sides(pts: np.ndarray, offset: float, near: float) -> list[tuple[np.n
     """The sides of an enlarged chain as drawn: (start, end, moved). A side that would cover more
     than a fifth of an earlier side (the chain folds back on itself: G₃ and Φ₃ nearly opposite) is
     moved ``offset`` beside itself, away from that side, as the main polygon's closing side is
-    (``_clear_of_sides``); it is joined to its vertices by thin lines."""
+    (``_clear_of_sides``), or twice as far or to the other side when that place covers a side
+    too; it is joined to its vertices by thin lines. Sides shorter than 2·``near`` (drawn in an
+    enlarged inset) neither cover nor are covered, and a side meeting the previous one at their
+    common vertex is not covered by it there (1,5·``near`` of both left out)."""
     out: list[tuple[np.ndarray, np.ndarray, bool]] = []
+    trim = 1.5 * near
+
+    def cut(p, q, ends):
+        """The segment pq without ``trim`` at each of its ends touching ``ends`` (a common vertex)."""
+        L = float(np.hypot(*(q - p)))
+        u = (q - p) / (L or 1.0) * trim
+        at_p = any(float(np.hypot(*(p - e))) < 2.0 * near for e in ends)
+        at_q = any(float(np.hypot(*(q - e))) < 2.0 * near for e in ends)
+        if L <= trim * (at_p + at_q):
+            return None
+        return (p + u if at_p else p, q - u if at_q else q)
+
+    def hit(a, b):
+        for s0, s1, _ in out:
+            if float(np.hypot(*(s1 - s0))) < 2.0 * near:
+                continue
+            mine, theirs = cut(a, b, (s0, s1)), cut(s0, s1, (a, b))
+            if mine is None or theirs is None or _crossing(*mine, *theirs):
+                continue
+            if covered(*mine, *theirs, near) > 0.2 or covered(*theirs, *mine, near) > 0.2:
+                return s0, s1
+        return None
+
     for n in range(len(pts) - 1):
         a, b = pts[n], pts[n + 1]
-        hit = next(((s0, s1) for s0, s1, _ in out
-                    if covered(a, b, s0, s1, near) > 0.2 or covered(s0, s1, a, b, near) > 0.2), None)
-        if hit is None:
+        first = hit(a, b) if float(np.hypot(*(b - a))) >= 2.0 * near else None
+        if first is None:
             out.append((a, b, False))
             continue
         d = b - a
         nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
-        if ((hit[0] + hit[1]) / 2 - (a + b) / 2) @ nrm > 0:
+        if ((first[0] + first[1]) / 2 - (a + b) / 2) @ nrm > 0:
             nrm = -nrm
-        out.append((a + nrm * offset, b + nrm * offset, True))
+        off = next((nrm * offset * k for k in (1.0, -1.0, 2.0, -2.0)
+                    if hit(a + nrm * offset * k, b + nrm * offset * k) is None), nrm * offset)
+        out.append((a + off, b + off, True))
     return out
+
+
+def _crossing(a0, a1, b0, b1, min_sin: float = 0.25) -> bool:
+    """Whether the segments cross inside both at an angle over ≈ 15° (sin > ``min_sin``): such
+    sides are read apart however near they run around the crossing."""
+    d, e = a1 - a0, b1 - b0
+    den = float(d[0] * e[1] - d[1] * e[0])
+    if abs(den) <= min_sin * float(np.hypot(*d) * np.hypot(*e)):
+        return False
+    w = b0 - a0
+    t, u = (w[0] * e[1] - w[1] * e[0]) / den, (w[0] * d[1] - w[1] * d[0]) / den
+    return 0.0 < t < 1.0 and 0.0 < u < 1.0
 
 
 def _draw_inset(cv, seq, inset) -> None:
@@ -841,17 +892,21 @@ def _opposes_load(v, ext) -> bool:
 
 def _clear_of_sides(start, end, poly, offset: float, near: float):
     """The closing side start→end of a link's polygon, moved ``offset`` beside itself (away from
-    the polygon's middle) when it would cover more than a fifth of a side of the polygon (an
-    inner reaction nearly collinear with an outer one: a link loaded almost by two forces):
-    (start, end, moved)."""
-    if not any(covered(start, end, poly[i], poly[i + 1], near) > 0.2 or covered(poly[i], poly[i + 1], start, end, near) > 0.2
-               for i in range(len(poly) - 1)):
+    the polygon's middle; twice as far, or to the other side, when that place still covers a side)
+    when it would cover more than a fifth of a side of the polygon (an inner reaction nearly
+    collinear with an outer one: a link loaded almost by two forces): (start, end, moved)."""
+    def hits(s, e):
+        return any(covered(s, e, poly[i], poly[i + 1], near) > 0.2 or covered(poly[i], poly[i + 1], s, e, near) > 0.2
+                   for i in range(len(poly) - 1))
+    if not hits(start, end):
         return start, end, False
     d = end - start
     nrm = np.array([-d[1], d[0]]) / (np.hypot(*d) or 1.0)
     if (poly.mean(axis=0) - (start + end) / 2) @ nrm > 0:
         nrm = -nrm
-    return start + nrm * offset, end + nrm * offset, True
+    off = next((nrm * offset * k for k in (1.0, 2.0, -1.0, -2.0)
+                if not hits(start + nrm * offset * k, end + nrm * offset * k)), nrm * offset)
+    return start + off, end + off, True
 
 
 SCHEME_SHIFT_MM = 2.5   # a scheme's arrow along another one at the same point is drawn this far beside it
@@ -888,6 +943,7 @@ class LeverDrawing(Drawing):
     graphic: float = 0.0                # the balancing force found on the drawing: −Σ F·h / h_ур
     arm_exact_mm: float = 0.0
     forces_turned: bool = False         # the plan unturned, the forces turned by 90° clockwise
+    insets: list = field(default_factory=list)   # enlarged views of crowded images (scenes.plans.Inset)
 
 
 class ZhukovskyLever:
@@ -966,13 +1022,22 @@ class ZhukovskyLever:
             bal = [(lab, back(pt), back(F), b) for lab, pt, F, b in bal]
             tips = np.array([[t[1], -t[0]] for t in tips])
         landscape = False
+        insets = []
         if self.mu is None:
             # on a landscape page when that enlarges the lever at least LANDSCAPE_GAIN times
             wide = dict(avail_w=LANDSCAPE_W, avail_h=LANDSCAPE_H - 32, margin_mm=16, page_w=LANDSCAPE_W)
             landscape = self.landscape and (Canvas.scale(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16)
                          >= LANDSCAPE_GAIN * Canvas.scale(tips[:, 0], tips[:, 1], **wide))
-            cv = (Canvas.fit(tips[:, 0], tips[:, 1], **wide) if landscape
-                  else Canvas.fit(tips[:, 0], tips[:, 1], avail_w=160, avail_h=170, margin_mm=16))
+            page = wide if landscape else dict(avail_w=160, avail_h=170, margin_mm=16)
+            mu = Canvas.scale(tips[:, 0], tips[:, 1], **page)
+            # crowded images (a long thin lever: points a millimetre apart near the pole) shown
+            # enlarged as on the plans, ГОСТ 2.305 выносные элементы
+            lever_plan = Plan(plan.kind, {k: v for k, v in rot.items() if k in plan.tips}, plan.segments,
+                              plan.point_of_tip)
+            max_w = LANDSCAPE_W if landscape else 165.0
+            insets = find_insets(lever_plan, mu, max_w - 32)
+            box = np.vstack([tips] + [[i.at - i.radius * i.k - i.pad, i.at + i.radius * i.k + i.pad] for i in insets])
+            cv = Canvas(box[:, 0].min(), box[:, 0].max(), box[:, 1].min(), box[:, 1].max(), mu, 16, max_w=max_w)
         else:
             cv = Canvas(tips[:, 0].min(), tips[:, 0].max(), tips[:, 1].min(), tips[:, 1].max(), self.mu, 16, max_w=1e4)
         ax = cv.ax
@@ -982,16 +1047,24 @@ class ZhukovskyLever:
             ax.plot([p0[0], p1[0]], [p0[1], p1[1]], color=GREY if seg.kind == "abs" else INK,
                     lw=0.8 if seg.kind == "abs" else 1.2, ls="--" if seg.kind == "abs" else "-", zorder=2)
         ax.plot([0], [0], "o", ms=3, color=INK)
-        cv.labels.add(0.0, 0.0, "$p$", prefer=(-1, -1), fontsize=10)
+        hidden = {lab for i in insets for lab in i.tips}
+        if "p" not in hidden:
+            cv.labels.add(0.0, 0.0, "$p$", prefer=(-1, -1), fontsize=10)
         for lab, v in rot.items():
-            if lab not in plan.point_of_tip or np.hypot(*v) < 1e-12:
+            if lab not in plan.point_of_tip or np.hypot(*v) < 1e-12 or lab in hidden:
                 continue
             cv.labels.add(v[0], v[1], tex_point(lab, lower=True), prefer=v, fontsize=10, color=GREY)
+        for n, ins in enumerate(insets):
+            ins.mark = INSET_MARKS[n % len(INSET_MARKS)]
+            PlanScene(self.label, "velocity")._draw_inset(cv, lever_plan, ins, "$p$")
         Fmax = max([float(np.hypot(*it[2])) for it in items + bal] + [1e-12])
+        # a load that the moments' table prints as 0 Н (the couple of a crank's inertia moment of
+        # 0,001 Н·м among forces of kilonewtons) is neither drawn nor listed
+        dec = shared_decimals([float(np.hypot(*it[2])) for it in items + bal])
         rows = []
         for lab, p, F, is_bal in items + bal:
             n = float(np.hypot(*F))
-            if n < 1e-9 * Fmax:
+            if n < 1e-9 * Fmax or (not is_bal and round(n, dec) == 0):
                 continue
             L = cv.mm(_arrow_mm(n, Fmax) * 0.8)
             color = RED if is_bal else INK
@@ -1010,7 +1083,7 @@ class ZhukovskyLever:
         graph = -total / arm_read if abs(arm_read) > 0 else 0.0
         return LeverDrawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape, moments=table, analog=analog,
                             arm_mm=arm_read,
-                            graphic=graph, arm_exact_mm=arm_mm, forces_turned=turned)
+                            graphic=graph, arm_exact_mm=arm_mm, forces_turned=turned, insets=insets)
 
 
 def _points(mech) -> list[str]:
@@ -1050,11 +1123,17 @@ class ReactionCurves:
         x, xlabel, step = _x(study, cyc)
         fig = mplstyle.figure(160, 150)
         ax1, ax2 = fig.subplots(2, 1, sharex=True, height_ratios=[3, 2])
+        # more pairs than colours in the cycle: the next round of colours dashed, then dotted, so
+        # that no two curves look alike (R₀₁ and R₀₅ both black in the slotting machine's seven)
+        colours = len(matplotlib.rcParams["axes.prop_cycle"])
+        n = 0
         for p in f.model.pairs:
             if p.kind == KS.K_MOM:
                 continue
             key = shown_key(f, p)
-            ax1.plot(x, cyc["R_" + key] / 1e3, lw=1.2, label=pair_label(*key.split("_")[:2]))
+            ax1.plot(x, cyc["R_" + key] / 1e3, lw=1.2, ls=("-", "--", ":", "-.")[(n // colours) % 4],
+                     label=pair_label(*key.split("_")[:2]))
+            n += 1
         ax1.set_ylabel("$R$, кН")
         ax1.legend(ncols=6, fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), frameon=False)
         m_bal = math_label("Mур")            # $M_{\mathrm{ур}}$: the symbol of the text, not a plain «Mур»

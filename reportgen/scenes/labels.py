@@ -94,6 +94,63 @@ def _segments(ax, renderer, skip) -> np.ndarray:
     return np.vstack(segs) if segs else np.zeros((0, 4))
 
 
+class _Segs:
+    """The drawn segments indexed for clipping many rectangles against them: a rectangle is
+    clipped (:func:`_crossings`) against only the segments whose bounding box meets it. Short
+    segments (at most ``SHORT_PX`` wide: a trajectory has thousands) are sorted by their left
+    end, so those that can reach the rectangle form one slice; long ones and those with a
+    non-finite end are always tested. The count is the same as over all the segments."""
+
+    SHORT_PX = 24.0
+
+    def __init__(self, segs: np.ndarray):
+        self.segs = segs
+        with np.errstate(invalid="ignore"):
+            self.xmin = np.minimum(segs[:, 0], segs[:, 2])
+            self.xmax = np.maximum(segs[:, 0], segs[:, 2])
+            self.ymin = np.minimum(segs[:, 1], segs[:, 3])
+            self.ymax = np.maximum(segs[:, 1], segs[:, 3])
+            self.odd = ~np.all(np.isfinite(segs), axis=1)
+            short = ~self.odd & (self.xmax - self.xmin <= self.SHORT_PX)
+        idx = np.flatnonzero(short)
+        self.short = idx[np.argsort(self.xmin[idx], kind="stable")]
+        self.short_x = self.xmin[self.short]
+        self.rest = np.flatnonzero(~short)
+
+    def crossings(self, bb) -> int:
+        """:func:`_crossings` of the segments and ``bb``."""
+        x0, y0, x1, y1 = bb.x0 - PAD_PX, bb.y0 - PAD_PX, bb.x1 + PAD_PX, bb.y1 + PAD_PX
+        lo = np.searchsorted(self.short_x, x0 - self.SHORT_PX, side="left")
+        hi = np.searchsorted(self.short_x, x1, side="right")
+        idx = np.concatenate([self.short[lo:hi], self.rest])
+        near = ((self.xmax[idx] >= x0) & (self.xmin[idx] <= x1) & (self.ymax[idx] >= y0)
+                & (self.ymin[idx] <= y1)) | self.odd[idx]
+        idx = idx[near]
+        if len(idx) <= 32 and not self.odd[idx].any():
+            return _crossings_few(self.segs[idx].tolist(), x0, y0, x1, y1)
+        return _crossings(self.segs[idx], bb)
+
+
+def _crossings_few(segs: list, x0: float, y0: float, x1: float, y1: float) -> int:
+    """:func:`_crossings` of a few finite segments against the padded rectangle, one by one
+    (the same arithmetic, without the cost of 30 array operations on a handful of rows)."""
+    n = 0
+    for sx, sy, ex, ey in segs:
+        dx, dy = ex - sx, ey - sy
+        t0, t1 = 0.0, 1.0
+        for p, q in ((-dx, sx - x0), (dx, x1 - sx), (-dy, sy - y0), (dy, y1 - sy)):
+            if abs(p) < 1e-12:
+                if q < 0:
+                    break
+            elif p < 0:
+                t0 = max(t0, q / p)
+            else:
+                t1 = min(t1, q / p)
+        else:
+            n += t0 <= t1
+    return n
+
+
 def _crossings(segs: np.ndarray, bb) -> int:
     """How many segments meet the rectangle ``bb`` (Liang–Barsky clipping, vectorized)."""
     if len(segs) == 0:
@@ -117,6 +174,40 @@ def _crossings(segs: np.ndarray, bb) -> int:
 def _overlap(a, b, gap: float = 0.0) -> bool:
     """The boxes meet, or come closer than ``gap`` (px)."""
     return a.x0 < b.x1 + gap and b.x0 < a.x1 + gap and a.y0 < b.y1 + gap and b.y0 < a.y1 + gap
+
+
+class _Extent:
+    """The rendered extent of a text at any position, from one layout: what
+    ``Text.get_window_extent`` returns (the layout's box moved to the display position), for
+    the candidate places of a label without laying its text out again at each."""
+
+    def __init__(self, t: Text, renderer):
+        self.t, self.renderer = t, renderer
+        self.box = None
+        if t.get_visible() and t.get_text() != "":
+            t._renderer = renderer
+            self.box, _, _ = t._get_layout(renderer)
+            self.corners = self.box.get_points().ravel().tolist()
+            self.tr = t.get_transform()
+
+    def at(self, xy) -> "_Box":
+        """The extent with the text at ``xy`` (data coordinates)."""
+        if self.box is None:
+            self.t.set_position(xy)
+            return _Box(*self.t.get_window_extent(self.renderer).get_points().ravel().tolist())
+        x, y = self.tr.transform((float(xy[0]), float(xy[1])))
+        bx0, by0, bx1, by1 = self.corners
+        return _Box(bx0 + x, by0 + y, bx1 + x, by1 + y)
+
+
+class _Box:
+    """A rectangle in display coordinates as four floats (what the placer reads of a ``Bbox``,
+    without its transform machinery: each ``Bbox.x0`` is a method call and an array look-up)."""
+
+    __slots__ = ("x0", "y0", "x1", "y1")
+
+    def __init__(self, x0: float, y0: float, x1: float, y1: float):
+        self.x0, self.y0, self.x1, self.y1 = x0, y0, x1, y1
 
 
 class LabelPlacer:
@@ -154,24 +245,26 @@ class LabelPlacer:
     def place(self) -> list[Text]:
         ax, fig = self.ax, self.fig
         renderer = _renderer(fig)
-        segs = _segments(ax, renderer, skip=())
+        segs = _Segs(_segments(ax, renderer, skip=()))
         frame = ax.get_window_extent(renderer)
+        # the axes' limits and place do not change while the labels are placed: one inverse
+        inv = ax.transData.inverted()
         figbox = fig.bbox
         px_mm = fig.dpi / 25.4
-        placed = [(b, 0.0) for b in self.avoid_boxes]      # (box, clearance in px)
+        placed = [(_Box(b.x0, b.y0, b.x1, b.y1), 0.0) for b in self.avoid_boxes]      # (box, clearance in px)
         hard = self.gap_mm * px_mm      # the placer's least gap between any two labels (a must)
         out = []
         for it in self.items:
             kw = dict(fontsize=self.fontsize, ha="center", va="center", zorder=10)
             kw.update(it.kw)
             t = ax.text(it.x, it.y, it.text, **kw)
+            extent = _Extent(t, renderer)
             ax0 = ax.transData.transform((it.x, it.y))
             foreign = self._foreign(it, px_mm)
             gap = it.gap_mm * px_mm
             best = None
             for k, (cx, cy) in enumerate(self._candidates(it, px_mm)):
-                t.set_position(ax.transData.inverted().transform((ax0[0] + cx, ax0[1] + cy)))
-                bb = t.get_window_extent(renderer)
+                bb = extent.at(inv.transform((ax0[0] + cx, ax0[1] + cy)))
                 inside = (bb.x0 >= max(frame.x0, figbox.x0) + 1 and bb.x1 <= min(frame.x1, figbox.x1) - 1
                           and bb.y0 >= max(frame.y0, figbox.y0) + 1 and bb.y1 <= min(frame.y1, figbox.y1) - 1)
                 if not inside or any(_overlap(bb, o, hard) for o, _ in placed):
@@ -181,7 +274,7 @@ class LabelPlacer:
                 centre = ((bb.x0 + bb.x1) / 2, (bb.y0 + bb.y1) / 2)
                 own = math.hypot(centre[0] - ax0[0], centre[1] - ax0[1])
                 stray = bool(len(foreign)) and float(np.hypot(*(foreign - centre).T).min()) < own + OWN_MARGIN_MM * px_mm
-                hits = _crossings(segs, bb)
+                hits = segs.crossings(bb)
                 cost = (stray, crowded, hits, k)
                 if best is None or cost < best[0]:
                     best = (cost, (cx, cy), bb)
@@ -190,15 +283,14 @@ class LabelPlacer:
             if best is None:       # nowhere free inside: nearest candidate inside the figure
                 cands = self._candidates(it, px_mm)
                 for cx, cy in cands:
-                    t.set_position(ax.transData.inverted().transform((ax0[0] + cx, ax0[1] + cy)))
-                    bb = t.get_window_extent(renderer)
+                    bb = extent.at(inv.transform((ax0[0] + cx, ax0[1] + cy)))
                     if bb.x0 >= figbox.x0 and bb.x1 <= figbox.x1 and bb.y0 >= figbox.y0 and bb.y1 <= figbox.y1:
                         best = ((99, 0), (cx, cy), bb)
                         break
                 else:
-                    best = ((99, 0), cands[0], t.get_window_extent(renderer))
+                    best = ((99, 0), cands[0], extent.at(inv.transform((ax0[0] + cands[0][0], ax0[1] + cands[0][1]))))
             cost, (cx, cy), bb = best
-            t.set_position(ax.transData.inverted().transform((ax0[0] + cx, ax0[1] + cy)))
+            t.set_position(inv.transform((ax0[0] + cx, ax0[1] + cy)))
             if cost[-2] > 0:
                 # no free place: the lines under the label are broken by a white halo round its glyphs
                 t.set_path_effects([patheffects.withStroke(linewidth=HALO_PT, foreground="white")])

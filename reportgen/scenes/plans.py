@@ -62,6 +62,8 @@ def tip_label(lab: str, plan: Plan, kind: str) -> str:
         return "$" + p.lower() + ("′" if kind == "acceleration" else "") + "_{" + link + "}$"
     head = lab.rstrip("0123456789")
     tail = lab[len(head):]
+    if not head:                       # a point named by a number (a pair 34): the number itself
+        head, tail = lab, ""
     return "$" + head.lower() + ("′" if kind == "acceleration" else "") + (f"_{{{tail}}}" if tail else "") + "$"
 
 

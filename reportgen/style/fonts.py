@@ -129,27 +129,29 @@ def _ignorable(ch: str) -> bool:
 
 
 def missing_glyphs(text: str, family: FontFamily | None = None,
-                   faces: tuple[str, ...] = _FACES) -> dict[str, list[str]]:
-    """Characters of ``text`` missing from the given faces: ``{face: [chars]}``."""
+                   faces: tuple[str, ...] = _FACES, cmap=None) -> dict[str, list[str]]:
+    """Characters of ``text`` missing from the given faces: ``{face: [chars]}``. ``cmap(path)``
+    gives a face's code points (default :func:`_cmap`; the report passes one that keeps them
+    in its cache folder)."""
     family = family or find_serif()
     chars = sorted({c for c in text if not _ignorable(c)})
     out: dict[str, list[str]] = {}
     for face in faces:
-        cmap = _cmap(getattr(family, face))
-        miss = [c for c in chars if ord(c) not in cmap]
+        cmap_ = (cmap or _cmap)(getattr(family, face))
+        miss = [c for c in chars if ord(c) not in cmap_]
         if miss:
             out[face] = miss
     return out
 
 
-def check_text(text: str, family: FontFamily | None = None) -> list[str]:
+def check_text(text: str, family: FontFamily | None = None, cmap=None) -> list[str]:
     """Characters of ``text`` absent from the regular face of the family and of the bundled
     symbols family (:func:`symbol_family`, which the note's stylesheets name second): those
     would be drawn by a fallback font of the host; empty when all are present."""
-    missing = missing_glyphs(text, family, faces=("regular",)).get("regular", [])
+    missing = missing_glyphs(text, family, faces=("regular",), cmap=cmap).get("regular", [])
     symbols = symbol_family()
     if missing and symbols is not None:
-        missing = missing_glyphs("".join(missing), symbols, faces=("regular",)).get("regular", [])
+        missing = missing_glyphs("".join(missing), symbols, faces=("regular",), cmap=cmap).get("regular", [])
     return missing
 
 
@@ -204,11 +206,13 @@ def symbol_family() -> FontFamily | None:
 
 
 def font_face_css(family: FontFamily | None = None, *, embed: bool = False,
-                  css_family: str = CSS_FAMILY) -> str:
+                  css_family: str = CSS_FAMILY, woff=None) -> str:
     """``@font-face`` rules for the four faces.
 
     ``embed=False``: ``file://`` URLs (for WeasyPrint, which subsets itself);
-    ``embed=True``: subset WOFF fonts as ``data:`` URLs (self-contained HTML).
+    ``embed=True``: subset WOFF fonts as ``data:`` URLs (self-contained HTML), from
+    ``woff(path)`` (default :func:`_subset_woff`; the report passes one that keeps the
+    subsets in its cache folder).
     """
     family = family or find_serif()
     rules = []
@@ -225,7 +229,7 @@ def font_face_css(family: FontFamily | None = None, *, embed: bool = False,
     for (name, fam), (face, (weight, style)) in ((f, st) for f in faces for st in styles.items()):
         path = getattr(fam, face)
         if embed:
-            data = base64.b64encode(_subset_woff(path)).decode("ascii")
+            data = base64.b64encode((woff or _subset_woff)(path)).decode("ascii")
             src = f'url("data:font/woff;base64,{data}") format("woff")'
         else:
             src = f'url("{path.resolve().as_uri()}")'

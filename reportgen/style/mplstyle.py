@@ -106,6 +106,93 @@ def style_rc() -> dict:
 def apply_style() -> None:
     """Put the report style into ``matplotlib.rcParams`` (idempotent)."""
     matplotlib.rcParams.update(style_rc())
+    share_mathtext()
+    share_svg_text_metrics()
+
+
+MATHTEXT_CACHE = 4096  # parsed mathtext strings kept by a process (ws000's four sections: about 170)
+
+
+def share_mathtext() -> None:
+    """One cache of parsed mathtext for the whole process (idempotent).
+
+    matplotlib caches ``MathTextParser._parse_cached`` in an ``lru_cache(50)`` keyed by the
+    parser itself, and every renderer makes its own parser (``RendererBase._text2path``,
+    ``RendererAgg.mathtext_parser``): the label placer's Agg renderer, savefig's SVG renderer
+    and each renderer the layout engine asks for. So a label was parsed again for every renderer
+    that measured or drew it (ws000's dynamics: 25 distinct strings parsed 78 times, a
+    quarter of the section's CPU time). Here the cache is keyed by what the parse depends on instead of the
+    parser: the output type (vector or raster), the string, dpi, font properties, antialiasing,
+    glyph flags and the ``mathtext.*`` and hinting settings; a parse is the same whichever
+    parser of the same output type ran it, so the figures do not change.
+    """
+    from matplotlib import mathtext
+
+    if getattr(mathtext.MathTextParser._parse_cached, "_reportgen_shared", False):
+        return
+    parse = mathtext.MathTextParser._parse_cached
+    parse = getattr(parse, "__wrapped__", parse)       # matplotlib's own function, without its cache
+    canonical = {}
+
+    @functools.lru_cache(MATHTEXT_CACHE)
+    def parsed(kind, s, dpi, prop, rest, rc):
+        parser = canonical.get(kind)
+        if parser is None:
+            parser = canonical[kind] = mathtext.MathTextParser("path" if kind == "vector" else "agg")
+        return parse(parser, s, dpi, prop, *rest)
+
+    def shared(self, s, dpi, prop, *rest):     # rest: antialiased (and glyph flags since 3.10)
+        return parsed(self._output_type, s, dpi, prop, rest, _rc_key())
+
+    shared._reportgen_shared = True
+    shared.cache_info = parsed.cache_info
+    shared.__wrapped__ = parse
+    mathtext.MathTextParser._parse_cached = shared
+
+
+def share_svg_text_metrics() -> None:
+    """One cache of text extents for every SVG renderer of the process (idempotent).
+
+    matplotlib caches a text's width, height and descent per renderer instance
+    (``text._get_text_metrics_with_cache``), and ``savefig`` of a figure with a layout engine
+    makes three SVG renderers (one for the draw before the drawing, one that the layout engine
+    asks for, one to draw): every tick label and legend entry was measured up to three times in
+    every figure. An SVG renderer measures with its ``TextToPath`` at a fixed 72 dpi and nothing of
+    its own, so one shared ``TextToPath`` gives the same extents; other renderers (Agg for
+    the label placer) keep matplotlib's cache.
+    """
+    from matplotlib import text as mtext
+    from matplotlib.backends.backend_svg import RendererSVG
+    from matplotlib.textpath import TextToPath
+
+    if getattr(mtext._get_text_metrics_with_cache, "_reportgen_shared", False):
+        return
+    original = mtext._get_text_metrics_with_cache
+    measure = TextToPath()
+
+    @functools.lru_cache(MATHTEXT_CACHE)
+    def svg_metrics(text, fontprop, ismath, dpi, rc):
+        return measure.get_text_width_height_descent(text, fontprop, ismath)
+
+    def metrics(renderer, text, fontprop, ismath, dpi):
+        if type(renderer) is RendererSVG and ismath != "TeX":
+            return svg_metrics(text, fontprop.copy(), ismath, dpi, _rc_key())
+        return original(renderer, text, fontprop, ismath, dpi)
+
+    metrics._reportgen_shared = True
+    mtext._get_text_metrics_with_cache = metrics
+
+
+def _rc_key() -> tuple:
+    rc = matplotlib.rcParams
+    return tuple(tuple(v) if isinstance(v, list) else v for v in map(rc.__getitem__, _MATHTEXT_RC))
+
+
+# the settings a parse reads besides its arguments (the fonts of the custom set, fallback, hinting)
+_MATHTEXT_RC = ("mathtext.fontset", "mathtext.rm", "mathtext.it", "mathtext.bf", "mathtext.bfit",
+                "mathtext.sf", "mathtext.tt", "mathtext.cal", "mathtext.fallback", "mathtext.default",
+                "text.hinting", "text.hinting_factor", "text.kerning_factor", "font.family",
+                "font.serif", "font.sans-serif", "font.monospace", "font.cursive", "font.fantasy")
 
 
 @contextlib.contextmanager
@@ -115,11 +202,37 @@ def style():
         yield
 
 
+class _Figure(Figure):
+    """A figure that skips the artists in ``savefig``'s draw before the drawing.
+
+    With a layout engine, ``savefig`` draws the figure twice: first with every ``draw_*`` of the
+    renderer disabled (``RendererBase._draw_disabled``), only so that the layout runs once
+    before the real drawing (which keeps that layout); then for real. The first pass here runs
+    the layout alone, without drawing every artist into nothing. Other draws with drawing
+    disabled (``draw_without_rendering``, to update the artists' state) stay whole."""
+
+    def draw(self, renderer):
+        if (self.axes and self.get_layout_engine() is not None and getattr(self.canvas, "_is_saving", False)
+                and _disabled(renderer)):
+            self.get_layout_engine().execute(self)
+            return
+        super().draw(renderer)
+
+
+def _disabled(renderer) -> bool:
+    """The renderer's drawing is switched off (``_draw_disabled`` puts no-ops on the instance;
+    a vector backend's ``MixedModeRenderer`` passes them on to its vector renderer)."""
+    from matplotlib.backends.backend_mixed import MixedModeRenderer
+    if isinstance(renderer, MixedModeRenderer):
+        renderer = renderer._renderer
+    return "draw_path" in getattr(renderer, "__dict__", {})
+
+
 def figure(width_mm: float = 160, height_mm: float = 90, **kw) -> Figure:
     """A new OO figure of the given printed size (constrained layout)."""
     apply_style()
     kw.setdefault("layout", "constrained")
-    return Figure(figsize=(width_mm * MM, height_mm * MM), **kw)
+    return _Figure(figsize=(width_mm * MM, height_mm * MM), **kw)
 
 
 def localize_axes(ax, digits: int | None = None) -> None:

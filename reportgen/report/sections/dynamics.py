@@ -23,7 +23,8 @@ from ...style.numbers import fmt, fmt_given, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import condition_html, expr_html, plural
-from .common import MAX_COLS, as_written, chosen_position, chunked_tables, sub, tex_point, pos_fmt, pos_no
+from .common import (MAX_COLS, as_written, chosen_position, chunked_tables, html_point, sub, tex_point, pos_fmt,
+                     pos_no)
 
 NEEDS = ("kinematics", "cycle", "dynamics")
 
@@ -252,7 +253,9 @@ def _model(sec: Section, study, d) -> None:
     if rows:
         s.table("Инерционные параметры звеньев в динамической модели", [
             Column("n", "Звено"), Column("title", "Название"), Column("m", "<i>m</i>", "кг", sig=4),
-            Column("J", _h("J", "S"), "кг·м²", sig=4), Column("S", "Центр масс"), Column("group", "Группа")],
+            Column("J", _h("J", "S"), "кг·м²", sig=4), Column("S", "Центр масс",
+                                                                  fmt=lambda v: Markup(html_point(escape(v))) if v[:1].isalpha() else v),
+            Column("group", "Группа")],
             pd.DataFrame(rows), id="tab-dyn-links")
     JO = fmt(st.J_O, sig=4, unit="кг·м²")
     extra = ""
@@ -265,13 +268,14 @@ def _model(sec: Section, study, d) -> None:
     lrows = []
     for ld in d.loads.loads:
         lrows.append({"name": ld.name, "what": Markup(ld.title).striptags(),
-                      "where": (f"{ld.point}, звено {ld.link}" if ld.point else f"звено {ld.link}"),
+                      "where": (Markup("{}, звено {}").format(Markup(html_point(escape(ld.point))), ld.link)
+                                if ld.point else Markup("звено {}").format(ld.link)),
                       "law": _law(ld)})
     if lrows:
         s.paragraph(f"Внешние нагрузки машины перечислены в таблице {ref('tab-dyn-loads')}. Силы тяжести "
-                    f"вычислены при g&nbsp;=&nbsp;{fmt(d.loads.g, sig=4)}&nbsp;м/с².")
+                    f"вычислены при <i>g</i>&nbsp;=&nbsp;{fmt_given(d.loads.g)}&nbsp;м/с².")
         s.table("Нагрузки, действующие на звенья", [
-            Column("name", "Обозначение", fmt=lambda v: Markup(html_label(v))), Column("what", "Нагрузка"), Column("where", "Точка приложения"),
+            Column("name", "Обозначение", fmt=lambda v: Markup(html_label(v))), Column("what", "Нагрузка"), Column("where", "Точка приложения", fmt=Markup),
             Column("law", "Закон изменения", fmt=Markup)], pd.DataFrame(lrows), id="tab-dyn-loads")
     if d.breaks.size:
         pts = ", ".join(_phase_deg(study, q) for q in d.breaks)
@@ -494,6 +498,10 @@ def _flywheel(sec, study, d) -> None:
     r = d.result
     me, wi, ex = r.mertsalov, r.wittenbauer, r.exact
     w, dl = st.omega_m, st.delta
+    # a given δ substituted as the case writes it (0,04, not 0,04000); a found one to 4 digits
+    dl_w = as_written(dl)
+    dl_tex = (_t(dl, sig=4) if d.inverse is not None
+              else _t(dl, sig=None, digits=len(dl_w.split(",")[1]) if "," in dl_w else 0))
     if d.inverse is not None:
         inv, u = d.inverse, st.ratio
         shaft = (f"на валу, вращающемся в u&nbsp;=&nbsp;{_ratio(u)} раза быстрее кривошипа; приведённый к валу "
@@ -507,9 +515,9 @@ def _flywheel(sec, study, d) -> None:
                     f"ω<sub>min</sub>&nbsp;=&nbsp;{fmt(inv.omega_min, sig=5)}&nbsp;рад/с и коэффициент неравномерности хода "
                     f"δ&nbsp;=&nbsp;(ω<sub>max</sub>&nbsp;−&nbsp;ω<sub>min</sub>)/ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(dl, sig=4)}. "
                     "Для проверки ниже решена прямая задача с этим δ: точный способ возвращает заданный маховик.")
-    s.paragraph(f"{'Найденный' if d.inverse is not None else 'Требуемый'} коэффициент неравномерности хода δ&nbsp;=&nbsp;{fmt(dl, sig=4)} при средней угловой "
+    s.paragraph(f"{'Найденный' if d.inverse is not None else 'Требуемый'} коэффициент неравномерности хода δ&nbsp;=&nbsp;{fmt(dl, sig=4) if d.inverse is not None else as_written(dl)} при средней угловой "
                 f"скорости ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(w, digits=3)}&nbsp;рад/с "
-                f"(n&nbsp;=&nbsp;{fmt(w * 30 / math.pi, digits=1)}&nbsp;об/мин); "
+                f"(<i>n</i>&nbsp;=&nbsp;{fmt_given(w * 30 / math.pi)}&nbsp;об/мин); "
                 f"{_im('delta')}, "
                 f"{_im('wm')}. "
                 f"Момент инерции {inline_math('J_I')} найден тремя способами; в дальнейших расчётах принято "
@@ -523,7 +531,7 @@ def _flywheel(sec, study, d) -> None:
               Formula(r"\Delta T_{I\,min}", None, _t(me.dT_I_min, sig=5, unit="Дж")),
               Formula(r"J_I = \frac{\Delta T_{I\,max} - \Delta T_{I\,min}}{\omega_{\text{ср}}^2\,\delta}",
                       rf"\frac{{{_t(me.dT_I_max, sig=5, paren=True)} - {_t(me.dT_I_min, sig=5, paren=True)}}}"
-                      rf"{{{_t(w, digits=3)}^2 \cdot {_t(dl, sig=4)}}}",
+                      rf"{{{_t(w, digits=3)}^2 \cdot {dl_tex}}}",
                       _t(me.J_I, sig=5, unit="кг·м²"), label="eq-JI-mertsalov"))
     s.paragraph(f"Экстремумы Δ<i>T</i><sub>I</sub> найдены по всему циклу решением уравнения "
                 f"{_im('mert_ext')} "
@@ -538,7 +546,7 @@ def _flywheel(sec, study, d) -> None:
                       r"\quad \mathrm{tg}\,\psi_{min} = \frac{\mu_J}{2\mu_T}\,\omega_{\text{ср}}^2 \left(1 - \frac{\delta}{2}\right)^2",
                       label="eq-witt-slopes"),
               Formula(r"J_I = \frac{KL}{\omega_{\text{ср}}^2\,\delta}",
-                      rf"\frac{{{_t(wi.KL, sig=5)}}}{{{_t(w, digits=3)}^2 \cdot {_t(dl, sig=4)}}}",
+                      rf"\frac{{{_t(wi.KL, sig=5)}}}{{{_t(w, digits=3)}^2 \cdot {dl_tex}}}",
                       _t(wi.J_I, sig=5, unit="кг·м²"), label="eq-JI-witt"))
     s.figure("Диаграмма энергия–масса (диаграмма Виттенбауэра) с касательными", fig.svg, fig.width_mm,
              id="fig-dyn-witt")
@@ -666,14 +674,14 @@ def _dimensions(sec, study, d) -> None:
     ]
     s.paragraph(f"Варианты маховика сопоставлены в таблице {ref('tab-dyn-fw')}; окружная скорость обода "
                 f"{_im('vrim_u') if u != 1.0 else _im('vrim')} сравнивается с допускаемой "
-                f"[v]&nbsp;=&nbsp;{fmt(fw.v_limit, sig=3)}&nbsp;м/с.")
+                f"[v]&nbsp;=&nbsp;{fmt_given(fw.v_limit)}&nbsp;м/с.")
     s.table("Размеры и масса маховика", [
         Column("v", "Вариант"), Column("D", "<i>D</i>", "м", digits=3), Column("d", "<i>D</i><sub>1</sub>", "м", digits=3),
         Column("b", "<i>b</i>", "м", digits=3), Column("m", "<i>m</i>", "кг", sig=4),
         Column("u", "<i>v</i>", "м/с", digits=2)], pd.DataFrame(rows), id="tab-dyn-fw")
     if fw.any_exceeds:
         s.paragraph(f"<b>Внимание:</b> окружная скорость обода превышает допускаемую "
-                    f"{fmt(fw.v_limit, sig=3)}&nbsp;м/с — маховик следует установить на более медленный вал "
+                    f"{fmt_given(fw.v_limit)}&nbsp;м/с — маховик следует установить на более медленный вал "
                     "или выполнить из более прочного материала.")
     else:
         s.paragraph("Окружная скорость обода всех вариантов меньше допускаемой.")
@@ -717,7 +725,7 @@ def _motion(sec, study, d, tab, mot, lab, row, lead) -> None:
                 f"φ&nbsp;=&nbsp;{_phase_deg(study, sc['q_omega_max'])}, ω<sub>min</sub>&nbsp;=&nbsp;"
                 f"{fmt(sc['omega_min'], sig=5)}&nbsp;рад/с при φ&nbsp;=&nbsp;{_phase_deg(study, sc['q_omega_min'])}; "
                 f"коэффициент неравномерности точного движения с принятым J<sub>I</sub> — "
-                f"{fmt(r.delta_achieved, digits=5)} (задан {fmt(st.delta, sig=4)}). Значения по положениям — в "
+                f"{fmt(r.delta_achieved, digits=5)} (задан {as_written(st.delta)}). Значения по положениям — в "
                 f"таблице {ref(ids[0])}, графики — на рисунке {ref('fig-dyn-w')}.")
     s.figure("Угловая скорость и угловое ускорение звена приведения", fig.svg, fig.width_mm, id="fig-dyn-w")
     # true motion
@@ -828,9 +836,9 @@ def conclusion_lines(study) -> list[str]:
         v = max(fw.rim.v_rim, fw.disk.v_rim)
         if math.isfinite(v):
             formula = "u·ω<sub>max</sub>·D/2" if u != 1.0 else "ω<sub>max</sub>·D/2"
-            verdict = (f"превышает допускаемую [v]&nbsp;=&nbsp;{fmt(fw.v_limit, sig=3)}&nbsp;м/с: обод следует "
+            verdict = (f"превышает допускаемую [v]&nbsp;=&nbsp;{fmt_given(fw.v_limit)}&nbsp;м/с: обод следует "
                        "сделать меньшего диаметра и большей ширины или стальным" if fw.any_exceeds else
-                       f"не превышает допускаемой [v]&nbsp;=&nbsp;{fmt(fw.v_limit, sig=3)}&nbsp;м/с")
+                       f"не превышает допускаемой [v]&nbsp;=&nbsp;{fmt_given(fw.v_limit)}&nbsp;м/с")
             where = " (маховик на валу, вращающемся в u раз быстрее кривошипа)" if u != 1.0 else ""
             out.append(f"Наибольшая окружная скорость обода{where} v&nbsp;=&nbsp;{formula}&nbsp;=&nbsp;"
                        f"{fmt(v, sig=3)}&nbsp;м/с {verdict}.")

@@ -25,6 +25,7 @@ from ...style.numbers import fmt, shared_decimals, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import plural
+from .kinematics import _insets_text, _zero_note, zero_columns
 from .common import (chosen_position, chunked_tables, input_word, pair_label, pos_fmt, pos_no, q_degrees, q_header,
                      html_point, sub, tex_point)
 
@@ -551,7 +552,9 @@ def _reactions(sec: Section, study, f) -> None:
     for c in comp + mag:
         if c.unit == "Н":          # forces: one number of decimals in every reaction table of the note
             c.sig, c.digits = None, nd
-    ids = chunked_tables(s, "Составляющие реакций в кинематических парах", tab, comp, lead, "tab-frc-comp", per=6)
+    comp, zero = zero_columns(tab, comp)     # R₀₅y of a slider on a vertical guide: 0 in every position
+    ids = chunked_tables(s, "Составляющие реакций в кинематических парах", tab, comp, lead, "tab-frc-comp", per=6,
+                         note=_zero_note(zero))
     ids2 = chunked_tables(s, "Модули реакций в кинематических парах", tab, mag, lead, "tab-frc-mag", per=6)
     note = ""
     declared = {p.name for p in f.model.pairs}
@@ -607,7 +610,9 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     paired = any(("′" in str(v) or "″" in str(v)) for v in lever.moments["label"])
     if not paired:
         how = how.replace(", моменты заменены парами сил на двух точках звена", "")
-    s.paragraph(how)
+    mu_unit = "м·с⁻¹/мм" if not lever.analog else ("м/мм" if rot else "мм⁻¹")
+    tail = " Сумма моментов всех сил относительно полюса p равна нулю:"
+    s.paragraph(how.replace(tail, _insets_text(lever, plan, "v", mu_unit) + tail))
     mt = lever.moments.copy()
     # the student's arithmetic: forces to four significant digits of the largest one (one
     # number of decimals for the column, at most 0,01 Н), arms as measured to 0,1 mm, products
@@ -649,7 +654,6 @@ def _balance(sec: Section, study, f, lab: str) -> None:
         s.formula(Formula(rf"F {arm_sym} + \sum_i F_i h_i = 0", label="eq-frc-lever"))
         s.paragraph("Плечи <i>h</i> — расстояния (без знака), как в таблице моментов; знак перед плечом — "
                     "знак момента силы <i>F</i> (против часовой стрелки — плюс).")
-    mu_unit = "м·с⁻¹/мм" if not lever.analog else ("м/мм" if rot else "мм⁻¹")
     turned = ", силы повёрнуты на 90° по часовой стрелке" if lever.forces_turned else ""
     s.figure(f"Рычаг Жуковского для положения {pos_no(study, lab)} (μ<sub>v</sub> = {mu_text(lever.mu)} {mu_unit}{turned})",
              lever.svg, lever.width_mm, id="fig-frc-lever", landscape=lever.landscape)

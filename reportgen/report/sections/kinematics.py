@@ -11,7 +11,7 @@ from markupsafe import Markup
 
 from ...analysis.plans import output_quantity
 from ...mechanism.model import FRAME
-from ...scenes.diagrams import AnalogCurves, OutputDiagrams
+from ...scenes.diagrams import AnalogCurves, OutputDiagrams, output_displacement, output_index
 from ...scenes.mechanism import PositionsPlan, traced_points
 from ...scenes.plans import MIN_MM, READ_MM, PlanScene
 from ...scenes.draw import gost_ratio, mu_text
@@ -83,6 +83,13 @@ def _quick_return(fast: float, K: float) -> str:
     return (f" Один ход выходного звена занимает {fmt(360 - fast, digits=1)}°, другой — {fmt(fast, digits=1)}° "
             f"поворота кривошипа: рабочим назначается медленный ход, холостой выполняется в "
             f"{fmt(K, digits=2)} раза быстрее, что сокращает время цикла.")
+
+
+def _in_tables(ids: list[str]) -> str:
+    """«таблице 2.1» for one table, «таблицах 2.1 и 2.2» (or «2.1–2.3») for the parts of a wide one."""
+    if len(ids) == 1:
+        return f"таблице {ref(ids[0])}"
+    return f"таблицах {ref(ids[0])}{' и ' if len(ids) == 2 else '–'}{ref(ids[-1])}"
 
 
 def _rotates(study, link: str) -> bool:
@@ -182,9 +189,9 @@ def build(study) -> Section:
     for c in k.columns:
         if c.startswith("phi_") and c[4:] not in [l.name for l in mech.links]:
             angle_cols.append(Column(c, sub("φ", c[4:]), "град", fmt=_deg))
-    chunked_tables(s1, "Углы звеньев" + (" и перемещения в поступательных парах" if mech.prismatic else ""),
-                   k, angle_cols, lead, "tab-angles")
-    s1.paragraph(f"Координаты точек приведены в таблице {ref(ids[0])}, углы звеньев — в таблице {ref('tab-angles' if len(angle_cols) <= 8 else 'tab-angles-1')}.")
+    a_ids = chunked_tables(s1, "Углы звеньев" + (" и перемещения в поступательных парах" if mech.prismatic else ""),
+                           k, angle_cols, lead, "tab-angles")
+    s1.paragraph(f"Координаты точек приведены в {_in_tables(ids)}, углы звеньев — в {_in_tables(a_ids)}.")
 
     # ----- analogs
     s2 = sec.subsection("Аналоги скоростей и ускорений", "sec-analogs")
@@ -280,12 +287,22 @@ def build(study) -> Section:
     cyc = study.cycle
     s = cyc[s_col].to_numpy()
     stroke = float(s.max() - s.min())
+    n = output_index(study, s_col)
+    _, i0 = output_displacement(study, s_col)
+    q0 = cyc["q"].iloc[i0]
+    at = (f"φ&nbsp;=&nbsp;{fmt(math.degrees(q0), digits=1)}°" if mech.driver.swing
+          else f"φ&nbsp;=&nbsp;{_turn(q0 - study.grid.start)}°" if rotary
+          else f"<i>S</i>&nbsp;=&nbsp;{fmt(q0, digits=4)}&nbsp;м")
     if s_col.startswith("phi_"):
         s5.paragraph(f"Выходное звено — {title}; размах качания {fmt(math.degrees(stroke), digits=2)}° "
                      f"(рисунок {ref('fig-diagrams')}).")
+        origin = (f"Угол поворота ψ{n}&nbsp;=&nbsp;φ{n}&nbsp;−&nbsp;φ{n}<sub>min</sub> на диаграмме отсчитывается "
+                  f"от крайнего положения при {at}, угловые скорость и ускорение — в направлении отсчёта угла φ{n}.")
     else:
         s5.paragraph(f"Выходное звено — {title}; ход <i>H</i>&nbsp;=&nbsp;{fmt(stroke, digits=4)}&nbsp;м "
                      f"(рисунок {ref('fig-diagrams')}).")
+        origin = (f"Перемещение <i>s</i>{n} на диаграмме отсчитывается от крайнего положения при {at} "
+                  f"(0&nbsp;≤&nbsp;<i>s</i>{n}&nbsp;≤&nbsp;<i>H</i>), скорость и ускорение — в том же направлении.")
     if mech.driver.swing:
         s5.paragraph(swing_strokes_text(study))
         _strokes_table(s5, study, s_col)
@@ -296,6 +313,7 @@ def build(study) -> Section:
                      f"{_turn(cyc['q'].iloc[i_max] - study.grid.start)}°; угол перекрытия "
                      f"θ&nbsp;=&nbsp;{fmt(abs(180 - work), digits=1)}°, коэффициент изменения средней скорости "
                      f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}." + _quick_return(work, K))
+    s5.paragraph(origin)
     s5.figure("Кинематические диаграммы выходного звена", diag.svg, diag.width_mm, id="fig-diagrams")
     flags = study.flags
     guides, guide_note = _guide_transmission(study)
@@ -479,7 +497,7 @@ def _insets_text(drawing, what: str, sym: str, unit: str) -> str:
     scales μ/k; empty when the plan has none."""
     if not drawing.insets:
         return ""
-    parts = [f"{i.mark} (μ<sub>{sym}</sub>/{mu_text(i.k)} = {mu_text(drawing.mu / i.k)}&nbsp;{unit})"
+    parts = [f"{i.mark} (<span class=\"nowrap\">μ<sub>{sym}</sub>/{mu_text(i.k)}</span> = {mu_text(drawing.mu / i.k)}&nbsp;{unit})"
              for i in drawing.insets]
     what_el = "выносным элементом" if len(parts) == 1 else "выносными элементами"
     return (f" Короткие векторы и близко лежащие точки плана {what} обведены и показаны крупнее "
@@ -506,12 +524,19 @@ def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
     # value and length (ω = V/l of the same numbers, not the analytic ω next to a drawn V)
     fs = []
     aseg = {s.name: s for s in aplan.plan.segments}
+    # a link's ω from the relative velocity its own group's equations give (ω₃ = V_BC/l_CB of the
+    # rocker of group (2,3)), not from a point of a later group's pair found from it (V_DC)
+    rank = {FRAME: -1}
+    for k, g in enumerate(study.structure.groups):
+        rank.update({l: k for l in g.links})
     for link in mech.moving:
         if d.rotary and link.name == d.link:
             continue
         joints = {j.point for j in mech.joints}
+        own = {j.point for j in mech.joints if link.name in j.links
+               and all(rank.get(l, -1) <= rank.get(link.name, -1) for l in j.links)}
         rel = [s for s in vplan.plan.segments if s.kind == "rel" and s.link == link.name]
-        rel.sort(key=lambda s: (s.end not in joints, -s.length))
+        rel.sort(key=lambda s: (s.end not in own, s.end not in joints, -s.length))
         if not rel or abs(row[f"w_{link.name}"]) < 1e-12 and float(np.abs(study.cycle["wq_" + link.name]).max()) < 1e-12:
             continue
         s0 = rel[0]
@@ -541,6 +566,40 @@ def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
                   + "; ".join(kinds) + ")." + (" По отрезкам планов найдены угловые скорости и ускорения звеньев:" if fs else ""))
     if fs:
         sec.formula(*fs)
+
+
+def output_v_limit(study) -> float | None:
+    """``[report] output_v_limit``: the admissible speed of the output link given by the case (a
+    slider's m/s, a rocker's rad/s), or None."""
+    from ...case import units as U
+    s_col = output_quantity(study)[0]
+    dim = U.ANGULAR_VELOCITY if s_col.startswith("phi_") else U.VELOCITY
+    return study.root.table("report").quantity("output_v_limit", dim, study.params, positive=True)
+
+
+def _speed_verdict(study) -> list[str]:
+    """The output's largest speed over the cycle against the admissible one the case gives
+    (``output_v_limit``); since every speed of the mechanism is proportional to ω₁, an exceeded
+    limit is met by ω₁ ≤ ω₁·[v]/v_max. Nothing when the case gives no limit (no invented norm)."""
+    lim = output_v_limit(study)
+    d = study.mechanism.driver
+    if lim is None or d.omega is None or not d.rotary or d.swing:
+        return []
+    s_col, _, _, _ = output_quantity(study)
+    pre, _, name = s_col.partition("_")
+    vcol = {"phi": "w", "s": "vs", "x": "vx", "y": "vy"}[pre] + "_" + name
+    vmax = float(study.cycle[vcol].abs().max())
+    unit = "рад/с" if pre == "phi" else "м/с"
+    what = "угловая скорость выходного звена" if pre == "phi" else "скорость выходного звена"
+    # a slider's largest speed is stated in the line before (conclusion_lines)
+    head = "Эта скорость" if pre == "s" else f"Наибольшая {what} {fmt(vmax, sig=3)}&nbsp;{unit}"
+    limit = f"[<i>v</i>]&nbsp;=&nbsp;{fmt_given(lim)}&nbsp;{unit}"
+    if vmax <= lim:
+        return [f"{head} не превышает допускаемой {limit} ({fmt(100 * vmax / lim, digits=0)}&nbsp;% от неё)."]
+    w = abs(float(d.omega))
+    return [f"{head} превышает допускаемую {limit} в {fmt(vmax / lim, sig=3)} раза: все скорости механизма "
+            f"пропорциональны ω<sub>1</sub>, поэтому угловую скорость {input_word(d, 'gen')} следует уменьшить до "
+            f"ω<sub>1</sub>&nbsp;≤&nbsp;{fmt(w * lim / vmax, sig=3)}&nbsp;рад/с (или изменить размеры механизма)."]
 
 
 def _speed_lines(study) -> list[str]:
@@ -588,6 +647,7 @@ def conclusion_lines(study) -> list[str]:
         n = s_col[2:]
         out.append(f"Наибольшая скорость выходного звена {fmt(cyc['vs_' + n].abs().max(), digits=3)}&nbsp;м/с, "
                    f"наибольшее ускорение {fmt(cyc['as_' + n].abs().max(), sig=4)}&nbsp;м/с².")
+    out += _speed_verdict(study)
     out += _speed_lines(study)
     fine = []       # groups whose μ_min ≥ 40°: one sentence for all of them, not one each
     for c, v in study.flags.items():

@@ -1,0 +1,177 @@
+"""Split points guessed from a similar note (another variant, a case with one length changed).
+
+The layout made with a guess is kept only when the passes from no split points provably give
+the same split points (render._cold_split_layout); otherwise the passes start from none. So a
+guess saves passes and never changes a byte: (a) a variant laid out after another one takes
+fewer passes and gives the PDF of a build with nothing remembered, (b) a guess that
+``_next_splits`` accepts but that is not the cold one (a loose cut, a table moved to a new
+page, a continuation header higher than the table's own) is dropped, (c) a wrong guess costs
+passes, never a different page.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+from test_report_render import _FakeDoc, _FakePage, _rows
+
+from reportgen.report import render
+from reportgen.report.document import Column, Report, Section
+
+H = 20.0  # row height of the fake documents; pages: content from 75 to 1047 px (48 rows)
+
+
+def _doc(*pages, head=40.0, table_top=None):
+    """A fake laid-out document of table ``t``: ``pages`` are (first row, last row, top of the
+    first row); the table's own anchor ``head`` above its first row."""
+    doc = _FakeDoc(*(_FakePage(_rows("t", a, b, top, H)) for a, b, top in pages))
+    first = pages[0][2]
+    doc.pages[0].anchors["t"] = (80.0, first - head if table_top is None else table_top, 700.0, first)
+    return doc
+
+
+def test_tight_guess_is_kept():
+    """A guess whose cut is tight (row 30 ends below the page) and whose continuation header is
+    as high as the table's own: the cold passes give it, it is kept."""
+    doc = _doc((0, 29, 1047.0 - 30 * H - 10.0), (30, 40, 75.0 + 40.0), head=40.0)
+    assert render._next_splits(doc, {"t": [30]}) is None
+    assert render._cold_split_layout(doc, {"t": [30]}) == {"t": [30]}
+    assert render._start_holds(doc, {"t": [30]}, "guess") == {"t": [30]}
+
+
+def test_guess_accepted_by_next_splits_but_loose_is_dropped():
+    """Cut one row early: the page before keeps 30 px under its last row, room for row 29
+    (20 px). Not premature (far less than a quarter of the page), so ``_next_splits`` accepts it,
+    but the cold passes would have kept row 29 on the first page: dropped."""
+    doc = _doc((0, 28, 1047.0 - 29 * H - 30.0), (29, 40, 75.0 + 40.0), head=40.0)
+    assert render._next_splits(doc, {"t": [29]}) is None
+    assert render._cold_split_layout(doc, {"t": [29]}) is None
+    # a remembered entry of this very HTML was written by the passes from none: it is kept
+    assert render._start_holds(doc, {"t": [29]}, "known") == {"t": [29]}
+
+
+def test_guess_with_a_rule_that_loosens_cold_cuts_is_dropped():
+    """A table moved to a new page (split point 0), a last part kept at MIN_PART_ROWS rows and
+    a continuation header lower than the table's own (a two-line caption, repeated whole in
+    pass 1) make the cold cut loose, so they are never taken from a guess."""
+    moved = _doc((0, 45, 75.0 + 40.0), (46, 60, 75.0 + 40.0))
+    assert render._next_splits(moved, {"t": [0, 46]}) is None
+    assert render._cold_split_layout(moved, {"t": [0, 46]}) is None
+    short_last = _doc((0, 37, 1047.0 - 38 * H - 10.0), (38, 39, 75.0 + 40.0))
+    assert render._next_splits(short_last, {"t": [38]}) is None
+    assert render._cold_split_layout(short_last, {"t": [38]}) is None
+    two_lines = _doc((0, 29, 1047.0 - 30 * H - 10.0), (30, 40, 75.0 + 40.0), head=62.0)
+    assert render._next_splits(two_lines, {"t": [30]}) is None
+    assert render._cold_split_layout(two_lines, {"t": [30]}) is None
+
+
+def test_guess_that_needs_another_pass_is_dropped():
+    """A part of the guess overflowing its page: ``_next_splits`` would move the cut, but the
+    passes from a guess are not those from none, so the guess is dropped (not continued)."""
+    doc = _doc((0, 29, 1047.0 - 30 * H - 10.0), (30, 79, 75.0 + 40.0), (80, 90, 75.0 + 40.0))
+    assert render._next_splits(doc, {"t": [30]}) is not None
+    assert render._cold_split_layout(doc, {"t": [30]}) is None
+    assert render._start_holds(doc, {"t": [30]}, "known") is None
+
+
+def test_shape_key_ignores_numbers_and_images():
+    a = ('<td class="num">12,5</td><td>\u22120,4</td><p>R = 1\u202f234 Н, +0,3 %</p>'
+         '<img src="data:image/svg+xml;base64,QUJD" style="width:80.0mm"><h2>2.1 Кинематика</h2>')
+    b = ('<td class="num">3,75</td><td>0,5</td><p>R = 987 Н, \u22120,1 %</p>'
+         '<img src="data:image/svg+xml;base64,WFla" style="width:80mm"><h2>2.1 Кинематика</h2>')
+    assert render._shape_key(a) == render._shape_key(b)
+    assert render._shape_key('<meta name="author" content="Иванов И. И.">' + a) == render._shape_key(
+        '<meta name="author" content="Петров П. П.">' + b)
+    assert render._shape_key(a) != render._shape_key(a.replace("Кинематика", "Динамика"))
+    assert render._split_key(a) != render._split_key(b)
+
+
+# ---------------------------------------------------------------- real layouts (WeasyPrint)
+
+
+def _report(scale: float, filler: int = 14, rows: int = 60) -> Report:
+    """A note with one section: ``filler`` paragraphs, then a table running over two pages
+    whose numbers depend on ``scale`` (another variant of the same case)."""
+    df = pd.DataFrame({"a": np.arange(rows) * scale, "b": np.arange(rows) * 0.5 * scale + 1.0})
+    s = Section("Раздел", "s")
+    for _ in range(filler):
+        s.paragraph("Строка текста, которая занимает место на странице перед таблицей.")
+    s.table("Проверка", [Column("a", "a", digits=3), Column("b", "b", digits=3)], df, id="t")
+    return Report(meta={}, assignment=[], introduction=[], sections=[s], conclusion=[],
+                  references=[], options={"title_page": False, "assignment_page": False})
+
+
+@pytest.fixture
+def empty_cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("REPORTGEN_CACHE", str(tmp_path / "cache"))
+    monkeypatch.setattr(render, "_SPLIT_MEMO", {})
+    return tmp_path
+
+
+def _pdf(report, path):
+    render.write_pdf(report, path, jobs=1)
+    st = render.last_stats.parts
+    return path.read_bytes(), st.part_passes, dict(st.splits)
+
+
+def test_variant_after_another_is_laid_out_once_and_equals_a_cold_build(empty_cache):
+    """(a) B after A: B starts from A's split points (shape key), lays its table out once and
+    gives the bytes of B built with nothing remembered."""
+    tmp = empty_cache
+    _a, a_passes, a_splits = _pdf(_report(1.0), tmp / "a.pdf")
+    assert a_passes == [2] and a_splits["t"]
+    guessed, b_passes, b_splits = _pdf(_report(1.37), tmp / "b.pdf")
+    assert b_passes == [1]
+    render._SPLIT_MEMO.clear()
+    (tmp / "cache").rename(tmp / "old")  # nothing remembered on disk either
+    cold, cold_passes, cold_splits = _pdf(_report(1.37), tmp / "b-cold.pdf")
+    assert cold_passes == [2]
+    assert b_splits == cold_splits and guessed == cold
+
+
+def test_wrong_guess_costs_passes_never_a_page(empty_cache):
+    """(c) A guess from a note whose table starts lower (more text before it): the cut it brings
+    is loose here, so it is dropped and the part laid out from none: one pass more, the bytes
+    of a cold build. A damaged cache file is no guess at all."""
+    tmp = empty_cache
+    _pdf(_report(1.0, filler=14), tmp / "a.pdf")
+    key = next(iter(render._SPLIT_MEMO))
+    guess = render._SPLIT_MEMO[key]
+    other = _report(1.0, filler=10)
+    html = render._views(other, for_print=True, splits={}).html(
+        front=False, body=[render._views(other, for_print=True, splits={}).ctx["body"][0]], chunk=True)
+    render._SPLIT_MEMO[render._shape_key(html)] = guess  # as if a similar note had left it
+    guessed, passes, splits = _pdf(other, tmp / "b.pdf")
+    assert passes == [3]  # the dropped guess, then the two passes from none
+    render._SPLIT_MEMO.clear()
+    for f in (tmp / "cache").rglob("*.json"):
+        f.write_text("{damaged", encoding="utf-8")
+    cold, cold_passes, cold_splits = _pdf(other, tmp / "b-cold.pdf")
+    assert cold_passes == [2] and cold_splits == splits and cold == guessed
+
+
+def test_real_variant_after_another(empty_cache):
+    """The one real check: the kinematics of two variants of ws000 (the class table's rows 02
+    and 03): the second takes its long tables' split points from the first, lays the part out
+    once, and its PDF is the bytes of the second built with nothing remembered."""
+    from conftest import CASES
+
+    from reportgen.analysis.study import Study
+    from reportgen.case.load import load_spec
+    from reportgen.report.assemble import build_report
+
+    tmp = empty_cache
+
+    def note(l_oa: str, l_ab: str, y_h: str):
+        spec = load_spec(CASES / "ws000_six_bar.toml", {"l_OA": l_oa, "l_AB": l_ab, "Y_H": y_h})
+        return build_report(Study(spec), ["structure", "kinematics"])
+
+    _a, a_passes, a_splits = _pdf(note("0.303 m", "1.410 m", "0.87 m"), tmp / "a.pdf")
+    b = note("0.306 m", "1.420 m", "0.89 m")
+    guessed, b_passes, b_splits = _pdf(b, tmp / "b.pdf")
+    render._SPLIT_MEMO.clear()
+    (tmp / "cache").rename(tmp / "old")
+    cold, cold_passes, cold_splits = _pdf(b, tmp / "b-cold.pdf")
+    long = [i for i, n in enumerate(cold_passes) if n > 1]
+    assert long and all(b_passes[i] < cold_passes[i] for i in long), (b_passes, cold_passes)
+    assert b_splits == cold_splits and guessed == cold
