@@ -444,7 +444,7 @@ def column_makers(model: SolverModel, res: KinematicsResult, grid: bool = True) 
     def point(k, c):
         def make():
             P = shared.get("P")
-            if P is None:          # one copy of all points; a column is a row of it
+            if P is None:          # the points as rows (points_cycle's own layout: no copy)
                 P = shared["P"] = np.ascontiguousarray(res.points.transpose(1, 2, 0))
             return P[k, c]
         return make
