@@ -187,9 +187,9 @@ class ColumnEvaluator:
 
     def _solved(self, q: np.ndarray) -> LazyColumns:
         """The columns of ``L.columns`` at positions solved on the branch, each made when first
-        asked for (``L.column_maker``s: the same numbers)."""
-        makers = L.column_makers(self.model, self.study._solve_on_branch(q), grid=False)
-        return LazyColumns(makers, lambda k: makers[k]())
+        asked for (``L.column_maker``: the same numbers)."""
+        names, make = L.column_maker(self.model, self.study._solve_on_branch(q), grid=False)
+        return LazyColumns(names, make)
 
     def names(self) -> list[str]:
         """Names of the columns (evaluated at the start of the grid)."""
