@@ -156,9 +156,14 @@ class ColumnEvaluator:
         the branch of the cycle (a class III group is continued from the solved cycle, the same
         kinematics as Study.at and the report positions)."""
         gq = self.study.grid.cycle
-        idx = np.minimum(np.searchsorted(gq, q), gq.size - 1)
-        hit = gq[idx] == q
-        nhit = int(np.count_nonzero(hit))
+        whole = q.size == gq.size and np.array_equal(q, gq)
+        if whole:
+            idx = None
+            nhit = q.size
+        else:
+            idx = np.minimum(np.searchsorted(gq, q), gq.size - 1)
+            hit = gq[idx] == q
+            nhit = int(np.count_nonzero(hit))
         grid = None
         if nhit:
             try:
@@ -167,6 +172,10 @@ class ColumnEvaluator:
                 grid = None
         if grid is None:
             return self._solved(q)
+        if whole:                       # the cycle grid itself: its columns (not copied)
+            cols = LazyColumns(grid, grid.__getitem__)
+            cols["q"] = q.copy()
+            return cols
         if nhit == q.size:
             cols = LazyColumns(grid, lambda k: grid[k][idx])
             cols["q"] = q.copy()
