@@ -864,7 +864,7 @@ class Forces:
         """The columns :attr:`scalars` reads on the report positions (``table``) or the cycle
         (``cycle``): the table itself when it is already made, else only those columns."""
         if name in self.__dict__:
-            return {k: v.to_numpy() for k, v in self.__dict__[name].items()}
+            return _FrameColumns(self.__dict__[name])
         return self._columns(self.solution if name == "table" else self.cycle_solution, full=False)
 
     @cached_property
@@ -914,6 +914,21 @@ class Forces:
             out["dev_M_bal_M_d_max"] = float(np.max(np.abs(tab["M_bal"] - tab["M_d_dyn"])
                                                     / np.abs(tab["M_d_dyn"])))
         return out
+
+
+class _FrameColumns:
+    """The columns of a DataFrame as arrays, each taken when asked for."""
+
+    __slots__ = ("df",)
+
+    def __init__(self, df: pd.DataFrame):
+        self.df = df
+
+    def __getitem__(self, k: str) -> np.ndarray:
+        return self.df[k].to_numpy()
+
+    def __contains__(self, k) -> bool:
+        return k in self.df.columns
 
 
 def _max(a: np.ndarray) -> float:
