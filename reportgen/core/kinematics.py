@@ -1016,8 +1016,13 @@ def points_cycle(pose, d1, d2, q, pbody, ploc):
         qi = q[i]
         for b in range(nb):
             if used[b]:
-                cs[b] = np.cos(pose[i, b, 2])
-                sn[b] = np.sin(pose[i, b, 2])
+                th = pose[i, b, 2]
+                if th == 0.0:          # the frame: cos(±0) = 1, sin(±0) = ±0 exactly
+                    cs[b] = 1.0
+                    sn[b] = th
+                else:
+                    cs[b] = np.cos(th)
+                    sn[b] = np.sin(th)
         for k in range(npnt):
             b = pbody[k]
             c = cs[b]
