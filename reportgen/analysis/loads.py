@@ -485,6 +485,9 @@ class Load:
         """M_пр of this load: F_x x′ + F_y y′ (force) or M φ′_k (moment)."""
         if self.kind == "moment":
             return self.moment(cols, phase) * cols["wq_" + self.link]
+        if self.vector is not None and not self.when:
+            # a constant vector (a weight): the same products without arrays of it
+            return self.vector[0] * cols["vqx_" + self.point] + self.vector[1] * cols["vqy_" + self.point]
         Fx, Fy = self.force(cols, phase)
         return Fx * cols["vqx_" + self.point] + Fy * cols["vqy_" + self.point]
 
