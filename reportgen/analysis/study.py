@@ -715,7 +715,8 @@ def frame_of(cols: Mapping[str, Any], labels=None) -> pd.DataFrame:
     vals = list(cols.values())
     n = len(vals[0]) if vals else 0
     if vals and all(isinstance(v, np.ndarray) and v.dtype == np.float64 and v.shape == (n,) for v in vals):
-        df = pd.DataFrame(np.stack(vals).T, columns=list(cols), copy=False)
+        # one C-level copy into the block (np.stack checks and reshapes every column first)
+        df = pd.DataFrame(np.concatenate(vals).reshape(len(vals), n).T, columns=list(cols), copy=False)
     else:
         df = pd.DataFrame(cols)
     if labels is not None:
