@@ -541,10 +541,18 @@ class Loads:
     cycle_start: float
     cycle_length: float
     params: Mapping[str, Q] = field(default_factory=dict, repr=False)
+    _last_phase: tuple | None = field(default=None, init=False, repr=False, compare=False)
 
     def phase(self, cols) -> np.ndarray:
-        """q reduced into [0, Φ) relative to the start of the cycle."""
-        return np.mod(np.asarray(cols["q"], dtype=float) - self.cycle_start, self.cycle_length)
+        """q reduced into [0, Φ) relative to the start of the cycle (the last one is kept: the
+        forces, the moments and the reduced moments of one column table ask for the same)."""
+        q = cols["q"]
+        last = self._last_phase
+        if last is not None and last[0] is q:
+            return last[1]
+        ph = np.mod(np.asarray(q, dtype=float) - self.cycle_start, self.cycle_length)
+        self._last_phase = (q, ph)
+        return ph
 
     @property
     def names(self) -> list[str]:
@@ -569,6 +577,8 @@ class Loads:
 
     def table_ranges(self, cols) -> list[tuple[Load, Piece, float]]:
         """Loads whose table abscissa leaves the table on its phase: (load, piece, by how much)."""
+        if all(p.table is None for ld in self.loads for p in ld.pieces):
+            return []
         ph = self.phase(cols)
         out = []
         for ld in self.loads:
