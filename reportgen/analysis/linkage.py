@@ -424,7 +424,18 @@ def solve_from_sketch(model: SolverModel, q, q0: float, step: float, period: flo
 
 def _unwrap(th: np.ndarray, grid: bool) -> np.ndarray:
     th = np.arctan2(np.sin(th), np.cos(th))
-    return np.unwrap(th) if grid and th.size > 1 else th
+    return unwrap(th) if grid and th.size > 1 else th
+
+
+def unwrap(p: np.ndarray) -> np.ndarray:
+    """``np.unwrap(p)`` of angles along a grid, the same numbers: where no step reaches π the
+    correction np.unwrap adds to p[1:] is a cumulative sum of zeros, so the result is p[0],
+    p[1:] + 0.0 — made here without its intermediate arrays (a rocker's angle)."""
+    if p.size > 1 and (np.abs(np.diff(p)) < np.pi).all():
+        out = p.copy()
+        out[1:] += 0.0
+        return out
+    return np.unwrap(p)
 
 
 def columns(model: SolverModel, res: KinematicsResult, grid: bool = True) -> dict[str, np.ndarray]:
