@@ -188,8 +188,10 @@ def _init_worker() -> None:
     matplotlib and loaded by WeasyPrint, the templates compiled. Every variant a worker
     builds afterwards reuses them, the parsed formula images (see ``render._layout``,
     :class:`_TouchedCache`) and the parsed mathtext labels (:func:`_share_mathtext`)."""
+    from .core.memory import collect_less
     from .report.parallel import set_note_jobs
     from .warmup import warm_report, warmup
+    collect_less()  # (a forkserver's child: the CLI's setting is not inherited)
     set_note_jobs(1)  # the workers are the parallelism: no pool of layout processes inside one
     warm_report()
     _share_between_variants()

@@ -258,6 +258,8 @@ def main(argv: list[str] | None = None) -> int:
         # numpy's RuntimeWarnings (with source lines) are not for the user: a non-finite result
         # is reported as a CaseError by the finiteness checks
         warnings.simplefilter("ignore", RuntimeWarning)
+    from .core.memory import collect_less
+    collect_less()
     try:
         return args.func(args)
     except ReportgenError as e:

@@ -659,45 +659,30 @@ class Forces:
 
     def frame(self, sol: Solution) -> pd.DataFrame:
         """The columns of the force analysis for a solution (docs/outputs.md «Силовой анализ»)."""
+        return frame_of(self._columns(sol), sol.labels)
+
+    def _columns(self, sol: Solution, full: bool = True):
+        """The columns of :meth:`frame` (``full``), or only those :attr:`scalars` reads: the
+        balancing load, |R| of each pair, the checks and what is derived from them (the same
+        numbers, without the inertia loads, the reversed reactions and their angles)."""
         mech, model, s = self.mech, self.model, self.settings
         cols = sol.cols
         q = sol.q
         # the columns go straight into the table's block as they are made
-        out = BlockColumns(q.size, {"q": q}, capacity=32 + 8 * len(self.inertial) + 13 * len(model.pairs))
-        if self.rotary:
-            out["q_deg"] = np.degrees(q)
-        out["omega"], out["eps"] = sol.omega, sol.eps
-        for name, m, J, S in self.inertial:
-            if m:
-                ax, ay = cols["ax_" + S], cols["ay_" + S]
-                a = norm(ax, ay)
-                out[f"aSx_{name}"], out[f"aSy_{name}"], out[f"aS_{name}"] = ax, ay, a
-                out[f"Phix_{name}"], out[f"Phiy_{name}"] = -m * ax, -m * ay
-                out[f"Phi_{name}"] = m * a
-            out[f"eps_{name}"] = cols["e_" + name]
-            out[f"MPhi_{name}"] = -J * cols["e_" + name]
-        for ld in sol.loads:
-            if ld.kind == "Mfly":
-                out["MPhi_fly"] = ld.M
+        out = (BlockColumns(q.size, {"q": q}, capacity=32 + 8 * len(self.inertial) + 13 * len(model.pairs))
+               if full else {"q": q})
+        if full:
+            self._inertia_columns(sol, out)
         for k, p in enumerate(model.pairs):
             v = self.pair_vectors(sol, p)
             if p.kind == KS.K_MOM:
                 out["M_bal"] = v["M"]
                 continue
             R = norm(v["Rx"], v["Ry"])          # |R| of both directions (even in each argument)
-            for a, b, sgn in ((p.a, p.b, 1.0), (p.b, p.a, -1.0)):
-                key = p.name if sgn > 0 else _reverse(p.name)
-                rx, ry = sgn * v["Rx"], sgn * v["Ry"]
-                out[f"Rx_{key}"], out[f"Ry_{key}"] = rx, ry
-                out[f"R_{key}"] = R
-                out[f"Rphi_{key}"] = np.arctan2(ry, rx)
-            if p.kind in (KS.K_PRI, KS.K_ACT):
-                N, M = v["N"], v["Mp"]
-                with np.errstate(divide="ignore", invalid="ignore"):
-                    h = np.where(N != 0, M / np.where(N != 0, N, 1.0), 0.0)
-                out[f"N_{p.name}"], out[f"Mp_{p.name}"], out[f"hN_{p.name}"] = N, M, h
-                out[f"xN_{p.name}"] = sol.jpt[:, k, 0] + h * sol.jdir[:, k, 0]
-                out[f"yN_{p.name}"] = sol.jpt[:, k, 1] + h * sol.jdir[:, k, 1]
+            if full:
+                self._pair_columns(sol, k, p, v, R, out)
+            else:
+                out[f"R_{p.name}"] = R
             if p.kind == KS.K_ACT:
                 out["F_act"] = v["F"]
         # checks
@@ -725,7 +710,8 @@ class Forces:
             out["M_d_dyn"] = np.full(q.shape, float(mech.driver.direction) * Md)
             # the balancing moment of the linkage alone (without the inertia of the first group):
             # the flywheel's moment acts on the crank only and changes no reaction
-            out["M_bal_linkage"] = out["M_bal"] + out["MPhi_fly"]
+            if full:
+                out["M_bal_linkage"] = out["M_bal"] + out["MPhi_fly"]
         elif self.rotary and s.motion == "dynamics" and self.study.dynamics.balance == "drive":
             # the course's check of the balancing moment against the dynamics: with the inertia
             # loads of the true motion, the linkage is balanced on the crank by what the drive gives
@@ -753,7 +739,44 @@ class Forces:
             out["reserve_pct"] = (out[f"Gcap_{c.point}"] - Pld) / Pld * 100.0
         if s.carrier is not None:
             out.update(self._carrier(sol))
-        return frame_of(out, sol.labels)
+        return out
+
+    def _inertia_columns(self, sol: Solution, out) -> None:
+        """Angles in degrees, ω, ε and the inertia loads of every link and the flywheel."""
+        cols, q = sol.cols, sol.q
+        if self.rotary:
+            out["q_deg"] = np.degrees(q)
+        out["omega"], out["eps"] = sol.omega, sol.eps
+        for name, m, J, S in self.inertial:
+            if m:
+                ax, ay = cols["ax_" + S], cols["ay_" + S]
+                a = norm(ax, ay)
+                out[f"aSx_{name}"], out[f"aSy_{name}"], out[f"aS_{name}"] = ax, ay, a
+                out[f"Phix_{name}"], out[f"Phiy_{name}"] = -m * ax, -m * ay
+                out[f"Phi_{name}"] = m * a
+            out[f"eps_{name}"] = cols["e_" + name]
+            out[f"MPhi_{name}"] = -J * cols["e_" + name]
+        for ld in sol.loads:
+            if ld.kind == "Mfly":
+                out["MPhi_fly"] = ld.M
+
+    @staticmethod
+    def _pair_columns(sol: Solution, k: int, p: Pair, v, R, out) -> None:
+        """The reaction of pair k in both directions (components, |R|, angle) and, for a
+        prismatic or actuator pair, N, M_p, the arm h = M_p/N and the point where N acts."""
+        for sgn in (1.0, -1.0):
+            key = p.name if sgn > 0 else _reverse(p.name)
+            rx, ry = sgn * v["Rx"], sgn * v["Ry"]
+            out[f"Rx_{key}"], out[f"Ry_{key}"] = rx, ry
+            out[f"R_{key}"] = R
+            out[f"Rphi_{key}"] = np.arctan2(ry, rx)
+        if p.kind in (KS.K_PRI, KS.K_ACT):
+            N, M = v["N"], v["Mp"]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                h = np.where(N != 0, M / np.where(N != 0, N, 1.0), 0.0)
+            out[f"N_{p.name}"], out[f"Mp_{p.name}"], out[f"hN_{p.name}"] = N, M, h
+            out[f"xN_{p.name}"] = sol.jpt[:, k, 0] + h * sol.jdir[:, k, 0]
+            out[f"yN_{p.name}"] = sol.jpt[:, k, 1] + h * sol.jdir[:, k, 1]
 
     def _load_scale(self, sol: Solution) -> np.ndarray:
         """Magnitude of the loads in the unit of the balancing load: Σ|F|·l + Σ|M| for a crank
@@ -837,45 +860,53 @@ class Forces:
         """Compile the kinetostatics kernel on the warm-up study (``reportgen warmup``)."""
         Forces(study).solve(study.grid.q)
 
+    def _scalar_columns(self, name: str):
+        """The columns :attr:`scalars` reads on the report positions (``table``) or the cycle
+        (``cycle``): the table itself when it is already made, else only those columns."""
+        if name in self.__dict__:
+            return _FrameColumns(self.__dict__[name])
+        return self._columns(self.solution if name == "table" else self.cycle_solution, full=False)
+
     @cached_property
     def scalars(self) -> dict[str, Any]:
         """Named scalars (docs/outputs.md «Силовой анализ»)."""
         s = self.settings
-        tab, cyc = self.table, self.cycle
+        tab, cyc = self._scalar_columns("table"), self._scalar_columns("cycle")
+        q = cyc["q"]
         out: dict[str, Any] = {"forces_mode": s.mode, "forces_motion": s.motion}
         main = "M_bal" if self.rotary else "F_act"
-        v = cyc[main].to_numpy()
+        v = cyc[main]
         i = int(np.argmax(np.abs(v)))
         out[f"{main}_absmax"] = float(abs(v[i]))
-        out[f"q_{main}_absmax"] = float(cyc["q"].iloc[i])
-        out["dev_zhukovsky_max_pct"] = float(max(tab["dev_zhukovsky_pct"].max(), cyc["dev_zhukovsky_pct"].max()))
-        out["dev_power_max"] = float(max(tab["dev_power"].max(), cyc["dev_power"].max()))
+        out[f"q_{main}_absmax"] = float(q[i])
+        out["dev_zhukovsky_max_pct"] = float(max(_max(tab["dev_zhukovsky_pct"]), _max(cyc["dev_zhukovsky_pct"])))
+        out["dev_power_max"] = float(max(_max(tab["dev_power"]), _max(cyc["dev_power"])))
         for p in self.model.pairs:
             if p.kind == KS.K_MOM:
                 continue
-            r = cyc["R_" + p.name].to_numpy()
+            r = cyc["R_" + p.name]
             k = int(np.argmax(r))
             out[f"R_{p.name}_max"] = float(r[k])
-            out[f"q_R_{p.name}_max"] = float(cyc["q"].iloc[k])
+            out[f"q_R_{p.name}_max"] = float(q[k])
         if s.actuator is not None:
             A = s.actuator
             out.update(A_piston=A.area, F_cyl_max=A.F_max, p_system=A.pressure,
                        act_count=A.count, act_efficiency=A.efficiency)
-            p = cyc["p_act"].to_numpy()
+            p = cyc["p_act"]
             k = int(np.argmax(p))
             out["p_act_max"] = float(p[k])
-            out["q_p_act_max"] = float(cyc["q"].iloc[k])
-            out["pressure_exceeded"] = bool(max(p.max(), tab["p_act"].max()) > A.pressure)
+            out["q_p_act_max"] = float(q[k])
+            out["pressure_exceeded"] = bool(max(p.max(), _max(tab["p_act"])) > A.pressure)
         if s.capacity is not None:
-            r = cyc["reserve_pct"].to_numpy()
+            r = cyc["reserve_pct"]
             k = int(np.argmin(r))
             out["reserve_min_pct"] = float(r[k])
-            out["q_reserve_min"] = float(cyc["q"].iloc[k])
+            out["q_reserve_min"] = float(q[k])
         if s.carrier is not None:
-            r = cyc["R_front"].to_numpy()
+            r = cyc["R_front"]
             k = int(np.argmin(r))
             out["R_front_min_value"] = float(r[k])
-            out["q_R_front_min"] = float(cyc["q"].iloc[k])
+            out["q_R_front_min"] = float(q[k])
         if "M_bal_dyn" in tab:
             out["dev_M_bal_dyn_max"] = float(np.max(np.abs(tab["M_bal"] - tab["M_bal_dyn"]))
                                              / np.max(np.abs(tab["M_bal"])))
@@ -883,6 +914,26 @@ class Forces:
             out["dev_M_bal_M_d_max"] = float(np.max(np.abs(tab["M_bal"] - tab["M_d_dyn"])
                                                     / np.abs(tab["M_d_dyn"])))
         return out
+
+
+class _FrameColumns:
+    """The columns of a DataFrame as arrays, each taken when asked for."""
+
+    __slots__ = ("df",)
+
+    def __init__(self, df: pd.DataFrame):
+        self.df = df
+
+    def __getitem__(self, k: str) -> np.ndarray:
+        return self.df[k].to_numpy()
+
+    def __contains__(self, k) -> bool:
+        return k in self.df.columns
+
+
+def _max(a: np.ndarray) -> float:
+    """The largest value of a column, NaN skipped (as ``Series.max``)."""
+    return float(np.nanmax(a)) if not np.isnan(a).all() else math.nan
 
 
 def _reverse(key: str) -> str:

@@ -47,6 +47,7 @@ class SolverModel:
     ploc: np.ndarray | None = None
     body_group: dict[int, int] = field(default_factory=dict)
     _tape: tuple = field(default=(None, None), repr=False)
+    _colspec: dict = field(default_factory=dict, repr=False)
     _body_index: dict[str, int] = field(default_factory=dict, repr=False)
 
     def body(self, link: str) -> int:
@@ -423,74 +424,104 @@ def solve_from_sketch(model: SolverModel, q, q0: float, step: float, period: flo
 
 def _unwrap(th: np.ndarray, grid: bool) -> np.ndarray:
     th = np.arctan2(np.sin(th), np.cos(th))
-    return np.unwrap(th) if grid and th.size > 1 else th
+    return unwrap(th) if grid and th.size > 1 else th
+
+
+def unwrap(p: np.ndarray) -> np.ndarray:
+    """``np.unwrap(p)`` of angles along a grid, the same numbers: where no step reaches π the
+    correction np.unwrap adds to p[1:] is a cumulative sum of zeros, so the result is p[0],
+    p[1:] + 0.0 — made here without its intermediate arrays (a rocker's angle)."""
+    if p.size > 1 and (np.abs(np.diff(p)) < np.pi).all():
+        out = p.copy()
+        out[1:] += 0.0
+        return out
+    return np.unwrap(p)
 
 
 def columns(model: SolverModel, res: KinematicsResult, grid: bool = True) -> dict[str, np.ndarray]:
     """Named columns of the kinematic analogs (see module docstring)."""
-    return {k: make() for k, make in column_makers(model, res, grid).items()}
+    names, make = column_maker(model, res, grid)
+    return {k: make(k) for k in names}
 
 
-def column_makers(model: SolverModel, res: KinematicsResult, grid: bool = True) -> dict[str, Callable[[], np.ndarray]]:
-    """The columns of :func:`columns`, in their order, each as a function that makes it (the
-    same numbers): a caller that needs a few columns of an evaluation makes only those."""
+# kinds of columns (:func:`_column_spec`)
+_C_Q, _C_QDEG, _C_POINT, _C_PHI_DRIVER, _C_PHI, _C_W, _C_E, _C_SLIDER, _C_ACT, _C_MU, _C_MU_NEWTON = range(11)
+
+
+def _column_spec(model: SolverModel, ngroups: int) -> tuple[list[str], dict[str, tuple]]:
+    """The names of :func:`columns`, in their order, and how each is made (kind, two
+    arguments), for results of the first ``ngroups`` groups: made once per model."""
+    got = model._colspec.get(ngroups)
+    if got is not None:
+        return got
     mech = model.mech
-    q = res.q
-    out: dict[str, Callable[[], np.ndarray]] = {"q": lambda: q}
+    spec: dict[str, tuple] = {"q": (_C_Q, None, None)}
     if mech.driver.rotary:
-        out["q_deg"] = lambda: np.degrees(q)
-    shared: dict[str, Any] = {}
-
-    def point(k, c):
-        def make():
-            P = shared.get("P")
-            if P is None:          # one copy of all points; a column is a row of it
-                P = shared["P"] = np.ascontiguousarray(res.points.transpose(1, 2, 0))
-            return P[k, c]
-        return make
-
+        spec["q_deg"] = (_C_QDEG, None, None)
     for k, p in enumerate(model.point_names):
         for c, pre in enumerate(("x_", "y_", "vqx_", "vqy_", "aqx_", "aqy_")):
-            out[pre + p] = point(k, c)
-
-    def link(name, b):
-        if mech.driver.rotary and name == mech.driver.link:
-            out["phi_" + name] = lambda: mech.driver.phi0 + mech.driver.direction * q
-        else:
-            out["phi_" + name] = lambda: _unwrap(res.pose[:, b, 2], grid)
-        out["wq_" + name] = lambda: res.d1[:, b, 2].copy()
-        out["eq_" + name] = lambda: res.d2[:, b, 2].copy()
-
+            spec[pre + p] = (_C_POINT, k, c)
     for l in mech.moving:
-        link(l.name, model.body(l.name))
-
-    def slider(j):
-        def part(i):
-            def make():
-                v = shared.get(j.name)
-                if v is None:
-                    v = shared[j.name] = slider_displacement(model, res, j)
-                return v[i]
-            return make
-        out["s_" + j.name], out["vqs_" + j.name], out["aqs_" + j.name] = part(0), part(1), part(2)
-
+        b = model.body(l.name)
+        spec["phi_" + l.name] = ((_C_PHI_DRIVER, None, None) if mech.driver.rotary and l.name == mech.driver.link
+                                 else (_C_PHI, b, None))
+        spec["wq_" + l.name] = (_C_W, b, None)
+        spec["eq_" + l.name] = (_C_E, b, None)
     for j in mech.prismatic:
-        slider(j)
+        for i, pre in enumerate(("s_", "vqs_", "aqs_")):
+            spec[pre + j.name] = (_C_SLIDER, j, i)
     if mech.driver.kind == "actuator":
         d = mech.driver
-        nm = f"{d.rod}{d.link}"
-        out["s_" + nm], out["vqs_" + nm], out["aqs_" + nm] = (lambda: q.copy(), lambda: np.ones_like(q),
-                                                             lambda: np.zeros_like(q))
-
-    def mu(g, grp):
+        for i, pre in enumerate(("s_", "vqs_", "aqs_")):
+            spec[f"{pre}{d.rod}{d.link}"] = (_C_ACT, i, None)
+    for g, grp in enumerate(model.groups[:ngroups]):
         if grp.kind in ("RRR", "RRP"):     # a ВПВ group has no transmission angle of its own
-            out["mu_" + grp.name] = lambda: np.arcsin(np.minimum(1.0, np.abs(res.quality[:, g])))
+            spec["mu_" + grp.name] = (_C_MU, g, None)
         elif model.gkind[g] == K.G_NEWTON:
-            out["mu_" + grp.name] = lambda: np.arcsin(equivalent_transmission_sine(model, res, g))
+            spec["mu_" + grp.name] = (_C_MU_NEWTON, g, None)
+    got = model._colspec[ngroups] = (list(spec), spec)
+    return got
 
-    for g, grp in enumerate(model.groups[:res.quality.shape[1]]):
-        mu(g, grp)
-    return out
+
+def column_maker(model: SolverModel, res: KinematicsResult, grid: bool = True) -> tuple[list[str], Callable[[str], np.ndarray]]:
+    """The names of :func:`columns`, in their order, and a function that makes the column of a
+    name (the same numbers): a caller that needs a few columns of an evaluation makes only those."""
+    names, spec = _column_spec(model, res.quality.shape[1])
+    d = model.mech.driver
+    q = res.q
+    shared: dict[Any, Any] = {}
+
+    def make(name: str) -> np.ndarray:
+        kind, a, b = spec[name]
+        if kind == _C_POINT:
+            P = shared.get("P")
+            if P is None:          # the points as rows (points_cycle's own layout: no copy)
+                P = shared["P"] = np.ascontiguousarray(res.points.transpose(1, 2, 0))
+            return P[a, b]
+        if kind == _C_Q:
+            return q
+        if kind == _C_QDEG:
+            return np.degrees(q)
+        if kind == _C_PHI_DRIVER:
+            return d.phi0 + d.direction * q
+        if kind == _C_PHI:
+            return _unwrap(res.pose[:, a, 2], grid)
+        if kind == _C_W:
+            return res.d1[:, a, 2].copy()
+        if kind == _C_E:
+            return res.d2[:, a, 2].copy()
+        if kind == _C_SLIDER:
+            v = shared.get(a.name)
+            if v is None:
+                v = shared[a.name] = slider_displacement(model, res, a)
+            return v[b]
+        if kind == _C_ACT:
+            return q.copy() if a == 0 else (np.ones_like(q) if a == 1 else np.zeros_like(q))
+        if kind == _C_MU:
+            return np.arcsin(np.minimum(1.0, np.abs(res.quality[:, a])))
+        return np.arcsin(equivalent_transmission_sine(model, res, a))
+
+    return names, make
 
 
 def equivalent_transmission_sine(model: SolverModel, res: KinematicsResult, g: int) -> np.ndarray:

@@ -156,9 +156,14 @@ class ColumnEvaluator:
         the branch of the cycle (a class III group is continued from the solved cycle, the same
         kinematics as Study.at and the report positions)."""
         gq = self.study.grid.cycle
-        idx = np.minimum(np.searchsorted(gq, q), gq.size - 1)
-        hit = gq[idx] == q
-        nhit = int(np.count_nonzero(hit))
+        whole = q.size == gq.size and np.array_equal(q, gq)
+        if whole:
+            idx = None
+            nhit = q.size
+        else:
+            idx = np.minimum(np.searchsorted(gq, q), gq.size - 1)
+            hit = gq[idx] == q
+            nhit = int(np.count_nonzero(hit))
         grid = None
         if nhit:
             try:
@@ -167,6 +172,10 @@ class ColumnEvaluator:
                 grid = None
         if grid is None:
             return self._solved(q)
+        if whole:                       # the cycle grid itself: its columns (not copied)
+            cols = LazyColumns(grid, grid.__getitem__)
+            cols["q"] = q.copy()
+            return cols
         if nhit == q.size:
             cols = LazyColumns(grid, lambda k: grid[k][idx])
             cols["q"] = q.copy()
@@ -187,9 +196,9 @@ class ColumnEvaluator:
 
     def _solved(self, q: np.ndarray) -> LazyColumns:
         """The columns of ``L.columns`` at positions solved on the branch, each made when first
-        asked for (``L.column_maker``s: the same numbers)."""
-        makers = L.column_makers(self.model, self.study._solve_on_branch(q), grid=False)
-        return LazyColumns(makers, lambda k: makers[k]())
+        asked for (``L.column_maker``: the same numbers)."""
+        names, make = L.column_maker(self.model, self.study._solve_on_branch(q), grid=False)
+        return LazyColumns(names, make)
 
     def names(self) -> list[str]:
         """Names of the columns (evaluated at the start of the grid)."""
@@ -476,6 +485,9 @@ class Load:
         """M_пр of this load: F_x x′ + F_y y′ (force) or M φ′_k (moment)."""
         if self.kind == "moment":
             return self.moment(cols, phase) * cols["wq_" + self.link]
+        if self.vector is not None and not self.when:
+            # a constant vector (a weight): the same products without arrays of it
+            return self.vector[0] * cols["vqx_" + self.point] + self.vector[1] * cols["vqy_" + self.point]
         Fx, Fy = self.force(cols, phase)
         return Fx * cols["vqx_" + self.point] + Fy * cols["vqy_" + self.point]
 
@@ -529,10 +541,18 @@ class Loads:
     cycle_start: float
     cycle_length: float
     params: Mapping[str, Q] = field(default_factory=dict, repr=False)
+    _last_phase: tuple | None = field(default=None, init=False, repr=False, compare=False)
 
     def phase(self, cols) -> np.ndarray:
-        """q reduced into [0, Φ) relative to the start of the cycle."""
-        return np.mod(np.asarray(cols["q"], dtype=float) - self.cycle_start, self.cycle_length)
+        """q reduced into [0, Φ) relative to the start of the cycle (the last one is kept: the
+        forces, the moments and the reduced moments of one column table ask for the same)."""
+        q = cols["q"]
+        last = self._last_phase
+        if last is not None and last[0] is q:
+            return last[1]
+        ph = np.mod(np.asarray(q, dtype=float) - self.cycle_start, self.cycle_length)
+        self._last_phase = (q, ph)
+        return ph
 
     @property
     def names(self) -> list[str]:
@@ -557,6 +577,8 @@ class Loads:
 
     def table_ranges(self, cols) -> list[tuple[Load, Piece, float]]:
         """Loads whose table abscissa leaves the table on its phase: (load, piece, by how much)."""
+        if all(p.table is None for ld in self.loads for p in ld.pieces):
+            return []
         ph = self.phase(cols)
         out = []
         for ld in self.loads:

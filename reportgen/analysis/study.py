@@ -430,7 +430,7 @@ class Study:
         for link in self.mechanism.moving:
             if (d.rotary and link.name == d.link) or cols["q"].size < 2:
                 continue
-            cols["phi_" + link.name] = np.unwrap(cols["phi_" + link.name])
+            cols["phi_" + link.name] = L.unwrap(cols["phi_" + link.name])
         return cols
 
     @cached_property
@@ -715,7 +715,8 @@ def frame_of(cols: Mapping[str, Any], labels=None) -> pd.DataFrame:
     vals = list(cols.values())
     n = len(vals[0]) if vals else 0
     if vals and all(isinstance(v, np.ndarray) and v.dtype == np.float64 and v.shape == (n,) for v in vals):
-        df = pd.DataFrame(np.stack(vals).T, columns=list(cols), copy=False)
+        # one C-level copy into the block (np.stack checks and reshapes every column first)
+        df = pd.DataFrame(np.concatenate(vals).reshape(len(vals), n).T, columns=list(cols), copy=False)
     else:
         df = pd.DataFrame(cols)
     if labels is not None:
@@ -824,7 +825,7 @@ def line_angle(cols, name: str, p: str, r: str) -> dict[str, np.ndarray]:
     cr = dx * d1y - dy * d1x
     th = np.arctan2(dy, dx)
     if th.size > 1:
-        th = np.unwrap(th)
+        th = L.unwrap(th)
     base = name[4:] if name.startswith("phi_") else name
     return {("phi_" + base): th, ("wq_" + base): cr / r2,
             ("eq_" + base): (dx * d2y - dy * d2x) / r2 - 2 * (dx * d1x + dy * d1y) * cr / (r2 * r2)}

@@ -1000,26 +1000,48 @@ def points_cycle(pose, d1, d2, q, pbody, ploc):
     p = p0 + q·p1 (ploc rows: p0x, p0y, p1x, p1y).
 
     x = r + A p;  x' = r' + ⊥(A p) θ' + A p1;  x'' = r'' + ⊥(A p) θ'' − A p θ'² + 2 ⊥(A p1) θ'.
-    Returns an array (N, npoints, 6): x, y, x', y', x'', y''."""
+    cos θ and sin θ once per body and position (not per point).
+    Returns an array (N, npoints, 6): x, y, x', y', x'', y'' — a view of contiguous rows
+    (npoints, 6, N), so that the named columns (a row each) are taken without a copy."""
     N = pose.shape[0]
+    nb = pose.shape[1]
     npnt = pbody.shape[0]
-    out = np.zeros((N, npnt, 6))
+    out = np.empty((npnt, 6, N))
+    used = np.zeros(nb, dtype=np.bool_)
+    for k in range(npnt):
+        used[pbody[k]] = True
+    cs = np.zeros(nb)
+    sn = np.zeros(nb)
     for i in range(N):
         qi = q[i]
+        for b in range(nb):
+            if used[b]:
+                th = pose[i, b, 2]
+                if th == 0.0:          # the frame: cos(±0) = 1, sin(±0) = ±0 exactly
+                    cs[b] = 1.0
+                    sn[b] = th
+                else:
+                    cs[b] = np.cos(th)
+                    sn[b] = np.sin(th)
         for k in range(npnt):
             b = pbody[k]
-            th = pose[i, b, 2]
+            c = cs[b]
+            s = sn[b]
             w = d1[i, b, 2]
             e = d2[i, b, 2]
-            ux, uy = _rot(th, ploc[k, 0] + qi * ploc[k, 2], ploc[k, 1] + qi * ploc[k, 3])
-            vx, vy = _rot(th, ploc[k, 2], ploc[k, 3])
-            out[i, k, 0] = pose[i, b, 0] + ux
-            out[i, k, 1] = pose[i, b, 1] + uy
-            out[i, k, 2] = d1[i, b, 0] - uy * w + vx
-            out[i, k, 3] = d1[i, b, 1] + ux * w + vy
-            out[i, k, 4] = d2[i, b, 0] - uy * e - ux * w * w - 2.0 * vy * w
-            out[i, k, 5] = d2[i, b, 1] + ux * e - uy * w * w + 2.0 * vx * w
-    return out
+            px = ploc[k, 0] + qi * ploc[k, 2]
+            py = ploc[k, 1] + qi * ploc[k, 3]
+            ux = c * px - s * py
+            uy = s * px + c * py
+            vx = c * ploc[k, 2] - s * ploc[k, 3]
+            vy = s * ploc[k, 2] + c * ploc[k, 3]
+            out[k, 0, i] = pose[i, b, 0] + ux
+            out[k, 1, i] = pose[i, b, 1] + uy
+            out[k, 2, i] = d1[i, b, 0] - uy * w + vx
+            out[k, 3, i] = d1[i, b, 1] + ux * w + vy
+            out[k, 4, i] = d2[i, b, 0] - uy * e - ux * w * w - 2.0 * vy * w
+            out[k, 5, i] = d2[i, b, 1] + ux * e - uy * w * w + 2.0 * vx * w
+    return out.transpose(2, 0, 1)
 
 
 @njit(cache=True, error_model="numpy")

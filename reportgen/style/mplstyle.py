@@ -22,6 +22,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import io
+import os
 
 import matplotlib
 from matplotlib import font_manager
@@ -43,7 +44,32 @@ def _register_font() -> str:
     family = fonts.find_serif()
     for path in family.faces().values():
         font_manager.fontManager.addfont(str(path))
+    _settle_font_list(family.faces().values())
     return font_manager.FontProperties(fname=str(family.regular)).get_name()
+
+
+def _settle_font_list(preferred) -> None:
+    """Make matplotlib's choice of a font file independent of the user's font cache.
+
+    ``findfont`` returns the *first* entry of ``fontManager.ttflist`` among those of the
+    best score, and that list is in the order of a Python ``set`` of file names at the time
+    the cache (``~/.cache/matplotlib/fontlist-*.json``) was built, so it changes with the
+    hash seed of the process that built it. Two files of one family (Debian's
+    ``fonts-liberation`` and ``fonts-liberation2`` both install "Liberation Serif", with
+    different outlines and the same PostScript name) then gave figures whose glyphs came
+    from one file or the other depending on the cache. Here the report's own faces come
+    first and the rest is sorted by file, so the same installed fonts give the same files.
+    """
+    manager = font_manager.fontManager
+    ours = {os.path.realpath(p) for p in preferred}
+
+    def key(e):
+        return (os.path.realpath(e.fname) not in ours, str(e.fname), getattr(e, "index", 0),
+                e.name, e.style, e.variant, str(e.weight), str(e.stretch), str(e.size))
+
+    manager.ttflist.sort(key=key)
+    manager.afmlist.sort(key=key)
+    font_manager.FontManager._findfont_cached.cache_clear()
 
 
 def style_rc() -> dict:
