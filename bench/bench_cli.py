@@ -239,10 +239,11 @@ def write_doc(res: dict) -> Path:
     if "help" in res:
         row("`reportgen --help` (медиана 5)", "help", res["help"]["median_s"], TARGETS["help"], res["help"]["command"])
     if "export" in res:
-        row("`reportgen export` ws000 (медиана 3)", "export", res["export"]["median_s"], TARGETS["export"],
+        row(f"`reportgen export` ws000 (медиана {len(res['export'].get('runs_s', [])) or 3})", "export", res["export"]["median_s"], TARGETS["export"],
             res["export"]["command"])
     if "build" in res:
-        row("`reportgen build` ws000, PDF и HTML, тёплый (медиана 3)", "build", res["build"]["median_s"],
+        row(f"`reportgen build` ws000, PDF и HTML, тёплый (медиана {len(res['build'].get('runs_s', [])) or 3}: "
+            + ", ".join(_fmt(v) for v in res["build"].get("runs_s", [])) + " с)", "build", res["build"]["median_s"],
             TARGETS["build"], res["build"]["command"])
     if "first" in res:
         row("первая сборка с пустым кэшем", "first", res["first"]["wall_s"], TARGETS["first"],
