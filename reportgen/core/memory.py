@@ -46,11 +46,11 @@ def collect_less() -> None:
     instead of 700 (``gc.set_threshold``; the older generations keep their ratios 10 and 10).
 
     A note is built from millions of short-lived objects (matplotlib artists, WeasyPrint boxes,
-    DataFrames) of which almost none form cycles worth collecting early: with the default
-    threshold the parent of a ws000 build ran 569 young, 51 middle and 4 full collections
-    (0,85–1,19 s), and the forked workers inherit the setting. Measured on ws000
-    (``/usr/bin/time reportgen build cases/ws000_six_bar.toml --format pdf,html``, three runs
-    each, load 4): 15,2–17,5 s of CPU with the default, 13,2–13,5 s with this threshold. Never
+    DataFrames) of which almost none form cycles worth collecting early. ws000, ``python
+    bench/bench_gc.py --runs 3`` (alternated, medians, load 0,2): with the default threshold the
+    parent ran 562 young, 51 middle and 4 full collections (0,38 s) and the build took 15,98 s of
+    CPU (process and workers); with this one 24, 2 and 0 collections (0,17 s) and 14,51 s. The
+    forked workers inherit the setting. Never
     lowers a threshold the user has raised."""
     import gc
 

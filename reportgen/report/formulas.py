@@ -248,8 +248,8 @@ def _typeset_salt() -> bytes:
 @functools.lru_cache(maxsize=4096)
 def _typeset(tex: str, display: bool):
     """:func:`reportgen.report.mathhtml.convert`, kept in the cache folder too
-    (``<cache>/mathhtml``): converting the formulas of a note costs about 0,3 s of CPU in a
-    fresh process and gives the same markup and extent every time, so a cached formula
+    (``<cache>/mathhtml``): converting the formulas of a note is a large part of the first
+    call of the print HTML in a fresh process (``bench/bench_html.py``) and gives the same markup and extent every time, so a cached formula
     changes no byte of the note. A missing or damaged entry is converted again."""
     import json
 

@@ -578,8 +578,8 @@ def _walk(builder: _Builder, report: Report):
 
 
 def _bytecode_cache() -> jinja2.BytecodeCache | None:
-    """The compiled templates kept in the cache folder (``<cache>/jinja``): compiling them
-    costs a fresh process about 0,05 s of CPU. Jinja checks an entry against the template's
+    """The compiled templates kept in the cache folder (``<cache>/jinja``), so a fresh process
+    does not compile them again (part of the first-call figures of ``bench/bench_html.py``). Jinja checks an entry against the template's
     source and the Python version, so a stale one is compiled again; none when the cache is
     off or its folder cannot be made."""
     folder = _formula_cache_dir()
@@ -906,7 +906,7 @@ def _cmap_decode(data: bytes) -> frozenset[int] | None:
 def _font_cmap(path: Path) -> frozenset[int]:
     """:func:`reportgen.style.fonts._cmap` (the code points a face draws, for the glyph check)
     kept in the process and in the cache folder (``<cache>/fonts``, keyed by the font's bytes):
-    a fresh process then need not import fontTools and parse the font (about 0,1 s of CPU)."""
+    a fresh process then need not import fontTools and parse the font."""
     return _font_derived(_CMAP_MEMO, path, ".cmap.json", _cmap_key, fonts._cmap, _cmap_decode,
                          lambda codes: json.dumps(sorted(codes)).encode("ascii"))
 
