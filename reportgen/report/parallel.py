@@ -205,12 +205,15 @@ def _part_html(report, index: int, splits: dict, views=None) -> str:
 
 
 def _lay_out(html: str):
+    from . import svgops
     from .render import TEMPLATES_DIR, _font_config, _html_class, _image_cache, _quiet_weasyprint
     from .safety import url_fetcher
 
     _quiet_weasyprint()
+    cache = _image_cache()
+    svgops.prime(cache, html)  # figures drawn from precompiled PDF operators
     return _html_class()(string=html, base_url=str(TEMPLATES_DIR), url_fetcher=url_fetcher()).render(
-        font_config=_font_config(), cache=_image_cache())
+        font_config=_font_config(), cache=cache)
 
 
 def _write(document) -> bytes:

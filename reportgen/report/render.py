@@ -1463,6 +1463,7 @@ def _html_class():
 
 def _layout(report: Report, font_config):
     """Lay out the print HTML, splitting tables until stable. Returns the document."""
+    from . import svgops
     from .safety import url_fetcher
 
     HTML = _html_class()
@@ -1489,6 +1490,7 @@ def _layout(report: Report, font_config):
                 views.builder.resplit(splits)
                 html = _checked_html(views)
         t1 = time.perf_counter()
+        svgops.prime(image_cache, html)  # figures drawn from precompiled PDF operators
         document = HTML(string=html, base_url=str(TEMPLATES_DIR), url_fetcher=fetcher).render(
             font_config=font_config, cache=image_cache)
         t2 = time.perf_counter()

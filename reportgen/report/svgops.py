@@ -99,6 +99,11 @@ def _num(v) -> str:
 
 
 _TOKENS: dict[str, str] = {}
+# what WeasyPrint's helpers give for a value, kept for the process (a few hundred entries)
+_LENGTHS: dict = {}
+_TRANSFORMS: dict = {}
+_COLORS: dict = {}
+_PATHS: dict = {}  # path data -> operators (a text's path is the same in every figure showing it)
 
 
 def _tok(t: str) -> str:
@@ -111,9 +116,80 @@ def _tok(t: str) -> str:
     return s
 
 
+_N = r"(?!-0(?![.\d]))-?(?:0|[1-9]\d{0,8})(?:\.\d{0,5}[1-9])?(?![\d.])"
+# subpaths of M, L, Q, C (one set of numbers each, already as pydyf writes them) and Z after a
+# drawing command
+_SIMPLE = re.compile(rf"(?:\s*M\s*{_N}\s+{_N}(?:\s*(?:L\s*{_N}\s+{_N}|Q\s*{_N}(?:\s+{_N}){{3}}"
+                     rf"|C\s*{_N}(?:\s+{_N}){{5}}|z))*)*\s*\Z")
+_NO_CLOSE = re.compile(rf"M\s*{_N}\s+{_N}\s*z|z\s*z")  # a Z that draws nothing
+_LETTER = re.compile(r"[MLQCz]")
+_OPS = {"M": "%s %s m", "L": "%s %s l", "Q": "%s %s %s %s %s %s c", "C": "%s %s %s %s %s %s c", "z": "h"}
+_ARGS_IN = bytearray(256)
+_ARGS_OUT = bytearray(256)
+for _c, _i, _o in (("M", 2, 2), ("L", 2, 2), ("Q", 4, 6), ("C", 6, 6)):
+    _ARGS_IN[ord(_c)], _ARGS_OUT[ord(_c)] = _i, _o
+
+
+def _nums(values) -> list:
+    """Floats as pydyf writes them, all at once: ``str(int(v))`` for whole numbers, else
+    ``f"{v:f}"`` without its trailing zeros."""
+    import numpy as np
+
+    t = tuple((values + 0.0).tolist())
+    frac = np.char.rstrip(np.array(("%f " * len(t) % t).split()), "0")
+    return np.where(values == np.floor(values), ("%.0f " * len(t) % t).split(), frac).tolist()
+
+
+def _simple_path_ops(d: str) -> str:
+    """``path()``'s operators for data :data:`_SIMPLE` accepts: the numbers of M, L, C and of
+    a Q's end point as written, a Q's cubic control points computed for all the Qs at once
+    (WeasyPrint's ``x2 * 2 / 3 + x1 / 3``: the same IEEE operations in the same order)."""
+    letters = _LETTER.findall(d)
+    tokens = _NUMBER.findall(d)
+    template = "\n".join(["0 0 m", *map(_OPS.__getitem__, letters)])
+    if "Q" not in d:
+        return template % tuple(tokens)
+    import numpy as np
+
+    codes = np.frombuffer("".join(letters).encode("ascii"), np.uint8)
+    n_in = np.frombuffer(bytes(_ARGS_IN), np.uint8)[codes].astype(np.intp)
+    n_out = np.frombuffer(bytes(_ARGS_OUT), np.uint8)[codes].astype(np.intp)
+    start_in = np.cumsum(n_in) - n_in
+    start_out = np.cumsum(n_out) - n_out
+    # the current point after each command: its last pair; after Z the subpath's first point
+    end = start_in + n_in - 2
+    idx = np.arange(len(codes))
+    last_move = np.maximum.accumulate(np.where(codes == ord("M"), idx, 0))
+    closes = codes == ord("z")
+    end[closes] = start_in[last_move[closes]]
+    values = np.array(tokens, dtype=float)
+    q = np.flatnonzero(codes == ord("Q"))
+    before, s = end[q - 1], start_in[q]
+    x1, y1 = values[before], values[before + 1]
+    x2, y2, x3, y3 = values[s], values[s + 1], values[s + 2], values[s + 3]
+    control = np.stack([x2 * 2 / 3 + x1 / 3, y2 * 2 / 3 + y1 / 3,
+                        x2 * 2 / 3 + x3 / 3, y2 * 2 / 3 + y3 / 3], axis=1).ravel()
+    out = np.empty(int(n_out.sum()), dtype=object)
+    owner = np.repeat(idx, n_in)
+    offset = np.arange(len(tokens)) - start_in[owner]
+    is_q = codes[owner] == ord("Q")
+    keep = ~is_q | (offset >= 2)
+    out[(start_out[owner] + offset + np.where(is_q, 2, 0))[keep]] = np.array(tokens, dtype=object)[keep]
+    out[(start_out[q][:, None] + np.arange(4)).ravel()] = _nums(control)
+    return template % tuple(out.tolist())
+
+
 def _path_ops(d: str, out: list[str]) -> None:
     """The operators of ``svg/path.py``'s ``path()`` for absolute ``M L Q C Z`` data, appended
     to ``out`` (the ``0 0 m`` WeasyPrint starts every path with included)."""
+    ops = _PATHS.get(d)
+    if ops is None and _SIMPLE.match(d) and not _NO_CLOSE.search(d):
+        if len(_PATHS) > 5000:
+            _PATHS.clear()
+        ops = _PATHS[d] = _simple_path_ops(d)
+    if ops is not None:
+        out.append(ops)
+        return
     if not _PATH_OK.match(d):
         raise _Unsupported("path data")
     out.append("0 0 m")
@@ -267,7 +343,11 @@ class _Compiler:
         return attrib
 
     def length(self, value) -> float:
-        return self.size(value, self.font_size, self.inner_diagonal)
+        key = (value, self.inner_diagonal)
+        v = _LENGTHS.get(key)
+        if v is None:
+            v = _LENGTHS[key] = self.size(value, self.font_size, self.inner_diagonal)
+        return v
 
     # -- drawing
     def compile(self) -> list:
@@ -334,9 +414,13 @@ class _Compiler:
         if text := attrib.get("transform"):
             if not re.fullmatch(r"(\s*(translate|scale|rotate|matrix)\s*\([-+\d.eE, ]*\)\s*,?)*\s*", text):
                 raise _Unsupported("transform")
-            matrix = transform(text, None, self.font_size, self.inner_diagonal)
-            if matrix.determinant:
-                self.op(_CM, matrix.values)
+            key = (text, self.inner_diagonal)
+            values = _TRANSFORMS.get(key, False)
+            if values is False:
+                matrix = transform(text, None, self.font_size, self.inner_diagonal)
+                values = _TRANSFORMS[key] = matrix.values if matrix.determinant else None
+            if values is not None:
+                self.op(_CM, values)
 
     def paint(self, attrib: dict, key: str):
         value = attrib.get(key, "black" if key == "fill" else "").strip()
@@ -349,15 +433,19 @@ class _Compiler:
     def set_color(self, value: str, opacity: float, stroke: bool) -> None:
         from weasyprint.svg.utils import color
 
-        c = color(value)
-        c.alpha *= opacity
-        if c.space != "srgb":
-            raise _Unsupported("colour space")
-        if self.popped[-1]:  # the stream's colour state is reset: the operators are known
-            *channels, alpha = c
-            self.op(_ALPHA, alpha, stroke)
+        key = (value, opacity, stroke)
+        known = _COLORS.get(key)
+        if known is None:
+            c = color(value)
+            c.alpha *= opacity
+            if c.space != "srgb":
+                raise _Unsupported("colour space")
             r, g, b = c.to("srgb").coordinates
-            self.raw.append(f"{_num(r)} {_num(g)} {_num(b)} {'RG' if stroke else 'rg'}")
+            known = _COLORS[key] = (c, f"{_num(r)} {_num(g)} {_num(b)} {'RG' if stroke else 'rg'}")
+        c, rgb = known
+        if self.popped[-1]:  # the stream's colour state is reset: the operators are known
+            self.op(_ALPHA, c.alpha, stroke)
+            self.raw.append(rgb)
         else:  # first shape of the figure: the stream decides what it still has to set
             self.op(_COLOR, c, stroke)
 
