@@ -69,6 +69,8 @@ _ELEMENT_KEYS = {
     "g": frozenset(("id", "style", "transform")) | _PAINT_KEYS,
     "path": frozenset(("id", "style", "transform", "d")) | _PAINT_KEYS,
     "rect": frozenset(("id", "style", "transform", "x", "y", "width", "height")) | _PAINT_KEYS,
+    "defs": frozenset(("id",)),
+    "pattern": frozenset(("id", "patternUnits", "x", "y", "width", "height")),
 }
 _VALUE_OK = re.compile(r"[#\w.,%() +-]*\Z")
 _STYLE_SHEET = re.compile(r"\s*\*\s*\{([^{}]*)\}\s*\Z")
@@ -82,7 +84,14 @@ _ARITY = {"M": 2, "L": 2, "C": 6, "Q": 4, "Z": 0, "z": 0}
 _CANONICAL = re.compile(r"(?!-0\Z)-?(?:0|[1-9]\d{0,8})(?:\.\d{0,5}[1-9])?\Z")
 
 # program operations
-_RAW, _PUSH, _POP, _CM, _ALPHA, _COLOR, _CLIP, _GROUP, _END_GROUP, _ROOT = range(10)
+_RAW, _PUSH, _POP, _CM, _ALPHA, _COLOR, _CLIP, _GROUP, _END_GROUP, _ROOT, _PATTERN = range(11)
+
+
+def is_valid(box) -> bool:
+    """``svg/bounding_box.py`` ``is_valid_bounding_box``."""
+    from weasyprint.svg.bounding_box import is_valid_bounding_box
+
+    return bool(is_valid_bounding_box(box))
 
 
 class _Unsupported(Exception):
@@ -304,6 +313,8 @@ class _Compiler:
         self.program: list = []
         self.raw: list[str] = []
         self.popped = [False]  # per target stream: whether a pop_state reset its colour state
+        self.patterns: dict[str, list] = {}
+        self.parent_of = {ch: el for el in root.iter() for ch in el}
         self.root_attrib = attrib
 
     # -- program writing
@@ -377,7 +388,7 @@ class _Compiler:
             self.op(_GROUP)
             self.popped.append(False)
         if tag != "g":
-            fill, stroke = self.graphical_state(attrib)
+            fill, stroke = self.graphical_state(tag, attrib)
         self.clip(attrib)
         if tag == "path":
             _path_ops(attrib.get("d", ""), self.raw)
@@ -426,9 +437,59 @@ class _Compiler:
         value = attrib.get(key, "black" if key == "fill" else "").strip()
         if not value or value == "none":
             return None
-        if "url(" in value or value.startswith("context-"):
-            raise _Unsupported("paint server")
+        if value.startswith("context-"):
+            raise _Unsupported("context paint")
         return value
+
+    def pattern_fill(self, tag: str, attrib: dict, value: str, opacity: float) -> bool:
+        """``draw_pattern`` (svg/defs.py) for a fill ``url(#id)`` of a ``userSpaceOnUse``
+        ``<pattern>`` of rects and paths (matplotlib's hatches): the pattern's content compiled
+        once, placed at drawing time by the stream's ``add_pattern`` at the shape's bounding
+        box (without the stroke) times the current matrix. ``False``: WeasyPrint fills nothing."""
+        from weasyprint.svg.utils import parse_url
+
+        m = re.fullmatch(r"(url\(.+\)) *(.*)", value)
+        if not m or m.group(2) or float(attrib.get("opacity", 1)) < 1:
+            raise _Unsupported("paint server")
+        name = parse_url(m.group(1)).fragment
+        ref = self.ids.get(name)
+        if ref is None or ref.tag != _NS + "pattern" or ref.get("patternUnits") != "userSpaceOnUse":
+            raise _Unsupported("paint server")
+        box = self.raw_box(tag, attrib)
+        if not (is_valid(box) and 0 not in box[2:]):
+            return False
+        width = self.size(ref.get("width", 0), self.font_size, 1)
+        height = self.size(ref.get("height", 0), self.font_size, 1)
+        if width == 0 or height == 0:
+            return False
+        if name not in self.patterns:
+            self.patterns[name] = self.pattern_program(ref, width, height)
+        self.op(_PATTERN, box[0], box[1], width, height, opacity, self.patterns[name])
+        return True
+
+    def pattern_program(self, ref: ET.Element, width: float, height: float) -> list:
+        """The ops ``Pattern(pattern, svg).draw(group, width, height)`` writes into the
+        pattern's group: the pattern as a nested ``<svg>`` clipped to its size, its children."""
+        saved = self.program, self.raw, self.inner_width, self.inner_height, self.inner_diagonal
+        self.program, self.raw = [], []
+        self.inner_width, self.inner_height = width, height
+        self.inner_diagonal = hypot(width, height) / sqrt(2)
+        self.popped.append(False)
+        try:
+            defs = self.cascade(self.parent_of[ref], self.root_attrib)
+            attrib = self.cascade(ref, defs)
+            size, fs = self.size, self.font_size
+            self.op(_PUSH)
+            self.op(_CM, (1, 0, 0, 1, size(attrib.get("x"), fs, width), size(attrib.get("y"), fs, height)))
+            self.raw += [f"0 0 {_num(width)} {_num(height)} re", "W", "n"]
+            self.op(_CM, (1, 0, 0, 1, 0, 0))
+            for child in ref:
+                self.node(child, attrib)
+            self.op(_POP)
+            return self.program
+        finally:
+            self.program, self.raw, self.inner_width, self.inner_height, self.inner_diagonal = saved
+            self.popped.pop()
 
     def set_color(self, value: str, opacity: float, stroke: bool) -> None:
         from weasyprint.svg.utils import color
@@ -449,16 +510,20 @@ class _Compiler:
         else:  # first shape of the figure: the stream decides what it still has to set
             self.op(_COLOR, c, stroke)
 
-    def graphical_state(self, attrib: dict):
+    def graphical_state(self, tag: str, attrib: dict):
         """``SVG.set_graphical_state``: colours, width, dashes, cap, join, miter limit."""
         from weasyprint.svg.utils import normalize
 
         fill = self.paint(attrib, "fill")
-        if fill:
+        if fill and fill.startswith("url("):
+            fill = self.pattern_fill(tag, attrib, fill, self.alpha(attrib.get("fill-opacity", 1)))
+        elif fill:
             self.set_color(fill, self.alpha(attrib.get("fill-opacity", 1)), False)
         stroke = None
         if stroke_width := self.length(attrib.get("stroke-width", "1px")):
             stroke = self.paint(attrib, "stroke")
+            if stroke and stroke.startswith("url("):
+                raise _Unsupported("stroke paint server")
             if stroke:
                 self.set_color(stroke, self.alpha(attrib.get("stroke-opacity", 1)), True)
                 self.raw.append(f"{_num(stroke_width)} w")
@@ -520,10 +585,9 @@ class _Compiler:
         y = size(attrib.get("y"), fs, self.inner_height)
         (self.raw if out is None else out).append(f"{_num(x)} {_num(y)} {_num(width)} {_num(height)} re")
 
-    def bounding_box(self, tag: str, attrib: dict) -> tuple:
-        """``SVG.calculate_bounding_box(node, stroke=True)`` for a path or rect, as the
-        transparency group's BBox (x0, y0, x1, y1); the viewBox when it is not valid."""
-        from weasyprint.svg.bounding_box import EMPTY_BOUNDING_BOX, extend_bounding_box, is_valid_bounding_box
+    def raw_box(self, tag: str, attrib: dict) -> tuple:
+        """``svg/bounding_box.py`` ``bounding_box(…, stroke=False)`` of a path or rect."""
+        from weasyprint.svg.bounding_box import EMPTY_BOUNDING_BOX, extend_bounding_box
 
         box = EMPTY_BOUNDING_BOX
         if tag == "rect":
@@ -543,12 +607,16 @@ class _Compiler:
                         box = extend_bounding_box(box, ((g[0], g[1]), (g[2], g[3])))
                     elif k:
                         box = extend_bounding_box(box, ((g[0], g[1]),))
-        if not is_valid_bounding_box(box):
-            box = EMPTY_BOUNDING_BOX
-        elif self.paint(attrib, "stroke"):
+        return box if is_valid(box) else EMPTY_BOUNDING_BOX
+
+    def bounding_box(self, tag: str, attrib: dict) -> tuple:
+        """``SVG.calculate_bounding_box(node, stroke=True)`` for a path or rect, as the
+        transparency group's BBox (x0, y0, x1, y1); the viewBox when it is not valid."""
+        box = self.raw_box(tag, attrib)
+        if is_valid(box) and self.paint(attrib, "stroke"):
             sw = self.length(attrib.get("stroke-width", "1px"))
             box = (box[0] - sw / 2, box[1] - sw / 2, box[2] + sw, box[3] + sw)
-        if not (is_valid_bounding_box(box) and 0 not in box[2:]):
+        if not (is_valid(box) and 0 not in box[2:]):
             box = (0, 0, self.inner_width, self.inner_height)
         x, y, w, h = box
         return x, y, x + w, y + h
@@ -599,9 +667,11 @@ class FigureImage:
 
     def draw(self, stream, concrete_width, concrete_height, style):
         STATS["drawn"] += 1
+        self._run(stream, self._program, concrete_width, concrete_height, {})
+
+    def _run(self, stream, program, concrete_width, concrete_height, comp_memo) -> None:
         streams = []
-        comp_memo: dict = {}
-        for item in self._program:
+        for item in program:
             op = item[0]
             if op == _RAW:
                 stream.stream.append(item[1])
@@ -633,6 +703,18 @@ class FigureImage:
                 stream = streams.pop()
                 stream.set_alpha(item[2], stroke=True, fill=True)
                 stream.draw_x_object(group_id)
+            elif op == _PATTERN:
+                from weasyprint.matrix import Matrix
+
+                _, x, y, width, height, opacity, content = item
+                pattern = stream.add_pattern(0, 0, width, height, width, height,
+                                             Matrix(e=x, f=y) @ stream.ctm)
+                pattern.set_alpha(opacity)
+                group = pattern.add_group(0, 0, width, height)
+                self._run(group, content, width, height, {})
+                pattern.draw_x_object(group.id)
+                stream.set_color_space("Pattern", stroke=False)
+                stream.set_color_special(pattern.id, stroke=False)
             elif op == _ROOT:
                 stream.transform(e=0, f=0)
                 sx, sy, tx, ty = self._root_transform(concrete_width, concrete_height)
