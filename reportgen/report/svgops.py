@@ -46,10 +46,12 @@ import xml.etree.ElementTree as ET
 from collections import Counter
 from math import hypot, sqrt
 
-__all__ = ["FigureImage", "STATS", "compile_svg", "prime"]
+__all__ = ["ENABLED", "FigureImage", "STATS", "compile_svg", "prime"]
 
 #: counters: ``compiled`` figures, ``fallback`` (left to WeasyPrint), ``drawn`` (draw calls)
 STATS: Counter = Counter()
+#: ``False``: :func:`prime` does nothing (every figure drawn by WeasyPrint; benchmarks, tests)
+ENABLED = True
 
 _NS = "{http://www.w3.org/2000/svg}"
 _DATA_SVG = re.compile(r"data:image/svg\+xml;base64,[A-Za-z0-9+/=]+")
@@ -193,7 +195,7 @@ def _path_ops(d: str, out: list[str]) -> None:
     to ``out`` (the ``0 0 m`` WeasyPrint starts every path with included)."""
     ops = _PATHS.get(d)
     if ops is None and _SIMPLE.match(d) and not _NO_CLOSE.search(d):
-        if len(_PATHS) > 5000:
+        if len(_PATHS) > 2000:
             _PATHS.clear()
         ops = _PATHS[d] = _simple_path_ops(d)
     if ops is not None:
@@ -739,6 +741,8 @@ def prime(cache, html: str) -> None:
     """Put a :class:`FigureImage` into WeasyPrint's image ``cache`` for every SVG ``data:`` URL
     of ``html`` not in it yet that :func:`compile_svg` can compile (the others WeasyPrint
     parses as usual and keeps in the same cache, so each URL is tried once)."""
+    if not ENABLED:
+        return
     for url in dict.fromkeys(_DATA_SVG.findall(html)):
         if url in cache:
             continue
