@@ -261,3 +261,20 @@ def test_a_build_uses_the_fast_path_and_gives_the_same_bytes(tmp_path, monkeypat
         drawn_now = svgops.STATS["drawn"] - before.get("drawn", 0)
         assert drawn_now == (n_figures if fast else 0)
     assert paths[True].read_bytes() == paths[False].read_bytes()
+
+
+def test_transform_values_are_weasyprints():
+    """svgops computes transform lists itself (the same operations as ``svg.utils.transform``)."""
+    import random
+
+    from weasyprint.svg.utils import transform
+
+    rng = random.Random(15)
+    texts = ["translate(1 2)", "translate(3)", "scale(2)", "scale(0.015625 0.015625)", "rotate(-90)",
+             "matrix(0.5 0.2 -0.3 1.1 40.25 7)", "scale(0 1)", "translate(1e1, -0) scale(-1 1)"]
+    for _ in range(200):
+        x, y, a, r = (round(rng.uniform(-500, 500), rng.randint(0, 6)) for _ in range(4))
+        texts.append(f"translate({x} {y}) rotate({r}) scale({a} {round(a * 0.7, 6)})")
+    for text in texts:
+        ref = transform(text, None, 16.0, 100.0)
+        assert svgops._transform_values(text, 16.0, 100.0) == (ref.values if ref.determinant else None), text

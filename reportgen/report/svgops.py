@@ -44,7 +44,7 @@ import base64
 import re
 import xml.etree.ElementTree as ET
 from collections import Counter
-from math import hypot, sqrt
+from math import cos, hypot, sin, sqrt
 
 __all__ = ["ENABLED", "FigureImage", "STATS", "compile_svg", "prime"]
 
@@ -94,6 +94,60 @@ def is_valid(box) -> bool:
     from weasyprint.svg.bounding_box import is_valid_bounding_box
 
     return bool(is_valid_bounding_box(box))
+
+
+def _matmul(m, n):
+    """``weasyprint.matrix.Matrix.__matmul__`` on tuples: the same sums (``sum`` starts at 0)."""
+    return tuple(tuple(0 + m[i][0] * n[0][j] + m[i][1] * n[1][j] + m[i][2] * n[2][j] for j in range(3))
+                 for i in range(3))
+
+
+def _mat(a=1, b=0, c=0, d=1, e=0, f=0):
+    return ((a, b, 0), (c, d, 0), (e, f, 1))
+
+
+def _determinant(m) -> float:
+    """``Matrix.determinant``."""
+    return (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[1][0] * (m[0][1] * m[2][2] - m[0][2] * m[2][1])
+            + m[2][0] * (m[0][1] * m[1][2] - m[0][2] * m[1][1]))
+
+
+def _transform_values(text: str, font_size: float, diagonal: float) -> tuple | None:
+    """``svg/utils.py`` ``transform(text, None, …)`` for translate, scale, rotate and matrix,
+    with the same operations in the same order; its six values, ``None`` if it is singular."""
+    from weasyprint.svg.utils import angle, normalize, size
+
+    m = _mat(e=0, f=0)
+    for kind, args in re.findall(r"(\w+) ?\( ?(.*?) ?\)", normalize(text)):
+        values = [v for v in args.split(" ") if v]
+        if kind == "matrix":
+            m = _matmul(_mat(*[size(v, font_size, diagonal) for v in values]), m)
+        elif kind == "rotate":
+            if len(values) != 1:
+                raise _Unsupported("rotate about a point")
+            r = angle(values[0])
+            cos_r, sin_r = cos(r), sin(r)
+            m = _matmul(_mat(cos_r, sin_r, -sin_r, cos_r), m)
+        elif kind == "translate":
+            values = [size(v, font_size, diagonal) for v in values]
+            if len(values) == 1:
+                values.append(0)
+            m = _matmul(_mat(e=values.pop(0)), m)
+            m = _matmul(_mat(f=values.pop(0)), m)
+        elif kind == "scale":
+            values = [size(v, font_size, diagonal) for v in values]
+            if len(values) == 1:
+                values.append(values[0])
+            m = _matmul(_mat(a=values.pop(0)), m)
+            m = _matmul(_mat(d=values.pop(0)), m)
+        else:
+            raise _Unsupported("transform")
+    m = _matmul(_mat(e=-0, f=-0), m)
+    if not _determinant(m):
+        return None
+    (a, b), (c, d), (e, f) = [row[:2] for row in m]
+    return a, b, c, d, e, f
 
 
 class _Unsupported(Exception):
@@ -250,7 +304,20 @@ def _path_ops(d: str, out: list[str]) -> None:
             last = lt
 
 
+_STYLES: dict = {}
+
+
 def _style(text: str) -> list[tuple[str, str]]:
+    """:func:`_parse_style`, kept for the process."""
+    out = _STYLES.get(text)
+    if out is None:
+        if len(_STYLES) > 5000:
+            _STYLES.clear()
+        out = _STYLES[text] = _parse_style(text)
+    return out
+
+
+def _parse_style(text: str) -> list[tuple[str, str]]:
     """Declarations of a ``style`` attribute or rule as WeasyPrint's ``parse_declarations``
     gives them (lower-case names, stripped values; names starting with ``-`` dropped), for the
     plain values matplotlib writes; anything else raises :class:`_Unsupported`."""
@@ -316,6 +383,9 @@ class _Compiler:
         self.raw: list[str] = []
         self.popped = [False]  # per target stream: whether a pop_state reset its colour state
         self.patterns: dict[str, list] = {}
+        self.cascaded: dict = {}
+        self.states: dict = {}
+        self.parents: list = []
         self.parent_of = {ch: el for el in root.iter() for ch in el}
         self.root_attrib = attrib
 
@@ -377,9 +447,25 @@ class _Compiler:
             return
         if tag not in ("g", "path", "rect"):
             raise _Unsupported(f"element {tag}")
-        attrib = self.cascade(el, parent)
-        if attrib.get("display") == "none" or attrib.get("visibility") == "hidden":
-            raise _Unsupported("display/visibility")
+        # elements alike (same parent, same attributes but the path data and transform) cascade
+        # alike and set the same graphics state: both are kept for the document
+        own = el.attrib
+        key = (id(parent), tag, "d" in own, "transform" in own,
+               tuple(kv for kv in own.items() if kv[0] != "d" and kv[0] != "transform"))
+        base = self.cascaded.get(key)
+        if base is None:
+            base = self.cascade(el, parent)
+            base.pop("d", None)
+            base.pop("transform", None)
+            if base.get("display") == "none" or base.get("visibility") == "hidden":
+                raise _Unsupported("display/visibility")
+            self.cascaded[key] = base
+            self.parents.append(parent)  # (its id stays its own while the document is compiled)
+        attrib = dict(base)
+        if "d" in own:
+            attrib["d"] = own["d"]
+        if "transform" in own:
+            attrib["transform"] = own["transform"]
         self.op(_PUSH)
         self.transform(attrib)
         opacity = self.alpha(attrib.get("opacity", 1))
@@ -390,8 +476,23 @@ class _Compiler:
             self.op(_GROUP)
             self.popped.append(False)
         if tag != "g":
-            fill, stroke = self.graphical_state(tag, attrib)
-        self.clip(attrib)
+            state_key = (key, self.popped[-1], grouped)
+            state = self.states.get(state_key)
+            if state is None:
+                self.flush()
+                start = len(self.program)
+                fill, stroke = self.graphical_state(tag, attrib)
+                self.clip(attrib)
+                state = (fill, stroke, self.program[start:], list(self.raw))
+                if not (isinstance(fill, str) and fill.startswith("url(")):
+                    self.states[state_key] = state  # (a pattern is placed at the shape's box)
+            else:
+                self.flush()
+                self.program.extend(state[2])
+                self.raw.extend(state[3])
+            fill, stroke = state[0], state[1]
+        else:
+            self.clip(attrib)
         if tag == "path":
             _path_ops(attrib.get("d", ""), self.raw)
         elif tag == "rect":
@@ -422,16 +523,15 @@ class _Compiler:
         return alpha_value(value)
 
     def transform(self, attrib: dict) -> None:
-        from weasyprint.svg.utils import transform
-
         if text := attrib.get("transform"):
             if not re.fullmatch(r"(\s*(translate|scale|rotate|matrix)\s*\([-+\d.eE, ]*\)\s*,?)*\s*", text):
                 raise _Unsupported("transform")
             key = (text, self.inner_diagonal)
             values = _TRANSFORMS.get(key, False)
             if values is False:
-                matrix = transform(text, None, self.font_size, self.inner_diagonal)
-                values = _TRANSFORMS[key] = matrix.values if matrix.determinant else None
+                if len(_TRANSFORMS) > 5000:
+                    _TRANSFORMS.clear()
+                values = _TRANSFORMS[key] = _transform_values(text, self.font_size, self.inner_diagonal)
             if values is not None:
                 self.op(_CM, values)
 
