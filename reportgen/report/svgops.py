@@ -484,7 +484,7 @@ class _Compiler:
                 fill, stroke = self.graphical_state(tag, attrib)
                 self.clip(attrib)
                 state = (fill, stroke, self.program[start:], list(self.raw))
-                if not (isinstance(fill, str) and fill.startswith("url(")):
+                if "url(" not in attrib.get("fill", ""):
                     self.states[state_key] = state  # (a pattern is placed at the shape's box)
             else:
                 self.flush()
