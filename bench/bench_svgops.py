@@ -6,7 +6,8 @@ Usage: python bench/bench_svgops.py [REPEAT]   (default 3)
 For the parts dynamics, kinematics and forces: the note with that section alone is built and its
 print HTML laid out and written as a build does (``render._html_class``, the font configuration,
 a new image cache each time, so every figure is parsed or compiled again as in a new process;
-svgops' memos are emptied too), alternately with WeasyPrint drawing the figures and with
+svgops' memos are emptied too; the garbage of the run before collected outside the timing, the
+collector's threshold as in a build), alternately with WeasyPrint drawing the figures and with
 svgops, REPEAT times after one warm-up of each. Prints the medians of this process's CPU
 seconds (``time.process_time``: the machine may be shared) for "layout" (svgops' compilation
 included) and "write", and whether the two PDFs are the same bytes.
@@ -22,11 +23,15 @@ sys.path.insert(0, os.getcwd())
 
 
 def main(argv: list[str]) -> None:
+    import gc
+
     from reportgen.analysis.study import Study
+    from reportgen.core.memory import collect_less
     from reportgen.report import render, svgops
     from reportgen.report.assemble import build_report
 
     n = int(argv[0]) if argv else 3
+    collect_less()
     study = Study(Path("cases/ws000_six_bar.toml"))
     HTML = render._html_class()
     render._quiet_weasyprint()
@@ -43,6 +48,8 @@ def main(argv: list[str]) -> None:
                 for memo in (svgops._PATHS, svgops._TOKENS, svgops._LENGTHS, svgops._TRANSFORMS,
                              svgops._COLORS):
                     memo.clear()
+                doc = None
+                gc.collect()
                 t0 = time.process_time()
                 if mode == "svgops":
                     svgops.prime(cache, html)

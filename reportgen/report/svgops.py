@@ -41,6 +41,7 @@ batch worker compiles each figure once.
 from __future__ import annotations
 
 import base64
+import os
 import re
 import xml.etree.ElementTree as ET
 from collections import Counter
@@ -50,8 +51,9 @@ __all__ = ["ENABLED", "FigureImage", "STATS", "compile_svg", "prime"]
 
 #: counters: ``compiled`` figures, ``fallback`` (left to WeasyPrint), ``drawn`` (draw calls)
 STATS: Counter = Counter()
-#: ``False``: :func:`prime` does nothing (every figure drawn by WeasyPrint; benchmarks, tests)
-ENABLED = True
+#: ``False``: :func:`prime` does nothing, every figure is drawn by WeasyPrint (tests; for a
+#: benchmark of the CLI the environment variable ``REPORTGEN_SVGOPS=0`` sets it)
+ENABLED = os.environ.get("REPORTGEN_SVGOPS", "1") != "0"
 
 _NS = "{http://www.w3.org/2000/svg}"
 _DATA_SVG = re.compile(r"data:image/svg\+xml;base64,[A-Za-z0-9+/=]+")
