@@ -91,7 +91,7 @@ _CANONICAL = re.compile(r"(?!-0\Z)-?(?:0|[1-9]\d{0,8})(?:\.\d{0,5}[1-9])?\Z")
 _RAW, _PUSH, _POP, _CM, _ALPHA, _COLOR, _CLIP, _GROUP, _END_GROUP, _ROOT, _PATTERN = range(11)
 
 
-def is_valid(box) -> bool:
+def _is_valid(box) -> bool:
     """``svg/bounding_box.py`` ``is_valid_bounding_box``."""
     from weasyprint.svg.bounding_box import is_valid_bounding_box
 
@@ -208,17 +208,22 @@ def _nums(values) -> list:
 
 
 def _simple_path_ops(d: str) -> str:
-    """``path()``'s operators for data :data:`_SIMPLE` accepts: the numbers of M, L, C and of
-    a Q's end point as written, a Q's cubic control points computed for all the Qs at once
-    (WeasyPrint's ``x2 * 2 / 3 + x1 / 3``: the same IEEE operations in the same order)."""
-    letters = _LETTER.findall(d)
-    tokens = _NUMBER.findall(d)
-    template = "\n".join(["0 0 m", *map(_OPS.__getitem__, letters)])
+    """``path()``'s operators for data :data:`_SIMPLE` accepts (see :func:`_simple_paths_ops`)."""
     if "Q" not in d:
-        return template % tuple(tokens)
+        return "\n".join(["0 0 m", *map(_OPS.__getitem__, _LETTER.findall(d))]) % tuple(_NUMBER.findall(d))
+    return _simple_paths_ops([d])[0]
+
+
+def _simple_paths_ops(paths: list[str]) -> list[str]:
+    """``path()``'s operators for path data :data:`_SIMPLE` accepts, all at once: the numbers of
+    M, L, C and of a Q's end point as written, a Q's cubic control points computed for all the
+    Qs of all the paths together (WeasyPrint's ``x2 * 2 / 3 + x1 / 3``: the same IEEE operations
+    in the same order; every path starts with M, so a Q's start never comes from another path)."""
     import numpy as np
 
-    codes = np.frombuffer("".join(letters).encode("ascii"), np.uint8)
+    letters = [_LETTER.findall(d) for d in paths]
+    tokens = [t for d in paths for t in _NUMBER.findall(d)]
+    codes = np.frombuffer("".join("".join(x) for x in letters).encode("ascii"), np.uint8)
     n_in = np.frombuffer(bytes(_ARGS_IN), np.uint8)[codes].astype(np.intp)
     n_out = np.frombuffer(bytes(_ARGS_OUT), np.uint8)[codes].astype(np.intp)
     start_in = np.cumsum(n_in) - n_in
@@ -243,7 +248,29 @@ def _simple_path_ops(d: str) -> str:
     keep = ~is_q | (offset >= 2)
     out[(start_out[owner] + offset + np.where(is_q, 2, 0))[keep]] = np.array(tokens, dtype=object)[keep]
     out[(start_out[q][:, None] + np.arange(4)).ravel()] = _nums(control)
-    return template % tuple(out.tolist())
+    out = out.tolist()
+    result, at = [], 0
+    for path_letters in letters:
+        n = sum(_ARGS_OUT[ord(c)] for c in path_letters)
+        result.append("\n".join(["0 0 m", *map(_OPS.__getitem__, path_letters)]) % tuple(out[at:at + n]))
+        at += n
+    return result
+
+
+def _prepare_paths(root: ET.Element) -> None:
+    """Operators of the document's paths with quadratic segments (its texts), computed together
+    into :data:`_PATHS` (one pass of array operations instead of one per text)."""
+    todo = []
+    for el in root.iter(_NS + "path"):
+        d = el.get("d", "")
+        if "Q" in d and d not in _PATHS and _SIMPLE.match(d) and not _NO_CLOSE.search(d):
+            todo.append(d)
+    todo = list(dict.fromkeys(todo))
+    if not todo:
+        return
+    if len(_PATHS) + len(todo) > 2000:
+        _PATHS.clear()
+    _PATHS.update(zip(todo, _simple_paths_ops(todo)))
 
 
 def _path_ops(d: str, out: list[str]) -> None:
@@ -372,6 +399,7 @@ class _Compiler:
             if key not in _ELEMENT_KEYS["svg"]:
                 raise _Unsupported(f"svg attribute {key}")
         self.root = root
+        _prepare_paths(root)
         attrib = self.cascade(root, {})
         viewbox = attrib.get("viewBox")
         self.viewbox = tuple(float(n) for n in normalize(viewbox).split()) if viewbox else None
@@ -560,7 +588,7 @@ class _Compiler:
         if ref is None or ref.tag != _NS + "pattern" or ref.get("patternUnits") != "userSpaceOnUse":
             raise _Unsupported("paint server")
         box = self.raw_box(tag, attrib)
-        if not (is_valid(box) and 0 not in box[2:]):
+        if not (_is_valid(box) and 0 not in box[2:]):
             return False
         width = self.size(ref.get("width", 0), self.font_size, 1)
         height = self.size(ref.get("height", 0), self.font_size, 1)
@@ -711,16 +739,16 @@ class _Compiler:
                         box = extend_bounding_box(box, ((g[0], g[1]), (g[2], g[3])))
                     elif k:
                         box = extend_bounding_box(box, ((g[0], g[1]),))
-        return box if is_valid(box) else EMPTY_BOUNDING_BOX
+        return box if _is_valid(box) else EMPTY_BOUNDING_BOX
 
     def bounding_box(self, tag: str, attrib: dict) -> tuple:
         """``SVG.calculate_bounding_box(node, stroke=True)`` for a path or rect, as the
         transparency group's BBox (x0, y0, x1, y1); the viewBox when it is not valid."""
         box = self.raw_box(tag, attrib)
-        if is_valid(box) and self.paint(attrib, "stroke"):
+        if _is_valid(box) and self.paint(attrib, "stroke"):
             sw = self.length(attrib.get("stroke-width", "1px"))
             box = (box[0] - sw / 2, box[1] - sw / 2, box[2] + sw, box[3] + sw)
-        if not (is_valid(box) and 0 not in box[2:]):
+        if not (_is_valid(box) and 0 not in box[2:]):
             box = (0, 0, self.inner_width, self.inner_height)
         x, y, w, h = box
         return x, y, x + w, y + h
