@@ -2,6 +2,7 @@
 SVG renderer and by reportgen/report/svgops.py, in one process.
 
 Usage: python bench/bench_svgops.py [REPEAT]   (default 3)
+       python bench/bench_svgops.py --figures   (every figure of every case in cases/)
 
 For the parts dynamics, kinematics and forces: the note with that section alone is built and its
 print HTML laid out and written as a build does (``render._html_class``, the font configuration,
@@ -11,6 +12,11 @@ collector's threshold as in a build), alternately with WeasyPrint drawing the fi
 svgops, REPEAT times after one warm-up of each. Prints the medians of this process's CPU
 seconds (``time.process_time``: the machine may be shared) for "layout" (svgops' compilation
 included) and "write", and whether the two PDFs are the same bytes.
+
+``--figures`` builds the note of every case in cases/ and draws each figure on a fresh PDF stream
+by WeasyPrint's ``SVGImage`` and by svgops (as tests/test_svg_pdf_ops.py does for two cases):
+prints how many were compiled, fell back, drew the same bytes (operators, resources, groups,
+patterns), and the CPU of drawing them both ways and of compiling them.
 """
 import os
 import statistics
@@ -74,5 +80,97 @@ def main(argv: list[str]) -> None:
     print(f"load {os.getloadavg()[0]:.1f}")
 
 
+def _stream():
+    import pydyf
+    from tinycss2.color5 import parse_color
+    from weasyprint.pdf.stream import Stream
+
+    resources = pydyf.Dictionary({k: pydyf.Dictionary() for k in
+                                  ("ExtGState", "XObject", "Pattern", "Shading", "ColorSpace")})
+    s = Stream({}, (0, 0, 595, 842), resources, {}, None, {}, None, compress=False)
+    s.transform(0.75, 0, 0, -0.75, 0, 841.89)
+    s.set_color(parse_color("black"))
+    return s
+
+
+def _drawn(image) -> bytes:
+    import pydyf
+
+    def dump(stream):
+        out = [b"\n".join(pydyf._to_bytes(i) for i in stream.stream)]
+        resources = stream._resources
+        out.append(repr(sorted(resources["ExtGState"].items())).encode())
+        for kind in ("XObject", "Pattern"):
+            for key, sub in resources[kind].items():
+                extra = pydyf.Dictionary({k: v for k, v in sub.extra.items() if k != "Resources"})
+                out.append(key.encode() + extra.data + dump(sub))
+        return b"\n".join(out)
+
+    s = _stream()
+    s.push_state()
+    s.set_alpha(1)
+    s.transform(e=70.866, f=123.4567)
+    s.push_state()
+    image.draw(s, 453.5433, 300.123, {"image_rendering": "auto"})
+    s.pop_state()
+    s.pop_state()
+    return dump(s)
+
+
+def figures() -> None:
+    from xml.etree import ElementTree
+
+    from weasyprint.images import SVGImage
+
+    from reportgen.analysis.study import Study
+    from reportgen.errors import CaseError
+    from reportgen.report import svgops
+    from reportgen.report.assemble import build_report
+    from reportgen.report.document import Figure
+
+    def walk(node, out):
+        if isinstance(node, Figure):
+            out.append(node.svg if isinstance(node.svg, bytes) else node.svg.encode())
+        for attr in ("sections", "children"):
+            for child in getattr(node, attr, None) or []:
+                walk(child, out)
+        return out
+
+    n = same = fallback = cases = 0
+    t_weasy = t_fast = t_compile = 0.0
+    for case in sorted(Path("cases").glob("*.toml")):
+        try:
+            report = build_report(Study(case))
+        except CaseError:
+            continue  # (a class's base case holds no note of its own)
+        cases += 1
+        for data in walk(report, []):
+            if data[:4] == b"\x89PNG":
+                continue
+            n += 1
+            t0 = time.process_time()
+            fast = svgops.compile_svg(data)
+            t1 = time.process_time()
+            t_compile += t1 - t0
+            if fast is None:
+                fallback += 1
+                continue
+            ref = SVGImage(ElementTree.fromstring(data), None, None, None)
+            t0 = time.process_time()
+            a = _drawn(ref)
+            t1 = time.process_time()
+            b = _drawn(fast)
+            t2 = time.process_time()
+            t_weasy += t1 - t0
+            t_fast += t2 - t1
+            same += a == b
+    print(f"{cases} cases, {n} SVG figures: {n - fallback} compiled, {fallback} fell back, {same} drawn the "
+          f"same bytes; drawing CPU: WeasyPrint {t_weasy:.2f} s, svgops {t_fast:.2f} s (+ compiling "
+          f"{t_compile:.2f} s); load {os.getloadavg()[0]:.1f}")
+
+
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    if sys.argv[1:] == ["--figures"]:
+        figures()
+    else:
+        main(sys.argv[1:])

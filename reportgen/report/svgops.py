@@ -608,7 +608,10 @@ class _Compiler:
         self.inner_diagonal = hypot(width, height) / sqrt(2)
         self.popped.append(False)
         try:
-            defs = self.cascade(self.parent_of[ref], self.root_attrib)
+            parent = self.parent_of[ref]
+            if parent.tag != _NS + "defs" or self.parent_of.get(parent) is not self.root:
+                raise _Unsupported("pattern outside the top <defs>")
+            defs = self.cascade(parent, self.root_attrib)
             attrib = self.cascade(ref, defs)
             size, fs = self.size, self.font_size
             self.op(_PUSH)
