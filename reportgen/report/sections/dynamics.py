@@ -7,6 +7,7 @@ motion ω(φ), ε(φ) and the true velocities and accelerations.
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pandas as pd
@@ -270,7 +271,7 @@ def _model(sec: Section, study, d) -> None:
         lrows.append({"name": ld.name, "what": Markup(ld.title).striptags(),
                       "where": (Markup("{}, звено {}").format(Markup(html_point(escape(ld.point))), ld.link)
                                 if ld.point else Markup("звено {}").format(ld.link)),
-                      "law": _law(ld)})
+                      "law": _law(ld, _slide_names(study))})
     if lrows:
         s.paragraph(f"Внешние нагрузки машины перечислены в таблице {ref('tab-dyn-loads')}. Силы тяжести "
                     f"вычислены при <i>g</i>&nbsp;=&nbsp;{fmt_given(d.loads.g)}&nbsp;м/с².")
@@ -278,15 +279,48 @@ def _model(sec: Section, study, d) -> None:
             Column("name", "Обозначение", fmt=lambda v: Markup(html_label(v))), Column("what", "Нагрузка"), Column("where", "Точка приложения", fmt=Markup),
             Column("law", "Закон изменения", fmt=Markup)], pd.DataFrame(lrows), id="tab-dyn-loads")
     if d.breaks.size:
-        pts = ", ".join(_phase_deg(study, q) for q in d.breaks)
-        s.paragraph(f"Нагрузки меняют закон действия (точки переключения, найденные решением уравнений) при "
-                    f"φ&nbsp;=&nbsp;{pts}. Интегралы работ вычисляются по участкам между ними квадратурой "
-                    "Гаусса–Лежандра, поэтому разрывы нагрузок не вносят погрешности.")
+        s.paragraph(_breaks_text(study, d.breaks))
 
 
-def _law(ld) -> Markup:
+def _breaks_text(study, breaks) -> str:
+    """Where the loads change their law: the angles listed, or (a table law's every corner) counted."""
+    if breaks.size > MAX_BREAKS:
+        return (f"Нагрузки меняют закон действия (изломы и скачки заданных диаграмм, начало и конец "
+                f"действия сил) в точках цикла, найденных решением уравнений (всего "
+                f"{plural(breaks.size, 'точка', 'точки', 'точек')}). Интегралы работ вычисляются по участкам "
+                "между ними квадратурой Гаусса–Лежандра, поэтому изломы и разрывы нагрузок не вносят погрешности.")
+    pts = ", ".join(_phase_deg(study, q) for q in breaks)
+    return (f"Нагрузки меняют закон действия (точки переключения, найденные решением уравнений) при "
+            f"φ&nbsp;=&nbsp;{pts}. Интегралы работ вычисляются по участкам между ними квадратурой "
+            "Гаусса–Лежандра, поэтому разрывы нагрузок не вносят погрешности.")
+
+
+def _slide_names(study) -> dict[str, str]:
+    """A prismatic pair's name → the name its displacement s carries in the note's tables: the
+    slider's point where no other pair slides at it (s_30 → s_B, as table «Углы звеньев и
+    перемещения в поступательных парах» heads its column)."""
+    pairs = study.mechanism.prismatic
+    points = [j.point for j in pairs]
+    return {j.name: j.point for j in pairs if points.count(j.point) == 1}
+
+
+def _slides_as_named(text: str, names: dict[str, str]) -> str:
+    """``text`` with the columns of prismatic pairs (s_J, vqs_J, aqs_J) renamed by ``names``,
+    for display only."""
+    if not names:
+        return text
+    return re.sub(r"\b(s|vqs|aqs)_(\w+)\b",
+                  lambda m: f"{m.group(1)}_{names.get(m.group(2), m.group(2))}", text)
+
+
+MAX_BREAKS = 12      # more switching angles than this are counted, not listed
+
+
+def _law(ld, names: dict[str, str] | None = None) -> Markup:
     """Russian description of a load law (escaped HTML with no-break spaces): expressions and
-    conditions in textbook symbols, parameters by their values (:func:`condition_html`)."""
+    conditions in textbook symbols, parameters by their values (:func:`condition_html`); the
+    displacement in a prismatic pair named as the tables name it (``names``, :func:`_slide_names`)."""
+    names = names or {}
     if ld.kind == "weight":
         return Markup(escape(f"G\u00a0=\u00a0{fmt(-ld.vector[1], sig=4)}\u00a0Н, вертикально вниз"))
     parts = []
@@ -298,7 +332,7 @@ def _law(ld) -> Markup:
         unit, k = _law_unit(ld, p)
         if p.table is not None:
             parts.append(Markup("{}таблица {} от {}, {}…{}\u00a0{}").format(
-                head, plural(len(p.table.x), "точка", "точки", "точек"), expr_html(p.of.text),
+                head, plural(len(p.table.x), "точка", "точки", "точек"), expr_html(_slides_as_named(p.of.text, names)),
                 fmt(p.table.y.min() / k, sig=3), fmt(p.table.y.max() / k, sig=3), unit))
         else:
             parts.append(head + f"{fmt(p.const / k, sig=4)}\u00a0{unit}")
@@ -309,7 +343,7 @@ def _law(ld) -> Markup:
     if ld.against:
         parts.append("против движения")
     for c in ld.when:
-        parts.append(_condition(c))
+        parts.append(_condition(c, names))
     return Markup("; ").join(parts)
 
 
@@ -322,18 +356,20 @@ def _direction_words(ld) -> Markup:
             return Markup("вдоль оси <i>{}</i>").format(t[-1])
         return Markup("{} направлении оси <i>{}</i>").format("в обратном" if t.startswith("-") else "в", t[-1])
     ang = math.degrees(math.atan2(ld.u[1], ld.u[0]))
-    return Markup("под углом {}° к оси <i>x</i>").format(fmt(ang, sig=4))
+    whole = abs(ang - round(ang)) < 1e-9        # a given angle as written: «−45°», not «−45,00°»
+    return Markup("под углом {}° к оси <i>x</i>").format(fmt(ang, digits=0) if whole else fmt(ang, sig=4))
 
 
-def _condition(c) -> Markup:
+def _condition(c, names: dict[str, str] | None = None) -> Markup:
     """A load condition with the right side evaluated when it holds only parameters: an angle in
     degrees, anything else in its SI unit."""
+    text = _slides_as_named(c.text, names or {})
     if c.rhs.used or c.lhs.used == []:
-        return condition_html(c.text)
+        return condition_html(text)
     value = float(np.asarray(c.rhs._eval({}).value, dtype=float).reshape(-1)[0])
     if tuple(c.lhs.dim) == U.ANGLE:
-        return condition_html(c.text, math.degrees(value), "°")
-    return condition_html(c.text, value, U.format_dim(c.lhs.dim))
+        return condition_html(text, math.degrees(value), "°")
+    return condition_html(text, value, U.format_dim(c.lhs.dim))
 
 
 def _law_unit(ld, p) -> tuple[str, float]:

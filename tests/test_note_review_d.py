@@ -1,0 +1,99 @@
+"""Defects found reviewing, page by page as a ТММ teacher, the notes of two mechanisms new to
+cases/ (session 7, #9): a V-type two-cylinder compressor (two ВВП groups on one crank pin, a
+compound hinge, gas forces from an indicator diagram) and a swinging-conveyor drive (a ВПВ group
+attached to a coupler point, then ВВП).  Each test fails on what the review found: the output
+named «ползун 5» where the case calls it «поршень C»; slow and fast strokes told apart at K = 1;
+«рабочим назначается медленный ход» where the case's resistance acts on the fast stroke; 71
+switching angles listed in a sentence; a load law in the pair's program name s₃₀ where the tables
+say s_B; a given angle printed −45,00°; a compound hinge counted twice without a word."""
+import re
+
+import numpy as np
+import pytest
+
+from conftest import CASES
+
+
+def _plain(html) -> str:
+    return re.sub(r"<[^>]+>", "", str(html)).replace("&nbsp;", "\u00a0")
+
+
+@pytest.fixture(scope="module")
+def compressor():
+    from reportgen import load_case
+    return load_case(CASES / "v_compressor.toml")
+
+
+@pytest.fixture(scope="module")
+def conveyor():
+    from reportgen import load_case
+    return load_case(CASES / "swing_conveyor.toml")
+
+
+def test_output_named_by_the_case_title(compressor):
+    from reportgen import load_case
+    from reportgen.analysis.plans import output_quantity
+    assert _plain(output_quantity(compressor)[3]) == "поршень C (звено 5)"
+    # a link titled by its kind keeps «ползун 3»
+    assert _plain(output_quantity(load_case(CASES / "slider_crank.toml"))[3]) == "ползун 3"
+
+
+def test_equal_strokes_not_called_slow_and_fast(compressor):
+    from reportgen.report.sections.kinematics import conclusion_lines
+    text = " ".join(_plain(x) for x in conclusion_lines(compressor))
+    assert compressor.scalars["output_K"] == pytest.approx(1.0, abs=1e-9)
+    assert "на прямом и обратном ходах одинакова" in text
+    assert "медленном ходе" not in text
+
+
+def test_working_stroke_from_the_loads(conveyor):
+    from reportgen import load_case
+    from reportgen.report.sections.kinematics import _quick_return, _working_stroke
+    # independent: the resistance Pс acts while G moves right (vqx_G ≥ 0); the crank's turn over
+    # that stroke, counted on the cycle grid, is under 180° — the fast stroke
+    cyc = conveyor.cycle
+    right = (cyc["vqx_G"].to_numpy()[:-1] >= 0).mean() * 360
+    assert right < 180
+    assert _working_stroke(conveyor) == "fast"
+    text = _quick_return(360 - right, conveyor.scalars["output_K"], "fast")
+    assert "рабочим оказался быстрый ход" in text and "направление вращения" in text
+    assert "рабочим назначается медленный ход" not in text
+    # the shaper cuts on its slow stroke, as designed
+    assert _working_stroke(load_case(CASES / "shaper_swinging_lever.toml")) == "slow"
+
+
+def test_many_switching_angles_counted_not_listed(compressor):
+    from reportgen.report.sections.dynamics import MAX_BREAKS, _breaks_text
+    b = compressor.dynamics.breaks
+    assert b.size > MAX_BREAKS
+    text = _plain(_breaks_text(compressor, b))
+    assert f"всего {b.size}\u00a0точ" in text and "°" not in text
+    few = _plain(_breaks_text(compressor, b[:2]))
+    assert few.count("°") == 2
+
+
+def test_load_law_names_the_slide_as_the_tables_do(compressor):
+    from reportgen.report.sections.dynamics import _law, _slide_names
+    names = _slide_names(compressor)
+    assert names == {"30": "B", "50": "C"}
+    laws = {ld.name: str(_law(ld, names)) for ld in compressor.dynamics.loads.loads}
+    for name, pt, sense in (("P1с", "B", "возрастании"), ("P1в", "B", "убывании"), ("P2с", "C", "возрастании")):
+        assert f"<i>s</i><sub>{pt}</sub>" in laws[name]
+        assert f"при {sense} <i>s</i><sub>{pt}</sub>" in laws[name]
+        assert "<sub>30</sub>" not in laws[name] and "<sub>50</sub>" not in laws[name]
+    # a given angle as written: −45°, −135°, not −45,00°
+    assert "под углом −45° к оси" in laws["P2с"] and "под углом −135° к оси" in laws["P1с"]
+
+
+def test_compound_hinge_explained(compressor):
+    from reportgen.report.sections.structure import _compound_hinges
+    from reportgen.report.sections import structure
+    assert _compound_hinges(compressor.mechanism) == [("A", ["1", "2", "4"], ["1–2", "1–4"])]
+    sec = structure.build(compressor)
+    from notehelpers import blocks
+    from reportgen.report.document import Paragraph
+    text = " ".join(_plain(b.html) for b in blocks(sec) if isinstance(b, Paragraph))
+    assert "сходятся звенья 1, 2 и 4: это сложный шарнир" in text
+    assert "2\u00a0вращательные пары (1–2, 1–4)" in text
+    # W counts both pairs of the hinge: 3·5 − 2·7 = 1
+    assert compressor.structure.p5 == 7 and compressor.structure.W == 1
