@@ -94,6 +94,6 @@ def test_compound_hinge_explained(compressor):
     from reportgen.report.document import Paragraph
     text = " ".join(_plain(b.html) for b in blocks(sec) if isinstance(b, Paragraph))
     assert "сходятся звенья 1, 2 и 4: это сложный шарнир" in text
-    assert "2\u00a0вращательные пары (1–2, 1–4)" in text
+    assert "две вращательные пары (1–2, 1–4)" in text
     # W counts both pairs of the hinge: 3·5 − 2·7 = 1
     assert compressor.structure.p5 == 7 and compressor.structure.W == 1

@@ -36,6 +36,13 @@ def _compound_hinges(mech) -> list[tuple[str, list[str], list[str]]]:
     return out
 
 
+def _pairs_words(n: int) -> str:
+    """«две вращательные пары» (a small count in words, as a student writes it)."""
+    words = {2: "две", 3: "три", 4: "четыре"}
+    return (f"{words[n]} вращательные пары" if n in words
+            else plural(n, "вращательную пару", "вращательные пары", "вращательных пар"))
+
+
 def build(study) -> Section:
     st = study.structure
     mech = study.mechanism
@@ -76,7 +83,7 @@ def build(study) -> Section:
         s1.paragraph(" ".join(Markup("В точке {} сходятся звенья {}: это сложный шарнир, он образует {} ({}) и так "
                                      "учтён в числе пар.").format(
             Markup(html_point(escape(p))), ", ".join(ls[:-1]) + " и " + ls[-1],
-            plural(len(ps), "вращательную пару", "вращательные пары", "вращательных пар"), ", ".join(ps))
+            _pairs_words(len(ps)), ", ".join(ps))
             for p, ls, ps in hinges))
 
     s2 = sec.subsection("Число степеней свободы", "sec-dof")
