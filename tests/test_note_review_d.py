@@ -97,3 +97,16 @@ def test_compound_hinge_explained(compressor):
     assert "две вращательные пары (1–2, 1–4)" in text
     # W counts both pairs of the hinge: 3·5 − 2·7 = 1
     assert compressor.structure.p5 == 7 and compressor.structure.W == 1
+
+
+def test_stone_pin_velocity_stated_known(conveyor):
+    """The ВПВ group's equation V_E4 = V_E5 + V_E4E5 began from V_E4 with no word where it comes
+    from: the stone's pin E on the coupler 2, solved in the group before."""
+    from reportgen.report.sections.vectors import group_equations
+    g = next(g for g in conveyor.structure.groups if g.kind == "RPR")
+    vf, vn, af, an = group_equations(conveyor, conveyor.kinematics.iloc[1], g)
+    v, a = " ".join(_plain(x) for x in vn), " ".join(_plain(x) for x in an)
+    assert "известна: шарнир" in v and "соединяет звено 4 со звеном 2" in v
+    assert "известно" in a
+    # the pin's link is outside the group and solved before it
+    assert "2" not in g.links

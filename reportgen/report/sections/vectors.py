@@ -150,6 +150,13 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
                                                   _m(rf"\omega_{{{_ang(guide)}}} = 0"),
                                                   _m(rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}} \;\parallel")))
             continue
+        pin = next((o for jt in mech.joints if jt.kind == "R" and jt.point == j.point and slider in jt.links
+                    for o in jt.links if o != slider and o not in links), None)
+        if pin is not None:     # the slider's pin on a link solved before: its velocity is known
+            Pp = _pt(j.point, pin)
+            vn.append(Markup("{} — известна: шарнир {} соединяет звено {} со звеном {}").format(
+                _m(rf"\bar{{V}}_{{{Ps}}} = \bar{{V}}_{{{Pp}}}"), _m(P), slider, pin))
+            an.append(Markup("{} — известно").format(_m(rf"\bar{{a}}_{{{Ps}}} = \bar{{a}}_{{{Pp}}}")))
         vn.append(Markup("{} — скорость точки звена {}, совпадающей в данный момент с точкой {} звена {}: "
                          "{}, {}; {} направляющей звена {} — величины находятся построением").format(
             _m(rf"\bar{{V}}_{{{Pg}}}"), guide, _m(P), slider, _m(rf"\bar{{V}}_{{{Pg}}} = \bar{{V}}_{{{G}}} + \bar{{V}}_{{{Pg}{G}}}"),
