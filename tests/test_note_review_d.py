@@ -110,3 +110,24 @@ def test_stone_pin_velocity_stated_known(conveyor):
     assert "известно" in a
     # the pin's link is outside the group and solved before it
     assert "2" not in g.links
+
+
+def test_table_loads_drawn_as_given(compressor, captured):
+    """An indicator diagram given in the case was never shown: a teacher expects p(s) of an
+    engine or a compressor.  The chart draws each table once (two cylinders with one diagram
+    share a line), in МПа against the argument in mm, through the table's own rows."""
+    from reportgen.scenes.dynamics import LoadLaws, shown_laws
+    from reportgen.scenes.labels import check_figure
+    laws = shown_laws(compressor)
+    assert [names for names, _, _ in laws] == [["P1с", "P2с"], ["P1в", "P2в"]]
+    LoadLaws().draw(compressor)
+    fig = captured[-1]
+    ax = fig.axes[0]
+    assert check_figure(fig) == []
+    lines = [ln for ln in ax.lines if len(ln.get_xdata()) > 2]
+    assert len(lines) == 2
+    p = laws[0][2]
+    assert np.allclose(lines[0].get_xdata(), p.table.x * 1e3) and np.allclose(lines[0].get_ydata(), p.table.y / 1e6)
+    # the case's table in its own units: 0,7 МПа from 0 to 13,7 mm (discharge)
+    assert lines[0].get_ydata()[0] == pytest.approx(0.7) and lines[0].get_xdata()[1] == pytest.approx(13.7)
+    assert "МПа" in ax.get_ylabel() and "мм" in ax.get_xlabel()

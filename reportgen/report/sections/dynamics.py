@@ -18,8 +18,8 @@ from ...case import units as U
 from ...case.text import inline_html
 from ...scenes.draw import gost_ratio
 from ...scenes.forces import html_label
-from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, MomentCurves,
-                                MotionCurves, WittenbauerDiagram, WorkCurves)
+from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, LoadLaws, MomentCurves,
+                                MotionCurves, WittenbauerDiagram, WorkCurves, law_units, shown_laws)
 from ...style.numbers import fmt, fmt_given, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
@@ -280,6 +280,18 @@ def _model(sec: Section, study, d) -> None:
             Column("law", "Закон изменения", fmt=Markup)], pd.DataFrame(lrows), id="tab-dyn-loads")
     if d.breaks.size:
         s.paragraph(_breaks_text(study, d.breaks))
+    laws = shown_laws(study)
+    if laws:
+        fig = LoadLaws().draw(study)
+        args = []
+        for _, _, p in laws:
+            a = str(expr_html(_slides_as_named(p.of.text, _slide_names(study)))) if p.of is not None else "φ"
+            if a not in args:
+                args.append(a)
+        s.paragraph(f"Нагрузки, заданные таблицами, показаны на рисунке {ref('fig-dyn-laws')} так, как они заданы: "
+                    f"по оси абсцисс — величина <i>x</i>, от которой задана таблица ({'; '.join('<i>x</i> = ' + a for a in args)}), "
+                    "точки — строки таблиц.")
+        s.figure("Законы изменения нагрузок, заданных таблицами", fig.svg, fig.width_mm, id="fig-dyn-laws")
 
 
 def _breaks_text(study, breaks) -> str:
@@ -329,7 +341,7 @@ def _law(ld, names: dict[str, str] | None = None) -> Markup:
     for p in ld.pieces:
         head = (f"на фазе {fmt(math.degrees(p.phase[0]), digits=0)}…{fmt(math.degrees(p.phase[1]), digits=0)}°"
                 f"{' (' + p.name + ')' if p.name else ''}: " if p.phase is not None else "")
-        unit, k = _law_unit(ld, p)
+        unit, k = law_units(ld, p)
         if p.table is not None:
             parts.append(Markup("{}таблица {} от {}, {}…{}\u00a0{}").format(
                 head, plural(len(p.table.x), "точка", "точки", "точек"), expr_html(_slides_as_named(p.of.text, names)),
@@ -370,16 +382,6 @@ def _condition(c, names: dict[str, str] | None = None) -> Markup:
     if tuple(c.lhs.dim) == U.ANGLE:
         return condition_html(text, math.degrees(value), "°")
     return condition_html(text, value, U.format_dim(c.lhs.dim))
-
-
-def _law_unit(ld, p) -> tuple[str, float]:
-    """The unit a load law is printed in: МПа for pressures, кН above 10 кН, else Н or Н·м."""
-    big = float(np.max(np.abs(p.table.y))) if p.table is not None else abs(float(p.const))
-    if ld.kind == "moment":
-        return ("кН·м", 1e3) if big >= 1e4 else ("Н·м", 1.0)
-    if ld.area is not None:
-        return "МПа", 1e6
-    return ("кН", 1e3) if big >= 1e4 else ("Н", 1.0)
 
 
 def _inertia(sec, study, d, tab, lab, row, kv, lead) -> None:
