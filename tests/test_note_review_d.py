@@ -131,3 +131,16 @@ def test_table_loads_drawn_as_given(compressor, captured):
     # the case's table in its own units: 0,7 МПа from 0 to 13,7 mm (discharge)
     assert lines[0].get_ydata()[0] == pytest.approx(0.7) and lines[0].get_xdata()[1] == pytest.approx(13.7)
     assert "МПа" in ax.get_ylabel() and "мм" in ax.get_xlabel()
+
+
+def test_table_load_argument_named_per_load(compressor):
+    """One line of the chart serves both cylinders: the text names each cylinder's argument."""
+    from notehelpers import blocks
+    from reportgen.report.document import Paragraph, Section
+    from reportgen.report.sections import dynamics
+    sec = Section("Динамика", "sec-x")
+    dynamics._model(sec, compressor, compressor.dynamics)
+    text = " ".join(_plain(b.html) for b in blocks(sec) if isinstance(b, Paragraph))
+    m = re.search(r"Нагрузки, заданные таблицами, показаны на рисунке .*?строки таблиц\.", text)
+    assert m, text[-600:]
+    assert "x = lOA + lAB − sB (P1с, P1в)" in m.group(0) and "x = lOA + lAB − sC (P2с, P2в)" in m.group(0)

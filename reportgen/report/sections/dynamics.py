@@ -283,14 +283,18 @@ def _model(sec: Section, study, d) -> None:
     laws = shown_laws(study)
     if laws:
         fig = LoadLaws().draw(study)
-        args = []
-        for _, _, p in laws:
-            a = str(expr_html(_slides_as_named(p.of.text, _slide_names(study)))) if p.of is not None else "φ"
-            if a not in args:
-                args.append(a)
+        args: dict[str, list[str]] = {}      # the table's argument → the loads it is written for
+        drawn = {n for names, _, _ in laws for n in names}
+        for ld in d.loads.loads:
+            for p in ld.pieces:
+                if ld.name in drawn and p.table is not None:
+                    a = str(expr_html(_slides_as_named(p.of.text, _slide_names(study)))) if p.of is not None else "φ"
+                    if ld.name not in args.setdefault(a, []):
+                        args[a].append(ld.name)
+        xs = "; ".join(f"<i>x</i> = {a}" + (f" ({', '.join(html_label(n) for n in ns)})" if len(args) > 1 else "")
+                       for a, ns in args.items())
         s.paragraph(f"Нагрузки, заданные таблицами, показаны на рисунке {ref('fig-dyn-laws')} так, как они заданы: "
-                    f"по оси абсцисс — величина <i>x</i>, от которой задана таблица ({'; '.join('<i>x</i> = ' + a for a in args)}), "
-                    "точки — строки таблиц.")
+                    f"по оси абсцисс — величина <i>x</i>, от которой задана таблица ({xs}), точки — строки таблиц.")
         s.figure("Законы изменения нагрузок, заданных таблицами", fig.svg, fig.width_mm, id="fig-dyn-laws")
 
 
