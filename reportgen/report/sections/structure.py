@@ -80,8 +80,8 @@ def build(study) -> Section:
                                      Column("level", "Низшая/высшая")], pdf, id="tab-pairs")
     hinges = _compound_hinges(mech)
     if hinges:
-        s1.paragraph(" ".join(Markup("В точке {} сходятся звенья {}: это сложный шарнир, он образует {} ({}) и так "
-                                     "учтён в числе пар.").format(
+        s1.paragraph(" ".join(Markup("В точке {} сходятся звенья {}: это сложный шарнир, он образует {} ({}), "
+                                     "каждая из них учтена в числе низших пар <i>p</i><sub>5</sub>.").format(
             Markup(html_point(escape(p))), ", ".join(ls[:-1]) + " и " + ls[-1],
             _pairs_words(len(ps)), ", ".join(ps))
             for p, ls, ps in hinges))
