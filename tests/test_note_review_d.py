@@ -34,8 +34,10 @@ def test_output_named_by_the_case_title(compressor):
     from reportgen import load_case
     from reportgen.analysis.plans import output_quantity
     assert _plain(output_quantity(compressor)[3]) == "поршень C (звено 5)"
-    # a link titled by its kind keeps «ползун 3»
+    # a link titled by its kind keeps «ползун 3»; a title with a remark in brackets takes the number
+    # after its first word
     assert _plain(output_quantity(load_case(CASES / "slider_crank.toml"))[3]) == "ползун 3"
+    assert _plain(output_quantity(load_case(CASES / "synth_shaper.toml"))[3]) == "ползун 5 (резцовая головка)"
 
 
 def test_equal_strokes_not_called_slow_and_fast(compressor):

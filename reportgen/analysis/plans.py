@@ -188,7 +188,7 @@ def output_quantity(study) -> tuple[str, str, str, str]:
 
 def _link_named(mech, link: str, noun: str):
     """The output link as the note names it: by the case's title where it has one («поршень C
-    (звено 5)», «коромысло 3»), else by its kind and number («ползун 5»)."""
+    (звено 5)», «коромысло 3», «ползун 5 (долбяк)»), else by its kind and number («ползун 5»)."""
     from markupsafe import Markup
     title = mech.link(link).title
     plain = Markup(title or "").striptags()
@@ -196,6 +196,9 @@ def _link_named(mech, link: str, noun: str):
         return f"{noun} {link}"
     if " " not in plain and "(" not in plain:
         return Markup("{} {}").format(title, link)
+    head, _, rest = str(Markup(title)).partition(" ")
+    if rest.startswith("("):        # «ползун (долбяк)» → «ползун 5 (долбяк)»
+        return Markup(head) + Markup(" {} ").format(link) + Markup(rest)
     return Markup("{} (звено {})").format(title, link)
 
 
