@@ -146,3 +146,34 @@ def test_table_load_argument_named_per_load(compressor):
     m = re.search(r"Нагрузки, заданные таблицами, показаны на рисунке .*?строки таблиц\.", text)
     assert m, text[-600:]
     assert "x = lOA + lAB − sB (P1с, P1в)" in m.group(0) and "x = lOA + lAB − sC (P2с, P2в)" in m.group(0)
+
+
+def _assignment_pages(rows: int) -> list[str]:
+    import pandas as pd
+    from reportgen.report import render
+    from reportgen.report.document import Column, Report, Section
+    s = Section("x", "x")
+    s.paragraph("По заданной схеме и размерам механизма выполнить анализ. " * 3)
+    s.table("Исходные данные", [Column("p", "Параметр"), Column("v", "Значение", digits=2)],
+            pd.DataFrame({"p": [f"длина звена {i}" for i in range(rows)], "v": [0.1] * rows}), id="tab-given")
+    s.table("МАССЫ звеньев", [Column("n", "Звено"), Column("m", "Масса, кг", digits=2)],
+            pd.DataFrame({"n": [str(i) for i in range(7)], "m": [1.0] * 7}), id="tab-masses")
+    s.paragraph("Ведущее звено — кривошип 1; угловая скорость задана. " * 4)
+    meta = {"student": "И. А. Белов", "supervisor": "Е. Г. Соколова", "topic": "Тема", "variant": "1"}
+    r = Report(meta=meta, assignment=s.children, introduction=[], sections=[], conclusion=[],
+               references=[], options={"title_page": False, "assignment_page": True})
+    doc, _ = render._layout(r, render._font_config())
+    return [" ".join(b.text for b in page._page_box.descendants() if getattr(b, "text", None))
+            for page in doc.pages]
+
+
+@pytest.mark.parametrize("rows", [18, 22, 26])
+def test_assignment_spill_takes_the_last_table_along(rows):
+    """The swing conveyor's assignment (13 parameters, 7 links) left p. 3 with three lines and the
+    signatures: the last table of the given data now goes along with them, whole."""
+    pages = _assignment_pages(rows)
+    where = lambda word: [i for i, p in enumerate(pages) if word in p]
+    sign = where("принял")
+    assert len(sign) == 1
+    assert where("МАССЫ") == sign, [p[-200:] for p in pages]
+    assert where("Звено") == sign                # the table's head and its rows on one page
