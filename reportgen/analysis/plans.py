@@ -176,14 +176,30 @@ def output_quantity(study) -> tuple[str, str, str, str]:
                          expected="s_<пара>, phi_<звено>, x_<точка> или y_<точка>")
     for j in reversed(mech.prismatic):
         if j.links[0] == FRAME:
-            return f"s_{j.name}", f"vqs_{j.name}", f"aqs_{j.name}", f"ползун {j.links[1]}"
+            return f"s_{j.name}", f"vqs_{j.name}", f"aqs_{j.name}", _link_named(mech, j.links[1], "ползун")
     groups = study.structure.groups
     for g in reversed(groups):
         for l in g.links:
             if any(FRAME in jt.links and l in jt.links for jt in mech.joints):
-                return f"phi_{l}", f"wq_{l}", f"eq_{l}", f"звено {l}"
+                return f"phi_{l}", f"wq_{l}", f"eq_{l}", _link_named(mech, l, "звено")
     l = groups[-1].links[-1]
-    return f"phi_{l}", f"wq_{l}", f"eq_{l}", f"звено {l}"
+    return f"phi_{l}", f"wq_{l}", f"eq_{l}", _link_named(mech, l, "звено")
+
+
+def _link_named(mech, link: str, noun: str):
+    """The output link as the note names it: by the case's title where it has one («поршень C
+    (звено 5)», «коромысло 3», «ползун 5 (долбяк)»), else by its kind and number («ползун 5»)."""
+    from markupsafe import Markup
+    title = mech.link(link).title
+    plain = Markup(title or "").striptags()
+    if not plain or plain == noun:
+        return f"{noun} {link}"
+    if " " not in plain and "(" not in plain:
+        return Markup("{} {}").format(title, link)
+    head, _, rest = str(Markup(title)).partition(" ")
+    if rest.startswith("("):        # «ползун (долбяк)» → «ползун 5 (долбяк)»
+        return Markup(head) + Markup(" {} ").format(link) + Markup(rest)
+    return Markup("{} (звено {})").format(title, link)
 
 
 # ----------------------------------------------------------------------------------------------

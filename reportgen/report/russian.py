@@ -170,6 +170,7 @@ def param_title(name: str, unit: str | None = None) -> str:
 
 
 _COND = re.compile(r"^\s*vq([xy])_(\w+)\s*(>=|>|<=|<)\s*0\s*$")
+_COND_S = re.compile(r"^\s*vqs_(\w+)\s*(>=|>|<=|<)\s*0\s*$")
 _OPS = {">=": "≥", "<=": "≤", "!=": "≠", "==": "="}
 _TOKEN = re.compile(r"\b(vq|aq|v|a|x|y|phi|wq|eq|w|e)([xy]?)_(\w+)\b")
 
@@ -225,6 +226,11 @@ def condition_html(text: str, rhs_value: float | None = None, unit: str = "") ->
     anything else is written with :func:`expr_html`."""
     if _COND.match(text):
         return Markup(escape(condition_text(text)))
+    m = _COND_S.match(text)
+    if m:           # the sign of a slide's analog: the slider moves one way along its guide
+        name, op = m.groups()
+        return Markup("при {} <i>s</i><sub>{}</sub>").format(
+            "возрастании" if op in (">=", ">") else "убывании", name)
     parts = _CMP.split(text)
     if len(parts) == 3:
         lhs, op, rhs = (x.strip() for x in parts)

@@ -10,10 +10,11 @@ from matplotlib.patches import Circle, Rectangle, Wedge
 from ..style import mplstyle
 from ..style.numbers import fmt, position_names
 from .draw import INK, Canvas
+from .forces import math_label
 from .mechanism import Drawing
 
 __all__ = ["InertiaCurves", "MomentCurves", "WorkCurves", "EnergyCurves", "WittenbauerDiagram",
-           "MotionCurves", "FlywheelDrawing", "load_label"]
+           "MotionCurves", "FlywheelDrawing", "LoadLaws", "law_units", "load_label", "shown_laws"]
 
 _NEEDS = ("dynamics",)
 
@@ -40,6 +41,82 @@ def _marks(ax, study, col):
 def load_label(name: str) -> str:
     """mathtext label of a reduced moment: G2 → $M_{G2}$."""
     return f"$M_{{\\mathrm{{{name}}}}}$"
+
+
+def table_laws(study) -> list[tuple[list[str], object, object]]:
+    """The load laws the case gives by tables (an indicator diagram, a cutting-force diagram):
+    (the loads' names, the load, its piece), a table shared by several loads (two cylinders
+    with one indicator diagram) once, with all their names."""
+    out: list[tuple[list[str], object, object]] = []
+    for ld in study.dynamics.loads.loads:
+        for p in ld.pieces:
+            if p.table is None:
+                continue
+            same = next((o for o in out if o[2].name == p.name and np.array_equal(o[2].table.x, p.table.x)
+                         and np.array_equal(o[2].table.y, p.table.y) and (o[1].area is None) == (ld.area is None)
+                         and o[1].kind == ld.kind), None)
+            if same is None:
+                out.append(([ld.name], ld, p))
+            else:
+                same[0].append(ld.name)
+    return out
+
+
+def shown_laws(study) -> list[tuple[list[str], object, object]]:
+    """The table laws drawn on one chart: those in the units of the first (value and argument)."""
+    laws = table_laws(study)
+    if not laws:
+        return []
+
+    def key(law):
+        return law_units(law[1], law[2])[0], argument_units(law[2])[0], law[1].area is None, law[1].kind
+    return [law for law in laws if key(law) == key(laws[0])]
+
+
+def law_units(ld, p) -> tuple[str, float]:
+    """The unit a load law's value is shown in: МПа for a pressure (the law times an area),
+    кН or кН·м above 10⁴, else Н or Н·м."""
+    big = float(np.max(np.abs(p.table.y))) if p.table is not None else abs(float(p.const))
+    if ld.kind == "moment":
+        return ("кН·м", 1e3) if big >= 1e4 else ("Н·м", 1.0)
+    if ld.area is not None:
+        return "МПа", 1e6
+    return ("кН", 1e3) if big >= 1e4 else ("Н", 1.0)
+
+
+def argument_units(p) -> tuple[str, float]:
+    """The unit of a table's argument on the drawing: мм for a length, градусы for an angle."""
+    from ..case import units as U
+    dim = tuple(p.of.dim) if p.of is not None else U.ANGLE
+    if dim == tuple(U.LENGTH):
+        return "мм", 1e-3
+    if dim == tuple(U.ANGLE):
+        return "град", math.pi / 180
+    return "", 1.0
+
+
+class LoadLaws:
+    """The loads given by tables as the case gives them: the value against the table's argument
+    (for an engine or a compressor — the indicator diagram p(s)), one line per law or stroke."""
+
+    needs = _NEEDS
+
+    def draw(self, study) -> Drawing:
+        fig = mplstyle.figure(160, 85)
+        ax = fig.add_subplot()
+        laws = shown_laws(study)
+        ld0, p0 = laws[0][1], laws[0][2]
+        vu, k = law_units(ld0, p0)
+        xu, kx = argument_units(p0)
+        for names, ld, p in laws:
+            label = ", ".join(math_label(n) for n in names) + (f" ({p.name})" if p.name else "")
+            ax.plot(p.table.x / kx, p.table.y / k, lw=1.2, marker="o", ms=2.5, label=label)
+        ax.axhline(0, color="0.3", lw=0.6)
+        what = "p" if ld0.area is not None else ("M" if ld0.kind == "moment" else "F")
+        ax.set_ylabel(f"${what}$, {vu}")
+        ax.set_xlabel(f"$x$, {xu}" if xu else "$x$")
+        ax.legend(fontsize=9, loc="best")
+        return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 
 class InertiaCurves:

@@ -7,6 +7,7 @@ motion ω(φ), ε(φ) and the true velocities and accelerations.
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pandas as pd
@@ -17,8 +18,8 @@ from ...case import units as U
 from ...case.text import inline_html
 from ...scenes.draw import gost_ratio
 from ...scenes.forces import html_label
-from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, MomentCurves,
-                                MotionCurves, WittenbauerDiagram, WorkCurves)
+from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, LoadLaws, MomentCurves,
+                                MotionCurves, WittenbauerDiagram, WorkCurves, law_units, shown_laws)
 from ...style.numbers import fmt, fmt_given, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
@@ -270,7 +271,7 @@ def _model(sec: Section, study, d) -> None:
         lrows.append({"name": ld.name, "what": Markup(ld.title).striptags(),
                       "where": (Markup("{}, звено {}").format(Markup(html_point(escape(ld.point))), ld.link)
                                 if ld.point else Markup("звено {}").format(ld.link)),
-                      "law": _law(ld)})
+                      "law": _law(ld, _slide_names(study))})
     if lrows:
         s.paragraph(f"Внешние нагрузки машины перечислены в таблице {ref('tab-dyn-loads')}. Силы тяжести "
                     f"вычислены при <i>g</i>&nbsp;=&nbsp;{fmt_given(d.loads.g)}&nbsp;м/с².")
@@ -278,15 +279,64 @@ def _model(sec: Section, study, d) -> None:
             Column("name", "Обозначение", fmt=lambda v: Markup(html_label(v))), Column("what", "Нагрузка"), Column("where", "Точка приложения", fmt=Markup),
             Column("law", "Закон изменения", fmt=Markup)], pd.DataFrame(lrows), id="tab-dyn-loads")
     if d.breaks.size:
-        pts = ", ".join(_phase_deg(study, q) for q in d.breaks)
-        s.paragraph(f"Нагрузки меняют закон действия (точки переключения, найденные решением уравнений) при "
-                    f"φ&nbsp;=&nbsp;{pts}. Интегралы работ вычисляются по участкам между ними квадратурой "
-                    "Гаусса–Лежандра, поэтому разрывы нагрузок не вносят погрешности.")
+        s.paragraph(_breaks_text(study, d.breaks))
+    laws = shown_laws(study)
+    if laws:
+        fig = LoadLaws().draw(study)
+        args: dict[str, list[str]] = {}      # the table's argument → the loads it is written for
+        drawn = {n for names, _, _ in laws for n in names}
+        for ld in d.loads.loads:
+            for p in ld.pieces:
+                if ld.name in drawn and p.table is not None:
+                    a = str(expr_html(_slides_as_named(p.of.text, _slide_names(study)))) if p.of is not None else "φ"
+                    if ld.name not in args.setdefault(a, []):
+                        args[a].append(ld.name)
+        xs = "; ".join(f"<i>x</i> = {a}" + (f" ({', '.join(html_label(n) for n in ns)})" if len(args) > 1 else "")
+                       for a, ns in args.items())
+        s.paragraph(f"Нагрузки, заданные таблицами, показаны на рисунке {ref('fig-dyn-laws')} так, как они заданы: "
+                    f"по оси абсцисс — величина <i>x</i>, от которой задана таблица ({xs}), точки — строки таблиц.")
+        s.figure("Законы изменения нагрузок, заданных таблицами", fig.svg, fig.width_mm, id="fig-dyn-laws")
 
 
-def _law(ld) -> Markup:
+def _breaks_text(study, breaks) -> str:
+    """Where the loads change their law: the angles listed, or (a table law's every corner) counted."""
+    if breaks.size > MAX_BREAKS:
+        return (f"Нагрузки меняют закон действия (изломы и скачки заданных диаграмм, начало и конец "
+                f"действия сил) в точках цикла, найденных решением уравнений (всего "
+                f"{plural(breaks.size, 'точка', 'точки', 'точек')}). Интегралы работ вычисляются по участкам "
+                "между ними квадратурой Гаусса–Лежандра, поэтому изломы и разрывы нагрузок не вносят погрешности.")
+    pts = ", ".join(_phase_deg(study, q) for q in breaks)
+    return (f"Нагрузки меняют закон действия (точки переключения, найденные решением уравнений) при "
+            f"φ&nbsp;=&nbsp;{pts}. Интегралы работ вычисляются по участкам между ними квадратурой "
+            "Гаусса–Лежандра, поэтому разрывы нагрузок не вносят погрешности.")
+
+
+def _slide_names(study) -> dict[str, str]:
+    """A prismatic pair's name → the name its displacement s carries in the note's tables: the
+    slider's point where no other pair slides at it (s_30 → s_B, as table «Углы звеньев и
+    перемещения в поступательных парах» heads its column)."""
+    pairs = study.mechanism.prismatic
+    points = [j.point for j in pairs]
+    return {j.name: j.point for j in pairs if points.count(j.point) == 1}
+
+
+def _slides_as_named(text: str, names: dict[str, str]) -> str:
+    """``text`` with the columns of prismatic pairs (s_J, vqs_J, aqs_J) renamed by ``names``,
+    for display only."""
+    if not names:
+        return text
+    return re.sub(r"\b(s|vqs|aqs)_(\w+)\b",
+                  lambda m: f"{m.group(1)}_{names.get(m.group(2), m.group(2))}", text)
+
+
+MAX_BREAKS = 12      # more switching angles than this are counted, not listed
+
+
+def _law(ld, names: dict[str, str] | None = None) -> Markup:
     """Russian description of a load law (escaped HTML with no-break spaces): expressions and
-    conditions in textbook symbols, parameters by their values (:func:`condition_html`)."""
+    conditions in textbook symbols, parameters by their values (:func:`condition_html`); the
+    displacement in a prismatic pair named as the tables name it (``names``, :func:`_slide_names`)."""
+    names = names or {}
     if ld.kind == "weight":
         return Markup(escape(f"G\u00a0=\u00a0{fmt(-ld.vector[1], sig=4)}\u00a0Н, вертикально вниз"))
     parts = []
@@ -295,10 +345,10 @@ def _law(ld) -> Markup:
     for p in ld.pieces:
         head = (f"на фазе {fmt(math.degrees(p.phase[0]), digits=0)}…{fmt(math.degrees(p.phase[1]), digits=0)}°"
                 f"{' (' + p.name + ')' if p.name else ''}: " if p.phase is not None else "")
-        unit, k = _law_unit(ld, p)
+        unit, k = law_units(ld, p)
         if p.table is not None:
             parts.append(Markup("{}таблица {} от {}, {}…{}\u00a0{}").format(
-                head, plural(len(p.table.x), "точка", "точки", "точек"), expr_html(p.of.text),
+                head, plural(len(p.table.x), "точка", "точки", "точек"), expr_html(_slides_as_named(p.of.text, names)),
                 fmt(p.table.y.min() / k, sig=3), fmt(p.table.y.max() / k, sig=3), unit))
         else:
             parts.append(head + f"{fmt(p.const / k, sig=4)}\u00a0{unit}")
@@ -309,7 +359,7 @@ def _law(ld) -> Markup:
     if ld.against:
         parts.append("против движения")
     for c in ld.when:
-        parts.append(_condition(c))
+        parts.append(_condition(c, names))
     return Markup("; ").join(parts)
 
 
@@ -322,28 +372,20 @@ def _direction_words(ld) -> Markup:
             return Markup("вдоль оси <i>{}</i>").format(t[-1])
         return Markup("{} направлении оси <i>{}</i>").format("в обратном" if t.startswith("-") else "в", t[-1])
     ang = math.degrees(math.atan2(ld.u[1], ld.u[0]))
-    return Markup("под углом {}° к оси <i>x</i>").format(fmt(ang, sig=4))
+    whole = abs(ang - round(ang)) < 1e-9        # a given angle as written: «−45°», not «−45,00°»
+    return Markup("под углом {}° к оси <i>x</i>").format(fmt(ang, digits=0) if whole else fmt(ang, sig=4))
 
 
-def _condition(c) -> Markup:
+def _condition(c, names: dict[str, str] | None = None) -> Markup:
     """A load condition with the right side evaluated when it holds only parameters: an angle in
     degrees, anything else in its SI unit."""
+    text = _slides_as_named(c.text, names or {})
     if c.rhs.used or c.lhs.used == []:
-        return condition_html(c.text)
+        return condition_html(text)
     value = float(np.asarray(c.rhs._eval({}).value, dtype=float).reshape(-1)[0])
     if tuple(c.lhs.dim) == U.ANGLE:
-        return condition_html(c.text, math.degrees(value), "°")
-    return condition_html(c.text, value, U.format_dim(c.lhs.dim))
-
-
-def _law_unit(ld, p) -> tuple[str, float]:
-    """The unit a load law is printed in: МПа for pressures, кН above 10 кН, else Н or Н·м."""
-    big = float(np.max(np.abs(p.table.y))) if p.table is not None else abs(float(p.const))
-    if ld.kind == "moment":
-        return ("кН·м", 1e3) if big >= 1e4 else ("Н·м", 1.0)
-    if ld.area is not None:
-        return "МПа", 1e6
-    return ("кН", 1e3) if big >= 1e4 else ("Н", 1.0)
+        return condition_html(text, math.degrees(value), "°")
+    return condition_html(text, value, U.format_dim(c.lhs.dim))
 
 
 def _inertia(sec, study, d, tab, lab, row, kv, lead) -> None:

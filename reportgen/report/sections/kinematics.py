@@ -76,13 +76,45 @@ def _strokes(study, s) -> tuple[int, int, float, float]:
     return i_min, i_max, work, K
 
 
-def _quick_return(fast: float, K: float) -> str:
-    """Engineering reading of K > 1 (Артоболевский, гл. «Синтез»): the slow stroke is the working one."""
+def _quick_return(fast: float, K: float, working: str | None = None) -> str:
+    """Engineering reading of K > 1 (Артоболевский, гл. «Синтез»): the slow stroke is the working one.
+    ``working`` — which stroke the case's loads resist (:func:`_working_stroke`): where it is the
+    fast one the note says so and how to make the slow stroke the working one."""
     if not K > 1.05:
         return ""
-    return (f" Один ход выходного звена занимает {fmt(360 - fast, digits=1)}°, другой — {fmt(fast, digits=1)}° "
-            f"поворота кривошипа: рабочим назначается медленный ход, холостой выполняется в "
-            f"{fmt(K, digits=2)} раза быстрее, что сокращает время цикла.")
+    head = (f" Один ход выходного звена занимает {fmt(360 - fast, digits=1)}°, другой — {fmt(fast, digits=1)}° "
+            f"поворота кривошипа: ")
+    if working == "fast":
+        return head + (f"силы сопротивления действуют на быстром ходе, т. е. рабочим оказался быстрый ход, хотя "
+                       f"рабочим выгоднее назначать медленный (холостой ход тогда выполняется в {fmt(K, digits=2)} раза "
+                       f"быстрее). При обратном направлении вращения кривошипа ходы выходного звена меняются ролями: "
+                       f"медленным становится ход в направлении нынешнего быстрого; это следует учесть при выборе "
+                       f"направления вращения.")
+    lead = ("рабочий ход (на нём действуют силы сопротивления) — медленный" if working == "slow"
+            else "рабочим назначается медленный ход")
+    return head + (f"{lead}, холостой выполняется в {fmt(K, digits=2)} раза быстрее, что сокращает время цикла.")
+
+
+def _working_stroke(study) -> str | None:
+    """Which stroke of the output the case's loads resist: the work of the resistance forces
+    A_с (dynamics, over the crank's cycle of one turn) on the stroke from the extreme position q₁
+    to q₂ and on the other one.  "slow"/"fast" where one stroke takes at least twice the other's
+    work, None without [dynamics], for a longer cycle or a load on both strokes alike."""
+    sc = study.scalars
+    if not study.root.has("dynamics") or "output_q1" not in sc:
+        return None
+    cyc = study.dynamics.cycle
+    q, A = cyc["q"].to_numpy(), cyc["A_c"].to_numpy()
+    period = study.grid.length
+    if abs((q[-1] - q[0]) - period) > 1e-9 * period:
+        return None
+    q1, q2 = sorted((sc["output_q1"], sc["output_q2"]))
+    a = abs(float(np.interp(q2, q, A) - np.interp(q1, q, A)))      # the stroke from q₁ to q₂
+    b = abs(float(A[-1] - A[0])) - a
+    if max(a, b) < 2 * max(min(a, b), 0.0) or max(a, b) <= 0:
+        return None
+    slow_is_a = (q2 - q1) > period / 2
+    return "slow" if (a > b) == slow_is_a else "fast"
 
 
 def _in_tables(ids: list[str]) -> str:
@@ -312,7 +344,7 @@ def build(study) -> Section:
                      f"{_turn(cyc['q'].iloc[i_min] - study.grid.start)}° и "
                      f"{_turn(cyc['q'].iloc[i_max] - study.grid.start)}°; угол перекрытия "
                      f"θ&nbsp;=&nbsp;{fmt(abs(180 - work), digits=1)}°, коэффициент изменения средней скорости "
-                     f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}." + _quick_return(work, K))
+                     f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}." + _quick_return(work, K, _working_stroke(study)))
     s5.paragraph(origin)
     s5.figure("Кинематические диаграммы выходного звена", diag.svg, diag.width_mm, id="fig-diagrams")
     flags = study.flags
@@ -616,10 +648,13 @@ def _speed_lines(study) -> list[str]:
         ang = str(sc["output"]).startswith("phi_")
         unit = "рад/с" if ang else "м/с"
         what = "Средняя угловая скорость выходного звена" if ang else "Средняя скорость выходного звена"
-        out.append(f"{what} на медленном ходе (больший угол поворота {input_word(d, 'gen')}) "
-                   f"{fmt(sc['output_v_work'], sig=3)}&nbsp;{unit}, на быстром — "
-                   f"{fmt(sc['output_v_return'], sig=3)}&nbsp;{unit} (коэффициент изменения средней скорости "
-                   f"<i>K</i>&nbsp;=&nbsp;{fmt(sc['output_K'], digits=3)}).")
+        slow, fast = fmt(sc['output_v_work'], sig=3), fmt(sc['output_v_return'], sig=3)
+        K = f"(коэффициент изменения средней скорости <i>K</i>&nbsp;=&nbsp;{fmt(sc['output_K'], digits=3)})"
+        if slow == fast:        # K = 1: no slow and fast stroke to tell apart
+            out.append(f"{what} на прямом и обратном ходах одинакова: {slow}&nbsp;{unit} {K}.")
+        else:
+            out.append(f"{what} на медленном ходе (больший угол поворота {input_word(d, 'gen')}) "
+                       f"{slow}&nbsp;{unit}, на быстром — {fast}&nbsp;{unit} {K}.")
     pin = study.mechanism.crank_pin()
     col = "v_" + str(pin)
     if pin and col in study.cycle:

@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import pandas as pd
-from markupsafe import Markup
+from markupsafe import Markup, escape
 
 from ...mechanism.structure import decomposition as _decomposition
 from ...scenes.draw import gost_ratio, mu_text
@@ -10,7 +10,7 @@ from ...scenes.mechanism import AssurGroups, KinematicScheme
 from ..document import Column, Section, ref
 from ..formulas import inline_math
 from ..russian import expr_html, plural
-from .common import input_word, pair_label
+from .common import html_point, input_word, pair_label
 
 NEEDS = ("structure", "kinematics")
 
@@ -19,6 +19,28 @@ def _ends(links: str) -> tuple[str, str]:
     """The two link numbers of «3–4»."""
     a, _, b = links.partition("–")
     return a, b
+
+
+def _compound_hinges(mech) -> list[tuple[str, list[str], list[str]]]:
+    """Сложные шарниры: a point where three or more links are joined by revolute pairs, k links
+    making k − 1 pairs (Артоболевский [1], гл. 2): (point, its links, its pairs «1–2»)."""
+    at: dict[str, list] = {}
+    for j in mech.joints:
+        if j.kind == "R":
+            at.setdefault(j.point, []).append(j)
+    out = []
+    for p, js in at.items():
+        if len(js) > 1:
+            ls = sorted({l for j in js for l in j.links}, key=lambda l: (len(l), l))
+            out.append((p, ls, [f"{j.links[0]}–{j.links[1]}" for j in js]))
+    return out
+
+
+def _pairs_words(n: int) -> str:
+    """«две вращательные пары» (a small count in words, as a student writes it)."""
+    words = {2: "две", 3: "три", 4: "четыре"}
+    return (f"{words[n]} вращательные пары" if n in words
+            else plural(n, "вращательную пару", "вращательные пары", "вращательных пар"))
 
 
 def build(study) -> Section:
@@ -56,6 +78,13 @@ def build(study) -> Section:
     s1.table("Кинематические пары", [Column("name", "Обозначение", fmt=Markup), Column("links", "Звенья"),
                                      Column("kind", "Вид пары"), Column("klass", "Класс"),
                                      Column("level", "Низшая/высшая")], pdf, id="tab-pairs")
+    hinges = _compound_hinges(mech)
+    if hinges:
+        s1.paragraph(" ".join(Markup("В точке {} сходятся звенья {}: это сложный шарнир, он образует {} ({}), "
+                                     "каждая из них учтена в числе низших пар <i>p</i><sub>5</sub>.").format(
+            Markup(html_point(escape(p))), ", ".join(ls[:-1]) + " и " + ls[-1],
+            _pairs_words(len(ps)), ", ".join(ps))
+            for p, ls, ps in hinges))
 
     s2 = sec.subsection("Число степеней свободы", "sec-dof")
     s2.paragraph("Число степеней свободы плоского механизма определяется по формуле П.&nbsp;Л.&nbsp;Чебышева [1]:")

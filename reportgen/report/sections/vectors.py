@@ -150,7 +150,15 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
                                                   _m(rf"\omega_{{{_ang(guide)}}} = 0"),
                                                   _m(rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}} \;\parallel")))
             continue
-        vn.append(Markup("{} — скорость точки звена {}, совпадающей в данный момент с точкой {} звена {}: "
+        pin = next((o for jt in mech.joints if jt.kind == "R" and jt.point == j.point and slider in jt.links
+                    for o in jt.links if o != slider and o not in links), None)
+        v_pin = a_pin = Markup("")
+        if pin is not None:     # the slider's pin on a link solved before: its velocity is known
+            Pp = _pt(j.point, pin)
+            v_pin = Markup("{} — известна: шарнир {} соединяет звено {} со звеном {}; ").format(
+                _m(rf"\bar{{V}}_{{{Ps}}} = \bar{{V}}_{{{Pp}}}"), _m(P), slider, pin)
+            a_pin = Markup("{} — известно; ").format(_m(rf"\bar{{a}}_{{{Ps}}} = \bar{{a}}_{{{Pp}}}"))
+        vn.append(v_pin + Markup("{} — скорость точки звена {}, совпадающей в данный момент с точкой {} звена {}: "
                          "{}, {}; {} направляющей звена {} — величины находятся построением").format(
             _m(rf"\bar{{V}}_{{{Pg}}}"), guide, _m(P), slider, _m(rf"\bar{{V}}_{{{Pg}}} = \bar{{V}}_{{{G}}} + \bar{{V}}_{{{Pg}{G}}}"),
             _m(rf"\bar{{V}}_{{{Pg}{G}}} \;\perp\; {G}{P}"), _m(rf"\bar{{V}}_{{{Ps}{Pg}}} \;\parallel"), guide))
@@ -159,7 +167,7 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
         wg = abs(float(row.get(f"w_{guide}", 0.0)))
         vr = abs(float(row.get(f"vs_{j.name}", 0.0)))
         lg = _len(row, j.point, gref)
-        an.append(Markup("{}: {}, {} (направлено от точки {} к точке {}), {}").format(
+        an.append(a_pin + Markup("{}: {}, {} (направлено от точки {} к точке {}), {}").format(
             _m(rf"\bar{{a}}_{{{Pg}}} = \bar{{a}}_{{{G}}} + \bar{{a}}^{{n}}_{{{Pg}{G}}} + \bar{{a}}^{{\tau}}_{{{Pg}{G}}}"),
             Markup("ускорение точки звена {} под ползуном").format(guide),
             _m(rf"a^{{n}}_{{{Pg}{G}}} = \omega_{{{_ang(guide)}}}^{{2}} l_{{{G}{P}}} = {tex_num(wg, sig=4)}^{{2}} \cdot "
