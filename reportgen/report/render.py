@@ -1133,7 +1133,7 @@ _ROW_ANCHOR = re.compile(r"^(.+)__r(\d+)$")
 _SPLIT_MEMO: dict[str, dict[str, list[int]]] = {}  # sha256 of the unsplit print HTML -> splits
 
 
-_SPLIT_CACHE_VERSION = 2  # 2: only the split points of the passes from none are remembered
+_SPLIT_CACHE_VERSION = 3  # 2: only the split points of the passes from none are remembered; 3: figure entries
 
 
 _DATA_SVG = re.compile(r"data:image/svg\+xml;base64,([A-Za-z0-9+/=]+)")
@@ -1433,17 +1433,48 @@ def _parent_of(root, target):
 FIGURE_SLACK = 2.0  # CSS px kept free under a figure drawn smaller or text moved before it
 
 
-def _text_units(siblings, later: set) -> list[tuple[int, float, bool, bool]]:
-    """The blocks after a figure on its page as units that move together: ``(elements, height,
-    breakable, whole on the page)``: a paragraph, a table with the paragraph announcing it, a
-    formula with its «где» lines. Stops at anything else (a heading, a figure). ``later``: the
-    elements (by ``id()``) that have boxes on the next page (a block cut by the page's end)."""
+FIGURE_LOOKAHEAD = 2  # pages after a figure's whose text may flow before it
+
+
+def _blocks_after(document, i: int, fig, parent) -> tuple[list, set]:
+    """The blocks after figure box ``fig`` (a child of ``parent``, on page ``i``) in its section,
+    on that page and the next :data:`FIGURE_LOOKAHEAD`: ``[[element, tag, classes, height]]``
+    (the fragments of a block on several pages summed), and the elements (by ``id()``) that
+    have boxes further on (blocks not whole within these pages)."""
+    out: list[list] = []
+    last = min(len(document.pages) - 1, i + FIGURE_LOOKAHEAD)
+    for j in range(i, last + 1):
+        if j == i:
+            kids = parent.children[parent.children.index(fig) + 1:]
+        else:
+            flow = _flow_box(document.pages[j])
+            frag = next((b for b in flow.descendants() if getattr(b, "element", None) is parent.element),
+                        None) if flow is not None else None
+            if frag is None:
+                break
+            kids = frag.children
+        for b in kids:
+            el = getattr(b, "element", None)
+            if out and el is not None and out[-1][0] is el:
+                out[-1][3] += b.margin_height()
+                continue
+            cls = (el.get("class") or "").split() if el is not None else []
+            out.append([el, getattr(b, "element_tag", None), cls, b.margin_height()])
+    flow = _flow_box(document.pages[last + 1]) if last + 1 < len(document.pages) else None
+    later = {id(b.element) for b in flow.descendants()
+             if getattr(b, "element", None) is not None} if flow is not None else set()
+    return out, later
+
+
+def _text_units(blocks, later: set) -> list[tuple[int, float, bool, bool]]:
+    """The blocks after a figure (:func:`_blocks_after`) as units that move together:
+    ``(elements, height, breakable, whole)``: a paragraph with the formulas it leads into, a
+    table with the paragraph announcing it, a formula with its «где» lines. Stops at anything
+    else (a heading, a figure). ``later``: the elements (by ``id()``) that go on further (a
+    block not whole)."""
     units: list[list] = []
-    lead = False
-    for b in siblings:
-        tag = getattr(b, "element_tag", None)
-        cls = (b.element.get("class") or "").split() if getattr(b, "element", None) is not None else []
-        h = b.margin_height()
+    lead = intro = False
+    for el, tag, cls, h in blocks:
         if (tag == "p" and "where-note" in cls) or (tag == "table" and "where" in cls):
             if not units:
                 break
@@ -1454,14 +1485,20 @@ def _text_units(siblings, later: set) -> list[tuple[int, float, bool, bool]]:
             units[-1][0] += 1
             units[-1][1] += h
             lead = False
+        elif tag == "div" and "eq" in cls and intro:
+            units[-1][0] += 1     # the formulas a paragraph leads into go with it
+            units[-1][1] += h
+            units[-1][2] = False
         elif tag == "div" and "eq" in cls:
             units.append([1, h, False, True])
+            intro = True
         elif tag == "p" or (tag == "div" and "tbl-wrap" in cls):
             units.append([1, h, True, True])
             lead = tag == "p" and "lead" in cls
+            intro = tag == "p"
         else:
             break
-        units[-1][3] = id(b.element) not in later  # not cut by the page's end
+        units[-1][3] = units[-1][3] and id(el) not in later
     if lead:
         units.pop()  # a paragraph announcing a table that is not there
     return [tuple(u) for u in units]
@@ -1513,12 +1550,8 @@ def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = Non
         parent = _parent_of(flow, fig)
         if parent is None:
             continue
-        sibs = list(parent.children)
         line = float(fig.style["font_size"]) * 1.5
-        nxt = _flow_box(document.pages[i + 1]) if i + 1 < len(document.pages) else None
-        later = {id(b.element) for b in nxt.descendants()
-                 if getattr(b, "element", None) is not None} if nxt is not None else set()
-        units = _text_units(sibs[sibs.index(fig) + 1:], later)
+        units = _text_units(*_blocks_after(document, i, fig, parent))
         moved, used = 0, 0.0
         k = 0
         while k < len(units) and units[k][3] and used + units[k][1] <= room - FIGURE_SLACK:
