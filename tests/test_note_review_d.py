@@ -3,6 +3,8 @@ on what the review found: a page half empty before a figure that did not fit (th
 machine's pp. 31 and 37); the δ ranges by kind of machine given without a source."""
 import re
 
+import numpy as np
+
 import pytest
 
 from conftest import CASES
@@ -117,3 +119,91 @@ def test_delta_range_of_an_unsourced_kind_refused(tmp_path):
     with pytest.raises(CaseError) as e:
         load_case(bad).dynamics.settings
     assert "machine" in str(e.value)
+
+
+# --------------------------------------------------------------------------------------------
+# 4. the slotting machine's force analysis (/work/note_s6.md): the scheme of group (2,3) drawn
+#    small; M_ур and M_Φ1 stacked on the crank; forces crowded on the lever beside its enlarged
+#    view; an incidence matrix of links and pairs
+# --------------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def slotting():
+    from reportgen import load_case
+    return load_case(CASES / "slotting_machine.toml")
+
+
+def _group_index(study, links):
+    return next(i for i, g in enumerate(study.forces.model.groups) if tuple(g.links) == links)
+
+
+def test_small_group_scheme_drawn_at_a_finer_scale(slotting, captured):
+    """Group (2,3) spans 0,45 м: at 1:10 its scheme took 45 mm of a 137 mm figure beside the force
+    polygon; at 1:5 (the polygon under it) it takes 90 mm and the drawing stays within the text."""
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.forces import GroupForces
+    lab = chosen_position(slotting)
+    d = GroupForces(lab, _group_index(slotting, ("2", "3")), landscape=True).draw(slotting)
+    cols = slotting.forces.details(lab)["cols"]
+    pts = [p for l in ("2", "3") for p in slotting.mechanism.link(l).points]
+    span = max(np.ptp([cols["x_" + p] for p in pts]), np.ptp([cols["y_" + p] for p in pts]))
+    assert span / d.mu >= 170.0 / 3           # the scheme's links on paper, mm
+    w_mm, h_mm = captured[-1].get_size_inches() * 25.4
+    assert w_mm <= 170.0 + 1e-6 and h_mm <= 200.0 + 1e-6
+    assert d.mu in (0.001, 0.002, 0.0025, 0.004, 0.005)   # a ГОСТ 2.302 scale
+
+
+def _text_boxes_mm(fig):
+    r = fig.canvas.get_renderer()
+    px = fig.dpi / 25.4
+    out = {}
+    for t in fig.axes[0].texts:
+        b = t.get_window_extent(r)
+        out[t.get_text()] = (b.x0 / px, b.y0 / px, b.x1 / px, b.y1 / px)
+    return out
+
+
+def _gap(a, b) -> float:
+    return max(max(a[0], b[0]) - min(a[2], b[2]), max(a[1], b[1]) - min(a[3], b[3]))
+
+
+def test_moment_labels_at_one_joint_apart(slotting, captured):
+    """M_ур and M_Φ1 of the crank were set 0,5 mm apart, one over the other."""
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.forces import GroupForces
+    lab = chosen_position(slotting)
+    GroupForces(lab, _group_index(slotting, ("1",)), landscape=True).draw(slotting)
+    boxes = _text_boxes_mm(captured[-1])
+    (a,) = [b for t, b in boxes.items() if "ур" in t and t.startswith("$M")]
+    (b,) = [b for t, b in boxes.items() if "Phi 1" in t and t.startswith("$M")]
+    assert _gap(a, b) >= 1.5
+
+
+def test_lever_forces_inside_the_enlarged_view_drawn_there_only(slotting, captured):
+    """The forces at d, s₄, e were drawn on the lever next to the circle «А» and its enlarged view:
+    now every force whose image lies in a circled region starts in the enlarged view."""
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.forces import ZhukovskyLever
+    from notehelpers import arrows_mm
+    lab = chosen_position(slotting)
+    d = ZhukovskyLever(lab, landscape=True).draw(slotting)
+    assert d.insets
+    fig = captured[-1]
+    ax = fig.axes[0]
+    px = fig.dpi / 25.4
+    starts = [a for a, _ in arrows_mm(fig)]
+    for ins in d.insets:
+        c = ax.transData.transform(ins.centre) / px
+        r = ins.radius / d.mu                 # the circled region, mm on paper
+        # no arrow of a force starts inside the circled region of the lever
+        assert not any(np.hypot(*(s - c)) < r - 1e-6 for s in starts), ins.tips
+        view = ax.transData.transform(ins.at) / px
+        assert sum(np.hypot(*(s - view)) < r * ins.k for s in starts) >= 3
+
+
+def test_no_incidence_matrix_in_the_force_chapter(slotting):
+    from reportgen.report.document import Table
+    from reportgen.report.sections import forces
+    from notehelpers import blocks, paragraph_text
+    sec = forces.build(slotting)
+    assert not any(isinstance(b, Table) and "инциденц" in b.caption for b in blocks(sec))
+    assert "сила, с которой звено i действует на звено j" in paragraph_text(sec)

@@ -1520,12 +1520,12 @@ def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = Non
     bottoms = _content_bottoms(document)
     for i in range(1, min(len(document.pages), len(document.pages) if upto is None else upto)):
         page, before = document.pages[i], document.pages[i - 1]
-        if page.width > page.height or before.width > before.height or bottoms[i - 1] is None:
+        flow, prev_flow = _flow_box(page), _flow_box(before)
+        if flow is None or prev_flow is None or bottoms[i - 1] is None or bottoms[i] is None:
             continue
-        flow = _flow_box(page)
-        box = getattr(page, "_page_box", None)
-        if flow is None or before is None:
-            continue
+        if page.width > page.height or before.width > before.height:
+            continue  # a landscape page holds one wide figure
+        box = page._page_box
         top = box.content_box_y()
         fig = next((b for b in flow.descendants() if getattr(b, "element_tag", None) == "figure"), None)
         if fig is None or fig.position_y > top + 0.5:
@@ -1533,8 +1533,7 @@ def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = Non
         fid = fig.element.get("id") or ""
         if "landscape" in (fig.element.get("class") or "") or FIGURE_KEY + fid in splits or not fid:
             continue
-        prev_flow = _flow_box(before)
-        room = bottoms[i - 1] - (_ink_bottom(prev_flow) if prev_flow is not None else 0.0)
+        room = bottoms[i - 1] - _ink_bottom(prev_flow)
         height = bottoms[i] - top
         margins = float(fig.style["margin_top"].value) + float(fig.style["margin_bottom"].value)
         img = next((b for b in fig.descendants() if getattr(b, "element_tag", None) == "img"), None)

@@ -1107,8 +1107,12 @@ class ZhukovskyLever:
                 continue
             L = cv.mm(_arrow_mm(n, Fmax) * 0.8)
             color = RED if is_bal else INK
-            tip = p + F / n * L
-            arrow(ax, p[0], p[1], tip[0], tip[1], color=color, lw=1.1, zorder=6)
+            # a force at an image inside an enlarged view is drawn there only (the region of the
+            # lever is marked by its circle), not crowded on the lever itself
+            at = next((ins.at + (p - ins.centre) * ins.k for ins in insets
+                       if np.hypot(*(p - ins.centre)) <= ins.radius), p)
+            tip = at + F / n * L
+            arrow(ax, at[0], at[1], tip[0], tip[1], color=color, lw=1.1, zorder=6)
             cv.labels.add(tip[0], tip[1], math_label(lab), prefer=F, fontsize=10, color=color)
             mom = float(p[0] * F[1] - p[1] * F[0]) / cv.mu
             h = round(abs(mom) / n / READ_MM) * READ_MM          # the arm as measured on the drawing
