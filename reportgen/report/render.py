@@ -26,6 +26,10 @@ table of contents come from CSS ``target-counter`` (print only).
    overflows moves its end, and the later split points, up); normally two
    passes. Cell borders are drawn inside the cells so that a row takes the
    same height at the end of a part as before a page break.
+4. a figure that did not fit under the text before it and left that page largely empty is
+   placed as a typesetter would (:func:`_figure_fixes`): drawn smaller, to 85 % at least, when
+   that fits; else the text after it flows before it. The decision is kept in the split points
+   (``figure:<id>``), one figure at a time, so the passes still end.
 
 Split points are remembered per unsplit HTML (sha256), in the process and in the
 cache folder (``<cache>/splits``), so laying out the same report again, in the
