@@ -85,6 +85,24 @@ def test_tall_figure_text_flows_before_it(intro_formula):
         assert _where(pages, "ВВОДНЫЙ") == _where(pages, "ζ")
 
 
+def test_text_after_a_landscape_figure_fills_the_page_before_it():
+    """ws000: p. 37 was 17 % full before the landscape page of group (2,3), p. 44 16 % before the
+    lever's: the text after a wide figure on its own landscape page fills the page before it."""
+    from reportgen.report.document import Section
+    s = Section("Раздел", "s")
+    for k in range(8):
+        s.paragraph(f"Строка текста номер {k} для заполнения страницы.")
+    s.paragraph("ПОСЛЕДНЯЯ строка перед рисунком.")
+    s.figure("РИСУНОКВ широкий", _svg(250, 90), width_mm=250, id="fig-w", landscape=True)
+    for k in range(4):
+        s.paragraph(f"ПОСЛЕ{k} " + "абзац текста после рисунка, который его упоминает; " * 4)
+    pages, splits = _layout(s)
+    page = _where(pages, "ПОСЛЕДНЯЯ")[0]
+    assert _where(pages, "ПОСЛЕ0") == [page] and _where(pages, "ПОСЛЕ3") == [page], [p[-80:] for p in pages]
+    assert _where(pages, "РИСУНОКВ") == [page + 1]
+    assert splits["figure:fig-w"] == [4, 1000]
+
+
 def test_placed_moves_a_figure_after_whole_blocks_only():
     from reportgen.report.render import _EqView, _FigureView, _Node, _placed
     fig = _Node("figure", _FigureView("f", "", 100.0, ""))

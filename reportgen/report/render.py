@@ -1518,6 +1518,9 @@ def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = Non
     figure then still fits under that block's end. The figure stays at the top of the next page,
     after the text that first names it.
 
+    A wide figure on a landscape page of its own is not drawn smaller; the text after it fills
+    the portrait page before it the same way.
+
     Returns the new entry (:data:`FIGURE_KEY`) of the first such figure on a page before ``upto``
     (where the layout changes in this pass anyway), or ``{}``. A figure is decided once (its
     entry is kept by the later passes), so the passes end."""
@@ -1527,18 +1530,19 @@ def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = Non
         flow, prev_flow = _flow_box(page), _flow_box(before)
         if flow is None or prev_flow is None or bottoms[i - 1] is None or bottoms[i] is None:
             continue
-        if page.width > page.height or before.width > before.height:
+        if before.width > before.height:
             continue  # a landscape page holds one wide figure
+        land = page.width > page.height       # a wide figure on a landscape page of its own
         box = page._page_box
         top = box.content_box_y()
         fig = next((b for b in flow.descendants() if getattr(b, "element_tag", None) == "figure"), None)
         if fig is None or fig.position_y > top + 0.5:
             continue  # no figure at the top of the page
         fid = fig.element.get("id") or ""
-        if "landscape" in (fig.element.get("class") or "") or FIGURE_KEY + fid in splits or not fid:
+        if land != ("landscape" in (fig.element.get("class") or "")) or FIGURE_KEY + fid in splits or not fid:
             continue
         room = bottoms[i - 1] - _ink_bottom(prev_flow)
-        height = bottoms[i] - top
+        height = bottoms[i - 1] - before._page_box.content_box_y()
         margins = float(fig.style["margin_top"].value) + float(fig.style["margin_bottom"].value)
         img = next((b for b in fig.descendants() if getattr(b, "element_tag", None) == "img"), None)
         if img is None:
@@ -1546,7 +1550,7 @@ def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = Non
         h_img = img.margin_height()
         rest = fig.border_height() - h_img + margins
         scale = (room - rest - FIGURE_SLACK) / h_img
-        if scale >= MIN_FIGURE_SCALE:
+        if scale >= MIN_FIGURE_SCALE and not land:
             return {FIGURE_KEY + fid: [0, min(999, int(scale * 1000))]}
         if room < PREMATURE_ROOM * height:
             continue  # the page is full enough
@@ -1564,8 +1568,8 @@ def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = Non
         if k < len(units) and room - used > height / 2:
             n, h, breakable, whole = units[k]
             # what stays of it on the next page, then the figure (three lines spare for the
-            # orphans and widows of the break)
-            if breakable and whole and (h - (room - used)) + rest + h_img + 3 * line <= height:
+            # orphans and widows of the break); a landscape figure has a page of its own
+            if breakable and whole and (land or (h - (room - used)) + rest + h_img + 3 * line <= height):
                 moved += n
         if moved:
             return {FIGURE_KEY + fid: [moved, 1000]}
