@@ -216,6 +216,14 @@ def test_lever_forces_inside_the_enlarged_view_drawn_there_only(slotting, captur
         assert not any(np.hypot(*(s - c)) < r - 1e-6 for s in starts), ins.tips
         view = ax.transData.transform(ins.at) / px
         assert sum(np.hypot(*(s - view)) < r * ins.k for s in starts) >= 3
+    assert d.in_views >= 3
+
+
+def test_lever_text_says_the_forces_are_in_the_enlarged_view(slotting):
+    from reportgen.report.sections import forces
+    from notehelpers import paragraph_text
+    text = paragraph_text(forces.build(slotting))
+    assert "выносным элементом А" in text and "силы, приложенные в этих точках, показаны только на нём" in text
 
 
 def test_no_incidence_matrix_in_the_force_chapter(slotting):

@@ -983,6 +983,7 @@ class LeverDrawing(Drawing):
     arm_exact_mm: float = 0.0
     forces_turned: bool = False         # the plan unturned, the forces turned by 90° clockwise
     insets: list = field(default_factory=list)   # enlarged views of crowded images (scenes.plans.Inset)
+    in_views: int = 0                   # forces drawn in the enlarged views (not on the lever itself)
 
 
 class ZhukovskyLever:
@@ -1101,6 +1102,7 @@ class ZhukovskyLever:
         # 0,001 Н·м among forces of kilonewtons) is neither drawn nor listed
         dec = shared_decimals([float(np.hypot(*it[2])) for it in items + bal])
         rows = []
+        in_views = 0
         for lab, p, F, is_bal in items + bal:
             n = float(np.hypot(*F))
             if n < 1e-9 * Fmax or (not is_bal and round(n, dec) == 0):
@@ -1111,6 +1113,7 @@ class ZhukovskyLever:
             # lever is marked by its circle), not crowded on the lever itself
             at = next((ins.at + (p - ins.centre) * ins.k for ins in insets
                        if np.hypot(*(p - ins.centre)) <= ins.radius), p)
+            in_views += at is not p
             tip = at + F / n * L
             arrow(ax, at[0], at[1], tip[0], tip[1], color=color, lw=1.1, zorder=6)
             cv.labels.add(tip[0], tip[1], math_label(lab), prefer=F, fontsize=10, color=color)
@@ -1126,7 +1129,8 @@ class ZhukovskyLever:
         graph = -total / arm_read if abs(arm_read) > 0 else 0.0
         return LeverDrawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape, moments=table, analog=analog,
                             arm_mm=arm_read,
-                            graphic=graph, arm_exact_mm=arm_mm, forces_turned=turned, insets=insets)
+                            graphic=graph, arm_exact_mm=arm_mm, forces_turned=turned, insets=insets,
+                            in_views=in_views)
 
 
 def _points(mech) -> list[str]:

@@ -594,7 +594,11 @@ def _balance(sec: Section, study, f, lab: str) -> None:
         how = how.replace(", моменты заменены парами сил на двух точках звена", "")
     mu_unit = "м·с⁻¹/мм" if not lever.analog else ("м/мм" if rot else "мм⁻¹")
     tail = " Сумма моментов всех сил относительно полюса p равна нулю:"
-    s.paragraph(how.replace(tail, _insets_text(lever, plan, "v", mu_unit) + tail))
+    views = _insets_text(lever, plan, "v", mu_unit)
+    if lever.in_views:     # the forces at those images are drawn in the view, not on the lever
+        where = "на нём" if len(lever.insets) == 1 else "на них"
+        views = views[:-1] + f"; силы, приложенные в этих точках, показаны только {where}."
+    s.paragraph(how.replace(tail, views + tail))
     mt = lever.moments.copy()
     # the student's arithmetic: forces to four significant digits of the largest one (one
     # number of decimals for the column, at most 0,01 Н), arms as measured to 0,1 mm, products
