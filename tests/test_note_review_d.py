@@ -33,19 +33,35 @@ def _where(pages, word):
 
 # --------------------------------------------------------------------------------------------
 # 1. a figure a little too tall for the room under the text is drawn smaller (≥ 85 %), not moved
+#    (only where the page before it would stay less than half full)
 # --------------------------------------------------------------------------------------------
 def test_figure_slightly_too_tall_drawn_smaller():
     from reportgen.report.document import Section
     s = Section("Раздел", "s")
-    for k in range(17):
+    for k in range(12):
         s.paragraph(f"Строка текста номер {k} для заполнения страницы.")
     s.paragraph("ПОСЛЕДНЯЯ строка перед рисунком.")
-    s.figure("РИСУНОКА схема", _svg(160, 100), width_mm=160, id="fig-a")
+    s.figure("РИСУНОКА схема", _svg(160, 140), width_mm=160, id="fig-a")
     s.paragraph("ПОСЛЕ рисунка.")
     pages, splits = _layout(s)
     assert _where(pages, "РИСУНОКА") == _where(pages, "ПОСЛЕДНЯЯ"), [p[-80:] for p in pages]
     moved, scale = splits["figure:fig-a"]
     assert moved == 0 and 850 <= scale < 1000
+
+
+def test_figure_left_alone_under_a_page_more_than_half_full():
+    """A figure that does not fit under a page more than half full moves to the next page as
+    before (no extra layout pass, no entry)."""
+    from reportgen.report.document import Section
+    s = Section("Раздел", "s")
+    for k in range(21):
+        s.paragraph(f"Строка текста номер {k} для заполнения страницы.")
+    s.paragraph("ПОСЛЕДНЯЯ строка перед рисунком.")
+    s.figure("РИСУНОКГ схема", _svg(160, 100), width_mm=160, id="fig-g")
+    s.paragraph("ПОСЛЕ рисунка.")
+    pages, splits = _layout(s)
+    assert _where(pages, "РИСУНОКГ") == [_where(pages, "ПОСЛЕДНЯЯ")[0] + 1]
+    assert "figure:fig-g" not in splits
 
 
 # --------------------------------------------------------------------------------------------

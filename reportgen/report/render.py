@@ -151,6 +151,7 @@ LEAD_TABLE_ROWS = 6  # a paragraph before a one-part table of at most this many 
 # points under this prefix and its id: [elements of the following text put before it, scale in ‰].
 FIGURE_KEY = "figure:"
 MIN_FIGURE_SCALE = 0.85  # a figure is drawn at least this large to fit the room left on a page
+FIGURE_ROOM = 0.5  # a figure is placed anew only when it leaves more than this of the page before it empty
 
 
 def resolve_options(options: dict | None) -> dict:
@@ -1509,8 +1510,10 @@ def _text_units(blocks, later: set) -> list[tuple[int, float, bool, bool]]:
 
 
 def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = None) -> dict[str, list[int]]:
-    """A figure that did not fit under the text before it and left that page largely empty
-    (ГОСТ 7.32 allows a figure on the next page, not a half-empty one), as a good typesetter
+    """A figure that did not fit under the text before it and left that page less than half full
+    (:data:`FIGURE_ROOM`; ГОСТ 7.32 allows a figure on the next page, not a half-empty one; a
+    page fuller than that is left as it is, so that most notes take no extra layout pass and
+    the split points of a similar note stay a provable guess), as a good typesetter
     places it: drawn smaller, down to :data:`MIN_FIGURE_SCALE`, when that fits the room; else
     the text after it (whole paragraphs, formulas, tables with their announcing paragraph,
     within its section) flows before it, as much as fills the room, and one paragraph or table
@@ -1543,6 +1546,8 @@ def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = Non
             continue
         room = bottoms[i - 1] - _ink_bottom(prev_flow)
         height = bottoms[i - 1] - before._page_box.content_box_y()
+        if room <= FIGURE_ROOM * height:
+            continue  # the page is at least half full (ГОСТ 7.32 layout asks no more)
         margins = float(fig.style["margin_top"].value) + float(fig.style["margin_bottom"].value)
         img = next((b for b in fig.descendants() if getattr(b, "element_tag", None) == "img"), None)
         if img is None:
@@ -1552,8 +1557,6 @@ def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = Non
         scale = (room - rest - FIGURE_SLACK) / h_img
         if scale >= MIN_FIGURE_SCALE and not land:
             return {FIGURE_KEY + fid: [0, min(999, int(scale * 1000))]}
-        if room < PREMATURE_ROOM * height:
-            continue  # the page is full enough
         parent = _parent_of(flow, fig)
         if parent is None:
             continue
