@@ -31,16 +31,23 @@ def _where(pages, word):
     return [i for i, p in enumerate(pages) if word in p]
 
 
+def _filled(lines: int):
+    """A section whose first page holds its heading and ``lines`` one-line paragraphs, the last
+    «ПОСЛЕДНЯЯ …»."""
+    from reportgen.report.document import Section
+    s = Section("Раздел", "s")
+    for k in range(lines - 1):
+        s.paragraph(f"Строка текста номер {k} для заполнения страницы.")
+    s.paragraph("ПОСЛЕДНЯЯ строка перед рисунком.")
+    return s
+
+
 # --------------------------------------------------------------------------------------------
 # 1. a figure a little too tall for the room under the text is drawn smaller (≥ 85 %), not moved
 #    (only where the page before it would stay less than half full)
 # --------------------------------------------------------------------------------------------
 def test_figure_slightly_too_tall_drawn_smaller():
-    from reportgen.report.document import Section
-    s = Section("Раздел", "s")
-    for k in range(12):
-        s.paragraph(f"Строка текста номер {k} для заполнения страницы.")
-    s.paragraph("ПОСЛЕДНЯЯ строка перед рисунком.")
+    s = _filled(13)
     s.figure("РИСУНОКА схема", _svg(160, 140), width_mm=160, id="fig-a")
     s.paragraph("ПОСЛЕ рисунка.")
     pages, splits = _layout(s)
@@ -52,11 +59,7 @@ def test_figure_slightly_too_tall_drawn_smaller():
 def test_figure_left_alone_under_a_page_more_than_half_full():
     """A figure that does not fit under a page more than half full moves to the next page as
     before (no extra layout pass, no entry)."""
-    from reportgen.report.document import Section
-    s = Section("Раздел", "s")
-    for k in range(21):
-        s.paragraph(f"Строка текста номер {k} для заполнения страницы.")
-    s.paragraph("ПОСЛЕДНЯЯ строка перед рисунком.")
+    s = _filled(22)
     s.figure("РИСУНОКГ схема", _svg(160, 100), width_mm=160, id="fig-g")
     s.paragraph("ПОСЛЕ рисунка.")
     pages, splits = _layout(s)
@@ -69,11 +72,7 @@ def test_figure_left_alone_under_a_page_more_than_half_full():
 #    a paragraph leading into a formula goes with the formula
 # --------------------------------------------------------------------------------------------
 def _tall_figure_section(intro_formula: bool):
-    from reportgen.report.document import Section
-    s = Section("Раздел", "s")
-    for k in range(13):
-        s.paragraph(f"Строка текста номер {k} для заполнения страницы.")
-    s.paragraph("ПОСЛЕДНЯЯ строка перед рисунком.")
+    s = _filled(14)
     s.figure("РИСУНОКБ высокий", _svg(160, 200), width_mm=160, id="fig-b")
     for k in range(4):
         s.paragraph(f"ПОСЛЕ{k} " + "абзац текста после рисунка, который его упоминает; " * 4)
@@ -104,11 +103,7 @@ def test_tall_figure_text_flows_before_it(intro_formula):
 def test_text_after_a_landscape_figure_fills_the_page_before_it():
     """ws000: p. 37 was 17 % full before the landscape page of group (2,3), p. 44 16 % before the
     lever's: the text after a wide figure on its own landscape page fills the page before it."""
-    from reportgen.report.document import Section
-    s = Section("Раздел", "s")
-    for k in range(8):
-        s.paragraph(f"Строка текста номер {k} для заполнения страницы.")
-    s.paragraph("ПОСЛЕДНЯЯ строка перед рисунком.")
+    s = _filled(9)
     s.figure("РИСУНОКВ широкий", _svg(250, 90), width_mm=250, id="fig-w", landscape=True)
     for k in range(4):
         s.paragraph(f"ПОСЛЕ{k} " + "абзац текста после рисунка, который его упоминает; " * 4)
