@@ -1138,7 +1138,7 @@ _ROW_ANCHOR = re.compile(r"^(.+)__r(\d+)$")
 _SPLIT_MEMO: dict[str, dict[str, list[int]]] = {}  # sha256 of the unsplit print HTML -> splits
 
 
-_SPLIT_CACHE_VERSION = 3  # 2: only the split points of the passes from none are remembered; 3: figure entries
+_SPLIT_CACHE_VERSION = 4  # 2: only the split points of the passes from none are remembered; 4: figure entries
 
 
 _DATA_SVG = re.compile(r"data:image/svg\+xml;base64,([A-Za-z0-9+/=]+)")
