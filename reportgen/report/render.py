@@ -550,7 +550,10 @@ def _figure_entry(splits: dict, fid: str) -> tuple[int, int]:
     """``(elements moved before the figure, scale in ‰)`` of figure ``fid`` in the split points
     (:data:`FIGURE_KEY`; ``(0, 1000)`` when it has no entry)."""
     entry = splits.get(FIGURE_KEY + fid)
-    return (int(entry[0]), int(entry[1])) if entry else (0, 1000)
+    if not entry or len(entry) != 2:
+        return 0, 1000
+    # (a remembered entry is clamped to what _figure_fixes gives: never smaller than 85 %)
+    return max(0, int(entry[0])), min(1000, max(int(MIN_FIGURE_SCALE * 1000), int(entry[1])))
 
 
 def _elements(node: _Node) -> int | None:
