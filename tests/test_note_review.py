@@ -128,6 +128,9 @@ def test_wide_figure_on_a_landscape_page_with_page_numbers(tmp_path):
     sec.paragraph("Текст до рисунка. " * 40)
     sec.figure("Широкий рисунок", svg, 240, id="fig-wide", landscape=True)
     sec.paragraph("Текст после рисунка. " * 40)
+    # (the text after the figure fills the page before it: render._figure_fixes; a subsection
+    # follows the landscape page)
+    sec.subsection("Далее", "sec-p2").paragraph("Текст подраздела. " * 10)
     rep = Report(meta={}, assignment=[], introduction=[], sections=[sec], conclusion=[], references=[],
                  options={"title_page": False, "assignment_page": False})
     pdf = tmp_path / "p.pdf"

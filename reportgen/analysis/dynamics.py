@@ -56,19 +56,18 @@ DYN_KEYS = ["cycle", "omega_m", "n", "delta", "J_O", "method", "drive", "balance
             "points", "printed", "compare", "flywheel_ratio", "J_fly", "fly_mass", "fly_radius", "machine"]
 
 # usual coefficients of speed fluctuation by kind of machine, key → (Russian name, δ_min, δ_max).
-# Written from memory of the tables in Russian textbooks (Артоболевский, 1988, «Регулирование хода
-# машин»); NOT verified: a search of the stored reference pages (session 4, queries in Russian
-# and English, «коэффициент неравномерности хода δ рекомендуемые значения», «coefficient of
-# fluctuation of speed typical values») found no table to check them against. The note therefore
-# calls the range approximate and cites no source for it (report.sections.dynamics._delta_judgement).
+# Source: the project's domain notes (/work/shared/docs/domain.md, «Coefficient of non-uniformity»):
+# 1/20–1/50 machine tools, 1/80–1/150 internal combustion engines, 1/5–1/30 pumps and presses (one
+# range for both). Only these are kept: searches of the stored reference pages for a textbook table
+# (Артоболевский «Теория механизмов и машин», Попов «Курсовое проектирование по ТММ», Фролов,
+# Кореняко; sessions 4 and 7, queries in Russian and English) found none, and the ranges once given
+# here from memory for crushers, compressors and generators had no source at all. The note calls
+# the range approximate and cites no textbook for it (report.sections.dynamics._delta_judgement).
 DELTA_RANGES = {
-    "crusher": ("дробилки", 1 / 20, 1 / 5),
-    "press": ("прессы и ножницы", 1 / 20, 1 / 7),
+    "press": ("прессы", 1 / 30, 1 / 5),
     "pump": ("насосы", 1 / 30, 1 / 5),
     "machine_tool": ("металлорежущие станки", 1 / 50, 1 / 20),
-    "compressor": ("компрессоры", 1 / 100, 1 / 50),
     "engine": ("двигатели внутреннего сгорания", 1 / 150, 1 / 80),
-    "generator": ("электрические генераторы", 1 / 300, 1 / 100),
 }
 # flywheel constants: key → (dimension or None for a plain number, default)
 FLYWHEEL_KEYS = {

@@ -240,7 +240,7 @@ def lay_out_part(task: _Task) -> _Laid:
     pass comes back with ``resplit``: the parent renders it with those split points and sends
     it again."""
     from . import safety
-    from .render import MAX_PASSES, _cold_split_layout, _next_splits, _page_rows, _start_holds
+    from .render import MAX_PASSES, _cold_split_layout, _next_splits, _page_rows, _start_holds, split_target
 
     index, html, splits, start = task.index, task.html, dict(task.splits), task.start
     seen = len(safety.refused)
@@ -272,7 +272,8 @@ def lay_out_part(task: _Task) -> _Laid:
     pdf = _write(document)
     t2 = time.perf_counter()
     heights, anchors, links, outline = _facts(document)
-    mine = {tid: list(splits[tid]) for tid in _page_rows(document) if tid in splits}
+    own = set(_page_rows(document)) | {name for page in document.pages for name in page.anchors}
+    mine = {k: list(v) for k, v in splits.items() if k in own or split_target(k) in own}
     refused = list(safety.refused[seen:] if len(safety.refused) >= seen else safety.refused)
     guessable = index >= 0 and start != "known" and _cold_split_layout(document, splits) is not None
     return _Laid(index, pdf, heights, anchors, links, outline, mine, passes, t1 - t0, t2 - t1,
@@ -313,7 +314,7 @@ class PartsJob:
     def __init__(self, report: Report, jobs: int):
         import queue
 
-        from .render import _check_glyphs, _start_splits, _views
+        from .render import _check_glyphs, _start_splits, _views, split_target
 
         global _REPORT
         t0 = time.perf_counter()
@@ -322,7 +323,7 @@ class PartsJob:
         body = views.ctx["body"]
         bare = [views.html(front=False, body=[node], chunk=True) for node in body]
         starts = [_start_splits(h) for h in bare]  # (key, shape, split points, start) per part
-        known = [{tid: cuts for tid, cuts in s[2].items() if f'id="{tid}"' in h}  # its own tables only
+        known = [{tid: cuts for tid, cuts in s[2].items() if f'id="{split_target(tid)}"' in h}  # its own tables and figures
                  for s, h in zip(starts, bare)]
         splits = {tid: cuts for part in known for tid, cuts in part.items()}
         if splits:

@@ -26,6 +26,10 @@ table of contents come from CSS ``target-counter`` (print only).
    overflows moves its end, and the later split points, up); normally two
    passes. Cell borders are drawn inside the cells so that a row takes the
    same height at the end of a part as before a page break.
+4. a figure that did not fit under the text before it and left that page largely empty is
+   placed as a typesetter would (:func:`_figure_fixes`): drawn smaller, to 85 % at least, when
+   that fits; else the text after it flows before it. The decision is kept in the split points
+   (``figure:<id>``), one figure at a time, so the passes still end.
 
 Split points are remembered per unsplit HTML (sha256), in the process and in the
 cache folder (``<cache>/splits``), so laying out the same report again, in the
@@ -143,6 +147,11 @@ PT_MM = 25.4 / 72
 MAX_PASSES = 12
 MIN_PART_ROWS = 3  # fewest rows of a table left on a page before «Продолжение таблицы»
 LEAD_TABLE_ROWS = 6  # a paragraph before a one-part table of at most this many rows keeps with it (_blocks.html.j2)
+# A figure that does not fit under the text before it (_figure_fixes) has an entry in the split
+# points under this prefix and its id: [elements of the following text put before it, scale in ‰].
+FIGURE_KEY = "figure:"
+MIN_FIGURE_SCALE = 0.85  # a figure is drawn at least this large to fit the room left on a page
+FIGURE_ROOM = 0.5  # a figure is placed anew only when it leaves more than this of the page before it empty
 
 
 def resolve_options(options: dict | None) -> dict:
@@ -312,6 +321,8 @@ class _Builder:
         self.table_rows: dict[str, tuple] = {}  # table key -> (view, rows, caption, continuation)
         self.unnumbered = False  # blocks of the «Задание» page carry no numbers
         self._units_row = False
+        self.figures: dict[str, tuple[_FigureView, float]] = {}  # figure id -> (view, width as made)
+        self.figure_sections: list[tuple[_Node, list]] = []  # sections holding figures: (node, blocks as made)
 
     # -- numbering helpers
     def _register(self, target_id: str, text: str) -> None:
@@ -405,7 +416,11 @@ class _Builder:
                     children.append(self.section(child, None, None, min(level + 1, 3)))
             else:
                 children.extend(self.blocks([child]))
-        return _Node("section", head, children)
+        node = _Node("section", head, children)
+        if any(c.kind == "figure" for c in children):
+            self.figure_sections.append((node, list(children)))
+            node.children = _placed(children, self._figure_moves())
+        return node
 
     def figure(self, fig: Figure) -> _FigureView:
         number = self._next("fig")
@@ -420,8 +435,11 @@ class _Builder:
             src = data_uri(data)
         limit = self.o["landscape_text_width_mm"] if fig.landscape and self.for_print else self.o["text_width_mm"]
         width = min(float(fig.width_mm), limit)
-        return _FigureView(fid, src, width, self.caption("figure_word", number, fig.caption),
+        view = _FigureView(fid, src, width, self.caption("figure_word", number, fig.caption),
                            fig.landscape and self.for_print)
+        self.figures[fid] = (view, width)
+        view.width_mm = width * _figure_entry(self.splits, fid)[1] / 1000
+        return view
 
     def header_cell(self, col: Column) -> Markup:
         head = inline_math(col.header) if col.latex else Markup(col.header)
@@ -509,6 +527,15 @@ class _Builder:
         self.splits = splits or {}
         for tid in self.table_rows:
             self._cut(tid)
+        for fid, (view, width) in self.figures.items():
+            view.width_mm = width * _figure_entry(self.splits, fid)[1] / 1000
+        moves = self._figure_moves()
+        for node, made in self.figure_sections:
+            node.children = _placed(made, moves)
+
+    def _figure_moves(self) -> dict[str, int]:
+        """Figure id -> how many elements after it are put before it (:func:`_figure_fixes`)."""
+        return {fid: n for fid in self.figures if (n := _figure_entry(self.splits, fid)[0])}
 
     def formula(self, f) -> _EqView:
         n = self._next("eq")
@@ -517,6 +544,55 @@ class _Builder:
         self._register(eid, number)
         lines = formula_images(f, self.eq_max_em)
         return _EqView(eid, number, lines, where_rows(f))
+
+
+def _figure_entry(splits: dict, fid: str) -> tuple[int, int]:
+    """``(elements moved before the figure, scale in ‰)`` of figure ``fid`` in the split points
+    (:data:`FIGURE_KEY`; ``(0, 1000)`` when it has no entry)."""
+    entry = splits.get(FIGURE_KEY + fid)
+    if not entry or len(entry) != 2:
+        return 0, 1000
+    # (a remembered entry is clamped to what _figure_fixes gives: never smaller than 85 %)
+    return max(0, int(entry[0])), min(1000, max(int(MIN_FIGURE_SCALE * 1000), int(entry[1])))
+
+
+def _elements(node: _Node) -> int | None:
+    """How many top-level elements the template makes of a block (``_blocks.html.j2``): one
+    paragraph or table, a formula and its «где» table; ``None`` for what a figure is never moved
+    past (a section, another figure, raw HTML)."""
+    if node.kind in ("p", "where", "table"):
+        return 1
+    if node.kind == "formulas":
+        return sum(1 + bool(e.where) for e in node.item)
+    return None
+
+
+def _placed(blocks: list, moves: dict[str, int]) -> list:
+    """``blocks`` with each figure of ``moves`` put after the number of elements it names (the text
+    that follows a figure flows before it: :func:`_figure_fixes`), never past a section, another
+    figure or raw HTML. Numbers are not changed (they were given in the order made)."""
+    out: list = []
+    held, left = None, 0
+    for node in blocks:
+        if held is not None:
+            size = _elements(node)
+            if size is None or size > left:
+                out.append(held)
+                held = None
+            else:
+                out.append(node)
+                left -= size
+                if left == 0:
+                    out.append(held)
+                    held = None
+                continue
+        if node.kind == "figure" and moves.get(node.item.id):
+            held, left = node, moves[node.item.id]
+            continue
+        out.append(node)
+    if held is not None:
+        out.append(held)
+    return out
 
 
 def _walk(builder: _Builder, report: Report):
@@ -1065,7 +1141,7 @@ _ROW_ANCHOR = re.compile(r"^(.+)__r(\d+)$")
 _SPLIT_MEMO: dict[str, dict[str, list[int]]] = {}  # sha256 of the unsplit print HTML -> splits
 
 
-_SPLIT_CACHE_VERSION = 2  # 2: only the split points of the passes from none are remembered
+_SPLIT_CACHE_VERSION = 4  # 2: only the split points of the passes from none are remembered; 4: figure entries
 
 
 _DATA_SVG = re.compile(r"data:image/svg\+xml;base64,([A-Za-z0-9+/=]+)")
@@ -1326,7 +1402,184 @@ def _next_splits(document, splits: dict[str, list[int]],
             result[tid] = lead + _tidy_cuts(new, n, min_rows)
             changed = True
             break
-    return result if changed else None
+    # a figure above every changed table is placed in the same pass (_figure_fixes)
+    first = min((rows[t][0] for t in rows if result.get(t) != splits.get(t) and 0 in rows[t]),
+                default=len(document.pages))
+    fixes = _figure_fixes(document, splits, first)
+    return {**result, **fixes} if (changed or fixes) else None
+
+
+def split_target(key: str) -> str:
+    """The element id a split-point entry belongs to (a table's, or a figure's)."""
+    return key[len(FIGURE_KEY):] if key.startswith(FIGURE_KEY) else key
+
+
+def _flow_box(page):
+    """The page's box of the document flow (not its margin boxes), or ``None``."""
+    from weasyprint.formatting_structure.boxes import MarginBox
+    box = getattr(page, "_page_box", None)
+    return next((c for c in getattr(box, "children", ()) if not isinstance(c, MarginBox)), None)
+
+
+def _ink_bottom(box) -> float:
+    """How far down the content of a box reaches (its lines, images and table rows), CSS px."""
+    from weasyprint.formatting_structure.boxes import LineBox, ReplacedBox, TableRowBox
+    low = 0.0
+    for b in box.descendants():
+        if isinstance(b, (LineBox, ReplacedBox, TableRowBox)):
+            low = max(low, b.position_y + b.margin_height())
+    return low
+
+
+def _parent_of(root, target):
+    for b in root.descendants():
+        if target in getattr(b, "children", ()):
+            return b
+    return None
+
+
+FIGURE_SLACK = 2.0  # CSS px kept free under a figure drawn smaller or text moved before it
+
+
+FIGURE_LOOKAHEAD = 2  # pages after a figure's whose text may flow before it
+
+
+def _blocks_after(document, i: int, fig, parent) -> tuple[list, set]:
+    """The blocks after figure box ``fig`` (a child of ``parent``, on page ``i``) in its section,
+    on that page and the next :data:`FIGURE_LOOKAHEAD`: ``[[element, tag, classes, height]]``
+    (the fragments of a block on several pages summed), and the elements (by ``id()``) that
+    have boxes further on (blocks not whole within these pages)."""
+    out: list[list] = []
+    last = min(len(document.pages) - 1, i + FIGURE_LOOKAHEAD)
+    for j in range(i, last + 1):
+        if j == i:
+            kids = parent.children[parent.children.index(fig) + 1:]
+        else:
+            flow = _flow_box(document.pages[j])
+            frag = next((b for b in flow.descendants() if getattr(b, "element", None) is parent.element),
+                        None) if flow is not None else None
+            if frag is None:
+                break
+            kids = frag.children
+        for b in kids:
+            el = getattr(b, "element", None)
+            if out and el is not None and out[-1][0] is el:
+                out[-1][3] += b.margin_height()
+                continue
+            cls = (el.get("class") or "").split() if el is not None else []
+            out.append([el, getattr(b, "element_tag", None), cls, b.margin_height()])
+    flow = _flow_box(document.pages[last + 1]) if last + 1 < len(document.pages) else None
+    later = {id(b.element) for b in flow.descendants()
+             if getattr(b, "element", None) is not None} if flow is not None else set()
+    return out, later
+
+
+def _text_units(blocks, later: set) -> list[tuple[int, float, bool, bool]]:
+    """The blocks after a figure (:func:`_blocks_after`) as units that move together:
+    ``(elements, height, breakable, whole)``: a paragraph with the formulas it leads into, a
+    table with the paragraph announcing it, a formula with its «где» lines. Stops at anything
+    else (a heading, a figure). ``later``: the elements (by ``id()``) that go on further (a
+    block not whole)."""
+    units: list[list] = []
+    lead = intro = False
+    for el, tag, cls, h in blocks:
+        if (tag == "p" and "where-note" in cls) or (tag == "table" and "where" in cls):
+            if not units:
+                break
+            units[-1][0] += 1
+            units[-1][1] += h
+            units[-1][2] = False
+        elif tag == "div" and "tbl-wrap" in cls and lead:
+            units[-1][0] += 1
+            units[-1][1] += h
+            lead = False
+        elif tag == "div" and "eq" in cls and intro:
+            units[-1][0] += 1     # the formulas a paragraph leads into go with it
+            units[-1][1] += h
+            units[-1][2] = False
+        elif tag == "div" and "eq" in cls:
+            units.append([1, h, False, True])
+            intro = True
+        elif tag == "p" or (tag == "div" and "tbl-wrap" in cls):
+            units.append([1, h, True, True])
+            lead = tag == "p" and "lead" in cls
+            intro = tag == "p"
+        else:
+            break
+        units[-1][3] = units[-1][3] and id(el) not in later
+    if lead:
+        units.pop()  # a paragraph announcing a table that is not there
+    return [tuple(u) for u in units]
+
+
+def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = None) -> dict[str, list[int]]:
+    """A figure that did not fit under the text before it and left that page less than half full
+    (:data:`FIGURE_ROOM`; ГОСТ 7.32 allows a figure on the next page, not a half-empty one; a
+    page fuller than that is left as it is, so that most notes take no extra layout pass and
+    the split points of a similar note stay a provable guess), as a good typesetter
+    places it: drawn smaller, down to :data:`MIN_FIGURE_SCALE`, when that fits the room; else
+    the text after it (whole paragraphs, formulas, tables with their announcing paragraph,
+    within its section) flows before it, as much as fills the room, and one paragraph or table
+    more, broken across the page, when the page would still be less than half full and the
+    figure then still fits under that block's end. The figure stays at the top of the next page,
+    after the text that first names it.
+
+    A wide figure on a landscape page of its own is not drawn smaller; the text after it fills
+    the portrait page before it the same way.
+
+    Returns the new entry (:data:`FIGURE_KEY`) of the first such figure on a page before ``upto``
+    (where the layout changes in this pass anyway), or ``{}``. A figure is decided once (its
+    entry is kept by the later passes), so the passes end."""
+    bottoms = _content_bottoms(document)
+    for i in range(1, min(len(document.pages), len(document.pages) if upto is None else upto)):
+        page, before = document.pages[i], document.pages[i - 1]
+        flow, prev_flow = _flow_box(page), _flow_box(before)
+        if flow is None or prev_flow is None or bottoms[i - 1] is None or bottoms[i] is None:
+            continue
+        if before.width > before.height:
+            continue  # a landscape page holds one wide figure
+        land = page.width > page.height       # a wide figure on a landscape page of its own
+        box = page._page_box
+        top = box.content_box_y()
+        fig = next((b for b in flow.descendants() if getattr(b, "element_tag", None) == "figure"), None)
+        if fig is None or fig.position_y > top + 0.5:
+            continue  # no figure at the top of the page
+        fid = fig.element.get("id") or ""
+        if land != ("landscape" in (fig.element.get("class") or "")) or FIGURE_KEY + fid in splits or not fid:
+            continue
+        room = bottoms[i - 1] - _ink_bottom(prev_flow)
+        height = bottoms[i - 1] - before._page_box.content_box_y()
+        if room <= FIGURE_ROOM * height:
+            continue  # the page is at least half full (ГОСТ 7.32 layout asks no more)
+        margins = float(fig.style["margin_top"].value) + float(fig.style["margin_bottom"].value)
+        img = next((b for b in fig.descendants() if getattr(b, "element_tag", None) == "img"), None)
+        if img is None:
+            continue
+        h_img = img.margin_height()
+        rest = fig.border_height() - h_img + margins
+        scale = (room - rest - FIGURE_SLACK) / h_img
+        if scale >= MIN_FIGURE_SCALE and not land:
+            return {FIGURE_KEY + fid: [0, min(999, int(scale * 1000))]}
+        parent = _parent_of(flow, fig)
+        if parent is None:
+            continue
+        line = float(fig.style["font_size"]) * 1.5
+        units = _text_units(*_blocks_after(document, i, fig, parent))
+        moved, used = 0, 0.0
+        k = 0
+        while k < len(units) and units[k][3] and used + units[k][1] <= room - FIGURE_SLACK:
+            moved += units[k][0]
+            used += units[k][1]
+            k += 1
+        if k < len(units) and room - used > height / 2:
+            n, h, breakable, whole = units[k]
+            # what stays of it on the next page, then the figure (three lines spare for the
+            # orphans and widows of the break); a landscape figure has a page of its own
+            if breakable and whole and (land or (h - (room - used)) + rest + h_img + 3 * line <= height):
+                moved += n
+        if moved:
+            return {FIGURE_KEY + fid: [moved, 1000]}
+    return {}
 
 
 SPLIT_EPS = 0.01  # CSS px: heights equal, and a row not fitting, only beyond this
@@ -1372,6 +1625,8 @@ def _cold_split_layout(document, splits: dict[str, list[int]],
     points. Returns the split points in the form the passes give (tables with cuts only)."""
     if _next_splits(document, splits, min_rows) is not None:
         return None
+    if any(k.startswith(FIGURE_KEY) for k in splits):
+        return None  # a figure placed by a later pass (_figure_fixes): not what pass 2 gives
     rows, boxes = _page_rows(document, with_boxes=True)
     tops, bottoms = [], _content_bottoms(document)
     table_tops = {}

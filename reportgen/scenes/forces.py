@@ -6,6 +6,7 @@ Scenes only draw what ``study.forces`` computed (``Forces.details`` at a report 
 ``Forces.cycle`` over the cycle)."""
 from __future__ import annotations
 
+import itertools
 import math
 import re
 import unicodedata
@@ -226,8 +227,14 @@ def _scheme_arrows(ext, Fmax: float, mu_l: float) -> dict[int, float]:
     return out
 
 
-def _moment_arc(cv: Canvas, x, y, M, label, color=INK, r_mm=5.0):
-    """A moment as an arc with an arrowhead (counter-clockwise for M > 0)."""
+MOMENT_LABEL_GAP_MM = 1.5   # clearance of a moment's label from every other label
+
+
+def _moment_arc(cv: Canvas, x, y, M, label, color=INK, r_mm=5.0, k: int = 0):
+    """A moment as an arc with an arrowhead (counter-clockwise for M > 0); ``k``: how many arcs
+    are drawn round the point before it (each a ring further out). Its label is set by the
+    k-th arc's own stretch (45°, 135°, 225°, … round the point), clear of the other labels, so
+    that the labels of two moments at one joint (M_ур and M_Φ1 of a crank) are not stacked."""
     ax = cv.ax
     r = cv.mm(r_mm)
     ax.add_patch(Arc((x, y), 2 * r, 2 * r, theta1=20, theta2=290, color=color, lw=1.0, zorder=6))
@@ -237,7 +244,10 @@ def _moment_arc(cv: Canvas, x, y, M, label, color=INK, r_mm=5.0):
     tang = (-math.sin(end) * d, math.cos(end) * d)
     arrow(ax, tip[0] - tang[0] * cv.mm(1.5), tip[1] - tang[1] * cv.mm(1.5), tip[0], tip[1], color=color,
           lw=1.0, head_mm=2.0, zorder=7)
-    cv.labels.add(x + r * 0.9, y + r * 0.9, math_label(label), prefer=(1, 1), fontsize=10, color=color)
+    a = math.radians(45.0 + 90.0 * (k % 3))     # on the arc (20°…290°), a quarter turn apart
+    u = (math.cos(a), math.sin(a))
+    cv.labels.add(x + r * u[0], y + r * u[1], math_label(label), prefer=u, fontsize=10, color=color,
+                  gap_mm=MOMENT_LABEL_GAP_MM)
 
 
 class GroupForces:
@@ -256,11 +266,13 @@ class GroupForces:
         self.mu_l, self.mu_F = mu_l, mu_F
         self.landscape = landscape
 
-    def _layout(self, xs, ys, ext, internal, g, Fmax, gain: float, floor: float = 0.0) -> SimpleNamespace:
+    def _layout(self, xs, ys, ext, internal, g, Fmax, gain: float, floor: float = 0.0,
+                scheme: float = 1.0, stack: bool = False) -> SimpleNamespace:
         """The scales and the places of the scheme and the force polygon when the scheme is given
-        70·gain mm and the polygon 62·gain mm (gain 1 on the note's portrait page)."""
+        70·gain·scheme mm and the polygon 62·gain mm (gain 1 on the note's portrait page); the
+        polygon beside the scheme, or under it (``stack``)."""
         span = max(np.ptp(xs), np.ptp(ys), floor, 1e-6)
-        mu_l = self.mu_l or gost_scale(span, 70.0 * gain)
+        mu_l = self.mu_l or gost_scale(span, 70.0 * gain * scheme)
         # arrow tips on the scheme (mm converted with μ_l)
         tips = []
         lengths = _scheme_arrows(ext, Fmax, mu_l)
@@ -290,8 +302,12 @@ class GroupForces:
         else:
             constructed = []
         k = mu_l / mu_F                                   # force → data units of the canvas
-        x0 = allx.max() + cv_gap(mu_l) - cum[:, 0].min() * k
-        y0 = (ally.max() + ally.min()) / 2 - (cum[:, 1].max() + cum[:, 1].min()) / 2 * k
+        if stack:
+            x0 = (allx.max() + allx.min()) / 2 - (cum[:, 0].max() + cum[:, 0].min()) / 2 * k
+            y0 = ally.min() - cv_gap(mu_l) - cum[:, 1].max() * k
+        else:
+            x0 = allx.max() + cv_gap(mu_l) - cum[:, 0].min() * k
+            y0 = (ally.max() + ally.min()) / 2 - (cum[:, 1].max() + cum[:, 1].min()) / 2 * k
         poly = np.column_stack([x0 + cum[:, 0] * k, y0 + cum[:, 1] * k])
         inset = _inset(seq, cum, mu_F, k, poly, mu_l)
         ext_pts = np.vstack([poly] + ([inset["box"]] if inset else []))
@@ -301,6 +317,21 @@ class GroupForces:
                                internal=internal, count=count, order=order, cum=cum, poly=poly, inset=inset,
                                ext_pts=ext_pts, built=built, w_mm=(x_hi - x_lo) / mu_l + 20.0,
                                h_mm=(y_hi - y_lo) / mu_l + 20.0)
+
+    def _grown(self, lay: SimpleNamespace, args: tuple) -> SimpleNamespace:
+        """A small scheme drawn at the next finer ГОСТ 2.302 scales while the drawing stays within
+        the text width and :data:`GROUP_MAX_H` (a group whose links span a few centimetres at the
+        first scale, beside a large force polygon): the polygon beside the scheme, or under it
+        when only that fits, the polygon at its first scale or one step smaller (its room × 0.8);
+        the finest such scale (beside, and the larger polygon, preferred at a tie)."""
+        best = lay
+        *head, gain, floor = args
+        for stack in (False, True):
+            for pg, k in itertools.product((1.0, 0.8), SCHEME_GROWTH):
+                cand = self._layout(*head, gain * pg, floor, scheme=k / pg, stack=stack)
+                if cand.mu_l < best.mu_l * (1 - 1e-9) and cand.w_mm <= PORTRAIT_W and cand.h_mm <= GROUP_MAX_H:
+                    best = cand
+        return best
 
     def draw(self, study) -> GroupDrawing:
         f = study.forces
@@ -317,11 +348,13 @@ class GroupForces:
         # scale fitting a sixth of the whole mechanism, not enlarged until its symbols pile up
         allp = {p for l in mech.moving for p in l.points}
         floor = max(np.ptp([cols["x_" + p] for p in allp]), np.ptp([cols["y_" + p] for p in allp])) / 6.0
-        lay = self._layout(xs, ys, ext, internal, g, Fmax, 1.0, floor)
+        gain = 1.0
+        lay = self._layout(xs, ys, ext, internal, g, Fmax, gain, floor)
         for _ in range(3):                # wider than the page at the first guess: smaller scales
             if self.mu_l is not None or self.mu_F is not None or lay.w_mm <= PORTRAIT_W:
                 break
-            lay = self._layout(xs, ys, ext, internal, g, Fmax, PORTRAIT_W / lay.w_mm * 0.98, floor)
+            gain = PORTRAIT_W / lay.w_mm * 0.98
+            lay = self._layout(xs, ys, ext, internal, g, Fmax, gain, floor)
         landscape = False
         if self.landscape and self.mu_l is None and self.mu_F is None:
             # on a landscape page when that enlarges both the scheme and the polygon LANDSCAPE_GAIN
@@ -331,6 +364,9 @@ class GroupForces:
                          and wide.w_mm <= LANDSCAPE_W and wide.h_mm <= LANDSCAPE_H)
             if landscape:
                 lay = wide
+        if (not landscape and self.mu_l is None and self.mu_F is None
+                and max(np.ptp(xs), np.ptp(ys)) / lay.mu_l < SMALL_SCHEME_MM):
+            lay = self._grown(lay, (xs, ys, ext, internal, g, Fmax, gain, floor))
         mu_l, mu_F, allx, ally, seq, constructed, internal, count, order, cum, poly, inset, ext_pts, built = (
             lay.mu_l, lay.mu_F, lay.allx, lay.ally, lay.seq, lay.constructed, lay.internal, lay.count, lay.order,
             lay.cum, lay.poly, lay.inset, lay.ext_pts, lay.built)
@@ -379,7 +415,7 @@ class GroupForces:
             k_ = placed.get(S, 0)
             placed[S] = k_ + 1
             _moment_arc(cv, cols["x_" + S], cols["y_" + S], m["M"], m["label"],
-                        RED if m["label"] == "Mур" else INK, r_mm=5.0 + 3.5 * k_)
+                        RED if m["label"] == "Mур" else INK, r_mm=5.0 + 3.5 * k_, k=k_)
         # polygon: a side lying back along an earlier one (R₀₁ = −R₂₁ of a crank loaded by one
         # force) drawn beside it, joined by thin lines
         sides = _inset_sides(poly, cv.mm(OFFSET_MM), cv.mm(NEAR_MM))
@@ -699,7 +735,7 @@ class LoadedScheme:
             k_ = placed.get(S, 0)
             placed[S] = k_ + 1
             _moment_arc(cv, cols["x_" + S], cols["y_" + S], m["M"], m["label"],
-                        RED if m["label"] == "Mур" else INK, r_mm=5.0 + 3.5 * k_)
+                        RED if m["label"] == "Mур" else INK, r_mm=5.0 + 3.5 * k_, k=k_)
         return Drawing(cv.svg(), cv.width_mm, cv.mu)
 
 
@@ -865,6 +901,9 @@ def _draw_inset(cv, seq, inset) -> None:
 
 
 PORTRAIT_W = 170.0    # width of a group's drawing on a portrait page, mm
+GROUP_MAX_H = 200.0   # height of a group's drawing enlarged to a finer scale (GroupForces._grown), mm
+SCHEME_GROWTH = (1.25, 1.5, 2.0, 2.5, 3.0)   # room of a small scheme tried, × its first room
+SMALL_SCHEME_MM = PORTRAIT_W / 3   # a group's links spanning less than this on paper are drawn larger
 OFFSET_MM = 3.5       # an inner reaction covering a side of the polygon is drawn this far beside it
 NEAR_MM = 1.2         # two sides closer than this along a stretch cover each other at print scale
 
@@ -944,6 +983,7 @@ class LeverDrawing(Drawing):
     arm_exact_mm: float = 0.0
     forces_turned: bool = False         # the plan unturned, the forces turned by 90° clockwise
     insets: list = field(default_factory=list)   # enlarged views of crowded images (scenes.plans.Inset)
+    in_views: int = 0                   # forces drawn in the enlarged views (not on the lever itself)
 
 
 class ZhukovskyLever:
@@ -1062,14 +1102,20 @@ class ZhukovskyLever:
         # 0,001 Н·м among forces of kilonewtons) is neither drawn nor listed
         dec = shared_decimals([float(np.hypot(*it[2])) for it in items + bal])
         rows = []
+        in_views = 0
         for lab, p, F, is_bal in items + bal:
             n = float(np.hypot(*F))
             if n < 1e-9 * Fmax or (not is_bal and round(n, dec) == 0):
                 continue
             L = cv.mm(_arrow_mm(n, Fmax) * 0.8)
             color = RED if is_bal else INK
-            tip = p + F / n * L
-            arrow(ax, p[0], p[1], tip[0], tip[1], color=color, lw=1.1, zorder=6)
+            # a force at an image inside an enlarged view is drawn there only (the region of the
+            # lever is marked by its circle), not crowded on the lever itself
+            at = next((ins.at + (p - ins.centre) * ins.k for ins in insets
+                       if np.hypot(*(p - ins.centre)) <= ins.radius), p)
+            in_views += at is not p
+            tip = at + F / n * L
+            arrow(ax, at[0], at[1], tip[0], tip[1], color=color, lw=1.1, zorder=6)
             cv.labels.add(tip[0], tip[1], math_label(lab), prefer=F, fontsize=10, color=color)
             mom = float(p[0] * F[1] - p[1] * F[0]) / cv.mu
             h = round(abs(mom) / n / READ_MM) * READ_MM          # the arm as measured on the drawing
@@ -1083,7 +1129,8 @@ class ZhukovskyLever:
         graph = -total / arm_read if abs(arm_read) > 0 else 0.0
         return LeverDrawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape, moments=table, analog=analog,
                             arm_mm=arm_read,
-                            graphic=graph, arm_exact_mm=arm_mm, forces_turned=turned, insets=insets)
+                            graphic=graph, arm_exact_mm=arm_mm, forces_turned=turned, insets=insets,
+                            in_views=in_views)
 
 
 def _points(mech) -> list[str]:

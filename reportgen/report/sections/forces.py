@@ -26,7 +26,7 @@ from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import plural
 from .kinematics import _insets_text, _zero_note, zero_columns
-from .common import (chosen_position, chunked_tables, input_word, pair_label, pos_fmt, pos_no, q_degrees, q_header,
+from .common import (chosen_position, chunked_tables, input_word, pos_fmt, pos_no, q_degrees, q_header,
                      html_point, sub, tex_point)
 
 NEEDS = ("kinematics", "cycle", "forces")
@@ -279,37 +279,19 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
 
 
 def _incidence(s: Section, study, f) -> None:
-    """Incidence of links and pairs (worksheet 000, «Силовой расчет»): +1 where the reaction R_ij
-    of the column acts on the link as written (link j), −1 on link i."""
-    rows = []
-    cols = []
-    prism = [p.point for p in f.model.pairs if p.kind == KS.K_PRI]
-    for p in f.model.pairs:
-        # the cylinder–rod pair is named by its links, as in the table of pairs («1–2»), not by the
-        # rod's end (which is the joint of the rod with the next link)
-        head = "М<sub>ур</sub>" if p.kind == KS.K_MOM else f"{p.a}–{p.b} (Ц)" if p.kind == KS.K_ACT else pair_label(
-            p.point, "П" if p.kind == KS.K_PRI else "", p.a, p.b, p.kind == KS.K_PRI and prism.count(p.point) > 1)
-        cols.append((p, head))
-    for link in f.model.links:
-        r = {"link": link}
-        for k, (p, _) in enumerate(cols):
-            r[f"c{k}"] = "1" if p.b == link else ("−1" if p.a == link else "0")
-        rows.append(r)
-    rows = rows[1:] + rows[:1]
-    columns = [Column("link", "Звено")] + [Column(f"c{k}", h) for k, (p, h) in enumerate(cols)]
+    """How the reactions are named (Артоболевский [1]: R_ij is the force of link i on link j).
+    The links and pairs themselves are listed in chapter 1 (table of kinematic pairs: pair,
+    links, kind, class), so no incidence matrix of links and pairs is printed: a program's
+    bookkeeping (worksheet 000), not what a student hands in."""
     kinds = {p.kind for p in f.model.pairs}
     legend = []
     if KS.K_PRI in kinds:
         legend.append("(П) — поступательная пара (нормальная сила и реактивный момент)")
     if KS.K_ACT in kinds:
         legend.append("(Ц) — пара цилиндр–шток (усилие гидроцилиндра, нормальная сила и момент)")
-    s.paragraph(f"Связи звеньев и кинематических пар показаны в таблице {ref('tab-frc-incidence')}: единица "
-                f"означает, что реакция пары {sub('R', 'ij')} приложена к звену j, минус единица — что к звену i "
-                f"приложена равная ей и противоположная реакция {sub('R', 'ji')}"
-                + "".join("; " + x for x in legend) + ".")
-    per = 12
-    chunked_tables(s, "Матрица инциденций звеньев и кинематических пар", pd.DataFrame(rows),
-                   columns[1:], columns[:1], "tab-frc-incidence", per=per)
+    s.paragraph(f"Реакция в кинематической паре звеньев i и j обозначена {sub('R', 'ij')} — сила, с которой "
+                f"звено i действует на звено j; звено j действует на звено i с силой "
+                f"{sub('R', 'ji')}&nbsp;=&nbsp;−{sub('R', 'ij')}" + "".join("; " + x for x in legend) + ".")
 
 
 # --------------------------------------------------------------------------------------------
@@ -612,7 +594,11 @@ def _balance(sec: Section, study, f, lab: str) -> None:
         how = how.replace(", моменты заменены парами сил на двух точках звена", "")
     mu_unit = "м·с⁻¹/мм" if not lever.analog else ("м/мм" if rot else "мм⁻¹")
     tail = " Сумма моментов всех сил относительно полюса p равна нулю:"
-    s.paragraph(how.replace(tail, _insets_text(lever, plan, "v", mu_unit) + tail))
+    views = _insets_text(lever, plan, "v", mu_unit)
+    if lever.in_views:     # the forces at those images are drawn in the view, not on the lever
+        where = "на нём" if len(lever.insets) == 1 else "на них"
+        views = views[:-1] + f"; силы, приложенные в этих точках, показаны только {where}."
+    s.paragraph(how.replace(tail, views + tail))
     mt = lever.moments.copy()
     # the student's arithmetic: forces to four significant digits of the largest one (one
     # number of decimals for the column, at most 0,01 Н), arms as measured to 0,1 mm, products
