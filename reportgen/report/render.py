@@ -1202,8 +1202,9 @@ def _named_rows(page) -> dict[str, tuple[float, float, float, float]]:
 
     The rows are named by an attribute and not by an id because WeasyPrint makes an id a
     style property (``-weasy-anchor``): an element with an id, and every element inside it,
-    gets a computed style of its own, which for a row is a style per cell (about a tenth of
-    the layout CPU of ws000's parts; ``tests/test_layout_structure.py`` counts them)."""
+    gets a computed style of its own, which for a row is a style per cell (figures in
+    docs/performance.md, ``bench/bench_layout_styles.py``; ``tests/test_layout_structure.py``
+    counts them)."""
     from weasyprint.formatting_structure import boxes as wb
 
     out: dict[str, tuple[float, float, float, float]] = {}
