@@ -18,7 +18,7 @@ table of contents come from CSS ``target-counter`` (print only).
 1. every table is laid out whole, its caption being the first row of
    ``<thead>``; WeasyPrint repeats the header on every page, so each later
    page reserves at least the height of a «Продолжение таблицы N» line;
-2. the rows that start each page (``page.anchors`` of the row ids) become
+2. the rows that start each page (the rows' ``data-row`` names) become
    split points; the table is cut into parts, each continuation part starting
    on a new page (``break-before: page``) under «Продолжение таблицы N» with
    the column header repeated;
@@ -1271,13 +1271,42 @@ def _remember_result(key: str, shape: str, splits: dict[str, list[int]], start: 
         _remember_splits(shape, splits)
 
 
+def _named_rows(page) -> dict[str, tuple[float, float, float, float]]:
+    """``{"<table id>__r<row>": (x1, y1, x2, y2)}`` of the table rows on a laid-out page, named
+    by their ``data-row`` attribute (the print HTML), each at its border box as WeasyPrint
+    gives an anchor (``page.anchors``), the first occurrence on the page kept.
+
+    The rows are named by an attribute and not by an id because WeasyPrint makes an id a
+    style property (``-weasy-anchor``): an element with an id, and every element inside it,
+    gets a computed style of its own, which for a row is a style per cell (figures in
+    docs/performance.md, ``bench/bench_layout_styles.py``; ``tests/test_layout_structure.py``
+    counts them)."""
+    from weasyprint.formatting_structure import boxes as wb
+
+    out: dict[str, tuple[float, float, float, float]] = {}
+    box = getattr(page, "_page_box", None)
+    stack = [box] if box is not None else []
+    while stack:
+        b = stack.pop()
+        if isinstance(b, wb.TableRowBox):
+            name = b.element.get("data-row") if b.element is not None else None
+            if name and name not in out:
+                x, y, w, h = b.hit_area()
+                out[name] = (x, y, x + w, y + h)
+        elif isinstance(b, wb.ParentBox) and not isinstance(b, (wb.LineBox, wb.InlineBox)):
+            stack.extend(reversed(list(b.all_children())))
+    return out
+
+
 def _page_rows(document, with_boxes: bool = False):
     """``{table id: {row index: page index}}`` from the laid-out document; with
-    ``with_boxes`` also ``{table id: {row index: (top, bottom)}}`` (CSS px on its page)."""
+    ``with_boxes`` also ``{table id: {row index: (top, bottom)}}`` (CSS px on its page).
+    Rows are found by :func:`_named_rows` or, in the tests' stand-in pages, by anchors
+    ``<table id>__r<row>``."""
     out: dict[str, dict[int, int]] = {}
     boxes: dict[str, dict[int, tuple[float, float]]] = {}
     for p, page in enumerate(document.pages):
-        for anchor, pos in page.anchors.items():
+        for anchor, pos in [*page.anchors.items(), *_named_rows(page).items()]:
             m = _ROW_ANCHOR.match(anchor)
             if m:
                 tid, r = m.group(1), int(m.group(2))
