@@ -7,6 +7,7 @@ atomically; the manifest lists variant, input hash, output files and seconds.
 from __future__ import annotations
 
 import csv
+import functools
 import io
 import json
 import multiprocessing
@@ -188,7 +189,7 @@ def _init_worker() -> None:
     matplotlib and loaded by WeasyPrint, the templates compiled. Every variant a worker
     builds afterwards reuses them, the parsed formula images (see ``render._layout``,
     :class:`_TouchedCache`) and the parsed mathtext labels (:func:`_share_mathtext`)."""
-    from .core.memory import collect_less
+    from .core.memory import collect_less, freeze_warm_state
     from .report.parallel import set_note_jobs
     from .warmup import warm_report, warmup
     collect_less()  # (a forkserver's child: the CLI's setting is not inherited)
@@ -196,6 +197,7 @@ def _init_worker() -> None:
     warm_report()
     _share_between_variants()
     warmup()
+    freeze_warm_state()  # the collection after each variant walks only what variants leave
 
 
 def _share_between_variants() -> None:
@@ -254,15 +256,53 @@ class _TouchedCache(dict):
         return len(stale)
 
 
+class _DetachedContext:
+    """What a kept SVG image reads of its WeasyPrint layout context when it is drawn again
+    (WeasyPrint 70: ``svg/text.py`` reads ``dictionaries`` to break a ``<text>``,
+    ``svg/images.py`` calls ``get_image_from_uri`` for an ``<image>`` inside), and nothing more.
+
+    WeasyPrint's ``SVGImage`` keeps the ``LayoutContext`` of the document that parsed it, and its
+    ``SVG`` the context and page stream of the last draw; a layout context holds the computed
+    style of every element of its document and the stream the content of a page. A formula image
+    kept in the worker's image cache therefore kept a whole earlier note alive (two after ws000's
+    second variant: 2,6 million references for every full collection to walk instead of 1,1)."""
+
+    def __init__(self, context):
+        self.font_config = getattr(context, "font_config", None)
+        self.dictionaries = {}
+        get = context.get_image_from_uri
+        self.get_image_from_uri = functools.partial(get.func, *get.args, **{**get.keywords, "context": self})
+
+
+def _detach_images(cache: dict) -> int:
+    """Cut every kept image loose from the document that last used it (:class:`_DetachedContext`);
+    returns how many were cut. The draw sets the stream and context again, so a detached image
+    draws the same operators."""
+    n = 0
+    for image in cache.values():
+        context = getattr(image, "_context", None)
+        if context is not None and not isinstance(context, _DetachedContext):
+            image._context = _DetachedContext(context)
+            n += 1
+        svg = getattr(image, "_svg", None)
+        if svg is not None:
+            for attr in ("stream", "context"):
+                if getattr(svg, attr, None) is not None:
+                    setattr(svg, attr, None)
+    return n
+
+
 def _after_variant() -> None:
-    """Release what one variant left behind in a kept worker: unused parsed images, closed
-    matplotlib figures, WeasyPrint documents held by reference cycles."""
+    """Release what one variant left behind in a kept worker: unused parsed images, the
+    documents the kept ones point to, closed matplotlib figures, WeasyPrint documents held by
+    reference cycles."""
     import gc
 
     from .report import render
     cache = render._IMAGE_CACHE
     if isinstance(cache, _TouchedCache):
         cache.keep_touched()
+        _detach_images(cache)
     if "matplotlib.pyplot" in sys.modules:
         sys.modules["matplotlib.pyplot"].close("all")
     gc.collect()
