@@ -7,6 +7,7 @@ atomically; the manifest lists variant, input hash, output files and seconds.
 from __future__ import annotations
 
 import csv
+import functools
 import io
 import json
 import multiprocessing
@@ -186,9 +187,11 @@ def _init_worker() -> None:
     """Warm-up, once per worker process (the pool keeps its workers for the whole class):
     heavy imports, numba kernels from the on-disk cache, the report's fonts registered with
     matplotlib and loaded by WeasyPrint, the templates compiled. Every variant a worker
-    builds afterwards reuses them, the parsed formula images (see ``render._layout``,
-    :class:`_TouchedCache`) and the parsed mathtext labels (:func:`_share_mathtext`)."""
-    from .core.memory import collect_less
+    builds afterwards reuses them, the parsed images (see ``render._layout``,
+    :class:`_TouchedCache`) and the parsed mathtext labels (:func:`_share_mathtext`). The warm
+    state is then frozen (:func:`~reportgen.core.memory.freeze_warm_state`), so the collection
+    after each variant (:func:`_after_variant`) walks what the variants leave, not the imports."""
+    from .core.memory import collect_less, freeze_warm_state
     from .report.parallel import set_note_jobs
     from .warmup import warm_report, warmup
     collect_less()  # (a forkserver's child: the CLI's setting is not inherited)
@@ -196,6 +199,7 @@ def _init_worker() -> None:
     warm_report()
     _share_between_variants()
     warmup()
+    freeze_warm_state()  # the collection after each variant walks only what variants leave
 
 
 def _share_between_variants() -> None:
@@ -218,9 +222,11 @@ class _TouchedCache(dict):
     """WeasyPrint's image cache of a batch worker (a dict keyed by the image's ``data:`` URL)
     that remembers which keys the current variant used. After a variant, :meth:`keep_touched`
     drops what it did not use: the previous variant's figures (never seen again, the geometry
-    differs) go, the formulas every variant shows stay (ws000: 178 entries after every variant).
-    Without it the cache holds the parsed figures of every variant built so far, up to 2000
-    entries, and is then emptied whole (formulas too)."""
+    differs) go, images every variant shows stay. (ws000's formulas are HTML now, so after each
+    of its variants the cache holds that variant's 19 figures; ``tests/test_batch_memory.py``
+    checks that the count does not grow.) Without it the cache holds the parsed figures of every
+    variant built so far, up to 2000 entries, and is then emptied whole. What is kept is cut
+    loose from its document after each variant (:func:`_detach_images`)."""
 
     def __init__(self, *args):
         super().__init__(*args)
@@ -254,15 +260,55 @@ class _TouchedCache(dict):
         return len(stale)
 
 
+class _DetachedContext:
+    """What a kept SVG image reads of its WeasyPrint layout context when it is drawn again
+    (WeasyPrint 70: ``svg/text.py`` reads ``dictionaries`` to break a ``<text>``,
+    ``svg/images.py`` calls ``get_image_from_uri`` for an ``<image>`` inside), and nothing more.
+
+    WeasyPrint's ``SVGImage`` keeps the ``LayoutContext`` of the document that parsed it, and its
+    ``SVG`` the context and page stream of the last draw; a layout context holds the computed
+    style of every element of its document and the stream the content of a page. A formula image
+    kept in the worker's image cache therefore kept an earlier note alive: after a variant of
+    ws000 the worker held 404 887 tracked objects instead of 265 135 (``python
+    bench/bench_gc.py --batch``: policies ``before`` and ``detach``), each walked again by every
+    full collection, and its peak memory was 532 instead of 472 MB."""
+
+    def __init__(self, context):
+        self.font_config = getattr(context, "font_config", None)
+        self.dictionaries = {}
+        get = context.get_image_from_uri
+        self.get_image_from_uri = functools.partial(get.func, *get.args, **{**get.keywords, "context": self})
+
+
+def _detach_images(cache: dict) -> int:
+    """Cut every kept image loose from the document that last used it (:class:`_DetachedContext`);
+    returns how many were cut. The draw sets the stream and context again, so a detached image
+    draws the same operators."""
+    n = 0
+    for image in cache.values():
+        context = getattr(image, "_context", None)
+        if context is not None and not isinstance(context, _DetachedContext):
+            image._context = _DetachedContext(context)
+            n += 1
+        svg = getattr(image, "_svg", None)
+        if svg is not None:
+            for attr in ("stream", "context"):
+                if getattr(svg, attr, None) is not None:
+                    setattr(svg, attr, None)
+    return n
+
+
 def _after_variant() -> None:
-    """Release what one variant left behind in a kept worker: unused parsed images, closed
-    matplotlib figures, WeasyPrint documents held by reference cycles."""
+    """Release what one variant left behind in a kept worker: unused parsed images, the
+    documents the kept ones point to, closed matplotlib figures, WeasyPrint documents held by
+    reference cycles."""
     import gc
 
     from .report import render
     cache = render._IMAGE_CACHE
     if isinstance(cache, _TouchedCache):
         cache.keep_touched()
+        _detach_images(cache)
     if "matplotlib.pyplot" in sys.modules:
         sys.modules["matplotlib.pyplot"].close("all")
     gc.collect()
