@@ -1,7 +1,14 @@
 """Helpers shared by the tests that read built sections and drawn figures."""
 from __future__ import annotations
 
+import re
+
 import numpy as np
+
+
+def plain(html) -> str:
+    """The text of an HTML fragment: tags dropped, ``&nbsp;`` as the no-break space."""
+    return re.sub(r"<[^>]+>", "", str(html)).replace("&nbsp;", "\u00a0")
 
 
 def blocks(sec):

@@ -12,8 +12,7 @@ from reportgen.report.document import Figure, Paragraph, Table
 from notehelpers import blocks as _blocks, arrows_mm as _arrows_mm, share_near as _share_near
 
 
-def _plain(html) -> str:
-    return re.sub(r"<[^>]+>", "", str(html)).replace("&nbsp;", "\u00a0")
+from notehelpers import plain as _plain  # noqa: E402
 
 
 @pytest.fixture(scope="module")

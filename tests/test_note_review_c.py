@@ -16,8 +16,7 @@ from reportgen.report.document import Paragraph
 from notehelpers import blocks
 
 
-def _plain(html) -> str:
-    return re.sub(r"<[^>]+>", "", str(html)).replace("&nbsp;", "\u00a0")
+from notehelpers import plain as _plain  # noqa: E402
 
 
 @pytest.fixture(scope="module")

@@ -14,8 +14,7 @@ import pytest
 from conftest import CASES
 
 
-def _plain(html) -> str:
-    return re.sub(r"<[^>]+>", "", str(html)).replace("&nbsp;", "\u00a0")
+from notehelpers import plain as _plain  # noqa: E402
 
 
 @pytest.fixture(scope="module")
