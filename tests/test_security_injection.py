@@ -225,3 +225,18 @@ def test_a_pdf_build_fetches_nothing_and_embeds_no_local_file(tmp_path):
     assert "http://127.0.0.1:9/x" in new and "file:///etc/passwd" in new and "file:///etc/hostname" in new
     pdf = out["pdf"].read_bytes()
     assert b"/EmbeddedFile" not in pdf and b"root:" not in pdf
+
+
+def test_output_link_title_reaches_the_output_name_escaped(tmp_path):
+    """The output link named by its case title (``plans._link_named``): a hostile title with a
+    bracketed remark (the branch that splits the title) arrives escaped."""
+    from reportgen import load_case
+    from reportgen.analysis.plans import output_quantity
+    text = (CASES / "slider_crank.toml").read_text(encoding="utf-8")
+    assert 'title = "ползун"' in text
+    text = text.replace('title = "ползун"', f"title = {_toml_str('ползун (' + PAYLOAD + ')')}", 1)
+    case = tmp_path / "hostile_slider.toml"
+    case.write_text(text, encoding="utf-8")
+    name = str(output_quantity(load_case(case))[3])
+    assert name.startswith("ползун ") and "&lt;script&gt;" in name
+    assert "<script" not in name and "<img" not in name and "<a " not in name

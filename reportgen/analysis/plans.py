@@ -189,16 +189,16 @@ def output_quantity(study) -> tuple[str, str, str, str]:
 def _link_named(mech, link: str, noun: str):
     """The output link as the note names it: by the case's title where it has one («поршень C
     (звено 5)», «коромысло 3», «ползун 5 (долбяк)»), else by its kind and number («ползун 5»)."""
-    from markupsafe import Markup
-    title = mech.link(link).title
-    plain = Markup(title or "").striptags()
+    from markupsafe import Markup, escape
+    title = escape(mech.link(link).title or "")  # the case's text as read (``inline_html``): escaped
+    plain = title.striptags()
     if not plain or plain == noun:
         return f"{noun} {link}"
     if " " not in plain and "(" not in plain:
         return Markup("{} {}").format(title, link)
-    head, _, rest = str(Markup(title)).partition(" ")
+    head, _, rest = title.partition(" ")   # halves of escaped markup stay escaped markup
     if rest.startswith("("):        # «ползун (долбяк)» → «ползун 5 (долбяк)»
-        return Markup(head) + Markup(" {} ").format(link) + Markup(rest)
+        return head + Markup(" {} ").format(link) + rest
     return Markup("{} (звено {})").format(title, link)
 
 
