@@ -12,6 +12,7 @@ plan is exact; the scenes draw them to scale and "measure" them.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -337,6 +338,28 @@ def _longest_rel(plan: Plan, link: str):
     return max(rel, key=lambda s: s.length) if rel else None
 
 
+def group_rank(study) -> dict[str, int]:
+    """Each link's group index in the order of attachment (the frame −1)."""
+    rank = {FRAME: -1}
+    for k, g in enumerate(study.structure.groups):
+        rank.update({l: k for l in g.links})
+    return rank
+
+
+def omega_segment(plan: Plan, mech: Mechanism, link: str, rank: dict[str, int] | None = None):
+    """The relative segment of the velocity plan a student reads the link's ω = V/l from: one
+    to a pair of the link's own group (its own equations gave it: ω₃ = V_BC/l_CB of the rocker of
+    group (2,3), not V_DC of the pair by which a later group hangs on it; ``rank`` —
+    :func:`group_rank`, without it every pair counts as own), then one to a pair point rather than
+    a centre of mass, then the longest (the most accurate reading)."""
+    rank = rank or {}
+    joints = {j.point for j in mech.joints}
+    own = {j.point for j in mech.joints if link in j.links
+           and all(rank.get(l, -1) <= rank.get(link, -1) for l in j.links)}
+    rel = [s for s in plan.segments if s.kind == "rel" and s.link == link]
+    return min(rel, key=lambda s: (s.end not in own, s.end not in joints, -s.length)) if rel else None
+
+
 def _drawn_input_rate(row: pd.Series, mech: Mechanism, kind: str, mu: float) -> float:
     """ω₁ (``kind`` "w") or ε₁ ("e") of the input link as the plan gives it: the crank pin's
     velocity ω₁·l_OA (or tangential acceleration ε₁·l_OA) laid off to 0,5 mm at the scale ``mu``
@@ -368,12 +391,14 @@ def construct_velocity(row: pd.Series, study, mu: float) -> tuple[pd.Series, Pla
     return vrow, velocity_plan(vrow, mech)
 
 
-def measured_omegas(vrow, vplan: Plan, mech: Mechanism, mu_v: float) -> dict[str, float]:
-    """ω of each link as the student gets it: the longest relative segment of its velocity plan
-    read to 0,5 mm over the link length (a slider turns with its guide)."""
+def measured_omegas(vrow, vplan: Plan, mech: Mechanism, mu_v: float,
+                    rank: dict[str, int] | None = None) -> dict[str, float]:
+    """ω of each link as the student gets it: the relative segment of its velocity plan that
+    :func:`omega_segment` picks (the one the note's ω = V/l prints) read to 0,5 mm over the
+    distance of its points (a slider turns with its guide)."""
     out = {}
     for l in mech.moving:
-        s = _longest_rel(vplan, l.name)
+        s = omega_segment(vplan, mech, l.name, rank)
         w = float(vrow["w_" + l.name])
         if s is not None and s.length > 1e-12:
             r = float(np.hypot(*(_vec(vrow, "", s.end) - _vec(vrow, "", s.start))))
@@ -383,6 +408,27 @@ def measured_omegas(vrow, vplan: Plan, mech: Mechanism, mu_v: float) -> dict[str
     for j in mech.prismatic:
         if j.links[0] != FRAME and _longest_rel(vplan, j.links[1]) is None:
             out[j.links[1]] = out[j.links[0]]
+    return out
+
+
+def read_velocities(row: pd.Series, study, mu_v: float) -> pd.Series:
+    """The position's row with what the student reads off the constructed velocity plan (scale
+    ``mu_v``) before the acceleration plan: each link's ω of :func:`measured_omegas` (the input
+    link's given ω₁ kept) and each stone's velocity relative to its moving guide read to 0,5 mm —
+    the numbers :func:`construct_acceleration` draws the normal terms aⁿ = ω²·l and the Coriolis
+    terms a^k = 2·ω·V_r from, so that the equations printed with them agree with the plan."""
+    mech = study.mechanism
+    vrow, vplan = construct_velocity(row, study, mu_v)
+    out = row.copy()
+    for name, w in measured_omegas(vrow, vplan, mech, mu_v, group_rank(study)).items():
+        if not (mech.driver.rotary and name == mech.driver.link):
+            out[f"w_{name}"] = w
+    for j in mech.prismatic:
+        guide = j.links[0]
+        if guide == FRAME or f"vs_{j.name}" not in out:
+            continue
+        v_rel = _vec(vrow, "v", j.point) - _coincident(vrow, mech, guide, j.point)[0]
+        out[f"vs_{j.name}"] = math.copysign(drawn(float(np.hypot(*v_rel)), mu_v), float(row[f"vs_{j.name}"]))
     return out
 
 

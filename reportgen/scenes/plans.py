@@ -19,7 +19,7 @@ import numpy as np
 import pandas as pd
 
 from ..analysis.plans import (READ_MM, Plan, acceleration_plan, construct_acceleration, construct_velocity,
-                              drawn, measured_omegas, velocity_plan)
+                              drawn, group_rank, measured_omegas, velocity_plan)
 from .draw import GREY, INK, Canvas, arrow, nice_scale
 from .mechanism import LANDSCAPE_GAIN, LANDSCAPE_W, LANDSCAPE_H
 
@@ -112,7 +112,7 @@ class PlanScene:
             return vplan, v_exact, mu_v, land_v
         a_exact = acceleration_plan(row, mech)
         mu_a, land_a = (self.mu_a, False) if self.mu_a else self._scale(a_exact)
-        om = measured_omegas(vrow, vplan, mech, mu_v)
+        om = measured_omegas(vrow, vplan, mech, mu_v, group_rank(study))
         _, aplan = construct_acceleration(row, vrow, om, study, mu_a, mu_v)
         return aplan, a_exact, mu_a, land_a
 

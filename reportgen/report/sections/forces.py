@@ -893,7 +893,7 @@ def conclusion_lines(study) -> list[str]:
     out.append(f"Силовой расчёт выполнен по группам Ассура; наибольшая реакция — в паре {big.a}–{big.b}: "
                f"{fmt(sc[f'R_{big.name}_max'], sig=5)}&nbsp;Н при {where}.")
     if f.rotary:
-        line = (f"Наибольший по модулю уравновешивающий момент — {fmt(sc['M_bal_absmax'], digits=1)}&nbsp;Н·м; "
+        line = (f"Наибольший по модулю уравновешивающий момент — {fmt(sc['M_bal_absmax'], sig=5)}&nbsp;Н·м; "
                 "проверки рычагом Жуковского и по балансу мощностей его подтверждают")
         if "dev_M_bal_dyn_max" in sc:
             line += (", он совпадает с моментом M<sub>д</sub>&nbsp;−&nbsp;J<sub>I</sub>ε, найденным из уравнения "

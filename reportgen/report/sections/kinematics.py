@@ -9,7 +9,7 @@ import numpy as np
 import pandas as pd
 from markupsafe import Markup
 
-from ...analysis.plans import output_quantity
+from ...analysis.plans import drawn, group_rank, omega_segment, output_quantity, read_velocities
 from ...mechanism.model import FRAME
 from ...scenes.diagrams import AnalogCurves, OutputDiagrams, output_displacement, output_index
 from ...scenes.mechanism import PositionsPlan, traced_points
@@ -65,15 +65,22 @@ def _flag_where(study, key: str) -> str:
     return ("в начальном механизме " if initial else "в группе ") + g
 
 
-def _strokes(study, s) -> tuple[int, int, float, float]:
-    """Cycle indices of the output's extreme positions, the crank angle of the shorter stroke (°)
-    and the coefficient of change of the mean speed K = (360° − that angle)/that angle ≥ 1."""
-    q = study.cycle["q"]
-    i_max, i_min = int(np.argmax(s)), int(np.argmin(s))
-    th = abs(math.degrees(q.iloc[i_max] - q.iloc[i_min]))
+def _strokes(study, s) -> tuple[float, float, float, float]:
+    """Crank coordinates of the output's extreme positions (lowest, highest), the crank angle of
+    the shorter stroke (°) and the coefficient of change of the mean speed K = (360° − that
+    angle)/that angle ≥ 1.  The extremes are the exact roots of the output's analog (study
+    ``output_q1``/``output_q2``, the ones K of the conclusion and the load switching angles are
+    counted from), not the nearest nodes of the cycle grid; the grid where they are absent."""
+    q = study.cycle["q"].to_numpy()
+    lo, hi = float(q[int(np.argmin(s))]), float(q[int(np.argmax(s))])
+    sc = study.scalars
+    if "output_q1" in sc and "output_q2" in sc:
+        q1, q2 = float(sc["output_q1"]), float(sc["output_q2"])
+        lo, hi = (q1, q2) if np.interp(q1, q, s) < np.interp(q2, q, s) else (q2, q1)
+    th = abs(math.degrees(hi - lo))
     work = min(th, 360 - th)
     K = (360 - work) / work if work > 0 else float("nan")
-    return i_min, i_max, work, K
+    return lo, hi, work, K
 
 
 def _quick_return(fast: float, K: float, working: str | None = None) -> str:
@@ -96,22 +103,31 @@ def _quick_return(fast: float, K: float, working: str | None = None) -> str:
 
 
 def _working_stroke(study) -> str | None:
-    """Which stroke of the output the case's loads resist: the work of the resistance forces
-    A_с (dynamics, over the crank's cycle of one turn) on the stroke from the extreme position q₁
-    to q₂ and on the other one.  "slow"/"fast" where one stroke takes at least twice the other's
-    work, None without [dynamics], for a longer cycle or a load on both strokes alike."""
+    """Which stroke of the output the case's loads resist: the work the resisting part of the
+    case's applied loads does on the stroke from the extreme position q₁ to q₂ and on the other
+    one, R = −∫ min(ΣM_i, 0) dφ over the stroke (M_i — the reduced moments of the case's
+    ``[loads]``, weights left out: a counterweight that rises on one stroke and falls on the
+    other is no technological resistance; a load that helps the motion, as the weight of a pump's
+    rod string on the down stroke, resists nothing).  "slow"/"fast" where one stroke takes at
+    least twice the other's resistance, None without [dynamics], for a longer cycle or a load on
+    both strokes alike."""
     sc = study.scalars
     if not study.root.has("dynamics") or "output_q1" not in sc:
         return None
     cyc = study.dynamics.cycle
-    q, A = cyc["q"].to_numpy(), cyc["A_c"].to_numpy()
+    q = cyc["q"].to_numpy()
     period = study.grid.length
     if abs((q[-1] - q[0]) - period) > 1e-9 * period:
         return None
+    cols = ["M_" + ld.name for ld in study.dynamics.loads.loads if ld.kind != "weight"]
+    if not cols:
+        return None
+    m = np.minimum(sum(cyc[c].to_numpy() for c in cols), 0.0)
+    R = np.concatenate(([0.0], np.cumsum(np.diff(q) * 0.5 * (m[1:] + m[:-1]))))   # ∫ of the resisting part
     q1, q2 = sorted((sc["output_q1"], sc["output_q2"]))
-    a = abs(float(np.interp(q2, q, A) - np.interp(q1, q, A)))      # the stroke from q₁ to q₂
-    b = abs(float(A[-1] - A[0])) - a
-    if max(a, b) < 2 * max(min(a, b), 0.0) or max(a, b) <= 0:
+    a = float(np.interp(q1, q, R) - np.interp(q2, q, R))      # the stroke from q₁ to q₂ (≥ 0)
+    b = float(R[0] - R[-1]) - a
+    if max(a, b) <= 0 or max(a, b) < 2 * max(min(a, b), 0.0):
         return None
     slow_is_a = (q2 - q1) > period / 2
     return "slow" if (a > b) == slow_is_a else "fast"
@@ -290,7 +306,9 @@ def build(study) -> Section:
         row = k[k["pos"] == lab].iloc[0]
         vplan = PlanScene(lab, "velocity", landscape=True).draw(study)
         aplan = PlanScene(lab, "acceleration", landscape=True).draw(study)
-        vectors.add(s4, study, row)
+        # the equations' aⁿ = ω²·l and a^k = 2·ω·V_r with ω and V_r as read off the velocity plan
+        # (the values the acceleration plan is drawn from and §(ω = V/l) prints), not the analytic ones
+        vectors.add(s4, study, read_velocities(row, study, vplan.mu))
         _plan_formulas(s4, study, row, vplan, aplan)
         s4.figure(f"План скоростей для положения {pos_no(study, lab)} (μ<sub>v</sub> = {mu_text(vplan.mu)} м·с⁻¹/мм)",
                   vplan.svg, vplan.width_mm, id="fig-vplan", landscape=vplan.landscape)
@@ -339,10 +357,10 @@ def build(study) -> Section:
         s5.paragraph(swing_strokes_text(study))
         _strokes_table(s5, study, s_col)
     elif rotary:
-        i_min, i_max, work, K = _strokes(study, s)
+        q_lo, q_hi, work, K = _strokes(study, s)
         s5.paragraph(f"Крайние положения выходного звена соответствуют углам поворота кривошипа "
-                     f"{_turn(cyc['q'].iloc[i_min] - study.grid.start)}° и "
-                     f"{_turn(cyc['q'].iloc[i_max] - study.grid.start)}°; угол перекрытия "
+                     f"{_turn(q_lo - study.grid.start)}° и "
+                     f"{_turn(q_hi - study.grid.start)}°; угол перекрытия "
                      f"θ&nbsp;=&nbsp;{fmt(abs(180 - work), digits=1)}°, коэффициент изменения средней скорости "
                      f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}." + _quick_return(work, K, _working_stroke(study)))
     s5.paragraph(origin)
@@ -558,31 +576,29 @@ def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
     aseg = {s.name: s for s in aplan.plan.segments}
     # a link's ω from the relative velocity its own group's equations give (ω₃ = V_BC/l_CB of the
     # rocker of group (2,3)), not from a point of a later group's pair found from it (V_DC)
-    rank = {FRAME: -1}
-    for k, g in enumerate(study.structure.groups):
-        rank.update({l: k for l in g.links})
+    # (the choice is plans.omega_segment, the one the acceleration plan's ω are read from too)
+    rank = group_rank(study)
     for link in mech.moving:
         if d.rotary and link.name == d.link:
             continue
-        joints = {j.point for j in mech.joints}
-        own = {j.point for j in mech.joints if link.name in j.links
-               and all(rank.get(l, -1) <= rank.get(link.name, -1) for l in j.links)}
-        rel = [s for s in vplan.plan.segments if s.kind == "rel" and s.link == link.name]
-        rel.sort(key=lambda s: (s.end not in own, s.end not in joints, -s.length))
-        if not rel or abs(row[f"w_{link.name}"]) < 1e-12 and float(np.abs(study.cycle["wq_" + link.name]).max()) < 1e-12:
+        s0 = omega_segment(vplan.plan, mech, link.name, rank)
+        if s0 is None or abs(row[f"w_{link.name}"]) < 1e-12 and float(np.abs(study.cycle["wq_" + link.name]).max()) < 1e-12:
             continue
-        s0 = rel[0]
         q_, r_ = s0.end, s0.start
         lq = math.hypot(row[f"x_{q_}"] - row[f"x_{r_}"], row[f"y_{q_}"] - row[f"y_{r_}"])
         Q, R = tex_point(q_), tex_point(r_)
+        # the segment as measured on the drawing (to READ_MM, as in the table «по плану» and as
+        # the acceleration plan's normal terms use it: plans.measured_omegas), not the construction
+        v_read = drawn(s0.length, vplan.mu)
         fs.append(Formula(rf"\omega_{{{link.name}}} = \frac{{V_{{{Q}{R}}}}}{{l_{{{R}{Q}}}}}",
-                          rf"\frac{{{tex_num(s0.length, sig=4)}}}{{{tex_num(lq, digits=4)}}}",
-                          tex_num(s0.length / lq, sig=4, unit="рад/с")))
+                          rf"\frac{{{tex_num(v_read, sig=4)}}}{{{tex_num(lq, digits=4)}}}",
+                          tex_num(v_read / lq, sig=4, unit="рад/с")))
         tn = aseg.get(f"a^τ_{q_}{r_}")
         if tn is not None:
+            a_read = drawn(tn.length, aplan.mu)
             fs.append(Formula(rf"\varepsilon_{{{link.name}}} = \frac{{a^{{\tau}}_{{{Q}{R}}}}}{{l_{{{R}{Q}}}}}",
-                              rf"\frac{{{tex_num(tn.length, sig=4)}}}{{{tex_num(lq, digits=4)}}}",
-                              tex_num(tn.length / lq, sig=4, unit="рад/с²")))
+                              rf"\frac{{{tex_num(a_read, sig=4)}}}{{{tex_num(lq, digits=4)}}}",
+                              tex_num(a_read / lq, sig=4, unit="рад/с²")))
     # only what the mechanism has: a slider on the frame, a stone on a moving guide (Coriolis)
     kinds = ["для точки, общей двум звеньям, — относительное вращательное движение вокруг соседних шарниров"]
     if any(j.links[0] == FRAME for j in mech.prismatic):
