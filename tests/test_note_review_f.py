@@ -1,0 +1,197 @@
+"""Defects found reviewing, page by page as a ТММ teacher, the notes of two mechanisms new to
+cases/ (session 8, #9): a beam pump «станок-качалка» (crank-rocker, the well load on the head of
+the walking beam, rotary counterweights on the crank) and a swinging-screen drive «грохот» (a
+six-bar of two ВВВ groups with the sieve box on the output rocker, a resistance moment against
+its motion).  Each test fails on what the review found:
+
+* «рабочий ход (на нём действуют силы сопротивления) — медленный» for the beam pump, whose well
+  load acts on the fast up stroke: the working stroke was judged by the work of *all* the loads
+  with their sign dropped (the counterweights' and the rod string's helping work counted as
+  resistance);
+* ω₂ = V_BA/l_AB = 0,1576/3,3 «по отрезкам планов» next to table 2.10's V_BA «по плану» 0,1600:
+  the formula divided the unread construction, and the normal accelerations of the equations
+  a^n = ω²·l used the analytic ω (5,299) while the plan was drawn with the read one (5,286);
+  ω₅ of the screen printed from V_EF (3 mm on the plan) while the plan took V_S5F;
+* K = 1,063 and the extreme angles 268,0°/82,5° of §2.5 (the nearest nodes of the cycle grid)
+  against K = 1,064 of the conclusion (the exact roots);
+* «Наибольший по модулю уравновешивающий момент — 138 451,0 Н·м» in the conclusion, 138 451 in §4.5.
+"""
+import math
+import re
+
+import numpy as np
+import pytest
+
+from conftest import CASES
+from notehelpers import plain
+
+NEW = ["beam_pump", "screen_shaker"]
+PLAN_CASES = NEW + ["ws000_six_bar", "ws004_slotted_lever", "slider_crank", "swing_conveyor"]
+_STUDIES: dict = {}
+
+
+def _study(stem):
+    from reportgen import load_case
+    if stem not in _STUDIES:
+        _STUDIES[stem] = load_case(CASES / f"{stem}.toml")
+    return _STUDIES[stem]
+
+
+def _num(tex: str) -> float:
+    """«5{,}286\\ \\text{рад/с}» → 5.286."""
+    t = tex.split(r"\ ")[0].replace("{,}", ".").replace(r"\,", "").replace("−", "-")
+    return float(re.sub(r"[^\d.\-]", "", t))
+
+
+def _ulp(tex: str) -> float:
+    t = tex.split(r"\ ")[0]
+    return 10.0 ** -len(t.split("{,}")[1]) if "{,}" in t else 1.0
+
+
+# ------------------------------------------------------------------ the working stroke
+def test_beam_pump_works_on_its_fast_up_stroke():
+    from reportgen.report.sections.kinematics import _quick_return, _strokes, _working_stroke
+    st = _study("beam_pump")
+    cyc = st.cycle
+    # independent: the well load Pв (55 kN) acts while the head D rises; the crank's turn over
+    # that stroke, counted on the cycle grid, is under 180° — the fast stroke. On the way down the
+    # rod string's weight Pн helps the motion (its reduced moment is positive), it resists nothing
+    up = (cyc["vqy_D"].to_numpy()[:-1] > 0).mean() * 360
+    assert up < 180
+    dyn = st.dynamics.cycle
+    assert (dyn["M_Pн"].to_numpy() >= -1e-9).all() and dyn["M_Pв"].min() < 0
+    assert _working_stroke(st) == "fast"
+    _, _, work, K = _strokes(st, cyc["y_D"].to_numpy())
+    text = _quick_return(work, K, _working_stroke(st))
+    assert "рабочим оказался быстрый ход" in text and "— медленный" not in text
+
+
+def test_equal_resistance_on_both_strokes_names_no_working_stroke():
+    """The screen's resistance moment acts against the rocker's motion on both strokes alike;
+    the weights (box 90 kg) no longer make one stroke «working»."""
+    from reportgen.report.sections.kinematics import _working_stroke
+    assert _working_stroke(_study("screen_shaker")) is None
+
+
+@pytest.mark.parametrize("stem, want", [("ws000_six_bar", "slow"), ("shaper_swinging_lever", "slow"),
+                                        ("swing_conveyor", "fast"), ("slotting_machine", "fast"),
+                                        ("v_compressor", "slow"), ("crank_press", "fast")])
+def test_working_stroke_of_the_other_cases_unchanged(stem, want):
+    from reportgen.report.sections.kinematics import _working_stroke
+    assert _working_stroke(_study(stem)) == want
+
+
+# ------------------------------------------------------------------ ω and aⁿ from the plans
+def _plans(stem):
+    from reportgen.report.document import Section
+    from reportgen.report.sections import kinematics as K
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.plans import PlanScene
+    st = _study(stem)
+    lab = chosen_position(st)
+    k = st.kinematics
+    row = k[k["pos"] == lab].iloc[0]
+    v = PlanScene(lab, "velocity", landscape=True).draw(st)
+    a = PlanScene(lab, "acceleration", landscape=True).draw(st)
+    sec = Section("x", "y")
+    K._plan_formulas(sec, st, row, v, a)
+    fs = [f for b in sec.children for f in getattr(b, "formulas", [])]
+    return st, row, v, a, fs
+
+
+@pytest.mark.parametrize("stem", PLAN_CASES)
+def test_omega_formulas_divide_the_values_read_off_the_plan(stem):
+    """Each ω = V/l and ε = a^τ/l divides the segment as the comparison table reads it «по плану»
+    (to 0,5 mm), not the unread construction."""
+    st, row, v, a, fs = _plans(stem)
+    read = {**dict(zip(v.table["name"], v.table["graphic"])), **dict(zip(a.table["name"], a.table["graphic"]))}
+    n = 0
+    for f in fs:
+        m = re.match(r"\\(omega|varepsilon)_\{\w+\} = \\frac\{(V|a\^\{\\tau\})_\{(\w+)\}\}", f.symbolic)
+        if not m:
+            continue
+        name = ("V_" if m.group(2) == "V" else "a^τ_") + m.group(3)
+        num = re.match(r"\\frac\{(.+?)\}\{", f.substituted).group(1)
+        if name in read:        # segments shorter than 5 mm are not in the table
+            assert abs(_num(num) - read[name]) <= 0.5 * _ulp(num) + 1e-12, (f.symbolic, num, read[name])
+            n += 1
+    assert n >= 2
+
+
+@pytest.mark.parametrize("stem", PLAN_CASES)
+def test_acceleration_plan_uses_the_printed_omegas(stem):
+    """The normal components of the acceleration plan (the table's aⁿ «по плану») are drawn from
+    the ω the note prints (ω = V/l), and the vector equations print aⁿ = ω²·l with that ω."""
+    from reportgen.analysis.plans import drawn, read_velocities
+    st, row, v, a, fs = _plans(stem)
+    printed = {}
+    for f in fs:
+        m = re.match(r"\\omega_\{(\w+)\}", f.symbolic)
+        if m:
+            printed[m.group(1)] = _num(f.result), _ulp(f.result)
+    rv = read_velocities(row, st, v.mu)
+    checked = 0
+    for link, (w, ulp) in printed.items():
+        assert abs(abs(rv[f"w_{link}"]) - w) <= 0.5 * ulp + 1e-12, (link, rv[f"w_{link}"], w)
+    for _, r in a.table.iterrows():
+        m = re.fullmatch(r"a\^n_(\w)(\w)", r["name"])
+        if not m or r["link"] not in printed:
+            continue
+        P, Q = m.groups()
+        l = math.hypot(row[f"x_{P}"] - row[f"x_{Q}"], row[f"y_{P}"] - row[f"y_{Q}"])
+        w = abs(rv[f"w_{r['link']}"])
+        assert r["graphic"] == pytest.approx(drawn(w * w * l, a.mu), abs=1e-12), r["name"]
+        checked += 1
+    assert checked >= 1 or stem == "ws004_slotted_lever"
+
+
+def test_kinematics_section_writes_the_equations_with_the_read_values(monkeypatch):
+    """kinematics.build hands the vector equations the row read off the velocity plan."""
+    from reportgen.report.sections import kinematics, vectors
+    seen = []
+    orig = vectors.add
+    monkeypatch.setattr(vectors, "add", lambda sec, study, row: (seen.append(row), orig(sec, study, row))[1])
+    st = _study("screen_shaker")
+    kinematics.build(st)
+    (row,) = seen
+    k = st.kinematics
+    exact = k[k["pos"] == row["pos"]].iloc[0]
+    assert row["w_1"] == exact["w_1"]                                 # the given ω₁ kept
+    assert abs(row["w_2"]) == pytest.approx(2.220 / 0.42, abs=1e-12)  # V_BA read 148 mm · 0,015 m·с⁻¹/мм
+    assert abs(row["w_2"] - exact["w_2"]) > 1e-3
+
+
+# ------------------------------------------------------------------ K and the extreme positions
+@pytest.mark.parametrize("stem", NEW + ["ws000_six_bar", "swing_conveyor", "slider_crank"])
+def test_strokes_from_the_exact_extremes(stem):
+    from reportgen.report.sections.kinematics import _strokes
+    from reportgen.analysis.plans import output_quantity
+    st = _study(stem)
+    sc = st.scalars
+    s = st.cycle[output_quantity(st)[0]].to_numpy()
+    lo, hi, work, K = _strokes(st, s)
+    assert {lo, hi} == {sc["output_q1"], sc["output_q2"]}
+    assert K == pytest.approx(sc["output_K"], rel=1e-12)
+    # lo is the lower extreme: the output there is below its value at the other one
+    vals = st.at(np.array([lo, hi]))[output_quantity(st)[0]].to_numpy()
+    assert vals[0] < vals[1]
+
+
+def test_beam_pump_K_printed_alike_in_section_and_conclusion():
+    from reportgen.report.sections.kinematics import _strokes, conclusion_lines
+    from reportgen.style.numbers import fmt
+    st = _study("beam_pump")
+    K = _strokes(st, st.cycle["y_D"].to_numpy())[3]
+    assert fmt(K, digits=3) == "1,064"
+    assert "<i>K</i>&nbsp;=&nbsp;1,064" in " ".join(conclusion_lines(st))
+
+
+# ------------------------------------------------------------------ conclusion of the force analysis
+@pytest.mark.parametrize("stem", NEW)
+def test_balancing_moment_in_the_conclusion_as_in_the_section(stem):
+    from reportgen.report.sections.forces import conclusion_lines
+    from reportgen.style.numbers import fmt
+    st = _study(stem)
+    line = next(x for x in conclusion_lines(st) if "уравновешивающий момент" in x)
+    v = st.forces.scalars["M_bal_absmax"]
+    assert f"— {fmt(v, sig=5)}&nbsp;Н·м;" in line        # §4.5 prints it so (138 451,0 in the conclusion)
