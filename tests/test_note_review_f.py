@@ -195,3 +195,46 @@ def test_balancing_moment_in_the_conclusion_as_in_the_section(stem):
     line = next(x for x in conclusion_lines(st) if "уравновешивающий момент" in x)
     v = st.forces.scalars["M_bal_absmax"]
     assert f"— {fmt(v, sig=5)}&nbsp;Н·м;" in line        # §4.5 prints it so (138 451,0 in the conclusion)
+
+
+# ------------------------------------------------------------------ the Жуковский lever over 5 %
+def _balance_text(stem):
+    from reportgen.report.document import Section
+    from reportgen.report.sections import forces
+    from reportgen.report.sections.common import chosen_position
+    st = _study(stem)
+    sec = Section("x", "y")
+    forces._balance(sec, st, st.forces, chosen_position(st))
+    return " ".join(plain(b.html) for b in sec.children[0].children if hasattr(b, "html"))
+
+
+def test_lever_discrepancy_over_the_tolerance_is_explained():
+    """Screen, position 1: Δ = 5,4 % «(допускается до 5 %)» and not a word after it. The arms of
+    G₅ = 883 Н and Φ₅ = 1162 Н are 1,5 and 2,5 mm: the reading error of the arms (±0,25 mm each)
+    bounds the sum of moments to ±21 %, so the note says so and how much larger to draw."""
+    text = _balance_text("screen_shaker")
+    m = re.search(r"Расхождение ([\d,]+)\u00a0% больше допускаемых 5\u00a0%", text)
+    assert m and float(m.group(1).replace(",", ".")) > 5
+    bound = float(re.search(r"или ([\d,]+)\u00a0% от", text).group(1).replace(",", "."))
+    k = int(re.search(r"в (\d+)\u00a0раза? более крупном", text).group(1))
+    assert bound > float(m.group(1).replace(",", ".")) and k == math.ceil(bound / 5)
+    assert "объясняется точностью построения" in text
+
+
+def test_lever_within_the_tolerance_says_nothing_more():
+    assert "больше допускаемых" not in _balance_text("beam_pump")
+
+
+# ------------------------------------------------------------------ the energy–mass diagram
+@pytest.mark.parametrize("stem", NEW + ["ws000_six_bar"])
+def test_wittenbauer_position_numbers_apart(stem, monkeypatch):
+    """Beam pump: the numbers of positions 5 and 10 (screen: 4 and 11), whose points lie 2 mm
+    apart on the energy–mass diagram, were printed over each other at a fixed offset."""
+    from reportgen.scenes import labels as L
+    from reportgen.scenes.dynamics import WittenbauerDiagram
+    from reportgen.style import mplstyle
+    found = []
+    orig = mplstyle.to_svg
+    monkeypatch.setattr(mplstyle, "to_svg", lambda fig: (found.append(L.check_figure(fig)), orig(fig))[1])
+    WittenbauerDiagram().draw(_study(stem))
+    assert found == [[]]

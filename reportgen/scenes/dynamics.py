@@ -10,6 +10,7 @@ from matplotlib.patches import Circle, Rectangle, Wedge
 from ..style import mplstyle
 from ..style.numbers import fmt, position_names
 from .draw import INK, Canvas
+from .labels import LabelPlacer
 from .forces import math_label
 from .mechanism import Drawing
 
@@ -246,8 +247,11 @@ class WittenbauerDiagram:
                 groups.append((xy, [no]))
             else:
                 near[1].append(no)
+        # placed once the curve, the tangents and the axes are drawn: two positions whose points lie a
+        # label's size apart (5 and 10 of a beam pump) no longer print their numbers over each other
+        placer = LabelPlacer(ax, fontsize=7)
         for xy, names in groups:
-            ax.annotate(", ".join(names), tuple(xy), xytext=(3, 3), textcoords="offset points", fontsize=7)
+            placer.add(xy[0], xy[1], ", ".join(names), prefer=(1, 1), point=True)
         jmax = float(J.max()) * 1.08
         jj = np.array([0.0, jmax])
         ax.plot(jj, wi.upper_tangent(jj), lw=1.0, color="#b2182b",
@@ -266,6 +270,7 @@ class WittenbauerDiagram:
         ax.set_xlim(-0.04 * jmax, jmax)
         ax.set_xlabel("$J_{II}$, кг·м²")
         ax.set_ylabel("$\\Delta T$, Дж")
+        placer.place()
         ax.legend(fontsize=9, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncols=2)
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 

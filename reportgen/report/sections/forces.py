@@ -676,6 +676,8 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     s.paragraph(f"Результат для положения {pos_no(study, lab)} (плечи измерены на чертеже с точностью 0,5&nbsp;мм) и "
                 "расхождение с силовым расчётом по группам (допускается до 5&nbsp;%):")
     s.formula(*res)
+    if dev_graph > LEVER_TOLERANCE_PCT:
+        s.paragraph(_lever_accuracy(loads, total, dev_graph))
     # one number of decimals per column; the relative deviations (round-off) are in the answer key
     nd = dict(digits=1 if rot else 0, sig=None)
     cols = [Column(main, (sub("M", "ур") if rot else "<i>F</i>") + " (по группам)", unit, **nd),
@@ -712,6 +714,29 @@ def _balance(sec: Section, study, f, lab: str) -> None:
                     else ". ") +
                  "Значения двух расчётов совпадают (последний столбец таблицы).")
     s.paragraph(text)
+
+
+LEVER_TOLERANCE_PCT = 5.0     # the admissible discrepancy of the graphical check (as the note states it)
+
+
+def _lever_accuracy(loads, total: float, dev: float) -> str:
+    """What a discrepancy of the lever over the admissible 5 % means: every arm is read to
+    0,5 mm, i.e. to ±0,25 mm, so the sum of moments is uncertain by up to Σ|F_i|·0,25 mm (the
+    bound of the reading error of the drawing). Within that bound the discrepancy is the
+    drawing's accuracy (short arms of large forces), and a lever drawn k = bound/5 % times larger
+    reads to 5 %; beyond it the construction itself is wrong."""
+    err = 0.5 * 0.5 * float(loads["F"].abs().sum())            # N·mm
+    bound = 100.0 * err / max(abs(total), 1e-12)
+    head = (f"Расхождение {fmt(dev, sig=2)}&nbsp;% больше допускаемых {fmt(LEVER_TOLERANCE_PCT, digits=0)}&nbsp;%. "
+            f"Плечи измерены с точностью 0,5&nbsp;мм, т.&nbsp;е. каждое — до ±0,25&nbsp;мм; погрешность суммы "
+            f"моментов от этого — до Σ|<i>F<sub>i</sub></i>|·0,25&nbsp;мм&nbsp;=&nbsp;{fmt(err, sig=3)}&nbsp;Н·мм, "
+            f"или {fmt(bound, sig=2)}&nbsp;% от |Σ<i>F<sub>i</sub>h<sub>i</sub></i>|&nbsp;=&nbsp;{fmt(abs(total), sig=4)}&nbsp;Н·мм")
+    if dev <= bound:
+        k = math.ceil(bound / LEVER_TOLERANCE_PCT)
+        return (head + ": расхождение объясняется точностью построения (короткие плечи больших сил), а не ошибкой "
+                f"силового расчёта. Чтобы проверить уравновешивающий момент с точностью 5&nbsp;%, рычаг следует "
+                f"вычертить в масштабе, в {plural(k, 'раз', 'раза', 'раз')} более крупном.")
+    return head + ": расхождение больше этой погрешности, построение рычага следует проверить."
 
 
 def _dev(graphic: float, exact: float) -> float:
