@@ -219,6 +219,7 @@ def test_lever_discrepancy_over_the_tolerance_is_explained():
     k = int(re.search(r"в (\d+)\u00a0раза? более крупном", text).group(1))
     assert bound > float(m.group(1).replace(",", ".")) and k == math.ceil(bound / 5)
     assert "объясняется точностью построения" in text
+    assert "в положении, где уравновешивающий момент больше (здесь 3,66\u00a0Н·м" in text   # |M_ур| ≪ 117 Н·м
 
 
 def test_lever_within_the_tolerance_says_nothing_more():

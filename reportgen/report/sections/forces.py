@@ -677,7 +677,7 @@ def _balance(sec: Section, study, f, lab: str) -> None:
                 "расхождение с силовым расчётом по группам (допускается до 5&nbsp;%):")
     s.formula(*res)
     if dev_graph > LEVER_TOLERANCE_PCT:
-        s.paragraph(_lever_accuracy(loads, total, dev_graph))
+        s.paragraph(_lever_accuracy(loads, total, dev_graph, exact, float(f.scalars[main + "_absmax"]), rot))
     # one number of decimals per column; the relative deviations (round-off) are in the answer key
     nd = dict(digits=1 if rot else 0, sig=None)
     cols = [Column(main, (sub("M", "ур") if rot else "<i>F</i>") + " (по группам)", unit, **nd),
@@ -719,12 +719,14 @@ def _balance(sec: Section, study, f, lab: str) -> None:
 LEVER_TOLERANCE_PCT = 5.0     # the admissible discrepancy of the graphical check (as the note states it)
 
 
-def _lever_accuracy(loads, total: float, dev: float) -> str:
+def _lever_accuracy(loads, total: float, dev: float, here: float, peak: float, rot: bool) -> str:
     """What a discrepancy of the lever over the admissible 5 % means: every arm is read to
     0,5 mm, i.e. to ±0,25 mm, so the sum of moments is uncertain by up to Σ|F_i|·0,25 mm (the
     bound of the reading error of the drawing). Within that bound the discrepancy is the
     drawing's accuracy (short arms of large forces), and a lever drawn k = bound/5 % times larger
-    reads to 5 %; beyond it the construction itself is wrong."""
+    reads to 5 %, and where the balancing value ``here`` is small against its largest ``peak``
+    over the positions, a check at another position is named; beyond the bound the construction
+    itself is wrong."""
     err = 0.5 * 0.5 * float(loads["F"].abs().sum())            # N·mm
     bound = 100.0 * err / max(abs(total), 1e-12)
     head = (f"Расхождение {fmt(dev, sig=2)}&nbsp;% больше допускаемых {fmt(LEVER_TOLERANCE_PCT, digits=0)}&nbsp;%. "
@@ -735,7 +737,10 @@ def _lever_accuracy(loads, total: float, dev: float) -> str:
         k = math.ceil(bound / LEVER_TOLERANCE_PCT)
         return (head + ": расхождение объясняется точностью построения (короткие плечи больших сил), а не ошибкой "
                 f"силового расчёта. Чтобы проверить уравновешивающий момент с точностью 5&nbsp;%, рычаг следует "
-                f"вычертить в масштабе, в {plural(k, 'раз', 'раза', 'раз')} более крупном.")
+                f"вычертить в масштабе, в {plural(k, 'раз', 'раза', 'раз')} более крупном"
+                + (f", или выполнить проверку в положении, где {'уравновешивающий момент' if rot else 'усилие'} "
+                   f"больше (здесь {fmt(abs(here), sig=3)}&nbsp;{'Н·м' if rot else 'Н'} при наибольшем по модулю "
+                   f"{fmt(peak, sig=3)}&nbsp;{'Н·м' if rot else 'Н'})" if abs(here) < 0.5 * peak else "") + ".")
     return head + ": расхождение больше этой погрешности, построение рычага следует проверить."
 
 
