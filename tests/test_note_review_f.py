@@ -239,3 +239,41 @@ def test_wittenbauer_position_numbers_apart(stem, monkeypatch):
     monkeypatch.setattr(mplstyle, "to_svg", lambda fig: (found.append(L.check_figure(fig)), orig(fig))[1])
     WittenbauerDiagram().draw(_study(stem))
     assert found == [[]]
+
+
+# ------------------------------------------------------------------ M_ур of a crank with counterweights
+def _crank_formulas(stem):
+    from reportgen.report.document import Section
+    from reportgen.report.sections import forces
+    from reportgen.report.sections.common import chosen_position
+    st = _study(stem)
+    sec = Section("x", "y")
+    forces._groups(sec, st, st.forces, chosen_position(st))
+
+    def walk(s):
+        for b in s.children:
+            yield from (walk(b) if hasattr(b, "children") else [b])
+    return next(b.formulas for b in walk(sec) if hasattr(b, "formulas")
+                and any(f.symbolic.startswith(r"M_{ур} = -") for f in b.formulas))
+
+
+def test_balancing_moment_of_a_crank_with_counterweights_term_by_term():
+    """Beam pump (4.9): R₂₁, G₁ and Φ₁ act on the crank off its axis; the one formula with their six
+    projections was shrunk to about 6 pt to fit the text width. Now each force's moment about O
+    first, then their sum, which adds up to the printed M_ур."""
+    fs = _crank_formulas("beam_pump")
+    parts = [f for f in fs if f.symbolic.startswith("M_{O}(")]
+    assert [p.symbolic.split(" =")[0] for p in parts] == ["M_{O}(R_{21})", "M_{O}(G_{1})", r"M_{O}(\Phi_{1})"]
+    total = fs[-1]
+    assert total.symbolic == r"M_{ур} = -\left[M_{O}(R_{21}) + M_{O}(G_{1}) + M_{O}(\Phi_{1}) + M_{\Phi 1}\right]"
+    vals = [_num(v) for v in re.findall(r"(?:\\left\(\{)?(-?[\d\\,{}]+)(?:\}\\right\))?", total.substituted[6:-6])
+            if re.search(r"\d", v)]
+    for p, v in zip(parts, vals):
+        assert v == pytest.approx(_num(p.result), abs=0.5 * _ulp(p.result))
+    assert -sum(vals) == pytest.approx(_num(total.result), abs=2.0)      # ulps of the printed terms
+    assert max(len(f.symbolic) for f in fs) < 120
+
+
+def test_balancing_moment_of_a_crank_with_one_force_in_one_formula():
+    fs = _crank_formulas("ws000_six_bar")
+    assert len(fs) == 1 and "R_{21y}" in fs[0].symbolic

@@ -473,14 +473,17 @@ def _prismatic_text(p, pv, nd: int | None = None) -> str:
 
 
 def _crank_moment(s: Section, study, f, lab, g, det) -> None:
-    """M_ур from the moment equation of the crank about its centre."""
+    """M_ур from the moment equation of the crank about its centre.  With one force on the crank
+    (R₂₁, the crank's weight and inertia force at its axis) one formula; with more (counterweights:
+    the centre of mass off the axis) the moment of each force about the axis is written first,
+    M_O(F) = (x − x_O)F_y − (y − y_O)F_x, then their sum: one line of all the projections would
+    not fit the text width and was shrunk to an unreadable size."""
     mech = study.mechanism
     d = mech.driver
     cols = det["cols"]
     O = tex_point(d.center)
     ox, oy = cols["x_" + d.center], cols["y_" + d.center]
-    sym, num = [], []
-    total = 0.0
+    terms = []          # (force symbol or None for a moment, symbolic, substituted, value)
     for k, pv in enumerate(det["pairs"]):
         p = pv["pair"]
         if p.kind == KS.K_MOM or d.link not in (p.a, p.b) or FRAME in (p.a, p.b):
@@ -491,26 +494,35 @@ def _crank_moment(s: Section, study, f, lab, g, det) -> None:
         dx, dy = pv["x"] - ox, pv["y"] - oy
         P = tex_point(p.point)
         a_, b_ = key.split("_")[:2]
-        sym.append(rf"(x_{{{P}}} - x_{{{O}}}) R_{{{a_}{b_}y}} - (y_{{{P}}} - y_{{{O}}}) R_{{{a_}{b_}x}}")
-        num.append(rf"{_t(dx)} \cdot {_t(Fy)} - {_t(dy)} \cdot {_t(Fx)}")
-        total += dx * Fy - dy * Fx
+        terms.append((f"R_{{{a_}{b_}}}", rf"(x_{{{P}}} - x_{{{O}}}) R_{{{a_}{b_}y}} - (y_{{{P}}} - y_{{{O}}}) R_{{{a_}{b_}x}}",
+                      rf"{_t(dx)} \cdot {_t(Fy)} - {_t(dy)} \cdot {_t(Fx)}", dx * Fy - dy * Fx))
     for ld in det["loads"]:
         if ld["link"] != d.link:
             continue
         if ld["M"] is not None:
-            sym.append(_load_tex(ld))
-            num.append(_t(ld["M"]))
+            terms.append((None, _load_tex(ld), _t(ld["M"]), float(ld["M"])))
         elif ld["point"] != d.center:
             P = tex_point(ld["point"])
             dx, dy = cols["x_" + ld["point"]] - ox, cols["y_" + ld["point"]] - oy
-            sym.append(rf"(x_{{{P}}} - x_{{{O}}}) {_load_tex(ld, 'y')} - (y_{{{P}}} - y_{{{O}}}) {_load_tex(ld, 'x')}")
-            num.append(rf"{_t(dx)} \cdot {_t(ld['Fy'])} - {_t(dy)} \cdot {_t(ld['Fx'])}")
+            terms.append((_load_tex(ld), rf"(x_{{{P}}} - x_{{{O}}}) {_load_tex(ld, 'y')} - (y_{{{P}}} - y_{{{O}}}) {_load_tex(ld, 'x')}",
+                          rf"{_t(dx)} \cdot {_t(ld['Fy'])} - {_t(dy)} \cdot {_t(ld['Fx'])}",
+                          dx * float(ld["Fy"]) - dy * float(ld["Fx"])))
     Mb = float(f.row(lab)["M_bal"])
     s.paragraph(f"Уравновешивающий момент {sub('M', 'ур')} (момент, который нужно приложить к {input_word(d, 'dat')} {d.link}, "
                 f"против часовой стрелки — плюс) — из уравнения моментов сил, действующих на {input_word(d)}, "
                 f"относительно оси {d.center}:")
-    s.formula(Formula(r"M_{ур} = -\left[" + " + ".join(sym) + r"\right]",
-                      r"-\left[" + " + ".join(num) + r"\right]", _t(Mb, sig=5, unit="Н·м"), label="eq-frc-Mbal"))
+    if sum(t[0] is not None for t in terms) < 2:
+        s.formula(Formula(r"M_{ур} = -\left[" + " + ".join(t[1] for t in terms) + r"\right]",
+                          r"-\left[" + " + ".join(t[2] for t in terms) + r"\right]", _t(Mb, sig=5, unit="Н·м"),
+                          label="eq-frc-Mbal"))
+        return
+    moments = [Formula(rf"M_{{{O}}}({F}) = {sym}", num, _t(v, sig=5, unit="Н·м"))
+               for F, sym, num, v in terms if F is not None]
+    names = [rf"M_{{{O}}}({F})" if F is not None else sym for F, sym, _, _ in terms]
+    s.formula(*moments,
+              Formula(r"M_{ур} = -\left[" + " + ".join(names) + r"\right]",
+                      r"-\left[" + " + ".join(_t(t[3], sig=5) for t in terms) + r"\right]",
+                      _t(Mb, sig=5, unit="Н·м"), label="eq-frc-Mbal"))
 
 
 # --------------------------------------------------------------------------------------------
