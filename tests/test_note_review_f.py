@@ -1,8 +1,10 @@
 """Defects found reviewing, page by page as a ТММ teacher, the notes of two mechanisms new to
 cases/ (session 8, #9): a beam pump «станок-качалка» (crank-rocker, the well load on the head of
-the walking beam, rotary counterweights on the crank) and a swinging-screen drive «грохот» (a
+the walking beam, rotary counterweights on the crank), a swinging-screen drive «грохот» (a
 six-bar of two ВВВ groups with the sieve box on the output rocker, a resistance moment against
-its motion).  Each test fails on what the review found:
+its motion) and a jaw crusher «щековая дробилка» (Blake: two toggle plates on a compound hinge at
+the pitman's foot, the crushing force growing over the jaw's working stroke).  Each test fails on
+what the review found:
 
 * «рабочий ход (на нём действуют силы сопротивления) — медленный» for the beam pump, whose well
   load acts on the fast up stroke: the working stroke was judged by the work of *all* the loads
@@ -14,7 +16,12 @@ its motion).  Each test fails on what the review found:
   ω₅ of the screen printed from V_EF (3 mm on the plan) while the plan took V_S5F;
 * K = 1,063 and the extreme angles 268,0°/82,5° of §2.5 (the nearest nodes of the cycle grid)
   against K = 1,064 of the conclusion (the exact roots);
-* «Наибольший по модулю уравновешивающий момент — 138 451,0 Н·м» in the conclusion, 138 451 in §4.5.
+* «Наибольший по модулю уравновешивающий момент — 138 451,0 Н·м» in the conclusion, 138 451 in §4.5;
+* the screen's Жуковский check Δ = 5,4 % «(допускается до 5 %)» with no word after it;
+* the position numbers 5 and 10 of the beam pump's energy–mass diagram printed over each other;
+* the beam pump's M_ур = −[…six projections…] (4.9) shrunk to about 6 pt to fit the text width;
+* the crusher's conclusion «на медленном ходе 0,177 рад/с, на быстром — 0,178 рад/с» at K = 1,007,
+  where §2.5 rightly says nothing of a quick return.
 """
 import math
 import re
@@ -25,7 +32,7 @@ import pytest
 from conftest import CASES
 from notehelpers import plain
 
-NEW = ["beam_pump", "screen_shaker"]
+NEW = ["beam_pump", "screen_shaker", "jaw_crusher"]
 PLAN_CASES = NEW + ["ws000_six_bar", "ws004_slotted_lever", "slider_crank", "swing_conveyor"]
 _STUDIES: dict = {}
 
@@ -142,7 +149,7 @@ def test_acceleration_plan_uses_the_printed_omegas(stem):
         w = abs(rv[f"w_{r['link']}"])
         assert r["graphic"] == pytest.approx(drawn(w * w * l, a.mu), abs=1e-12), r["name"]
         checked += 1
-    assert checked >= 1 or stem == "ws004_slotted_lever"
+    assert checked >= 1 or stem in ("ws004_slotted_lever", "jaw_crusher")     # their aⁿ are under 5 mm
 
 
 def test_kinematics_section_writes_the_equations_with_the_read_values(monkeypatch):
@@ -277,3 +284,14 @@ def test_balancing_moment_of_a_crank_with_counterweights_term_by_term():
 def test_balancing_moment_of_a_crank_with_one_force_in_one_formula():
     fs = _crank_formulas("ws000_six_bar")
     assert len(fs) == 1 and "R_{21y}" in fs[0].symbolic
+
+
+# ------------------------------------------------------------------ K ≈ 1: no slow and fast stroke
+def test_practically_equal_strokes_not_called_slow_and_fast():
+    from reportgen.report.sections.kinematics import QUICK_RETURN_K, conclusion_lines
+    st = _study("jaw_crusher")
+    assert 1.0 < st.scalars["output_K"] <= QUICK_RETURN_K
+    line = next(x for x in conclusion_lines(st) if x.startswith("Средняя"))
+    assert "практически одинакова: 0,177 и 0,178&nbsp;рад/с" in line and "медленном" not in line
+    beam = next(x for x in conclusion_lines(_study("beam_pump")) if x.startswith("Средняя"))
+    assert "на медленном ходе" in beam            # K = 1,064: the strokes differ

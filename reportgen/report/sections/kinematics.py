@@ -83,11 +83,14 @@ def _strokes(study, s) -> tuple[float, float, float, float]:
     return lo, hi, work, K
 
 
+QUICK_RETURN_K = 1.05     # below it the strokes take practically the same time: no slow and fast stroke
+
+
 def _quick_return(fast: float, K: float, working: str | None = None) -> str:
     """Engineering reading of K > 1 (Артоболевский, гл. «Синтез»): the slow stroke is the working one.
     ``working`` — which stroke the case's loads resist (:func:`_working_stroke`): where it is the
     fast one the note says so and how to make the slow stroke the working one."""
-    if not K > 1.05:
+    if not K > QUICK_RETURN_K:
         return ""
     head = (f" Один ход выходного звена занимает {fmt(360 - fast, digits=1)}°, другой — {fmt(fast, digits=1)}° "
             f"поворота кривошипа: ")
@@ -668,6 +671,8 @@ def _speed_lines(study) -> list[str]:
         K = f"(коэффициент изменения средней скорости <i>K</i>&nbsp;=&nbsp;{fmt(sc['output_K'], digits=3)})"
         if slow == fast:        # K = 1: no slow and fast stroke to tell apart
             out.append(f"{what} на прямом и обратном ходах одинакова: {slow}&nbsp;{unit} {K}.")
+        elif sc["output_K"] <= QUICK_RETURN_K:     # as §2.5: no quick return to speak of
+            out.append(f"{what} на прямом и обратном ходах практически одинакова: {slow} и {fast}&nbsp;{unit} {K}.")
         else:
             out.append(f"{what} на медленном ходе (больший угол поворота {input_word(d, 'gen')}) "
                        f"{slow}&nbsp;{unit}, на быстром — {fast}&nbsp;{unit} {K}.")
