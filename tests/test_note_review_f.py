@@ -21,7 +21,9 @@ what the review found:
 * the position numbers 5 and 10 of the beam pump's energy–mass diagram printed over each other;
 * the beam pump's M_ур = −[…six projections…] (4.9) shrunk to about 6 pt to fit the text width;
 * the crusher's conclusion «на медленном ходе 0,177 рад/с, на быстром — 0,178 рад/с» at K = 1,007,
-  where §2.5 rightly says nothing of a quick return.
+  where §2.5 rightly says nothing of a quick return;
+* the crusher's acceleration plan with three enlarged views stacked under it 261 mm tall: the
+  figure filled a page alone and its caption went to the next one.
 """
 import math
 import re
@@ -295,3 +297,24 @@ def test_practically_equal_strokes_not_called_slow_and_fast():
     assert "практически одинакова: 0,177 и 0,178&nbsp;рад/с" in line and "медленном" not in line
     beam = next(x for x in conclusion_lines(_study("beam_pump")) if x.startswith("Средняя"))
     assert "на медленном ходе" in beam            # K = 1,064: the strokes differ
+
+
+# ------------------------------------------------------------------ a plan taller than the page
+def _svg_height_mm(svg) -> float:
+    text = svg.decode() if isinstance(svg, bytes) else str(svg)
+    return float(re.search(r'height="([\d.]+)pt"', text[:3000]).group(1)) * 25.4 / 72
+
+
+@pytest.mark.parametrize("stem", NEW + ["ws000_six_bar"])
+def test_acceleration_plan_fits_the_page_with_its_caption(stem):
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.plans import MAX_H_MM, PlanScene
+    st = _study(stem)
+    scene = PlanScene(chosen_position(st), "acceleration", landscape=True)
+    first, h0 = scene._draw(st)
+    out = scene.draw(st)
+    assert _svg_height_mm(out.svg) <= MAX_H_MM + 1.0
+    if stem == "jaw_crusher":        # at its own scale 261 mm: one coarser round scale (or two) fits
+        assert h0 > MAX_H_MM and out.mu > first.mu
+    else:                            # the others keep their scale
+        assert out.mu == first.mu

@@ -34,6 +34,7 @@ CROWD_MM = 3.0            # plan points closer than this crowd their labels: sho
 JOIN_MM = 8.0             # crowded points closer than this are shown in one view
 LABEL_GAP_MM = 2.5        # least printed gap between two labels of a plan
 INSET_D_MM = 64.0         # diameter of an enlarged view at most, mm
+MAX_H_MM = 225.0          # a portrait plan at most: with its caption within the text height (257 mm)
 INSET_K = (2.0, 2.5, 3.0, 4.0, 5.0, 10.0, 20.0, 25.0, 40.0, 50.0, 100.0, 200.0)
 
 
@@ -100,8 +101,9 @@ class PlanScene:
     def _scale(self, plan: Plan) -> tuple[float, bool]:
         return page_scale(plan) if self.landscape else (plan_scale(plan), False)
 
-    def construct(self, study):
-        """(constructed plan, analytic plan, μ, landscape) of this scene's kind."""
+    def construct(self, study, mu_a: float | None = None):
+        """(constructed plan, analytic plan, μ, landscape) of this scene's kind; ``mu_a`` — the
+        acceleration plan's scale chosen by :meth:`draw` (portrait, to fit the page height)."""
         k = study.kinematics
         row = k[k["pos"] == self.label].iloc[0]
         mech = study.mechanism
@@ -111,13 +113,29 @@ class PlanScene:
         if self.kind == "velocity":
             return vplan, v_exact, mu_v, land_v
         a_exact = acceleration_plan(row, mech)
-        mu_a, land_a = (self.mu_a, False) if self.mu_a else self._scale(a_exact)
+        mu_a, land_a = (self.mu_a, False) if self.mu_a else (mu_a, False) if mu_a else self._scale(a_exact)
         om = measured_omegas(vrow, vplan, mech, mu_v, group_rank(study))
         _, aplan = construct_acceleration(row, vrow, om, study, mu_a, mu_v)
         return aplan, a_exact, mu_a, land_a
 
     def draw(self, study) -> PlanDrawing:
-        plan, exact, mu, landscape = self.construct(study)
+        """The plan at its scale; a portrait acceleration plan whose enlarged views, stacked under
+        it, would make it taller than MAX_H_MM (then it and its caption no longer share a page:
+        the caption went to the next one) is drawn at the next coarser round scales until it fits.
+        (The velocity plan keeps its scale: the acceleration plan is constructed from the
+        velocities read off it at that scale.)"""
+        out, height = self._draw(study)
+        if self.kind == "acceleration" and self.mu_a is None and not out.landscape:
+            mu = out.mu
+            for _ in range(3):
+                if height <= MAX_H_MM:
+                    break
+                mu = nice_scale(mu * 1.01, 1.0)        # the next coarser standard scale
+                out, height = self._draw(study, mu)
+        return out
+
+    def _draw(self, study, mu_a: float | None = None) -> tuple[PlanDrawing, float]:
+        plan, exact, mu, landscape = self.construct(study, mu_a)
         plan = similarity_only(plan, study.mechanism)
         pts = np.array([[0.0, 0.0]] + [list(v) for v in plan.tips.values()])
         given = self.mu_v if self.kind == "velocity" else self.mu_a
@@ -151,7 +169,7 @@ class PlanScene:
             ins.mark = INSET_MARKS[n % len(INSET_MARKS)]
             self._draw_inset(cv, plan, ins, pole)
         table = measure(plan, exact, mu)
-        return PlanDrawing(cv.svg(), cv.width_mm, mu, table, plan, landscape, insets)
+        return PlanDrawing(cv.svg(), cv.width_mm, mu, table, plan, landscape, insets), cv.height_mm
 
     @staticmethod
     def _labelled(plan: Plan, lab: str, dist: float) -> bool:
