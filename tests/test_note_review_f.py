@@ -318,3 +318,16 @@ def test_acceleration_plan_fits_the_page_with_its_caption(stem):
         assert h0 > MAX_H_MM and out.mu > first.mu
     else:                            # the others keep their scale
         assert out.mu == first.mu
+
+
+# ------------------------------------------------------------------ the rim speed advice
+def test_rim_speed_advice_in_the_conclusion_as_in_the_section():
+    """Beam pump: §3.6 «маховик следует установить на более медленный вал или выполнить из более
+    прочного материала», the conclusion «обод следует сделать … или стальным» (ρ = 7800 кг/м³:
+    it is steel already)."""
+    from reportgen.report.sections.dynamics import conclusion_lines
+    st = _study("beam_pump")
+    assert st.dynamics.result.flywheel.any_exceeds
+    line = next(x for x in conclusion_lines(st) if "окружная скорость обода" in x)
+    assert "на более медленный вал или выполнить из более прочного материала" in line
+    assert "стальным" not in line

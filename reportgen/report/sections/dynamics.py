@@ -878,8 +878,10 @@ def conclusion_lines(study) -> list[str]:
         v = max(fw.rim.v_rim, fw.disk.v_rim)
         if math.isfinite(v):
             formula = "u·ω<sub>max</sub>·D/2" if u != 1.0 else "ω<sub>max</sub>·D/2"
-            verdict = (f"превышает допускаемую [v]&nbsp;=&nbsp;{fmt_given(fw.v_limit)}&nbsp;м/с: обод следует "
-                       "сделать меньшего диаметра и большей ширины или стальным" if fw.any_exceeds else
+            # the advice of §3.6 («на более медленный вал или из более прочного материала»), not another one
+            verdict = (f"превышает допускаемую [v]&nbsp;=&nbsp;{fmt_given(fw.v_limit)}&nbsp;м/с: маховик следует "
+                       "установить на более медленный вал или выполнить из более прочного материала (либо сделать "
+                       "обод меньшего диаметра и большей ширины)" if fw.any_exceeds else
                        f"не превышает допускаемой [v]&nbsp;=&nbsp;{fmt_given(fw.v_limit)}&nbsp;м/с")
             where = " (маховик на валу, вращающемся в u раз быстрее кривошипа)" if u != 1.0 else ""
             out.append(f"Наибольшая окружная скорость обода{where} v&nbsp;=&nbsp;{formula}&nbsp;=&nbsp;"
