@@ -138,6 +138,31 @@ def _weighted(f) -> bool:
     return any(ld["kind"] == "G" for ld in f.details(f.labels[0])["loads"])
 
 
+def _nil_note(names: tuple[list[str], list[str]]) -> str:
+    """The known forces left out of the lever's table of moments (``names``: those whose line of
+    action passes through the pole, printed arm 0,0 мм; those printed as zero): their moment about
+    the pole is zero, and the Жуковский equation sums the non-zero terms."""
+    at_pole, zero = names
+    parts = []
+    if at_pole:
+        one = len(at_pole) == 1
+        parts.append(f"{'сила' if one else 'силы'} {_and(at_pole)} {'проходит' if one else 'проходят'} "
+                     "через полюс p (плечо равно нулю)")
+    if zero:
+        one = len(zero) == 1
+        parts.append(f"{'сила' if one else 'силы'} {_and(zero)} в этом положении {'равна' if one else 'равны'} нулю")
+    if not parts:
+        return ""
+    text = "; ".join(parts)
+    tail = ("её момент относительно полюса равен нулю, в таблицу она не включена" if len(at_pole) + len(zero) == 1
+            else "их моменты относительно полюса равны нулю, в таблицу они не включены")
+    return f" {text[0].upper()}{text[1:]}: {tail}."
+
+
+def _and(items: list[str]) -> str:
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " и " + items[-1]
+
+
 def _lead(study):
     qkey, qhead, qunit, qfmt = q_header(study)
     return [Column("pos", "№", fmt=pos_fmt(study)), Column(qkey, qhead, qunit, **qfmt)]
@@ -617,9 +642,19 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     signed_h = np.sign(mt["Fh"].to_numpy(float)) * h_r
     S = float(signed_h[bal].sum()) if bal.any() else 0.0
     if S != 0.0:
+        # printed to the column's decimals, and its products are the printed F times the printed
+        # arms as every other row's: the column sums to zero up to the rounding of F_ур
         lever_total = float(mt.loc[~bal, "Fh"].sum())
-        mt.loc[bal, "F"] = round(abs(lever_total / S), 2)
-        mt.loc[bal, "Fh"] = -lever_total * signed_h[bal] / S
+        F_bal = round(abs(lever_total / S), F_dec)
+        mt.loc[bal, "F"] = F_bal
+        mt.loc[bal, "Fh"] = -np.sign(lever_total / S) * F_bal * signed_h[bal]
+    # a known force whose printed moment is zero (its line passes through the pole, or the force
+    # itself is zero) is not a term of the student's sum: named under the table, not listed
+    nil = ~bal & (mt["Fh"].to_numpy(float) == 0.0)
+    at_pole = nil & (mt["h"].to_numpy(float) == 0.0)
+    nil_names = ([html_label(v) for v in mt.loc[at_pole, "label"]],
+                 [html_label(v) for v in mt.loc[nil & ~at_pole, "label"]])
+    mt = mt[~nil]
     if rot:
         pin = tex_point(_pin(mech))
         s.formula(Formula(rf"F_{{ур}} h_{{{pin.lower()}}} + \sum_i F_i h_i = 0", label="eq-frc-lever"))
@@ -649,7 +684,8 @@ def _balance(sec: Section, study, f, lab: str) -> None:
         Column("h", "<i>h</i>", "мм", digits=1, sig=None),
         Column("Fh", "±<i>F·h</i>", "Н·мм", fmt=lambda v: fmt(v, digits=F_dec + 1, sig=None, exp_from=1e12))], mt, id="tab-frc-lever",
         note="Плечо h — расстояние от полюса p до линии действия силы на рычаге; знак «+» — момент против "
-             "часовой стрелки." + (" Моменты звеньев заменены парами сил (′ и ″) на двух точках звена." if paired else ""))
+             "часовой стрелки." + (" Моменты звеньев заменены парами сил (′ и ″) на двух точках звена." if paired else "")
+             + _nil_note(nil_names))
     total = float(loads["Fh"].sum())
     F_graph = -total / arm
     M_graph = F_graph * _crank_length(mech) if rot else F_graph
