@@ -1,0 +1,126 @@
+"""Defects left open at session 7's review of the notes (#9, /work/note_s7.md), each test failing
+on what the review found: a paragraph leading into formulas («Маховик в виде сплошного диска:»)
+at a page foot with its formulas on the next page; the Жуковский table listing forces whose
+moment is zero and a balancing row whose printed F·h was not its printed product."""
+import numpy as np
+
+import pytest
+
+from conftest import CASES
+from notehelpers import blocks as _blocks
+
+
+def _layout_pages(sec):
+    from reportgen.report import render
+    from reportgen.report.document import Report
+    r = Report(meta={}, assignment=[], introduction=[], sections=[sec], conclusion=[],
+               references=[], options={"title_page": False, "assignment_page": False})
+    doc, _ = render._layout(r, render._font_config())
+    return [" ".join(b.text for b in page._page_box.descendants() if getattr(b, "text", None))
+            for page in doc.pages]
+
+
+def _where(pages, word):
+    return [i for i, p in enumerate(pages) if word in p]
+
+
+def _lead_in_section(lines: int, heading: bool):
+    """``lines`` one-line paragraphs, then (under a subsection heading, if asked) a paragraph
+    leading into formulas."""
+    from reportgen.report.document import Section
+    s = Section("Раздел", "s")
+    for k in range(lines):
+        s.paragraph(f"Строка текста номер {k} для заполнения страницы.")
+    t = s.subsection("ПОДЗАГОЛОВОК раздела", "s-sub") if heading else s
+    t.paragraph("ВВОДНЫЙ абзац перед формулами:")
+    t.formula(r"\xi = \zeta + 1", r"\eta = 2")
+    return s
+
+
+# --------------------------------------------------------------------------------------------
+# 1. a paragraph leading into formulas is never the last line of a page without them
+# --------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("heading", [False, True])
+def test_paragraph_leading_into_formulas_keeps_with_them(heading):
+    """The lead-in is moved down the page line by line; as it crosses the page foot it goes to
+    the next page with its formulas (and the heading over it) instead of staying alone."""
+    pages_of = []
+    for n in range(26, 34):
+        pages = _layout_pages(_lead_in_section(n, heading))
+        lead, formula = _where(pages, "ВВОДНЫЙ"), _where(pages, "ζ")
+        assert lead == formula, (n, lead, formula)
+        if heading:
+            assert max(_where(pages, "ПОДЗАГОЛОВОК")) == lead[0], n   # (the first mention: contents)
+        pages_of.append(lead[0])
+    assert len(set(pages_of)) == 2     # the range crosses the page foot
+
+
+def test_lead_in_class_only_before_formulas():
+    """The template marks a paragraph followed by formulas (``p.intro``), not one followed by
+    text; a paragraph before a short table keeps ``p.lead``."""
+    from reportgen.report import render
+    from reportgen.report.document import Report, Section
+    s = Section("Раздел", "s")
+    s.paragraph("ТЕКСТ до формул.")
+    s.paragraph("ВВОДНЫЙ абзац:")
+    s.formula(r"x = 1")
+    s.paragraph("ПОСЛЕ формулы.")
+    r = Report(meta={}, assignment=[], introduction=[], sections=[s], conclusion=[],
+               references=[], options={"title_page": False, "assignment_page": False})
+    html = render.render_html(r, for_print=True)
+    assert '<p class="intro">ВВОДНЫЙ абзац:</p>' in html
+    assert "<p>ТЕКСТ до формул.</p>" in html and "<p>ПОСЛЕ формулы.</p>" in html
+
+
+# --------------------------------------------------------------------------------------------
+# 2. the Жуковский table: no zero terms; every printed product is the printed F times h
+# --------------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def ws000_lever():
+    from reportgen import load_case
+    from reportgen.report.document import Table
+    from reportgen.report.sections import forces
+    st = load_case(CASES / "ws000_six_bar.toml")
+    sec = forces.build(st)
+    return next(b for b in _blocks(sec) if isinstance(b, Table) and b.id == "tab-frc-lever")
+
+
+def test_lever_table_has_no_zero_moment_rows(ws000_lever):
+    """ws000, position 12: G₅ (through the pole), M″Φ3 and M″Φ1 were listed with h = 0,0 and
+    F·h = 0,0; now they are named under the table as passing through the pole."""
+    df = ws000_lever.data
+    assert (df["Fh"] != 0.0).all() and (df["h"] != 0.0).all() and (df["F"] != 0.0).all()
+    note = str(ws000_lever.note)
+    assert "<i>G</i><sub>5</sub>" in note and "проходят через полюс p" in note
+    assert "в таблицу они не включены" in note
+    assert "G₅" not in list(df["label"])
+
+
+def test_lever_table_products_are_the_printed_numbers(ws000_lever):
+    """Every row's ±F·h is the printed F times the printed h (to the product's printed
+    decimals); the balancing row too (it printed F_ур = 6494 Н beside −626 667,5 Н·мм for an arm
+    96,5 мм: 6494 · 96,5 = 626 671)."""
+    df = ws000_lever.data
+    cols = {c.key: c for c in ws000_lever.columns}
+
+    def printed(key, v):
+        return float("".join(ch for ch in cols[key].format(v).replace(",", ".").replace("−", "-")
+                             if ch.isdigit() or ch in ".-"))
+    for _, r in df.iterrows():
+        assert printed("F", r["F"]) * printed("h", r["h"]) == pytest.approx(abs(printed("Fh", r["Fh"])), abs=1e-6), \
+            r["label"]
+    bal = df["balancing"].astype(bool)
+    assert bal.sum() == 1
+    # the column sums to zero up to the rounding of F_ур
+    assert abs(float(df["Fh"].sum())) <= 0.5 * float(df.loc[bal, "h"].iloc[0])
+
+
+@pytest.mark.parametrize("at_pole, zero, text", [
+    (["<i>G</i><sub>5</sub>"], [], " Сила <i>G</i><sub>5</sub> проходит через полюс p (плечо равно нулю): её момент "
+                                   "относительно полюса равен нулю, в таблицу она не включена."),
+    (["a", "b", "c"], ["d"], " Силы a, b и c проходят через полюс p (плечо равно нулю); сила d в этом положении "
+                             "равна нулю: их моменты относительно полюса равны нулю, в таблицу они не включены."),
+    ([], [], "")])
+def test_nil_note_agrees_in_number(at_pole, zero, text):
+    from reportgen.report.sections.forces import _nil_note
+    assert _nil_note((at_pole, zero)) == text
