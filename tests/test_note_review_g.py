@@ -124,3 +124,50 @@ def test_lever_table_products_are_the_printed_numbers(ws000_lever):
 def test_nil_note_agrees_in_number(at_pole, zero, text):
     from reportgen.report.sections.forces import _nil_note
     assert _nil_note((at_pole, zero)) == text
+
+
+# --------------------------------------------------------------------------------------------
+# 3. groups hung in parallel (V-compressor): the diagrams of each output, not of piston C only
+#    (the velocity and acceleration plans already held both pistons' points)
+# --------------------------------------------------------------------------------------------
+def _diagrams_section(name):
+    from reportgen import load_case
+    from reportgen.report.document import Section
+    from reportgen.report.sections import kinematics
+    st = load_case(CASES / f"{name}.toml")
+    sec = kinematics.build(st)
+    return st, next(b for b in sec.children if isinstance(b, Section) and b.id == "sec-diagrams")
+
+
+def test_parallel_outputs():
+    from reportgen import load_case
+    from reportgen.analysis.plans import output_quantity, parallel_outputs
+    st = load_case(CASES / "v_compressor.toml")
+    outs = parallel_outputs(st)
+    assert [o[0] for o in outs] == ["s_30", "s_50"]          # piston B, then piston C (group order)
+    assert output_quantity(st)[0] in [o[0] for o in outs]
+    for name in ("ws000_six_bar", "swing_conveyor", "slider_crank"):   # a chain of groups: one output
+        st = load_case(CASES / f"{name}.toml")
+        assert parallel_outputs(st) == [output_quantity(st)]
+
+
+def test_v_compressor_diagrams_of_both_pistons():
+    from reportgen.report.document import Figure, Paragraph
+    st, s5 = _diagrams_section("v_compressor")
+    figs = [b for b in s5.children if isinstance(b, Figure)]
+    assert [f.id for f in figs] == ["fig-diagrams", "fig-diagrams-2"]
+    assert "поршень B" in figs[0].caption and "поршень C" in figs[1].caption
+    text = " ".join(b.html for b in s5.children if isinstance(b, Paragraph))
+    assert "<i>s</i>₃" in text and "<i>s</i>₅" in text
+    assert s5.title == "Кинематические диаграммы выходных звеньев"
+    from reportgen.report.sections.kinematics import conclusion_lines
+    lines = " ".join(map(str, conclusion_lines(st)))
+    assert "поршень B (звено 3); его ход" in lines and "поршень C (звено 5); его ход" in lines
+
+
+def test_single_output_diagrams_unchanged():
+    from reportgen.report.document import Figure
+    _, s5 = _diagrams_section("ws000_six_bar")
+    figs = [b for b in s5.children if isinstance(b, Figure)]
+    assert [(f.id, f.caption) for f in figs] == [("fig-diagrams", "Кинематические диаграммы выходного звена")]
+    assert s5.title == "Кинематические диаграммы выходного звена"

@@ -9,7 +9,7 @@ import numpy as np
 import pandas as pd
 from markupsafe import Markup
 
-from ...analysis.plans import output_quantity
+from ...analysis.plans import output_quantity, parallel_outputs
 from ...mechanism.model import FRAME
 from ...scenes.diagrams import AnalogCurves, OutputDiagrams, output_displacement, output_index
 from ...scenes.mechanism import PositionsPlan, traced_points
@@ -313,40 +313,20 @@ def build(study) -> Section:
     # ----- kinematic diagrams
     if not study.has_cycle:        # [grid] cycle = false: single positions, no diagrams over the cycle
         return sec
-    s5 = sec.subsection("Кинематические диаграммы выходного звена", "sec-diagrams")
-    diag = OutputDiagrams().draw(study)
-    s_col, v_col, a_col, title = output_quantity(study)
-    cyc = study.cycle
-    s = cyc[s_col].to_numpy()
-    stroke = float(s.max() - s.min())
-    n = output_index(study, s_col)
-    _, i0 = output_displacement(study, s_col)
-    q0 = cyc["q"].iloc[i0]
-    at = (f"φ&nbsp;=&nbsp;{fmt(math.degrees(q0), digits=1)}°" if mech.driver.swing
-          else f"φ&nbsp;=&nbsp;{_turn(q0 - study.grid.start)}°" if rotary
-          else f"<i>S</i>&nbsp;=&nbsp;{fmt(q0, digits=4)}&nbsp;м")
-    if s_col.startswith("phi_"):
-        s5.paragraph(f"Выходное звено — {title}; размах качания {fmt(math.degrees(stroke), digits=2)}° "
-                     f"(рисунок {ref('fig-diagrams')}).")
-        origin = (f"Угол поворота ψ{n}&nbsp;=&nbsp;φ{n}&nbsp;−&nbsp;φ{n}<sub>min</sub> на диаграмме отсчитывается "
-                  f"от крайнего положения при {at}, угловые скорость и ускорение — в направлении отсчёта угла φ{n}.")
-    else:
-        s5.paragraph(f"Выходное звено — {title}; ход <i>H</i>&nbsp;=&nbsp;{fmt(stroke, digits=4)}&nbsp;м "
-                     f"(рисунок {ref('fig-diagrams')}).")
-        origin = (f"Перемещение <i>s</i>{n} на диаграмме отсчитывается от крайнего положения при {at} "
-                  f"(0&nbsp;≤&nbsp;<i>s</i>{n}&nbsp;≤&nbsp;<i>H</i>), скорость и ускорение — в том же направлении.")
-    if mech.driver.swing:
-        s5.paragraph(swing_strokes_text(study))
-        _strokes_table(s5, study, s_col)
-    elif rotary:
-        i_min, i_max, work, K = _strokes(study, s)
-        s5.paragraph(f"Крайние положения выходного звена соответствуют углам поворота кривошипа "
-                     f"{_turn(cyc['q'].iloc[i_min] - study.grid.start)}° и "
-                     f"{_turn(cyc['q'].iloc[i_max] - study.grid.start)}°; угол перекрытия "
-                     f"θ&nbsp;=&nbsp;{fmt(abs(180 - work), digits=1)}°, коэффициент изменения средней скорости "
-                     f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}." + _quick_return(work, K, _working_stroke(study)))
-    s5.paragraph(origin)
-    s5.figure("Кинематические диаграммы выходного звена", diag.svg, diag.width_mm, id="fig-diagrams")
+    outputs = parallel_outputs(study)
+    several = len(outputs) > 1
+    s5 = sec.subsection("Кинематические диаграммы выходных звеньев" if several else
+                        "Кинематические диаграммы выходного звена", "sec-diagrams")
+    figs = ["fig-diagrams"] + [f"fig-diagrams-{k + 1}" for k in range(1, len(outputs))]
+    if several:
+        # groups hung on the input link in parallel (a V-compressor's two pistons): each has its output
+        names = [str(o[3]) for o in outputs]
+        s5.paragraph(f"Выходные звенья — {', '.join(names[:-1])} и {names[-1]}: их группы присоединены "
+                     f"параллельно, каждая ведёт своё звено; диаграммы построены для каждого из них (рисунки "
+                     f"{', '.join(ref(f) for f in figs[:-1])} и {ref(figs[-1])}).")
+    main = output_quantity(study)[0]
+    for out, fig_id in zip(outputs, figs):
+        _output_diagrams(s5, study, out, fig_id, several, out[0] == main)
     flags = study.flags
     guides, guide_note = _guide_transmission(study)
     if flags or guides:
@@ -600,6 +580,49 @@ def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
         sec.formula(*fs)
 
 
+def _output_diagrams(s5: Section, study, out: tuple, fig_id: str, several: bool, main: bool) -> None:
+    """The kinematic diagrams of one output (``out``: an ``output_quantity`` tuple) with their
+    text: stroke, extreme positions, origin of the displacement. ``main``: the output the rest of
+    the note follows (the working stroke is judged for it)."""
+    diag = OutputDiagrams(out).draw(study)
+    s_col, v_col, a_col, title = out
+    mech = study.mechanism
+    rotary = mech.driver.rotary
+    cyc = study.cycle
+    s = cyc[s_col].to_numpy()
+    stroke = float(s.max() - s.min())
+    n = output_index(study, s_col)
+    _, i0 = output_displacement(study, s_col)
+    q0 = cyc["q"].iloc[i0]
+    at = (f"φ&nbsp;=&nbsp;{fmt(math.degrees(q0), digits=1)}°" if mech.driver.swing
+          else f"φ&nbsp;=&nbsp;{_turn(q0 - study.grid.start)}°" if rotary
+          else f"<i>S</i>&nbsp;=&nbsp;{fmt(q0, digits=4)}&nbsp;м")
+    if s_col.startswith("phi_"):
+        s5.paragraph(f"Выходное звено — {title}; размах качания {fmt(math.degrees(stroke), digits=2)}° "
+                     f"(рисунок {ref(fig_id)}).")
+        origin = (f"Угол поворота ψ{n}&nbsp;=&nbsp;φ{n}&nbsp;−&nbsp;φ{n}<sub>min</sub> на диаграмме отсчитывается "
+                  f"от крайнего положения при {at}, угловые скорость и ускорение — в направлении отсчёта угла φ{n}.")
+    else:
+        s5.paragraph(f"Выходное звено — {title}; ход <i>H</i>&nbsp;=&nbsp;{fmt(stroke, digits=4)}&nbsp;м "
+                     f"(рисунок {ref(fig_id)}).")
+        origin = (f"Перемещение <i>s</i>{n} на диаграмме отсчитывается от крайнего положения при {at} "
+                  f"(0&nbsp;≤&nbsp;<i>s</i>{n}&nbsp;≤&nbsp;<i>H</i>), скорость и ускорение — в том же направлении.")
+    if mech.driver.swing:
+        if main:
+            s5.paragraph(swing_strokes_text(study))
+            _strokes_table(s5, study, s_col)
+    elif rotary:
+        i_min, i_max, work, K = _strokes(study, s)
+        s5.paragraph(f"Крайние положения выходного звена соответствуют углам поворота кривошипа "
+                     f"{_turn(cyc['q'].iloc[i_min] - study.grid.start)}° и "
+                     f"{_turn(cyc['q'].iloc[i_max] - study.grid.start)}°; угол перекрытия "
+                     f"θ&nbsp;=&nbsp;{fmt(abs(180 - work), digits=1)}°, коэффициент изменения средней скорости "
+                     f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}." + _quick_return(work, K, _working_stroke(study) if main else None))
+    s5.paragraph(origin)
+    s5.figure(f"Кинематические диаграммы выходного звена: {title}" if several else
+              "Кинематические диаграммы выходного звена", diag.svg, diag.width_mm, id=fig_id)
+
+
 def output_v_limit(study) -> float | None:
     """``[report] output_v_limit``: the admissible speed of the output link given by the case (a
     slider's m/s, a rocker's rad/s), or None."""
@@ -674,11 +697,22 @@ def conclusion_lines(study) -> list[str]:
                 f"раздела {ref('sec-kinematics')}."]
     cyc = study.cycle
     s = cyc[s_col]
-    if s_col.startswith("phi_"):
+    outputs = parallel_outputs(study)
+    if len(outputs) > 1:
+        # several outputs (groups in parallel): each with its stroke and largest speed and acceleration
+        for o_s, _, _, o_title in outputs:
+            line = f"Выходное звено — {o_title}; его ход <i>H</i>&nbsp;=&nbsp;{fmt(np.ptp(cyc[o_s]), digits=4)}&nbsp;м" \
+                if o_s.startswith("s_") else \
+                f"Выходное звено — {o_title}; размах его качания {fmt(math.degrees(np.ptp(np.unwrap(cyc[o_s]))), digits=2)}°"
+            if study.mechanism.driver.omega is not None and o_s.startswith("s_"):
+                line += (f", наибольшая скорость {fmt(cyc['vs_' + o_s[2:]].abs().max(), digits=3)}&nbsp;м/с, "
+                         f"наибольшее ускорение {fmt(cyc['as_' + o_s[2:]].abs().max(), sig=4)}&nbsp;м/с²")
+            out.append(line + ".")
+    elif s_col.startswith("phi_"):
         out.append(f"Выходное звено — {title}; размах его качания {fmt(math.degrees(s.max() - s.min()), digits=2)}°.")
     else:
         out.append(f"Выходное звено — {title}; его ход <i>H</i>&nbsp;=&nbsp;{fmt(s.max() - s.min(), digits=4)}&nbsp;м.")
-    if study.mechanism.driver.omega is not None and s_col.startswith("s_"):
+    if study.mechanism.driver.omega is not None and s_col.startswith("s_") and len(outputs) == 1:
         n = s_col[2:]
         out.append(f"Наибольшая скорость выходного звена {fmt(cyc['vs_' + n].abs().max(), digits=3)}&nbsp;м/с, "
                    f"наибольшее ускорение {fmt(cyc['as_' + n].abs().max(), sig=4)}&nbsp;м/с².")
