@@ -171,3 +171,48 @@ def test_single_output_diagrams_unchanged():
     figs = [b for b in s5.children if isinstance(b, Figure)]
     assert [(f.id, f.caption) for f in figs] == [("fig-diagrams", "Кинематические диаграммы выходного звена")]
     assert s5.title == "Кинематические диаграммы выходного звена"
+
+
+# --------------------------------------------------------------------------------------------
+# 4. a fast working stroke (slotting machine): the note says why and which way the crank
+#    should turn; the strokes' angles and K in §2.5 are the conclusions' (exact) ones
+# --------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("direction, other", [(1, "по часовой стрелке"), (-1, "против часовой стрелки")])
+def test_fast_working_stroke_says_which_way_to_turn(direction, other):
+    from reportgen.report.sections.kinematics import _quick_return
+    text = _quick_return(165.4, 1.177, "fast", direction)
+    assert "при заданном направлении вращения кривошипа рабочим оказался быстрый ход" in text
+    assert "те же положения в обратном порядке" in text
+    assert f"кривошип целесообразно вращать {other}" in text
+    assert "вращать" not in _quick_return(163.4, 1.203, "slow", direction)
+
+
+def _strokes_paragraph(name):
+    _, s5 = _diagrams_section(name)
+    from reportgen.report.document import Paragraph
+    return next(b.html for b in s5.children if isinstance(b, Paragraph) and "Крайние положения" in b.html)
+
+
+def test_slotting_machine_fast_working_stroke_judged():
+    from reportgen import load_case
+    from reportgen.report.sections.kinematics import conclusion_lines
+    text = _strokes_paragraph("slotting_machine")
+    assert "кривошип целесообразно вращать по часовой стрелке" in text       # given: ccw
+    st = load_case(CASES / "slotting_machine.toml")
+    lines = " ".join(map(str, conclusion_lines(st)))
+    assert "рабочий ход выходного звена — быстрый" in lines and "при вращении по часовой стрелке" in lines
+
+
+def test_strokes_text_uses_the_exact_extremes():
+    """ws000 printed K = 1,202 in §2.5 (extremes on the cycle's 0,1° grid) and K = 1,203 in the
+    conclusions (the exact extremes)."""
+    import math
+    from reportgen import load_case
+    from reportgen.style.numbers import fmt
+    st = load_case(CASES / "ws000_six_bar.toml")
+    K = float(st.scalars["output_K"])
+    text = _strokes_paragraph("ws000_six_bar")
+    assert f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}." in text
+    work = 360.0 / (1.0 + K)
+    assert f"другой — {fmt(work, digits=1)}°" in text and f"занимает {fmt(360 - work, digits=1)}°" in text
+    assert math.isclose(K, (360 - work) / work)

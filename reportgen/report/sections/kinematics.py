@@ -76,20 +76,26 @@ def _strokes(study, s) -> tuple[int, int, float, float]:
     return i_min, i_max, work, K
 
 
-def _quick_return(fast: float, K: float, working: str | None = None) -> str:
+def _quick_return(fast: float, K: float, working: str | None = None, direction: int = 1) -> str:
     """Engineering reading of K > 1 (Артоболевский, гл. «Синтез»): the slow stroke is the working one.
     ``working`` — which stroke the case's loads resist (:func:`_working_stroke`): where it is the
-    fast one the note says so and how to make the slow stroke the working one."""
+    fast one the note says so and what to change: the crank turned the other way (``direction``:
+    +1 counter-clockwise as given, −1 clockwise) goes through the same positions in the reverse
+    order, so the output makes each stroke over the other arc of the crank's turn and the working
+    stroke becomes the slow one."""
     if not K > 1.05:
         return ""
     head = (f" Один ход выходного звена занимает {fmt(360 - fast, digits=1)}°, другой — {fmt(fast, digits=1)}° "
             f"поворота кривошипа: ")
     if working == "fast":
-        return head + (f"силы сопротивления действуют на быстром ходе, т. е. рабочим оказался быстрый ход, хотя "
-                       f"рабочим выгоднее назначать медленный (холостой ход тогда выполняется в {fmt(K, digits=2)} раза "
-                       f"быстрее). При обратном направлении вращения кривошипа ходы выходного звена меняются ролями: "
-                       f"медленным становится ход в направлении нынешнего быстрого; это следует учесть при выборе "
-                       f"направления вращения.")
+        other = "по часовой стрелке" if direction > 0 else "против часовой стрелки"
+        return head + (f"силы сопротивления действуют на быстром ходе, т. е. при заданном направлении вращения "
+                       f"кривошипа рабочим оказался быстрый ход, хотя рабочим выгоднее назначать медленный (холостой "
+                       f"ход тогда выполняется в {fmt(K, digits=2)} раза быстрее). При обратном направлении вращения "
+                       f"кривошипа механизм проходит те же положения в обратном порядке, и каждый ход выходного звена "
+                       f"совершается за другую часть оборота: ход в направлении нынешнего быстрого становится "
+                       f"медленным. Поэтому кривошип целесообразно вращать {other} (расчёты записки выполнены для "
+                       f"заданного направления вращения).")
     lead = ("рабочий ход (на нём действуют силы сопротивления) — медленный" if working == "slow"
             else "рабочим назначается медленный ход")
     return head + (f"{lead}, холостой выполняется в {fmt(K, digits=2)} раза быстрее, что сокращает время цикла.")
@@ -613,11 +619,21 @@ def _output_diagrams(s5: Section, study, out: tuple, fig_id: str, several: bool,
             _strokes_table(s5, study, s_col)
     elif rotary:
         i_min, i_max, work, K = _strokes(study, s)
+        q_min, q_max = cyc["q"].iloc[i_min], cyc["q"].iloc[i_max]
+        sc = study.scalars
+        if main and "output_q1" in sc:
+            # the extreme positions found exactly (the conclusions' K), not on the cycle's grid
+            exact = (sc["output_q1"], sc["output_q2"])
+            near = [abs(math.remainder(q_min - e, 2 * math.pi)) for e in exact]
+            q_min, q_max = exact if near[0] <= near[1] else exact[::-1]
+            th = math.degrees(abs(q_max - q_min)) % 360.0
+            work, K = min(th, 360.0 - th), float(sc["output_K"])
         s5.paragraph(f"Крайние положения выходного звена соответствуют углам поворота кривошипа "
-                     f"{_turn(cyc['q'].iloc[i_min] - study.grid.start)}° и "
-                     f"{_turn(cyc['q'].iloc[i_max] - study.grid.start)}°; угол перекрытия "
+                     f"{_turn(q_min - study.grid.start)}° и "
+                     f"{_turn(q_max - study.grid.start)}°; угол перекрытия "
                      f"θ&nbsp;=&nbsp;{fmt(abs(180 - work), digits=1)}°, коэффициент изменения средней скорости "
-                     f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}." + _quick_return(work, K, _working_stroke(study) if main else None))
+                     f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}."
+                     + _quick_return(work, K, _working_stroke(study) if main else None, mech.driver.direction))
     s5.paragraph(origin)
     s5.figure(f"Кинематические диаграммы выходного звена: {title}" if several else
               "Кинематические диаграммы выходного звена", diag.svg, diag.width_mm, id=fig_id)
@@ -678,6 +694,12 @@ def _speed_lines(study) -> list[str]:
         else:
             out.append(f"{what} на медленном ходе (больший угол поворота {input_word(d, 'gen')}) "
                        f"{slow}&nbsp;{unit}, на быстром — {fast}&nbsp;{unit} {K}.")
+            if _working_stroke(study) == "fast":
+                other = "по часовой стрелке" if d.direction > 0 else "против часовой стрелки"
+                out.append(f"При заданном направлении вращения {input_word(d, 'gen')} рабочий ход выходного звена — "
+                           f"быстрый (подраздел {ref('sec-diagrams')}); при вращении {other} рабочим станет "
+                           f"медленный ход, а холостой будет выполняться в {fmt(sc['output_K'], digits=2)} раза "
+                           f"быстрее — такое направление вращения предпочтительнее.")
     pin = study.mechanism.crank_pin()
     col = "v_" + str(pin)
     if pin and col in study.cycle:
