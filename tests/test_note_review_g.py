@@ -216,3 +216,55 @@ def test_strokes_text_uses_the_exact_extremes():
     work = 360.0 / (1.0 + K)
     assert f"другой — {fmt(work, digits=1)}°" in text and f"занимает {fmt(360 - work, digits=1)}°" in text
     assert math.isclose(K, (360 - work) / work)
+
+
+# --------------------------------------------------------------------------------------------
+# 5. ws002 read as a teacher: the introduction's comma, the fitted sizes in one sentence, what
+#    to change when the pressure is exceeded, ΣF·h written as the table's column
+# --------------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def hitch():
+    from reportgen import load_case
+    return load_case(CASES / "ws002_tractor_hitch.toml")
+
+
+def test_participial_phrase_closed_before_and(hitch):
+    from reportgen.report.assemble import _determined
+    assert _determined(hitch, ["structure", "kinematics", "forces"]) == (
+        "его строение, движение звеньев, силы, действующие в кинематических парах, и параметры, обеспечивающие "
+        "требуемый режим работы")
+    assert _determined(hitch, ["structure", "kinematics"]).endswith("движение звеньев и параметры, обеспечивающие "
+                                                                    "требуемый режим работы")
+
+
+def test_fitted_sizes_in_one_sentence(hitch):
+    from reportgen.report.sections.structure import conclusion_lines
+    lines = [str(x) for x in conclusion_lines(hitch)]
+    fitted = [x for x in lines if x.startswith("Подобран")]
+    assert len(fitted) == 1 and fitted[0].startswith("Подобраны размеры: <i>l</i><sub>4</sub>")
+    assert fitted[0].count("условие") == 3
+
+
+def test_exceeded_pressure_says_what_bore_or_pressure_is_needed(hitch):
+    """ws002: p = 17,597 МПа > 17,5 МПа at S = 0,420 м; the bore that gives F_max at 17,5 МПа is
+    D·√(p_req/p) (a second formulation of √(4F/(πkpη)))."""
+    import math
+    from reportgen.report.sections.forces import conclusion_lines
+    sc = hitch.forces.scalars
+    A = hitch.forces.settings.actuator
+    D = A.diameter * math.sqrt(sc["p_act_max"] / A.pressure)
+    text = " ".join(map(str, conclusion_lines(hitch)))
+    want = f"{math.ceil(D * 1e4) / 10:.1f}".replace(".", ",")
+    assert f"&nbsp;=&nbsp;{want}&nbsp;мм (задан 80&nbsp;мм)" in text, text
+    assert "давление в гидросистеме не менее 17,6&nbsp;МПа" in text
+
+
+def test_lever_sum_written_as_the_column(hitch):
+    from reportgen.report.document import FormulaBlock, Table
+    from reportgen.report.sections import forces
+    blocks = list(_blocks(forces.build(hitch)))
+    f = next(f for b in blocks if isinstance(b, FormulaBlock) for f in b.formulas if f.symbolic.startswith("F^{Ж}"))
+    assert r"\cdot 10" not in f.substituted and r"5\,527\,500{,}0" in f.substituted
+    tab = next(b for b in blocks if isinstance(b, Table) and b.id == "tab-frc-lever")
+    loads = tab.data[~tab.data["balancing"].astype(bool)]
+    assert float(loads["Fh"].sum()) == 5527500.0

@@ -692,6 +692,9 @@ def _balance(sec: Section, study, f, lab: str) -> None:
              "часовой стрелки." + (" Моменты звеньев заменены парами сил (′ и ″) на двух точках звена." if paired else "")
              + _nil_note(nil_names))
     total = float(loads["Fh"].sum())
+    # the sum of the table's printed products, written as the column writes them (not 5,52750·10⁶
+    # beside 5 527 500,0)
+    total_tex = tex_num(total, digits=F_dec + 1, sig=None, exp_from=1e12, paren=True)
     F_graph = -total / arm
     M_graph = F_graph * _crank_length(mech) if rot else F_graph
     exact = float(row[main])
@@ -699,7 +702,7 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     if rot:
         pin = tex_point(_pin(mech))
         res = [Formula(rf"F_{{ур}} = -\frac{{\sum F_i h_i}}{{{arm_sym}}}",
-                       rf"-\frac{{{_t(total, sig=6)}}}{{{arm_num}}}",
+                       rf"-\frac{{{total_tex}}}{{{arm_num}}}",
                        _t(F_graph, sig=5, unit="Н")),
                Formula(rf"M_{{ур}}^{{Ж}} = F_{{ур}} l_{{{tex_point(d.center)}{pin}}}",
                        rf"{_t(F_graph, sig=5)} \cdot {_t(_crank_length(mech), sig=4)}",
@@ -709,7 +712,7 @@ def _balance(sec: Section, study, f, lab: str) -> None:
                        None, _t(dev_graph, sig=2, unit="%"))]
     else:
         res = [Formula(rf"F^{{Ж}} = -\frac{{\sum F_i h_i}}{{{arm_sym}}}",
-                       rf"-\frac{{{_t(total, sig=6)}}}{{{arm_num}}}",
+                       rf"-\frac{{{total_tex}}}{{{arm_num}}}",
                        _t(F_graph, sig=6, unit="Н")),
                Formula(r"F^{кин}", None, _t(row["F_act"], sig=6, unit="Н")),
                Formula(r"\Delta = \frac{\left| F^{кин} - F^{Ж} \right|}{|F^{кин}|} \cdot 100\%", None,
@@ -950,6 +953,15 @@ def conclusion_lines(study) -> list[str]:
                        f"S&nbsp;=&nbsp;{fmt(sc['q_p_act_max'], digits=3)}&nbsp;м и превышает давление в гидросистеме "
                        f"{_fin(s.actuator.pressure / 1e6)}&nbsp;МПа: запас грузоподъёмности "
                        f"{fmt(sc['reserve_min_pct'], digits=1)}&nbsp;%, в начале подъёма груз не поднимается.")
+            # what to change: the bore that gives the largest force at the system's pressure,
+            # F = k·p·η·πD²/4 → D = √(4F/(π k p η)), or the pressure at the given bore
+            A = s.actuator
+            D_req = math.sqrt(4.0 * sc["F_act_absmax"] / (math.pi * A.count * A.pressure * A.efficiency))
+            out.append(f"Чтобы груз поднимался во всём ходе, нужен диаметр гидроцилиндров не менее "
+                       f"<i>D</i>&nbsp;=&nbsp;√(4<i>F</i><sub>max</sub>/(π<i>kp</i>η))&nbsp;=&nbsp;"
+                       f"{fmt(math.ceil(D_req * 1e4) / 10, digits=1)}&nbsp;мм (задан {_fin(A.diameter * 1e3)}&nbsp;мм) или "
+                       f"давление в гидросистеме не менее {fmt(math.ceil(sc['p_act_max'] / 1e5) / 10, digits=1)}&nbsp;МПа "
+                       "(значения округлены в большую сторону).")
         else:
             out.append(f"Наименьший запас грузоподъёмности — {fmt(sc['reserve_min_pct'], digits=1)}&nbsp;%.")
     if s.carrier is not None:
