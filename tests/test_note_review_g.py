@@ -268,3 +268,19 @@ def test_lever_sum_written_as_the_column(hitch):
     tab = next(b for b in blocks if isinstance(b, Table) and b.id == "tab-frc-lever")
     loads = tab.data[~tab.data["balancing"].astype(bool)]
     assert float(loads["Fh"].sum()) == 5527500.0
+
+
+def test_flywheel_inertia_printed_as_substituted_later():
+    """ws000 printed J_доп = 1461,59 − 2,500 = 1459,1 кг·м² and then D₂ = 0,437·⁵√1459,09: the
+    result is printed to the digits the next formulas substitute (and 1461,59 − 2,500 = 1459,09)."""
+    import re
+    from reportgen import load_case
+    from reportgen.report.document import FormulaBlock
+    from reportgen.report.sections import dynamics
+    st = load_case(CASES / "ws000_six_bar.toml")
+    forms = [f for b in _blocks(dynamics.build(st)) if isinstance(b, FormulaBlock) for f in b.formulas]
+    jd = next(f for f in forms if f.label == "eq-Jdop")
+    value = re.match(r"[\d,{}]+", jd.result).group(0)
+    assert value == r"1459{,}09", jd.result
+    D2 = next(f for f in forms if f.symbolic.startswith("D_2 ="))
+    assert r"\sqrt[5]{" + value + "}" in D2.substituted
