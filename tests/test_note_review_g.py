@@ -284,3 +284,16 @@ def test_flywheel_inertia_printed_as_substituted_later():
     assert value == r"1459{,}09", jd.result
     D2 = next(f for f in forms if f.symbolic.startswith("D_2 ="))
     assert r"\sqrt[5]{" + value + "}" in D2.substituted
+
+
+def test_position_number_not_parted_from_its_word_in_headings():
+    """ws002's contents printed «3.3 Реакции … по группам Ассура (положение» and «1) ……15» on the
+    next line: the headings keep «положение 1» / «положения 12» together."""
+    from reportgen import load_case
+    from reportgen.report.document import Section
+    from reportgen.report.sections import forces, kinematics
+    st = load_case(CASES / "ws000_six_bar.toml")
+    titles = [b.title for sec in (kinematics.build(st), forces.build(st)) for b in sec.children
+              if isinstance(b, Section)]
+    assert "Реакции в кинематических парах по группам Ассура (положение\u00a012)" in titles
+    assert "Планы скоростей и ускорений для положения\u00a012" in titles

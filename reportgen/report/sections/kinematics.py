@@ -292,7 +292,7 @@ def build(study) -> Section:
 
         # ----- plans at the chosen position
         lab = chosen_position(study)
-        s4 = sec.subsection(f"Планы скоростей и ускорений для положения {pos_no(study, lab)}", "sec-plans")
+        s4 = sec.subsection(f"Планы скоростей и ускорений для положения\u00a0{pos_no(study, lab)}", "sec-plans")
         row = k[k["pos"] == lab].iloc[0]
         vplan = PlanScene(lab, "velocity", landscape=True).draw(study)
         aplan = PlanScene(lab, "acceleration", landscape=True).draw(study)
