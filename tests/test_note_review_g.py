@@ -163,6 +163,10 @@ def test_v_compressor_diagrams_of_both_pistons():
     from reportgen.report.sections.kinematics import conclusion_lines
     lines = " ".join(map(str, conclusion_lines(st)))
     assert "поршень B (звено 3); его ход" in lines and "поршень C (звено 5); его ход" in lines
+    # each piston's mean speed (central slider-crank: K = 1, v = 2H·n = H·ω/π), not one «выходного звена»
+    v = 0.1 * float(st.mechanism.driver.omega) / np.pi
+    assert lines.count(f"средняя скорость на прямом и обратном ходах {v:.2f}".replace(".", ",")) == 2
+    assert "Средняя скорость выходного звена" not in lines
 
 
 def test_single_output_diagrams_unchanged():

@@ -683,7 +683,7 @@ def _speed_lines(study) -> list[str]:
         return []
     sc = study.scalars
     out = []
-    if "output_v_work" in sc:
+    if "output_v_work" in sc and len(parallel_outputs(study)) == 1:   # (several: each output's own line)
         ang = str(sc["output"]).startswith("phi_")
         unit = "рад/с" if ang else "м/с"
         what = "Средняя угловая скорость выходного звена" if ang else "Средняя скорость выходного звена"
@@ -726,9 +726,19 @@ def conclusion_lines(study) -> list[str]:
             line = f"Выходное звено — {o_title}; его ход <i>H</i>&nbsp;=&nbsp;{fmt(np.ptp(cyc[o_s]), digits=4)}&nbsp;м" \
                 if o_s.startswith("s_") else \
                 f"Выходное звено — {o_title}; размах его качания {fmt(math.degrees(np.ptp(np.unwrap(cyc[o_s]))), digits=2)}°"
-            if study.mechanism.driver.omega is not None and o_s.startswith("s_"):
+            w = study.mechanism.driver.omega
+            if w is not None and o_s.startswith("s_"):
                 line += (f", наибольшая скорость {fmt(cyc['vs_' + o_s[2:]].abs().max(), digits=3)}&nbsp;м/с, "
                          f"наибольшее ускорение {fmt(cyc['as_' + o_s[2:]].abs().max(), sig=4)}&nbsp;м/с²")
+                if study.mechanism.driver.rotary and not study.mechanism.driver.swing:
+                    # mean speeds of its two strokes v = H·ω₁/φ (φ — the crank's turn over the stroke)
+                    _, _, fast_deg, K = _strokes(study, cyc[o_s].to_numpy())
+                    H = float(np.ptp(cyc[o_s]))
+                    slow = fmt(H * abs(w) / math.radians(360.0 - fast_deg), sig=3)
+                    fast = fmt(H * abs(w) / math.radians(fast_deg), sig=3)
+                    line += (f"; средняя скорость на прямом и обратном ходах {slow}&nbsp;м/с" if slow == fast else
+                             f"; средняя скорость на медленном ходе {slow}&nbsp;м/с, на быстром — {fast}&nbsp;м/с "
+                             f"(<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)})")
             out.append(line + ".")
     elif s_col.startswith("phi_"):
         out.append(f"Выходное звено — {title}; размах его качания {fmt(math.degrees(s.max() - s.min()), digits=2)}°.")
