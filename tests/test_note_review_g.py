@@ -165,7 +165,7 @@ def test_v_compressor_diagrams_of_both_pistons():
     assert "поршень B (звено 3); его ход" in lines and "поршень C (звено 5); его ход" in lines
     # each piston's mean speed (central slider-crank: K = 1, v = 2H·n = H·ω/π), not one «выходного звена»
     v = 0.1 * float(st.mechanism.driver.omega) / np.pi
-    assert lines.count(f"средняя скорость на прямом и обратном ходах {v:.2f}".replace(".", ",")) == 2
+    assert lines.count(f"средняя скорость на прямом и обратном ходах одинакова: {v:.2f}".replace(".", ",")) == 2
     assert "Средняя скорость выходного звена" not in lines
 
 

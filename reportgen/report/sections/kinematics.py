@@ -736,7 +736,7 @@ def conclusion_lines(study) -> list[str]:
                     H = float(np.ptp(cyc[o_s]))
                     slow = fmt(H * abs(w) / math.radians(360.0 - fast_deg), sig=3)
                     fast = fmt(H * abs(w) / math.radians(fast_deg), sig=3)
-                    line += (f"; средняя скорость на прямом и обратном ходах {slow}&nbsp;м/с" if slow == fast else
+                    line += (f"; средняя скорость на прямом и обратном ходах одинакова: {slow}&nbsp;м/с" if slow == fast else
                              f"; средняя скорость на медленном ходе {slow}&nbsp;м/с, на быстром — {fast}&nbsp;м/с "
                              f"(<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)})")
             out.append(line + ".")
