@@ -2,6 +2,7 @@
 review found (the crank's force analysis titled «Группа (0,1)», force arrows of a group drawing's
 inset lying on each other, a kinematic column identically zero, reaction forces printed with
 varying decimals, the Жуковский formula with signed arms next to a table of unsigned ones)."""
+import math
 import re
 
 import numpy as np
@@ -244,9 +245,12 @@ def test_actuator_lever_formula_uses_the_tables_arms(hitch_forces):
     total = float(tab.data.loc[~tab.data["balancing"].astype(bool), "Fh"].sum())
     F = -total / S
     assert float(re.sub(r"[^\d.-]", "", res.result.replace("{,}", "."))) == pytest.approx(F, abs=0.5)
-    # and the table's products of the force's rows are F times those signed arms
-    for (sg, n), fh in zip(nums, bal["Fh"]):
-        assert fh == pytest.approx(F * (-1.0 if sg else 1.0) * float(n.replace("{,}", ".")), rel=1e-9, abs=1e-6)
+    # and the table's products of the force's rows are F, as printed (session 8: to the column's
+    # decimals, as every row), times those signed arms
+    for (sg, n), fh, Fp in zip(nums, bal["Fh"], bal["F"]):
+        assert Fp == pytest.approx(abs(F), abs=0.5)
+        assert fh == pytest.approx(math.copysign(Fp, F) * (-1.0 if sg else 1.0) * float(n.replace("{,}", ".")),
+                                   rel=1e-12, abs=1e-9)
 
 
 def test_crank_polygon_sides_apart(six_bar, captured):

@@ -187,6 +187,41 @@ def output_quantity(study) -> tuple[str, str, str, str]:
     return f"phi_{l}", f"wq_{l}", f"eq_{l}", _link_named(mech, l, "звено")
 
 
+def parallel_outputs(study) -> list[tuple[str, str, str, str]]:
+    """The outputs of a mechanism whose last groups hang in parallel (a V-compressor: two ВВП
+    groups on one crank pin, each with its piston): one :func:`output_quantity` tuple per terminal
+    group (a group no other group is attached to) that has a slider on the frame or a rocker
+    pivoted on it, in the order of the groups. A single output (a chain of groups, or the output
+    the case names in ``[report] output``) gives ``[output_quantity(study)]``."""
+    main = output_quantity(study)
+    if study.root.table("report").string("output"):
+        return [main]
+    mech = study.mechanism
+    groups = [g for g in study.structure.groups if FRAME not in g.links and len(g.links) > 1]
+    group_of = {l: i for i, g in enumerate(groups) for l in g.links}
+    fed = set()            # groups another group is attached to
+    for j in mech.joints:
+        a, b = j.links
+        if a in group_of and b in group_of and group_of[a] != group_of[b]:
+            fed.add(min(group_of[a], group_of[b]))
+    outs = []
+    for i, g in enumerate(groups):
+        if i in fed:
+            continue
+        slider = next((j for j in mech.prismatic if j.links[0] == FRAME and j.links[1] in g.links), None)
+        if slider is not None:
+            outs.append((f"s_{slider.name}", f"vqs_{slider.name}", f"aqs_{slider.name}",
+                         _link_named(mech, slider.links[1], "ползун")))
+            continue
+        rocker = next((l for l in g.links for jt in mech.joints
+                       if jt.kind == "R" and FRAME in jt.links and l in jt.links), None)
+        if rocker is not None:
+            outs.append((f"phi_{rocker}", f"wq_{rocker}", f"eq_{rocker}", _link_named(mech, rocker, "звено")))
+    if len(outs) < 2 or main[0] not in [o[0] for o in outs]:
+        return [main]
+    return outs
+
+
 def _link_named(mech, link: str, noun: str):
     """The output link as the note names it: by the case's title where it has one («поршень C
     (звено 5)», «коромысло 3», «ползун 5 (долбяк)»), else by its kind and number («ползун 5»)."""

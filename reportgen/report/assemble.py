@@ -356,7 +356,10 @@ def _determined(study, names) -> str:
         what.append("силы, действующие в кинематических парах")
     if not what or set(names) - {"structure", "kinematics", "forces"} or (study.has_linkage and study.fits):
         what.append("параметры, обеспечивающие требуемый режим работы")
-    return what[0] if len(what) == 1 else ", ".join(what[:-1]) + " и " + what[-1]
+    if len(what) == 1:
+        return what[0]
+    # a participial phrase («силы, действующие в кинематических парах») is closed by a comma before «и»
+    return ", ".join(what[:-1]) + (", и " if "," in what[-2] else " и ") + what[-1]
 
 
 def _introduction(study, names, built) -> list:

@@ -69,9 +69,14 @@ class OutputDiagrams:
 
     needs = ("cycle", "kinematics")
 
+    def __init__(self, output: tuple[str, str, str, str] | None = None):
+        """``output``: which output (an :func:`~reportgen.analysis.plans.output_quantity` tuple;
+        one of ``parallel_outputs`` for a mechanism with several); by default the output."""
+        self.output = output
+
     def draw(self, study) -> Drawing:
         cyc = study.cycle
-        s_col, v_col, a_col, title = output_quantity(study)
+        s_col, v_col, a_col, title = self.output or output_quantity(study)
         x, xlabel, step = _xaxis(study, cyc)
         angular = s_col.startswith("phi_")
         true = study.mechanism.driver.omega is not None

@@ -628,7 +628,7 @@ def _flywheel(sec, study, d) -> None:
     # the constant part by the symbol §3.1 introduced: J_O (rotor and transmission), J_I,0 with the crank
     J0_tex = "J_{I,0}" if d.J_crank else "J_O"
     s.formula(Formula(rf"J_{{\text{{доп}}}} = J_I - {J0_tex}", rf"{_t(r.J_I, sig=6)} - {_t(Jc, sig=4)}",
-                      _t(r.J_flywheel, sig=5, unit="кг·м²"), label="eq-Jdop"))
+                      _t(r.J_flywheel, sig=6, unit="кг·м²"), label="eq-Jdop"))
     if not r.flywheel.needed:
         s.paragraph("J<sub>доп</sub>&nbsp;≤&nbsp;0: собственной инерции машины достаточно, маховик не нужен.")
 

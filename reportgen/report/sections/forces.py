@@ -138,6 +138,31 @@ def _weighted(f) -> bool:
     return any(ld["kind"] == "G" for ld in f.details(f.labels[0])["loads"])
 
 
+def _nil_note(names: tuple[list[str], list[str]]) -> str:
+    """The known forces left out of the lever's table of moments (``names``: those whose line of
+    action passes through the pole, printed arm 0,0 мм; those printed as zero): their moment about
+    the pole is zero, and the Жуковский equation sums the non-zero terms."""
+    at_pole, zero = names
+    parts = []
+    if at_pole:
+        one = len(at_pole) == 1
+        parts.append(f"{'сила' if one else 'силы'} {_and(at_pole)} {'проходит' if one else 'проходят'} "
+                     "через полюс p (плечо равно нулю)")
+    if zero:
+        one = len(zero) == 1
+        parts.append(f"{'сила' if one else 'силы'} {_and(zero)} в этом положении {'равна' if one else 'равны'} нулю")
+    if not parts:
+        return ""
+    text = "; ".join(parts)
+    tail = ("её момент относительно полюса равен нулю, в таблицу она не включена" if len(at_pole) + len(zero) == 1
+            else "их моменты относительно полюса равны нулю, в таблицу они не включены")
+    return f" {text[0].upper()}{text[1:]}: {tail}."
+
+
+def _and(items: list[str]) -> str:
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " и " + items[-1]
+
+
 def _lead(study):
     qkey, qhead, qunit, qfmt = q_header(study)
     return [Column("pos", "№", fmt=pos_fmt(study)), Column(qkey, qhead, qunit, **qfmt)]
@@ -239,7 +264,12 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
             less = " за вычетом момента инерции самого кривошипа" if study.dynamics.J_crank else ""
             s.paragraph("К кривошипу приложен момент сил инерции первой группы звеньев "
                         f"(ротор, передача, маховик) с приведённым моментом инерции <i>J</i><sub>I</sub>{less}; "
-                        "при этом уравновешивающий момент равен движущему.")
+                        "при этом уравновешивающий момент равен движущему"
+                        + (f", а движущий момент принят постоянным (формула {ref('eq-Md')}), поэтому "
+                           "уравновешивающий момент одинаков во всех положениях; переменный уравновешивающий "
+                           f"момент самого рычажного механизма приведён в таблице {ref('tab-frc-checks')} (столбец "
+                           f"«{sub('M', 'ур')} без маховика»)."
+                           if study.dynamics.balance == "drive" and study.dynamics.settings.drive is None else "."))
         rows = []
         for name, m, J, S in inertial:
             l = mech.link(name)
@@ -298,7 +328,9 @@ def _incidence(s: Section, study, f) -> None:
 # groups
 # --------------------------------------------------------------------------------------------
 def _groups(sec: Section, study, f, lab: str) -> None:
-    s = sec.subsection(f"Реакции в кинематических парах по группам Ассура (положение {pos_no(study, lab)})", "sec-frc-groups")
+    # (no break between «положение» and its number, in the heading and in the contents)
+    s = sec.subsection(f"Реакции в кинематических парах по группам Ассура (положение\u00a0{pos_no(study, lab)})",
+                       "sec-frc-groups")
     s.paragraph("Для каждой группы составляются уравнения равновесия каждого звена: две проекции сил и "
                 "моменты относительно точки звена; неизвестные — составляющие реакций во внешних и "
                 "внутренних парах группы (для поступательной пары — нормальная сила и реактивный момент, "
@@ -629,9 +661,19 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     signed_h = np.sign(mt["Fh"].to_numpy(float)) * h_r
     S = float(signed_h[bal].sum()) if bal.any() else 0.0
     if S != 0.0:
+        # printed to the column's decimals, and its products are the printed F times the printed
+        # arms as every other row's: the column sums to zero up to the rounding of F_ур
         lever_total = float(mt.loc[~bal, "Fh"].sum())
-        mt.loc[bal, "F"] = round(abs(lever_total / S), 2)
-        mt.loc[bal, "Fh"] = -lever_total * signed_h[bal] / S
+        F_bal = round(abs(lever_total / S), F_dec)
+        mt.loc[bal, "F"] = F_bal
+        mt.loc[bal, "Fh"] = -np.sign(lever_total / S) * F_bal * signed_h[bal]
+    # a known force whose printed moment is zero (its line passes through the pole, or the force
+    # itself is zero) is not a term of the student's sum: named under the table, not listed
+    nil = ~bal & (mt["Fh"].to_numpy(float) == 0.0)
+    at_pole = nil & (mt["h"].to_numpy(float) == 0.0)
+    nil_names = ([html_label(v) for v in mt.loc[at_pole, "label"]],
+                 [html_label(v) for v in mt.loc[nil & ~at_pole, "label"]])
+    mt = mt[~nil]
     if rot:
         pin = tex_point(_pin(mech))
         s.formula(Formula(rf"F_{{ур}} h_{{{pin.lower()}}} + \sum_i F_i h_i = 0", label="eq-frc-lever"))
@@ -661,8 +703,12 @@ def _balance(sec: Section, study, f, lab: str) -> None:
         Column("h", "<i>h</i>", "мм", digits=1, sig=None),
         Column("Fh", "±<i>F·h</i>", "Н·мм", fmt=lambda v: fmt(v, digits=F_dec + 1, sig=None, exp_from=1e12))], mt, id="tab-frc-lever",
         note="Плечо h — расстояние от полюса p до линии действия силы на рычаге; знак «+» — момент против "
-             "часовой стрелки." + (" Моменты звеньев заменены парами сил (′ и ″) на двух точках звена." if paired else ""))
+             "часовой стрелки." + (" Моменты звеньев заменены парами сил (′ и ″) на двух точках звена." if paired else "")
+             + _nil_note(nil_names))
     total = float(loads["Fh"].sum())
+    # the sum of the table's printed products, written as the column writes them (not 5,52750·10⁶
+    # beside 5 527 500,0)
+    total_tex = tex_num(total, digits=F_dec + 1, sig=None, exp_from=1e12, paren=True)
     F_graph = -total / arm
     M_graph = F_graph * _crank_length(mech) if rot else F_graph
     exact = float(row[main])
@@ -670,7 +716,7 @@ def _balance(sec: Section, study, f, lab: str) -> None:
     if rot:
         pin = tex_point(_pin(mech))
         res = [Formula(rf"F_{{ур}} = -\frac{{\sum F_i h_i}}{{{arm_sym}}}",
-                       rf"-\frac{{{_t(total, sig=6)}}}{{{arm_num}}}",
+                       rf"-\frac{{{total_tex}}}{{{arm_num}}}",
                        _t(F_graph, sig=5, unit="Н")),
                Formula(rf"M_{{ур}}^{{Ж}} = F_{{ур}} l_{{{tex_point(d.center)}{pin}}}",
                        rf"{_t(F_graph, sig=5)} \cdot {_t(_crank_length(mech), sig=4)}",
@@ -680,7 +726,7 @@ def _balance(sec: Section, study, f, lab: str) -> None:
                        None, _t(dev_graph, sig=2, unit="%"))]
     else:
         res = [Formula(rf"F^{{Ж}} = -\frac{{\sum F_i h_i}}{{{arm_sym}}}",
-                       rf"-\frac{{{_t(total, sig=6)}}}{{{arm_num}}}",
+                       rf"-\frac{{{total_tex}}}{{{arm_num}}}",
                        _t(F_graph, sig=6, unit="Н")),
                Formula(r"F^{кин}", None, _t(row["F_act"], sig=6, unit="Н")),
                Formula(r"\Delta = \frac{\left| F^{кин} - F^{Ж} \right|}{|F^{кин}|} \cdot 100\%", None,
@@ -951,6 +997,15 @@ def conclusion_lines(study) -> list[str]:
                        f"S&nbsp;=&nbsp;{fmt(sc['q_p_act_max'], digits=3)}&nbsp;м и превышает давление в гидросистеме "
                        f"{_fin(s.actuator.pressure / 1e6)}&nbsp;МПа: запас грузоподъёмности "
                        f"{fmt(sc['reserve_min_pct'], digits=1)}&nbsp;%, в начале подъёма груз не поднимается.")
+            # what to change: the bore that gives the largest force at the system's pressure,
+            # F = k·p·η·πD²/4 → D = √(4F/(π k p η)), or the pressure at the given bore
+            A = s.actuator
+            D_req = math.sqrt(4.0 * sc["F_act_absmax"] / (math.pi * A.count * A.pressure * A.efficiency))
+            out.append(f"Чтобы груз поднимался во всём ходе, нужен диаметр гидроцилиндров не менее "
+                       f"<i>D</i>&nbsp;=&nbsp;√(4<i>F</i><sub>max</sub>/(π<i>kp</i>η))&nbsp;=&nbsp;"
+                       f"{fmt(math.ceil(D_req * 1e4) / 10, digits=1)}&nbsp;мм (задан {_fin(A.diameter * 1e3)}&nbsp;мм) или "
+                       f"давление в гидросистеме не менее {fmt(math.ceil(sc['p_act_max'] / 1e5) / 10, digits=1)}&nbsp;МПа "
+                       "(значения округлены в большую сторону).")
         else:
             out.append(f"Наименьший запас грузоподъёмности — {fmt(sc['reserve_min_pct'], digits=1)}&nbsp;%.")
     if s.carrier is not None:

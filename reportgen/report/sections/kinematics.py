@@ -9,7 +9,7 @@ import numpy as np
 import pandas as pd
 from markupsafe import Markup
 
-from ...analysis.plans import drawn, group_rank, omega_segment, output_quantity, read_velocities
+from ...analysis.plans import drawn, group_rank, omega_segment, output_quantity, parallel_outputs, read_velocities
 from ...mechanism.model import FRAME
 from ...scenes.diagrams import AnalogCurves, OutputDiagrams, output_displacement, output_index
 from ...scenes.mechanism import PositionsPlan, traced_points
@@ -65,16 +65,17 @@ def _flag_where(study, key: str) -> str:
     return ("в начальном механизме " if initial else "в группе ") + g
 
 
-def _strokes(study, s) -> tuple[float, float, float, float]:
+def _strokes(study, s, exact: bool = True) -> tuple[float, float, float, float]:
     """Crank coordinates of the output's extreme positions (lowest, highest), the crank angle of
     the shorter stroke (°) and the coefficient of change of the mean speed K = (360° − that
     angle)/that angle ≥ 1.  The extremes are the exact roots of the output's analog (study
     ``output_q1``/``output_q2``, the ones K of the conclusion and the load switching angles are
-    counted from), not the nearest nodes of the cycle grid; the grid where they are absent."""
+    counted from), not the nearest nodes of the cycle grid; the grid where they are absent or
+    ``s`` is another output than the one they belong to (``exact`` false: a second piston)."""
     q = study.cycle["q"].to_numpy()
     lo, hi = float(q[int(np.argmin(s))]), float(q[int(np.argmax(s))])
     sc = study.scalars
-    if "output_q1" in sc and "output_q2" in sc:
+    if exact and "output_q1" in sc and "output_q2" in sc:
         q1, q2 = float(sc["output_q1"]), float(sc["output_q2"])
         lo, hi = (q1, q2) if np.interp(q1, q, s) < np.interp(q2, q, s) else (q2, q1)
     th = abs(math.degrees(hi - lo))
@@ -86,20 +87,26 @@ def _strokes(study, s) -> tuple[float, float, float, float]:
 QUICK_RETURN_K = 1.05     # below it the strokes take practically the same time: no slow and fast stroke
 
 
-def _quick_return(fast: float, K: float, working: str | None = None) -> str:
+def _quick_return(fast: float, K: float, working: str | None = None, direction: int = 1) -> str:
     """Engineering reading of K > 1 (Артоболевский, гл. «Синтез»): the slow stroke is the working one.
     ``working`` — which stroke the case's loads resist (:func:`_working_stroke`): where it is the
-    fast one the note says so and how to make the slow stroke the working one."""
+    fast one the note says so and what to change: the crank turned the other way (``direction``:
+    +1 counter-clockwise as given, −1 clockwise) goes through the same positions in the reverse
+    order, so the output makes each stroke over the other arc of the crank's turn and the working
+    stroke becomes the slow one."""
     if not K > QUICK_RETURN_K:
         return ""
     head = (f" Один ход выходного звена занимает {fmt(360 - fast, digits=1)}°, другой — {fmt(fast, digits=1)}° "
             f"поворота кривошипа: ")
     if working == "fast":
-        return head + (f"силы сопротивления действуют на быстром ходе, т. е. рабочим оказался быстрый ход, хотя "
-                       f"рабочим выгоднее назначать медленный (холостой ход тогда выполняется в {fmt(K, digits=2)} раза "
-                       f"быстрее). При обратном направлении вращения кривошипа ходы выходного звена меняются ролями: "
-                       f"медленным становится ход в направлении нынешнего быстрого; это следует учесть при выборе "
-                       f"направления вращения.")
+        other = "по часовой стрелке" if direction > 0 else "против часовой стрелки"
+        return head + (f"силы сопротивления действуют на быстром ходе, т. е. при заданном направлении вращения "
+                       f"кривошипа рабочим оказался быстрый ход, хотя рабочим выгоднее назначать медленный (холостой "
+                       f"ход тогда выполняется в {fmt(K, digits=2)} раза быстрее). При обратном направлении вращения "
+                       f"кривошипа механизм проходит те же положения в обратном порядке, и каждый ход выходного звена "
+                       f"совершается за другую часть оборота: ход в направлении нынешнего быстрого становится "
+                       f"медленным. Поэтому кривошип целесообразно вращать {other} (расчёты записки выполнены для "
+                       f"заданного направления вращения).")
     lead = ("рабочий ход (на нём действуют силы сопротивления) — медленный" if working == "slow"
             else "рабочим назначается медленный ход")
     return head + (f"{lead}, холостой выполняется в {fmt(K, digits=2)} раза быстрее, что сокращает время цикла.")
@@ -305,7 +312,7 @@ def build(study) -> Section:
 
         # ----- plans at the chosen position
         lab = chosen_position(study)
-        s4 = sec.subsection(f"Планы скоростей и ускорений для положения {pos_no(study, lab)}", "sec-plans")
+        s4 = sec.subsection(f"Планы скоростей и ускорений для положения\u00a0{pos_no(study, lab)}", "sec-plans")
         row = k[k["pos"] == lab].iloc[0]
         vplan = PlanScene(lab, "velocity", landscape=True).draw(study)
         aplan = PlanScene(lab, "acceleration", landscape=True).draw(study)
@@ -334,40 +341,20 @@ def build(study) -> Section:
     # ----- kinematic diagrams
     if not study.has_cycle:        # [grid] cycle = false: single positions, no diagrams over the cycle
         return sec
-    s5 = sec.subsection("Кинематические диаграммы выходного звена", "sec-diagrams")
-    diag = OutputDiagrams().draw(study)
-    s_col, v_col, a_col, title = output_quantity(study)
-    cyc = study.cycle
-    s = cyc[s_col].to_numpy()
-    stroke = float(s.max() - s.min())
-    n = output_index(study, s_col)
-    _, i0 = output_displacement(study, s_col)
-    q0 = cyc["q"].iloc[i0]
-    at = (f"φ&nbsp;=&nbsp;{fmt(math.degrees(q0), digits=1)}°" if mech.driver.swing
-          else f"φ&nbsp;=&nbsp;{_turn(q0 - study.grid.start)}°" if rotary
-          else f"<i>S</i>&nbsp;=&nbsp;{fmt(q0, digits=4)}&nbsp;м")
-    if s_col.startswith("phi_"):
-        s5.paragraph(f"Выходное звено — {title}; размах качания {fmt(math.degrees(stroke), digits=2)}° "
-                     f"(рисунок {ref('fig-diagrams')}).")
-        origin = (f"Угол поворота ψ{n}&nbsp;=&nbsp;φ{n}&nbsp;−&nbsp;φ{n}<sub>min</sub> на диаграмме отсчитывается "
-                  f"от крайнего положения при {at}, угловые скорость и ускорение — в направлении отсчёта угла φ{n}.")
-    else:
-        s5.paragraph(f"Выходное звено — {title}; ход <i>H</i>&nbsp;=&nbsp;{fmt(stroke, digits=4)}&nbsp;м "
-                     f"(рисунок {ref('fig-diagrams')}).")
-        origin = (f"Перемещение <i>s</i>{n} на диаграмме отсчитывается от крайнего положения при {at} "
-                  f"(0&nbsp;≤&nbsp;<i>s</i>{n}&nbsp;≤&nbsp;<i>H</i>), скорость и ускорение — в том же направлении.")
-    if mech.driver.swing:
-        s5.paragraph(swing_strokes_text(study))
-        _strokes_table(s5, study, s_col)
-    elif rotary:
-        q_lo, q_hi, work, K = _strokes(study, s)
-        s5.paragraph(f"Крайние положения выходного звена соответствуют углам поворота кривошипа "
-                     f"{_turn(q_lo - study.grid.start)}° и "
-                     f"{_turn(q_hi - study.grid.start)}°; угол перекрытия "
-                     f"θ&nbsp;=&nbsp;{fmt(abs(180 - work), digits=1)}°, коэффициент изменения средней скорости "
-                     f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}." + _quick_return(work, K, _working_stroke(study)))
-    s5.paragraph(origin)
-    s5.figure("Кинематические диаграммы выходного звена", diag.svg, diag.width_mm, id="fig-diagrams")
+    outputs = parallel_outputs(study)
+    several = len(outputs) > 1
+    s5 = sec.subsection("Кинематические диаграммы выходных звеньев" if several else
+                        "Кинематические диаграммы выходного звена", "sec-diagrams")
+    figs = ["fig-diagrams"] + [f"fig-diagrams-{k + 1}" for k in range(1, len(outputs))]
+    if several:
+        # groups hung on the input link in parallel (a V-compressor's two pistons): each has its output
+        names = [str(o[3]) for o in outputs]
+        s5.paragraph(f"Выходные звенья — {', '.join(names[:-1])} и {names[-1]}: их группы присоединены "
+                     f"параллельно, каждая ведёт своё звено; диаграммы построены для каждого из них (рисунки "
+                     f"{', '.join(ref(f) for f in figs[:-1])} и {ref(figs[-1])}).")
+    main = output_quantity(study)[0]
+    for out, fig_id in zip(outputs, figs):
+        _output_diagrams(s5, study, out, fig_id, several, out[0] == main)
     flags = study.flags
     guides, guide_note = _guide_transmission(study)
     if flags or guides:
@@ -619,6 +606,50 @@ def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
         sec.formula(*fs)
 
 
+def _output_diagrams(s5: Section, study, out: tuple, fig_id: str, several: bool, main: bool) -> None:
+    """The kinematic diagrams of one output (``out``: an ``output_quantity`` tuple) with their
+    text: stroke, extreme positions, origin of the displacement. ``main``: the output the rest of
+    the note follows (the working stroke is judged for it)."""
+    diag = OutputDiagrams(out).draw(study)
+    s_col, v_col, a_col, title = out
+    mech = study.mechanism
+    rotary = mech.driver.rotary
+    cyc = study.cycle
+    s = cyc[s_col].to_numpy()
+    stroke = float(s.max() - s.min())
+    n = output_index(study, s_col)
+    _, i0 = output_displacement(study, s_col)
+    q0 = cyc["q"].iloc[i0]
+    at = (f"φ&nbsp;=&nbsp;{fmt(math.degrees(q0), digits=1)}°" if mech.driver.swing
+          else f"φ&nbsp;=&nbsp;{_turn(q0 - study.grid.start)}°" if rotary
+          else f"<i>S</i>&nbsp;=&nbsp;{fmt(q0, digits=4)}&nbsp;м")
+    if s_col.startswith("phi_"):
+        s5.paragraph(f"Выходное звено — {title}; размах качания {fmt(math.degrees(stroke), digits=2)}° "
+                     f"(рисунок {ref(fig_id)}).")
+        origin = (f"Угол поворота ψ{n}&nbsp;=&nbsp;φ{n}&nbsp;−&nbsp;φ{n}<sub>min</sub> на диаграмме отсчитывается "
+                  f"от крайнего положения при {at}, угловые скорость и ускорение — в направлении отсчёта угла φ{n}.")
+    else:
+        s5.paragraph(f"Выходное звено — {title}; ход <i>H</i>&nbsp;=&nbsp;{fmt(stroke, digits=4)}&nbsp;м "
+                     f"(рисунок {ref(fig_id)}).")
+        origin = (f"Перемещение <i>s</i>{n} на диаграмме отсчитывается от крайнего положения при {at} "
+                  f"(0&nbsp;≤&nbsp;<i>s</i>{n}&nbsp;≤&nbsp;<i>H</i>), скорость и ускорение — в том же направлении.")
+    if mech.driver.swing:
+        if main:
+            s5.paragraph(swing_strokes_text(study))
+            _strokes_table(s5, study, s_col)
+    elif rotary:
+        q_min, q_max, work, K = _strokes(study, s, exact=main)
+        s5.paragraph(f"Крайние положения выходного звена соответствуют углам поворота кривошипа "
+                     f"{_turn(q_min - study.grid.start)}° и "
+                     f"{_turn(q_max - study.grid.start)}°; угол перекрытия "
+                     f"θ&nbsp;=&nbsp;{fmt(abs(180 - work), digits=1)}°, коэффициент изменения средней скорости "
+                     f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}."
+                     + _quick_return(work, K, _working_stroke(study) if main else None, mech.driver.direction))
+    s5.paragraph(origin)
+    s5.figure(f"Кинематические диаграммы выходного звена: {title}" if several else
+              "Кинематические диаграммы выходного звена", diag.svg, diag.width_mm, id=fig_id)
+
+
 def output_v_limit(study) -> float | None:
     """``[report] output_v_limit``: the admissible speed of the output link given by the case (a
     slider's m/s, a rocker's rad/s), or None."""
@@ -663,7 +694,7 @@ def _speed_lines(study) -> list[str]:
         return []
     sc = study.scalars
     out = []
-    if "output_v_work" in sc:
+    if "output_v_work" in sc and len(parallel_outputs(study)) == 1:   # (several: each output's own line)
         ang = str(sc["output"]).startswith("phi_")
         unit = "рад/с" if ang else "м/с"
         what = "Средняя угловая скорость выходного звена" if ang else "Средняя скорость выходного звена"
@@ -676,6 +707,12 @@ def _speed_lines(study) -> list[str]:
         else:
             out.append(f"{what} на медленном ходе (больший угол поворота {input_word(d, 'gen')}) "
                        f"{slow}&nbsp;{unit}, на быстром — {fast}&nbsp;{unit} {K}.")
+            if _working_stroke(study) == "fast":
+                other = "по часовой стрелке" if d.direction > 0 else "против часовой стрелки"
+                out.append(f"При заданном направлении вращения {input_word(d, 'gen')} рабочий ход выходного звена — "
+                           f"быстрый (подраздел {ref('sec-diagrams')}); при вращении {other} рабочим станет "
+                           f"медленный ход, а холостой будет выполняться в {fmt(sc['output_K'], digits=2)} раза "
+                           f"быстрее — такое направление вращения предпочтительнее.")
     pin = study.mechanism.crank_pin()
     col = "v_" + str(pin)
     if pin and col in study.cycle:
@@ -695,11 +732,32 @@ def conclusion_lines(study) -> list[str]:
                 f"раздела {ref('sec-kinematics')}."]
     cyc = study.cycle
     s = cyc[s_col]
-    if s_col.startswith("phi_"):
+    outputs = parallel_outputs(study)
+    if len(outputs) > 1:
+        # several outputs (groups in parallel): each with its stroke and largest speed and acceleration
+        for o_s, _, _, o_title in outputs:
+            line = f"Выходное звено — {o_title}; его ход <i>H</i>&nbsp;=&nbsp;{fmt(np.ptp(cyc[o_s]), digits=4)}&nbsp;м" \
+                if o_s.startswith("s_") else \
+                f"Выходное звено — {o_title}; размах его качания {fmt(math.degrees(np.ptp(np.unwrap(cyc[o_s]))), digits=2)}°"
+            w = study.mechanism.driver.omega
+            if w is not None and o_s.startswith("s_"):
+                line += (f", наибольшая скорость {fmt(cyc['vs_' + o_s[2:]].abs().max(), digits=3)}&nbsp;м/с, "
+                         f"наибольшее ускорение {fmt(cyc['as_' + o_s[2:]].abs().max(), sig=4)}&nbsp;м/с²")
+                if study.mechanism.driver.rotary and not study.mechanism.driver.swing:
+                    # mean speeds of its two strokes v = H·ω₁/φ (φ — the crank's turn over the stroke)
+                    _, _, fast_deg, K = _strokes(study, cyc[o_s].to_numpy(), exact=o_s == s_col)
+                    H = float(np.ptp(cyc[o_s]))
+                    slow = fmt(H * abs(w) / math.radians(360.0 - fast_deg), sig=3)
+                    fast = fmt(H * abs(w) / math.radians(fast_deg), sig=3)
+                    line += (f"; средняя скорость на прямом и обратном ходах одинакова: {slow}&nbsp;м/с" if slow == fast else
+                             f"; средняя скорость на медленном ходе {slow}&nbsp;м/с, на быстром — {fast}&nbsp;м/с "
+                             f"(<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)})")
+            out.append(line + ".")
+    elif s_col.startswith("phi_"):
         out.append(f"Выходное звено — {title}; размах его качания {fmt(math.degrees(s.max() - s.min()), digits=2)}°.")
     else:
         out.append(f"Выходное звено — {title}; его ход <i>H</i>&nbsp;=&nbsp;{fmt(s.max() - s.min(), digits=4)}&nbsp;м.")
-    if study.mechanism.driver.omega is not None and s_col.startswith("s_"):
+    if study.mechanism.driver.omega is not None and s_col.startswith("s_") and len(outputs) == 1:
         n = s_col[2:]
         out.append(f"Наибольшая скорость выходного звена {fmt(cyc['vs_' + n].abs().max(), digits=3)}&nbsp;м/с, "
                    f"наибольшее ускорение {fmt(cyc['as_' + n].abs().max(), sig=4)}&nbsp;м/с².")

@@ -138,7 +138,10 @@ def conclusion_lines(study) -> list[str]:
     st = study.structure
     out = [f"Механизм имеет одну степень свободы (W&nbsp;=&nbsp;{st.W}), структурная формула "
            f"{decomposition(study)[1]}, механизм {_roman(st.mech_class)} класса."]
-    for f in study.fits:
-        out.append(Markup("Подобран размер {}&nbsp;=&nbsp;{}&nbsp;м (условие {} при {}).").format(
-            expr_html(f.name), fmt(f.value, digits=4), expr_html(f.condition), expr_html(f.at)))
+    fits = [Markup("{}&nbsp;=&nbsp;{}&nbsp;м (условие {} при {})").format(
+        expr_html(f.name), fmt(f.value, digits=4), expr_html(f.condition), expr_html(f.at)) for f in study.fits]
+    if len(fits) == 1:
+        out.append(Markup("Подобран размер {}.").format(fits[0]))
+    elif fits:            # one sentence for all of them, not one each
+        out.append(Markup("Подобраны размеры: ") + Markup("; ").join(fits) + Markup("."))
     return out
