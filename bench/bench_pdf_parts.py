@@ -52,14 +52,17 @@ def main(argv: list[str]) -> None:
 
             prof = cProfile.Profile()
             prof.enable()
+        laid = None
         try:
-            return original(task)
+            laid = original(task)
+            return laid
         finally:
             if prof is not None:
                 prof.disable()
                 prof.dump_stats(str(Path(a.profile) / f"task{task.index}-{os.getpid()}-{w0:.3f}.prof"))
             rec = {"run": state["run"], "index": task.index, "pid": os.getpid(), "start": w0 - state["t0"],
-                   "end": time.perf_counter() - state["t0"], "cpu": time.process_time() - c0}
+                   "end": time.perf_counter() - state["t0"], "cpu": time.process_time() - c0,
+                   "layout": getattr(laid, "seconds_layout", 0.0), "write": getattr(laid, "seconds_write", 0.0)}
             with open(log_dir / f"{os.getpid()}.jsonl", "a", encoding="utf-8") as f:
                 f.write(json.dumps(rec) + "\n")
 
@@ -87,9 +90,10 @@ def main(argv: list[str]) -> None:
         recs += [json.loads(line) for line in p.read_text().splitlines()]
     last = sorted((r for r in recs if r["run"] == a.runs), key=lambda r: r["start"])
     pids = sorted({r["pid"] for r in last})
-    print("timeline of the last run (task: worker, start–end s, CPU s):")
+    print("timeline of the last run (task: worker, start–end s, CPU s, wall of its layout and write):")
     for r in last:
-        print(f"  {r['index']:>3}: w{pids.index(r['pid'])} {r['start']:6.2f}–{r['end']:6.2f}  cpu {r['cpu']:.2f}")
+        print(f"  {r['index']:>3}: w{pids.index(r['pid'])} {r['start']:6.2f}–{r['end']:6.2f}  cpu {r['cpu']:.2f} "
+              f"(wall: layout {r['layout']:.2f}, write {r['write']:.2f})")
     per = {}
     for r in recs:
         if r["run"]:
