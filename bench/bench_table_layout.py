@@ -17,6 +17,7 @@ from __future__ import annotations
 import os
 import statistics
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -34,7 +35,8 @@ def main(argv: list[str]) -> None:
 
     n = int(argv[0]) if argv else 3
     report = build_report(Study(ROOT / "cases/ws000_six_bar.toml"))
-    render.write_pdf(report, Path(os.devnull), jobs=1)  # the split points
+    with tempfile.TemporaryDirectory() as d:  # (write_pdf writes atomically: never to a device file)
+        render.write_pdf(report, Path(d) / "note.pdf", jobs=1)  # the split points
     views = render._views(report, for_print=True, splits=render.last_stats.splits)
     body = views.ctx["body"]
     HTML, fc, cache = render._html_class(), render._font_config(), render._image_cache()
