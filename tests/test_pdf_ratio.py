@@ -3,6 +3,7 @@ once when its page numbers are remembered, the note's stylesheet parsed once per
 HTML parsed by reportgen/report/fasthtml.py into tinyhtml5's very tree. Each keeps the bytes."""
 from __future__ import annotations
 
+from pathlib import Path
 from xml.etree import ElementTree
 
 import pytest
@@ -146,3 +147,21 @@ def test_toc_key_ignores_title_and_meta():
     assert parallel._toc_key(a) == parallel._toc_key(b)
     assert parallel._toc_key(a) != parallel._toc_key(a.replace(">x<", ">y<"))
     assert isinstance(fasthtml.parse("<!DOCTYPE html><html><head></head><body></body></html>"), ElementTree.Element)
+
+
+def test_atomic_write_leaves_a_special_file_in_place(tmp_path):
+    """A path that is not a regular file (``/dev/null``, here a pipe) is written into, not
+    replaced by a renamed regular file (a bench's warm-up once replaced ``/dev/null`` so)."""
+    import os
+    import stat
+    import threading
+
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    got = []
+    reader = threading.Thread(target=lambda: got.append(fifo.read_bytes()))
+    reader.start()
+    render._atomic_write(fifo, b"%PDF-")
+    reader.join(10)
+    assert got == [b"%PDF-"] and stat.S_ISFIFO(os.stat(fifo).st_mode)
+    assert render._atomic_write(tmp_path / "a" / "b.pdf", b"x").read_bytes() == b"x"

@@ -1083,7 +1083,14 @@ def render_fragment(block, *, options: dict | None = None, chapter: str = "1",
 
 
 def _atomic_write(path: Path, data: bytes) -> Path:
+    """``data`` to ``path`` through a temporary file renamed over it; a path that exists and is
+    not a regular file (``/dev/null``, a pipe) is written in place: a rename would replace the
+    device itself."""
     path = Path(path)
+    if path.exists() and not path.is_file():
+        with open(path, "wb") as fh:
+            fh.write(data)
+        return path
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
