@@ -60,6 +60,7 @@ DOC = '<!DOCTYPE html>\n<html lang="ru">\n<head>\n<meta charset="utf-8">\n<title
     '<table><thead><tr><th>h</th></tr></thead>\n<tbody>\n<tr><td><p>x</p><table><tr><td>y</td></tr></table></td></tr>\n</tbody></table>',
     '<ul><li>a<ul><li>b</li></ul></li><li>c</li></ul><h1>t<span>s</span></h1>',
     '<p>a<a href="#x">b<sub>c</sub></a> d</p>',
+    '<p>&#9;&#x41;&#1040;&#x1F600;&#160;</p>',
 ])
 def test_fast_parse_equals_tinyhtml5(body):
     html = DOC.format(title="A &amp; B", body=body)
@@ -83,6 +84,8 @@ def test_fast_parse_equals_tinyhtml5(body):
     DOC.format(title="t", body="<p>a</p>").replace("<!DOCTYPE html>", ""),  # quirks mode
     DOC.format(title="t", body="<p>a\r\nb</p>"),
     DOC.format(title="t", body="<p>a < b</p>"),
+    DOC.format(title="t", body="<p>a&#1;b&#x80;</p>"),  # controls: html.unescape drops or maps them
+    DOC.format(title="t", body="<p>a</p>").replace("</title>", "</title x>"),  # an end tag with attributes
 ])
 def test_fast_parse_leaves_the_rest_to_tinyhtml5(html):
     assert fasthtml.parse(html) is None

@@ -68,7 +68,8 @@ _ATTR = re.compile(r"\s+([^\s\"'>/=]+)(?:\s*=\s*(?:\"([^\"]*)\"|'([^']*)'|([^\s\
 _AMP = re.compile(r"&")
 _REF = re.compile(r"&(?:#[0-9]{1,7};|#[xX][0-9a-fA-F]{1,6};|[A-Za-z][A-Za-z0-9]{1,31};)")
 _WS = re.compile(r"[ \t\n\f]*\Z")
-_RAW_END = {"style": re.compile(r"</style\s*>", re.I), "title": re.compile(r"</title\s*>", re.I)}
+_RAW_END = {"style": re.compile(r"</style", re.I), "title": re.compile(r"</title", re.I)}
+_RAW_CLOSE = re.compile(r"\s*>")
 
 
 def _unescape(text: str) -> str | None:
@@ -77,9 +78,18 @@ def _unescape(text: str) -> str | None:
     if "&" not in text:
         return text
     refs = _REF.findall(text)
-    if len(refs) != text.count("&") or not all(r[1] == "#" or r[1:] in _entities.html5 for r in refs):
+    if len(refs) != text.count("&") or not all(_plain_numeric(r) if r[1] == "#" else r[1:] in _entities.html5
+                                               for r in refs):
         return None
     return _html_unescape(text)
+
+
+def _plain_numeric(ref: str) -> bool:
+    """A numeric reference to an ordinary character: HTML5 and ``html.unescape`` differ on
+    controls, noncharacters and surrogates (one keeps, the other drops or replaces them)."""
+    num = int(ref[3:-1], 16) if ref[2] in "xX" else int(ref[2:-1])
+    return (num in (9, 10) or 0x20 <= num < 0x7F or 0xA0 <= num <= 0x10FFFF) and not 0xD800 <= num <= 0xDFFF \
+        and not 0xFDD0 <= num <= 0xFDEF and (num & 0xFFFE) != 0xFFFE
 
 
 def _add_text(node, last, text: str) -> None:
@@ -188,8 +198,9 @@ def parse(source: str):
             head.append(el)
             stack[-1][1] = el
             if name in _RAW_END:  # raw text up to the end tag (title: character references decoded)
-                em = _RAW_END[name].search(source, pos)
-                if em is None:
+                em = _RAW_END[name].search(source, pos)  # the first «</style» ends it, as in HTML5
+                close = None if em is None else _RAW_CLOSE.match(source, em.end())
+                if close is None:
                     return None
                 raw = source[pos:em.start()]
                 if name == "title":
@@ -198,7 +209,7 @@ def parse(source: str):
                         return None
                 if raw:
                     el.text = raw
-                pos = em.end()
+                pos = close.end()
             continue
         if phase == "after head":
             if name != "body":
