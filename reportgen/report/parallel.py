@@ -40,6 +40,7 @@ from __future__ import annotations
 import io
 import multiprocessing
 import os
+import re
 import time
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -297,6 +298,7 @@ class PartsStats:
     seconds_front: float = 0.0  # title page, assignment and contents (layout + write)
     seconds_join: float = 0.0
     seconds_wait: float = 0.0  # the parent waiting for the workers in finish()
+    toc_layouts: int = 0  # СОДЕРЖАНИЕ laid out this many times (1 when its numbers were remembered right)
     part_seconds: list = field(default_factory=list)
 
 
@@ -339,6 +341,11 @@ class PartsJob:
         placeholder = {e["id"]: PLACEHOLDER for e in views.builder.toc}
         toc = self._toc_html(placeholder)
         _check_glyphs((head or "") + toc + "".join(htmls), views.family)
+        # СОДЕРЖАНИЕ laid out once when its page numbers are remembered (see _recall_toc)
+        self.toc_key = _toc_key(toc)
+        self.toc_guess = _recall_toc(self.toc_key, [e["id"] for e in views.builder.toc])
+        if self.toc_guess is not None:
+            toc = self._toc_html(self.toc_guess[1])
         self.stats = PartsStats(parts=len(body), jobs=jobs, seconds_html=time.perf_counter() - t0)
         tasks = [_Task(i, htmls[i], dict(splits), starts[i][0], starts[i][3] if known[i] else "", shape=starts[i][1])
                  for i in range(len(body))]
@@ -448,8 +455,18 @@ class PartsJob:
             st.seconds_front = sum(p.seconds_layout + p.seconds_write for p in front + [toc])
             t0 = time.perf_counter()
             n_head = len(head.heights) if head is not None else 0
-            for _ in range(MAX_FRONT_PASSES):
+            # The contents' page count starts as the placeholder contents' (remembered with
+            # a guess of the numbers, whose contents was laid out instead: kept if it is the one
+            # the passes below ask for — the same HTML, so the same layout)
+            laid = {}
+            if self.toc_guess is not None:
+                n_toc = self.toc_guess[0]
+                laid[self._toc_html(self.toc_guess[1])] = toc
+            else:
                 n_toc = len(toc.heights)
+            first_count = n_toc
+            st.toc_layouts = 1
+            for _ in range(MAX_FRONT_PASSES):
                 starts, n = [], n_head + n_toc
                 for p in parts:
                     starts.append(n)
@@ -460,9 +477,15 @@ class PartsJob:
                         if e["id"] in p.anchors:
                             toc_pages[e["id"]] = str(s + p.anchors[e["id"]][0] + 1)
                             break
-                toc = self._run(_Task(TOC, self._toc_html(toc_pages), {}))
+                html = self._toc_html(toc_pages)
+                toc = laid.pop(html, None)
+                if toc is None:
+                    toc = self._run(_Task(TOC, html, {}))
+                    st.toc_layouts += 1
                 if len(toc.heights) == n_toc:
                     break
+                n_toc = len(toc.heights)
+            _remember_toc(self.toc_key, first_count, toc_pages)
             # the pages turned to landscape (a wide figure) get their footer number on a landscape page
             turned = {i for i, h in enumerate(h for p in front + [toc] + parts for h in p.heights)
                       if h < LANDSCAPE_BELOW}
@@ -486,6 +509,73 @@ def _cost(html: str) -> float:
 
     text = re.sub(r"data:[^\"')]+", "", html)
     return html.count("<td") + 0.5 * html.count("<img") + len(text) / 2000
+
+
+_TOC_DROP = re.compile(r"<title>[^<]*</title>|<meta [^>]*>")
+_TOC_MEMO: dict[str, tuple[int, dict]] = {}
+_TOC_CACHE_VERSION = 1
+
+
+def _toc_key(placeholder_html: str) -> str:
+    """Key of СОДЕРЖАНИЕ with placeholder numbers: its HTML without the document's title and
+    meta data (they do not lay anything out: the variants of a class share the key), and the
+    WeasyPrint version."""
+    import hashlib
+
+    from .render import weasyprint_version
+
+    text = _TOC_DROP.sub("", placeholder_html)
+    return hashlib.sha256(f"{_TOC_CACHE_VERSION}|{weasyprint_version()}|{text}".encode("utf-8")).hexdigest()
+
+
+def _toc_file(key: str):
+    from .formulas import _cache_dir
+
+    folder = _cache_dir()
+    return None if folder is None else folder.parent / "toc" / f"{key}.json"
+
+
+def _recall_toc(key: str, ids: list[str]) -> tuple[int, dict] | None:
+    """``(page count of the placeholder contents, page numbers of the headings)`` remembered for
+    ``key`` (in the process, else in ``<cache>/toc``), or ``None``. The count is a function of
+    the key (the placeholder contents' HTML); the numbers are a guess (the last note with that
+    contents), used only when :meth:`PartsJob.finish` asks for the very same contents' HTML, so
+    the PDF does not depend on them."""
+    import json
+
+    got = _TOC_MEMO.get(key)
+    if got is None:
+        path = _toc_file(key)
+        if path is None:
+            return None
+        try:
+            data = json.loads(path.read_text(encoding="utf-8"))
+            got = (int(data["count"]), {str(k): str(v) for k, v in data["pages"].items()})
+        except (OSError, ValueError, KeyError, TypeError, AttributeError):
+            return None
+    count, pages = got
+    if count < 1 or any(i not in pages for i in ids):
+        return None
+    return count, {i: pages[i] for i in ids}
+
+
+def _remember_toc(key: str, count: int, pages: dict) -> None:
+    import json
+
+    from .render import _atomic_write
+
+    if _TOC_MEMO.get(key) == (count, pages):
+        return
+    if len(_TOC_MEMO) > 64:
+        _TOC_MEMO.clear()
+    _TOC_MEMO[key] = (count, dict(pages))
+    path = _toc_file(key)
+    if path is not None:
+        try:
+            _atomic_write(path, json.dumps({"count": count, "pages": pages}, ensure_ascii=False,
+                                           sort_keys=True).encode("utf-8"))
+        except OSError:
+            pass  # a read-only cache folder is no reason to fail a report
 
 
 # a page lower than this (CSS px) is an A4 page turned to landscape (595 pt = 793,7 px high)

@@ -1,0 +1,170 @@
+"""What the PDF of a note no longer does twice (issue #15, the PDF ratio): СОДЕРЖАНИЕ laid out
+once when its page numbers are remembered, the note's stylesheet parsed once per process, the
+HTML parsed by reportgen/report/fasthtml.py into tinyhtml5's very tree. Each keeps the bytes."""
+from __future__ import annotations
+
+from pathlib import Path
+from xml.etree import ElementTree
+
+import pytest
+import tinyhtml5
+from conftest import CASES
+
+from reportgen.report import fasthtml, parallel, render
+
+SECTIONS = ["structure", "kinematics"]
+
+
+@pytest.fixture(scope="module")
+def report():
+    from reportgen.analysis.study import Study
+    from reportgen.report.assemble import build_report
+
+    parallel.set_note_jobs(1)
+    try:
+        return build_report(Study(CASES / "ws004_slotted_lever.toml"), SECTIONS)
+    finally:
+        parallel.set_note_jobs(None)
+
+
+def _tree(el) -> tuple:
+    return (el.tag, list(el.attrib.items()), el.text or "", el.tail or "", [_tree(c) for c in el])
+
+
+def _documents(report) -> list[str]:
+    """Every document WeasyPrint is given for the note, and the whole print and screen HTML."""
+    views = render._views(report, for_print=True, splits={})
+    docs = [views.html(front=False, body=[node], chunk=True) for node in views.ctx["body"]]
+    docs.append(views.html(body=[], toc=False, toc_pages={}, chunk=True))  # title page and assignment
+    docs.append(views.html(head=False, body=[], toc_pages={e["id"]: "7" for e in views.builder.toc}, chunk=True))
+    docs.append(parallel._numbers_html(views, 4, {2}))
+    docs.append(views.html())
+    docs.append(render.render_html(report, for_print=False))
+    return docs
+
+
+def test_fast_parse_builds_tinyhtml5s_tree_for_every_document(report):
+    for i, html in enumerate(_documents(report)):
+        root = fasthtml.parse(html)
+        assert root is not None, f"документ {i} вне подмножества быстрого разбора"
+        assert _tree(root) == _tree(tinyhtml5.parse(html, namespace_html_elements=False)), f"документ {i}"
+
+
+DOC = '<!DOCTYPE html>\n<html lang="ru">\n<head>\n<meta charset="utf-8">\n<title>{title}</title>\n</head>\n<body>{body}</body>\n</html>\n'
+
+
+@pytest.mark.parametrize("body", [
+    '<p class=a data-x=\'1 2\' hidden>x&nbsp;&#160;&#x2212;&amp;&lt;y</p>\n',
+    '<DIV Class="A" class="B"><BR/><img src="data:image/png;base64,AAAA" alt=""></DIV>',
+    '<table class="where">\n<tr><td>a</td><td> b </td></tr>\n<tr><td>c</td></tr>\n</table>\ntail',
+    '<table><thead><tr><th>h</th></tr></thead>\n<tbody>\n<tr><td><p>x</p><table><tr><td>y</td></tr></table></td></tr>\n</tbody></table>',
+    '<ul><li>a<ul><li>b</li></ul></li><li>c</li></ul><h1>t<span>s</span></h1>',
+    '<p>a<a href="#x">b<sub>c</sub></a> d</p>',
+    '<p>&#9;&#x41;&#1040;&#x1F600;&#160;</p>',
+])
+def test_fast_parse_equals_tinyhtml5(body):
+    html = DOC.format(title="A &amp; B", body=body)
+    root = fasthtml.parse(html)
+    assert root is not None
+    assert _tree(root) == _tree(tinyhtml5.parse(html, namespace_html_elements=False))
+
+
+@pytest.mark.parametrize("html", [
+    DOC.format(title="t", body="<p>a<div>b</div></p>"),  # a <div> closes the <p>
+    DOC.format(title="t", body="<p>a<!-- c --></p>"),  # comments
+    DOC.format(title="t", body="<p>a &amp b</p>"),  # a reference without its «;»
+    DOC.format(title="t", body="<p>a &notit; b</p>"),  # an unknown name (HTML5 decodes «&not»)
+    DOC.format(title="t", body="<table>x<tr><td>a</td></tr></table>"),  # foster-parented text
+    DOC.format(title="t", body="<table><tr><span>a</span></tr></table>"),  # an element out of place
+    DOC.format(title="t", body="<ul><li>a<li>b</li></ul>"),  # an implied </li>
+    DOC.format(title="t", body="<p>a</span></p>"),  # an end tag that closes nothing open
+    DOC.format(title="t", body="<svg><path d=''/></svg>"),  # foreign content
+    DOC.format(title="t", body="<pre>\na</pre>"),  # elements with rules of their own
+    DOC.format(title="t", body="<h1>a<h2>b</h2></h1>"),
+    DOC.format(title="t", body="<p>a</p>").replace("<!DOCTYPE html>", ""),  # quirks mode
+    DOC.format(title="t", body="<p>a\r\nb</p>"),
+    DOC.format(title="t", body="<p>a < b</p>"),
+    DOC.format(title="t", body="<p>a&#1;b&#x80;</p>"),  # controls: html.unescape drops or maps them
+    DOC.format(title="t", body="<p>a</p>").replace("</title>", "</title x>"),  # an end tag with attributes
+])
+def test_fast_parse_leaves_the_rest_to_tinyhtml5(html):
+    assert fasthtml.parse(html) is None
+
+
+def _pdf(html: str) -> bytes:
+    HTML = render._html_class()
+    doc = HTML(string=html, base_url=str(render.TEMPLATES_DIR))
+    return doc.render(font_config=render._font_config()).write_pdf()
+
+
+def test_stylesheet_parsed_once_and_same_bytes(report, monkeypatch):
+    """Two documents of the note share one parsed stylesheet; the PDF is the same as with the
+    stylesheet left in the document and the HTML parsed by tinyhtml5."""
+    views = render._views(report, for_print=True, splits={})
+    a, b = (views.html(front=False, body=[node], chunk=True) for node in views.ctx["body"][:2])
+    render._SHEETS.clear()
+    before, fast = render.SHEETS_PARSED[0], fasthtml.PARSED["fast"]
+    with render._fixed_font_timestamp():
+        shared = [_pdf(a), _pdf(b)]
+    assert render.SHEETS_PARSED[0] == before + 1
+    assert fasthtml.PARSED["fast"] == fast + 2
+    monkeypatch.setattr(render, "_shared_sheets", lambda html, font_config: [])
+    monkeypatch.setattr(fasthtml, "parse", lambda source: None)
+    with render._fixed_font_timestamp():
+        plain = [_pdf(a), _pdf(b)]
+    assert shared == plain
+
+
+def test_shared_sheet_keeps_wider_importance_to_weasyprint():
+    """A ``!important`` outside the stylesheet (here in a style attribute) would meet the sheet's
+    own at another precedence: the sheet stays in the document."""
+    css = "p { color: red !important; }" + " " * 1000
+    html = (f'<!DOCTYPE html><html><head><style>{css}</style></head>'
+            '<body><p style="color: blue !important">a</p></body></html>')
+    HTML = render._html_class()
+    assert render._shared_sheets(HTML(string=html), render._font_config()) == []
+    ok = html.replace(' style="color: blue !important"', "")
+    assert len(render._shared_sheets(HTML(string=ok), render._font_config())) == 1
+
+
+def test_contents_laid_out_once_when_its_numbers_are_remembered(report, tmp_path, monkeypatch):
+    monkeypatch.setenv("REPORTGEN_CACHE", str(tmp_path / "cache"))
+    parallel._TOC_MEMO.clear()
+    first = render.write_pdf(report, tmp_path / "a.pdf", jobs=1).read_bytes()
+    assert render.last_stats.parts.toc_layouts == 2  # placeholder numbers, then the real ones
+    assert len(list((tmp_path / "cache" / "toc").glob("*.json"))) == 1
+    parallel._TOC_MEMO.clear()  # a new process: the numbers come from the cache folder
+    assert render.write_pdf(report, tmp_path / "b.pdf", jobs=1).read_bytes() == first
+    assert render.last_stats.parts.toc_layouts == 1
+    # a wrong guess (another variant's page numbers) is laid out, found different and redone
+    key, (count, pages) = next(iter(parallel._TOC_MEMO.items()))
+    parallel._TOC_MEMO[key] = (count, {k: str(int(v) + 1) for k, v in pages.items()})
+    assert render.write_pdf(report, tmp_path / "c.pdf", jobs=1).read_bytes() == first
+    assert render.last_stats.parts.toc_layouts == 2
+    assert parallel._TOC_MEMO[key] == (count, pages)
+
+
+def test_toc_key_ignores_title_and_meta():
+    a = '<html><head><meta name="author" content="A"><title>A</title></head><body>x</body></html>'
+    b = '<html><head><meta name="author" content="B"><title>B</title></head><body>x</body></html>'
+    assert parallel._toc_key(a) == parallel._toc_key(b)
+    assert parallel._toc_key(a) != parallel._toc_key(a.replace(">x<", ">y<"))
+    assert isinstance(fasthtml.parse("<!DOCTYPE html><html><head></head><body></body></html>"), ElementTree.Element)
+
+
+def test_atomic_write_leaves_a_special_file_in_place(tmp_path):
+    """A path that is not a regular file (``/dev/null``, here a pipe) is written into, not
+    replaced by a renamed regular file (a bench's warm-up once replaced ``/dev/null`` so)."""
+    import os
+    import stat
+    import threading
+
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    got = []
+    reader = threading.Thread(target=lambda: got.append(fifo.read_bytes()))
+    reader.start()
+    render._atomic_write(fifo, b"%PDF-")
+    reader.join(10)
+    assert got == [b"%PDF-"] and stat.S_ISFIFO(os.stat(fifo).st_mode)
+    assert render._atomic_write(tmp_path / "a" / "b.pdf", b"x").read_bytes() == b"x"
