@@ -15,7 +15,7 @@ tails) in a few milliseconds.
 algorithm would treat specially (implied end of a ``p``, ``li``, ``dd``, ``dt``, heading or
 ``a``; foster parenting of text or elements in a table; an unknown or foreign element; raw text
 other than ``style`` and ``title``), an ambiguous character reference, a carriage return or NUL
-— and the caller parses with tinyhtml5 as before. ``tests/test_fast_html.py`` compares the two
+— and the caller parses with tinyhtml5 as before. ``tests/test_pdf_ratio.py`` compares the two
 trees on every document of several notes and on constructed edge cases.
 """
 from __future__ import annotations
