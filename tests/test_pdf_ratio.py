@@ -168,3 +168,19 @@ def test_atomic_write_leaves_a_special_file_in_place(tmp_path):
     reader.join(10)
     assert got == [b"%PDF-"] and stat.S_ISFIFO(os.stat(fifo).st_mode)
     assert render._atomic_write(tmp_path / "a" / "b.pdf", b"x").read_bytes() == b"x"
+
+
+def test_gear_note_is_inside_the_fast_subset():
+    """The gear section's list of checks is a list after its paragraph, not inside it (HTML5 closes
+    a ``<p>`` at ``<ul>``: the note's HTML said one thing and the browser built another)."""
+    from reportgen.analysis.study import Study
+    from reportgen.report.assemble import build_report
+
+    parallel.set_note_jobs(1)
+    try:
+        rep = build_report(Study(CASES / "gear_pair_shifted.toml"), ["gears"])
+    finally:
+        parallel.set_note_jobs(None)
+    for i, html in enumerate(_documents(rep)):
+        assert "<p>Проверки качества зацепления: <ul>" not in html
+        assert fasthtml.parse(html) is not None, f"документ {i} вне подмножества быстрого разбора"

@@ -163,7 +163,8 @@ def _geometry(sec: Section, gr) -> None:
                   + (" — есть" if interf else " — нет (ρ<sub>p</sub> ≥ ρ<sub>l</sub>)"))
     if gr.internal:
         _internal_checks(checks, gr, g)
-    s.paragraph("Проверки качества зацепления: <ul>" + "".join(f"<li>{c};</li>" for c in checks) + "</ul>")
+    s.paragraph("Проверки качества зацепления:")
+    s.paragraph("<ul>" + "".join(f"<li>{c};</li>" for c in checks) + "</ul>")  # a list is no part of a <p>
 
 
 def _internal_checks(checks: list, gr, g) -> None:
