@@ -31,12 +31,16 @@ from matplotlib.lines import Line2D
 from matplotlib.text import Text
 
 MM_PT = 72 / 25.4        # points per millimetre
-RADII_MM = (2.2, 3.2, 4.5, 6.0, 8.0, 10.5, 14.0, 18.0)
+RADII_MM = (2.2, 3.2, 4.5, 6.0, 8.0, 10.5, 14.0, 18.0, 23.0)
 LEADER_MM = 5.5
+REACH_LEAD_MM = 2.5      # a label of a body (reach_mm) gets a leader this far beyond the body's reach
+CUT_MM = 5.0            # what a leader crossing a line costs, in millimetres of the label's distance
+LEADER_FREE_MM = 1.6     # a leader's first part, inside its own joint's circle: lines meet there
 PAD_PX = 1.0
 OWN_MARGIN_MM = 1.5
 OWN_APART_MM = 2.0
 HALO_PT = 2.5
+LINE_TOL_MM = 0.3        # check_figure: a line within this of a label's glyph box edge only touches it
 
 
 @dataclass
@@ -49,6 +53,7 @@ class _Item:
     artist: Text | None = None
     point: bool = False
     gap_mm: float = 0.0
+    reach_mm: float = 0.0
 
 
 def _renderer(fig):
@@ -129,6 +134,39 @@ class _Segs:
         if len(idx) <= 32 and not self.odd[idx].any():
             return _crossings_few(self.segs[idx].tolist(), x0, y0, x1, y1)
         return _crossings(self.segs[idx], bb)
+
+    def cuts(self, lead) -> int:
+        """How many segments the segment ``lead`` = [x0, y0, x1, y1] crosses (a leader line)."""
+        ax_, ay_, bx_, by_ = lead
+        x0, x1 = min(ax_, bx_), max(ax_, bx_)
+        y0, y1 = min(ay_, by_), max(ay_, by_)
+        lo = np.searchsorted(self.short_x, x0 - self.SHORT_PX, side="left")
+        hi = np.searchsorted(self.short_x, x1, side="right")
+        idx = np.concatenate([self.short[lo:hi], self.rest])
+        idx = idx[(self.xmax[idx] >= x0) & (self.xmin[idx] <= x1) & (self.ymax[idx] >= y0)
+                  & (self.ymin[idx] <= y1) & ~self.odd[idx]]
+        if not len(idx):
+            return 0
+        s = self.segs[idx]
+        dx, dy = bx_ - ax_, by_ - ay_
+
+        def side(px, py):
+            return dx * (py - ay_) - dy * (px - ax_)
+        s1, s2 = side(s[:, 0], s[:, 1]), side(s[:, 2], s[:, 3])
+        ex, ey = s[:, 2] - s[:, 0], s[:, 3] - s[:, 1]
+        t1 = ex * (ay_ - s[:, 1]) - ey * (ax_ - s[:, 0])
+        t2 = ex * (by_ - s[:, 1]) - ey * (bx_ - s[:, 0])
+        return int(np.count_nonzero((s1 * s2 <= 0) & (t1 * t2 <= 0)))
+
+
+def _leader_segment(anchor, bb, free: float) -> list:
+    """The leader from ``anchor`` to the nearest point of the box ``bb`` (display coordinates),
+    less its first ``free`` px (the lines meeting at the anchor's own point start there)."""
+    x = min(max(anchor[0], bb.x0), bb.x1)
+    y = min(max(anchor[1], bb.y0), bb.y1)
+    d = math.hypot(x - anchor[0], y - anchor[1])
+    f = min(free / d, 1.0) if d > 0 else 0.0
+    return [anchor[0] + (x - anchor[0]) * f, anchor[1] + (y - anchor[1]) * f, x, y]
 
 
 def _crossings_few(segs: list, x0: float, y0: float, x1: float, y1: float) -> int:
@@ -222,14 +260,16 @@ class LabelPlacer:
         self.gap_mm = 0.0          # least printed gap between two labels (0: they may touch)
 
     def add(self, x: float, y: float, text: str, prefer=None, *, point: bool = False, gap_mm: float = 0.0,
-            **kw) -> None:
+            reach_mm: float = 0.0, **kw) -> None:
         """A label for the point (x, y) in data coordinates; ``prefer``: a direction (dx, dy);
         ``point``: the label names the point (kept nearer it than any other named point);
-        ``gap_mm``: the clearance kept from every other label."""
+        ``gap_mm``: the clearance kept from every other label; ``reach_mm``: how far the body
+        drawn round the point reaches (a slider's block): a label beside the body needs no
+        leader line (one from the point would cross the body's outline)."""
         if prefer is not None:
             n = math.hypot(*prefer)
             prefer = (prefer[0] / n, prefer[1] / n) if n > 1e-12 else None
-        self.items.append(_Item(float(x), float(y), text, prefer, kw, point=point, gap_mm=gap_mm))
+        self.items.append(_Item(float(x), float(y), text, prefer, kw, point=point, gap_mm=gap_mm, reach_mm=reach_mm))
 
     def _foreign(self, it: _Item, px_mm: float) -> np.ndarray:
         """The other named points near which a label of ``it`` must not sit (display coordinates);
@@ -254,6 +294,7 @@ class LabelPlacer:
         placed = [(_Box(b.x0, b.y0, b.x1, b.y1), 0.0) for b in self.avoid_boxes]      # (box, clearance in px)
         hard = self.gap_mm * px_mm      # the placer's least gap between any two labels (a must)
         out = []
+        leaders: list = []              # the leader lines drawn so far (display coordinates)
         for it in self.items:
             kw = dict(fontsize=self.fontsize, ha="center", va="center", zorder=10)
             kw.update(it.kw)
@@ -262,6 +303,7 @@ class LabelPlacer:
             ax0 = ax.transData.transform((it.x, it.y))
             foreign = self._foreign(it, px_mm)
             gap = it.gap_mm * px_mm
+            lead_px = max(LEADER_MM, it.reach_mm + REACH_LEAD_MM) * px_mm
             best = None
             for k, (cx, cy) in enumerate(self._candidates(it, px_mm)):
                 bb = extent.at(inv.transform((ax0[0] + cx, ax0[1] + cy)))
@@ -275,28 +317,40 @@ class LabelPlacer:
                 own = math.hypot(centre[0] - ax0[0], centre[1] - ax0[1])
                 stray = bool(len(foreign)) and float(np.hypot(*(foreign - centre).T).min()) < own + OWN_MARGIN_MM * px_mm
                 hits = segs.crossings(bb)
-                cost = (stray, crowded, hits, k)
+                if leaders:
+                    hits += _crossings_few(leaders, bb.x0 - PAD_PX, bb.y0 - PAD_PX, bb.x1 + PAD_PX, bb.y1 + PAD_PX)
+                cut = 0
+                if math.hypot(cx, cy) > lead_px and hits == 0:
+                    # its leader: through no label (a must), across as few lines as may be
+                    lead = _leader_segment(ax0, bb, LEADER_FREE_MM * px_mm)
+                    hits += sum(_crossings_few([lead], o.x0, o.y0, o.x1, o.y1) for o, _ in placed)
+                    cut = segs.cuts(lead)
+                # a leader across a line is worth CUT_MM more of distance
+                cost = (hits > 0, stray, crowded, hits, math.hypot(cx, cy) / px_mm + CUT_MM * cut, k)
                 if best is None or cost < best[0]:
                     best = (cost, (cx, cy), bb)
-                if hits == 0 and not stray and not crowded:
+                if hits == 0 and not stray and not crowded and cut == 0:
                     break
             if best is None:       # nowhere free inside: nearest candidate inside the figure
                 cands = self._candidates(it, px_mm)
                 for cx, cy in cands:
                     bb = extent.at(inv.transform((ax0[0] + cx, ax0[1] + cy)))
                     if bb.x0 >= figbox.x0 and bb.x1 <= figbox.x1 and bb.y0 >= figbox.y0 and bb.y1 <= figbox.y1:
-                        best = ((99, 0), (cx, cy), bb)
+                        best = ((True, 99), (cx, cy), bb)
                         break
                 else:
-                    best = ((99, 0), cands[0], extent.at(inv.transform((ax0[0] + cands[0][0], ax0[1] + cands[0][1]))))
+                    best = ((True, 99), cands[0], extent.at(inv.transform((ax0[0] + cands[0][0], ax0[1] + cands[0][1]))))
             cost, (cx, cy), bb = best
             t.set_position(inv.transform((ax0[0] + cx, ax0[1] + cy)))
-            if cost[-2] > 0:
+            t.anchor = (it.x, it.y)
+            t.cost = cost
+            if cost[0]:
                 # no free place: the lines under the label are broken by a white halo round its glyphs
                 t.set_path_effects([patheffects.withStroke(linewidth=HALO_PT, foreground="white")])
             placed.append((bb, gap))
-            if math.hypot(cx, cy) > LEADER_MM * px_mm:
-                self._leader(ax0, bb)
+            if math.hypot(cx, cy) > lead_px:
+                t.leader = self._leader(ax0, bb)
+                leaders.append(_leader_segment(ax0, bb, 0.0))
             out.append(t)
         return out
 
@@ -313,13 +367,12 @@ class LabelPlacer:
             cands += [(r * px_mm * math.cos(a), r * px_mm * math.sin(a)) for a in angs]
         return cands
 
-    def _leader(self, anchor, bb) -> None:
+    def _leader(self, anchor, bb) -> Line2D:
         """A thin line from the anchor to the nearest point of the label's box."""
-        x = min(max(anchor[0], bb.x0), bb.x1)
-        y = min(max(anchor[1], bb.y0), bb.y1)
+        x0, y0, x1, y1 = _leader_segment(anchor, bb, 0.0)
         inv = self.ax.transData.inverted()
-        (x0, y0), (x1, y1) = inv.transform(anchor), inv.transform((x, y))
-        self.ax.add_line(Line2D([x0, x1], [y0, y1], lw=0.4, color="#444444", zorder=9))
+        (x0, y0), (x1, y1) = inv.transform((x0, y0)), inv.transform((x1, y1))
+        return self.ax.add_line(Line2D([x0, x1], [y0, y1], lw=0.4, color="#444444", zorder=9))
 
 
 def check_figure(fig) -> list[str]:
@@ -343,8 +396,42 @@ def check_figure(fig) -> list[str]:
             a, b = boxes[i][1], boxes[j][1]
             if a.x0 < b.x1 - 0.5 and b.x0 < a.x1 - 0.5 and a.y0 < b.y1 - 0.5 and b.y0 < a.y1 - 0.5:
                 problems.append(f"overlap: {boxes[i][0]!r} / {boxes[j][0]!r}")
+    return problems + line_problems(fig, renderer)
+
+
+def line_problems(fig, renderer=None) -> list[str]:
+    """Labels of the axes crossed by a drawn line: a text whose rendered extent, shrunk by
+    ``LINE_TOL_MM`` on every side (a line merely touching the glyph box, which is wider than the
+    glyphs, is no fault), meets a segment of a line, an arrow (shaft or head), a patch's outline
+    (a link's plate, a joint's circle, a slider's block, a support's hatch) or another label's
+    leader; its own leader line does not count. A textbook drawing has no line through a letter
+    (a white halo does not make one acceptable)."""
+    renderer = renderer or _renderer(fig)
+    shrink = LINE_TOL_MM * fig.dpi / 25.4 + PAD_PX       # _Segs pads the box by PAD_PX
+    problems = []
+    for ax in fig.axes:
+        texts = [t for t in ax.texts if t.get_visible() and t.get_text().strip()]
+        if not texts:
+            continue
+        own = [getattr(t, "leader", None) for t in texts]
+        base = _Segs(_segments(ax, renderer, skip=tuple(ln for ln in own if ln is not None)))
+        for t, ln in zip(texts, own):
+            bb = t.get_window_extent(renderer)
+            box = _Box(bb.x0 + shrink, bb.y0 + shrink, bb.x1 - shrink, bb.y1 - shrink)
+            if box.x0 >= box.x1 or box.y0 >= box.y1:
+                continue
+            n = base.crossings(box)
+            # the other labels' leaders
+            n += sum(_crossings_few(_segments_of(o, ax), box.x0 - PAD_PX, box.y0 - PAD_PX, box.x1 + PAD_PX,
+                                    box.y1 + PAD_PX) for o in own if o is not None and o is not ln)
+            if n:
+                problems.append(f"crossed by {n} line(s): {t.get_text()!r}")
     return problems
 
+
+def _segments_of(line, ax) -> list:
+    v = line.get_transform().transform(np.column_stack(line.get_data()).astype(float))
+    return np.hstack([v[:-1], v[1:]]).tolist()
 
 
 def tex_point(p: str, prime: bool = False, lower: bool = False) -> str:
