@@ -33,7 +33,7 @@ from matplotlib.text import Text
 MM_PT = 72 / 25.4        # points per millimetre
 RADII_MM = (2.2, 3.2, 4.5, 6.0, 8.0, 10.5, 14.0, 18.0, 23.0)
 LEADER_MM = 5.5
-REACH_LEAD_MM = 2.5      # a label of a body (reach_mm) gets a leader this far beyond the body's reach
+REACH_LEAD_MM = 3.0      # a label of a body (reach_mm) gets a leader this far beyond the body's reach
 CUT_MM = 5.0            # what a leader crossing a line costs, in millimetres of the label's distance
 LEADER_FREE_MM = 1.6     # a leader's first part, inside its own joint's circle: lines meet there
 PAD_PX = 1.0
@@ -89,6 +89,10 @@ def _segments(ax, renderer, skip) -> np.ndarray:
     for p in ax.patches:
         if p in skip or not p.get_visible():
             continue
+        if hasattr(p, "_dpi_cor"):
+            # an arrow's head is sized in points when it is drawn: before any drawing its path
+            # is that of 72 dpi (matplotlib's FancyArrowPatch), smaller than it prints by the labels
+            p._dpi_cor = renderer.points_to_pixels(1.0)
         try:
             path = p.get_path()
             tr = p.get_transform()
@@ -322,9 +326,9 @@ class LabelPlacer:
                 cut = 0
                 if math.hypot(cx, cy) > lead_px and hits == 0:
                     # its leader: through no label (a must), across as few lines as may be
-                    lead = _leader_segment(ax0, bb, LEADER_FREE_MM * px_mm)
+                    lead = _leader_segment(ax0, bb, 0.0)
                     hits += sum(_crossings_few([lead], o.x0, o.y0, o.x1, o.y1) for o, _ in placed)
-                    cut = segs.cuts(lead)
+                    cut = segs.cuts(_leader_segment(ax0, bb, LEADER_FREE_MM * px_mm))
                 # a leader across a line is worth CUT_MM more of distance
                 cost = (hits > 0, stray, crowded, hits, math.hypot(cx, cy) / px_mm + CUT_MM * cut, k)
                 if best is None or cost < best[0]:
@@ -357,7 +361,7 @@ class LabelPlacer:
     def _candidates(self, it: _Item, px_mm: float) -> list[tuple[float, float]]:
         cands = []
         for r in RADII_MM:
-            n = 8 if r < 5 else 16
+            n = 8 if r < 5 else 16 if r < 12 else 24
             angs = [2 * math.pi * i / n + (math.pi / n if r in RADII_MM[1::2] else 0.0) for i in range(n)]
             if it.prefer is not None:
                 a0 = math.atan2(it.prefer[1], it.prefer[0])
@@ -427,6 +431,14 @@ def line_problems(fig, renderer=None) -> list[str]:
             if n:
                 problems.append(f"crossed by {n} line(s): {t.get_text()!r}")
     return problems
+
+
+def _segments_one(a, ax, renderer):
+    class _A:
+        lines = [a] if isinstance(a, Line2D) else []
+        collections = [a] if isinstance(a, LineCollection) else []
+        patches = [a] if not isinstance(a, (Line2D, LineCollection)) else []
+    return _segments(_A, renderer, ())
 
 
 def _segments_of(line, ax) -> list:
