@@ -32,6 +32,7 @@ from matplotlib.text import Text
 
 MM_PT = 72 / 25.4        # points per millimetre
 RADII_MM = (2.2, 3.2, 4.5, 6.0, 8.0, 10.5, 14.0, 18.0, 23.0)
+FAR_MM, ARC_MM = 4.0, 1.5
 LEADER_MM = 5.5
 REACH_LEAD_MM = 3.0      # a label of a body (reach_mm) gets a leader this far beyond the body's reach
 CUT_MM = 5.0            # what a leader crossing a line costs, in millimetres of the label's distance
@@ -362,6 +363,8 @@ class LabelPlacer:
         cands = []
         for r in RADII_MM:
             n = 8 if r < 5 else 16 if r < 12 else 24
+            if r > FAR_MM:      # past the usual rings: a free spot between lines, at ARC_MM steps
+                n = max(n, int(2 * math.pi * r / ARC_MM))
             angs = [2 * math.pi * i / n + (math.pi / n if r in RADII_MM[1::2] else 0.0) for i in range(n)]
             if it.prefer is not None:
                 a0 = math.atan2(it.prefer[1], it.prefer[0])
