@@ -174,6 +174,14 @@ def _leader_segment(anchor, bb, free: float) -> list:
     return [anchor[0] + (x - anchor[0]) * f, anchor[1] + (y - anchor[1]) * f, x, y]
 
 
+def _through_boxes(seg: list, placed: list) -> int:
+    """How many of the placed label boxes ((box, clearance) pairs) the segment passes through."""
+    x0, x1 = min(seg[0], seg[2]), max(seg[0], seg[2])
+    y0, y1 = min(seg[1], seg[3]), max(seg[1], seg[3])
+    return sum(_crossings_few([seg], b.x0, b.y0, b.x1, b.y1) for b, _ in placed
+               if b.x0 <= x1 and x0 <= b.x1 and b.y0 <= y1 and y0 <= b.y1)
+
+
 def _crossings_few(segs: list, x0: float, y0: float, x1: float, y1: float) -> int:
     """:func:`_crossings` of a few finite segments against the padded rectangle, one by one
     (the same arithmetic, without the cost of 30 array operations on a handful of rows)."""
@@ -232,6 +240,13 @@ class _Extent:
             self.box, _, _ = t._get_layout(renderer)
             self.corners = self.box.get_points().ravel().tolist()
             self.tr = t.get_transform()
+
+    def at_px(self, x: float, y: float, inv) -> "_Box":
+        """The extent with the text at the display point (x, y); ``inv``: display → data."""
+        if self.box is None:
+            return self.at(inv.transform((x, y)))
+        bx0, by0, bx1, by1 = self.corners
+        return _Box(bx0 + x, by0 + y, bx1 + x, by1 + y)
 
     def at(self, xy) -> "_Box":
         """The extent with the text at ``xy`` (data coordinates)."""
@@ -299,7 +314,7 @@ class LabelPlacer:
         placed = [(_Box(b.x0, b.y0, b.x1, b.y1), 0.0) for b in self.avoid_boxes]      # (box, clearance in px)
         hard = self.gap_mm * px_mm      # the placer's least gap between any two labels (a must)
         out = []
-        leaders: list = []              # the leader lines drawn so far (display coordinates)
+        leaders: list = []              # the leader lines drawn so far: x0, y0, x1, y1, then their box
         for it in self.items:
             kw = dict(fontsize=self.fontsize, ha="center", va="center", zorder=10)
             kw.update(it.kw)
@@ -311,7 +326,10 @@ class LabelPlacer:
             lead_px = max(LEADER_MM, it.reach_mm + REACH_LEAD_MM) * px_mm
             best = None
             for k, (cx, cy) in enumerate(self._candidates(it, px_mm)):
-                bb = extent.at(inv.transform((ax0[0] + cx, ax0[1] + cy)))
+                r_mm = math.hypot(cx, cy) / px_mm
+                if best is not None and best[0][:4] == (False, False, False, 0) and r_mm >= best[0][4]:
+                    break       # a clean place found: none farther out can be nearer by its score
+                bb = extent.at_px(ax0[0] + cx, ax0[1] + cy, inv)
                 inside = (bb.x0 >= max(frame.x0, figbox.x0) + 1 and bb.x1 <= min(frame.x1, figbox.x1) - 1
                           and bb.y0 >= max(frame.y0, figbox.y0) + 1 and bb.y1 <= min(frame.y1, figbox.y1) - 1)
                 if not inside or any(_overlap(bb, o, hard) for o, _ in placed):
@@ -322,16 +340,19 @@ class LabelPlacer:
                 own = math.hypot(centre[0] - ax0[0], centre[1] - ax0[1])
                 stray = bool(len(foreign)) and float(np.hypot(*(foreign - centre).T).min()) < own + OWN_MARGIN_MM * px_mm
                 hits = segs.crossings(bb)
-                if leaders:
-                    hits += _crossings_few(leaders, bb.x0 - PAD_PX, bb.y0 - PAD_PX, bb.x1 + PAD_PX, bb.y1 + PAD_PX)
+                if leaders:     # the leaders drawn so far, by their boxes first
+                    near = [ld for ld in leaders if ld[4] <= bb.x1 + PAD_PX and bb.x0 - PAD_PX <= ld[5]
+                            and ld[6] <= bb.y1 + PAD_PX and bb.y0 - PAD_PX <= ld[7]]
+                    if near:
+                        hits += _crossings_few([ld[:4] for ld in near], bb.x0 - PAD_PX, bb.y0 - PAD_PX,
+                                               bb.x1 + PAD_PX, bb.y1 + PAD_PX)
                 cut = 0
-                if math.hypot(cx, cy) > lead_px and hits == 0:
+                if r_mm * px_mm > lead_px and hits == 0:
                     # its leader: through no label (a must), across as few lines as may be
-                    lead = _leader_segment(ax0, bb, 0.0)
-                    hits += sum(_crossings_few([lead], o.x0, o.y0, o.x1, o.y1) for o, _ in placed)
-                    cut = segs.cuts(_leader_segment(ax0, bb, LEADER_FREE_MM * px_mm))
+                    hits += _through_boxes(_leader_segment(ax0, bb, 0.0), placed)
+                    cut = segs.cuts(_leader_segment(ax0, bb, LEADER_FREE_MM * px_mm)) if hits == 0 else 0
                 # a leader across a line is worth CUT_MM more of distance
-                cost = (hits > 0, stray, crowded, hits, math.hypot(cx, cy) / px_mm + CUT_MM * cut, k)
+                cost = (hits > 0, stray, crowded, hits, r_mm + CUT_MM * cut, k)
                 if best is None or cost < best[0]:
                     best = (cost, (cx, cy), bb)
                 if hits == 0 and not stray and not crowded and cut == 0:
@@ -355,7 +376,8 @@ class LabelPlacer:
             placed.append((bb, gap))
             if math.hypot(cx, cy) > lead_px:
                 t.leader = self._leader(ax0, bb)
-                leaders.append(_leader_segment(ax0, bb, 0.0))
+                ld = _leader_segment(ax0, bb, 0.0)
+                leaders.append(ld + [min(ld[0], ld[2]), max(ld[0], ld[2]), min(ld[1], ld[3]), max(ld[1], ld[3])])
             out.append(t)
         return out
 
