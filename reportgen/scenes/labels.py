@@ -3,20 +3,26 @@ joint symbol, and none leaves the figure.
 
 A scene registers each label with its anchor (the point it names) and, optionally, a preferred
 direction; :meth:`LabelPlacer.place` is called after everything else is drawn. For every label,
-candidate positions on rings around the anchor (8–16 directions, radii from 2,5 mm up) are tried
-in order of distance and of deviation from the preferred direction; a candidate is rejected if
-the rendered extent of the text (``Text.get_window_extent``) meets a placed label, leaves the
-axes, or crosses a drawn segment (lines, arrow shafts and heads, outlines of patches). The first
-free candidate wins; if none is free the one with the fewest crossings is taken. A label placed
-farther than ``LEADER_MM`` from its anchor gets a thin leader line (ГОСТ 2.316 style).
+candidate positions on rings around the anchor (radii ``RADII_MM`` from 2,2 to 23 mm; 8–24
+directions, beyond ``FAR_MM`` at least one each ``ARC_MM`` of arc, so that a gap between lines
+fanning out of a pivot is found) are tried in order of distance and of deviation from the
+preferred direction; a candidate is rejected if the rendered extent of the text
+(``Text.get_window_extent``) meets a placed label or leaves the axes. Of the others the first
+that crosses no drawn segment (lines, arrow shafts and heads at their printed size, outlines of
+patches, the leaders drawn so far) wins; a label farther than ``LEADER_MM`` from its anchor (for
+the label of a body drawn round its point, a slider's block: ``reach_mm`` + ``REACH_LEAD_MM``)
+gets a thin leader line (ГОСТ 2.316 style), which must pass through no placed label and costs
+``CUT_MM`` of distance for each line it crosses (past ``LEADER_FREE_MM``, inside its own joint's
+circle): a leader across lines is taken only when no nearer free place is. If no candidate is
+free, the one with the fewest crossings is taken and gets a white halo round its glyphs
+(:func:`check_figure` still reports it).
 
 A label that names a point (``point=True``) must read as that point's: its centre is nearer its
 own point than any other named point (more than ``OWN_APART_MM`` from it) by ``OWN_MARGIN_MM``
 (a label «23» set down by the support
 07 reads as the support's); a label with ``gap_mm`` keeps that clearance from every other label
 (position numbers «1» and «3» side by side read as «13»). A candidate that breaks either is
-taken only when no other is free (before one that crosses a line). A label that cannot avoid a
-line gets a white halo round its glyphs, so the line is broken under it.
+taken only when no other free of lines is.
 """
 from __future__ import annotations
 
@@ -35,6 +41,7 @@ RADII_MM = (2.2, 3.2, 4.5, 6.0, 8.0, 10.5, 14.0, 18.0, 23.0)
 FAR_MM, ARC_MM = 4.0, 1.5
 LEADER_MM = 5.5
 REACH_LEAD_MM = 3.0      # a label of a body (reach_mm) gets a leader this far beyond the body's reach
+GRAZE_MM = 4.0           # what a line through the margin of a label's box costs (see LINE_TOL_MM)
 CUT_MM = 5.0            # what a leader crossing a line costs, in millimetres of the label's distance
 LEADER_FREE_MM = 1.6     # a leader's first part, inside its own joint's circle: lines meet there
 PAD_PX = 1.0
@@ -313,6 +320,7 @@ class LabelPlacer:
         px_mm = fig.dpi / 25.4
         placed = [(_Box(b.x0, b.y0, b.x1, b.y1), 0.0) for b in self.avoid_boxes]      # (box, clearance in px)
         hard = self.gap_mm * px_mm      # the placer's least gap between any two labels (a must)
+        tol = (LINE_TOL_MM - 0.1) * px_mm + PAD_PX     # the box as check_figure reads it, less 0,1 mm
         out = []
         leaders: list = []              # the leader lines drawn so far: x0, y0, x1, y1, then their box
         for it in self.items:
@@ -340,6 +348,10 @@ class LabelPlacer:
                 own = math.hypot(centre[0] - ax0[0], centre[1] - ax0[1])
                 stray = bool(len(foreign)) and float(np.hypot(*(foreign - centre).T).min()) < own + OWN_MARGIN_MM * px_mm
                 hits = segs.crossings(bb)
+                graze = 0
+                if hits:        # lines only in the box's margin, where check_figure lets them be
+                    graze, hits = hits, segs.crossings(_Box(bb.x0 + tol, bb.y0 + tol, bb.x1 - tol, bb.y1 - tol))
+                    graze -= hits
                 if leaders:     # the leaders drawn so far, by their boxes first
                     near = [ld for ld in leaders if ld[4] <= bb.x1 + PAD_PX and bb.x0 - PAD_PX <= ld[5]
                             and ld[6] <= bb.y1 + PAD_PX and bb.y0 - PAD_PX <= ld[7]]
@@ -352,10 +364,10 @@ class LabelPlacer:
                     hits += _through_boxes(_leader_segment(ax0, bb, 0.0), placed)
                     cut = segs.cuts(_leader_segment(ax0, bb, LEADER_FREE_MM * px_mm)) if hits == 0 else 0
                 # a leader across a line is worth CUT_MM more of distance
-                cost = (hits > 0, stray, crowded, hits, r_mm + CUT_MM * cut, k)
+                cost = (hits > 0, stray, crowded, hits, r_mm + CUT_MM * cut + GRAZE_MM * graze, k)
                 if best is None or cost < best[0]:
                     best = (cost, (cx, cy), bb)
-                if hits == 0 and not stray and not crowded and cut == 0:
+                if hits == 0 and not stray and not crowded and cut == 0 and graze == 0:
                     break
             if best is None:       # nowhere free inside: nearest candidate inside the figure
                 cands = self._candidates(it, px_mm)
@@ -368,8 +380,7 @@ class LabelPlacer:
                     best = ((True, 99), cands[0], extent.at(inv.transform((ax0[0] + cands[0][0], ax0[1] + cands[0][1]))))
             cost, (cx, cy), bb = best
             t.set_position(inv.transform((ax0[0] + cx, ax0[1] + cy)))
-            t.anchor = (it.x, it.y)
-            t.cost = cost
+            t.anchor = (it.x, it.y)        # what the label names (data coordinates), for the checks
             if cost[0]:
                 # no free place: the lines under the label are broken by a white halo round its glyphs
                 t.set_path_effects([patheffects.withStroke(linewidth=HALO_PT, foreground="white")])
@@ -405,8 +416,9 @@ class LabelPlacer:
 
 
 def check_figure(fig) -> list[str]:
-    """Problems with the texts of a figure: pairs of overlapping labels and labels clipped by
-    the figure (from matplotlib's rendered extents). An empty list means the figure is clean."""
+    """Problems with the texts of a figure: pairs of overlapping labels, labels clipped by
+    the figure (from matplotlib's rendered extents) and placed labels crossed by a line
+    (:func:`line_problems`). An empty list means the figure is clean."""
     renderer = _renderer(fig)
     fig.draw_without_rendering()
     texts = []
@@ -428,8 +440,9 @@ def check_figure(fig) -> list[str]:
     return problems + line_problems(fig, renderer)
 
 
-def line_problems(fig, renderer=None) -> list[str]:
-    """Labels of the axes crossed by a drawn line: a text whose rendered extent, shrunk by
+def line_problems(fig, renderer=None, *, every: bool = False) -> list[str]:
+    """Labels of the axes crossed by a drawn line (those set by a :class:`LabelPlacer`; with
+    ``every`` all the texts of the axes): a text whose rendered extent, shrunk by
     ``LINE_TOL_MM`` on every side (a line merely touching the glyph box, which is wider than the
     glyphs, is no fault), meets a segment of a line, an arrow (shaft or head), a patch's outline
     (a link's plate, a joint's circle, a slider's block, a support's hatch) or another label's
@@ -439,12 +452,14 @@ def line_problems(fig, renderer=None) -> list[str]:
     shrink = LINE_TOL_MM * fig.dpi / 25.4 + PAD_PX       # _Segs pads the box by PAD_PX
     problems = []
     for ax in fig.axes:
-        texts = [t for t in ax.texts if t.get_visible() and t.get_text().strip()]
+        texts = [t for t in ax.texts if t.get_visible() and t.get_text().strip()
+                 and (every or hasattr(t, "anchor"))]
         if not texts:
             continue
-        own = [getattr(t, "leader", None) for t in texts]
+        own = [getattr(t, "leader", None) for t in ax.texts]
         base = _Segs(_segments(ax, renderer, skip=tuple(ln for ln in own if ln is not None)))
-        for t, ln in zip(texts, own):
+        for t in texts:
+            ln = getattr(t, "leader", None)
             bb = t.get_window_extent(renderer)
             box = _Box(bb.x0 + shrink, bb.y0 + shrink, bb.x1 - shrink, bb.y1 - shrink)
             if box.x0 >= box.x1 or box.y0 >= box.y1:
@@ -456,14 +471,6 @@ def line_problems(fig, renderer=None) -> list[str]:
             if n:
                 problems.append(f"crossed by {n} line(s): {t.get_text()!r}")
     return problems
-
-
-def _segments_one(a, ax, renderer):
-    class _A:
-        lines = [a] if isinstance(a, Line2D) else []
-        collections = [a] if isinstance(a, LineCollection) else []
-        patches = [a] if not isinstance(a, (Line2D, LineCollection)) else []
-    return _segments(_A, renderer, ())
 
 
 def _segments_of(line, ax) -> list:
