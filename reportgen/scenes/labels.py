@@ -381,6 +381,7 @@ class LabelPlacer:
             cost, (cx, cy), bb = best
             t.set_position(inv.transform((ax0[0] + cx, ax0[1] + cy)))
             t.anchor = (it.x, it.y)        # what the label names (data coordinates), for the checks
+            t.lead_mm = lead_px / px_mm       # and from how far it gets a leader
             if cost[0]:
                 # no free place: the lines under the label are broken by a white halo round its glyphs
                 t.set_path_effects([patheffects.withStroke(linewidth=HALO_PT, foreground="white")])
