@@ -22,7 +22,8 @@ own point than any other named point (more than ``OWN_APART_MM`` from it) by ``O
 (a label «23» set down by the support
 07 reads as the support's); a label with ``gap_mm`` keeps that clearance from every other label
 (position numbers «1» and «3» side by side read as «13»). A candidate that breaks either is
-taken only when no other free of lines is.
+taken only when no other free of lines is; one nearer another point but farther than
+``LEADER_MM`` from its own is given a leader (which tells whose it is) and costs ``STRAY_MM``.
 """
 from __future__ import annotations
 
@@ -41,6 +42,7 @@ RADII_MM = (2.2, 3.2, 4.5, 6.0, 8.0, 10.5, 14.0, 18.0, 23.0)
 FAR_MM, ARC_MM = 4.0, 1.5
 LEADER_MM = 5.5
 REACH_LEAD_MM = 3.0      # a label of a body (reach_mm) gets a leader this far beyond the body's reach
+STRAY_MM = 4.0           # what a label nearer another point (so given a leader) costs
 GRAZE_MM = 4.0           # what a line through the margin of a label's box costs (see LINE_TOL_MM)
 CUT_MM = 5.0            # what a leader crossing a line costs, in millimetres of the label's distance
 LEADER_FREE_MM = 1.6     # a leader's first part, inside its own joint's circle: lines meet there
@@ -358,15 +360,18 @@ class LabelPlacer:
                     if near:
                         hits += _crossings_few([ld[:4] for ld in near], bb.x0 - PAD_PX, bb.y0 - PAD_PX,
                                                bb.x1 + PAD_PX, bb.y1 + PAD_PX)
+                # a stray label far enough for a leader to be seen gets one: the leader tells whose
+                led = r_mm * px_mm > lead_px or (stray and r_mm > LEADER_MM)
                 cut = 0
-                if r_mm * px_mm > lead_px and hits == 0:
+                if led and hits == 0:
                     # its leader: through no label (a must), across as few lines as may be
                     hits += _through_boxes(_leader_segment(ax0, bb, 0.0), placed)
                     cut = segs.cuts(_leader_segment(ax0, bb, LEADER_FREE_MM * px_mm)) if hits == 0 else 0
                 # a leader across a line is worth CUT_MM more of distance
-                cost = (hits > 0, stray, crowded, hits, r_mm + CUT_MM * cut + GRAZE_MM * graze, k)
+                score = r_mm + CUT_MM * cut + GRAZE_MM * graze + (STRAY_MM if stray and led else 0.0)
+                cost = (hits > 0, stray and not led, crowded, hits, score, k)
                 if best is None or cost < best[0]:
-                    best = (cost, (cx, cy), bb)
+                    best = (cost, (cx, cy), bb, led)
                 if hits == 0 and not stray and not crowded and cut == 0 and graze == 0:
                     break
             if best is None:       # nowhere free inside: nearest candidate inside the figure
@@ -374,11 +379,12 @@ class LabelPlacer:
                 for cx, cy in cands:
                     bb = extent.at(inv.transform((ax0[0] + cx, ax0[1] + cy)))
                     if bb.x0 >= figbox.x0 and bb.x1 <= figbox.x1 and bb.y0 >= figbox.y0 and bb.y1 <= figbox.y1:
-                        best = ((True, 99), (cx, cy), bb)
+                        best = ((True, 99), (cx, cy), bb, False)
                         break
                 else:
-                    best = ((True, 99), cands[0], extent.at(inv.transform((ax0[0] + cands[0][0], ax0[1] + cands[0][1]))))
-            cost, (cx, cy), bb = best
+                    best = ((True, 99), cands[0], extent.at(inv.transform((ax0[0] + cands[0][0], ax0[1] + cands[0][1]))),
+                            False)
+            cost, (cx, cy), bb, led = best
             t.set_position(inv.transform((ax0[0] + cx, ax0[1] + cy)))
             t.anchor = (it.x, it.y)        # what the label names (data coordinates), for the checks
             t.lead_mm = lead_px / px_mm       # and from how far it gets a leader
@@ -386,7 +392,7 @@ class LabelPlacer:
                 # no free place: the lines under the label are broken by a white halo round its glyphs
                 t.set_path_effects([patheffects.withStroke(linewidth=HALO_PT, foreground="white")])
             placed.append((bb, gap))
-            if math.hypot(cx, cy) > lead_px:
+            if led or math.hypot(cx, cy) > lead_px:
                 t.leader = self._leader(ax0, bb)
                 ld = _leader_segment(ax0, bb, 0.0)
                 leaders.append(ld + [min(ld[0], ld[2]), max(ld[0], ld[2]), min(ld[1], ld[3]), max(ld[1], ld[3])])
