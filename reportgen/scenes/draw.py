@@ -216,6 +216,10 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
             for a, b in bars:        # a slotted link (кулиса): its slot and its arms, no plate
                 ax.plot([a[0], b[0]], [a[1], b[1]], color=color, lw=lw * 1.3, alpha=alpha, zorder=zorder + 0.7,
                         solid_capstyle="round")
+            if tint:                 # the arms welded to the slot (ГОСТ 2.770 rigid joint): a filled corner
+                for corner in _arm_corners(cv, bars):
+                    ax.add_patch(Polygon(corner, closed=True, facecolor=color, edgecolor=color, lw=0.5,
+                                         alpha=alpha, zorder=zorder + 0.6))
         elif len(pts) >= 3 and not _collinear(pts):
             poly = Polygon(np.array(_hull(pts)), closed=True, facecolor=LIGHT if tint else "none",
                            edgecolor=color, lw=lw,
@@ -323,6 +327,24 @@ def _slotted_bars(mech: Mechanism, row, link) -> list:
         near = min(on, key=lambda o: math.hypot(*np.subtract(_point(row, o), q)))
         bars.append((_point(row, near), q))
     return bars
+
+
+def _arm_corners(cv: Canvas, bars: list, leg_mm: float = 3.5) -> list:
+    """The small filled triangles that join each arm of a slotted link to its slot at the arm's
+    root (legs ``leg_mm`` along the arm and along the slot towards its far end)."""
+    (a, b), out = bars[0], []
+    for p, q in bars[1:]:
+        far = b if math.hypot(b[0] - p[0], b[1] - p[1]) >= math.hypot(a[0] - p[0], a[1] - p[1]) else a
+        legs = []
+        for e in (far, q):
+            d = math.hypot(e[0] - p[0], e[1] - p[1])
+            if d < 1e-12:
+                break
+            k = min(cv.mm(leg_mm) / d, 0.5)
+            legs.append((p[0] + (e[0] - p[0]) * k, p[1] + (e[1] - p[1]) * k))
+        else:
+            out.append([p, *legs])
+    return out
 
 
 def _collinear(pts) -> bool:
