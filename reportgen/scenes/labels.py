@@ -85,11 +85,13 @@ def _segments(ax, renderer, skip) -> np.ndarray:
             continue
         v = ln.get_transform().transform(np.column_stack(ln.get_data()).astype(float))
         v = v[np.all(np.isfinite(v), axis=1)]
-        if len(v) == 1 and ln.get_marker() not in (None, "", "None", " "):
+        drawn = ln.get_linestyle() not in ("None", "none", "", " ")
+        if (len(v) == 1 or not drawn) and ln.get_marker() not in (None, "", "None", " "):
             r = ln.get_markersize() / 2 * renderer.points_to_pixels(1)
-            x, y = v[0]
-            add_poly([(x - r, y - r), (x + r, y - r), (x + r, y + r), (x - r, y + r), (x - r, y - r)])
-        add_poly(v)
+            for x, y in v:       # the markers' squares (a marker-only line has no segments between)
+                add_poly([(x - r, y - r), (x + r, y - r), (x + r, y + r), (x - r, y + r), (x - r, y - r)])
+        if drawn:
+            add_poly(v)
     for coll in ax.collections:
         if coll in skip or not isinstance(coll, LineCollection) or not coll.get_visible():
             continue
@@ -275,6 +277,17 @@ class _Box:
 
     def __init__(self, x0: float, y0: float, x1: float, y1: float):
         self.x0, self.y0, self.x1, self.y1 = x0, y0, x1, y1
+
+
+def place_on_chart(placer: "LabelPlacer") -> list[Text]:
+    """Place the labels of a chart whose figure has a layout engine (constrained layout): the
+    layout is done first and then kept, so that the axes do not move under the placed labels."""
+    fig = placer.fig
+    engine = fig.get_layout_engine()
+    if engine is not None:
+        engine.execute(fig)
+        fig.set_layout_engine("none")
+    return placer.place()
 
 
 class LabelPlacer:
