@@ -262,3 +262,22 @@ def test_conveyor_rocker_bars():
     for p in ("D", "K", "E"):
         t = np.dot(np.subtract(pt[p], a), u)
         assert -1e-9 <= t <= np.hypot(*np.subtract(b, a)) + 1e-9
+
+
+def _with_dynamics():
+    from reportgen.report.sections import dynamics
+    return [s for s in STUDIES if dynamics.present(s.values[0])]
+
+
+@pytest.mark.parametrize("st", _with_dynamics())
+def test_wittenbauer_labels_clear_of_the_curves(st, captured):
+    """The energy–mass diagram's position numbers and K, L were written 3 pt off their points,
+    across the curve and the tangents: now every text of its axes is placed, near its point and
+    crossed by no line (``line_problems(every=True)``: the annotations too)."""
+    from reportgen.scenes.dynamics import WittenbauerDiagram
+    captured.clear()
+    WittenbauerDiagram().draw(st)
+    fig = captured[-1]
+    assert L.check_figure(fig) == []
+    assert L.line_problems(fig, every=True) == []
+    assert _placed_near(fig) == []
