@@ -350,7 +350,8 @@ class LabelPlacer:
             best = None
             for k, (cx, cy) in enumerate(self._candidates(it, px_mm)):
                 r_mm = math.hypot(cx, cy) / px_mm
-                if best is not None and best[0][:4] == (False, False, False, 0) and r_mm >= best[0][4]:
+                clean = best is not None and best[0][:4] == (False, False, False, 0)
+                if clean and r_mm >= best[0][4]:
                     break       # a clean place found: none farther out can be nearer by its score
                 bb = extent.at_px(ax0[0] + cx, ax0[1] + cy, inv)
                 inside = (bb.x0 >= max(frame.x0, figbox.x0) + 1 and bb.x1 <= min(frame.x1, figbox.x1) - 1
@@ -364,6 +365,8 @@ class LabelPlacer:
                 stray = bool(len(foreign)) and float(np.hypot(*(foreign - centre).T).min()) < own + OWN_MARGIN_MM * px_mm
                 hits = segs.crossings(bb)
                 graze = 0
+                if hits and clean and r_mm + GRAZE_MM >= best[0][4]:
+                    continue    # crossed or grazed: no better than the clean place found
                 if hits:        # lines only in the box's margin, where check_figure lets them be
                     graze, hits = hits, segs.crossings(_Box(bb.x0 + tol, bb.y0 + tol, bb.x1 - tol, bb.y1 - tol))
                     graze -= hits
@@ -388,7 +391,7 @@ class LabelPlacer:
                 if hits == 0 and not stray and not crowded and cut == 0 and graze == 0:
                     break
             if best is None:       # nowhere free inside: nearest candidate inside the figure
-                cands = self._candidates(it, px_mm)
+                cands = list(self._candidates(it, px_mm))
                 for cx, cy in cands:
                     bb = extent.at(inv.transform((ax0[0] + cx, ax0[1] + cy)))
                     if bb.x0 >= figbox.x0 and bb.x1 <= figbox.x1 and bb.y0 >= figbox.y0 and bb.y1 <= figbox.y1:
@@ -412,20 +415,16 @@ class LabelPlacer:
             out.append(t)
         return out
 
-    def _candidates(self, it: _Item, px_mm: float) -> list[tuple[float, float]]:
-        cands = []
+    def _candidates(self, it: _Item, px_mm: float):
+        """The candidate offsets (display px), ring by ring, made as the search reaches them."""
+        a0 = math.atan2(it.prefer[1], it.prefer[0]) if it.prefer is not None else math.pi / 4
         for r in RADII_MM:
             n = 8 if r < 5 else 16 if r < 12 else 24
             if r > FAR_MM:      # past the usual rings: a free spot between lines, at ARC_MM steps
                 n = max(n, int(2 * math.pi * r / ARC_MM))
             angs = [2 * math.pi * i / n + (math.pi / n if r in RADII_MM[1::2] else 0.0) for i in range(n)]
-            if it.prefer is not None:
-                a0 = math.atan2(it.prefer[1], it.prefer[0])
-                angs.sort(key=lambda a: abs(math.remainder(a - a0, 2 * math.pi)))
-            else:
-                angs.sort(key=lambda a: abs(math.remainder(a - math.pi / 4, 2 * math.pi)))
-            cands += [(r * px_mm * math.cos(a), r * px_mm * math.sin(a)) for a in angs]
-        return cands
+            angs.sort(key=lambda a: abs(math.remainder(a - a0, 2 * math.pi)))
+            yield from [(r * px_mm * math.cos(a), r * px_mm * math.sin(a)) for a in angs]
 
     def _leader(self, anchor, bb) -> Line2D:
         """A thin line from the anchor to the nearest point of the label's box."""
