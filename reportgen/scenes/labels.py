@@ -485,14 +485,15 @@ def line_problems(fig, renderer=None, *, every: bool = False) -> list[str]:
                 continue
             n = base.crossings(box)
             # the other labels' leaders
-            n += sum(_crossings_few(_segments_of(o, ax), box.x0 - PAD_PX, box.y0 - PAD_PX, box.x1 + PAD_PX,
+            n += sum(_crossings_few(_segments_of(o), box.x0 - PAD_PX, box.y0 - PAD_PX, box.x1 + PAD_PX,
                                     box.y1 + PAD_PX) for o in own if o is not None and o is not ln)
             if n:
                 problems.append(f"crossed by {n} line(s): {t.get_text()!r}")
     return problems
 
 
-def _segments_of(line, ax) -> list:
+def _segments_of(line) -> list:
+    """The segments of a line (a leader) in display coordinates, as lists."""
     v = line.get_transform().transform(np.column_stack(line.get_data()).astype(float))
     return np.hstack([v[:-1], v[1:]]).tolist()
 
