@@ -4,10 +4,11 @@ figure (matplotlib's rendered extents, ``Text.get_window_extent``), labels in te
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from reportgen.scenes import labels as L
-from reportgen.scenes.draw import GOST_K, gost_ratio, gost_scale
+from reportgen.scenes.draw import BLOCK_REACH_MM, GOST_K, gost_ratio, gost_scale
 from reportgen.style import mplstyle
 
 CASES = Path(__file__).resolve().parents[1] / "cases"
@@ -43,13 +44,39 @@ def _scenes(st):
         yield "aplan", PlanScene(lab, "acceleration")
 
 
+def _placed_near(fig) -> list[str]:
+    """The placed labels (every text of the drawing's axes): each names its point from at most
+    ``RADII_MM[-1]`` away (centre to point), and one farther than ``LEADER_MM`` (a slider's
+    label: than its block's reach and ``REACH_LEAD_MM``) has its leader line."""
+    bad = []
+    for ax in fig.axes:
+        px_mm = fig.dpi / 25.4
+        for t in ax.texts:
+            if not hasattr(t, "anchor"):
+                bad.append(f"not placed: {t.get_text()!r}")
+                continue
+            a = ax.transData.transform(t.anchor)
+            c = ax.transData.transform(t.get_position())
+            r = float(np.hypot(*(c - a))) / px_mm
+            if r > L.RADII_MM[-1] + 1e-6:
+                bad.append(f"far: {t.get_text()!r} {r:.1f} mm")
+            if r > t.lead_mm + 1e-6 and not hasattr(t, "leader"):
+                bad.append(f"no leader: {t.get_text()!r} {r:.1f} mm")
+            if t.lead_mm > L.LEADER_MM and t.lead_mm > BLOCK_REACH_MM + L.REACH_LEAD_MM + 1e-9:
+                bad.append(f"leader too far: {t.get_text()!r} {t.lead_mm:.1f} mm")
+    return bad
+
+
 @pytest.mark.parametrize("st", STUDIES)
 def test_no_label_overlaps_or_clipping(st, captured):
+    """No two labels overlap, none is clipped and no line, arrow or outline crosses a label
+    (``check_figure``), every label near its point (a leader when it is farther)."""
     for name, scene in _scenes(st):
         captured.clear()
         scene.draw(st)
         for fig in captured:
             assert L.check_figure(fig) == [], name
+            assert _placed_near(fig) == [], name
             texts = [t.get_text() for ax in fig.axes for t in ax.texts]
             for t in texts:          # point labels in textbook notation: no bare "nbc", "S2"
                 assert not re.fullmatch(r"[a-zA-Z]+\d+|n[a-z]{2,}", t), (name, t)
@@ -68,6 +95,7 @@ def test_force_drawings_labels(st, captured):
         sc.draw(st)
         for fig in captured:
             assert L.check_figure(fig) == [], type(sc).__name__
+            assert _placed_near(fig) == [], type(sc).__name__
 
 
 def test_check_figure_finds_overlap_and_clipping():
@@ -99,3 +127,157 @@ def test_gost_scales():
     for extent in (0.05, 0.3, 0.9, 2.7, 11.0):
         mu = gost_scale(extent, 150.0)
         assert mu * 1000 in GOST_K and extent / mu <= 150.0 + 1e-9
+
+
+def _placed_on_line(offset_mm: float):
+    """A figure with a line and one placed label moved ``offset_mm`` off the line (its box's
+    lower edge that far above it; negative: the line through the box)."""
+    from matplotlib.patches import FancyArrowPatch  # noqa: F401
+    fig = mplstyle.figure(60, 40, layout=None)
+    ax = fig.add_axes((0, 0, 1, 1))
+    ax.set_xlim(0, 60)
+    ax.set_ylim(0, 40)         # 1 unit = 1 mm
+    ax.plot([0, 60], [20, 20], lw=0.7)
+    pl = L.LabelPlacer(ax)
+    pl.add(30, 10, "$S_{2}$")
+    t = pl.place()[0]
+    r = L._renderer(fig)
+    h = t.get_window_extent(r).height / (fig.dpi / 25.4)
+    t.set_position((30, 20 + offset_mm + h / 2))
+    return fig
+
+
+def test_check_figure_finds_a_line_through_a_label():
+    """A line through a placed label's box is reported; one only touching it (within
+    ``LINE_TOL_MM`` of the box's edge, where the glyphs do not reach) is not."""
+    assert any(p.startswith("crossed") for p in L.check_figure(_placed_on_line(-1.0)))
+    assert L.check_figure(_placed_on_line(-0.5 * L.LINE_TOL_MM)) == []
+    assert L.check_figure(_placed_on_line(0.5)) == []
+
+
+def test_check_figure_finds_an_arrowhead_under_a_label():
+    """An arrowhead (drawn at its printed size) under a label is reported; the label's own
+    leader line is not."""
+    from reportgen.scenes.draw import arrow
+    fig = mplstyle.figure(60, 40, layout=None)
+    ax = fig.add_axes((0, 0, 1, 1))
+    ax.set_xlim(0, 60)
+    ax.set_ylim(0, 40)
+    arrow(ax, 10, 20, 30, 20, head_mm=3.0)
+    pl = L.LabelPlacer(ax)
+    pl.add(45, 20, "$F$")
+    t = pl.place()[0]
+    assert L.check_figure(fig) == []
+    t.set_position((29.0, 20.0))          # on the head only: the shaft ends inside it
+    assert any(p.startswith("crossed") for p in L.check_figure(fig))
+    fig2 = mplstyle.figure(60, 40, layout=None)
+    ax2 = fig2.add_axes((0, 0, 1, 1))
+    ax2.set_xlim(0, 60)
+    ax2.set_ylim(0, 40)
+    ax2.plot([0, 60], [20, 20], lw=0.7)
+    pl = L.LabelPlacer(ax2)
+    pl.add(30, 20, "$A$")
+    pl.place()
+    assert L.check_figure(fig2) == []
+
+
+def test_placer_uses_a_leader_when_no_near_place_is_free():
+    """A point inside a grid of lines 4 mm apart: no ring near it is free, so the label goes
+    out of the grid with a leader line, and the leader passes through no other label."""
+    fig = mplstyle.figure(80, 80, layout=None)
+    ax = fig.add_axes((0, 0, 1, 1))
+    ax.set_xlim(0, 80)
+    ax.set_ylim(0, 80)
+    for v in np.arange(24, 57, 3.0):
+        ax.plot([v, v], [24, 56], lw=0.5)
+        ax.plot([24, 56], [v, v], lw=0.5)
+    pl = L.LabelPlacer(ax)
+    pl.add(40.5, 40.5, "$B$", point=True)
+    pl.add(40.5, 37.5, "$C$", point=True)
+    ts = pl.place()
+    assert L.check_figure(fig) == []
+    assert all(hasattr(t, "leader") for t in ts)
+    assert _placed_near(fig) == []
+
+
+def _guide_links(st) -> dict:
+    mech = st.mechanism
+    return {j.links[0]: j for j in mech.prismatic if j.links[0] != "0" and not j.driving}
+
+
+SLOTTED = [s for s in STUDIES if _guide_links(s.values[0])]
+
+
+def test_slotted_cases_found():
+    """The cases with a slot on a moving link (the slotting machine has none: its slider runs on
+    a fixed guide, its rocker CBD is a bell crank)."""
+    names = {s.id for s in SLOTTED}
+    assert {"whitworth", "shaper_swinging_lever", "ws004_slotted_lever", "swing_conveyor"} <= names
+    assert "slotting_machine" not in names
+
+
+@pytest.mark.parametrize("st", SLOTTED)
+def test_slotted_link_drawn_as_slot_and_arms(st, captured):
+    """A slotted link (кулиса) is drawn as a bar along its slot and arms to its other pairs,
+    never as a plate spanned over its points (the conveyor's rocker D–K–F was a filled
+    triangle, three times on the plan of positions)."""
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.mechanism import KinematicScheme, PositionsPlan
+    lab = chosen_position(st)
+    guides = _guide_links(st)
+    for scene in (KinematicScheme(lab), PositionsPlan()):
+        captured.clear()
+        scene.draw(st)
+        ax = captured[-1].axes[0]
+        k = st.kinematics
+        rows = [k[k["pos"] == lab].iloc[0]] if isinstance(scene, KinematicScheme) else [r for _, r in k.iterrows()]
+        for name in guides:
+            link = st.mechanism.link(name)
+            for row in rows:
+                pts = np.array([[row[f"x_{p}"], row[f"y_{p}"]] for p in link.points])
+                for patch in ax.patches:
+                    if type(patch).__name__ != "Polygon":
+                        continue
+                    v = patch.get_xy()
+                    on = sum(bool(np.any(np.hypot(*(v - q).T) < 1e-9)) for q in pts)
+                    assert on < 3, (scene, name, row["pos"])
+
+
+def test_conveyor_rocker_bars():
+    """The conveyor's slotted rocker 5: the slot D–K and the arm D–F, the centre of mass S5 on
+    no bar (it is no pair's point)."""
+    from reportgen.scenes.draw import _slotted_bars
+    st = next(s.values[0] for s in SLOTTED if s.id == "swing_conveyor")
+    row = st.kinematics.iloc[0]
+    bars = _slotted_bars(st.mechanism, row, st.mechanism.link("5"))
+    pt = {p: (float(row[f"x_{p}"]), float(row[f"y_{p}"])) for p in ("D", "K", "F", "E")}
+
+    def close(a, b):
+        return np.hypot(a[0] - b[0], a[1] - b[1]) < 1e-9
+    assert len(bars) == 2
+    (a, b), (c, d) = bars
+    assert close(c, pt["D"]) and close(d, pt["F"])
+    # the slot spans D, K and the stone's point E
+    u = np.subtract(b, a) / np.hypot(*np.subtract(b, a))
+    for p in ("D", "K", "E"):
+        t = np.dot(np.subtract(pt[p], a), u)
+        assert -1e-9 <= t <= np.hypot(*np.subtract(b, a)) + 1e-9
+
+
+def _with_dynamics():
+    from reportgen.report.sections import dynamics
+    return [s for s in STUDIES if dynamics.present(s.values[0])]
+
+
+@pytest.mark.parametrize("st", _with_dynamics())
+def test_wittenbauer_labels_clear_of_the_curves(st, captured):
+    """The energy–mass diagram's position numbers and K, L were written 3 pt off their points,
+    across the curve and the tangents: now every text of its axes is placed, near its point and
+    crossed by no line (``line_problems(every=True)``: the annotations too)."""
+    from reportgen.scenes.dynamics import WittenbauerDiagram
+    captured.clear()
+    WittenbauerDiagram().draw(st)
+    fig = captured[-1]
+    assert L.check_figure(fig) == []
+    assert L.line_problems(fig, every=True) == []
+    assert _placed_near(fig) == []

@@ -212,6 +212,14 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
             others = [p for p in link.points if p != sliders[link.name]]
             for p in others:
                 ax.plot([x, _point(row, p)[0]], [y, _point(row, p)[1]], color=color, lw=lw, alpha=alpha, zorder=zorder)
+        elif len(pts) >= 3 and not _collinear(pts) and (bars := _slotted_bars(mech, row, link)):
+            for a, b in bars:        # a slotted link (кулиса): its slot and its arms, no plate
+                ax.plot([a[0], b[0]], [a[1], b[1]], color=color, lw=lw * 1.3, alpha=alpha, zorder=zorder + 0.7,
+                        solid_capstyle="round")
+            if tint:                 # the arms welded to the slot (ГОСТ 2.770 rigid joint): a filled corner
+                for corner in _arm_corners(cv, bars):
+                    ax.add_patch(Polygon(corner, closed=True, facecolor=color, edgecolor=color, lw=0.5,
+                                         alpha=alpha, zorder=zorder + 0.6))
         elif len(pts) >= 3 and not _collinear(pts):
             poly = Polygon(np.array(_hull(pts)), closed=True, facecolor=LIGHT if tint else "none",
                            edgecolor=color, lw=lw,
@@ -227,14 +235,16 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
             cv.labels.add(mx, my, link.name, prefer=(nx, ny), color=color, fontsize=9,
                           gap_mm=NUMBER_GAP_MM)
         elif numbers and len(pts) >= 1 and link.name not in sliders:
-            a, b = _farthest(pts) if len(pts) >= 2 else (pts[0], pts[0])
+            a, b = (bars[0] if (bars := _slotted_bars(mech, row, link)) else
+                    _farthest(pts) if len(pts) >= 2 else (pts[0], pts[0]))
             mx, my = (a[0] + b[0]) / 2, (a[1] + b[1]) / 2
             nx, ny = -(b[1] - a[1]), b[0] - a[0]
             cv.labels.add(mx, my, link.name, prefer=(nx, ny), color=color, fontsize=9,
                           gap_mm=NUMBER_GAP_MM)
         elif numbers and link.name in sliders:
             x, y = _point(row, sliders[link.name])
-            cv.labels.add(x, y, link.name, prefer=(0.7, 0.7), color=color, fontsize=9, gap_mm=NUMBER_GAP_MM)
+            cv.labels.add(x, y, link.name, prefer=(0.7, 0.7), color=color, fontsize=9, gap_mm=NUMBER_GAP_MM,
+                          reach_mm=BLOCK_REACH_MM)
     fixed = mech.link(FRAME).points
     for j in mech.joints:
         if only is not None and not set(j.links) & set(only):
@@ -257,6 +267,7 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
                                     zorder=zorder + 1))
     if labels:
         placed = set()
+        blocks = {sliders[n] for n in sliders if not (d.kind == "actuator" and n in (d.link, d.rod))}
         for link in mech.links:
             if only is not None and link.name not in only:
                 continue
@@ -266,7 +277,7 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
                 placed.add(p)
                 x, y = _point(row, p)
                 cv.labels.add(x, y, tex_point(p), prefer=_label_offset(mech, row, p), color=color, fontsize=10,
-                              point=True)
+                              point=True, reach_mm=BLOCK_REACH_MM if p in blocks else 0.0)
 
 
 SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
@@ -289,6 +300,51 @@ def _label_offset(mech: Mechanism, row, p: str) -> tuple[float, float]:
     if n < 1e-9:
         return (0.7, 0.7)
     return (-sx / n, -sy / n)
+
+
+def _slotted_bars(mech: Mechanism, row, link) -> list:
+    """A slotted link (кулиса, the guide of a moving slider) as the course draws it: a bar along
+    its slot, over its points on the slot's line and the slider's point, and an arm from the slot
+    to each of its other pairs' points (a bell crank: the slot DK and the arm DF at the pivot D);
+    empty if the link carries no slot with two points on it. Its centre of mass is no corner: a
+    plate spanned over it and the arms would hide the slot."""
+    slots = [j for j in mech.prismatic if j.links[0] == link.name and not j.driving]
+    if not slots or link.name == FRAME:
+        return []
+    j = slots[0]
+    (lx, ly), ux, uy = j.line_point, math.cos(j.angle), math.sin(j.angle)
+    size = max(math.hypot(x, y) for x, y in link.points.values()) or 1.0
+    on = [p for p, (x, y) in link.points.items() if abs((x - lx) * uy - (y - ly) * ux) < 1e-9 * size]
+    if len(on) < 2:
+        return []
+    paired = {jj.point for jj in mech.joints if link.name in jj.links}
+    a, b = _farthest([_point(row, p) for p in on] + [_point(row, j.point)])
+    bars = [(a, b)]
+    for p in link.points:
+        if p in on or p not in paired:
+            continue
+        q = _point(row, p)
+        near = min(on, key=lambda o: math.hypot(*np.subtract(_point(row, o), q)))
+        bars.append((_point(row, near), q))
+    return bars
+
+
+def _arm_corners(cv: Canvas, bars: list, leg_mm: float = 3.5) -> list:
+    """The small filled triangles that join each arm of a slotted link to its slot at the arm's
+    root (legs ``leg_mm`` along the arm and along the slot towards its far end)."""
+    (a, b), out = bars[0], []
+    for p, q in bars[1:]:
+        far = b if math.hypot(b[0] - p[0], b[1] - p[1]) >= math.hypot(a[0] - p[0], a[1] - p[1]) else a
+        legs = []
+        for e in (far, q):
+            d = math.hypot(e[0] - p[0], e[1] - p[1])
+            if d < 1e-12:
+                break
+            k = min(cv.mm(leg_mm) / d, 0.5)
+            legs.append((p[0] + (e[0] - p[0]) * k, p[1] + (e[1] - p[1]) * k))
+        else:
+            out.append([p, *legs])
+    return out
 
 
 def _collinear(pts) -> bool:
@@ -326,8 +382,12 @@ def _hull(pts):
     return lower[:-1] + upper[:-1]
 
 
+BLOCK_MM = (9.0, 5.5)                          # a slider's block, printed length × width
+BLOCK_REACH_MM = math.hypot(*BLOCK_MM) / 2     # from its point to a corner
+
+
 def _block(cv: Canvas, x, y, phi, color, lw, alpha, zorder):
-    w, h = cv.mm(9.0), cv.mm(5.5)
+    w, h = cv.mm(BLOCK_MM[0]), cv.mm(BLOCK_MM[1])
     rect = Rectangle((-w / 2, -h / 2), w, h, facecolor="white", edgecolor=color, lw=lw, alpha=alpha,
                      zorder=zorder + 0.5)
     rect.set_transform(Affine2D().rotate(phi).translate(x, y) + cv.ax.transData)

@@ -9,8 +9,8 @@ from matplotlib.patches import Circle, Rectangle, Wedge
 
 from ..style import mplstyle
 from ..style.numbers import fmt, position_names
-from .draw import INK, Canvas
-from .labels import LabelPlacer
+from .draw import INK, NUMBER_GAP_MM, Canvas
+from .labels import LabelPlacer, place_on_chart
 from .forces import math_label
 from .mechanism import Drawing
 
@@ -247,11 +247,9 @@ class WittenbauerDiagram:
                 groups.append((xy, [no]))
             else:
                 near[1].append(no)
-        # placed once the curve, the tangents and the axes are drawn: two positions whose points lie a
-        # label's size apart (5 and 10 of a beam pump) no longer print their numbers over each other
-        placer = LabelPlacer(ax, fontsize=7)
+        labels = LabelPlacer(ax, fontsize=7)       # clear of the curve, the tangents and each other
         for xy, names in groups:
-            placer.add(xy[0], xy[1], ", ".join(names), prefer=(1, 1), point=True)
+            labels.add(*xy, ", ".join(names), prefer=(1, 1), gap_mm=NUMBER_GAP_MM)
         jmax = float(J.max()) * 1.08
         jj = np.array([0.0, jmax])
         ax.plot(jj, wi.upper_tangent(jj), lw=1.0, color="#b2182b",
@@ -265,13 +263,13 @@ class WittenbauerDiagram:
         # the length of KL in the legend: beside the segment it would cover the labels of positions
         ax.plot([0, 0], [wi.L, wi.K], color=INK, lw=3.0, solid_capstyle="butt", zorder=7,
                 label=f"отрезок KL = {fmt(wi.KL, sig=5)} Дж")
-        ax.annotate("K", (0, wi.K), xytext=(5, 2), textcoords="offset points", fontsize=11, style="italic")
-        ax.annotate("L", (0, wi.L), xytext=(5, -10), textcoords="offset points", fontsize=11, style="italic")
+        labels.add(0, wi.K, "K", prefer=(1, 1), fontsize=11, style="italic", point=True)
+        labels.add(0, wi.L, "L", prefer=(1, -1), fontsize=11, style="italic", point=True)
         ax.set_xlim(-0.04 * jmax, jmax)
         ax.set_xlabel("$J_{II}$, кг·м²")
         ax.set_ylabel("$\\Delta T$, Дж")
-        placer.place()
         ax.legend(fontsize=9, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncols=2)
+        place_on_chart(labels)
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 

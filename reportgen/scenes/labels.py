@@ -3,20 +3,27 @@ joint symbol, and none leaves the figure.
 
 A scene registers each label with its anchor (the point it names) and, optionally, a preferred
 direction; :meth:`LabelPlacer.place` is called after everything else is drawn. For every label,
-candidate positions on rings around the anchor (8–16 directions, radii from 2,5 mm up) are tried
-in order of distance and of deviation from the preferred direction; a candidate is rejected if
-the rendered extent of the text (``Text.get_window_extent``) meets a placed label, leaves the
-axes, or crosses a drawn segment (lines, arrow shafts and heads, outlines of patches). The first
-free candidate wins; if none is free the one with the fewest crossings is taken. A label placed
-farther than ``LEADER_MM`` from its anchor gets a thin leader line (ГОСТ 2.316 style).
+candidate positions on rings around the anchor (radii ``RADII_MM`` from 2,2 to 23 mm; 8–24
+directions, beyond ``FAR_MM`` at least one each ``ARC_MM`` of arc, so that a gap between lines
+fanning out of a pivot is found) are tried in order of distance and of deviation from the
+preferred direction; a candidate is rejected if the rendered extent of the text
+(``Text.get_window_extent``) meets a placed label or leaves the axes. Of the others the first
+that crosses no drawn segment (lines, arrow shafts and heads at their printed size, outlines of
+patches, the leaders drawn so far) wins; a label farther than ``LEADER_MM`` from its anchor (for
+the label of a body drawn round its point, a slider's block: ``reach_mm`` + ``REACH_LEAD_MM``)
+gets a thin leader line (ГОСТ 2.316 style), which must pass through no placed label and costs
+``CUT_MM`` of distance for each line it crosses (past ``LEADER_FREE_MM``, inside its own joint's
+circle): a leader across lines is taken only when no nearer free place is. If no candidate is
+free, the one with the fewest crossings is taken and gets a white halo round its glyphs
+(:func:`check_figure` still reports it).
 
 A label that names a point (``point=True``) must read as that point's: its centre is nearer its
 own point than any other named point (more than ``OWN_APART_MM`` from it) by ``OWN_MARGIN_MM``
 (a label «23» set down by the support
 07 reads as the support's); a label with ``gap_mm`` keeps that clearance from every other label
 (position numbers «1» and «3» side by side read as «13»). A candidate that breaks either is
-taken only when no other is free (before one that crosses a line). A label that cannot avoid a
-line gets a white halo round its glyphs, so the line is broken under it.
+taken only when no other free of lines is; one nearer another point but farther than
+``LEADER_MM`` from its own is given a leader (which tells whose it is) and costs ``STRAY_MM``.
 """
 from __future__ import annotations
 
@@ -31,12 +38,19 @@ from matplotlib.lines import Line2D
 from matplotlib.text import Text
 
 MM_PT = 72 / 25.4        # points per millimetre
-RADII_MM = (2.2, 3.2, 4.5, 6.0, 8.0, 10.5, 14.0, 18.0)
+RADII_MM = (2.2, 3.2, 4.5, 6.0, 8.0, 10.5, 14.0, 18.0, 23.0)
+FAR_MM, ARC_MM = 4.0, 1.5
 LEADER_MM = 5.5
+REACH_LEAD_MM = 3.0      # a label of a body (reach_mm) gets a leader this far beyond the body's reach
+STRAY_MM = 4.0           # what a label nearer another point (so given a leader) costs
+GRAZE_MM = 4.0           # what a line through the margin of a label's box costs (see LINE_TOL_MM)
+CUT_MM = 5.0            # what a leader crossing a line costs, in millimetres of the label's distance
+LEADER_FREE_MM = 1.6     # a leader's first part, inside its own joint's circle: lines meet there
 PAD_PX = 1.0
 OWN_MARGIN_MM = 1.5
 OWN_APART_MM = 2.0
 HALO_PT = 2.5
+LINE_TOL_MM = 0.3        # check_figure: a line within this of a label's glyph box edge only touches it
 
 
 @dataclass
@@ -49,6 +63,7 @@ class _Item:
     artist: Text | None = None
     point: bool = False
     gap_mm: float = 0.0
+    reach_mm: float = 0.0
 
 
 def _renderer(fig):
@@ -70,11 +85,13 @@ def _segments(ax, renderer, skip) -> np.ndarray:
             continue
         v = ln.get_transform().transform(np.column_stack(ln.get_data()).astype(float))
         v = v[np.all(np.isfinite(v), axis=1)]
-        if len(v) == 1 and ln.get_marker() not in (None, "", "None", " "):
+        drawn = ln.get_linestyle() not in ("None", "none", "", " ")
+        if (len(v) == 1 or not drawn) and ln.get_marker() not in (None, "", "None", " "):
             r = ln.get_markersize() / 2 * renderer.points_to_pixels(1)
-            x, y = v[0]
-            add_poly([(x - r, y - r), (x + r, y - r), (x + r, y + r), (x - r, y + r), (x - r, y - r)])
-        add_poly(v)
+            for x, y in v:       # the markers' squares (a marker-only line has no segments between)
+                add_poly([(x - r, y - r), (x + r, y - r), (x + r, y + r), (x - r, y + r), (x - r, y - r)])
+        if drawn:
+            add_poly(v)
     for coll in ax.collections:
         if coll in skip or not isinstance(coll, LineCollection) or not coll.get_visible():
             continue
@@ -84,6 +101,10 @@ def _segments(ax, renderer, skip) -> np.ndarray:
     for p in ax.patches:
         if p in skip or not p.get_visible():
             continue
+        if hasattr(p, "_dpi_cor"):
+            # an arrow's head is sized in points when it is drawn: before any drawing its path
+            # is that of 72 dpi (matplotlib's FancyArrowPatch), smaller than it prints by the labels
+            p._dpi_cor = renderer.points_to_pixels(1.0)
         try:
             path = p.get_path()
             tr = p.get_transform()
@@ -129,6 +150,47 @@ class _Segs:
         if len(idx) <= 32 and not self.odd[idx].any():
             return _crossings_few(self.segs[idx].tolist(), x0, y0, x1, y1)
         return _crossings(self.segs[idx], bb)
+
+    def cuts(self, lead) -> int:
+        """How many segments the segment ``lead`` = [x0, y0, x1, y1] crosses (a leader line)."""
+        ax_, ay_, bx_, by_ = lead
+        x0, x1 = min(ax_, bx_), max(ax_, bx_)
+        y0, y1 = min(ay_, by_), max(ay_, by_)
+        lo = np.searchsorted(self.short_x, x0 - self.SHORT_PX, side="left")
+        hi = np.searchsorted(self.short_x, x1, side="right")
+        idx = np.concatenate([self.short[lo:hi], self.rest])
+        idx = idx[(self.xmax[idx] >= x0) & (self.xmin[idx] <= x1) & (self.ymax[idx] >= y0)
+                  & (self.ymin[idx] <= y1) & ~self.odd[idx]]
+        if not len(idx):
+            return 0
+        s = self.segs[idx]
+        dx, dy = bx_ - ax_, by_ - ay_
+
+        def side(px, py):
+            return dx * (py - ay_) - dy * (px - ax_)
+        s1, s2 = side(s[:, 0], s[:, 1]), side(s[:, 2], s[:, 3])
+        ex, ey = s[:, 2] - s[:, 0], s[:, 3] - s[:, 1]
+        t1 = ex * (ay_ - s[:, 1]) - ey * (ax_ - s[:, 0])
+        t2 = ex * (by_ - s[:, 1]) - ey * (bx_ - s[:, 0])
+        return int(np.count_nonzero((s1 * s2 <= 0) & (t1 * t2 <= 0)))
+
+
+def _leader_segment(anchor, bb, free: float) -> list:
+    """The leader from ``anchor`` to the nearest point of the box ``bb`` (display coordinates),
+    less its first ``free`` px (the lines meeting at the anchor's own point start there)."""
+    x = min(max(anchor[0], bb.x0), bb.x1)
+    y = min(max(anchor[1], bb.y0), bb.y1)
+    d = math.hypot(x - anchor[0], y - anchor[1])
+    f = min(free / d, 1.0) if d > 0 else 0.0
+    return [anchor[0] + (x - anchor[0]) * f, anchor[1] + (y - anchor[1]) * f, x, y]
+
+
+def _through_boxes(seg: list, placed: list) -> int:
+    """How many of the placed label boxes ((box, clearance) pairs) the segment passes through."""
+    x0, x1 = min(seg[0], seg[2]), max(seg[0], seg[2])
+    y0, y1 = min(seg[1], seg[3]), max(seg[1], seg[3])
+    return sum(_crossings_few([seg], b.x0, b.y0, b.x1, b.y1) for b, _ in placed
+               if b.x0 <= x1 and x0 <= b.x1 and b.y0 <= y1 and y0 <= b.y1)
 
 
 def _crossings_few(segs: list, x0: float, y0: float, x1: float, y1: float) -> int:
@@ -190,6 +252,13 @@ class _Extent:
             self.corners = self.box.get_points().ravel().tolist()
             self.tr = t.get_transform()
 
+    def at_px(self, x: float, y: float, inv) -> "_Box":
+        """The extent with the text at the display point (x, y); ``inv``: display → data."""
+        if self.box is None:
+            return self.at(inv.transform((x, y)))
+        bx0, by0, bx1, by1 = self.corners
+        return _Box(bx0 + x, by0 + y, bx1 + x, by1 + y)
+
     def at(self, xy) -> "_Box":
         """The extent with the text at ``xy`` (data coordinates)."""
         if self.box is None:
@@ -210,6 +279,17 @@ class _Box:
         self.x0, self.y0, self.x1, self.y1 = x0, y0, x1, y1
 
 
+def place_on_chart(placer: "LabelPlacer") -> list[Text]:
+    """Place the labels of a chart whose figure has a layout engine (constrained layout): the
+    layout is done first and then kept, so that the axes do not move under the placed labels."""
+    fig = placer.fig
+    engine = fig.get_layout_engine()
+    if engine is not None:
+        engine.execute(fig)
+        fig.set_layout_engine("none")
+    return placer.place()
+
+
 class LabelPlacer:
     """Collects the labels of one axes and places them after the drawing is complete."""
 
@@ -222,14 +302,16 @@ class LabelPlacer:
         self.gap_mm = 0.0          # least printed gap between two labels (0: they may touch)
 
     def add(self, x: float, y: float, text: str, prefer=None, *, point: bool = False, gap_mm: float = 0.0,
-            **kw) -> None:
+            reach_mm: float = 0.0, **kw) -> None:
         """A label for the point (x, y) in data coordinates; ``prefer``: a direction (dx, dy);
         ``point``: the label names the point (kept nearer it than any other named point);
-        ``gap_mm``: the clearance kept from every other label."""
+        ``gap_mm``: the clearance kept from every other label; ``reach_mm``: how far the body
+        drawn round the point reaches (a slider's block): a label beside the body needs no
+        leader line (one from the point would cross the body's outline)."""
         if prefer is not None:
             n = math.hypot(*prefer)
             prefer = (prefer[0] / n, prefer[1] / n) if n > 1e-12 else None
-        self.items.append(_Item(float(x), float(y), text, prefer, kw, point=point, gap_mm=gap_mm))
+        self.items.append(_Item(float(x), float(y), text, prefer, kw, point=point, gap_mm=gap_mm, reach_mm=reach_mm))
 
     def _foreign(self, it: _Item, px_mm: float) -> np.ndarray:
         """The other named points near which a label of ``it`` must not sit (display coordinates);
@@ -253,7 +335,9 @@ class LabelPlacer:
         px_mm = fig.dpi / 25.4
         placed = [(_Box(b.x0, b.y0, b.x1, b.y1), 0.0) for b in self.avoid_boxes]      # (box, clearance in px)
         hard = self.gap_mm * px_mm      # the placer's least gap between any two labels (a must)
+        tol = (LINE_TOL_MM - 0.1) * px_mm + PAD_PX     # the box as check_figure reads it, less 0,1 mm
         out = []
+        leaders: list = []              # the leader lines drawn so far: x0, y0, x1, y1, then their box
         for it in self.items:
             kw = dict(fontsize=self.fontsize, ha="center", va="center", zorder=10)
             kw.update(it.kw)
@@ -262,9 +346,14 @@ class LabelPlacer:
             ax0 = ax.transData.transform((it.x, it.y))
             foreign = self._foreign(it, px_mm)
             gap = it.gap_mm * px_mm
+            lead_px = max(LEADER_MM, it.reach_mm + REACH_LEAD_MM) * px_mm
             best = None
             for k, (cx, cy) in enumerate(self._candidates(it, px_mm)):
-                bb = extent.at(inv.transform((ax0[0] + cx, ax0[1] + cy)))
+                r_mm = math.hypot(cx, cy) / px_mm
+                clean = best is not None and best[0][:4] == (False, False, False, 0)
+                if clean and r_mm >= best[0][4]:
+                    break       # a clean place found: none farther out can be nearer by its score
+                bb = extent.at_px(ax0[0] + cx, ax0[1] + cy, inv)
                 inside = (bb.x0 >= max(frame.x0, figbox.x0) + 1 and bb.x1 <= min(frame.x1, figbox.x1) - 1
                           and bb.y0 >= max(frame.y0, figbox.y0) + 1 and bb.y1 <= min(frame.y1, figbox.y1) - 1)
                 if not inside or any(_overlap(bb, o, hard) for o, _ in placed):
@@ -275,56 +364,80 @@ class LabelPlacer:
                 own = math.hypot(centre[0] - ax0[0], centre[1] - ax0[1])
                 stray = bool(len(foreign)) and float(np.hypot(*(foreign - centre).T).min()) < own + OWN_MARGIN_MM * px_mm
                 hits = segs.crossings(bb)
-                cost = (stray, crowded, hits, k)
+                graze = 0
+                if hits and clean and r_mm + GRAZE_MM >= best[0][4]:
+                    continue    # crossed or grazed: no better than the clean place found
+                if hits:        # lines only in the box's margin, where check_figure lets them be
+                    graze, hits = hits, segs.crossings(_Box(bb.x0 + tol, bb.y0 + tol, bb.x1 - tol, bb.y1 - tol))
+                    graze -= hits
+                if leaders:     # the leaders drawn so far, by their boxes first
+                    near = [ld for ld in leaders if ld[4] <= bb.x1 + PAD_PX and bb.x0 - PAD_PX <= ld[5]
+                            and ld[6] <= bb.y1 + PAD_PX and bb.y0 - PAD_PX <= ld[7]]
+                    if near:
+                        hits += _crossings_few([ld[:4] for ld in near], bb.x0 - PAD_PX, bb.y0 - PAD_PX,
+                                               bb.x1 + PAD_PX, bb.y1 + PAD_PX)
+                # a stray label far enough for a leader to be seen gets one: the leader tells whose
+                led = r_mm * px_mm > lead_px or (stray and r_mm > LEADER_MM)
+                cut = 0
+                if led and hits == 0:
+                    # its leader: through no label (a must), across as few lines as may be
+                    hits += _through_boxes(_leader_segment(ax0, bb, 0.0), placed)
+                    cut = segs.cuts(_leader_segment(ax0, bb, LEADER_FREE_MM * px_mm)) if hits == 0 else 0
+                # a leader across a line is worth CUT_MM more of distance
+                score = r_mm + CUT_MM * cut + GRAZE_MM * graze + (STRAY_MM if stray and led else 0.0)
+                cost = (hits > 0, stray and not led, crowded, hits, score, k)
                 if best is None or cost < best[0]:
-                    best = (cost, (cx, cy), bb)
-                if hits == 0 and not stray and not crowded:
+                    best = (cost, (cx, cy), bb, led)
+                if hits == 0 and not stray and not crowded and cut == 0 and graze == 0:
                     break
             if best is None:       # nowhere free inside: nearest candidate inside the figure
-                cands = self._candidates(it, px_mm)
+                cands = list(self._candidates(it, px_mm))
                 for cx, cy in cands:
                     bb = extent.at(inv.transform((ax0[0] + cx, ax0[1] + cy)))
                     if bb.x0 >= figbox.x0 and bb.x1 <= figbox.x1 and bb.y0 >= figbox.y0 and bb.y1 <= figbox.y1:
-                        best = ((99, 0), (cx, cy), bb)
+                        best = ((True, 99), (cx, cy), bb, False)
                         break
                 else:
-                    best = ((99, 0), cands[0], extent.at(inv.transform((ax0[0] + cands[0][0], ax0[1] + cands[0][1]))))
-            cost, (cx, cy), bb = best
+                    best = ((True, 99), cands[0], extent.at(inv.transform((ax0[0] + cands[0][0], ax0[1] + cands[0][1]))),
+                            False)
+            cost, (cx, cy), bb, led = best
             t.set_position(inv.transform((ax0[0] + cx, ax0[1] + cy)))
-            if cost[-2] > 0:
+            t.anchor = (it.x, it.y)        # what the label names (data coordinates), for the checks
+            t.lead_mm = lead_px / px_mm       # and from how far it gets a leader
+            if cost[0]:
                 # no free place: the lines under the label are broken by a white halo round its glyphs
                 t.set_path_effects([patheffects.withStroke(linewidth=HALO_PT, foreground="white")])
             placed.append((bb, gap))
-            if math.hypot(cx, cy) > LEADER_MM * px_mm:
-                self._leader(ax0, bb)
+            if led or math.hypot(cx, cy) > lead_px:
+                t.leader = self._leader(ax0, bb)
+                ld = _leader_segment(ax0, bb, 0.0)
+                leaders.append(ld + [min(ld[0], ld[2]), max(ld[0], ld[2]), min(ld[1], ld[3]), max(ld[1], ld[3])])
             out.append(t)
         return out
 
-    def _candidates(self, it: _Item, px_mm: float) -> list[tuple[float, float]]:
-        cands = []
+    def _candidates(self, it: _Item, px_mm: float):
+        """The candidate offsets (display px), ring by ring, made as the search reaches them."""
+        a0 = math.atan2(it.prefer[1], it.prefer[0]) if it.prefer is not None else math.pi / 4
         for r in RADII_MM:
-            n = 8 if r < 5 else 16
+            n = 8 if r < 5 else 16 if r < 12 else 24
+            if r > FAR_MM:      # past the usual rings: a free spot between lines, at ARC_MM steps
+                n = max(n, int(2 * math.pi * r / ARC_MM))
             angs = [2 * math.pi * i / n + (math.pi / n if r in RADII_MM[1::2] else 0.0) for i in range(n)]
-            if it.prefer is not None:
-                a0 = math.atan2(it.prefer[1], it.prefer[0])
-                angs.sort(key=lambda a: abs(math.remainder(a - a0, 2 * math.pi)))
-            else:
-                angs.sort(key=lambda a: abs(math.remainder(a - math.pi / 4, 2 * math.pi)))
-            cands += [(r * px_mm * math.cos(a), r * px_mm * math.sin(a)) for a in angs]
-        return cands
+            angs.sort(key=lambda a: abs(math.remainder(a - a0, 2 * math.pi)))
+            yield from [(r * px_mm * math.cos(a), r * px_mm * math.sin(a)) for a in angs]
 
-    def _leader(self, anchor, bb) -> None:
+    def _leader(self, anchor, bb) -> Line2D:
         """A thin line from the anchor to the nearest point of the label's box."""
-        x = min(max(anchor[0], bb.x0), bb.x1)
-        y = min(max(anchor[1], bb.y0), bb.y1)
+        x0, y0, x1, y1 = _leader_segment(anchor, bb, 0.0)
         inv = self.ax.transData.inverted()
-        (x0, y0), (x1, y1) = inv.transform(anchor), inv.transform((x, y))
-        self.ax.add_line(Line2D([x0, x1], [y0, y1], lw=0.4, color="#444444", zorder=9))
+        (x0, y0), (x1, y1) = inv.transform((x0, y0)), inv.transform((x1, y1))
+        return self.ax.add_line(Line2D([x0, x1], [y0, y1], lw=0.4, color="#444444", zorder=9))
 
 
 def check_figure(fig) -> list[str]:
-    """Problems with the texts of a figure: pairs of overlapping labels and labels clipped by
-    the figure (from matplotlib's rendered extents). An empty list means the figure is clean."""
+    """Problems with the texts of a figure: pairs of overlapping labels, labels clipped by
+    the figure (from matplotlib's rendered extents) and placed labels crossed by a line
+    (:func:`line_problems`). An empty list means the figure is clean."""
     renderer = _renderer(fig)
     fig.draw_without_rendering()
     texts = []
@@ -343,8 +456,46 @@ def check_figure(fig) -> list[str]:
             a, b = boxes[i][1], boxes[j][1]
             if a.x0 < b.x1 - 0.5 and b.x0 < a.x1 - 0.5 and a.y0 < b.y1 - 0.5 and b.y0 < a.y1 - 0.5:
                 problems.append(f"overlap: {boxes[i][0]!r} / {boxes[j][0]!r}")
+    return problems + line_problems(fig, renderer)
+
+
+def line_problems(fig, renderer=None, *, every: bool = False) -> list[str]:
+    """Labels of the axes crossed by a drawn line (those set by a :class:`LabelPlacer`; with
+    ``every`` all the texts of the axes): a text whose rendered extent, shrunk by
+    ``LINE_TOL_MM`` on every side (a line merely touching the glyph box, which is wider than the
+    glyphs, is no fault), meets a segment of a line, an arrow (shaft or head), a patch's outline
+    (a link's plate, a joint's circle, a slider's block, a support's hatch) or another label's
+    leader; its own leader line does not count. A textbook drawing has no line through a letter
+    (a white halo does not make one acceptable)."""
+    renderer = renderer or _renderer(fig)
+    shrink = LINE_TOL_MM * fig.dpi / 25.4 + PAD_PX       # _Segs pads the box by PAD_PX
+    problems = []
+    for ax in fig.axes:
+        texts = [t for t in ax.texts if t.get_visible() and t.get_text().strip()
+                 and (every or hasattr(t, "anchor"))]
+        if not texts:
+            continue
+        own = [getattr(t, "leader", None) for t in ax.texts]
+        base = _Segs(_segments(ax, renderer, skip=tuple(ln for ln in own if ln is not None)))
+        for t in texts:
+            ln = getattr(t, "leader", None)
+            bb = t.get_window_extent(renderer)
+            box = _Box(bb.x0 + shrink, bb.y0 + shrink, bb.x1 - shrink, bb.y1 - shrink)
+            if box.x0 >= box.x1 or box.y0 >= box.y1:
+                continue
+            n = base.crossings(box)
+            # the other labels' leaders
+            n += sum(_crossings_few(_segments_of(o), box.x0 - PAD_PX, box.y0 - PAD_PX, box.x1 + PAD_PX,
+                                    box.y1 + PAD_PX) for o in own if o is not None and o is not ln)
+            if n:
+                problems.append(f"crossed by {n} line(s): {t.get_text()!r}")
     return problems
 
+
+def _segments_of(line) -> list:
+    """The segments of a line (a leader) in display coordinates, as lists."""
+    v = line.get_transform().transform(np.column_stack(line.get_data()).astype(float))
+    return np.hstack([v[:-1], v[1:]]).tolist()
 
 
 def tex_point(p: str, prime: bool = False, lower: bool = False) -> str:
