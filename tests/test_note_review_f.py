@@ -158,8 +158,9 @@ def test_kinematics_section_writes_the_equations_with_the_read_values(monkeypatc
     """kinematics.build hands the vector equations the row read off the velocity plan."""
     from reportgen.report.sections import kinematics, vectors
     seen = []
-    orig = vectors.add
-    monkeypatch.setattr(vectors, "add", lambda sec, study, row: (seen.append(row), orig(sec, study, row))[1])
+    orig = vectors.add_accelerations
+    monkeypatch.setattr(vectors, "add_accelerations",
+                        lambda sec, study, row: (seen.append(row), orig(sec, study, row))[1])
     st = _study("screen_shaker")
     kinematics.build(st)
     (row,) = seen
@@ -168,6 +169,46 @@ def test_kinematics_section_writes_the_equations_with_the_read_values(monkeypatc
     assert row["w_1"] == exact["w_1"]                                 # the given ω₁ kept
     assert abs(row["w_2"]) == pytest.approx(2.220 / 0.42, abs=1e-12)  # V_BA read 148 mm · 0,015 m·с⁻¹/мм
     assert abs(row["w_2"] - exact["w_2"]) > 1e-3
+
+
+@pytest.mark.parametrize("stem", PLAN_CASES)
+def test_plan_omegas_derived_before_the_acceleration_equations_use_them(stem, monkeypatch):
+    """§2.4 in the note's order: the formula ω_k = V/l (and a stone's V_r) read off the velocity plan
+    comes before the first acceleration equation whose aⁿ = ω_k²·l (a^k = 2·ω_k·V_r) prints its
+    number — no forward reference. The equations' math kept as TeX to be searched."""
+    from markupsafe import Markup, escape
+    from reportgen.report.document import FormulaBlock, Paragraph
+    from reportgen.report.sections import kinematics, vectors
+    monkeypatch.setattr(vectors, "_m", lambda tex: Markup(escape(tex)))
+    st = _study(stem)
+    s4 = next(c for c in kinematics.build(st).children if getattr(c, "id", "") == "sec-plans")
+    items = []
+    for c in s4.children:
+        if isinstance(c, FormulaBlock):
+            items += [("F", f.symbolic) for f in c.formulas]
+        elif isinstance(c, Paragraph):
+            items.append(("P", str(c.html)))
+    derived = {}
+    for i, (kind, text) in enumerate(items):
+        m = re.match(r"\\omega_\{(\w+)\} =|V_\{(.+)\}$", text) if kind == "F" else None
+        if m:
+            derived.setdefault(m.group(1) or m.group(2), i)
+    d = st.mechanism.driver
+    used = 0
+    for i, (kind, text) in enumerate(items):
+        if kind != "P":
+            continue
+        for w in re.findall(r"\\omega_\{(\w+)\}\^\{2\} l_|2 \\omega_\{(\w+)\} V", text):
+            link = w[0] or w[1]
+            if d.rotary and link == d.link:         # the given ω₁
+                continue
+            assert derived.get(link, len(items)) < i, (link, text[:80])
+            used += 1
+        for v in re.findall(r"V_\{([^=]+)\} = 2 \\cdot", text):
+            assert derived.get(v.strip(), len(items)) < i, v
+    heads = [i for i, (kind, text) in enumerate(items) if kind == "P" and text.startswith("Ускорения,")]
+    assert heads and all(j < heads[0] for link, j in derived.items())
+    assert used >= 1
 
 
 # ------------------------------------------------------------------ K and the extreme positions
