@@ -181,7 +181,12 @@ def test_plan_omegas_derived_before_the_acceleration_equations_use_them(stem, mo
     from reportgen.report.sections import kinematics, vectors
     monkeypatch.setattr(vectors, "_m", lambda tex: Markup(escape(tex)))
     st = _study(stem)
-    s4 = next(c for c in kinematics.build(st).children if getattr(c, "id", "") == "sec-plans")
+    sec = kinematics.build(st)
+    s4 = next(c for c in sec.children if getattr(c, "id", "") == "sec-plans")
+    # (§2.1 says where the positions of a crank too small on the plan are numbered: the crusher's)
+    s1 = next(c for c in sec.children if getattr(c, "id", "") == "sec-positions")
+    assert ("пронумерованы на выносном элементе А, вычерченном в масштабе 1:2" in s1.children[0].html) == (
+        stem == "jaw_crusher")
     items = []
     for c in s4.children:
         if isinstance(c, FormulaBlock):

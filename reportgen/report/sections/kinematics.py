@@ -200,7 +200,11 @@ def build(study) -> Section:
                      f"при вращении {'по часовой стрелке' if mech.driver.direction < 0 else 'против часовой стрелки'}. "
                      f"Масштаб {mu_l}&nbsp;=&nbsp;{mu_text(plan.mu)}&nbsp;м/мм ({gost_ratio(plan.mu)}). "
                      + (f"{shown} " if paths else "")
-                     + f"(рисунок {ref('fig-positions')}).")
+                     + f"(рисунок {ref('fig-positions')})."
+                     # a crank too small for its position numbers: numbered on its enlarged view
+                     + (f" Кривошип в этом масштабе мал, поэтому положения шарнира {Markup.escape(mech.crank_pin())} "
+                        f"пронумерованы на выносном элементе А, вычерченном в масштабе {gost_ratio(plan.detail_mu)}."
+                        if plan.detail_mu else ""))
     else:
         lo, hi = mech.driver.q_range
         s1.paragraph(f"План положений построен для {ncount} значений длины гидроцилиндра от "
