@@ -214,6 +214,10 @@ def test_plan_omegas_derived_before_the_acceleration_equations_use_them(stem, mo
     heads = [i for i, (kind, text) in enumerate(items) if kind == "P" and text.startswith("Ускорения,")]
     assert heads and all(j < heads[0] for link, j in derived.items())
     assert used >= 1
+    stones = sum("{" in k for k in derived)       # V_r of a stone: keyed by its TeX points A_{2}A_{3}
+    lead = next(t for kind, t in items if kind == "P" and t.startswith("По отрезкам плана скоростей"))
+    assert lead.endswith({0: "звеньев:", 1: "и относительная скорость камня:"}.get(stones,
+                                                                                 "и относительные скорости камней:"))
 
 
 # ------------------------------------------------------------------ K and the extreme positions

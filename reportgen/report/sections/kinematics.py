@@ -320,9 +320,10 @@ def build(study) -> Section:
         ws, es = _plan_formulas(s4, study, row, vrow, vplan, aplan)
         vectors.add_velocities(s4, study, vrow)
         if ws:
+            stones = sum(f.symbolic.startswith("V") for f in ws)
             s4.paragraph("По отрезкам плана скоростей найдены угловые скорости звеньев"
-                         + (" и относительные скорости камней" if any(f.symbolic.startswith("V") for f in ws) else "")
-                         + ":")
+                         + (" и относительная скорость камня" if stones == 1 else
+                            " и относительные скорости камней" if stones else "") + ":")
             s4.formula(*ws)
         vectors.add_accelerations(s4, study, vrow)
         if es:
