@@ -124,3 +124,5 @@ def test_crank_positions_apart_on_paper(st, captured):
         assert d.detail_mu * 1000 in GOST_K and d.detail_mu < d.mu
         assert numbers and all(t.startswith("$" + pin.rstrip("0123456789")) for t in numbers)
         assert any(gost_ratio(d.detail_mu) in t.get_text() for fig in captured for ax in fig.axes for t in ax.texts)
+        # at a scale asked by a drawing sheet the view is drawn alike (and the marks kept apart)
+        assert PositionsPlan(centre_lines=True, mu=d.mu).draw(st).detail_mu == d.detail_mu

@@ -103,11 +103,13 @@ class PositionsPlan:
               else fit_canvas(xs, ys, self.mu, avail_w=155, avail_h=190, margin_mm=12))
         tip = _tracer_point(study)
         cx, cy = _centre(study, rows)
-        view = None if self.mu is not None else crank_view(study, rows, cv, (cx, cy), tip, coms)
+        # (on a sheet too: at the sheet's scale, whose redrawing makes room for a view that appears)
+        view = crank_view(study, rows, cv, (cx, cy), tip, coms)
         if view is not None:         # the canvas grown, at its scale, to hold the enlarged view
             h = view.radius * view.k + VIEW_PAD_MM * cv.mu
             cv = Canvas(min(min(xs), view.at[0] - h), max(max(xs), view.at[0] + h), min(min(ys), view.at[1] - h),
-                        max(max(ys), view.at[1] + h), cv.mu, 12, max_w=LANDSCAPE_W if landscape else 165.0)
+                        max(max(ys), view.at[1] + h), cv.mu, 12,
+                        max_w=1e4 if self.mu is not None else LANDSCAPE_W if landscape else 165.0)
         for p in coms:
             cv.ax.plot(cyc[f"x_{p}"], cyc[f"y_{p}"], ls=(0, (5, 3)), lw=0.7, color=INK, zorder=2)
         if mech.driver.swing:
