@@ -92,6 +92,7 @@ def test_working_stroke_of_the_other_cases_unchanged(stem, want):
 
 # ------------------------------------------------------------------ ω and aⁿ from the plans
 def _plans(stem):
+    from reportgen.analysis.plans import read_velocities
     from reportgen.report.document import Section
     from reportgen.report.sections import kinematics as K
     from reportgen.report.sections.common import chosen_position
@@ -103,8 +104,8 @@ def _plans(stem):
     v = PlanScene(lab, "velocity", landscape=True).draw(st)
     a = PlanScene(lab, "acceleration", landscape=True).draw(st)
     sec = Section("x", "y")
-    K._plan_formulas(sec, st, row, v, a)
-    fs = [f for b in sec.children for f in getattr(b, "formulas", [])]
+    ws, es = K._plan_formulas(sec, st, row, read_velocities(row, st, v.mu), v, a)
+    fs = ws + es
     return st, row, v, a, fs
 
 
@@ -185,7 +186,7 @@ def test_plan_omegas_derived_before_the_acceleration_equations_use_them(stem, mo
     s4 = next(c for c in sec.children if getattr(c, "id", "") == "sec-plans")
     # (§2.1 says where the positions of a crank too small on the plan are numbered: the crusher's)
     s1 = next(c for c in sec.children if getattr(c, "id", "") == "sec-positions")
-    assert ("пронумерованы на выносном элементе А, вычерченном в масштабе 1:2" in s1.children[0].html) == (
+    assert ("пронумерованы на выносном элементе Б, вычерченном в масштабе 1:2" in s1.children[0].html) == (
         stem == "jaw_crusher")
     items = []
     for c in s4.children:

@@ -24,6 +24,7 @@ class Drawing:
     landscape: bool = field(default=False, kw_only=True)
     # the scale (m/mm) of an enlarged view of a small crank on the plan of positions, if drawn
     detail_mu: float | None = field(default=None, kw_only=True)
+    detail_mark: str = field(default="", kw_only=True)     # its letter (ГОСТ 2.305)
 
 
 # a landscape A4 page (ГОСТ 7.32 margins turned with the sheet): text 257 × 165 mm, less the caption
@@ -106,7 +107,7 @@ class PositionsPlan:
         # (on a sheet too: at the sheet's scale, whose redrawing makes room for a view that appears)
         view = crank_view(study, rows, cv, (cx, cy), tip, coms)
         if view is not None:         # the canvas grown, at its scale, to hold the enlarged view
-            h = view.radius * view.k + VIEW_PAD_MM * cv.mu
+            h = view.r_view + VIEW_PAD_MM * cv.mu
             cv = Canvas(min(min(xs), view.at[0] - h), max(max(xs), view.at[0] + h), min(min(ys), view.at[1] - h),
                         max(max(ys), view.at[1] + h), cv.mu, 12,
                         max_w=1e4 if self.mu is not None else LANDSCAPE_W if landscape else 165.0)
@@ -156,7 +157,8 @@ class PositionsPlan:
         num = numbered_point(mech, rows, tip, out)
         if view is not None:         # numbered in the enlarged view, not at the tiny crank
             view.draw(cv, study, rows, ext)
-            return Drawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape, detail_mu=view.mu)
+            return Drawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape, detail_mu=view.mu,
+                           detail_mark=view.mark)
         groups = _position_groups(k, rows, num, cv.mm(0.5))
         path = np.array([[float(r[f"x_{num}"]), float(r[f"y_{num}"])] for r in rows])
         mid = np.array([np.mean(xs), np.mean(ys)])
@@ -203,27 +205,31 @@ def position_gap_mm(groups, mu: float) -> float:
 POSITION_GAP_MM = 2.5   # crank pin positions closer than this on paper are numbered in an enlarged view
 VIEW_R_MM = 12.0        # the crank circle's radius in the enlarged view at least, mm
 VIEW_LABELS_MM = 7.0    # room for the position labels around the crank circle in the view, mm
+HINGE_MM = 3.5          # the region circled on the main view: the crank circle and its joints' symbols
 VIEW_PAD_MM = 7.0       # around the view, for its title
+LATIN_LOOK = {"А": "A", "В": "B", "Е": "E"}   # letters of the views that read as Latin point names
 
 
 @dataclass
 class CrankView:
     """The enlarged view of a crank too small for its position marks (ГОСТ 2.305 «выносной
     элемент», as the plans' views, :func:`scenes.plans.view_frame`): the region (``centre``,
-    ``radius``, data units) drawn ``k`` times larger around ``at``, at the ГОСТ 2.302 scale
-    ``mu`` (m/mm) written over it («А (1:2)»)."""
+    ``radius``, data units; clear of the pile of joint symbols) drawn ``k`` times larger in the
+    circle (``at``, ``r_view``), at the ГОСТ 2.302 scale ``mu`` (m/mm) written over it («Б (1:2)»)."""
     centre: np.ndarray
     radius: float
+    r_view: float
     k: float
     at: np.ndarray
     mu: float
     tip: str
+    mark: str            # the view's letter
 
     def draw(self, cv: Canvas, study, rows, ext) -> None:
         """The crank circle, the crank in position 0 (bold), the crank pin's positions as hinges,
         numbered A₀ … A₁₁ (coinciding ones together), the extreme positions A′, A″, and the frame."""
         from .draw import gost_ratio
-        from .plans import INSET_MARKS, view_frame, view_marks
+        from .plans import view_frame, view_marks
         ax, c, k, tip = cv.ax, self.centre, self.k, self.tip
         to_view = lambda p: self.at + (np.asarray(p, float) - c) * k  # noqa: E731 - the view's similarity
         groups = _position_groups(study.kinematics, rows, tip, cv.mm(0.5) / k)
@@ -247,9 +253,8 @@ class CrankView:
             v = to_view((float(row[f"x_{tip}"]), float(row[f"y_{tip}"])))
             ax.plot([v[0]], [v[1]], marker="o", ms=3.5, mfc=INK, mec=INK, zorder=5)
             cv.labels.add(v[0], v[1], _marked(tip, mark), prefer=v - self.at, fontsize=10, point=True)
-        view_frame(cv, c, self.radius, self.at, self.radius * k)
-        view_marks(cv, c, self.radius, self.at, self.radius * k, INSET_MARKS[0],
-                   f"{INSET_MARKS[0]} ({gost_ratio(self.mu)})")
+        view_frame(cv, c, self.radius, self.at, self.r_view)
+        view_marks(cv, c, self.radius, self.at, self.r_view, self.mark, f"{self.mark} ({gost_ratio(self.mu)})")
 
 
 def crank_view(study, rows, cv: Canvas, centre, tip: str, coms) -> CrankView | None:
@@ -258,7 +263,7 @@ def crank_view(study, rows, cv: Canvas, centre, tip: str, coms) -> CrankView | N
     circle with a radius of VIEW_R_MM at least and its positions 2·POSITION_GAP_MM apart, in the
     free place of the drawing found as for the plans' views (:func:`scenes.plans.free_place`)."""
     from .draw import GOST_K
-    from .plans import free_place
+    from .plans import INSET_MARKS, free_place
     mech = study.mechanism
     if not mech.driver.rotary:
         return None
@@ -274,7 +279,8 @@ def crank_view(study, rows, cv: Canvas, centre, tip: str, coms) -> CrankView | N
         return None
     mu_v = max(fine)
     k = cv.mu / mu_v
-    radius = (r_m / mu_v + VIEW_LABELS_MM) / k * cv.mu       # the region circled, data units
+    radius = r_m + HINGE_MM * cv.mu                      # the region circled, data units
+    r_view = (r_m / mu_v + VIEW_LABELS_MM) * cv.mu       # the view's circle
     # the drawing in mm: every link's sides at every position, the traced paths, the joints
     segs, pts = [], []
     for row in rows:
@@ -289,11 +295,14 @@ def crank_view(study, rows, cv: Canvas, centre, tip: str, coms) -> CrankView | N
         segs += [(*v[i], *v[i + 1]) for i in range(len(v) - 1)]
     pts = np.array(pts)
     r_mm, c_mm = radius / cv.mu, c / cv.mu
-    h = r_mm * k + VIEW_PAD_MM
+    h = r_view / cv.mu + VIEW_PAD_MM
     circle = (c_mm[0] - r_mm - 2, c_mm[1] - r_mm - 2, c_mm[0] + r_mm + 2, c_mm[1] + r_mm + 2)
     at = free_place(c_mm, h, np.array(segs).reshape(-1, 4), pts, pts.min(axis=0), pts.max(axis=0), [], circle,
                     cv.width_mm - 2 * cv.margin)
-    return CrankView(c, radius, k, at * cv.mu, mu_v, tip)
+    # the first letter of the views' that cannot be read as a point of the mechanism (А beside A)
+    names = {p for link in mech.links for p in link.points}
+    mark = next((m for m in INSET_MARKS if LATIN_LOOK.get(m) not in names), INSET_MARKS[0])
+    return CrankView(c, radius, r_view, k, at * cv.mu, mu_v, tip, mark)
 
 
 def numbered_point(mech, rows, tip: str, out: str) -> str:
