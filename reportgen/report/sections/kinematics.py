@@ -202,7 +202,7 @@ def build(study) -> Section:
                      + (f"{shown} " if paths else "")
                      + f"(рисунок {ref('fig-positions')})."
                      # a crank too small for its position numbers: numbered on its enlarged view
-                     + (f" Кривошип в этом масштабе мал, поэтому положения шарнира {Markup.escape(mech.crank_pin())} "
+                     + (f" Кривошип в этом масштабе мал, поэтому положения шарнира {Markup('<i>{}</i>').format(mech.crank_pin())} "
                         f"пронумерованы на выносном элементе {plan.detail_mark}, вычерченном в масштабе "
                         f"{gost_ratio(plan.detail_mu)}."
                         if plan.detail_mu else ""))
