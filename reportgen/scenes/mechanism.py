@@ -229,6 +229,7 @@ class CrankView:
         """The crank circle, the crank in position 0 (bold), the crank pin's positions as hinges,
         numbered A₀ … A₁₁ (coinciding ones together), the extreme positions A′, A″, and the frame."""
         from .draw import gost_ratio
+        from .labels import tex_point
         from .plans import view_frame, view_marks
         ax, c, k, tip = cv.ax, self.centre, self.k, self.tip
         to_view = lambda p: self.at + (np.asarray(p, float) - c) * k  # noqa: E731 - the view's similarity
@@ -238,7 +239,7 @@ class CrankView:
         a0 = to_view(groups[0][:2])
         ax.plot([self.at[0], a0[0]], [self.at[1], a0[1]], lw=1.5, color=INK, zorder=4)
         ax.plot([self.at[0]], [self.at[1]], marker="o", ms=4, mfc="white", mec=INK, mew=0.8, zorder=5)
-        cv.labels.add(self.at[0], self.at[1], "$" + study.mechanism.driver.center + "$", prefer=c - a0 + self.at,
+        cv.labels.add(self.at[0], self.at[1], tex_point(study.mechanism.driver.center), prefer=self.at - a0,
                       fontsize=10, point=True)
         head = tip.rstrip("0123456789") or tip
         sub = tip[len(head):]
@@ -299,7 +300,7 @@ def crank_view(study, rows, cv: Canvas, centre, tip: str, coms) -> CrankView | N
     circle = (c_mm[0] - r_mm - 2, c_mm[1] - r_mm - 2, c_mm[0] + r_mm + 2, c_mm[1] + r_mm + 2)
     at = free_place(c_mm, h, np.array(segs).reshape(-1, 4), pts, pts.min(axis=0), pts.max(axis=0), [], circle,
                     cv.width_mm - 2 * cv.margin)
-    # the first letter of the views' that cannot be read as a point of the mechanism (А beside A)
+    # the first view letter that cannot be read as a point of the mechanism (not А beside a point A)
     names = {p for link in mech.links for p in link.points}
     mark = next((m for m in INSET_MARKS if LATIN_LOOK.get(m) not in names), INSET_MARKS[0])
     return CrankView(c, radius, r_view, k, at * cv.mu, mu_v, tip, mark)
