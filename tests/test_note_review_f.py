@@ -92,6 +92,7 @@ def test_working_stroke_of_the_other_cases_unchanged(stem, want):
 
 # ------------------------------------------------------------------ ω and aⁿ from the plans
 def _plans(stem):
+    from reportgen.analysis.plans import read_velocities
     from reportgen.report.document import Section
     from reportgen.report.sections import kinematics as K
     from reportgen.report.sections.common import chosen_position
@@ -103,8 +104,8 @@ def _plans(stem):
     v = PlanScene(lab, "velocity", landscape=True).draw(st)
     a = PlanScene(lab, "acceleration", landscape=True).draw(st)
     sec = Section("x", "y")
-    K._plan_formulas(sec, st, row, v, a)
-    fs = [f for b in sec.children for f in getattr(b, "formulas", [])]
+    ws, es = K._plan_formulas(sec, st, row, read_velocities(row, st, v.mu), v, a)
+    fs = ws + es
     return st, row, v, a, fs
 
 
@@ -158,8 +159,9 @@ def test_kinematics_section_writes_the_equations_with_the_read_values(monkeypatc
     """kinematics.build hands the vector equations the row read off the velocity plan."""
     from reportgen.report.sections import kinematics, vectors
     seen = []
-    orig = vectors.add
-    monkeypatch.setattr(vectors, "add", lambda sec, study, row: (seen.append(row), orig(sec, study, row))[1])
+    orig = vectors.add_accelerations
+    monkeypatch.setattr(vectors, "add_accelerations",
+                        lambda sec, study, row: (seen.append(row), orig(sec, study, row))[1])
     st = _study("screen_shaker")
     kinematics.build(st)
     (row,) = seen
@@ -168,6 +170,55 @@ def test_kinematics_section_writes_the_equations_with_the_read_values(monkeypatc
     assert row["w_1"] == exact["w_1"]                                 # the given ω₁ kept
     assert abs(row["w_2"]) == pytest.approx(2.220 / 0.42, abs=1e-12)  # V_BA read 148 mm · 0,015 m·с⁻¹/мм
     assert abs(row["w_2"] - exact["w_2"]) > 1e-3
+
+
+@pytest.mark.parametrize("stem", PLAN_CASES)
+def test_plan_omegas_derived_before_the_acceleration_equations_use_them(stem, monkeypatch):
+    """§2.4 in the note's order: the formula ω_k = V/l (and a stone's V_r) read off the velocity plan
+    comes before the first acceleration equation whose aⁿ = ω_k²·l (a^k = 2·ω_k·V_r) prints its
+    number — no forward reference. The equations' math kept as TeX to be searched."""
+    from markupsafe import Markup, escape
+    from reportgen.report.document import FormulaBlock, Paragraph
+    from reportgen.report.sections import kinematics, vectors
+    monkeypatch.setattr(vectors, "_m", lambda tex: Markup(escape(tex)))
+    st = _study(stem)
+    sec = kinematics.build(st)
+    s4 = next(c for c in sec.children if getattr(c, "id", "") == "sec-plans")
+    # (§2.1 says where the positions of a crank too small on the plan are numbered: the crusher's)
+    s1 = next(c for c in sec.children if getattr(c, "id", "") == "sec-positions")
+    assert ("пронумерованы на выносном элементе Б, вычерченном в масштабе 1:2" in s1.children[0].html) == (
+        stem == "jaw_crusher")
+    items = []
+    for c in s4.children:
+        if isinstance(c, FormulaBlock):
+            items += [("F", f.symbolic) for f in c.formulas]
+        elif isinstance(c, Paragraph):
+            items.append(("P", str(c.html)))
+    derived = {}
+    for i, (kind, text) in enumerate(items):
+        m = re.match(r"\\omega_\{(\w+)\} =|V_\{(.+)\}$", text) if kind == "F" else None
+        if m:
+            derived.setdefault(m.group(1) or m.group(2), i)
+    d = st.mechanism.driver
+    used = 0
+    for i, (kind, text) in enumerate(items):
+        if kind != "P":
+            continue
+        for w in re.findall(r"\\omega_\{(\w+)\}\^\{2\} l_|2 \\omega_\{(\w+)\} V", text):
+            link = w[0] or w[1]
+            if d.rotary and link == d.link:         # the given ω₁
+                continue
+            assert derived.get(link, len(items)) < i, (link, text[:80])
+            used += 1
+        for v in re.findall(r"V_\{([^=]+)\} = 2 \\cdot", text):
+            assert derived.get(v.strip(), len(items)) < i, v
+    heads = [i for i, (kind, text) in enumerate(items) if kind == "P" and text.startswith("Ускорения,")]
+    assert heads and all(j < heads[0] for link, j in derived.items())
+    assert used >= 1
+    stones = sum("{" in k for k in derived)       # V_r of a stone: keyed by its TeX points A_{2}A_{3}
+    lead = next(t for kind, t in items if kind == "P" and t.startswith("По отрезкам плана скоростей"))
+    assert lead.endswith({0: "звеньев:", 1: "и относительная скорость камня:"}.get(stones,
+                                                                                 "и относительные скорости камней:"))
 
 
 # ------------------------------------------------------------------ K and the extreme positions

@@ -281,3 +281,29 @@ def test_wittenbauer_labels_clear_of_the_curves(st, captured):
     assert L.check_figure(fig) == []
     assert L.line_problems(fig, every=True) == []
     assert _placed_near(fig) == []
+
+@pytest.mark.parametrize("st", [s for s in STUDIES if s.values[0].mechanism.driver.rotary])
+def test_crank_positions_apart_on_paper(st, captured):
+    """On the plan of positions the crank pin's numbered positions are POSITION_GAP_MM apart on
+    paper at least: on the main view, or (a small crank) on its enlarged view at a ГОСТ 2.302
+    scale, numbered there A₀ … A₁₁ with no number left at the crank of the main view. The
+    distances are taken from the kinematics table, not from the drawing's own bookkeeping."""
+    import numpy as np
+    from reportgen.scenes.mechanism import POSITION_GAP_MM, POSITION_NUMBER, PositionsPlan
+    d = PositionsPlan().draw(st)
+    pin = st.mechanism.crank_pin()
+    k = st.kinematics
+    rows = k[~k["pos"].astype(str).str.startswith("д")]
+    p = rows[[f"x_{pin}", f"y_{pin}"]].to_numpy(float)
+    dist = np.hypot(*(p[:, None, :] - p[None, :, :]).transpose(2, 0, 1))[np.triu_indices(len(p), 1)]
+    dist = dist[dist > 1e-9 * max(1.0, float(np.abs(p).max()))]      # coinciding positions share a label
+    mu = d.detail_mu or d.mu
+    assert dist.min() / mu >= POSITION_GAP_MM, (d.mu, d.detail_mu)
+    numbers = [t.get_text() for fig in captured for ax in fig.axes for t in ax.texts
+               if t.get_label() == POSITION_NUMBER]
+    if d.detail_mu is not None:
+        assert d.detail_mu * 1000 in GOST_K and d.detail_mu < d.mu
+        assert numbers and all(t.startswith("$" + pin.rstrip("0123456789")) for t in numbers)
+        assert any(gost_ratio(d.detail_mu) in t.get_text() for fig in captured for ax in fig.axes for t in ax.texts)
+        # at a scale asked by a drawing sheet the view is drawn alike (and the marks kept apart)
+        assert PositionsPlan(centre_lines=True, mu=d.mu).draw(st).detail_mu == d.detail_mu

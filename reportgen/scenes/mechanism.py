@@ -22,6 +22,9 @@ class Drawing:
     # drawn for a landscape page (wider than the portrait text width); keyword-only so that the
     # subclasses' positional fields stay where they are
     landscape: bool = field(default=False, kw_only=True)
+    # the scale (m/mm) of an enlarged view of a small crank on the plan of positions, if drawn
+    detail_mu: float | None = field(default=None, kw_only=True)
+    detail_mark: str = field(default="", kw_only=True)     # its letter (ГОСТ 2.305)
 
 
 # a landscape A4 page (ГОСТ 7.32 margins turned with the sheet): text 257 × 165 mm, less the caption
@@ -99,10 +102,17 @@ class PositionsPlan:
                                          >= LANDSCAPE_GAIN * Canvas.scale(xs, ys, **wide))
         cv = (Canvas.fit(xs, ys, **wide) if landscape
               else fit_canvas(xs, ys, self.mu, avail_w=155, avail_h=190, margin_mm=12))
-        for p in coms:
-            cv.ax.plot(cyc[f"x_{p}"], cyc[f"y_{p}"], ls=(0, (5, 3)), lw=0.7, color=INK, zorder=2)
         tip = _tracer_point(study)
         cx, cy = _centre(study, rows)
+        # (on a sheet too: at the sheet's scale, whose redrawing makes room for a view that appears)
+        view = crank_view(study, rows, cv, (cx, cy), tip, coms)
+        if view is not None:         # the canvas grown, at its scale, to hold the enlarged view
+            h = view.r_view + VIEW_PAD_MM * cv.mu
+            cv = Canvas(min(min(xs), view.at[0] - h), max(max(xs), view.at[0] + h), min(min(ys), view.at[1] - h),
+                        max(max(ys), view.at[1] + h), cv.mu, 12,
+                        max_w=1e4 if self.mu is not None else LANDSCAPE_W if landscape else 165.0)
+        for p in coms:
+            cv.ax.plot(cyc[f"x_{p}"], cyc[f"y_{p}"], ls=(0, (5, 3)), lw=0.7, color=INK, zorder=2)
         if mech.driver.swing:
             # the input rocker's tip moves on an arc between the extreme positions of the swing
             r = float(np.hypot(rows[0][f"x_{tip}"] - cx, rows[0][f"y_{tip}"] - cy))
@@ -139,23 +149,17 @@ class PositionsPlan:
             mechanism_centre_lines(cv, mech, rows[0], spans=spans, radii=radii)
         out = _output_point(study, s_col)
         for mark, row in zip(("′", "″"), ext):
-            for p in dict.fromkeys([out, tip]):
+            for p in dict.fromkeys([out] + ([tip] if view is None else [])):
                 cv.labels.add(float(row[f"x_{p}"]), float(row[f"y_{p}"]), _marked(p, mark), fontsize=10,
                               point=True)
         # position numbers at the crank pin; for a cylinder or a rocker at its moving point or at the
         # output point, whichever travels farther (the numbers of a short stroke pile up)
         num = numbered_point(mech, rows, tip, out)
-        groups: list[tuple[float, float, list[str]]] = []
-        number = position_names(k["pos"])          # positions by number, as the tables print them
-        for row in rows:
-            x, y = float(row[f"x_{num}"]), float(row[f"y_{num}"])
-            no = number.get(str(row["pos"]), str(row["pos"]))
-            for gx, gy, names in groups:
-                if np.hypot(x - gx, y - gy) < cv.mm(0.5):
-                    names.append(no)
-                    break
-            else:
-                groups.append((x, y, [no]))
+        if view is not None:         # numbered in the enlarged view, not at the tiny crank
+            view.draw(cv, study, rows, ext)
+            return Drawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape, detail_mu=view.mu,
+                           detail_mark=view.mark)
+        groups = _position_groups(k, rows, num, cv.mm(0.5))
         path = np.array([[float(r[f"x_{num}"]), float(r[f"y_{num}"])] for r in rows])
         mid = np.array([np.mean(xs), np.mean(ys)])
         for x, y, names in groups:
@@ -170,6 +174,136 @@ class PositionsPlan:
             cv.labels.add(x, y, ", ".join(names), prefer=prefer, fontsize=8, gap_mm=NUMBER_GAP_MM,
                           label=POSITION_NUMBER)
         return Drawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape)
+
+
+def _position_groups(k, rows, p: str, near: float) -> list[tuple[float, float, list[str]]]:
+    """The positions of the point ``p`` as numbered on a plan: (x, y, numbers), the positions
+    closer than ``near`` (data units) in one group («0, 12»)."""
+    groups: list[tuple[float, float, list[str]]] = []
+    number = position_names(k["pos"])          # positions by number, as the tables print them
+    for row in rows:
+        x, y = float(row[f"x_{p}"]), float(row[f"y_{p}"])
+        no = number.get(str(row["pos"]), str(row["pos"]))
+        for gx, gy, names in groups:
+            if np.hypot(x - gx, y - gy) < near:
+                names.append(no)
+                break
+        else:
+            groups.append((x, y, [no]))
+    return groups
+
+
+def position_gap_mm(groups, mu: float) -> float:
+    """The least printed distance (mm) between two numbered positions at the scale μ."""
+    pts = np.array([g[:2] for g in groups])
+    if len(pts) < 2:
+        return np.inf
+    d = np.hypot(*(pts[:, None, :] - pts[None, :, :]).transpose(2, 0, 1))
+    return float(d[np.triu_indices(len(pts), 1)].min()) / mu
+
+
+POSITION_GAP_MM = 2.5   # crank pin positions closer than this on paper are numbered in an enlarged view
+VIEW_R_MM = 12.0        # the crank circle's radius in the enlarged view at least, mm
+VIEW_LABELS_MM = 7.0    # room for the position labels around the crank circle in the view, mm
+HINGE_MM = 3.5          # the region circled on the main view: the crank circle and its joints' symbols
+VIEW_PAD_MM = 7.0       # around the view, for its title
+LATIN_LOOK = {"А": "A", "В": "B", "Е": "E"}   # letters of the views that read as Latin point names
+
+
+@dataclass
+class CrankView:
+    """The enlarged view of a crank too small for its position marks (ГОСТ 2.305 «выносной
+    элемент», as the plans' views, :func:`scenes.plans.view_frame`): the region (``centre``,
+    ``radius``, data units; clear of the pile of joint symbols) drawn ``k`` times larger in the
+    circle (``at``, ``r_view``), at the ГОСТ 2.302 scale ``mu`` (m/mm) written over it («Б (1:2)»)."""
+    centre: np.ndarray
+    radius: float
+    r_view: float
+    k: float
+    at: np.ndarray
+    mu: float
+    tip: str
+    mark: str            # the view's letter
+
+    def draw(self, cv: Canvas, study, rows, ext) -> None:
+        """The crank circle, the crank in position 0 (bold), the crank pin's positions as hinges,
+        numbered A₀ … A₁₁ (coinciding ones together), the extreme positions A′, A″, and the frame."""
+        from .draw import gost_ratio
+        from .labels import tex_point
+        from .plans import view_frame, view_marks
+        ax, c, k, tip = cv.ax, self.centre, self.k, self.tip
+        to_view = lambda p: self.at + (np.asarray(p, float) - c) * k  # noqa: E731 - the view's similarity
+        groups = _position_groups(study.kinematics, rows, tip, cv.mm(0.5) / k)
+        r = float(np.hypot(*(np.array(groups[0][:2]) - c)))
+        ax.add_patch(Circle(self.at, r * k, fill=False, lw=0.6, color=INK, zorder=1))
+        a0 = to_view(groups[0][:2])
+        ax.plot([self.at[0], a0[0]], [self.at[1], a0[1]], lw=1.5, color=INK, zorder=4)
+        ax.plot([self.at[0]], [self.at[1]], marker="o", ms=4, mfc="white", mec=INK, mew=0.8, zorder=5)
+        cv.labels.add(self.at[0], self.at[1], tex_point(study.mechanism.driver.center), prefer=self.at - a0,
+                      fontsize=10, point=True)
+        head = tip.rstrip("0123456789") or tip
+        sub = tip[len(head):]
+        for x, y, names in groups:
+            v = to_view((x, y))
+            ax.plot([v[0]], [v[1]], marker="o", ms=3.5, mfc="white", mec=INK, mew=0.7, zorder=5)
+            no = ", ".join(names)
+            text = f"${head}_{{{sub}}}^{{({no})}}$" if sub else f"${head}_{{{no}}}$"
+            cv.labels.add(v[0], v[1], text, prefer=v - self.at, fontsize=8, gap_mm=NUMBER_GAP_MM,
+                          label=POSITION_NUMBER)
+        for mark, row in zip(("′", "″"), ext):
+            v = to_view((float(row[f"x_{tip}"]), float(row[f"y_{tip}"])))
+            ax.plot([v[0]], [v[1]], marker="o", ms=3.5, mfc=INK, mec=INK, zorder=5)
+            cv.labels.add(v[0], v[1], _marked(tip, mark), prefer=v - self.at, fontsize=10, point=True)
+        view_frame(cv, c, self.radius, self.at, self.r_view)
+        view_marks(cv, c, self.radius, self.at, self.r_view, self.mark, f"{self.mark} ({gost_ratio(self.mu)})")
+
+
+def crank_view(study, rows, cv: Canvas, centre, tip: str, coms) -> CrankView | None:
+    """The enlarged view a crank needs when its pin's numbered positions are closer than
+    POSITION_GAP_MM on paper: at the ГОСТ 2.302 scale of least enlargement that draws the crank
+    circle with a radius of VIEW_R_MM at least and its positions 2·POSITION_GAP_MM apart, in the
+    free place of the drawing found as for the plans' views (:func:`scenes.plans.free_place`)."""
+    from .draw import GOST_K
+    from .plans import INSET_MARKS, free_place
+    mech = study.mechanism
+    if not mech.driver.rotary:
+        return None
+    groups = _position_groups(study.kinematics, rows, tip, cv.mm(0.5))
+    gap = position_gap_mm(groups, cv.mu)
+    if gap >= POSITION_GAP_MM:
+        return None
+    c = np.asarray(centre, float)
+    r_m = float(np.hypot(*(np.array(groups[0][:2]) - c)))
+    fine = [q / 1000.0 for q in GOST_K if q / 1000.0 < cv.mu * (1 - 1e-9)
+            and r_m / (q / 1000.0) >= VIEW_R_MM and gap * cv.mu / (q / 1000.0) >= 2 * POSITION_GAP_MM]
+    if not fine:
+        return None
+    mu_v = max(fine)
+    k = cv.mu / mu_v
+    radius = r_m + HINGE_MM * cv.mu                      # the region circled, data units
+    r_view = (r_m / mu_v + VIEW_LABELS_MM) * cv.mu       # the view's circle
+    # the drawing in mm: every link's sides at every position, the traced paths, the joints
+    segs, pts = [], []
+    for row in rows:
+        for link in mech.moving:
+            names = list(link.points)
+            xy = [(float(row[f"x_{p}"]) / cv.mu, float(row[f"y_{p}"]) / cv.mu) for p in names]
+            pts += xy
+            segs += [(*xy[i], *xy[j]) for i in range(len(xy)) for j in range(i + 1, len(xy))]
+    cyc = study.cycle if coms else None
+    for p in coms:
+        v = np.column_stack([cyc[f"x_{p}"], cyc[f"y_{p}"]]) / cv.mu
+        segs += [(*v[i], *v[i + 1]) for i in range(len(v) - 1)]
+    pts = np.array(pts)
+    r_mm, c_mm = radius / cv.mu, c / cv.mu
+    h = r_view / cv.mu + VIEW_PAD_MM
+    circle = (c_mm[0] - r_mm - 2, c_mm[1] - r_mm - 2, c_mm[0] + r_mm + 2, c_mm[1] + r_mm + 2)
+    at = free_place(c_mm, h, np.array(segs).reshape(-1, 4), pts, pts.min(axis=0), pts.max(axis=0), [], circle,
+                    cv.width_mm - 2 * cv.margin)
+    # the first view letter that cannot be read as a point of the mechanism (not А beside a point A)
+    names = {p for link in mech.links for p in link.points}
+    mark = next((m for m in INSET_MARKS if LATIN_LOOK.get(m) not in names), INSET_MARKS[0])
+    return CrankView(c, radius, r_view, k, at * cv.mu, mu_v, tip, mark)
 
 
 def numbered_point(mech, rows, tip: str, out: str) -> str:

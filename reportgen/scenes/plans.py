@@ -182,11 +182,9 @@ class PlanScene:
     def _draw_inset(self, cv: Canvas, plan: Plan, ins: "Inset", pole: str) -> None:
         """The enlarged view (ГОСТ 2.305 «выносной элемент»): the region circled on the plan (thin
         dashed, with its letter) drawn ×k in a free place, its vectors and their labels."""
-        from matplotlib.patches import Circle
         ax, mu = cv.ax, cv.mu
         c, r, k = ins.centre, ins.radius, ins.k
-        ax.add_patch(Circle(c, r, fill=False, lw=0.5, ls=(0, (4, 2)), color=GREY, zorder=2))
-        ax.add_patch(Circle(ins.at, r * k, fill=False, lw=0.5, color=GREY, zorder=2))
+        view_frame(cv, c, r, ins.at, r * k)
         to_view = lambda p: ins.at + (np.asarray(p) - c) * k  # noqa: E731 - the view's similarity
         for seg, a, b in _drawn_segments(plan, mu):
             if seg.kind in ("rel", "tangential", "slide"):
@@ -212,10 +210,24 @@ class PlanScene:
                 continue
             v = to_view(plan.tips[lab])
             cv.labels.add(v[0], v[1], tip_label(lab, plan, self.kind), prefer=v - ins.at, fontsize=10)
-        corner = c + r * np.array([0.7071, 0.7071])
-        cv.labels.add(corner[0], corner[1], ins.mark, prefer=(1, 1), fontsize=10)
-        top = ins.at + np.array([0.0, r * k])
-        cv.labels.add(top[0], top[1], f"{ins.mark} (×{ins.k:g})".replace(".", ","), prefer=(0, 1), fontsize=10)
+        view_marks(cv, c, r, ins.at, r * k, ins.mark, f"{ins.mark} (×{ins.k:g})".replace(".", ","))
+
+
+def view_frame(cv: Canvas, c, r: float, at, r_view: float) -> None:
+    """The frame of a «выносной элемент» (ГОСТ 2.305): the region (``c``, ``r``) circled thin
+    dashed, the view's circle (``at``, ``r_view``)."""
+    from matplotlib.patches import Circle
+    cv.ax.add_patch(Circle(c, r, fill=False, lw=0.5, ls=(0, (4, 2)), color=GREY, zorder=2))
+    cv.ax.add_patch(Circle(at, r_view, fill=False, lw=0.5, color=GREY, zorder=2))
+
+
+def view_marks(cv: Canvas, c, r: float, at, r_view: float, mark: str, title: str) -> None:
+    """The letter ``mark`` of a view at its circled region (``c``, ``r``) and its ``title``
+    («А (5:1)», ГОСТ 2.305) over the view's circle (``at``, ``r_view``)."""
+    corner = np.asarray(c) + r * np.array([0.7071, 0.7071])
+    cv.labels.add(corner[0], corner[1], mark, prefer=(1, 1), fontsize=10)
+    top = np.asarray(at) + np.array([0.0, r_view])
+    cv.labels.add(top[0], top[1], title, prefer=(0, 1), fontsize=10)
 
 
 INSET_MARKS = ("А", "Б", "В", "Г", "Д", "Е")   # letters of the enlarged views (ГОСТ 2.305)
@@ -329,18 +341,7 @@ def find_insets(plan: Plan, mu: float, avail_w_mm: float) -> list[Inset]:
         k = ks[-1]
         h = r * k + pad
         circle = (c[0] - r - 2, c[1] - r - 2, c[0] + r + 2, c[1] + r + 2)
-        # candidate places on the plan and around it within the width: the free one that enlarges
-        # the drawing least, the nearest to the circled region among equals
-        ext = np.vstack([lo, hi] + [[t[:2], t[2:]] for t in taken])
-        grid = [np.array([x, y]) for y in np.linspace(lo[1] - h, hi[1] + h, 11)
-                for x in np.linspace(ext[:, 0].max() - avail_w_mm + h, ext[:, 0].min() + avail_w_mm - h, 15)]
-        grid = [p for p in grid if max(ext[:, 0].max(), p[0] + h) - min(ext[:, 0].min(), p[0] - h) <= avail_w_mm]
-
-        def cost(p):
-            b = np.vstack([ext, p - h, p + h])
-            return round(float(np.prod(np.ptp(b, axis=0))), 3), float(np.hypot(*(p - c)))
-        free = [p for p in grid if _free((p[0] - h, p[1] - h, p[0] + h, p[1] + h), segs, tips_mm, taken + [circle])]
-        at = min(free, key=cost) if free else np.array([lo[0] + h, ext[:, 1].min() - h])
+        at = free_place(c, h, segs, tips_mm, lo, hi, taken, circle, avail_w_mm)
         taken.append((at[0] - h, at[1] - h, at[0] + h, at[1] + h))
         inside = lambda p: np.hypot(*(p - c)) <= r  # noqa: E731
         tips = (["p"] if inside(np.zeros(2)) else []) + [n for n, v in plan.tips.items() if inside(v / mu)]
@@ -348,6 +349,24 @@ def find_insets(plan: Plan, mu: float, avail_w_mm: float) -> list[Inset]:
                  if np.hypot(*(b - a)) / mu < MIN_MM and inside(a / mu) and inside(b / mu)]
         out.append(Inset(c * mu, r * mu, k, at * mu, pad * mu, short, tips))
     return out
+
+
+def free_place(c, h: float, segs: np.ndarray, pts: np.ndarray, lo, hi, taken: list, circle, avail_w_mm: float):
+    """The centre (mm) of a free square of half-side ``h`` for the enlarged view of the region
+    around ``c``: of the candidate places on the drawing (``lo``…``hi``, points ``pts``, lines
+    ``segs``) and around it within the width, the free one (:func:`_free`, clear of the views
+    ``taken`` and of the ``circle``d region) that enlarges the drawing least, the nearest to the
+    region among equals; else below the drawing."""
+    ext = np.vstack([lo, hi] + [[t[:2], t[2:]] for t in taken])
+    grid = [np.array([x, y]) for y in np.linspace(lo[1] - h, hi[1] + h, 11)
+            for x in np.linspace(ext[:, 0].max() - avail_w_mm + h, ext[:, 0].min() + avail_w_mm - h, 15)]
+    grid = [p for p in grid if max(ext[:, 0].max(), p[0] + h) - min(ext[:, 0].min(), p[0] - h) <= avail_w_mm]
+
+    def cost(p):
+        b = np.vstack([ext, p - h, p + h])
+        return round(float(np.prod(np.ptp(b, axis=0))), 3), float(np.hypot(*(p - c)))
+    free = [p for p in grid if _free((p[0] - h, p[1] - h, p[0] + h, p[1] + h), segs, pts, taken + [circle])]
+    return min(free, key=cost) if free else np.array([lo[0] + h, ext[:, 1].min() - h])
 
 
 def similarity_only(plan: Plan, mech) -> Plan:

@@ -207,7 +207,12 @@ def build(study) -> Section:
                      f"при вращении {'по часовой стрелке' if mech.driver.direction < 0 else 'против часовой стрелки'}. "
                      f"Масштаб {mu_l}&nbsp;=&nbsp;{mu_text(plan.mu)}&nbsp;м/мм ({gost_ratio(plan.mu)}). "
                      + (f"{shown} " if paths else "")
-                     + f"(рисунок {ref('fig-positions')}).")
+                     + f"(рисунок {ref('fig-positions')})."
+                     # a crank too small for its position numbers: numbered on its enlarged view
+                     + (f" Кривошип в этом масштабе мал, поэтому положения шарнира {Markup('<i>{}</i>').format(mech.crank_pin())} "
+                        f"пронумерованы на выносном элементе {plan.detail_mark}, вычерченном в масштабе "
+                        f"{gost_ratio(plan.detail_mu)}."
+                        if plan.detail_mu else ""))
     else:
         lo, hi = mech.driver.q_range
         s1.paragraph(f"План положений построен для {ncount} значений длины гидроцилиндра от "
@@ -317,9 +322,21 @@ def build(study) -> Section:
         vplan = PlanScene(lab, "velocity", landscape=True).draw(study)
         aplan = PlanScene(lab, "acceleration", landscape=True).draw(study)
         # the equations' aⁿ = ω²·l and a^k = 2·ω·V_r with ω and V_r as read off the velocity plan
-        # (the values the acceleration plan is drawn from and §(ω = V/l) prints), not the analytic ones
-        vectors.add(s4, study, read_velocities(row, study, vplan.mu))
-        _plan_formulas(s4, study, row, vplan, aplan)
+        # (the values the acceleration plan is drawn from and §(ω = V/l) prints), not the analytic ones;
+        # those ω and V_r are derived between the velocity and the acceleration equations
+        vrow = read_velocities(row, study, vplan.mu)
+        ws, es = _plan_formulas(s4, study, row, vrow, vplan, aplan)
+        vectors.add_velocities(s4, study, vrow)
+        if ws:
+            stones = sum(f.symbolic.startswith("V") for f in ws)
+            s4.paragraph("По отрезкам плана скоростей найдены угловые скорости звеньев"
+                         + (" и относительная скорость камня" if stones == 1 else
+                            " и относительные скорости камней" if stones else "") + ":")
+            s4.formula(*ws)
+        vectors.add_accelerations(s4, study, vrow)
+        if es:
+            s4.paragraph("По отрезкам плана ускорений найдены угловые ускорения звеньев:")
+            s4.formula(*es)
         s4.figure(f"План скоростей для положения {pos_no(study, lab)} (μ<sub>v</sub> = {mu_text(vplan.mu)} м·с⁻¹/мм)",
                   vplan.svg, vplan.width_mm, id="fig-vplan", landscape=vplan.landscape)
         s4.figure(f"План ускорений для положения {pos_no(study, lab)} (μ<sub>a</sub> = {mu_text(aplan.mu)} м·с⁻²/мм)",
@@ -554,15 +571,17 @@ def _vec_name(name: str) -> Markup:
     return Markup("<i>{}</i><sub>{}</sub>").format(head, idx)
 
 
-def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
-    """Vector equations of each group and the formulas with numbers at the chosen position."""
+def _plan_formulas(sec: Section, study, row, vrow, vplan, aplan) -> tuple[list[Formula], list[Formula]]:
+    """The paragraph on the kinds of vector equations, and the formulas with numbers at the chosen
+    position: (ω of the links and the stones' relative velocities V_r read off the velocity plan
+    — ``vrow``, what the acceleration equations use —, ε of the links read off the acceleration plan)."""
     mech = study.mechanism
     d = mech.driver
-    # the crank's V_A = ω₁·l_OA and a_A = ω₁²·l_OA are written with the vector equations (vectors.add),
+    # the crank's V_A = ω₁·l_OA and a_A = ω₁²·l_OA are written with the vector equations (vectors.add_velocities, add_accelerations),
     # and so is a^k = 2ω·V_r of a stone on a rotating guide; here the angular velocities and
     # accelerations read off the constructed plans, each result the quotient of the printed plan
     # value and length (ω = V/l of the same numbers, not the analytic ω next to a drawn V)
-    fs = []
+    fs, es = [], []
     aseg = {s.name: s for s in aplan.plan.segments}
     # a link's ω from the relative velocity its own group's equations give (ω₃ = V_BC/l_CB of the
     # rocker of group (2,3)), not from a point of a later group's pair found from it (V_DC)
@@ -586,7 +605,7 @@ def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
         tn = aseg.get(f"a^τ_{q_}{r_}")
         if tn is not None:
             a_read = drawn(tn.length, aplan.mu)
-            fs.append(Formula(rf"\varepsilon_{{{link.name}}} = \frac{{a^{{\tau}}_{{{Q}{R}}}}}{{l_{{{R}{Q}}}}}",
+            es.append(Formula(rf"\varepsilon_{{{link.name}}} = \frac{{a^{{\tau}}_{{{Q}{R}}}}}{{l_{{{R}{Q}}}}}",
                               rf"\frac{{{tex_num(a_read, sig=4)}}}{{{tex_num(lq, digits=4)}}}",
                               tex_num(a_read / lq, sig=4, unit="рад/с²")))
     # only what the mechanism has: a slider on the frame, a stone on a moving guide (Coriolis)
@@ -600,10 +619,13 @@ def _plan_formulas(sec: Section, study, row, vplan, aplan) -> None:
     if any(not _rotates(study, j.links[0]) for j in moving):
         kinds.append("для ползуна на поступательно движущейся направляющей — переносное и относительное "
                      "движение без кориолисова ускорения")
+    for j in moving:                 # a^k = 2·ω·V_r: the stone's V_r as read off the velocity plan
+        if _rotates(study, j.links[0]) and f"vs_{j.name}" in vrow:
+            Ps, Pg = vectors._pt(j.point, j.links[1]), vectors._pt(j.point, j.links[0])
+            fs.append(Formula(rf"V_{{{Ps}{Pg}}}", None, tex_num(abs(float(vrow[f"vs_{j.name}"])), sig=4, unit="м/с")))
     sec.paragraph("Скорости и ускорения определены построением планов по векторным уравнениям групп Ассура ("
-                  + "; ".join(kinds) + ")." + (" По отрезкам планов найдены угловые скорости и ускорения звеньев:" if fs else ""))
-    if fs:
-        sec.formula(*fs)
+                  + "; ".join(kinds) + ").")
+    return fs, es
 
 
 def _output_diagrams(s5: Section, study, out: tuple, fig_id: str, several: bool, main: bool) -> None:

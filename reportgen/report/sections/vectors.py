@@ -191,19 +191,27 @@ def _where(sec, notes: list) -> None:
         sec.paragraph(Markup("{}{}{}").format("где " if k == 0 else "", n, "." if k == len(notes) - 1 else ";"))
 
 
-def add(sec, study, row) -> None:
-    """Write the vector equations of every group of the mechanism into the section."""
+def add_velocities(sec, study, row) -> None:
+    """Write the velocity equations of every group of the mechanism into the section (the plan of
+    velocities is constructed, and the links' ω read off it, before any acceleration equation)."""
     sec.paragraph("Векторные уравнения скоростей и ускорений составлены для каждой структурной группы в "
                   "порядке присоединения; известные по величине и направлению векторы откладываются на "
                   "планах, неизвестные по величине находятся пересечением линий их направлений.")
+    _add(sec, study, row, "Скорости, {}:", 0)
+
+
+def add_accelerations(sec, study, row) -> None:
+    """Write the acceleration equations of every group into the section; ``row`` holds the ω and
+    relative velocities read off the velocity plan (``analysis.plans.read_velocities``)."""
+    _add(sec, study, row, "Ускорения, {}:", 2)
+
+
+def _add(sec, study, row, head: str, k: int) -> None:
+    """The equations (``k`` = 0: velocities, 2: accelerations) of each group with their «где»."""
     for g in study.structure.groups:
-        vf, vn, af, an = group_equations(study, row, g)
-        if not vf and not af:
+        eqs = group_equations(study, row, g)
+        if not eqs[0] and not eqs[2]:
             continue
-        title = g.title
-        sec.paragraph(Markup("Скорости, {}:").format(title))
-        sec.formula(*vf)
-        _where(sec, vn)
-        sec.paragraph(Markup("Ускорения, {}:").format(title))
-        sec.formula(*af)
-        _where(sec, an)
+        sec.paragraph(Markup(head).format(g.title))
+        sec.formula(*eqs[k])
+        _where(sec, eqs[k + 1])
