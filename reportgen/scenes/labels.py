@@ -359,7 +359,9 @@ class LabelPlacer:
             lead_px = max(LEADER_MM, it.reach_mm + REACH_LEAD_MM) * px_mm
             # the points the other labels name, near enough for one of its boxes to reach
             dist = np.hypot(*(anchors - ax0).T)
-            others = anchors[(dist > SAME_POINT_MM * px_mm) & (dist < (RADII_MM[-1] + 40.0) * px_mm)].tolist()
+            size = max(map(abs, extent.corners)) if extent.box is not None else 40.0 * px_mm
+            reach = RADII_MM[-1] * px_mm + size * math.sqrt(2) + clear
+            others = anchors[(dist > SAME_POINT_MM * px_mm) & (dist < reach)].tolist()
             best = None
             for k, (cx, cy) in enumerate(self._candidates(it, px_mm)):
                 r_mm = math.hypot(cx, cy) / px_mm
