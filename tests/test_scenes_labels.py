@@ -122,6 +122,40 @@ def test_placer_separates_coincident_labels():
     assert L.check_figure(fig) == []
 
 
+def test_placer_keeps_labels_off_other_arrows_tips():
+    """Forces drawn from one crowded point (the couples' forces at the pole of Жуковский's lever,
+    jaw crusher): two short arrows pointing up with tips 1,6 mm apart. The first label must not
+    be set over the other arrow's tip, else every leader of the second passes through it."""
+    from reportgen.scenes.draw import arrow
+    fig = mplstyle.figure(60, 40, layout=None)
+    ax = fig.add_axes((0, 0, 1, 1))
+    ax.set_xlim(0, 60)
+    ax.set_ylim(0, 40)
+    p = np.array([16.0, 24.0])
+    for end in ((17.0, 0.0), (60.0, 10.0), (55.0, 5.0)):       # the lever's lines from the pole
+        ax.plot([p[0], end[0]], [p[1], end[1]], color="k", lw=1.2)
+    ax.plot([p[0]], [p[1]], "o", ms=3, color="k")
+    pl = L.LabelPlacer(ax)
+    pl.add(*p, "$p$", prefer=(-1, -1))
+    tips = {"$G_{1}$": (0.0, -4.8), "$M″_{\\Phi 1}$": (2.39, 4.16), "$M″_{\\Phi 3}$": (0.91, 4.72),
+            "$M″_{\\Phi 5}$": (4.8, 0.3)}
+    for text, d in tips.items():
+        tip = p + d
+        arrow(ax, p[0], p[1], tip[0], tip[1], lw=1.1, head_mm=2.0, zorder=6)
+        pl.add(*tip, text, prefer=d)
+    pl.place()
+    assert L.check_figure(fig) == []
+    assert _placed_near(fig) == []
+    px_mm = fig.dpi / 25.4
+    for t in ax.texts:          # no label over another label's arrow tip
+        bb = t.get_window_extent(L._renderer(fig))
+        for d in tips.values():
+            x, y = ax.transData.transform(p + d)
+            if not np.allclose(t.anchor, p + d):
+                assert not (bb.x0 - 0.5 * px_mm < x < bb.x1 + 0.5 * px_mm
+                            and bb.y0 - 0.5 * px_mm < y < bb.y1 + 0.5 * px_mm), t.get_text()
+
+
 def test_gost_scales():
     assert gost_ratio(0.04) == "1:40" and gost_ratio(0.0025) == "1:2,5" and gost_ratio(0.0005) == "2:1"
     for extent in (0.05, 0.3, 0.9, 2.7, 11.0):

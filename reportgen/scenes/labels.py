@@ -24,6 +24,12 @@ own point than any other named point (more than ``OWN_APART_MM`` from it) by ``O
 (position numbers «1» and «3» side by side read as «13»). A candidate that breaks either is
 taken only when no other free of lines is; one nearer another point but farther than
 ``LEADER_MM`` from its own is given a leader (which tells whose it is) and costs ``STRAY_MM``.
+
+No label covers the point another label names (an arrow's tip among several drawn from one point,
+as the couples' forces at the pole of Жуковский's lever): its box keeps ``ANCHOR_CLEAR_MM`` from
+every other anchor farther than ``SAME_POINT_MM`` from its own, else it counts as crowded; a label
+set over the tip of another force would leave that force's label no place a leader can reach
+without passing through it.
 """
 from __future__ import annotations
 
@@ -50,6 +56,8 @@ PAD_PX = 1.0
 OWN_MARGIN_MM = 1.5
 OWN_APART_MM = 2.0
 HALO_PT = 2.5
+ANCHOR_CLEAR_MM = 0.5    # what a label keeps clear of the point another label names
+SAME_POINT_MM = 0.5      # anchors nearer than this are one point (their labels share it)
 LINE_TOL_MM = 0.3        # check_figure: a line within this of a label's glyph box edge only touches it
 
 
@@ -337,6 +345,8 @@ class LabelPlacer:
         hard = self.gap_mm * px_mm      # the placer's least gap between any two labels (a must)
         tol = (LINE_TOL_MM - 0.1) * px_mm + PAD_PX     # the box as check_figure reads it, less 0,1 mm
         out = []
+        anchors = self.ax.transData.transform(np.array([(o.x, o.y) for o in self.items]).reshape(-1, 2))
+        clear = ANCHOR_CLEAR_MM * px_mm
         leaders: list = []              # the leader lines drawn so far: x0, y0, x1, y1, then their box
         for it in self.items:
             kw = dict(fontsize=self.fontsize, ha="center", va="center", zorder=10)
@@ -347,6 +357,11 @@ class LabelPlacer:
             foreign = self._foreign(it, px_mm)
             gap = it.gap_mm * px_mm
             lead_px = max(LEADER_MM, it.reach_mm + REACH_LEAD_MM) * px_mm
+            # the points the other labels name, near enough for one of its boxes to reach
+            dist = np.hypot(*(anchors - ax0).T)
+            size = max(map(abs, extent.corners)) if extent.box is not None else 40.0 * px_mm
+            reach = RADII_MM[-1] * px_mm + size * math.sqrt(2) + clear
+            others = anchors[(dist > SAME_POINT_MM * px_mm) & (dist < reach)].tolist()
             best = None
             for k, (cx, cy) in enumerate(self._candidates(it, px_mm)):
                 r_mm = math.hypot(cx, cy) / px_mm
@@ -358,7 +373,9 @@ class LabelPlacer:
                           and bb.y0 >= max(frame.y0, figbox.y0) + 1 and bb.y1 <= min(frame.y1, figbox.y1) - 1)
                 if not inside or any(_overlap(bb, o, hard) for o, _ in placed):
                     continue
-                crowded = any(_overlap(bb, o, max(gap, g)) for o, g in placed)
+                crowded = (any(_overlap(bb, o, max(gap, g)) for o, g in placed)
+                           or any(bb.x0 - clear < x < bb.x1 + clear and bb.y0 - clear < y < bb.y1 + clear
+                                  for x, y in others))
                 # nearer another named point than its own (by the margin): reads as that point's
                 centre = ((bb.x0 + bb.x1) / 2, (bb.y0 + bb.y1) / 2)
                 own = math.hypot(centre[0] - ax0[0], centre[1] - ax0[1])
