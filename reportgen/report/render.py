@@ -1141,7 +1141,8 @@ _ROW_ANCHOR = re.compile(r"^(.+)__r(\d+)$")
 _SPLIT_MEMO: dict[str, dict[str, list[int]]] = {}  # sha256 of the unsplit print HTML -> splits
 
 
-_SPLIT_CACHE_VERSION = 4  # 2: only the split points of the passes from none are remembered; 4: figure entries
+_SPLIT_CACHE_VERSION = 5  # 2: only the split points of the passes from none are remembered; 4: figure entries;
+# 5: the canonical (greedy, document-order) split points of _greedy_step
 
 
 _DATA_SVG = re.compile(r"data:image/svg\+xml;base64,([A-Za-z0-9+/=]+)")
@@ -1251,24 +1252,28 @@ def _start_splits(html: str) -> tuple[str, str, dict[str, list[int]], str]:
     return key, shape, guess or {}, "guess" if guess else ""
 
 
-def _start_holds(document, splits: dict[str, list[int]], start: str):
-    """The split points to keep when the layout made from a remembered ``start`` is the one the
-    passes from none give (see :func:`_start_splits`), else ``None``."""
+def _next_pass(document, splits: dict[str, list[int]], start: str, state: dict):
+    """``(split points of the next pass or None when these are final, start)`` after a layout
+    made with ``splits``. A ``start`` "known" (remembered for this very HTML, written only by
+    the canonical passes) is kept when no rule asks for a change (:func:`_greedy_step`), else
+    dropped (the passes start from none: a pass lost, never a different page). Otherwise the
+    fast passes (:func:`_settle_step`) go on, a guess (``start`` "guess") being their start."""
     if start == "known":
-        return {k: list(v) for k, v in splits.items()} if _next_splits(document, splits) is None else None
-    return _cold_split_layout(document, splits)
+        if _greedy_step(document, splits) is None:
+            return None, start
+        state.clear()
+        return {}, ""
+    return _settle_step(document, splits, state), start
 
 
-def _remember_result(key: str, shape: str, splits: dict[str, list[int]], start: str,
-                     guessable: bool) -> None:
-    """Remember the split points the passes from none gave (or a start proved equal to them)
-    under the exact key, and under the shape key when a similar HTML may take them as a guess
-    (:func:`_cold_split_layout` proved them for this one: others would only cost a pass)."""
+def _remember_result(key: str, shape: str, splits: dict[str, list[int]], start: str) -> None:
+    """Remember the canonical split points under the exact key, and under the shape key as a
+    guess for a similar HTML (checked there by :func:`_settle_step`, so a guess only saves
+    passes)."""
     if not splits or start == "known":
         return
     _remember_splits(key, splits)
-    if guessable:
-        _remember_splits(shape, splits)
+    _remember_splits(shape, splits)
 
 
 def _named_rows(page) -> dict[str, tuple[float, float, float, float]]:
@@ -1387,55 +1392,60 @@ def _next_splits(document, splits: dict[str, list[int]],
     result = {k: list(v) for k, v in splits.items()}
     changed = False
     for tid, where in rows.items():
-        n = max(where) + 1
-        lead = [0] if 0 in splits.get(tid, ()) else []
-        cuts = sorted(c for c in set(splits.get(tid, ())) if 0 < c < n)
-
-        def page_starts(a: int, b: int) -> list[int]:
-            return [r for r in range(a + 1, b)
-                    if r in where and (r - 1) in where and where[r] != where[r - 1]]
-
-        if not cuts:
-            starts = page_starts(0, n)
-            if not starts:
-                continue
-            if starts[0] < min_rows and not lead:   # (a table of at most min_rows rows is never cut)
-                if changed:
-                    # an earlier table changed in this pass, so where this one starts is not
-                    # known yet: moving it to a new page now may leave a page half empty
-                    # (decided in the next pass)
-                    continue
-                result[tid] = [0]  # too few rows would stay: start on a new page
-            else:
-                result[tid] = lead + _tidy_cuts(starts, n, min_rows)
+        new = _table_step(where, boxes.get(tid, {}), bottoms, splits.get(tid, ()), changed, min_rows)
+        if new is not None:
+            result[tid] = new
             changed = True
-            continue
-        early = _premature_cut(cuts, where, boxes.get(tid, {}), bottoms, min_rows)
-        if early is not None:
-            result[tid] = lead + cuts[:early]
-            changed = True
-            continue
-        bounds = [0] + cuts + [n]
-        for k in range(len(bounds) - 1):
-            a, b = bounds[k], bounds[k + 1]
-            first_page = where.get(a)
-            overflow = next((r for r in range(a + 1, b) if where.get(r) != first_page), None)
-            if overflow is None:
-                continue
-            if b < n:  # b is a split point: move it and the later ones up
-                delta = b - overflow
-                new = cuts[:k] + [overflow] + [c - delta for c in cuts[k + 1:]]
-            else:  # the last part overflowed: cut it at each of its later pages
-                new = cuts + (page_starts(a, n) or [overflow])
-            new = sorted(c for c in set(new) if 0 < c < n)
-            result[tid] = lead + _tidy_cuts(new, n, min_rows)
-            changed = True
-            break
     # a figure above every changed table is placed in the same pass (_figure_fixes)
     first = min((rows[t][0] for t in rows if result.get(t) != splits.get(t) and 0 in rows[t]),
                 default=len(document.pages))
     fixes = _figure_fixes(document, splits, first)
     return {**result, **fixes} if (changed or fixes) else None
+
+
+def _table_step(where: dict[int, int], boxes: dict[int, tuple], bottoms: list, given,
+                changed: bool = False, min_rows: int = MIN_PART_ROWS) -> list[int] | None:
+    """The new entry of one table by the rules of :func:`_next_splits` (``where``: row -> page,
+    ``boxes``: row -> (top, bottom) of the layout made with the entry ``given``), or ``None``
+    when the rules leave it as it is. ``changed``: an earlier table changed in the same pass."""
+    n = max(where) + 1
+    lead = [0] if 0 in given else []
+    cuts = sorted(c for c in set(given) if 0 < c < n)
+
+    def page_starts(a: int, b: int) -> list[int]:
+        return [r for r in range(a + 1, b)
+                if r in where and (r - 1) in where and where[r] != where[r - 1]]
+
+    if not cuts:
+        starts = page_starts(0, n)
+        if not starts:
+            return None
+        if starts[0] < min_rows and not lead:   # (a table of at most min_rows rows is never cut)
+            if changed:
+                # an earlier table changed in this pass, so where this one starts is not
+                # known yet: moving it to a new page now may leave a page half empty
+                # (decided in the next pass)
+                return None
+            return [0]  # too few rows would stay: start on a new page
+        return lead + _tidy_cuts(starts, n, min_rows)
+    early = _premature_cut(cuts, where, boxes, bottoms, min_rows)
+    if early is not None:
+        return lead + cuts[:early]
+    bounds = [0] + cuts + [n]
+    for k in range(len(bounds) - 1):
+        a, b = bounds[k], bounds[k + 1]
+        first_page = where.get(a)
+        overflow = next((r for r in range(a + 1, b) if where.get(r) != first_page), None)
+        if overflow is None:
+            continue
+        if b < n:  # b is a split point: move it and the later ones up
+            delta = b - overflow
+            new = cuts[:k] + [overflow] + [c - delta for c in cuts[k + 1:]]
+        else:  # the last part overflowed: cut it at each of its later pages
+            new = cuts + (page_starts(a, n) or [overflow])
+        new = sorted(c for c in set(new) if 0 < c < n)
+        return lead + _tidy_cuts(new, n, min_rows)
+    return None
 
 
 def split_target(key: str) -> str:
@@ -1561,141 +1571,389 @@ def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = Non
     entry is kept by the later passes), so the passes end."""
     bottoms = _content_bottoms(document)
     for i in range(1, min(len(document.pages), len(document.pages) if upto is None else upto)):
-        page, before = document.pages[i], document.pages[i - 1]
-        flow, prev_flow = _flow_box(page), _flow_box(before)
-        if flow is None or prev_flow is None or bottoms[i - 1] is None or bottoms[i] is None:
-            continue
-        if before.width > before.height:
-            continue  # a landscape page holds one wide figure
-        land = page.width > page.height       # a wide figure on a landscape page of its own
-        box = page._page_box
-        top = box.content_box_y()
-        fig = next((b for b in flow.descendants() if getattr(b, "element_tag", None) == "figure"), None)
-        if fig is None or fig.position_y > top + 0.5:
-            continue  # no figure at the top of the page
-        fid = fig.element.get("id") or ""
-        if land != ("landscape" in (fig.element.get("class") or "")) or FIGURE_KEY + fid in splits or not fid:
-            continue
-        room = bottoms[i - 1] - _ink_bottom(prev_flow)
-        height = bottoms[i - 1] - before._page_box.content_box_y()
-        if room <= FIGURE_ROOM * height:
-            continue  # the page is at least half full (ГОСТ 7.32 layout asks no more)
-        margins = float(fig.style["margin_top"].value) + float(fig.style["margin_bottom"].value)
-        img = next((b for b in fig.descendants() if getattr(b, "element_tag", None) == "img"), None)
-        if img is None:
-            continue
-        h_img = img.margin_height()
-        rest = fig.border_height() - h_img + margins
-        scale = (room - rest - FIGURE_SLACK) / h_img
-        if scale >= MIN_FIGURE_SCALE and not land:
-            return {FIGURE_KEY + fid: [0, min(999, int(scale * 1000))]}
-        parent = _parent_of(flow, fig)
-        if parent is None:
-            continue
-        line = float(fig.style["font_size"]) * 1.5
-        units = _text_units(*_blocks_after(document, i, fig, parent))
-        moved, used = 0, 0.0
-        k = 0
-        while k < len(units) and units[k][3] and used + units[k][1] <= room - FIGURE_SLACK:
-            moved += units[k][0]
-            used += units[k][1]
-            k += 1
-        if k < len(units) and room - used > height / 2:
-            n, h, breakable, whole = units[k]
-            # what stays of it on the next page, then the figure (three lines spare for the
-            # orphans and widows of the break); a landscape figure has a page of its own
-            if breakable and whole and (land or (h - (room - used)) + rest + h_img + 3 * line <= height):
-                moved += n
-        if moved:
-            return {FIGURE_KEY + fid: [moved, 1000]}
+        fid, fix = _figure_fix_at(document, i, bottoms, splits)
+        if fix:
+            return fix
     return {}
+
+
+def _figure_fix_at(document, i: int, bottoms: list, splits: dict) -> tuple[str | None, dict]:
+    """The rule of :func:`_figure_fixes` at page ``i``: ``(figure id, entry)`` when a figure without
+    an entry stands at the top of page ``i`` after a page less than half full (the rule decides
+    it: ``entry`` is ``{}`` when neither drawing it smaller nor moving text fits), else
+    ``(None, {})``. What decides it: the page before, the figure, and the blocks after it in its
+    section on pages ``i`` to ``i +`` :data:`FIGURE_LOOKAHEAD` (and which of them go on further)."""
+    page, before = document.pages[i], document.pages[i - 1]
+    flow, prev_flow = _flow_box(page), _flow_box(before)
+    if flow is None or prev_flow is None or bottoms[i - 1] is None or bottoms[i] is None:
+        return None, {}
+    if before.width > before.height:
+        return None, {}  # a landscape page holds one wide figure
+    land = page.width > page.height       # a wide figure on a landscape page of its own
+    box = page._page_box
+    top = box.content_box_y()
+    fig = next((b for b in flow.descendants() if getattr(b, "element_tag", None) == "figure"), None)
+    if fig is None or fig.position_y > top + 0.5:
+        return None, {}  # no figure at the top of the page
+    fid = fig.element.get("id") or ""
+    if land != ("landscape" in (fig.element.get("class") or "")) or FIGURE_KEY + fid in splits or not fid:
+        return None, {}
+    room = bottoms[i - 1] - _ink_bottom(prev_flow)
+    height = bottoms[i - 1] - before._page_box.content_box_y()
+    if room <= FIGURE_ROOM * height:
+        return None, {}  # the page is at least half full (ГОСТ 7.32 layout asks no more)
+    margins = float(fig.style["margin_top"].value) + float(fig.style["margin_bottom"].value)
+    img = next((b for b in fig.descendants() if getattr(b, "element_tag", None) == "img"), None)
+    if img is None:
+        return fid, {}
+    h_img = img.margin_height()
+    rest = fig.border_height() - h_img + margins
+    scale = (room - rest - FIGURE_SLACK) / h_img
+    if scale >= MIN_FIGURE_SCALE and not land:
+        return fid, {FIGURE_KEY + fid: [0, min(999, int(scale * 1000))]}
+    parent = _parent_of(flow, fig)
+    if parent is None:
+        return fid, {}
+    line = float(fig.style["font_size"]) * 1.5
+    units = _text_units(*_blocks_after(document, i, fig, parent))
+    moved, used = 0, 0.0
+    k = 0
+    while k < len(units) and units[k][3] and used + units[k][1] <= room - FIGURE_SLACK:
+        moved += units[k][0]
+        used += units[k][1]
+        k += 1
+    if k < len(units) and room - used > height / 2:
+        n, h, breakable, whole = units[k]
+        # what stays of it on the next page, then the figure (three lines spare for the
+        # orphans and widows of the break); a landscape figure has a page of its own
+        if breakable and whole and (land or (h - (room - used)) + rest + h_img + 3 * line <= height):
+            moved += n
+    return fid, ({FIGURE_KEY + fid: [moved, 1000]} if moved else {})
 
 
 SPLIT_EPS = 0.01  # CSS px: heights equal, and a row not fitting, only beyond this
 
 
-def _cold_split_layout(document, splits: dict[str, list[int]],
-                       min_rows: int = MIN_PART_ROWS) -> dict[str, list[int]] | None:
-    """The split points of ``document`` (laid out with ``splits``, a guess) when they are
-    provably those the passes from no split points converge to, else ``None`` (the guess is
-    then dropped and the passes start from none: a guess costs passes, never a page).
-
-    The passes from none (:func:`_next_splits`): pass 1 lays every table out whole and cuts it
-    at the first row of each later page (WeasyPrint repeats the whole ``<thead>``, the table's
-    own caption included, at the top of those pages); pass 2 lays out those parts. Pass 2 gives
-    the document of ``splits`` exactly, and stops there, when:
-
-    1. ``document`` is a fixed point: ``_next_splits(document, splits)`` is ``None`` (no part
-       spans two pages, no cut leaves a page largely empty);
-    2. no table starts on a new page (split point 0) and every split table keeps at least
-       ``min_rows`` rows in its first and in its last part: then pass 1 takes neither the
-       «start on a new page» branch nor :func:`_tidy_cuts` (which make a cold cut loose), and
-       the table has more than :data:`LEAD_TABLE_ROWS` rows, so the paragraph before it is
-       the same in both (``p.lead`` of the template);
-    3. every continuation part starts as a whole table's repeated header does: its first row
-       lies as far below the page's content top as the table's first row lies below the table
-       (the «Продолжение таблицы N» caption as high as the table's own caption): the rows of
-       a page are where pass 1 puts them;
-    4. every cut is tight: the row at a cut, put right under the row before it (border
-       spacing 0, borders inside the cells), would end below that page's content bottom, so
-       pass 1 could not have kept it on that page (WeasyPrint moves a row that ends lower).
-
-    Induction on the pages: before a table's first page both documents are the same HTML laid
-    out from the same place; on a split table's pages the rows are at the same places (3, and
-    a row's height depends neither on its page nor on the rows that share its part: the
-    assumption every pass makes; WeasyPrint's automatic column widths come from the rows of
-    the part, so a header wrapping otherwise in a part fails 3, but a whole table whose
-    columns differ from those of every part is not seen here), each page
-    holds in pass 1 the rows the part holds (they fit there, and the next does not by 4), so
-    pass 1's cuts are the guessed ones (2) and the table ends at the same place; an unsplit
-    table fits its page in both. So pass 1 cuts at ``splits``, pass 2 renders the same HTML
-    and, by 1, is the last. A layout failing any condition may still be the cold one (a
-    two-line caption, a table moved to a new page): it is then made again from no split
-    points. Returns the split points in the form the passes give (tables with cuts only)."""
-    if _next_splits(document, splits, min_rows) is not None:
+def _norm(key: str, entry) -> list[int] | None:
+    """An entry in the form the rules compare: a table's split points sorted without repeats, a
+    figure's entry as it is; ``None`` for no entry (an empty table entry lays out as none)."""
+    if not entry:
         return None
-    if any(k.startswith(FIGURE_KEY) for k in splits):
-        return None  # a figure placed by a later pass (_figure_fixes): not what pass 2 gives
+    return list(entry) if key.startswith(FIGURE_KEY) else sorted(set(int(c) for c in entry))
+
+
+def _points(document, rows: dict, boxes: dict) -> list[tuple[int, float, str]]:
+    """The decision points of a laid-out document in document order, ``(page, y, key)``: every
+    table with named rows (key: its id; where its first row is) and every figure with an id
+    (key: :data:`FIGURE_KEY` + id; where its box is). A decision about one of them changes
+    the HTML from that element on, never before it."""
+    out = []
+    for tid, where in rows.items():
+        first = min(where, default=None)
+        if first is not None:
+            out.append((where[first], boxes.get(tid, {}).get(first, (0.0,))[0], tid))
+    seen = set()
+    for i, page in enumerate(document.pages):
+        flow = _flow_box(page)
+        if flow is None:
+            continue
+        for b in flow.descendants():
+            if getattr(b, "element_tag", None) == "figure":
+                fid = b.element.get("id") if b.element is not None else None
+                if fid and fid not in seen:
+                    seen.add(fid)
+                    out.append((i, b.position_y, FIGURE_KEY + fid))
+    return sorted(out)
+
+
+def _greedy_step(document, splits: dict[str, list[int]],
+                 min_rows: int = MIN_PART_ROWS) -> dict[str, list[int]] | None:
+    """One pass of the canonical split rule, literally (the reference the fast passes of
+    :func:`_settle_step` are checked against, tests/test_split_greedy.py): the first decision
+    point in document order (:func:`_points`) where a rule asks for a change gets it, and only
+    it; ``None`` when no rule asks for anything. The rules: a table's (:func:`_table_step`,
+    as an only table changing) and a figure's without an entry (:func:`_figure_fix_at`).
+
+    The passes from none, each with this step, define the split points of an HTML (the
+    *canonical* ones): every decision is made on the layout where every earlier one is made
+    and every later one not (later tables whole, later figures unmoved), because a decision
+    changes the layout only from its own element on and the earlier points are left as they
+    are once no rule asks anything of them."""
     rows, boxes = _page_rows(document, with_boxes=True)
-    tops, bottoms = [], _content_bottoms(document)
+    bottoms = _content_bottoms(document)
+    for page, _y, key in _points(document, rows, boxes):
+        if key.startswith(FIGURE_KEY):
+            if key in splits or page == 0:
+                continue
+            fid, fix = _figure_fix_at(document, page, bottoms, splits)
+            if fix and FIGURE_KEY + fid == key:
+                return {**{k: list(v) for k, v in splits.items()}, **fix}
+            continue
+        new = _table_step(rows[key], boxes.get(key, {}), bottoms, splits.get(key, ()), False, min_rows)
+        if new is not None:
+            return {**{k: list(v) for k, v in splits.items()}, key: new}
+    return None
+
+
+_WHY: list | None = None  # the tests' and bench's record of why a table was not decided
+
+
+def _why(verdict, where: int):
+    if _WHY is not None:
+        _WHY.append(where)
+    return verdict
+
+
+SIM_EPS = 0.05  # CSS px: a row of the model where the layout has it
+SIM_MARGIN = SPLIT_EPS  # CSS px: a row of the model ending this close to a page bottom is not decided by it
+
+
+def _uniform(values: list, pages) -> float | None:
+    got = {round(values[p], 3) for p in pages if p < len(values) and values[p] is not None}
+    return got.pop() if len(got) == 1 else None
+
+
+def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float | None,
+                   tops: list, bottoms: list, cur: list[int] | None, ink_before: float | None,
+                   min_rows: int = MIN_PART_ROWS) -> tuple[str, list[int] | None]:
+    """Whether the entry ``cur`` of a table is the one the canonical passes give, read from ONE
+    layout made with it: ``("ok", None)``, ``("fix", entry)`` (the canonical entry, when it is
+    another) or ``("unknown", None)``.
+
+    The table's layout in the passes is modelled from this one: every row keeps its height (the
+    assumption every pass makes: borders inside the cells, a row's height depends neither on
+    its page nor on the rows sharing its part; WeasyPrint's automatic column widths come from
+    the rows of a part, so a header wrapping otherwise in a part is caught only where it shows in
+    this layout); a part's rows follow each other from its first, which stands ``head`` below
+    where the part starts (the table's caption row and column header, repeated whole on each
+    later page of a whole table or of the first part; the «Продолжение таблицы» header ``cont``
+    of a continuation part, starting a page); a row that would end below the page's content
+    bottom starts the next page under the repeated header. ``head`` is read here; ``cont`` only
+    where this layout has a continuation part; the page geometry must be the same on the
+    table's pages. The table starts where its first row is here, unless this entry starts it on
+    a new page (split point 0): then where it would start is bounded by the text before it
+    (``ink_before``: the bottom of the ink of the page before), and the first rule of the passes
+    (start on a new page when fewer than ``min_rows`` rows would stay) is decided only when the
+    bound decides it.
+
+    The model is first checked against this layout (every row of ``cur`` on its page and at its
+    place within :data:`SIM_EPS`), then the passes from none are run on it with
+    :func:`_table_step` (the same rules, an only table changing). Unknown when a quantity is
+    missing, the model does not match, or a row ends within :data:`SIM_MARGIN` of a page bottom
+    in a modelled layout (too close to say which page WeasyPrint gives it)."""
+    unknown = ("unknown", None)
+    n = max(where) + 1
+    if set(where) != set(range(n)) or set(rb) != set(range(n)) or table_top is None:
+        return _why(unknown, 31)
+    pages = set(where.values())
+    top, bottom = _uniform(tops, pages), _uniform(bottoms, pages)
+    if top is None or bottom is None:
+        return _why(unknown, 35)
+    h = [rb[r][1] - rb[r][0] for r in range(n)]
+    head = rb[0][0] - table_top
+    lead = bool(cur) and 0 in cur
+    cuts = [c for c in (cur or ()) if 0 < c < n]
+    conts = {round(rb[c][0] - top, 3) for c in cuts if where[c] != where[c - 1]}
+    if len(conts) > 1:
+        return _why(unknown, 42)
+    cont = conts.pop() if conts else None
+    y0 = None if lead else rb[0][0]
+    lead_off = table_top - top  # the table's own top margin, kept after the forced break of split point 0
+
+    def lay(entry):
+        lead_, cuts_ = bool(entry) and 0 in entry, [c for c in (entry or ()) if 0 < c < n]
+        w, b = {}, {}
+        page = 0
+        for j, (a, z) in enumerate(zip([0] + cuts_, cuts_ + [n])):
+            if j == 0 and not lead_:
+                if y0 is None:
+                    return None
+                y, rep = y0, head
+            elif j == 0:
+                page, y, rep = 1, top + lead_off + head, head
+            else:
+                if cont is None:
+                    return None
+                page, y, rep = page + 1, top + cont, cont
+            for r in range(a, z):
+                if abs(y + h[r] - bottom) < SIM_MARGIN:
+                    return None
+                if y + h[r] > bottom:
+                    if r == a:
+                        return None  # not even one row where the part starts: not modelled
+                    page, y = page + 1, top + rep
+                    if y + h[r] > bottom - SIM_MARGIN:
+                        return None
+                w[r], b[r] = page, (y, y + h[r])
+                y += h[r]
+        return w, b
+
+    base = where[0] - (1 if lead else 0)
+    here = lay(cur)
+    if here is None or any(base + here[0][r] != where[r] or abs(here[1][r][0] - rb[r][0]) > SIM_EPS
+                           for r in range(n)):
+        return _why(unknown, 78)
+    sim_bottoms = [bottom] * (n + 3)
+    entry = None
+    if lead:
+        # the passes' first step, on the whole table after the text before it: [0] when rows
+        # 0 … min_rows−1 cannot all stay on that page and row 0 can
+        if ink_before is None or n <= LEAD_TABLE_ROWS or lead_off < 0:
+            return _why(unknown, 85)
+        # the table's caption starts under the text before it, the collapsed margins apart: at
+        # most the largest vertical margin of the note's body (a heading's, line_height em),
+        # twice the table's own
+        low = ink_before + head
+        high = low + 2 * lead_off
+        if not (low + sum(h[:min_rows]) > bottom + SIM_MARGIN and high + h[0] < bottom - SIM_MARGIN):
+            return _why(unknown, 88)
+        entry = [0]
+    for _ in range(MAX_PASSES):
+        laid = lay(entry)
+        if laid is None:
+            return _why(unknown, 93)
+        new = _table_step(laid[0], laid[1], sim_bottoms, entry or [], False, min_rows)
+        if new is None:
+            break
+        entry = _norm("", new)
+    else:
+        return _why(unknown, 99)
+    return ("ok", None) if entry == cur else ("fix", entry)
+
+
+def _lookahead_clean(points, idx: int, splits: dict, last_page: int) -> list[str]:
+    """The later points with an entry whose element starts on a page up to ``last_page``."""
+    return [k for p, _y, k in points[idx + 1:] if p <= last_page and _norm(k, splits.get(k))]
+
+
+def _settle_step(document, splits: dict[str, list[int]], state: dict,
+                 min_rows: int = MIN_PART_ROWS) -> dict[str, list[int]] | None:
+    """The next split points of the fast passes, or ``None`` when ``splits`` (with which
+    ``document`` was laid out) are the canonical ones (:func:`_greedy_step`).
+
+    The decision points are walked in document order. A point is right when a rule proves it
+    from this layout: its layout here is that of the canonical passes (same HTML before it, by
+    induction over the points already found right), and
+
+    * a table: :func:`_table_verdict` runs the table's passes on a model of its rows read from
+      this layout (so a wrong guessed table is set right without a pass of its own); a table
+      without an entry that fits its page, or whose entry came by the literal rule on
+      layouts where it was the first point asking for a change (``state["literal"]``), is
+      checked by :func:`_table_step` directly;
+    * a figure without an entry: :func:`_figure_fix_at` does not trigger, or triggers and
+      decides when no later entry lies within its pages (the blocks it reads are then those of
+      the canonical layout); its entry then holds for the later passes (``state["proven"]``,
+      kept while nothing before it changes).
+
+    At the first point not proved right: its canonical entry when known (the later guesses
+    kept), else one literal step of its rule when its layout here is the canonical one up to
+    it, else the point is set back to none (a figure: with the later entries on its pages
+    held back, to be restored once it is decided), so that the next layout is. Later tables
+    without an entry that span pages get the cut of :func:`_table_step` as a guess (pass 1 of
+    a note guesses every table at once).
+
+    ``state`` is kept between the passes of one layout (plain data: it crosses processes)."""
+    proven = state.setdefault("proven", {})
+    held = state.setdefault("held", {})
+    rows, boxes = _page_rows(document, with_boxes=True)
+    bottoms = _content_bottoms(document)
+    tops = [b - getattr(getattr(p, "_page_box", None), "height", 0) if b is not None else None
+            for b, p in zip(bottoms, document.pages)]
     table_tops = {}
     for page in document.pages:
-        box = getattr(page, "_page_box", None)
-        try:
-            tops.append(box.content_box_y())
-        except (AttributeError, TypeError):
-            tops.append(None)
         for name, pos in page.anchors.items():
-            if name in splits and len(pos) >= 4:
+            if name in rows and len(pos) >= 4:
                 table_tops.setdefault(name, pos[1])
-    if any(0 in splits[tid] for tid in table_tops):
-        return None  # a table (rows or not) moved to a new page
-    out = {}
-    for tid, where in rows.items():
-        n = max(where) + 1
-        given = set(splits.get(tid, ()))
-        if 0 in given:
-            return None
-        cuts = sorted(c for c in given if 0 < c < n)
-        if not cuts:
+    points = _points(document, rows, boxes)
+
+    def out(new: dict, key: str, entry, guess_later: bool = True) -> dict:
+        for k in [k for k in proven if k not in done]:
+            proven.pop(k)
+        if entry:
+            new[key] = list(entry)
+        else:
+            new.pop(key, None)
+        if guess_later:
+            for _p, _y, k in points[idx + 1:]:
+                if not k.startswith(FIGURE_KEY) and not _norm(k, new.get(k)) and k not in held:
+                    guess = _table_step(rows[k], boxes.get(k, {}), bottoms, (), False, min_rows)
+                    if guess:
+                        new[k] = guess
+        return new
+
+    done: set = set()
+    for idx, (page, _y, key) in enumerate(points):
+        cur = _norm(key, splits.get(key))
+        new = {k: list(v) for k, v in splits.items()}
+        if key in proven and proven[key] == cur:
+            done.add(key)
             continue
-        rb = boxes.get(tid, {})
-        if (set(where) != set(range(n)) or set(rb) != set(range(n)) or n <= LEAD_TABLE_ROWS
-                or cuts[0] < min_rows or n - cuts[-1] < min_rows or tid not in table_tops):
-            return None
-        head = rb[0][0] - table_tops[tid]
-        for c in cuts:
-            page, before = where[c], where[c - 1]
-            top = tops[page] if page < len(tops) else None
-            bottom = bottoms[before] if before < len(bottoms) else None
-            if page != before + 1 or top is None or bottom is None:
-                return None
-            if abs(rb[c][0] - top - head) > SPLIT_EPS:
-                return None  # the continuation's header is not as high as the repeated one
-            if not rb[c - 1][1] + (rb[c][1] - rb[c][0]) > bottom + SPLIT_EPS:
-                return None  # the row would fit on the page before: pass 1 keeps it there
-        out[tid] = cuts
-    return out
+        if key.startswith(FIGURE_KEY):
+            if cur is not None:
+                # a guessed entry: set back to none, the later entries on its pages held back
+                state["literal"] = None
+                for k in _lookahead_clean(points, idx, splits, page + FIGURE_LOOKAHEAD + 2):
+                    held[k] = new.pop(k)
+                state["held_for"] = key
+                return out(new, key, None, guess_later=False)
+            fid, fix = _figure_fix_at(document, page, bottoms, splits) if page else (None, {})
+            if fid is None or FIGURE_KEY + fid != key:
+                decided = None          # the rule does not trigger here
+            else:
+                unclean = _lookahead_clean(points, idx, splits, page + FIGURE_LOOKAHEAD + 1)
+                if unclean:
+                    for k in unclean:
+                        held[k] = new.pop(k)
+                    state["held_for"] = key
+                    return out(new, key, None, guess_later=False)
+                decided = fix.get(key)
+            if decided:
+                proven[key] = list(decided)
+            if state.get("held_for") == key:
+                state["held_for"] = None
+                restored = {k: v for k, v in held.items()}
+                held.clear()
+                if restored or decided:
+                    new.update(restored)
+                    done.add(key)
+                    return out(new, key, decided, guess_later=False)
+            if decided:
+                done.add(key)
+                return out(new, key, decided)
+            done.add(key)
+            continue
+        where, rb = rows[key], boxes.get(key, {})
+        if cur is None:
+            step = _table_step(where, rb, bottoms, (), False, min_rows)
+            if step is None:
+                done.add(key)
+                continue
+            state["literal"] = key
+            return out(new, key, step)
+        p0 = where[min(where)]
+        ink = _ink_bottom(_flow_box(document.pages[p0 - 1])) if p0 > 0 and _flow_box(document.pages[p0 - 1]) else None
+        verdict, entry = _table_verdict(where, rb, table_tops.get(key), tops, bottoms, cur, ink, min_rows)
+        if verdict == "ok":
+            done.add(key)
+            continue
+        if verdict == "fix":
+            state["literal"] = None
+            return out(new, key, entry)
+        if state.get("literal") == key:
+            step = _table_step(where, rb, bottoms, cur, False, min_rows)
+            if step is None:
+                proven[key] = cur
+                done.add(key)
+                continue
+            return out(new, key, step)
+        state["literal"] = None
+        return out(new, key, None, guess_later=False)
+    if held:
+        new = {k: list(v) for k, v in splits.items()}
+        new.update(held)
+        held.clear()
+        return new
+    return None
 
 
 _IMAGE_CACHE: dict = {}
@@ -1761,6 +2019,7 @@ def _layout(report: Report, font_config):
     key = shape = None
     start = ""
     views = _views(report, for_print=True, splits=splits)
+    state: dict = {}  # of the fast passes (_settle_step)
     for i in range(MAX_PASSES):
         t0 = time.perf_counter()
         views.builder.resplit(splits)  # (numbering and rows do not depend on the split points)
@@ -1781,22 +2040,14 @@ def _layout(report: Report, font_config):
         stats.passes += 1
         stats.seconds_html += t1 - t0
         stats.seconds_layout += t2 - t1
-        if start:
-            held = _start_holds(document, splits, start)
-            if held is not None:
-                splits = held
-                break
-            splits, start = {}, ""  # dropped: the passes start from none
-            continue
-        new = _next_splits(document, splits)
+        new, start = _next_pass(document, splits, start, state)
         if new is None:
             break
         splits = new
     else:
         log.warning("Разбиение таблиц не сошлось за %d проходов", MAX_PASSES)
     if key is not None:
-        _remember_result(key, shape, splits, start,
-                         start == "guess" or _cold_split_layout(document, splits) is not None)
+        _remember_result(key, shape, splits, start)
     stats.pages = len(document.pages)
     stats.splits = splits
     return document, stats
