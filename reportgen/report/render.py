@@ -1485,8 +1485,9 @@ FIGURE_LOOKAHEAD = 2  # pages after a figure's whose text may flow before it
 
 def _blocks_after(document, i: int, fig, parent) -> tuple[list, set]:
     """The blocks after figure box ``fig`` (a child of ``parent``, on page ``i``) in its section,
-    on that page and the next :data:`FIGURE_LOOKAHEAD`: ``[[element, tag, classes, height]]``
-    (the fragments of a block on several pages summed), and the elements (by ``id()``) that
+    on that page and the next :data:`FIGURE_LOOKAHEAD`: ``[[element, tag, classes, height, end]]``
+    (the fragments of a block on several pages summed; ``end``: the page and the bottom of its
+    last fragment), and the elements (by ``id()``) that
     have boxes further on (blocks not whole within these pages)."""
     out: list[list] = []
     last = min(len(document.pages) - 1, i + FIGURE_LOOKAHEAD)
@@ -1502,45 +1503,51 @@ def _blocks_after(document, i: int, fig, parent) -> tuple[list, set]:
             kids = frag.children
         for b in kids:
             el = getattr(b, "element", None)
+            end = (j, b.position_y + b.margin_height())
             if out and el is not None and out[-1][0] is el:
                 out[-1][3] += b.margin_height()
+                out[-1][4] = end
                 continue
             cls = (el.get("class") or "").split() if el is not None else []
-            out.append([el, getattr(b, "element_tag", None), cls, b.margin_height()])
+            out.append([el, getattr(b, "element_tag", None), cls, b.margin_height(), end])
     flow = _flow_box(document.pages[last + 1]) if last + 1 < len(document.pages) else None
     later = {id(b.element) for b in flow.descendants()
              if getattr(b, "element", None) is not None} if flow is not None else set()
     return out, later
 
 
-def _text_units(blocks, later: set) -> list[tuple[int, float, bool, bool]]:
+def _text_units(blocks, later: set) -> list[tuple]:
     """The blocks after a figure (:func:`_blocks_after`) as units that move together:
-    ``(elements, height, breakable, whole)``: a paragraph with the formulas it leads into, a
+    ``(elements, height, breakable, whole, end)``: a paragraph with the formulas it leads into, a
     table with the paragraph announcing it, a formula with its «где» lines. Stops at anything
     else (a heading, a figure). ``later``: the elements (by ``id()``) that go on further (a
     block not whole)."""
     units: list[list] = []
     lead = intro = False
-    for el, tag, cls, h in blocks:
+    for el, tag, cls, h, *where in blocks:
+        end = where[0] if where else None
         if (tag == "p" and "where-note" in cls) or (tag == "table" and "where" in cls):
             if not units:
                 break
             units[-1][0] += 1
             units[-1][1] += h
             units[-1][2] = False
+            units[-1][4] = end
         elif tag == "div" and "tbl-wrap" in cls and lead:
             units[-1][0] += 1
             units[-1][1] += h
+            units[-1][4] = end
             lead = False
         elif tag == "div" and "eq" in cls and intro:
             units[-1][0] += 1     # the formulas a paragraph leads into go with it
             units[-1][1] += h
             units[-1][2] = False
+            units[-1][4] = end
         elif tag == "div" and "eq" in cls:
-            units.append([1, h, False, True])
+            units.append([1, h, False, True, end])
             intro = True
         elif tag == "p" or (tag == "div" and "tbl-wrap" in cls):
-            units.append([1, h, True, True])
+            units.append([1, h, True, True, end])
             lead = tag == "p" and "lead" in cls
             intro = tag == "p"
         else:
@@ -1571,49 +1578,51 @@ def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = Non
     entry is kept by the later passes), so the passes end."""
     bottoms = _content_bottoms(document)
     for i in range(1, min(len(document.pages), len(document.pages) if upto is None else upto)):
-        fid, fix = _figure_fix_at(document, i, bottoms, splits)
+        fid, fix, _read = _figure_fix_at(document, i, bottoms, splits)
         if fix:
             return fix
     return {}
 
 
-def _figure_fix_at(document, i: int, bottoms: list, splits: dict) -> tuple[str | None, dict]:
+def _figure_fix_at(document, i: int, bottoms: list, splits: dict) -> tuple[str | None, dict, tuple]:
     """The rule of :func:`_figure_fixes` at page ``i``: ``(figure id, entry)`` when a figure without
     an entry stands at the top of page ``i`` after a page less than half full (the rule decides
     it: ``entry`` is ``{}`` when neither drawing it smaller nor moving text fits), else
-    ``(None, {})``. What decides it: the page before, the figure, and the blocks after it in its
-    section on pages ``i`` to ``i +`` :data:`FIGURE_LOOKAHEAD` (and which of them go on further)."""
+    ``(None, {})``; third, ``(page, y)`` up to which the decision read the layout after the figure
+    (the end of the last block it weighed). What decides it: the page before, the figure, and the
+    blocks after it in its section on pages ``i`` to ``i +`` :data:`FIGURE_LOOKAHEAD` (and which
+    of them go on further)."""
     page, before = document.pages[i], document.pages[i - 1]
     flow, prev_flow = _flow_box(page), _flow_box(before)
     if flow is None or prev_flow is None or bottoms[i - 1] is None or bottoms[i] is None:
-        return None, {}
+        return None, {}, (i, 0.0)
     if before.width > before.height:
-        return None, {}  # a landscape page holds one wide figure
+        return None, {}, (i, 0.0)  # a landscape page holds one wide figure
     land = page.width > page.height       # a wide figure on a landscape page of its own
     box = page._page_box
     top = box.content_box_y()
     fig = next((b for b in flow.descendants() if getattr(b, "element_tag", None) == "figure"), None)
     if fig is None or fig.position_y > top + 0.5:
-        return None, {}  # no figure at the top of the page
+        return None, {}, (i, 0.0)  # no figure at the top of the page
     fid = fig.element.get("id") or ""
     if land != ("landscape" in (fig.element.get("class") or "")) or FIGURE_KEY + fid in splits or not fid:
-        return None, {}
+        return None, {}, (i, 0.0)
     room = bottoms[i - 1] - _ink_bottom(prev_flow)
     height = bottoms[i - 1] - before._page_box.content_box_y()
     if room <= FIGURE_ROOM * height:
-        return None, {}  # the page is at least half full (ГОСТ 7.32 layout asks no more)
+        return None, {}, (i, 0.0)  # the page is at least half full (ГОСТ 7.32 layout asks no more)
     margins = float(fig.style["margin_top"].value) + float(fig.style["margin_bottom"].value)
     img = next((b for b in fig.descendants() if getattr(b, "element_tag", None) == "img"), None)
     if img is None:
-        return fid, {}
+        return fid, {}, (i, 0.0)
     h_img = img.margin_height()
     rest = fig.border_height() - h_img + margins
     scale = (room - rest - FIGURE_SLACK) / h_img
     if scale >= MIN_FIGURE_SCALE and not land:
-        return fid, {FIGURE_KEY + fid: [0, min(999, int(scale * 1000))]}
+        return fid, {FIGURE_KEY + fid: [0, min(999, int(scale * 1000))]}, (i, 0.0)
     parent = _parent_of(flow, fig)
     if parent is None:
-        return fid, {}
+        return fid, {}, (i, 0.0)
     line = float(fig.style["font_size"]) * 1.5
     units = _text_units(*_blocks_after(document, i, fig, parent))
     moved, used = 0, 0.0
@@ -1622,13 +1631,16 @@ def _figure_fix_at(document, i: int, bottoms: list, splits: dict) -> tuple[str |
         moved += units[k][0]
         used += units[k][1]
         k += 1
+    read = units[min(k, len(units) - 1)][4] if units else None
     if k < len(units) and room - used > height / 2:
-        n, h, breakable, whole = units[k]
+        n, h, breakable, whole = units[k][:4]
         # what stays of it on the next page, then the figure (three lines spare for the
         # orphans and widows of the break); a landscape figure has a page of its own
         if breakable and whole and (land or (h - (room - used)) + rest + h_img + 3 * line <= height):
             moved += n
-    return fid, ({FIGURE_KEY + fid: [moved, 1000]} if moved else {})
+    # (every block read when the text ran out before the room did: up to where _blocks_after looked)
+    read = read if k < len(units) and read is not None else (min(len(document.pages), i + FIGURE_LOOKAHEAD + 2), 0.0)
+    return fid, ({FIGURE_KEY + fid: [moved, 1000]} if moved else {}), read
 
 
 SPLIT_EPS = 0.01  # CSS px: heights equal, and a row not fitting, only beyond this
@@ -1685,7 +1697,7 @@ def _greedy_step(document, splits: dict[str, list[int]],
         if key.startswith(FIGURE_KEY):
             if key in splits or page == 0:
                 continue
-            fid, fix = _figure_fix_at(document, page, bottoms, splits)
+            fid, fix, _read = _figure_fix_at(document, page, bottoms, splits)
             if fix and FIGURE_KEY + fid == key:
                 return {**{k: list(v) for k, v in splits.items()}, **fix}
             continue
@@ -1801,10 +1813,10 @@ def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float
         if ink_before is None or n <= LEAD_TABLE_ROWS or lead_off < 0:
             return _why(unknown, 85)
         # the table's caption starts under the text before it, the collapsed margins apart: at
-        # most the largest vertical margin of the note's body (a heading's, line_height em),
-        # twice the table's own
-        low = ink_before + head
-        high = low + 2 * lead_off
+        # least the table's own top margin, at most the largest vertical margin of the note's
+        # body (a heading's, line_height em: twice the table's own)
+        low = ink_before + lead_off + head
+        high = ink_before + 2 * lead_off + head
         if not (low + sum(h[:min_rows]) > bottom + SIM_MARGIN and high + h[0] < bottom - SIM_MARGIN):
             return _why(unknown, 88)
         entry = [0]
@@ -1821,9 +1833,141 @@ def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float
     return ("ok", None) if entry == cur else ("fix", entry)
 
 
-def _lookahead_clean(points, idx: int, splits: dict, last_page: int) -> list[str]:
-    """The later points with an entry whose element starts on a page up to ``last_page``."""
-    return [k for p, _y, k in points[idx + 1:] if p <= last_page and _norm(k, splits.get(k))]
+def _section_blocks(document, parent_el) -> list[list]:
+    """The child blocks of element ``parent_el`` over all pages, in order:
+    ``[element, tag, classes, height, (first page, top), (last page, bottom)]`` (the fragments of a
+    block on several pages summed, as :func:`_blocks_after` does)."""
+    out: list[list] = []
+    for j, page in enumerate(document.pages):
+        flow = _flow_box(page)
+        frag = next((b for b in flow.descendants() if getattr(b, "element", None) is parent_el),
+                    None) if flow is not None else None
+        if frag is None:
+            continue
+        for b in frag.children:
+            el = getattr(b, "element", None)
+            low = b.position_y + b.margin_height()
+            if out and el is not None and out[-1][0] is el:
+                out[-1][3] += b.margin_height()
+                out[-1][5] = (j, low)
+                continue
+            cls = (el.get("class") or "").split() if el is not None else []
+            out.append([el, getattr(b, "element_tag", None), cls, b.margin_height(), (j, b.position_y), (j, low)])
+    return out
+
+
+FIGURE_MARGIN = 0.5  # CSS px: a figure quantity this close to what a rule compares it with is not decided
+
+
+def _figure_verdict(document, page: int, key: str, cur: list[int], bottoms: list):
+    """Whether the entry ``cur`` of a figure is the one its rule (:func:`_figure_fix_at`) gives on
+    the canonical layout, read from ONE layout made with it: ``("ok", None)``, ``("fix", entry or
+    None)`` or ``("unknown", None)``.
+
+    On the canonical layout the figure stands unmoved and at full size after the text before it
+    (the same HTML up to it). What the rule reads of it is read here: the text before it ends at
+    the same place (the ink above the first block moved before the figure, or above the figure
+    drawn smaller); the figure at full size is as high as here with its image ``1000 / scale``
+    times as high (its width is scaled, its caption spans the column); the blocks after it are
+    those moved before it here and those after it, each as high as here (whole blocks keep their
+    height; a block broken across pages is summed over its fragments, as the rule sums them).
+    A landscape figure stands on a page of its own (a forced break before and after it): the
+    page before it ends with the text before it, and the blocks after it start the next page.
+    Unknown where that does not hold or does not decide: the figure perhaps
+    fitting under the text before it at full size, the blocks weighed reaching further than
+    1.5 pages (where the rule's «goes on further» is not read here), or a comparison of the rule
+    within :data:`FIGURE_MARGIN`."""
+    unknown = ("unknown", None)
+    if len(cur) != 2 or (cur[0] and cur[1] != 1000) or not (cur[0] or cur[1] < 1000):
+        return _why(unknown, 1018)
+    moved_n, s = int(cur[0]), int(cur[1])
+    fid = key[len(FIGURE_KEY):]
+    flow = _flow_box(document.pages[page])
+    fig = next((b for b in flow.descendants() if getattr(b, "element_tag", None) == "figure"
+                and b.element is not None and b.element.get("id") == fid), None) if flow is not None else None
+    if fig is None:
+        return _why(unknown, 1025)
+    land = "landscape" in (fig.element.get("class") or "")  # on a landscape page of its own
+    if land and (s != 1000 or document.pages[page].width <= document.pages[page].height):
+        return _why(unknown, 1025)
+    img = next((b for b in fig.descendants() if getattr(b, "element_tag", None) == "img"), None)
+    parent = _parent_of(flow, fig)
+    if img is None or parent is None:
+        return _why(unknown, 1029)
+    blocks = _section_blocks(document, parent.element)
+    at = next((n for n, b in enumerate(blocks) if b[0] is fig.element), None)
+    if at is None or at < moved_n:
+        return _why(unknown, 1033)
+    moved = blocks[at - moved_n:at]
+    if any(b[1] not in ("p", "div", "table") for b in moved):
+        return _why(unknown, 1036)
+    first = moved[0] if moved else blocks[at]
+    p, y_cut = first[4]
+    if p >= len(document.pages) - 1 or bottoms[p] is None:
+        return _why(unknown, 1040)
+    before = document.pages[p]
+    if before.width > before.height or (not land and document.pages[p + 1].width > document.pages[p + 1].height):
+        return _why(unknown, 1043)
+    box = before._page_box
+    top, bottom = box.content_box_y(), bottoms[p]
+    from weasyprint.formatting_structure.boxes import LineBox, ReplacedBox, TableRowBox
+    ink = max((b.position_y + b.margin_height() for b in _flow_box(before).descendants()
+               if isinstance(b, (LineBox, ReplacedBox, TableRowBox))
+               and b.position_y + b.margin_height() <= y_cut + SPLIT_EPS), default=None)
+    if ink is None:
+        return _why(unknown, 1051)
+    margins = float(fig.style["margin_top"].value) + float(fig.style["margin_bottom"].value)
+    h_img = img.margin_height() * 1000 / s
+    rest = fig.border_height() - img.margin_height() + margins
+    room, height = bottom - ink, bottom - top
+
+    def close(a: float, b: float) -> bool:
+        return abs(a - b) < FIGURE_MARGIN
+
+    if close(room, FIGURE_ROOM * height):
+        return _why(unknown, 1061)
+    full = 0.0 if land else fig.border_height() - img.margin_height() + h_img
+    if not land and not ink + full > bottom + FIGURE_MARGIN:
+        return _why(unknown, 1064)  # at full size it might stand under the text before it
+    if room <= FIGURE_ROOM * height:
+        return "fix", None  # the page before is at least half full: no entry
+    scale = (room - rest - FIGURE_SLACK) / h_img
+    if close(scale * h_img, MIN_FIGURE_SCALE * h_img) or abs(scale * 1000 - round(scale * 1000)) < 1e-6:
+        return _why(unknown, 1069)
+    if scale >= MIN_FIGURE_SCALE and not land:
+        want = [0, min(999, int(scale * 1000))]
+        return ("ok", None) if want == cur else ("fix", want)
+    # the blocks after it on the canonical layout: those moved before it here, then the rest
+    after = [b[:4] for b in moved] + [b[:4] for b in blocks[at + 1:]]
+    units = _text_units(after, set())
+    line = float(fig.style["font_size"]) * 1.5
+    n_moved, used, k = 0, 0.0, 0
+    while k < len(units) and used + units[k][1] <= room - FIGURE_SLACK:
+        if close(used + units[k][1], room - FIGURE_SLACK):
+            return _why(unknown, 1080)
+        n_moved += units[k][0]
+        used += units[k][1]
+        k += 1
+    if k < len(units) and close(used + units[k][1], room - FIGURE_SLACK):
+        return _why(unknown, 1085)
+    if full + (0.0 if land else margins) + sum(u[1] for u in units[:k + 1]) >= 1.5 * height:
+        return _why(unknown, 1087)  # whether a block weighed goes on past the rule's pages is not read here
+    if k < len(units) and room - used > height / 2:
+        if close(room - used, height / 2):
+            return _why(unknown, 1090)
+        n, h, breakable = units[k][:3]
+        fits = (h - (room - used)) + rest + h_img + 3 * line
+        if breakable and not land and close(fits, height):
+            return _why(unknown, 1094)
+        if breakable and (land or fits <= height):
+            n_moved += n
+    want = [n_moved, 1000] if n_moved else None
+    return ("ok", None) if want == cur else ("fix", want)
+
+
+def _entries_before(points, idx: int, splits: dict, end: tuple) -> list[str]:
+    """The points after ``points[idx]`` with an entry that start before ``end`` (page, y)."""
+    return [k for p, y, k in points[idx + 1:] if (p, y) < tuple(end) and _norm(k, splits.get(k))]
 
 
 def _settle_step(document, splits: dict[str, list[int]], state: dict,
@@ -1890,17 +2034,27 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
             continue
         if key.startswith(FIGURE_KEY):
             if cur is not None:
-                # a guessed entry: set back to none, the later entries on its pages held back
+                verdict, want = _figure_verdict(document, page, key, cur, bottoms)
+                if verdict == "ok":
+                    proven[key] = cur
+                    done.add(key)
+                    continue
+                if verdict == "fix":
+                    if want:
+                        proven[key] = list(want)
+                    done.add(key)
+                    return out(new, key, want, guess_later=False)
+                # not decided here: set back to none, the later entries on its pages held back
                 state["literal"] = None
-                for k in _lookahead_clean(points, idx, splits, page + FIGURE_LOOKAHEAD + 2):
+                for k in _entries_before(points, idx, splits, (page + FIGURE_LOOKAHEAD + 2, 0.0)):
                     held[k] = new.pop(k)
                 state["held_for"] = key
                 return out(new, key, None, guess_later=False)
-            fid, fix = _figure_fix_at(document, page, bottoms, splits) if page else (None, {})
+            fid, fix, read = _figure_fix_at(document, page, bottoms, splits) if page else (None, {}, None)
             if fid is None or FIGURE_KEY + fid != key:
                 decided = None          # the rule does not trigger here
             else:
-                unclean = _lookahead_clean(points, idx, splits, page + FIGURE_LOOKAHEAD + 1)
+                unclean = _entries_before(points, idx, splits, read)
                 if unclean:
                     for k in unclean:
                         held[k] = new.pop(k)
