@@ -1727,10 +1727,11 @@ def _uniform(values: list, pages) -> float | None:
 
 def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float | None,
                    tops: list, bottoms: list, cur: list[int] | None, ink_before: float | None,
-                   min_rows: int = MIN_PART_ROWS) -> tuple[str, list[int] | None]:
+                   min_rows: int = MIN_PART_ROWS) -> tuple[str, list[int] | None, bool]:
     """Whether the entry ``cur`` of a table is the one the canonical passes give, read from ONE
-    layout made with it: ``("ok", None)``, ``("fix", entry)`` (the canonical entry, when it is
-    another) or ``("unknown", None)``.
+    layout made with it: ``("ok", None, True)``, ``("fix", entry, same_end)`` (the canonical entry,
+    when it is another; ``same_end``: the table would end where it ends here, so the layout after
+    it would not change) or ``("unknown", None, False)``.
 
     The table's layout in the passes is modelled from this one: every row keeps its height (the
     assumption every pass makes: borders inside the cells, a row's height depends neither on
@@ -1753,7 +1754,7 @@ def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float
     :func:`_table_step` (the same rules, an only table changing). Unknown when a quantity is
     missing, the model does not match, or a row ends within :data:`SIM_MARGIN` of a page bottom
     in a modelled layout (too close to say which page WeasyPrint gives it)."""
-    unknown = ("unknown", None)
+    unknown = ("unknown", None, False)
     n = max(where) + 1
     if set(where) != set(range(n)) or set(rb) != set(range(n)) or table_top is None:
         return _why(unknown, 31)
@@ -1830,7 +1831,12 @@ def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float
         entry = _norm("", new)
     else:
         return _why(unknown, 99)
-    return ("ok", None) if entry == cur else ("fix", entry)
+    if entry == cur:
+        return "ok", None, True
+    laid = lay(entry)
+    same_end = (laid is not None and n > LEAD_TABLE_ROWS and base + laid[0][n - 1] == where[n - 1]
+                and abs(laid[1][n - 1][1] - rb[n - 1][1]) <= SIM_EPS)
+    return "fix", entry, same_end
 
 
 def _section_blocks(document, parent_el) -> list[list]:
@@ -1975,26 +1981,27 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
     """The next split points of the fast passes, or ``None`` when ``splits`` (with which
     ``document`` was laid out) are the canonical ones (:func:`_greedy_step`).
 
-    The decision points are walked in document order. A point is right when a rule proves it
-    from this layout: its layout here is that of the canonical passes (same HTML before it, by
-    induction over the points already found right), and
+    The decision points are walked in document order. A point is right when it is proved from
+    this layout: its layout here is that of the canonical passes (the same HTML before it and,
+    by induction over the points already found right, the same place), and
 
-    * a table: :func:`_table_verdict` runs the table's passes on a model of its rows read from
-      this layout (so a wrong guessed table is set right without a pass of its own); a table
-      without an entry that fits its page, or whose entry came by the literal rule on
-      layouts where it was the first point asking for a change (``state["literal"]``), is
-      checked by :func:`_table_step` directly;
-    * a figure without an entry: :func:`_figure_fix_at` does not trigger, or triggers and
-      decides when no later entry lies within its pages (the blocks it reads are then those of
-      the canonical layout); its entry then holds for the later passes (``state["proven"]``,
-      kept while nothing before it changes).
+    * a table: :func:`_table_verdict` runs the table's own passes on a model of its rows read
+      from this layout; a table without an entry that fits its page, or whose entry came by the
+      literal rule (:func:`_table_step`) on layouts where it was the first point asking for a
+      change (``state["literal"]``), is checked by that rule directly;
+    * a figure without an entry: :func:`_figure_fix_at` does not trigger, or triggers and no
+      later entry lies before the end of what it read (the layout it read is then the
+      canonical one); a figure with one: :func:`_figure_verdict`. A decided figure's entry holds
+      for the later passes (``state["proven"]``, dropped when a point before it changes).
 
-    At the first point not proved right: its canonical entry when known (the later guesses
-    kept), else one literal step of its rule when its layout here is the canonical one up to
-    it, else the point is set back to none (a figure: with the later entries on its pages
-    held back, to be restored once it is decided), so that the next layout is. Later tables
-    without an entry that span pages get the cut of :func:`_table_step` as a guess (pass 1 of
-    a note guesses every table at once).
+    At the first point not proved right: its canonical entry when known (a table whose right
+    entry ends where this one does leaves the later layout as it is, so the walk goes on),
+    else one literal step of its rule when its layout here is the canonical one up to it, else
+    the point is set back to none (with the later entries before the end of what its rule
+    reads held back, restored once it is decided), so that the next layout is. The later
+    points are then guessed from this layout where they have no entry (a table spanning pages
+    cut where its pages start, a figure by its rule): the first pass of a note guesses every
+    decision at once, and a guess costs at most the pass that finds it wrong.
 
     ``state`` is kept between the passes of one layout (plain data: it crosses processes)."""
     proven = state.setdefault("proven", {})
@@ -2009,105 +2016,117 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
             if name in rows and len(pos) >= 4:
                 table_tops.setdefault(name, pos[1])
     points = _points(document, rows, boxes)
+    new = {k: list(v) for k, v in splits.items()}
+    changed = False
 
-    def out(new: dict, key: str, entry, guess_later: bool = True) -> dict:
-        for k in [k for k in proven if k not in done]:
-            proven.pop(k)
+    def put(key: str, entry) -> None:
+        nonlocal changed
         if entry:
             new[key] = list(entry)
         else:
             new.pop(key, None)
-        if guess_later:
-            for _p, _y, k in points[idx + 1:]:
-                if not k.startswith(FIGURE_KEY) and not _norm(k, new.get(k)) and k not in held:
-                    guess = _table_step(rows[k], boxes.get(k, {}), bottoms, (), False, min_rows)
-                    if guess:
-                        new[k] = guess
+        changed = True
+
+    def hold(keys) -> None:
+        for k in keys:
+            held[k] = new.pop(k)
+        state["held_for"] = key
+
+    def finish(idx: int, guess: bool):
+        """Drop what was proved after ``idx``, guess the later points, return the next entries."""
+        for _p, _y, k in points[idx + 1:]:
+            proven.pop(k, None)
+        if guess:
+            for p, _y, k in points[idx + 1:]:
+                if _norm(k, new.get(k)) or k in held:
+                    continue
+                if k.startswith(FIGURE_KEY):
+                    fid, fix, _read = _figure_fix_at(document, p, bottoms, new) if p else (None, {}, None)
+                    if fix and FIGURE_KEY + fid == k:
+                        new.update(fix)
+                else:
+                    cut = _table_step(rows[k], boxes.get(k, {}), bottoms, (), False, min_rows)
+                    if cut:
+                        new[k] = cut
         return new
 
-    done: set = set()
     for idx, (page, _y, key) in enumerate(points):
         cur = _norm(key, splits.get(key))
-        new = {k: list(v) for k, v in splits.items()}
         if key in proven and proven[key] == cur:
-            done.add(key)
             continue
         if key.startswith(FIGURE_KEY):
             if cur is not None:
                 verdict, want = _figure_verdict(document, page, key, cur, bottoms)
                 if verdict == "ok":
                     proven[key] = cur
-                    done.add(key)
                     continue
+                state["literal"] = None
                 if verdict == "fix":
                     if want:
                         proven[key] = list(want)
-                    done.add(key)
-                    return out(new, key, want, guess_later=False)
-                # not decided here: set back to none, the later entries on its pages held back
-                state["literal"] = None
-                for k in _entries_before(points, idx, splits, (page + FIGURE_LOOKAHEAD + 2, 0.0)):
-                    held[k] = new.pop(k)
-                state["held_for"] = key
-                return out(new, key, None, guess_later=False)
-            fid, fix, read = _figure_fix_at(document, page, bottoms, splits) if page else (None, {}, None)
-            if fid is None or FIGURE_KEY + fid != key:
-                decided = None          # the rule does not trigger here
-            else:
-                unclean = _entries_before(points, idx, splits, read)
+                    put(key, want)
+                    return finish(idx, True)
+                # not decided here: set back to none, the later entries it may read held back
+                hold(_entries_before(points, idx, new, (page + FIGURE_LOOKAHEAD + 2, 0.0)))
+                put(key, None)
+                return finish(idx, False)
+            fid, fix, read = _figure_fix_at(document, page, bottoms, new) if page else (None, {}, None)
+            decided = None
+            if fid is not None and FIGURE_KEY + fid == key:
+                unclean = _entries_before(points, idx, new, read)
                 if unclean:
-                    for k in unclean:
-                        held[k] = new.pop(k)
-                    state["held_for"] = key
-                    return out(new, key, None, guess_later=False)
+                    hold(unclean)
+                    put(key, None)
+                    return finish(idx, False)
                 decided = fix.get(key)
+            acted = bool(decided)
             if decided:
                 proven[key] = list(decided)
+                put(key, decided)
             if state.get("held_for") == key:
                 state["held_for"] = None
-                restored = {k: v for k, v in held.items()}
-                held.clear()
-                if restored or decided:
-                    new.update(restored)
-                    done.add(key)
-                    return out(new, key, decided, guess_later=False)
-            if decided:
-                done.add(key)
-                return out(new, key, decided)
-            done.add(key)
+                if held:
+                    new.update(held)
+                    held.clear()
+                    acted = changed = True
+            if acted:
+                return finish(idx, True)
             continue
         where, rb = rows[key], boxes.get(key, {})
         if cur is None:
             step = _table_step(where, rb, bottoms, (), False, min_rows)
             if step is None:
-                done.add(key)
                 continue
             state["literal"] = key
-            return out(new, key, step)
+            put(key, step)
+            return finish(idx, True)
         p0 = where[min(where)]
-        ink = _ink_bottom(_flow_box(document.pages[p0 - 1])) if p0 > 0 and _flow_box(document.pages[p0 - 1]) else None
-        verdict, entry = _table_verdict(where, rb, table_tops.get(key), tops, bottoms, cur, ink, min_rows)
+        prev = _flow_box(document.pages[p0 - 1]) if p0 > 0 else None
+        verdict, entry, same_end = _table_verdict(where, rb, table_tops.get(key), tops, bottoms, cur,
+                                                  _ink_bottom(prev) if prev is not None else None, min_rows)
         if verdict == "ok":
-            done.add(key)
             continue
         if verdict == "fix":
             state["literal"] = None
-            return out(new, key, entry)
+            put(key, entry)
+            if same_end:
+                continue  # the layout after it stays as it is: the walk goes on
+            return finish(idx, True)
         if state.get("literal") == key:
             step = _table_step(where, rb, bottoms, cur, False, min_rows)
             if step is None:
                 proven[key] = cur
-                done.add(key)
                 continue
-            return out(new, key, step)
+            put(key, step)
+            return finish(idx, True)
         state["literal"] = None
-        return out(new, key, None, guess_later=False)
+        put(key, None)
+        return finish(idx, False)
     if held:
-        new = {k: list(v) for k, v in splits.items()}
         new.update(held)
         held.clear()
-        return new
-    return None
+        changed = True
+    return new if changed else None
 
 
 _IMAGE_CACHE: dict = {}
