@@ -1252,17 +1252,32 @@ def _start_splits(html: str) -> tuple[str, str, dict[str, list[int]], str]:
     return key, shape, guess or {}, "guess" if guess else ""
 
 
+COLD_PASSES = 6  # passes from none that change every point at once before the checked ones
+
+
 def _next_pass(document, splits: dict[str, list[int]], start: str, state: dict):
     """``(split points of the next pass or None when these are final, start)`` after a layout
     made with ``splits``. A ``start`` "known" (remembered for this very HTML, written only by
     the canonical passes) is kept when no rule asks for a change (:func:`_greedy_step`), else
-    dropped (the passes start from none: a pass lost, never a different page). Otherwise the
-    fast passes (:func:`_settle_step`) go on, a guess (``start`` "guess") being their start."""
+    dropped (the passes start from none: a pass lost, never a different page). From none, the
+    passes of :func:`_next_splits` (every table and the first figures at once: a guess, as fast
+    as before) go on until they stop, at most :data:`COLD_PASSES`; then, and from a guess
+    (``start`` "guess"), the fast passes of :func:`_settle_step`, which end only on the
+    canonical split points (:func:`_greedy_step`), whatever the start: the bytes do not depend
+    on it."""
     if start == "known":
         if _greedy_step(document, splits) is None:
             return None, start
         state.clear()
         return {}, ""
+    if not start and state.get("cold", 0) < COLD_PASSES:
+        # from none: the rules change every point at once (_next_splits), which mostly reaches
+        # the canonical split points in fewest passes; where it stops, the fast passes check it
+        state["cold"] = state.get("cold", 0) + 1
+        new = _next_splits(document, splits)
+        if new is not None:
+            return new, start
+        state["cold"] = COLD_PASSES
     return _settle_step(document, splits, state), start
 
 
