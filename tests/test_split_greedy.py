@@ -134,3 +134,24 @@ def test_wrong_guess_is_set_right(parts, key):
     got, passes = _fast(part, wrong)
     assert got == ref
     assert passes > 1  # not accepted as it is
+
+
+def test_variant_after_a_neighbour_is_the_variant_built_alone(tmp_path, monkeypatch):
+    """Bytes: variant 06 built after variant 01 (its split points taken as a guess and proved)
+    gives the PDF and HTML of 06 built alone with an empty cache, every body part laid out once."""
+    monkeypatch.setattr(render, "_SPLIT_MEMO", {})
+    monkeypatch.setenv("REPORTGEN_CACHE", str(tmp_path / "cache"))
+
+    def build(report, name):
+        paths = render.build_outputs(report, tmp_path / name, "note", ("pdf", "html"))
+        st = render.last_stats.parts
+        return {k: p.read_bytes() for k, p in paths.items()}, list(st.part_passes)
+
+    build(_variant(0), "a")
+    after, passes = build(_variant(1), "b")
+    assert passes and set(passes) == {1}
+    render._SPLIT_MEMO.clear()
+    monkeypatch.setenv("REPORTGEN_CACHE", str(tmp_path / "empty"))
+    alone, cold_passes = build(_variant(1), "cold")
+    assert max(cold_passes) > 1
+    assert after == alone
