@@ -235,9 +235,9 @@ def _lay_out_in_worker(task: _Task) -> _Laid | None:
 
 def lay_out_part(task: _Task) -> _Laid:
     """Lay out one document of the note (a body part with its table split passes) and write it.
-    A part starting from remembered split points (``task.start``) keeps them only when
-    :func:`~reportgen.report.render._start_holds` says the passes from none give them; else
-    the passes start from none. In an early worker (no report here) a part that needs another
+    The passes are :func:`~reportgen.report.render._next_pass`'s: a part starting from
+    remembered split points (``task.start``) keeps them only where they are proved to be the
+    canonical ones, and the passes end only on those. In an early worker (no report here) a part that needs another
     pass comes back with ``resplit``: the parent renders it with those split points and sends
     it again."""
     from . import safety

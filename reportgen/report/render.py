@@ -27,16 +27,28 @@ table of contents come from CSS ``target-counter`` (print only).
    passes. Cell borders are drawn inside the cells so that a row takes the
    same height at the end of a part as before a page break.
 4. a figure that did not fit under the text before it and left that page largely empty is
-   placed as a typesetter would (:func:`_figure_fixes`): drawn smaller, to 85 % at least, when
+   placed as a typesetter would (:func:`_figure_fix_at`): drawn smaller, to 85 % at least, when
    that fits; else the text after it flows before it. The decision is kept in the split points
-   (``figure:<id>``), one figure at a time, so the passes still end.
+   (``figure:<id>``); a figure is decided once, so the passes still end.
+
+Which split points and figure entries a note gets is defined in document order
+(:func:`_greedy_step`, the *canonical* ones): each table and figure is decided by those rules on
+the layout where every earlier one is decided and no later one (later tables whole, later
+figures unmoved). The passes of a build find them faster (:func:`_next_pass`): from none, every
+table and the first figures at once (:func:`_next_splits`) until nothing changes; then, and from
+a guess, :func:`_settle_step` walks the points of ONE layout in document order and proves each
+(a table by running its own passes on a model of its rows read from that layout,
+:func:`_table_verdict`; a figure by its rule read from that layout, moved or not,
+:func:`_figure_verdict`), sets the first one it can disprove right (often from the same layout)
+and goes on. The passes end only on a layout where every point is proved, i.e. on the
+canonical split points, whatever they started from.
 
 Split points are remembered per unsplit HTML (sha256), in the process and in the
 cache folder (``<cache>/splits``), so laying out the same report again, in the
 same process or in a later ``reportgen build``, takes one pass. Those of a similar
-HTML (another variant of a class, a case with one length changed) are a guess,
-kept only when the passes from none provably give them (:func:`_cold_split_layout`):
-the bytes do not depend on what was remembered.
+HTML (another variant of a class, a case with one length changed) are a guess for
+:func:`_settle_step`, proved or set right there: the bytes do not depend on what was
+remembered, and a right guess costs one pass.
 
 What does not change between builds is kept in the same cache folder, each entry keyed by
 everything it is made from, so a cached one gives the same bytes as a fresh one (tests/
@@ -1191,7 +1203,7 @@ def _shape_key(html: str) -> str:
     formulas), the title and the ``<meta>`` tags (the student's name) left out and every number
     (its sign, digit groups and decimals) written as ``0``, so the variants of one case (other
     numbers, the same tables) and a student's case after a changed length share it. Split
-    points found under it are only a guess: :func:`_cold_split_layout` decides whether a layout
+    points found under it are only a guess: :func:`_settle_step` decides whether a layout
     made with them is the one the passes from no split points give."""
     h = hashlib.sha256(f"shape|{_SPLIT_CACHE_VERSION}|{weasyprint_version()}|".encode())
     h.update(_NUMBER.sub("0", _SHAPE_DROP.sub("data:", html)).encode("utf-8"))
@@ -1243,7 +1255,7 @@ def _start_splits(html: str) -> tuple[str, str, dict[str, list[int]], str]:
     points remembered under its exact key (``start`` "known"), else those of a similar HTML
     under its shape key (:func:`_shape_key`, ``start`` "guess"), else none (""). A known start
     is kept when its layout is a fixed point of :func:`_next_splits`, a guess only when
-    :func:`_cold_split_layout` proves it; otherwise the passes start again from none."""
+    :func:`_settle_step` proves it or sets it right (:func:`_next_pass`)."""
     key, shape = _split_key(html), _shape_key(html)
     known = _recall_splits(key)
     if known:
@@ -1741,7 +1753,7 @@ def _uniform(values: list, pages) -> float | None:
 
 
 def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float | None,
-                   tops: list, bottoms: list, cur: list[int] | None, ink_before: float | None,
+                   tops: list, bottoms: list, cur: list[int] | None, before: tuple | None,
                    min_rows: int = MIN_PART_ROWS) -> tuple[str, list[int] | None, bool]:
     """Whether the entry ``cur`` of a table is the one the canonical passes give, read from ONE
     layout made with it: ``("ok", None, True)``, ``("fix", entry, same_end)`` (the canonical entry,
@@ -1759,10 +1771,10 @@ def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float
     bottom starts the next page under the repeated header. ``head`` is read here; ``cont`` only
     where this layout has a continuation part; the page geometry must be the same on the
     table's pages. The table starts where its first row is here, unless this entry starts it on
-    a new page (split point 0): then where it would start is bounded by the text before it
-    (``ink_before``: the bottom of the ink of the page before), and the first rule of the passes
-    (start on a new page when fewer than ``min_rows`` rows would stay) is decided only when the
-    bound decides it.
+    a new page (split point 0): then it would start under the block before it (``before``: that
+    block's border bottom and bottom margin on the page before, :func:`_block_before`), the
+    collapsed margin apart (the table's own top margin being what it keeps at the top of a page
+    after the forced break).
 
     The model is first checked against this layout (every row of ``cur`` on its page and at its
     place within :data:`SIM_EPS`), then the passes from none are run on it with
@@ -1824,18 +1836,11 @@ def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float
     sim_bottoms = [bottom] * (n + 3)
     entry = None
     if lead:
-        # the passes' first step, on the whole table after the text before it: [0] when rows
-        # 0 … min_rows−1 cannot all stay on that page and row 0 can
-        if ink_before is None or n <= LEAD_TABLE_ROWS or lead_off < 0:
+        # unsplit, the table starts under the block before it: that block's border bottom, then
+        # the larger of the adjoining margins (its own bottom ones, the table's top one)
+        if before is None or n <= LEAD_TABLE_ROWS or lead_off < 0:
             return _why(unknown, 85)
-        # the table's caption starts under the text before it, the collapsed margins apart: at
-        # least the table's own top margin, at most the largest vertical margin of the note's
-        # body (a heading's, line_height em: twice the table's own)
-        low = ink_before + lead_off + head
-        high = ink_before + 2 * lead_off + head
-        if not (low + sum(h[:min_rows]) > bottom + SIM_MARGIN and high + h[0] < bottom - SIM_MARGIN):
-            return _why(unknown, 88)
-        entry = [0]
+        y0 = before[0] + max(before[1], lead_off) + head
     for _ in range(MAX_PASSES):
         laid = lay(entry)
         if laid is None:
@@ -1852,6 +1857,42 @@ def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float
     same_end = (laid is not None and n > LEAD_TABLE_ROWS and base + laid[0][n - 1] == where[n - 1]
                 and abs(laid[1][n - 1][1] - rb[n - 1][1]) <= SIM_EPS)
     return "fix", entry, same_end
+
+
+def _block_before(document, page: int, tid: str) -> tuple[float, float] | None:
+    """``(border bottom, bottom margin)`` of the block before table ``tid`` (at the top of page
+    ``page``) on the page before: the last block of its parent there, the bottom margins of its
+    last descendants that adjoin its own counted (they collapse with it); ``None`` when not found."""
+    from weasyprint.formatting_structure.boxes import BlockBox, TableRowBox
+    flow, prev_flow = _flow_box(document.pages[page]), _flow_box(document.pages[page - 1])
+    if flow is None or prev_flow is None:
+        return None
+    stack, path = [(flow, [flow])], None
+    while stack:
+        b, trail = stack.pop()
+        if isinstance(b, TableRowBox) and b.element is not None and b.element.get("id") == tid:
+            path = trail
+            break
+        stack.extend((c, trail + [c]) for c in reversed(getattr(b, "children", None) or ())
+                     if not isinstance(c, str))
+    wrap = next((k for k, b in enumerate(path or ()) if getattr(b, "element_tag", None) == "div"
+                 and "tbl-wrap" in (b.element.get("class") or "")), None)
+    if not wrap:
+        return None
+    parent = path[wrap - 1].element
+    frag = next((b for b in prev_flow.descendants() if getattr(b, "element", None) is parent), None)
+    kids = [c for c in getattr(frag, "children", ()) if isinstance(c, BlockBox)]
+    if not kids:
+        return None
+    b = kids[-1]
+    low, margin = b.border_box_y() + b.border_height(), b.margin_bottom
+    while b.padding_bottom == 0 and b.border_bottom_width == 0:
+        inner = [c for c in getattr(b, "children", ()) if isinstance(c, BlockBox)]
+        if not inner or inner[-1] is not b.children[-1]:
+            break
+        b = inner[-1]
+        margin = max(margin, b.margin_bottom)
+    return low, margin
 
 
 def _section_blocks(document, parent_el) -> list[list]:
@@ -2116,9 +2157,9 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
             put(key, step)
             return finish(idx, True)
         p0 = where[min(where)]
-        prev = _flow_box(document.pages[p0 - 1]) if p0 > 0 else None
+        before = _block_before(document, p0, key) if 0 in cur and p0 > 0 else None
         verdict, entry, same_end = _table_verdict(where, rb, table_tops.get(key), tops, bottoms, cur,
-                                                  _ink_bottom(prev) if prev is not None else None, min_rows)
+                                                  before, min_rows)
         if verdict == "ok":
             continue
         if verdict == "fix":
