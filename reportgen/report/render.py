@@ -1989,7 +1989,8 @@ def _figure_verdict(document, page: int, key: str, cur: list[int], bottoms: list
     if close(room, FIGURE_ROOM * height):
         return _why(unknown, 1061)
     full = 0.0 if land else fig.border_height() - img.margin_height() + h_img
-    if not land and not ink + full > bottom + FIGURE_MARGIN:
+    # (at full size it would start at least its own top margin under the text before it)
+    if not land and not ink + float(fig.style["margin_top"].value) + full > bottom + FIGURE_MARGIN:
         return _why(unknown, 1064)  # at full size it might stand under the text before it
     if room <= FIGURE_ROOM * height:
         return "fix", None  # the page before is at least half full: no entry
