@@ -1734,12 +1734,12 @@ def _greedy_step(document, splits: dict[str, list[int]],
     return None
 
 
-_WHY: list | None = None  # the tests' and bench's record of why a table was not decided
+_WHY: list | None = None  # when a list: why a table or figure was not decided (for debugging)
 
 
-def _why(verdict, where: int):
+def _why(verdict, reason: str):
     if _WHY is not None:
-        _WHY.append(where)
+        _WHY.append(reason)
     return verdict
 
 
@@ -1784,18 +1784,18 @@ def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float
     unknown = ("unknown", None, False)
     n = max(where) + 1
     if set(where) != set(range(n)) or set(rb) != set(range(n)) or table_top is None:
-        return _why(unknown, 31)
+        return _why(unknown, "rows missing")
     pages = set(where.values())
     top, bottom = _uniform(tops, pages), _uniform(bottoms, pages)
     if top is None or bottom is None:
-        return _why(unknown, 35)
+        return _why(unknown, "page geometry")
     h = [rb[r][1] - rb[r][0] for r in range(n)]
     head = rb[0][0] - table_top
     lead = bool(cur) and 0 in cur
     cuts = [c for c in (cur or ()) if 0 < c < n]
     conts = {round(rb[c][0] - top, 3) for c in cuts if where[c] != where[c - 1]}
     if len(conts) > 1:
-        return _why(unknown, 42)
+        return _why(unknown, "continuation headers differ")
     cont = conts.pop() if conts else None
     y0 = None if lead else rb[0][0]
     lead_off = table_top - top  # the table's own top margin, kept after the forced break of split point 0
@@ -1832,25 +1832,25 @@ def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float
     here = lay(cur)
     if here is None or any(base + here[0][r] != where[r] or abs(here[1][r][0] - rb[r][0]) > SIM_EPS
                            for r in range(n)):
-        return _why(unknown, 78)
+        return _why(unknown, "model does not match")
     sim_bottoms = [bottom] * (n + 3)
     entry = None
     if lead:
         # unsplit, the table starts under the block before it: that block's border bottom, then
         # the larger of the adjoining margins (its own bottom ones, the table's top one)
         if before is None or n <= LEAD_TABLE_ROWS or lead_off < 0:
-            return _why(unknown, 85)
+            return _why(unknown, "start of a table moved to a new page")
         y0 = before[0] + max(before[1], lead_off) + head
     for _ in range(MAX_PASSES):
         laid = lay(entry)
         if laid is None:
-            return _why(unknown, 93)
+            return _why(unknown, "not modelled (a row at a page bottom, a part not starting)")
         new = _table_step(laid[0], laid[1], sim_bottoms, entry or [], False, min_rows)
         if new is None:
             break
         entry = _norm("", new)
     else:
-        return _why(unknown, 99)
+        return _why(unknown, "passes do not end")
     if entry == cur:
         return "ok", None, True
     laid = lay(entry)
@@ -1941,35 +1941,35 @@ def _figure_verdict(document, page: int, key: str, cur: list[int], bottoms: list
     within :data:`FIGURE_MARGIN`."""
     unknown = ("unknown", None)
     if len(cur) != 2 or (cur[0] and cur[1] != 1000) or not (cur[0] or cur[1] < 1000):
-        return _why(unknown, 1018)
+        return _why(unknown, "entry not made by the rule")
     moved_n, s = int(cur[0]), int(cur[1])
     fid = key[len(FIGURE_KEY):]
     flow = _flow_box(document.pages[page])
     fig = next((b for b in flow.descendants() if getattr(b, "element_tag", None) == "figure"
                 and b.element is not None and b.element.get("id") == fid), None) if flow is not None else None
     if fig is None:
-        return _why(unknown, 1025)
+        return _why(unknown, "figure not found")
     land = "landscape" in (fig.element.get("class") or "")  # on a landscape page of its own
     if land and (s != 1000 or document.pages[page].width <= document.pages[page].height):
-        return _why(unknown, 1025)
+        return _why(unknown, "figure not found")
     img = next((b for b in fig.descendants() if getattr(b, "element_tag", None) == "img"), None)
     parent = _parent_of(flow, fig)
     if img is None or parent is None:
-        return _why(unknown, 1029)
+        return _why(unknown, "no image or parent")
     blocks = _section_blocks(document, parent.element)
     at = next((n for n, b in enumerate(blocks) if b[0] is fig.element), None)
     if at is None or at < moved_n:
-        return _why(unknown, 1033)
+        return _why(unknown, "moved blocks missing")
     moved = blocks[at - moved_n:at]
     if any(b[1] not in ("p", "div", "table") for b in moved):
-        return _why(unknown, 1036)
+        return _why(unknown, "moved block not text")
     first = moved[0] if moved else blocks[at]
     p, y_cut = first[4]
     if p >= len(document.pages) - 1 or bottoms[p] is None:
-        return _why(unknown, 1040)
+        return _why(unknown, "page after")
     before = document.pages[p]
     if before.width > before.height or (not land and document.pages[p + 1].width > document.pages[p + 1].height):
-        return _why(unknown, 1043)
+        return _why(unknown, "page orientation")
     box = before._page_box
     top, bottom = box.content_box_y(), bottoms[p]
     from weasyprint.formatting_structure.boxes import LineBox, ReplacedBox, TableRowBox
@@ -1977,7 +1977,7 @@ def _figure_verdict(document, page: int, key: str, cur: list[int], bottoms: list
                if isinstance(b, (LineBox, ReplacedBox, TableRowBox))
                and b.position_y + b.margin_height() <= y_cut + SPLIT_EPS), default=None)
     if ink is None:
-        return _why(unknown, 1051)
+        return _why(unknown, "no text before on its page")
     margins = float(fig.style["margin_top"].value) + float(fig.style["margin_bottom"].value)
     h_img = img.margin_height() * 1000 / s
     rest = fig.border_height() - img.margin_height() + margins
@@ -1987,16 +1987,16 @@ def _figure_verdict(document, page: int, key: str, cur: list[int], bottoms: list
         return abs(a - b) < FIGURE_MARGIN
 
     if close(room, FIGURE_ROOM * height):
-        return _why(unknown, 1061)
+        return _why(unknown, "room close to half")
     full = 0.0 if land else fig.border_height() - img.margin_height() + h_img
     # (at full size it would start at least its own top margin under the text before it)
     if not land and not ink + float(fig.style["margin_top"].value) + full > bottom + FIGURE_MARGIN:
-        return _why(unknown, 1064)  # at full size it might stand under the text before it
+        return _why(unknown, "might fit at full size")
     if room <= FIGURE_ROOM * height:
         return "fix", None  # the page before is at least half full: no entry
     scale = (room - rest - FIGURE_SLACK) / h_img
     if close(scale * h_img, MIN_FIGURE_SCALE * h_img) or abs(scale * 1000 - round(scale * 1000)) < 1e-6:
-        return _why(unknown, 1069)
+        return _why(unknown, "scale at a bound")
     if scale >= MIN_FIGURE_SCALE and not land:
         want = [0, min(999, int(scale * 1000))]
         return ("ok", None) if want == cur else ("fix", want)
@@ -2007,21 +2007,21 @@ def _figure_verdict(document, page: int, key: str, cur: list[int], bottoms: list
     n_moved, used, k = 0, 0.0, 0
     while k < len(units) and used + units[k][1] <= room - FIGURE_SLACK:
         if close(used + units[k][1], room - FIGURE_SLACK):
-            return _why(unknown, 1080)
+            return _why(unknown, "block close to the room")
         n_moved += units[k][0]
         used += units[k][1]
         k += 1
     if k < len(units) and close(used + units[k][1], room - FIGURE_SLACK):
-        return _why(unknown, 1085)
+        return _why(unknown, "block close to the room")
     if full + (0.0 if land else margins) + sum(u[1] for u in units[:k + 1]) >= 1.5 * height:
-        return _why(unknown, 1087)  # whether a block weighed goes on past the rule's pages is not read here
+        return _why(unknown, "blocks beyond 1.5 pages")  # (whether one goes on past the rule's pages)
     if k < len(units) and room - used > height / 2:
         if close(room - used, height / 2):
-            return _why(unknown, 1090)
+            return _why(unknown, "room close to half")
         n, h, breakable = units[k][:3]
         fits = (h - (room - used)) + rest + h_img + 3 * line
         if breakable and not land and close(fits, height):
-            return _why(unknown, 1094)
+            return _why(unknown, "broken block close to the page")
         if breakable and (land or fits <= height):
             n_moved += n
     want = [n_moved, 1000] if n_moved else None
