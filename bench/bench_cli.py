@@ -273,7 +273,7 @@ def write_doc(res: dict) -> Path:
     if "batch" in res and res["batch"].get("new_class"):
         b = res["batch"]["new_class"]
         row(f"пакет из {b['variants']} вариантов нового класса (в кэше только `warmup` и сборка {CASE}), "
-            "2 процесса", "batch", b["wall_s"], TARGETS["batch"], b["command"], b)
+            "2 процесса", "batch", b["wall_s"], TARGETS["batch"], b["command"], b | {"date": res["batch"].get("date")})
     if "batch" in res:
         b = res["batch"]
         row("тот же пакет ещё раз (точки разрыва всех вариантов известны), 2 процесса", "batch", b["wall_s"],
