@@ -1,12 +1,12 @@
 """Split points guessed from a similar note (another variant, a case with one length changed).
 
-The layout made with a guess is kept only when the passes from no split points provably give
-the same split points (render._cold_split_layout); otherwise the passes start from none. So a
-guess saves passes and never changes a byte: (a) a variant laid out after another one takes
-fewer passes and gives the PDF of a build with nothing remembered, (b) a guess that
-``_next_splits`` accepts but that is not the cold one (a loose cut, a table moved to a new
-page, a continuation header higher than the table's own) is dropped, (c) a wrong guess costs
-passes, never a different page.
+The layout made with a guess is kept only when it is proved, on that one layout, to be the
+canonical one (render._settle_step: each table's passes run on a model of its rows); a wrong
+table entry is set right from the same layout, one the model cannot decide is set back to none.
+So a guess saves passes and never changes a byte: (a) a variant laid out after another one
+takes fewer passes and gives the PDF of a build with nothing remembered, (b) a guess that
+``_next_splits`` accepts but that is not the canonical one (a loose cut, a last part too short)
+is set right, (c) a wrong guess costs passes, never a different page.
 """
 from __future__ import annotations
 
@@ -32,46 +32,62 @@ def _doc(*pages, head=40.0, table_top=None):
 
 def test_tight_guess_is_kept():
     """A guess whose cut is tight (row 30 ends below the page) and whose continuation header is
-    as high as the table's own: the cold passes give it, it is kept."""
+    as high as the table's own: the table's passes from none, run on its rows, give it."""
     doc = _doc((0, 29, 1047.0 - 30 * H - 10.0), (30, 40, 75.0 + 40.0), head=40.0)
     assert render._next_splits(doc, {"t": [30]}) is None
-    assert render._cold_split_layout(doc, {"t": [30]}) == {"t": [30]}
-    assert render._start_holds(doc, {"t": [30]}, "guess") == {"t": [30]}
+    assert render._settle_step(doc, {"t": [30]}, {}) is None
+    assert render._table_verdict(*_verdict_args(doc, [30])) == ("ok", None, True)
 
 
-def test_guess_accepted_by_next_splits_but_loose_is_dropped():
+def _verdict_args(doc, cur):
+    rows, boxes = render._page_rows(doc, with_boxes=True)
+    bottoms = render._content_bottoms(doc)
+    tops = [75.0] * len(bottoms)
+    return rows["t"], boxes["t"], doc.pages[0].anchors["t"][1], tops, bottoms, cur, None
+
+
+def test_loose_guess_is_set_right_from_its_own_layout():
     """Cut one row early: the page before keeps 30 px under its last row, room for row 29
     (20 px). Not premature (far less than a quarter of the page), so ``_next_splits`` accepts it,
-    but the cold passes would have kept row 29 on the first page: dropped."""
+    but the passes from none keep row 29 on the first page: the canonical cut (30) comes from
+    the rows of this layout, without a pass from none."""
     doc = _doc((0, 28, 1047.0 - 29 * H - 30.0), (29, 40, 75.0 + 40.0), head=40.0)
     assert render._next_splits(doc, {"t": [29]}) is None
-    assert render._cold_split_layout(doc, {"t": [29]}) is None
-    # a remembered entry of this very HTML was written by the passes from none: it is kept
-    assert render._start_holds(doc, {"t": [29]}, "known") == {"t": [29]}
+    assert render._settle_step(doc, {"t": [29]}, {}) == {"t": [30]}
+    # a remembered entry of this very HTML was written by the canonical passes: it is kept
+    assert render._next_pass(doc, {"t": [29]}, "known", {}) == (None, "known")
 
 
-def test_guess_with_a_rule_that_loosens_cold_cuts_is_dropped():
-    """A table moved to a new page (split point 0), a last part kept at MIN_PART_ROWS rows and
-    a continuation header lower than the table's own (a two-line caption, repeated whole in
-    pass 1) make the cold cut loose, so they are never taken from a guess."""
+def test_rules_that_loosen_cuts_are_followed():
+    """A last part kept at MIN_PART_ROWS rows (the canonical cut moves up: _tidy_cuts) is set
+    right; a continuation header lower than the table's own (a two-line caption repeated whole
+    on the pages of the unsplit table) does not move the cut at the page start, so it is kept;
+    a table moved to a new page (split point 0) with nothing known of the text before it is not
+    decided here: set back to none, the next layout shows it unsplit."""
+    short_last = _doc((0, 37, 1047.0 - 38 * H - 10.0), (38, 39, 75.0 + 40.0))
+    assert render._settle_step(short_last, {"t": [38]}, {}) == {"t": [37]}
+    two_lines = _doc((0, 29, 1047.0 - 30 * H - 10.0), (30, 40, 75.0 + 40.0), head=62.0)
+    assert render._settle_step(two_lines, {"t": [30]}, {}) is None
     moved = _doc((0, 45, 75.0 + 40.0), (46, 60, 75.0 + 40.0))
     assert render._next_splits(moved, {"t": [0, 46]}) is None
-    assert render._cold_split_layout(moved, {"t": [0, 46]}) is None
-    short_last = _doc((0, 37, 1047.0 - 38 * H - 10.0), (38, 39, 75.0 + 40.0))
-    assert render._next_splits(short_last, {"t": [38]}) is None
-    assert render._cold_split_layout(short_last, {"t": [38]}) is None
-    two_lines = _doc((0, 29, 1047.0 - 30 * H - 10.0), (30, 40, 75.0 + 40.0), head=62.0)
-    assert render._next_splits(two_lines, {"t": [30]}) is None
-    assert render._cold_split_layout(two_lines, {"t": [30]}) is None
+    assert render._settle_step(moved, {"t": [0, 46]}, {}) == {}
 
 
-def test_guess_that_needs_another_pass_is_dropped():
-    """A part of the guess overflowing its page: ``_next_splits`` would move the cut, but the
-    passes from a guess are not those from none, so the guess is dropped (not continued)."""
+def test_layout_the_model_does_not_match_is_not_decided():
+    """A part of the guess running past its page bottom in the layout (rows the model would put
+    on the next page): the rows' model does not hold, so nothing is read from it: the table is
+    set back to none (the next layout shows it unsplit, decided by the literal rule)."""
     doc = _doc((0, 29, 1047.0 - 30 * H - 10.0), (30, 79, 75.0 + 40.0), (80, 90, 75.0 + 40.0))
-    assert render._next_splits(doc, {"t": [30]}) is not None
-    assert render._cold_split_layout(doc, {"t": [30]}) is None
-    assert render._start_holds(doc, {"t": [30]}, "known") is None
+    assert render._table_verdict(*_verdict_args(doc, [30]))[0] == "unknown"
+    assert render._settle_step(doc, {"t": [30]}, {}) == {}
+
+
+def test_row_at_the_page_bottom_is_not_decided_by_the_model():
+    """A row of the unsplit table that would end within SIM_MARGIN of the page bottom: which
+    page WeasyPrint gives it is not the model's to say."""
+    top = 1047.0 - 30 * H  # rows 0-29 end exactly at the bottom
+    doc = _doc((0, 29, top), (30, 40, 75.0 + 40.0), head=40.0)
+    assert render._table_verdict(*_verdict_args(doc, [30]))[0] == "unknown"
 
 
 def test_shape_key_ignores_numbers_and_images():
@@ -131,8 +147,9 @@ def test_variant_after_another_is_laid_out_once_and_equals_a_cold_build(empty_ca
 
 def test_wrong_guess_costs_passes_never_a_page(empty_cache):
     """(c) A guess from a note whose table starts lower (more text before it): the cut it brings
-    is loose here, so it is dropped and the part laid out from none: one pass more, the bytes
-    of a cold build. A damaged cache file is no guess at all."""
+    is loose here, so the table's right cut is read from the rows of that same layout (no pass
+    from none): one pass more, the bytes of a cold build. A damaged cache file is no guess at
+    all."""
     tmp = empty_cache
     _pdf(_report(1.0, filler=14), tmp / "a.pdf")
     key = next(iter(render._SPLIT_MEMO))
@@ -142,7 +159,7 @@ def test_wrong_guess_costs_passes_never_a_page(empty_cache):
         front=False, body=[render._views(other, for_print=True, splits={}).ctx["body"][0]], chunk=True)
     render._SPLIT_MEMO[render._shape_key(html)] = guess  # as if a similar note had left it
     guessed, passes, splits = _pdf(other, tmp / "b.pdf")
-    assert passes == [3]  # the dropped guess, then the two passes from none
+    assert passes == [2]  # the wrong guess, then the table's canonical cut
     render._SPLIT_MEMO.clear()
     for f in (tmp / "cache").rglob("*.json"):
         f.write_text("{damaged", encoding="utf-8")

@@ -149,6 +149,7 @@ class _Task:
     start: str = ""  # the split points are remembered: "known" (this HTML) or "guess" (render._start_splits)
     passes: int = 0  # layout passes made before (by an early worker, see start_pool)
     shape: str = ""
+    state: dict = field(default_factory=dict)  # of the fast passes (render._settle_step)
 
 
 @dataclass
@@ -170,7 +171,7 @@ class _Laid:
     refused: list = field(default_factory=list)  # URLs the fetcher refused (safety.refused)
     resplit: dict | None = None  # an early worker asks for the part rendered with these split points
     shape: str = ""
-    guessable: bool = False  # the split points may be a guess for a similar part (render._cold_split_layout)
+    state: dict = field(default_factory=dict)  # of the fast passes, sent back with a resplit
 
 
 def _outline(tree) -> list:
@@ -235,38 +236,31 @@ def _lay_out_in_worker(task: _Task) -> _Laid | None:
 
 def lay_out_part(task: _Task) -> _Laid:
     """Lay out one document of the note (a body part with its table split passes) and write it.
-    A part starting from remembered split points (``task.start``) keeps them only when
-    :func:`~reportgen.report.render._start_holds` says the passes from none give them; else
-    the passes start from none. In an early worker (no report here) a part that needs another
+    The passes are :func:`~reportgen.report.render._next_pass`'s: a part starting from
+    remembered split points (``task.start``) keeps them only where they are proved to be the
+    canonical ones, and the passes end only on those. In an early worker (no report here) a part that needs another
     pass comes back with ``resplit``: the parent renders it with those split points and sends
     it again."""
     from . import safety
-    from .render import MAX_PASSES, _cold_split_layout, _next_splits, _page_rows, _start_holds, split_target
+    from .render import MAX_PASSES, _next_pass, _page_rows, split_target
 
     index, html, splits, start = task.index, task.html, dict(task.splits), task.start
     seen = len(safety.refused)
     t0 = time.perf_counter()
     passes = task.passes
+    state = dict(task.state)  # of the fast passes (render._settle_step), carried by a resplit
     while True:
         document = _lay_out(html)
         passes += 1
         if index < 0:
             new = None
-        elif start:
-            held = _start_holds(document, splits, start)
-            if held is not None:
-                for tid in _page_rows(document):  # the part's tables as the passes from none leave them
-                    splits.pop(tid, None)
-                splits.update(held)
-                break
-            new, start = {}, ""  # dropped: the passes start from none
         else:
-            new = _next_splits(document, splits)
+            new, start = _next_pass(document, splits, start, state)
         if new is None or passes >= MAX_PASSES:
             break
         if _REPORT is None:
             return _Laid(index, b"", [], {}, [], [], {}, passes, time.perf_counter() - t0, 0.0,
-                         task.key, start, resplit=new, shape=task.shape)
+                         task.key, start, resplit=new, shape=task.shape, state=state)
         splits = new
         html = _part_html(_REPORT, index, splits)
     t1 = time.perf_counter()
@@ -276,9 +270,8 @@ def lay_out_part(task: _Task) -> _Laid:
     own = set(_page_rows(document)) | {name for page in document.pages for name in page.anchors}
     mine = {k: list(v) for k, v in splits.items() if k in own or split_target(k) in own}
     refused = list(safety.refused[seen:] if len(safety.refused) >= seen else safety.refused)
-    guessable = index >= 0 and start != "known" and _cold_split_layout(document, splits) is not None
     return _Laid(index, pdf, heights, anchors, links, outline, mine, passes, t1 - t0, t2 - t1,
-                 task.key, start, refused, shape=task.shape, guessable=guessable)
+                 task.key, start, refused, shape=task.shape)
 
 
 # ---------------------------------------------------------------- the whole note (parent)
@@ -398,7 +391,7 @@ class PartsJob:
             if laid.resplit is not None:
                 self.waiting.discard(task.index)
                 self._submit(_Task(task.index, _part_html(self.report, task.index, laid.resplit, self.views),
-                                   laid.resplit, task.key, laid.start, laid.passes, task.shape))
+                                   laid.resplit, task.key, laid.start, laid.passes, task.shape, laid.state))
                 continue
             self.waiting.discard(task.index)
             self.done[task.index] = laid
@@ -448,7 +441,7 @@ class PartsJob:
                 st.splits.update(p.splits)
                 st.part_seconds.append(round(p.seconds_layout + p.seconds_write, 3))
                 st.part_passes.append(p.passes)
-                _remember_result(p.key, p.shape, p.splits, p.start, p.guessable)
+                _remember_result(p.key, p.shape, p.splits, p.start)
             head = self.done.get(HEAD)
             toc = self.done[TOC]
             front = [head] if head is not None else []

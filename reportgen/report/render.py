@@ -27,16 +27,28 @@ table of contents come from CSS ``target-counter`` (print only).
    passes. Cell borders are drawn inside the cells so that a row takes the
    same height at the end of a part as before a page break.
 4. a figure that did not fit under the text before it and left that page largely empty is
-   placed as a typesetter would (:func:`_figure_fixes`): drawn smaller, to 85 % at least, when
+   placed as a typesetter would (:func:`_figure_fix_at`): drawn smaller, to 85 % at least, when
    that fits; else the text after it flows before it. The decision is kept in the split points
-   (``figure:<id>``), one figure at a time, so the passes still end.
+   (``figure:<id>``); a figure is decided once, so the passes still end.
+
+Which split points and figure entries a note gets is defined in document order
+(:func:`_greedy_step`, the *canonical* ones): each table and figure is decided by those rules on
+the layout where every earlier one is decided and no later one (later tables whole, later
+figures unmoved). The passes of a build find them faster (:func:`_next_pass`): from none, every
+table and the first figures at once (:func:`_next_splits`) until nothing changes; then, and from
+a guess, :func:`_settle_step` walks the points of ONE layout in document order and proves each
+(a table by running its own passes on a model of its rows read from that layout,
+:func:`_table_verdict`; a figure by its rule read from that layout, moved or not,
+:func:`_figure_verdict`), sets the first one it can disprove right (often from the same layout)
+and goes on. The passes end only on a layout where every point is proved, i.e. on the
+canonical split points, whatever they started from.
 
 Split points are remembered per unsplit HTML (sha256), in the process and in the
 cache folder (``<cache>/splits``), so laying out the same report again, in the
 same process or in a later ``reportgen build``, takes one pass. Those of a similar
-HTML (another variant of a class, a case with one length changed) are a guess,
-kept only when the passes from none provably give them (:func:`_cold_split_layout`):
-the bytes do not depend on what was remembered.
+HTML (another variant of a class, a case with one length changed) are a guess for
+:func:`_settle_step`, proved or set right there: the bytes do not depend on what was
+remembered, and a right guess costs one pass.
 
 What does not change between builds is kept in the same cache folder, each entry keyed by
 everything it is made from, so a cached one gives the same bytes as a fresh one (tests/
@@ -1148,7 +1160,8 @@ _ROW_ANCHOR = re.compile(r"^(.+)__r(\d+)$")
 _SPLIT_MEMO: dict[str, dict[str, list[int]]] = {}  # sha256 of the unsplit print HTML -> splits
 
 
-_SPLIT_CACHE_VERSION = 4  # 2: only the split points of the passes from none are remembered; 4: figure entries
+_SPLIT_CACHE_VERSION = 5  # 2: only the split points of the passes from none are remembered; 4: figure entries;
+# 5: the canonical (greedy, document-order) split points of _greedy_step
 
 
 _DATA_SVG = re.compile(r"data:image/svg\+xml;base64,([A-Za-z0-9+/=]+)")
@@ -1197,7 +1210,7 @@ def _shape_key(html: str) -> str:
     formulas), the title and the ``<meta>`` tags (the student's name) left out and every number
     (its sign, digit groups and decimals) written as ``0``, so the variants of one case (other
     numbers, the same tables) and a student's case after a changed length share it. Split
-    points found under it are only a guess: :func:`_cold_split_layout` decides whether a layout
+    points found under it are only a guess: :func:`_settle_step` decides whether a layout
     made with them is the one the passes from no split points give."""
     h = hashlib.sha256(f"shape|{_SPLIT_CACHE_VERSION}|{weasyprint_version()}|".encode())
     h.update(_NUMBER.sub("0", _SHAPE_DROP.sub("data:", html)).encode("utf-8"))
@@ -1249,7 +1262,7 @@ def _start_splits(html: str) -> tuple[str, str, dict[str, list[int]], str]:
     points remembered under its exact key (``start`` "known"), else those of a similar HTML
     under its shape key (:func:`_shape_key`, ``start`` "guess"), else none (""). A known start
     is kept when its layout is a fixed point of :func:`_next_splits`, a guess only when
-    :func:`_cold_split_layout` proves it; otherwise the passes start again from none."""
+    :func:`_settle_step` proves it or sets it right (:func:`_next_pass`)."""
     key, shape = _split_key(html), _shape_key(html)
     known = _recall_splits(key)
     if known:
@@ -1258,24 +1271,43 @@ def _start_splits(html: str) -> tuple[str, str, dict[str, list[int]], str]:
     return key, shape, guess or {}, "guess" if guess else ""
 
 
-def _start_holds(document, splits: dict[str, list[int]], start: str):
-    """The split points to keep when the layout made from a remembered ``start`` is the one the
-    passes from none give (see :func:`_start_splits`), else ``None``."""
+COLD_PASSES = 6  # passes from none that change every point at once before the checked ones
+
+
+def _next_pass(document, splits: dict[str, list[int]], start: str, state: dict):
+    """``(split points of the next pass or None when these are final, start)`` after a layout
+    made with ``splits``. A ``start`` "known" (remembered for this very HTML, written only by
+    the canonical passes) is kept when no rule asks for a change (:func:`_greedy_step`), else
+    dropped (the passes start from none: a pass lost, never a different page). From none, the
+    passes of :func:`_next_splits` (every table and the first figures at once: a guess, as fast
+    as before) go on until they stop, at most :data:`COLD_PASSES`; then, and from a guess
+    (``start`` "guess"), the fast passes of :func:`_settle_step`, which end only on the
+    canonical split points (:func:`_greedy_step`), whatever the start: the bytes do not depend
+    on it."""
     if start == "known":
-        return {k: list(v) for k, v in splits.items()} if _next_splits(document, splits) is None else None
-    return _cold_split_layout(document, splits)
+        if _greedy_step(document, splits) is None:
+            return None, start
+        state.clear()
+        return {}, ""
+    if not start and state.get("cold", 0) < COLD_PASSES:
+        # from none: the rules change every point at once (_next_splits), which mostly reaches
+        # the canonical split points in fewest passes; where it stops, the fast passes check it
+        state["cold"] = state.get("cold", 0) + 1
+        new = _next_splits(document, splits)
+        if new is not None:
+            return new, start
+        state["cold"] = COLD_PASSES
+    return _settle_step(document, splits, state), start
 
 
-def _remember_result(key: str, shape: str, splits: dict[str, list[int]], start: str,
-                     guessable: bool) -> None:
-    """Remember the split points the passes from none gave (or a start proved equal to them)
-    under the exact key, and under the shape key when a similar HTML may take them as a guess
-    (:func:`_cold_split_layout` proved them for this one: others would only cost a pass)."""
+def _remember_result(key: str, shape: str, splits: dict[str, list[int]], start: str) -> None:
+    """Remember the canonical split points under the exact key, and under the shape key as a
+    guess for a similar HTML (checked there by :func:`_settle_step`, so a guess only saves
+    passes)."""
     if not splits or start == "known":
         return
     _remember_splits(key, splits)
-    if guessable:
-        _remember_splits(shape, splits)
+    _remember_splits(shape, splits)
 
 
 def _named_rows(page) -> dict[str, tuple[float, float, float, float]]:
@@ -1394,55 +1426,60 @@ def _next_splits(document, splits: dict[str, list[int]],
     result = {k: list(v) for k, v in splits.items()}
     changed = False
     for tid, where in rows.items():
-        n = max(where) + 1
-        lead = [0] if 0 in splits.get(tid, ()) else []
-        cuts = sorted(c for c in set(splits.get(tid, ())) if 0 < c < n)
-
-        def page_starts(a: int, b: int) -> list[int]:
-            return [r for r in range(a + 1, b)
-                    if r in where and (r - 1) in where and where[r] != where[r - 1]]
-
-        if not cuts:
-            starts = page_starts(0, n)
-            if not starts:
-                continue
-            if starts[0] < min_rows and not lead:   # (a table of at most min_rows rows is never cut)
-                if changed:
-                    # an earlier table changed in this pass, so where this one starts is not
-                    # known yet: moving it to a new page now may leave a page half empty
-                    # (decided in the next pass)
-                    continue
-                result[tid] = [0]  # too few rows would stay: start on a new page
-            else:
-                result[tid] = lead + _tidy_cuts(starts, n, min_rows)
+        new = _table_step(where, boxes.get(tid, {}), bottoms, splits.get(tid, ()), changed, min_rows)
+        if new is not None:
+            result[tid] = new
             changed = True
-            continue
-        early = _premature_cut(cuts, where, boxes.get(tid, {}), bottoms, min_rows)
-        if early is not None:
-            result[tid] = lead + cuts[:early]
-            changed = True
-            continue
-        bounds = [0] + cuts + [n]
-        for k in range(len(bounds) - 1):
-            a, b = bounds[k], bounds[k + 1]
-            first_page = where.get(a)
-            overflow = next((r for r in range(a + 1, b) if where.get(r) != first_page), None)
-            if overflow is None:
-                continue
-            if b < n:  # b is a split point: move it and the later ones up
-                delta = b - overflow
-                new = cuts[:k] + [overflow] + [c - delta for c in cuts[k + 1:]]
-            else:  # the last part overflowed: cut it at each of its later pages
-                new = cuts + (page_starts(a, n) or [overflow])
-            new = sorted(c for c in set(new) if 0 < c < n)
-            result[tid] = lead + _tidy_cuts(new, n, min_rows)
-            changed = True
-            break
     # a figure above every changed table is placed in the same pass (_figure_fixes)
     first = min((rows[t][0] for t in rows if result.get(t) != splits.get(t) and 0 in rows[t]),
                 default=len(document.pages))
     fixes = _figure_fixes(document, splits, first)
     return {**result, **fixes} if (changed or fixes) else None
+
+
+def _table_step(where: dict[int, int], boxes: dict[int, tuple], bottoms: list, given,
+                changed: bool = False, min_rows: int = MIN_PART_ROWS) -> list[int] | None:
+    """The new entry of one table by the rules of :func:`_next_splits` (``where``: row -> page,
+    ``boxes``: row -> (top, bottom) of the layout made with the entry ``given``), or ``None``
+    when the rules leave it as it is. ``changed``: an earlier table changed in the same pass."""
+    n = max(where) + 1
+    lead = [0] if 0 in given else []
+    cuts = sorted(c for c in set(given) if 0 < c < n)
+
+    def page_starts(a: int, b: int) -> list[int]:
+        return [r for r in range(a + 1, b)
+                if r in where and (r - 1) in where and where[r] != where[r - 1]]
+
+    if not cuts:
+        starts = page_starts(0, n)
+        if not starts:
+            return None
+        if starts[0] < min_rows and not lead:   # (a table of at most min_rows rows is never cut)
+            if changed:
+                # an earlier table changed in this pass, so where this one starts is not
+                # known yet: moving it to a new page now may leave a page half empty
+                # (decided in the next pass)
+                return None
+            return [0]  # too few rows would stay: start on a new page
+        return lead + _tidy_cuts(starts, n, min_rows)
+    early = _premature_cut(cuts, where, boxes, bottoms, min_rows)
+    if early is not None:
+        return lead + cuts[:early]
+    bounds = [0] + cuts + [n]
+    for k in range(len(bounds) - 1):
+        a, b = bounds[k], bounds[k + 1]
+        first_page = where.get(a)
+        overflow = next((r for r in range(a + 1, b) if where.get(r) != first_page), None)
+        if overflow is None:
+            continue
+        if b < n:  # b is a split point: move it and the later ones up
+            delta = b - overflow
+            new = cuts[:k] + [overflow] + [c - delta for c in cuts[k + 1:]]
+        else:  # the last part overflowed: cut it at each of its later pages
+            new = cuts + (page_starts(a, n) or [overflow])
+        new = sorted(c for c in set(new) if 0 < c < n)
+        return lead + _tidy_cuts(new, n, min_rows)
+    return None
 
 
 def split_target(key: str) -> str:
@@ -1482,8 +1519,9 @@ FIGURE_LOOKAHEAD = 2  # pages after a figure's whose text may flow before it
 
 def _blocks_after(document, i: int, fig, parent) -> tuple[list, set]:
     """The blocks after figure box ``fig`` (a child of ``parent``, on page ``i``) in its section,
-    on that page and the next :data:`FIGURE_LOOKAHEAD`: ``[[element, tag, classes, height]]``
-    (the fragments of a block on several pages summed), and the elements (by ``id()``) that
+    on that page and the next :data:`FIGURE_LOOKAHEAD`: ``[[element, tag, classes, height, end]]``
+    (the fragments of a block on several pages summed; ``end``: the page and the bottom of its
+    last fragment), and the elements (by ``id()``) that
     have boxes further on (blocks not whole within these pages)."""
     out: list[list] = []
     last = min(len(document.pages) - 1, i + FIGURE_LOOKAHEAD)
@@ -1499,45 +1537,51 @@ def _blocks_after(document, i: int, fig, parent) -> tuple[list, set]:
             kids = frag.children
         for b in kids:
             el = getattr(b, "element", None)
+            end = (j, b.position_y + b.margin_height())
             if out and el is not None and out[-1][0] is el:
                 out[-1][3] += b.margin_height()
+                out[-1][4] = end
                 continue
             cls = (el.get("class") or "").split() if el is not None else []
-            out.append([el, getattr(b, "element_tag", None), cls, b.margin_height()])
+            out.append([el, getattr(b, "element_tag", None), cls, b.margin_height(), end])
     flow = _flow_box(document.pages[last + 1]) if last + 1 < len(document.pages) else None
     later = {id(b.element) for b in flow.descendants()
              if getattr(b, "element", None) is not None} if flow is not None else set()
     return out, later
 
 
-def _text_units(blocks, later: set) -> list[tuple[int, float, bool, bool]]:
+def _text_units(blocks, later: set) -> list[tuple]:
     """The blocks after a figure (:func:`_blocks_after`) as units that move together:
-    ``(elements, height, breakable, whole)``: a paragraph with the formulas it leads into, a
+    ``(elements, height, breakable, whole, end)``: a paragraph with the formulas it leads into, a
     table with the paragraph announcing it, a formula with its «где» lines. Stops at anything
     else (a heading, a figure). ``later``: the elements (by ``id()``) that go on further (a
     block not whole)."""
     units: list[list] = []
     lead = intro = False
-    for el, tag, cls, h in blocks:
+    for el, tag, cls, h, *where in blocks:
+        end = where[0] if where else None
         if (tag == "p" and "where-note" in cls) or (tag == "table" and "where" in cls):
             if not units:
                 break
             units[-1][0] += 1
             units[-1][1] += h
             units[-1][2] = False
+            units[-1][4] = end
         elif tag == "div" and "tbl-wrap" in cls and lead:
             units[-1][0] += 1
             units[-1][1] += h
+            units[-1][4] = end
             lead = False
         elif tag == "div" and "eq" in cls and intro:
             units[-1][0] += 1     # the formulas a paragraph leads into go with it
             units[-1][1] += h
             units[-1][2] = False
+            units[-1][4] = end
         elif tag == "div" and "eq" in cls:
-            units.append([1, h, False, True])
+            units.append([1, h, False, True, end])
             intro = True
         elif tag == "p" or (tag == "div" and "tbl-wrap" in cls):
-            units.append([1, h, True, True])
+            units.append([1, h, True, True, end])
             lead = tag == "p" and "lead" in cls
             intro = tag == "p"
         else:
@@ -1568,141 +1612,585 @@ def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = Non
     entry is kept by the later passes), so the passes end."""
     bottoms = _content_bottoms(document)
     for i in range(1, min(len(document.pages), len(document.pages) if upto is None else upto)):
-        page, before = document.pages[i], document.pages[i - 1]
-        flow, prev_flow = _flow_box(page), _flow_box(before)
-        if flow is None or prev_flow is None or bottoms[i - 1] is None or bottoms[i] is None:
-            continue
-        if before.width > before.height:
-            continue  # a landscape page holds one wide figure
-        land = page.width > page.height       # a wide figure on a landscape page of its own
-        box = page._page_box
-        top = box.content_box_y()
-        fig = next((b for b in flow.descendants() if getattr(b, "element_tag", None) == "figure"), None)
-        if fig is None or fig.position_y > top + 0.5:
-            continue  # no figure at the top of the page
-        fid = fig.element.get("id") or ""
-        if land != ("landscape" in (fig.element.get("class") or "")) or FIGURE_KEY + fid in splits or not fid:
-            continue
-        room = bottoms[i - 1] - _ink_bottom(prev_flow)
-        height = bottoms[i - 1] - before._page_box.content_box_y()
-        if room <= FIGURE_ROOM * height:
-            continue  # the page is at least half full (ГОСТ 7.32 layout asks no more)
-        margins = float(fig.style["margin_top"].value) + float(fig.style["margin_bottom"].value)
-        img = next((b for b in fig.descendants() if getattr(b, "element_tag", None) == "img"), None)
-        if img is None:
-            continue
-        h_img = img.margin_height()
-        rest = fig.border_height() - h_img + margins
-        scale = (room - rest - FIGURE_SLACK) / h_img
-        if scale >= MIN_FIGURE_SCALE and not land:
-            return {FIGURE_KEY + fid: [0, min(999, int(scale * 1000))]}
-        parent = _parent_of(flow, fig)
-        if parent is None:
-            continue
-        line = float(fig.style["font_size"]) * 1.5
-        units = _text_units(*_blocks_after(document, i, fig, parent))
-        moved, used = 0, 0.0
-        k = 0
-        while k < len(units) and units[k][3] and used + units[k][1] <= room - FIGURE_SLACK:
-            moved += units[k][0]
-            used += units[k][1]
-            k += 1
-        if k < len(units) and room - used > height / 2:
-            n, h, breakable, whole = units[k]
-            # what stays of it on the next page, then the figure (three lines spare for the
-            # orphans and widows of the break); a landscape figure has a page of its own
-            if breakable and whole and (land or (h - (room - used)) + rest + h_img + 3 * line <= height):
-                moved += n
-        if moved:
-            return {FIGURE_KEY + fid: [moved, 1000]}
+        fid, fix, _read = _figure_fix_at(document, i, bottoms, splits)
+        if fix:
+            return fix
     return {}
+
+
+def _figure_fix_at(document, i: int, bottoms: list, splits: dict) -> tuple[str | None, dict, tuple]:
+    """The rule of :func:`_figure_fixes` at page ``i``: ``(figure id, entry)`` when a figure without
+    an entry stands at the top of page ``i`` after a page less than half full (the rule decides
+    it: ``entry`` is ``{}`` when neither drawing it smaller nor moving text fits), else
+    ``(None, {})``; third, ``(page, y)`` up to which the decision read the layout after the figure
+    (the end of the last block it weighed). What decides it: the page before, the figure, and the
+    blocks after it in its section on pages ``i`` to ``i +`` :data:`FIGURE_LOOKAHEAD` (and which
+    of them go on further)."""
+    page, before = document.pages[i], document.pages[i - 1]
+    flow, prev_flow = _flow_box(page), _flow_box(before)
+    if flow is None or prev_flow is None or bottoms[i - 1] is None or bottoms[i] is None:
+        return None, {}, (i, 0.0)
+    if before.width > before.height:
+        return None, {}, (i, 0.0)  # a landscape page holds one wide figure
+    land = page.width > page.height       # a wide figure on a landscape page of its own
+    box = page._page_box
+    top = box.content_box_y()
+    fig = next((b for b in flow.descendants() if getattr(b, "element_tag", None) == "figure"), None)
+    if fig is None or fig.position_y > top + 0.5:
+        return None, {}, (i, 0.0)  # no figure at the top of the page
+    fid = fig.element.get("id") or ""
+    if land != ("landscape" in (fig.element.get("class") or "")) or FIGURE_KEY + fid in splits or not fid:
+        return None, {}, (i, 0.0)
+    room = bottoms[i - 1] - _ink_bottom(prev_flow)
+    height = bottoms[i - 1] - before._page_box.content_box_y()
+    if room <= FIGURE_ROOM * height:
+        return None, {}, (i, 0.0)  # the page is at least half full (ГОСТ 7.32 layout asks no more)
+    margins = float(fig.style["margin_top"].value) + float(fig.style["margin_bottom"].value)
+    img = next((b for b in fig.descendants() if getattr(b, "element_tag", None) == "img"), None)
+    if img is None:
+        return fid, {}, (i, 0.0)
+    h_img = img.margin_height()
+    rest = fig.border_height() - h_img + margins
+    scale = (room - rest - FIGURE_SLACK) / h_img
+    if scale >= MIN_FIGURE_SCALE and not land:
+        return fid, {FIGURE_KEY + fid: [0, min(999, int(scale * 1000))]}, (i, 0.0)
+    parent = _parent_of(flow, fig)
+    if parent is None:
+        return fid, {}, (i, 0.0)
+    line = float(fig.style["font_size"]) * 1.5
+    units = _text_units(*_blocks_after(document, i, fig, parent))
+    moved, used = 0, 0.0
+    k = 0
+    while k < len(units) and units[k][3] and used + units[k][1] <= room - FIGURE_SLACK:
+        moved += units[k][0]
+        used += units[k][1]
+        k += 1
+    read = units[min(k, len(units) - 1)][4] if units else None
+    if k < len(units) and room - used > height / 2:
+        n, h, breakable, whole = units[k][:4]
+        # what stays of it on the next page, then the figure (three lines spare for the
+        # orphans and widows of the break); a landscape figure has a page of its own
+        if breakable and whole and (land or (h - (room - used)) + rest + h_img + 3 * line <= height):
+            moved += n
+    # (every block read when the text ran out before the room did: up to where _blocks_after looked)
+    read = read if k < len(units) and read is not None else (min(len(document.pages), i + FIGURE_LOOKAHEAD + 2), 0.0)
+    return fid, ({FIGURE_KEY + fid: [moved, 1000]} if moved else {}), read
 
 
 SPLIT_EPS = 0.01  # CSS px: heights equal, and a row not fitting, only beyond this
 
 
-def _cold_split_layout(document, splits: dict[str, list[int]],
-                       min_rows: int = MIN_PART_ROWS) -> dict[str, list[int]] | None:
-    """The split points of ``document`` (laid out with ``splits``, a guess) when they are
-    provably those the passes from no split points converge to, else ``None`` (the guess is
-    then dropped and the passes start from none: a guess costs passes, never a page).
-
-    The passes from none (:func:`_next_splits`): pass 1 lays every table out whole and cuts it
-    at the first row of each later page (WeasyPrint repeats the whole ``<thead>``, the table's
-    own caption included, at the top of those pages); pass 2 lays out those parts. Pass 2 gives
-    the document of ``splits`` exactly, and stops there, when:
-
-    1. ``document`` is a fixed point: ``_next_splits(document, splits)`` is ``None`` (no part
-       spans two pages, no cut leaves a page largely empty);
-    2. no table starts on a new page (split point 0) and every split table keeps at least
-       ``min_rows`` rows in its first and in its last part: then pass 1 takes neither the
-       «start on a new page» branch nor :func:`_tidy_cuts` (which make a cold cut loose), and
-       the table has more than :data:`LEAD_TABLE_ROWS` rows, so the paragraph before it is
-       the same in both (``p.lead`` of the template);
-    3. every continuation part starts as a whole table's repeated header does: its first row
-       lies as far below the page's content top as the table's first row lies below the table
-       (the «Продолжение таблицы N» caption as high as the table's own caption): the rows of
-       a page are where pass 1 puts them;
-    4. every cut is tight: the row at a cut, put right under the row before it (border
-       spacing 0, borders inside the cells), would end below that page's content bottom, so
-       pass 1 could not have kept it on that page (WeasyPrint moves a row that ends lower).
-
-    Induction on the pages: before a table's first page both documents are the same HTML laid
-    out from the same place; on a split table's pages the rows are at the same places (3, and
-    a row's height depends neither on its page nor on the rows that share its part: the
-    assumption every pass makes; WeasyPrint's automatic column widths come from the rows of
-    the part, so a header wrapping otherwise in a part fails 3, but a whole table whose
-    columns differ from those of every part is not seen here), each page
-    holds in pass 1 the rows the part holds (they fit there, and the next does not by 4), so
-    pass 1's cuts are the guessed ones (2) and the table ends at the same place; an unsplit
-    table fits its page in both. So pass 1 cuts at ``splits``, pass 2 renders the same HTML
-    and, by 1, is the last. A layout failing any condition may still be the cold one (a
-    two-line caption, a table moved to a new page): it is then made again from no split
-    points. Returns the split points in the form the passes give (tables with cuts only)."""
-    if _next_splits(document, splits, min_rows) is not None:
+def _norm(key: str, entry) -> list[int] | None:
+    """An entry in the form the rules compare: a table's split points sorted without repeats, a
+    figure's entry as it is; ``None`` for no entry (an empty table entry lays out as none)."""
+    if not entry:
         return None
-    if any(k.startswith(FIGURE_KEY) for k in splits):
-        return None  # a figure placed by a later pass (_figure_fixes): not what pass 2 gives
+    return list(entry) if key.startswith(FIGURE_KEY) else sorted(set(int(c) for c in entry))
+
+
+def _points(document, rows: dict, boxes: dict) -> list[tuple[int, float, str]]:
+    """The decision points of a laid-out document in document order, ``(page, y, key)``: every
+    table with named rows (key: its id; where its first row is) and every figure with an id
+    (key: :data:`FIGURE_KEY` + id; where its box is). A decision about one of them changes
+    the HTML from that element on, never before it."""
+    out = []
+    for tid, where in rows.items():
+        first = min(where, default=None)
+        if first is not None:
+            out.append((where[first], boxes.get(tid, {}).get(first, (0.0,))[0], tid))
+    seen = set()
+    for i, page in enumerate(document.pages):
+        flow = _flow_box(page)
+        if flow is None:
+            continue
+        for b in flow.descendants():
+            if getattr(b, "element_tag", None) == "figure":
+                fid = b.element.get("id") if b.element is not None else None
+                if fid and fid not in seen:
+                    seen.add(fid)
+                    out.append((i, b.position_y, FIGURE_KEY + fid))
+    return sorted(out)
+
+
+def _greedy_step(document, splits: dict[str, list[int]],
+                 min_rows: int = MIN_PART_ROWS) -> dict[str, list[int]] | None:
+    """One pass of the canonical split rule, literally (the reference the fast passes of
+    :func:`_settle_step` are checked against, tests/test_split_greedy.py): the first decision
+    point in document order (:func:`_points`) where a rule asks for a change gets it, and only
+    it; ``None`` when no rule asks for anything. The rules: a table's (:func:`_table_step`,
+    as an only table changing) and a figure's without an entry (:func:`_figure_fix_at`).
+
+    The passes from none, each with this step, define the split points of an HTML (the
+    *canonical* ones): every decision is made on the layout where every earlier one is made
+    and every later one not (later tables whole, later figures unmoved), because a decision
+    changes the layout only from its own element on and the earlier points are left as they
+    are once no rule asks anything of them."""
     rows, boxes = _page_rows(document, with_boxes=True)
-    tops, bottoms = [], _content_bottoms(document)
+    bottoms = _content_bottoms(document)
+    for page, _y, key in _points(document, rows, boxes):
+        if key.startswith(FIGURE_KEY):
+            if key in splits or page == 0:
+                continue
+            fid, fix, _read = _figure_fix_at(document, page, bottoms, splits)
+            if fix and FIGURE_KEY + fid == key:
+                return {**{k: list(v) for k, v in splits.items()}, **fix}
+            continue
+        new = _table_step(rows[key], boxes.get(key, {}), bottoms, splits.get(key, ()), False, min_rows)
+        if new is not None:
+            return {**{k: list(v) for k, v in splits.items()}, key: new}
+    return None
+
+
+_WHY: list | None = None  # when a list: why a table or figure was not decided (for debugging)
+
+
+def _why(verdict, reason: str):
+    if _WHY is not None:
+        _WHY.append(reason)
+    return verdict
+
+
+SIM_EPS = 0.05  # CSS px: a row of the model where the layout has it
+SIM_MARGIN = SPLIT_EPS  # CSS px: a row of the model ending this close to a page bottom is not decided by it
+
+
+def _uniform(values: list, pages) -> float | None:
+    got = {round(values[p], 3) for p in pages if p < len(values) and values[p] is not None}
+    return got.pop() if len(got) == 1 else None
+
+
+def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float | None,
+                   tops: list, bottoms: list, cur: list[int] | None, before: tuple | None,
+                   min_rows: int = MIN_PART_ROWS) -> tuple[str, list[int] | None, bool]:
+    """Whether the entry ``cur`` of a table is the one the canonical passes give, read from ONE
+    layout made with it: ``("ok", None, True)``, ``("fix", entry, same_end)`` (the canonical entry,
+    when it is another; ``same_end``: the table would end where it ends here, so the layout after
+    it would not change) or ``("unknown", None, False)``.
+
+    The table's layout in the passes is modelled from this one: every row keeps its height (the
+    assumption every pass makes: borders inside the cells, a row's height depends neither on
+    its page nor on the rows sharing its part; WeasyPrint's automatic column widths come from
+    the rows of a part, so a header wrapping otherwise in a part is caught only where it shows in
+    this layout); a part's rows follow each other from its first, which stands ``head`` below
+    where the part starts (the table's caption row and column header, repeated whole on each
+    later page of a whole table or of the first part; the «Продолжение таблицы» header ``cont``
+    of a continuation part, starting a page); a row that would end below the page's content
+    bottom starts the next page under the repeated header. ``head`` is read here; ``cont`` only
+    where this layout has a continuation part; the page geometry must be the same on the
+    table's pages. The table starts where its first row is here, unless this entry starts it on
+    a new page (split point 0): then it would start under the block before it (``before``: that
+    block's border bottom and bottom margin on the page before, :func:`_block_before`), the
+    collapsed margin apart (the table's own top margin being what it keeps at the top of a page
+    after the forced break).
+
+    The model is first checked against this layout (every row of ``cur`` on its page and at its
+    place within :data:`SIM_EPS`), then the passes from none are run on it with
+    :func:`_table_step` (the same rules, an only table changing). Unknown when a quantity is
+    missing, the model does not match, or a row ends within :data:`SIM_MARGIN` of a page bottom
+    in a modelled layout (too close to say which page WeasyPrint gives it)."""
+    unknown = ("unknown", None, False)
+    n = max(where) + 1
+    if set(where) != set(range(n)) or set(rb) != set(range(n)) or table_top is None:
+        return _why(unknown, "rows missing")
+    pages = set(where.values())
+    top, bottom = _uniform(tops, pages), _uniform(bottoms, pages)
+    if top is None or bottom is None:
+        return _why(unknown, "page geometry")
+    h = [rb[r][1] - rb[r][0] for r in range(n)]
+    head = rb[0][0] - table_top
+    lead = bool(cur) and 0 in cur
+    cuts = [c for c in (cur or ()) if 0 < c < n]
+    conts = {round(rb[c][0] - top, 3) for c in cuts if where[c] != where[c - 1]}
+    if len(conts) > 1:
+        return _why(unknown, "continuation headers differ")
+    cont = conts.pop() if conts else None
+    y0 = None if lead else rb[0][0]
+    lead_off = table_top - top  # the table's own top margin, kept after the forced break of split point 0
+
+    def lay(entry):
+        lead_, cuts_ = bool(entry) and 0 in entry, [c for c in (entry or ()) if 0 < c < n]
+        w, b = {}, {}
+        page = 0
+        for j, (a, z) in enumerate(zip([0] + cuts_, cuts_ + [n])):
+            if j == 0 and not lead_:
+                if y0 is None:
+                    return None
+                y, rep = y0, head
+            elif j == 0:
+                page, y, rep = 1, top + lead_off + head, head
+            else:
+                if cont is None:
+                    return None
+                page, y, rep = page + 1, top + cont, cont
+            for r in range(a, z):
+                if abs(y + h[r] - bottom) < SIM_MARGIN:
+                    return None
+                if y + h[r] > bottom:
+                    if r == a:
+                        return None  # not even one row where the part starts: not modelled
+                    page, y = page + 1, top + rep
+                    if y + h[r] > bottom - SIM_MARGIN:
+                        return None
+                w[r], b[r] = page, (y, y + h[r])
+                y += h[r]
+        return w, b
+
+    base = where[0] - (1 if lead else 0)
+    here = lay(cur)
+    if here is None or any(base + here[0][r] != where[r] or abs(here[1][r][0] - rb[r][0]) > SIM_EPS
+                           for r in range(n)):
+        return _why(unknown, "model does not match")
+    sim_bottoms = [bottom] * (n + 3)
+    entry = None
+    if lead:
+        # unsplit, the table starts under the block before it: that block's border bottom, then
+        # the larger of the adjoining margins (its own bottom ones, the table's top one)
+        if before is None or n <= LEAD_TABLE_ROWS or lead_off < 0:
+            return _why(unknown, "start of a table moved to a new page")
+        y0 = before[0] + max(before[1], lead_off) + head
+    for _ in range(MAX_PASSES):
+        laid = lay(entry)
+        if laid is None:
+            return _why(unknown, "not modelled (a row at a page bottom, a part not starting)")
+        new = _table_step(laid[0], laid[1], sim_bottoms, entry or [], False, min_rows)
+        if new is None:
+            break
+        entry = _norm("", new)
+    else:
+        return _why(unknown, "passes do not end")
+    if entry == cur:
+        return "ok", None, True
+    laid = lay(entry)
+    same_end = (laid is not None and n > LEAD_TABLE_ROWS and base + laid[0][n - 1] == where[n - 1]
+                and abs(laid[1][n - 1][1] - rb[n - 1][1]) <= SIM_EPS)
+    return "fix", entry, same_end
+
+
+def _block_before(document, page: int, tid: str) -> tuple[float, float] | None:
+    """``(border bottom, bottom margin)`` of the block before table ``tid`` (at the top of page
+    ``page``) on the page before: the last block of its parent there, the bottom margins of its
+    last descendants that adjoin its own counted (they collapse with it); ``None`` when not found."""
+    from weasyprint.formatting_structure.boxes import BlockBox, TableRowBox
+    flow, prev_flow = _flow_box(document.pages[page]), _flow_box(document.pages[page - 1])
+    if flow is None or prev_flow is None:
+        return None
+    stack, path = [(flow, [flow])], None
+    while stack:
+        b, trail = stack.pop()
+        if isinstance(b, TableRowBox) and b.element is not None and b.element.get("id") == tid:
+            path = trail
+            break
+        stack.extend((c, trail + [c]) for c in reversed(getattr(b, "children", None) or ())
+                     if not isinstance(c, str))
+    wrap = next((k for k, b in enumerate(path or ()) if getattr(b, "element_tag", None) == "div"
+                 and "tbl-wrap" in (b.element.get("class") or "")), None)
+    if not wrap:
+        return None
+    parent = path[wrap - 1].element
+    frag = next((b for b in prev_flow.descendants() if getattr(b, "element", None) is parent), None)
+    kids = [c for c in getattr(frag, "children", ()) if isinstance(c, BlockBox)]
+    if not kids:
+        return None
+    b = kids[-1]
+    low, margin = b.border_box_y() + b.border_height(), b.margin_bottom
+    while b.padding_bottom == 0 and b.border_bottom_width == 0:
+        inner = [c for c in getattr(b, "children", ()) if isinstance(c, BlockBox)]
+        if not inner or inner[-1] is not b.children[-1]:
+            break
+        b = inner[-1]
+        margin = max(margin, b.margin_bottom)
+    return low, margin
+
+
+def _section_blocks(document, parent_el) -> list[list]:
+    """The child blocks of element ``parent_el`` over all pages, in order:
+    ``[element, tag, classes, height, (first page, top), (last page, bottom)]`` (the fragments of a
+    block on several pages summed, as :func:`_blocks_after` does)."""
+    out: list[list] = []
+    for j, page in enumerate(document.pages):
+        flow = _flow_box(page)
+        frag = next((b for b in flow.descendants() if getattr(b, "element", None) is parent_el),
+                    None) if flow is not None else None
+        if frag is None:
+            continue
+        for b in frag.children:
+            el = getattr(b, "element", None)
+            low = b.position_y + b.margin_height()
+            if out and el is not None and out[-1][0] is el:
+                out[-1][3] += b.margin_height()
+                out[-1][5] = (j, low)
+                continue
+            cls = (el.get("class") or "").split() if el is not None else []
+            out.append([el, getattr(b, "element_tag", None), cls, b.margin_height(), (j, b.position_y), (j, low)])
+    return out
+
+
+FIGURE_MARGIN = 0.5  # CSS px: a figure quantity this close to what a rule compares it with is not decided
+
+
+def _figure_verdict(document, page: int, key: str, cur: list[int], bottoms: list):
+    """Whether the entry ``cur`` of a figure is the one its rule (:func:`_figure_fix_at`) gives on
+    the canonical layout, read from ONE layout made with it: ``("ok", None)``, ``("fix", entry or
+    None)`` or ``("unknown", None)``.
+
+    On the canonical layout the figure stands unmoved and at full size after the text before it
+    (the same HTML up to it). What the rule reads of it is read here: the text before it ends at
+    the same place (the ink above the first block moved before the figure, or above the figure
+    drawn smaller); the figure at full size is as high as here with its image ``1000 / scale``
+    times as high (its width is scaled, its caption spans the column); the blocks after it are
+    those moved before it here and those after it, each as high as here (whole blocks keep their
+    height; a block broken across pages is summed over its fragments, as the rule sums them).
+    A landscape figure stands on a page of its own (a forced break before and after it): the
+    page before it ends with the text before it, and the blocks after it start the next page.
+    Unknown where that does not hold or does not decide: the figure perhaps
+    fitting under the text before it at full size, the blocks weighed reaching further than
+    1.5 pages (where the rule's «goes on further» is not read here), or a comparison of the rule
+    within :data:`FIGURE_MARGIN`."""
+    unknown = ("unknown", None)
+    if len(cur) != 2 or (cur[0] and cur[1] != 1000) or not (cur[0] or cur[1] < 1000):
+        return _why(unknown, "entry not made by the rule")
+    moved_n, s = int(cur[0]), int(cur[1])
+    fid = key[len(FIGURE_KEY):]
+    flow = _flow_box(document.pages[page])
+    fig = next((b for b in flow.descendants() if getattr(b, "element_tag", None) == "figure"
+                and b.element is not None and b.element.get("id") == fid), None) if flow is not None else None
+    if fig is None:
+        return _why(unknown, "figure not found")
+    land = "landscape" in (fig.element.get("class") or "")  # on a landscape page of its own
+    if land and (s != 1000 or document.pages[page].width <= document.pages[page].height):
+        return _why(unknown, "figure not found")
+    img = next((b for b in fig.descendants() if getattr(b, "element_tag", None) == "img"), None)
+    parent = _parent_of(flow, fig)
+    if img is None or parent is None:
+        return _why(unknown, "no image or parent")
+    blocks = _section_blocks(document, parent.element)
+    at = next((n for n, b in enumerate(blocks) if b[0] is fig.element), None)
+    if at is None or at < moved_n:
+        return _why(unknown, "moved blocks missing")
+    moved = blocks[at - moved_n:at]
+    if any(b[1] not in ("p", "div", "table") for b in moved):
+        return _why(unknown, "moved block not text")
+    first = moved[0] if moved else blocks[at]
+    p, y_cut = first[4]
+    if p >= len(document.pages) - 1 or bottoms[p] is None:
+        return _why(unknown, "page after")
+    before = document.pages[p]
+    if before.width > before.height or (not land and document.pages[p + 1].width > document.pages[p + 1].height):
+        return _why(unknown, "page orientation")
+    box = before._page_box
+    top, bottom = box.content_box_y(), bottoms[p]
+    from weasyprint.formatting_structure.boxes import LineBox, ReplacedBox, TableRowBox
+    ink = max((b.position_y + b.margin_height() for b in _flow_box(before).descendants()
+               if isinstance(b, (LineBox, ReplacedBox, TableRowBox))
+               and b.position_y + b.margin_height() <= y_cut + SPLIT_EPS), default=None)
+    if ink is None:
+        return _why(unknown, "no text before on its page")
+    margins = float(fig.style["margin_top"].value) + float(fig.style["margin_bottom"].value)
+    h_img = img.margin_height() * 1000 / s
+    rest = fig.border_height() - img.margin_height() + margins
+    room, height = bottom - ink, bottom - top
+
+    def close(a: float, b: float) -> bool:
+        return abs(a - b) < FIGURE_MARGIN
+
+    if close(room, FIGURE_ROOM * height):
+        return _why(unknown, "room close to half")
+    full = 0.0 if land else fig.border_height() - img.margin_height() + h_img
+    # (at full size it would start at least its own top margin under the text before it)
+    if not land and not ink + float(fig.style["margin_top"].value) + full > bottom + FIGURE_MARGIN:
+        return _why(unknown, "might fit at full size")
+    if room <= FIGURE_ROOM * height:
+        return "fix", None  # the page before is at least half full: no entry
+    scale = (room - rest - FIGURE_SLACK) / h_img
+    if close(scale * h_img, MIN_FIGURE_SCALE * h_img) or abs(scale * 1000 - round(scale * 1000)) < 1e-6:
+        return _why(unknown, "scale at a bound")
+    if scale >= MIN_FIGURE_SCALE and not land:
+        want = [0, min(999, int(scale * 1000))]
+        return ("ok", None) if want == cur else ("fix", want)
+    # the blocks after it on the canonical layout: those moved before it here, then the rest
+    after = [b[:4] for b in moved] + [b[:4] for b in blocks[at + 1:]]
+    units = _text_units(after, set())
+    line = float(fig.style["font_size"]) * 1.5
+    n_moved, used, k = 0, 0.0, 0
+    while k < len(units) and used + units[k][1] <= room - FIGURE_SLACK:
+        if close(used + units[k][1], room - FIGURE_SLACK):
+            return _why(unknown, "block close to the room")
+        n_moved += units[k][0]
+        used += units[k][1]
+        k += 1
+    if k < len(units) and close(used + units[k][1], room - FIGURE_SLACK):
+        return _why(unknown, "block close to the room")
+    if full + (0.0 if land else margins) + sum(u[1] for u in units[:k + 1]) >= 1.5 * height:
+        return _why(unknown, "blocks beyond 1.5 pages")  # (whether one goes on past the rule's pages)
+    if k < len(units) and room - used > height / 2:
+        if close(room - used, height / 2):
+            return _why(unknown, "room close to half")
+        n, h, breakable = units[k][:3]
+        fits = (h - (room - used)) + rest + h_img + 3 * line
+        if breakable and not land and close(fits, height):
+            return _why(unknown, "broken block close to the page")
+        if breakable and (land or fits <= height):
+            n_moved += n
+    want = [n_moved, 1000] if n_moved else None
+    return ("ok", None) if want == cur else ("fix", want)
+
+
+def _entries_before(points, idx: int, splits: dict, end: tuple) -> list[str]:
+    """The points after ``points[idx]`` with an entry that start before ``end`` (page, y)."""
+    return [k for p, y, k in points[idx + 1:] if (p, y) < tuple(end) and _norm(k, splits.get(k))]
+
+
+def _settle_step(document, splits: dict[str, list[int]], state: dict,
+                 min_rows: int = MIN_PART_ROWS) -> dict[str, list[int]] | None:
+    """The next split points of the fast passes, or ``None`` when ``splits`` (with which
+    ``document`` was laid out) are the canonical ones (:func:`_greedy_step`).
+
+    The decision points are walked in document order. A point is right when it is proved from
+    this layout: its layout here is that of the canonical passes (the same HTML before it and,
+    by induction over the points already found right, the same place), and
+
+    * a table: :func:`_table_verdict` runs the table's own passes on a model of its rows read
+      from this layout; a table without an entry that fits its page, or whose entry came by the
+      literal rule (:func:`_table_step`) on layouts where it was the first point asking for a
+      change (``state["literal"]``), is checked by that rule directly;
+    * a figure without an entry: :func:`_figure_fix_at` does not trigger, or triggers and no
+      later entry lies before the end of what it read (the layout it read is then the
+      canonical one); a figure with one: :func:`_figure_verdict`. A decided figure's entry holds
+      for the later passes (``state["proven"]``, dropped when a point before it changes).
+
+    At the first point not proved right: its canonical entry when known (a table whose right
+    entry ends where this one does leaves the later layout as it is, so the walk goes on),
+    else one literal step of its rule when its layout here is the canonical one up to it, else
+    the point is set back to none (with the later entries before the end of what its rule
+    reads held back, restored once it is decided), so that the next layout is. The later
+    points are then guessed from this layout where they have no entry (a table spanning pages
+    cut where its pages start, a figure by its rule): the first pass of a note guesses every
+    decision at once, and a guess costs at most the pass that finds it wrong.
+
+    ``state`` is kept between the passes of one layout (plain data: it crosses processes)."""
+    proven = state.setdefault("proven", {})
+    held = state.setdefault("held", {})
+    rows, boxes = _page_rows(document, with_boxes=True)
+    bottoms = _content_bottoms(document)
+    tops = [b - getattr(getattr(p, "_page_box", None), "height", 0) if b is not None else None
+            for b, p in zip(bottoms, document.pages)]
     table_tops = {}
     for page in document.pages:
-        box = getattr(page, "_page_box", None)
-        try:
-            tops.append(box.content_box_y())
-        except (AttributeError, TypeError):
-            tops.append(None)
         for name, pos in page.anchors.items():
-            if name in splits and len(pos) >= 4:
+            if name in rows and len(pos) >= 4:
                 table_tops.setdefault(name, pos[1])
-    if any(0 in splits[tid] for tid in table_tops):
-        return None  # a table (rows or not) moved to a new page
-    out = {}
-    for tid, where in rows.items():
-        n = max(where) + 1
-        given = set(splits.get(tid, ()))
-        if 0 in given:
-            return None
-        cuts = sorted(c for c in given if 0 < c < n)
-        if not cuts:
+    points = _points(document, rows, boxes)
+    new = {k: list(v) for k, v in splits.items()}
+    changed = False
+
+    def put(key: str, entry) -> None:
+        nonlocal changed
+        if entry:
+            new[key] = list(entry)
+        else:
+            new.pop(key, None)
+        changed = True
+
+    def hold(keys) -> None:
+        for k in keys:
+            held[k] = new.pop(k)
+        state["held_for"] = key
+
+    def finish(idx: int, guess: bool):
+        """Drop what was proved after ``idx``, guess the later points, return the next entries."""
+        for _p, _y, k in points[idx + 1:]:
+            proven.pop(k, None)
+        if guess:
+            for p, _y, k in points[idx + 1:]:
+                if _norm(k, new.get(k)) or k in held:
+                    continue
+                if k.startswith(FIGURE_KEY):
+                    fid, fix, _read = _figure_fix_at(document, p, bottoms, new) if p else (None, {}, None)
+                    if fix and FIGURE_KEY + fid == k:
+                        new.update(fix)
+                else:
+                    cut = _table_step(rows[k], boxes.get(k, {}), bottoms, (), False, min_rows)
+                    if cut:
+                        new[k] = cut
+        return new
+
+    for idx, (page, _y, key) in enumerate(points):
+        cur = _norm(key, splits.get(key))
+        if key in proven and proven[key] == cur:
             continue
-        rb = boxes.get(tid, {})
-        if (set(where) != set(range(n)) or set(rb) != set(range(n)) or n <= LEAD_TABLE_ROWS
-                or cuts[0] < min_rows or n - cuts[-1] < min_rows or tid not in table_tops):
-            return None
-        head = rb[0][0] - table_tops[tid]
-        for c in cuts:
-            page, before = where[c], where[c - 1]
-            top = tops[page] if page < len(tops) else None
-            bottom = bottoms[before] if before < len(bottoms) else None
-            if page != before + 1 or top is None or bottom is None:
-                return None
-            if abs(rb[c][0] - top - head) > SPLIT_EPS:
-                return None  # the continuation's header is not as high as the repeated one
-            if not rb[c - 1][1] + (rb[c][1] - rb[c][0]) > bottom + SPLIT_EPS:
-                return None  # the row would fit on the page before: pass 1 keeps it there
-        out[tid] = cuts
-    return out
+        if key.startswith(FIGURE_KEY):
+            if cur is not None:
+                verdict, want = _figure_verdict(document, page, key, cur, bottoms)
+                if verdict == "ok":
+                    proven[key] = cur
+                    continue
+                state["literal"] = None
+                if verdict == "fix":
+                    if want:
+                        proven[key] = list(want)
+                    put(key, want)
+                    return finish(idx, True)
+                # not decided here: set back to none, the later entries it may read held back
+                hold(_entries_before(points, idx, new, (page + FIGURE_LOOKAHEAD + 2, 0.0)))
+                put(key, None)
+                return finish(idx, False)
+            fid, fix, read = _figure_fix_at(document, page, bottoms, new) if page else (None, {}, None)
+            decided = None
+            if fid is not None and FIGURE_KEY + fid == key:
+                unclean = _entries_before(points, idx, new, read)
+                if unclean:
+                    hold(unclean)
+                    put(key, None)
+                    return finish(idx, False)
+                decided = fix.get(key)
+            acted = bool(decided)
+            if decided:
+                proven[key] = list(decided)
+                put(key, decided)
+            if state.get("held_for") == key:
+                state["held_for"] = None
+                if held:
+                    new.update(held)
+                    held.clear()
+                    acted = changed = True
+            if acted:
+                return finish(idx, True)
+            continue
+        where, rb = rows[key], boxes.get(key, {})
+        if cur is None:
+            step = _table_step(where, rb, bottoms, (), False, min_rows)
+            if step is None:
+                continue
+            state["literal"] = key
+            put(key, step)
+            return finish(idx, True)
+        p0 = where[min(where)]
+        before = _block_before(document, p0, key) if 0 in cur and p0 > 0 else None
+        verdict, entry, same_end = _table_verdict(where, rb, table_tops.get(key), tops, bottoms, cur,
+                                                  before, min_rows)
+        if verdict == "ok":
+            continue
+        if verdict == "fix":
+            state["literal"] = None
+            put(key, entry)
+            if same_end:
+                continue  # the layout after it stays as it is: the walk goes on
+            return finish(idx, True)
+        if state.get("literal") == key:
+            step = _table_step(where, rb, bottoms, cur, False, min_rows)
+            if step is None:
+                proven[key] = cur
+                continue
+            put(key, step)
+            return finish(idx, True)
+        state["literal"] = None
+        put(key, None)
+        return finish(idx, False)
+    if held:
+        new.update(held)
+        held.clear()
+        changed = True
+    return new if changed else None
 
 
 _IMAGE_CACHE: dict = {}
@@ -1828,6 +2316,7 @@ def _layout(report: Report, font_config):
     key = shape = None
     start = ""
     views = _views(report, for_print=True, splits=splits)
+    state: dict = {}  # of the fast passes (_settle_step)
     for i in range(MAX_PASSES):
         t0 = time.perf_counter()
         views.builder.resplit(splits)  # (numbering and rows do not depend on the split points)
@@ -1848,22 +2337,14 @@ def _layout(report: Report, font_config):
         stats.passes += 1
         stats.seconds_html += t1 - t0
         stats.seconds_layout += t2 - t1
-        if start:
-            held = _start_holds(document, splits, start)
-            if held is not None:
-                splits = held
-                break
-            splits, start = {}, ""  # dropped: the passes start from none
-            continue
-        new = _next_splits(document, splits)
+        new, start = _next_pass(document, splits, start, state)
         if new is None:
             break
         splits = new
     else:
         log.warning("Разбиение таблиц не сошлось за %d проходов", MAX_PASSES)
     if key is not None:
-        _remember_result(key, shape, splits, start,
-                         start == "guess" or _cold_split_layout(document, splits) is not None)
+        _remember_result(key, shape, splits, start)
     stats.pages = len(document.pages)
     stats.splits = splits
     return document, stats

@@ -1,0 +1,157 @@
+"""The canonical split points (render._greedy_step) and the fast passes that find them
+(render._next_pass, render._settle_step) on real notes.
+
+The reference here is the definition itself, slow: from no split points, each pass makes only
+the first change a rule asks for, in document order. The fast passes change many points at once
+and accept a result only where it is proved on one layout (each table's passes run on a model of
+its rows, each figure's rule read from the layout it was moved or drawn smaller in). Checked:
+the same split points and figure entries as the reference, from none and from a neighbour's
+guess (which then takes one pass), and a deliberately wrong guess set right.
+"""
+from __future__ import annotations
+
+import pytest
+from conftest import CASES
+
+from reportgen.report import parallel, render
+
+SECTIONS = ["dynamics", "forces"]  # figures drawn smaller or moved, tables over several pages
+VARIANTS = [("0.300 m", "1.400 m", "0.85 m"), ("0.315 m", "1.450 m", "0.85 m")]  # class_six_bar 01, 06
+
+
+def _note(params=None):
+    from reportgen.analysis.study import Study
+    from reportgen.case.load import load_spec
+    from reportgen.report.assemble import build_report
+
+    spec = load_spec(CASES / "ws000_six_bar.toml", params or {})
+    return build_report(Study(spec), SECTIONS)
+
+
+def _variant(i: int):
+    l_oa, l_ab, y_h = VARIANTS[i]
+    return _note({"l_OA": l_oa, "l_AB": l_ab, "Y_H": y_h})
+
+
+class _Part:
+    """One body part of a note laid out again and again with other split points."""
+
+    def __init__(self, report, index: int):
+        self.report, self.index = report, index
+        self.views = render._views(report, for_print=True, splits={})
+        self.layouts = 0
+
+    def lay(self, splits):
+        self.layouts += 1
+        return parallel._lay_out(parallel._part_html(self.report, self.index, splits, self.views))
+
+
+def _canon(splits: dict) -> dict:
+    return {k: render._norm(k, v) for k, v in splits.items() if render._norm(k, v)}
+
+
+def _reference(part: _Part) -> dict:
+    """The definition: one decision per pass, in document order (render._greedy_step)."""
+    splits: dict = {}
+    for _ in range(3 * render.MAX_PASSES):
+        new = render._greedy_step(part.lay(splits), splits)
+        if new is None:
+            return _canon(splits)
+        splits = new
+    raise AssertionError("the reference passes did not end")
+
+
+def _fast(part: _Part, start: dict | None = None) -> tuple[dict, int]:
+    """The passes of a build (render._next_pass) from none or from a guess; (split points, passes)."""
+    splits, how, state = dict(start or {}), "guess" if start else "", {}
+    for n in range(1, render.MAX_PASSES + 1):
+        new, how = render._next_pass(part.lay(splits), splits, how, state)
+        if new is None:
+            return _canon(splits), n
+        splits = new
+    raise AssertionError("the fast passes did not end")
+
+
+DYN, FRC = 1, 2  # the body parts of the note of SECTIONS (0: the introduction)
+
+
+@pytest.fixture(scope="module")
+def parts():
+    """The dynamics and forces parts of ws000 and the forces part of class variant 06 (its
+    figures moved before a landscape page), with their reference split points."""
+    out = {}
+    ws000, v06 = _note(), _variant(1)
+    for name, report, index in (("ws000", ws000, DYN), ("ws000", ws000, FRC), ("v06", v06, FRC)):
+        part = _Part(report, index)
+        out[name, index] = part, _reference(part)
+    return out
+
+
+def test_reference_decides_tables_and_figures(parts):
+    """The parts checked hold what the fast passes must prove: tables cut over pages, tables
+    started on a new page, a figure drawn smaller and figures with text moved before them
+    (landscape ones among them)."""
+    entries = {k: v for (_name, _i), (_p, ref) in parts.items() for k, v in ref.items()}
+    figures = [v for k, v in entries.items() if k.startswith(render.FIGURE_KEY)]
+    tables = [v for k, v in entries.items() if not k.startswith(render.FIGURE_KEY)]
+    assert any(v[0] == 0 and v[1] < 1000 for v in figures)  # drawn smaller
+    assert any(v[0] > 0 for v in figures)  # text moved before it
+    assert any(v == [0] for v in tables) and any(c > 0 for v in tables for c in v)
+    assert "figure:fig-frc-group-1" in parts["v06", FRC][1]  # a landscape figure
+
+
+@pytest.mark.parametrize("key", [("ws000", DYN), ("ws000", FRC)])
+def test_fast_passes_from_none_give_the_reference(parts, key):
+    part, ref = parts[key]
+    got, _passes = _fast(part)
+    assert got == ref
+
+
+def test_neighbours_guess_is_proved_in_one_pass(parts):
+    """Variant 06 laid out with variant 01's split points (a teacher's class: the first variant
+    built, then the others take its split points as a guess): one layout, proved, and the
+    reference split points of 06."""
+    part, ref = parts["v06", FRC]
+    neighbour, _passes = _fast(_Part(_variant(0), FRC))
+    got, passes = _fast(part, neighbour)
+    assert got == ref
+    assert passes == 1
+
+
+@pytest.mark.parametrize("key", [("ws000", DYN), ("ws000", FRC)])
+def test_wrong_guess_is_set_right(parts, key):
+    """A guess with every table cut one row early and every figure entry changed (a text moved
+    one block less, a figure drawn 1 % smaller or larger): never accepted, and the passes end
+    on the reference split points."""
+    part, ref = parts[key]
+    wrong = {}
+    for k, v in ref.items():
+        if k.startswith(render.FIGURE_KEY):
+            wrong[k] = [v[0] - 1, 1000] if v[0] > 0 else [0, v[1] - 10 if v[1] > 900 else v[1] + 10]
+        else:
+            wrong[k] = [c - 1 if c > render.MIN_PART_ROWS else c for c in v]
+    assert _canon(wrong) != ref
+    got, passes = _fast(part, wrong)
+    assert got == ref
+    assert passes > 1  # not accepted as it is
+
+
+def test_variant_after_a_neighbour_is_the_variant_built_alone(tmp_path, monkeypatch):
+    """Bytes: variant 06 built after variant 01 (its split points taken as a guess and proved)
+    gives the PDF and HTML of 06 built alone with an empty cache, every body part laid out once."""
+    monkeypatch.setattr(render, "_SPLIT_MEMO", {})
+    monkeypatch.setenv("REPORTGEN_CACHE", str(tmp_path / "cache"))
+
+    def build(report, name):
+        paths = render.build_outputs(report, tmp_path / name, "note", ("pdf", "html"))
+        st = render.last_stats.parts
+        return {k: p.read_bytes() for k, p in paths.items()}, list(st.part_passes)
+
+    build(_variant(0), "a")
+    after, passes = build(_variant(1), "b")
+    assert passes and set(passes) == {1}
+    render._SPLIT_MEMO.clear()
+    monkeypatch.setenv("REPORTGEN_CACHE", str(tmp_path / "empty"))
+    alone, cold_passes = build(_variant(1), "cold")
+    assert max(cold_passes) > 1
+    assert after == alone
