@@ -9,9 +9,11 @@ from matplotlib.patches import Circle
 
 from ..style import mplstyle
 from .draw import INK
+from .labels import LabelPlacer, place_on_chart
 from .mechanism import Drawing
 
 _FS = 8
+_NODE_R = 0.17          # a link's circle
 
 
 def _layout(n: int) -> dict[int, tuple[float, float]]:
@@ -23,27 +25,30 @@ def _layout(n: int) -> dict[int, tuple[float, float]]:
     return pos
 
 
-def _graph(ax, n, pairs, names, rollers, new, title):
+def _graph(ax, n, pairs, names, rollers, new, title) -> LabelPlacer:
+    """One graph; the pairs' labels are registered with the returned placer (placed beside
+    their edges once the figure's layout is done), the edges end at the links' circles."""
     pos = _layout(n)
+    labels = LabelPlacer(ax, fontsize=_FS - 1)
     for (i, j, t), nm in zip(pairs, names):
         (x0, y0), (x1, y1) = pos[i], pos[j]
         col = "tab:green" if i in new or j in new or nm.endswith("′") else INK
-        ax.plot([x0, x1], [y0, y1], color="tab:red" if t == "H" else col, lw=1.2, ls="--" if t == "H" else "-", zorder=1)
+        u = _NODE_R / max(math.hypot(x1 - x0, y1 - y0), 1e-12)
+        ax.plot([x0 + u * (x1 - x0), x1 - u * (x1 - x0)], [y0 + u * (y1 - y0), y1 - u * (y1 - y0)],
+                color="tab:red" if t == "H" else col, lw=1.2, ls="--" if t == "H" else "-", zorder=1)
         mx, my = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
-        if i and j:                      # between moving links: the label outside the arc
-            r = math.hypot(mx, my + 0.45)
-            mx, my = mx * (1 + 0.2 / r), -0.45 + (my + 0.45) * (1 + 0.2 / r)
-        ax.text(mx, my, f"{nm} ({t})", fontsize=_FS - 1, ha="center", va="center",
-                bbox=dict(fc="white", ec="none", pad=0.5), zorder=2)
+        out = (mx, my + 0.45) if i and j else (-(y1 - y0), x1 - x0)    # outside the arc / beside the edge
+        labels.add(mx, my, f"{nm} ({t})", prefer=out)
     for k, (x, y) in pos.items():
         fc = "0.8" if k == 0 else ("#cfe8cf" if k in new else ("#f6d5d5" if k in rollers else "white"))
-        ax.add_patch(Circle((x, y), 0.17, fc=fc, ec=INK, lw=1.0, zorder=3))
+        ax.add_patch(Circle((x, y), _NODE_R, fc=fc, ec=INK, lw=1.0, zorder=3))
         ax.text(x, y, str(k), fontsize=_FS, ha="center", va="center", zorder=4)
     ax.set_title(title, fontsize=_FS + 1)
     ax.set_aspect("equal")
     ax.set_xlim(-1.6, 1.6)
     ax.set_ylim(-1.6, 1.3)
     ax.axis("off")
+    return labels
 
 
 class DofGraphs:
@@ -55,10 +60,12 @@ class DofGraphs:
         d = study.dof
         fig = mplstyle.figure(165, 80)
         ax, bx = fig.subplots(1, 2)
-        _graph(ax, d.n, d.pairs, d.names, d.rollers, [], f"до замены: W = {d.before['W']}")
+        before = _graph(ax, d.n, d.pairs, d.names, d.rollers, [], f"до замены: W = {d.before['W']}")
         names_after = d.names_after
-        _graph(bx, d.n_after, d.pairs_after, names_after, [], d.new_links + d.rollers,
-               f"после замены: W = {d.after['W']}")
+        after = _graph(bx, d.n_after, d.pairs_after, names_after, [], d.new_links + d.rollers,
+                       f"после замены: W = {d.after['W']}")
+        place_on_chart(before)
+        after.place()
         return Drawing(mplstyle.to_svg(fig), 165, 0.0)
 
 

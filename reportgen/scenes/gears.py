@@ -13,6 +13,7 @@ from matplotlib.path import Path
 from ..core import gears as G
 from ..style import mplstyle
 from .draw import GREY, INK, Canvas
+from .labels import LabelPlacer, place_on_chart
 
 __all__ = ["tooth_outline", "ring_outline", "MeshDrawing", "mesh_drawing", "internal_mesh_drawing", "rack_drawing", "sliding_diagram",
            "blocking_contour", "segment_circle_hits"]
@@ -132,8 +133,7 @@ def mesh_drawing(gears) -> MeshDrawing:
             (xmax - 0.03 * (xmax - xmin) * (1 + 1.4 * (k % 5)))
         if r > abs(xl):
             yl = c[1] + math.sqrt(r * r - xl * xl) * (1 if lower else -1)
-            ax.annotate(lab, (xl, yl), fontsize=7, color=GREY, ha="center",
-                        va="bottom" if lower else "top")
+            cv.labels.add(xl, yl, lab, prefer=(0, 1 if lower else -1), fontsize=7, color=GREY)
     ax.plot([N1[0], N2[0]], [N1[1], N2[1]], color=INK, lw=0.9)
     # active part: the tip circles (polygons) on N₁N₂
     tip2 = _circle_poly(O2[0], O2[1], float(g.da2) / 2)
@@ -146,7 +146,7 @@ def mesh_drawing(gears) -> MeshDrawing:
     for pt, lab, off in ((N1, "$N_1$", (-10, -2)), (N2, "$N_2$", (-14, 3)), (P, "$P$", (4, -10)),
                          (B1, "$B_1$", (-4, 5)), (B2, "$B_2$", (3, 5))):
         ax.plot(*pt, "o", ms=2.5, color=INK)
-        ax.annotate(lab, tuple(pt), xytext=off, textcoords="offset points", fontsize=9)
+        cv.labels.add(*pt, lab, prefer=off, point=True, fontsize=9)
     # active profiles of the pair of teeth in contact at P: φ(r) = φ_P + inv α_r − inv α_w
     for c, rb, ra, rho_p, base, col in ((O1, g.db1 / 2, float(g.da1) / 2, float(g.rho_p1), math.pi / 2, RED),
                                         (O2, g.db2 / 2, float(g.da2) / 2, float(g.rho_p2), 1.5 * math.pi, BLUE)):
@@ -161,9 +161,9 @@ def mesh_drawing(gears) -> MeshDrawing:
     t2 = np.linspace(1.5 * math.pi - d1 * k, 1.5 * math.pi + d2 * k, 80)
     ax.plot(r_w1 * np.cos(t1), r_w1 * np.sin(t1), color=RED, lw=1.8, alpha=0.7)
     ax.plot(r_w2 * np.cos(t2), aw + r_w2 * np.sin(t2), color=BLUE, lw=1.8, alpha=0.7)
-    ax.annotate("дуги зацепления", (r_w1 * math.cos(t1[0]), r_w1 * math.sin(t1[0])), xytext=(4, -12),
-                textcoords="offset points", fontsize=7)
+    cv.labels.add(r_w1 * math.cos(t1[0]), r_w1 * math.sin(t1[0]), "дуги зацепления", prefer=(1, -1), fontsize=7)
     ax.axvline(0, color=GREY, lw=0.5, ls="-.")
+    cv.labels.place()       # clear of the profiles, the circles, the line of action and each other
     b1b2 = float(np.hypot(*(B2 - B1))) / cv.mu
     b1b2_read = round(b1b2 * 2) / 2
     eps_graph = b1b2_read * cv.mu / g.pb
@@ -220,8 +220,9 @@ def internal_mesh_drawing(gears) -> MeshDrawing:
     for pt, lab, off in ((N1, "$N_1$", (-12, 2)), (N2, "$N_2$", (-12, 2)), (P, "$P$", (4, -10)),
                          (B1, "$B_1$", (-4, 5)), (B2, "$B_2$", (3, 5))):
         ax.plot(*pt, "o", ms=2.5, color=INK)
-        ax.annotate(lab, tuple(pt), xytext=off, textcoords="offset points", fontsize=9)
+        cv.labels.add(*pt, lab, prefer=off, point=True, fontsize=9)
     ax.axvline(0, color=GREY, lw=0.5, ls="-.")
+    cv.labels.place()
     b1b2_read = round(float(np.hypot(*(B2 - B1))) / cv.mu * 2) / 2
     return MeshDrawing(cv.fig, cv.mu, cv.width_mm, b1b2_read, b1b2_read * cv.mu / g.pb, tuple(B1), tuple(B2))
 
@@ -259,25 +260,24 @@ def rack_drawing(gears):
     ax.plot(xr, yr, color=BLUE, lw=1.0)
     ax.fill_between(xr, yr, ymax, color=BLUE, alpha=0.08, lw=0)
     ax.axhline(yd, color=BLUE, lw=0.6, ls="-.")
-    ax.annotate("делительная прямая рейки", (-half * 0.98, yd), xytext=(0, 2), textcoords="offset points",
-                fontsize=7, color=BLUE)
+    cv.labels.add(-half * 0.8, yd, "делительная прямая рейки", prefer=(0, 1), fontsize=7, color=BLUE)
     ax.axhline(r, color=INK, lw=0.6, ls=":")
-    ax.annotate("станочно-начальная прямая", (-half * 0.98, r), xytext=(0, -9), textcoords="offset points",
-                fontsize=7)
+    cv.labels.add(-half * 0.8, r, "станочно-начальная прямая", prefer=(0, -1), fontsize=7)
     ax.axhline(yd - (rack.ha) * m, color=GREY, lw=0.5, ls="--")
     # labels at different abscissae: the circles d and d_b are too close for one column of labels
     for rr, lab, fx in ((r, "$d$", 0.62), (r * math.cos(al), "$d_b$", 0.84), (da / 2, "$d_a$", 0.4)):
         ax.add_patch(Circle((0, 0), rr, fill=False, lw=0.6, ls="-.", color=GREY))
         xl = fx * 0.9 * min(half, r * math.cos(al))        # on the circle, inside the view
-        ax.annotate(lab, (xl, math.sqrt(rr * rr - xl * xl)), fontsize=7, color=GREY)
+        cv.labels.add(xl, math.sqrt(rr * rr - xl * xl), lab, prefer=(1, 1), fontsize=7, color=GREY)
     N = np.array([-r * math.cos(al) * math.sin(al), r * math.cos(al) * math.cos(al)])
     Pp = np.array([0.0, r])
     d = Pp - N
     ax.plot([N[0] - 0.2 * d[0], Pp[0] + 1.6 * d[0]], [N[1] - 0.2 * d[1], Pp[1] + 1.6 * d[1]], color=INK, lw=0.8)
     for pt, lab in ((N, "$N$"), (Pp, "$P_0$")):
         ax.plot(*pt, "o", ms=2.5, color=INK)
-        ax.annotate(lab, tuple(pt), xytext=(-12, 2), textcoords="offset points", fontsize=9)
-    ax.annotate(f"$xm$ = {x * m:.2f} мм".replace(".", ","), (half * 0.4, (r + yd) / 2), fontsize=8)
+        cv.labels.add(*pt, lab, prefer=(-1, 0.2), point=True, fontsize=9)
+    cv.labels.add(half * 0.4, (r + yd) / 2, f"$xm$ = {x * m:.2f} мм".replace(".", ","), prefer=(1, 0), fontsize=8)
+    cv.labels.place()
     return cv.fig, cv.width_mm, cv.mu
 
 
@@ -291,12 +291,13 @@ def sliding_diagram(gears):
     ax = fig.add_subplot()
     ax.plot(rho, l1, color=RED, lw=1.4, label="$\\lambda_1$")
     ax.plot(rho, l2, color=BLUE, lw=1.4, label="$\\lambda_2$")
+    labels = LabelPlacer(ax, fontsize=9)       # beside their lines, clear of the curves
     for v, lab in ((float(g.rho_p1), "$B_1$"), (float(g.rho_a1), "$B_2$")):
         ax.axvline(v, color=INK, lw=0.8, ls="--")
-        ax.annotate(lab, (v, 1.0), xytext=(3, 0), textcoords="offset points", fontsize=9)
+        labels.add(v, 1.0, lab, prefer=(1, 0.5))
     rp = float(g.dw1) / 2 * math.sin(float(g.alpha_w))
     ax.axvline(rp, color=GREY, lw=0.6)
-    ax.annotate("$P$", (rp, -3.5), xytext=(3, 0), textcoords="offset points", fontsize=9)
+    labels.add(rp, -3.5, "$P$", prefer=(1, 0))
     ax.axhline(0, color=INK, lw=0.6)
     ax.axhline(1, color=GREY, lw=0.5, ls=":")
     ax.set_ylim(-4, 1.3)
@@ -304,6 +305,7 @@ def sliding_diagram(gears):
     ax.set_xlabel("расстояние от $N_1$ вдоль линии зацепления, мм")
     ax.set_ylabel("$\\lambda$")
     ax.legend(loc="lower center")
+    place_on_chart(labels)
     return fig
 
 
