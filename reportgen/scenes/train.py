@@ -16,7 +16,7 @@ from ..analysis.train import FRAME, pitch_points, ratio_chain
 from ..style import mplstyle
 from ..style.numbers import fmt
 from .draw import GREY, INK
-from .labels import tex_point
+from .labels import LabelPlacer, tex_point
 
 __all__ = ["TrainPicture", "train_picture", "StagePlans", "stage_plans", "declutter", "text_overlaps"]
 
@@ -117,11 +117,9 @@ def _scheme(ax, m, y, col, colors, dx, labels):
                 for sg in (1, -1):
                     ax.plot([x - tick, x + tick], [yc + sg * r] * 2, color=c, lw=1.2)
             if s == 1 and wh.internal:          # beside the rim's back line, inside the ring
-                labels.append(ax.annotate(_name(name), (x + 0.4 * dx, yc + r), xytext=(3, -11),
-                                          textcoords="offset points", fontsize=9, color=c))
+                labels.add(x + 0.4 * dx, yc + r, _name(name), prefer=(3, -11), color=c)
             elif s == 1:
-                labels.append(ax.annotate(_name(name), (x, yc + r), xytext=(-9, 2), textcoords="offset points",
-                                          fontsize=9, color=c))
+                labels.add(x, yc + r, _name(name), prefer=(-9, 2), color=c)
     order = list(m.members)
     for mem, axis in m.members.items():
         c = colors[mem]
@@ -139,8 +137,7 @@ def _scheme(ax, m, y, col, colors, dx, labels):
                     ax.plot([x0, max(xa) + 0.25 * dx], [s * y[a]] * 2, color=c, lw=1.6)
             for s in sides:
                 ax.plot([x0 - 0.5 * dx, x0], [s * y[axis]] * 2, color=c, lw=1.6)
-            labels.append(ax.annotate(_name(mem), (x0, y[axis]), xytext=(-14, 3), textcoords="offset points",
-                                      fontsize=9, color=c))
+            labels.add(x0, y[axis], _name(mem), prefer=(-14, 3), color=c)
         elif xs:
             for s in sides:
                 ax.plot([min(xs) - 0.3 * dx, max(xs) + 0.3 * dx], [s * y[axis]] * 2, color=c, lw=1.6)
@@ -172,7 +169,7 @@ def train_picture(train) -> TrainPicture:
     bottom, top = 0.27, 0.95
     ax = fig.add_axes((0.09, bottom, 0.44, top - bottom))
     ylo, yhi = -1.12 * R, 1.2 * R
-    labels: list = []
+    labels = LabelPlacer(ax, fontsize=9)        # placed clear of the lines once all is drawn
     _scheme(ax, m, y, col, colors, dx, labels)
     ax.set_xlim(-(1.4 + 0.35 * len(m.members)) * dx, (ncol + 0.2) * dx)
     ax.set_ylim(ylo, yhi)
@@ -180,7 +177,7 @@ def train_picture(train) -> TrainPicture:
     ax.axhline(0, color=GREY, lw=0.5, ls="-.")
     ax.set_ylabel("расстояние от центральной оси, мм")
     ax.set_title("Схема механизма", fontsize=10)
-    declutter(fig, labels)
+    labels.place()
     # velocity picture: v(y) of every member over its upper image (per unit ω of the input)
     pp = pitch_points(m)
     lo_v = min(min(y[wh.centre] - wh.m * wh.z / 2 for wh in m.wheels.values()), 0.0) - 0.06 * R
@@ -197,46 +194,43 @@ def train_picture(train) -> TrainPicture:
             mem = m.axes[m.members[mem]]
         return v
 
-    vlabels = []
+    vlabels = LabelPlacer(av, fontsize=8)
     for mem, axis in m.members.items():
         ys = [y[wh.centre] + s * wh.m * wh.z / 2 for wh in m.wheels.values() if wh.member == mem for s in (-1, 1)]
         ys += [y[a] for a, h in m.axes.items() if h == mem] + [y[axis]]
         yy = np.array([min(ys), max(ys)])
         vv = [vel(mem, t) for t in yy]
         av.plot(vv, yy, color=colors[mem], lw=1.4)
-        vlabels.append(av.annotate(_name(mem), (vv[1], yy[1]), xytext=(2, 2), textcoords="offset points",
-                                   fontsize=8, color=colors[mem]))
+        vlabels.add(vv[1], yy[1], _name(mem), prefer=(2, 2), color=colors[mem])
     for (a, b), yp in pp.items():
         vp = vel(m.wheels[a].member, yp)
         av.plot([0, vp], [yp, yp], color=GREY, lw=0.6)
         av.plot([vp], [yp], "o", ms=3, color=INK)
-        vlabels.append(av.annotate(f"$P_{{{a}{b}}}$", (vp, yp), xytext=(4, -9), textcoords="offset points",
-                                   fontsize=8))
+        vlabels.add(vp, yp, f"$P_{{{a}{b}}}$", prefer=(4, -9), point=True)
     for a in set(y.values()):
         av.axhline(a, color=GREY, lw=0.4, ls=":")
     av.axvline(0, color=INK, lw=0.8)
     av.set_xlabel("$v/\\omega_{вх}$, мм")
     av.set_title("Картина линейных скоростей", fontsize=10)
-    declutter(fig, vlabels)
+    vlabels.place()
     # plan of angular velocities of the whole train: rays from the pole parallel to the velocity
     # lines, cut by a base line at the polar distance h; segment ∝ ω.
     ap = fig.add_axes((0.58, 0.02, 0.40, 0.16))
     wmax = max(abs(v) for v in w.values()) or 1.0
     h = 10.0
     seg = {n: round(60.0 * w[n] / wmax / READ_MM) * READ_MM for n in m.members}
-    plabels = []
+    plabels = LabelPlacer(ap, fontsize=8)
+    plabels.add(0, h, "P", prefer=(3, 2), point=True)
     for n in m.members:
         ap.plot([0, seg[n]], [h, 0], color=colors[n], lw=1.2)
-        plabels.append(ap.annotate(_name(n), (seg[n], 0), xytext=(0, -10), textcoords="offset points", fontsize=8,
-                                   color=colors[n], ha="center"))
+        plabels.add(seg[n], 0, _name(n), prefer=(0, -1), color=colors[n])
     ap.axhline(0, color=INK, lw=0.8)
     ap.plot([0], [h], "o", ms=3, color=INK)
-    plabels.insert(0, ap.annotate("P", (0, h), xytext=(3, 2), textcoords="offset points", fontsize=8))
     ap.set_xlim(-65, 65)
     ap.set_ylim(-12, h + 4)
     ap.axis("off")
     ap.set_title("План угловых скоростей", fontsize=10)
-    declutter(fig, plabels)
+    plabels.place()
     return TrainPicture(fig, seg, 1.0)
 
 
