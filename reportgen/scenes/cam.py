@@ -155,28 +155,26 @@ class PhasePortrait:
         else:   # the axes of the portrait through B₀: s up, ∓s′ across (sign by the sense of rotation)
             ax.axhline(0, color=GREY, lw=0.6)
             ax.axvline(0, color=GREY, lw=0.6)
-            ax.annotate("s", (0, hi[1]), xytext=(4, -12), textcoords="offset points", fontsize=10)
-            ax.annotate("−s′" if cam.k > 0 else "s′", (hi[0], 0), xytext=(-16, 4), textcoords="offset points",
-                        fontsize=10)
+            cv.labels.add(0, hi[1], "s", prefer=(4, -12))
+            cv.labels.add(hi[0], 0, "−s′" if cam.k > 0 else "s′", prefer=(-16, 4))
         for D, nm in zip(curves, ("удаление", "возвращение")):
             i = int(np.argmax(np.hypot(*(D - D[0]).T)))
-            ax.annotate(nm, D[i], xytext=(0, 6), textcoords="offset points", fontsize=9, ha="center")
+            cv.labels.add(*D[i], nm, prefer=(0, 1), fontsize=9)
         for which, phi in ((1, syn.phi_rise), (2, syn.phi_return)):
             self._ray(ax, cam, which, phi, lo, hi, "-")
             D = self._D(cam, phi)
-            ax.annotate("$K_у$" if which == 1 else "$K_в$", D, xytext=(5, -4), textcoords="offset points",
-                        fontsize=10)
+            cv.labels.add(*D, "$K_у$" if which == 1 else "$K_в$", prefer=(5, -4), point=True)
         for which, phi in ((1, self._vmax(cam, cam.rise, 1)), (2, self._vmax(cam, cam.ret, -1))):
             self._ray(ax, cam, which, phi, lo, hi, "--", lw=0.7)
         ax.plot(*O, "o", color=INK, ms=4, zorder=5)
-        ax.annotate("O", O, xytext=(4, -10), textcoords="offset points", fontsize=10)
+        cv.labels.add(*O, "O", prefer=(4, -10), point=True)
         B0 = cam._geom(0.0, 1, O)["B"]
         ax.plot(*B0, "o", color=INK, ms=3, zorder=5)
-        ax.annotate("$B_0$", B0, xytext=(4, 4), textcoords="offset points", fontsize=10)
+        cv.labels.add(*B0, "$B_0$", prefer=(4, 4), point=True)
         ax.plot([O[0], B0[0]], [O[1], B0[1]], color=INK, lw=0.8)
         if cam.follower == "rocker":
             ax.plot(0, 0, "o", color=INK, ms=4, zorder=5)
-            ax.annotate("A", (0, 0), xytext=(4, 4), textcoords="offset points", fontsize=10)
+            cv.labels.add(0, 0, "A", prefer=(4, 4), point=True)
             ax.plot([0, O[0]], [0, O[1]], color=INK, lw=0.8, ls="-.")
             ax.plot([0, B0[0]], [0, B0[1]], color=INK, lw=1.4)
         self.mu = mu
@@ -340,13 +338,13 @@ class ProfileDrawing:
         ax.plot(0, 0, "o", color=INK, ms=4, zorder=6)
         R = float(np.max(np.hypot(W[:, 0], W[:, 1])))      # the cam's centre lines, 5 mm past the profile
         centre_cross(cv, 0.0, 0.0, R / self.mu + 5.0)
-        ax.annotate("O", (0, 0), xytext=(-12, -12), textcoords="offset points", fontsize=10)
+        cv.labels.add(0, 0, "O", prefer=(-1, -1), point=True)
         for i, seg in enumerate(fol):
             for line in seg["lines"]:
                 ax.plot(line[:, 0], line[:, 1], color=INK, lw=1.1, zorder=4)
             for c, rad in seg["circles"]:
                 ax.add_patch(Circle(c, rad, facecolor="white", edgecolor=INK, lw=1.0, zorder=5))
-            ax.annotate(str(i), seg["label"], xytext=(3, 3), textcoords="offset points", fontsize=9)
+            cv.labels.add(*seg["label"], str(i), prefer=(3, 3), fontsize=9)
         # the sense of rotation of the cam: an arc arrow
         a = np.linspace(0, k * 0.6, 20) + math.pi / 2 + 0.3 * k
         R = 0.35 * syn.r0
@@ -354,7 +352,7 @@ class ProfileDrawing:
         ax.annotate("", xy=(R * math.cos(a[-1]), R * math.sin(a[-1])),
                     xytext=(R * math.cos(a[-3]), R * math.sin(a[-3])),
                     arrowprops=dict(arrowstyle="-|>", color=INK, lw=0.8))
-        ax.annotate("ω", (R * math.cos(a[10]) * 1.3, R * math.sin(a[10]) * 1.3), fontsize=10, ha="center")
+        cv.labels.add(R * math.cos(a[10]), R * math.sin(a[10]), "ω", prefer=(math.cos(a[10]), math.sin(a[10])))
         return Drawing(cv.svg(), cv.width_mm, self.mu)
 
     @staticmethod
