@@ -10,6 +10,7 @@ from matplotlib.patches import Circle, Polygon
 
 from ..style import mplstyle
 from .draw import GREY, INK, LIGHT, Canvas, centre_cross, nice_scale
+from .labels import LabelPlacer, place_on_chart
 from .mechanism import Drawing
 
 __all__ = ["LawDiagrams", "PhasePortrait", "FlatRockerSize", "PressureAngleGraph", "ProfileDrawing", "gost_scale",
@@ -256,14 +257,15 @@ class FlatRockerSize:
             ax.plot(X, np.where(ap < 2 * top, ap, np.inf), color=INK, lw=1.3, ls="--",
                     label="угол давления: ϑ ≤ [ϑ]")
         ax.plot(math.degrees(syn.psi0), syn.a_w * 1000, "o", color=INK, ms=5, zorder=5)
-        ax.annotate("$a_w$, $\\psi_0$", (math.degrees(syn.psi0), syn.a_w * 1000), xytext=(-8, -4),
-                    textcoords="offset points", fontsize=10, ha="right", va="top")
+        label = LabelPlacer(ax)        # clear of the curves and the hatching
+        label.add(math.degrees(syn.psi0), syn.a_w * 1000, "$a_w$, $\\psi_0$", prefer=(-1, -0.5), point=True)
         ax.set_xlim(0, math.degrees(math.pi / 2 - cam.h))
         ax.set_ylim(0, top)
         ax.set_xlabel("ψ$_0$, град")
         ax.set_ylabel("a$_w$, мм")
         mplstyle.localize_axes(ax)
         ax.legend(loc="upper center", fontsize=9)
+        place_on_chart(label)
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 

@@ -7,6 +7,7 @@ from matplotlib.patches import Circle
 
 from ..style import mplstyle
 from .draw import GREY, INK, arrow
+from .labels import LabelPlacer, place_on_chart
 from .mechanism import Drawing
 
 _FS = 8
@@ -27,6 +28,7 @@ class GovernorScheme:
         H, F, D, B = geo["H"], geo["F"], geo["D"], geo["B"]
         fig = mplstyle.figure(165, 95)
         ax, bx = fig.subplots(1, 2, width_ratios=[1.1, 1])
+        points, forces = LabelPlacer(ax, fontsize=_FS), LabelPlacer(bx, fontsize=_FS)   # placed clear of the lines
         for side in (lambda p: p, _mirror):
             h, f_, d, b = side(H), side(F), side(D), side(B)
             ax.plot([h[0], d[0]], [h[1], d[1]], color=INK, lw=1.4)
@@ -40,7 +42,7 @@ class GovernorScheme:
         for name, p, dx in (("H", H, 0.008), ("F", F, 0.01), ("D", D, 0.016), ("B", B, 0.008),
                             ("G", _mirror(H), -0.025), ("E", _mirror(F), -0.028), ("C", _mirror(D), -0.035),
                             ("A", _mirror(B), -0.025)):
-            ax.text(p[0] + dx, p[1] + 0.006, name, fontsize=_FS)
+            points.add(*p, name, prefer=(dx, 0.006), point=True)
         # lines of action: the rod (tangent to the circles at F and B), R76 through K
         e = r["R36"] / np.hypot(*r["R36"])
         p0 = r["rod_point"]
@@ -52,7 +54,7 @@ class GovernorScheme:
         ax.plot([r["Q_point"][0], K[0]], [r["Q_point"][1], K[1]], color="tab:purple", lw=0.7, ls="--")
         ax.plot([D[0], K[0]], [D[1], K[1]], color=GREY, lw=0.6, ls=":")
         ax.plot(*K, "o", ms=2.5, color=INK)
-        ax.text(K[0] + 0.006, K[1] - 0.02, "K", fontsize=_FS)
+        points.add(*K, "K", prefer=(0.006, -0.02), point=True)
         ax.set_aspect("equal")
         ax.set_xlabel("x, м")
         ax.set_ylabel("y, м")
@@ -64,17 +66,20 @@ class GovernorScheme:
         pts = [off, off + Q, off + Q + R32, off + Q + R32 + R42]
         for (p, q), lab in zip(zip(pts, pts[1:]), ("Q", "R₃₂", "R₄₂")):
             arrow(bx, *p, *q, color="tab:gray")
-            bx.text(*(0.5 * (p + q) + np.array([2, 0])), lab, fontsize=_FS, color="tab:gray")
+            forces.add(*(0.5 * (p + q)), lab, prefer=(1, 0), color="tab:gray")
         vecs = [("G", r["G"]), ("R₃₆", r["R36"]), ("Fи", np.array([r["F_i"], 0.0])), ("R₇₆", r["R76"])]
         p = np.zeros(2)
         for lab, v in vecs:
             arrow(bx, *p, *(p + v), color=INK)
-            bx.text(*(p + 0.5 * v + np.array([1.5, 1.5])), lab, fontsize=_FS)
+            forces.add(*(p + 0.5 * v), lab, prefer=(1, 1))
             p = p + v
         arrow(bx, 0, 0, *r["P"], color="tab:purple", ls="--")
-        bx.text(*(0.5 * r["P"] + np.array([-12, -4])), "P", fontsize=_FS, color="tab:purple")
+        forces.add(*(0.5 * r["P"]), "P", prefer=(-12, -4), color="tab:purple")
         bx.set_aspect("equal")
         bx.set_xlabel("Fx, Н")
         bx.set_ylabel("Fy, Н")
+        bx.margins(0.12)            # room round the polygons for their labels
         bx.autoscale_view()
+        place_on_chart(points)
+        forces.place()
         return Drawing(mplstyle.to_svg(fig), 165, 0.0)

@@ -289,12 +289,15 @@ class _Box:
 
 def place_on_chart(placer: "LabelPlacer") -> list[Text]:
     """Place the labels of a chart whose figure has a layout engine (constrained layout): the
-    layout is done first and then kept, so that the axes do not move under the placed labels."""
+    layout is done first and then kept, so that the axes do not move under the placed labels;
+    an axes of equal aspect is shrunk to its drawn box first (as drawing would)."""
     fig = placer.fig
     engine = fig.get_layout_engine()
     if engine is not None:
         engine.execute(fig)
         fig.set_layout_engine("none")
+    for ax in fig.axes:
+        ax.apply_aspect()
     return placer.place()
 
 
