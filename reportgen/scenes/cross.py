@@ -6,6 +6,7 @@ from matplotlib.patches import Rectangle
 
 from ..style import mplstyle
 from .draw import GREY, INK, arrow
+from .labels import LabelPlacer, place_on_chart
 from .mechanism import Drawing
 
 _FS = 8
@@ -23,6 +24,7 @@ class CrossScheme:
         d = float(np.hypot(*O2))
         fig = mplstyle.figure(165, 85)
         ax, bx = fig.subplots(1, 2)
+        points, plan = LabelPlacer(ax, fontsize=_FS), LabelPlacer(bx, fontsize=_FS)    # placed clear of the lines
         ax.plot([B[0] * 1.2, C[0] * 1.25], [B[1] * 1.2, C[1] * 1.25], color=INK, lw=1.4)       # rocker 3
         e5 = (C - O2) / np.hypot(*(C - O2))
         ax.plot([O2[0], C[0] + 0.25 * d * e5[0]], [O2[1], C[1] + 0.25 * d * e5[1]], color=INK, lw=1.4)  # rocker 5
@@ -32,13 +34,13 @@ class CrossScheme:
         if cx.l_AB:
             A = B + cx.l_AB * e1
             ax.plot([B[0], A[0]], [B[1], A[1]], color=INK, lw=2.2)
-            ax.text(A[0] + 0.01 * d, A[1], "A", fontsize=_FS)
+            points.add(*A, "A", prefer=(1, 0), point=True)
         w = 0.05 * d
         for p in (B, C):
             ax.add_patch(Rectangle((p[0] - w / 2, p[1] - w / 2), w, w, fill=False, ec=INK, lw=1.0))
         for name, p in (("O₁", O1), ("O₂", O2), ("B", B), ("C", C)):
             ax.plot(*p, "o", ms=3, color=INK)
-            ax.text(p[0] + 0.03 * d, p[1] - 0.06 * d, name, fontsize=_FS)
+            points.add(*p, name, prefer=(0.03, -0.06), point=True)
         ax.set_aspect("equal")
         ax.set_xlabel("x, м")
         ax.set_ylabel("y, м")
@@ -49,10 +51,13 @@ class CrossScheme:
                                (r["vC3"], r["vC4"], "", GREY), (r["vC5"], r["vC4"], "", GREY)):
             arrow(bx, *a, *b, color=col)
             if lab:
-                bx.text(b[0], b[1], " " + lab, fontsize=_FS, color=col)
-        bx.text(0, 0, "p ", fontsize=_FS, ha="right")
+                plan.add(*b, lab, prefer=b, point=True, color=col)
+        plan.add(0, 0, "p", prefer=(-1, 0), point=True)
         bx.set_aspect("equal")
         bx.set_xlabel("Vx, м/с")
         bx.set_ylabel("Vy, м/с")
+        bx.margins(0.12)            # room round the plan for its labels
         bx.autoscale_view()
+        place_on_chart(points)
+        plan.place()
         return Drawing(mplstyle.to_svg(fig), 165, 0.0)
