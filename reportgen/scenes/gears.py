@@ -262,7 +262,7 @@ def rack_drawing(gears):
     ax.axhline(yd, color=BLUE, lw=0.6, ls="-.")
     cv.labels.add(-half * 0.8, yd, "делительная прямая рейки", prefer=(0, 1), fontsize=7, color=BLUE)
     ax.axhline(r, color=INK, lw=0.6, ls=":")
-    cv.labels.add(-half * 0.8, r, "станочно-начальная прямая", prefer=(0, -1), fontsize=7)
+    cv.labels.add(-half * 0.6, r, "станочно-начальная прямая", prefer=(0, -1), fontsize=7)
     ax.axhline(yd - (rack.ha) * m, color=GREY, lw=0.5, ls="--")
     # labels at different abscissae: the circles d and d_b are too close for one column of labels
     for rr, lab, fx in ((r, "$d$", 0.62), (r * math.cos(al), "$d_b$", 0.84), (da / 2, "$d_a$", 0.4)):
