@@ -200,14 +200,13 @@ class EnergyCurves:
         ax.plot(x, cyc["A_sum"], lw=1.2, ls="--", color=INK, label="$\\Delta T = A_{\\Sigma}$")
         ax.plot(x, cyc["T_II"], lw=1.0, label="$T_{II} = J_{II}\\,\\omega_{ср}^2/2$")
         ax.plot(x, cyc["dT_I"], lw=1.6, color=INK, label="$\\Delta T_{I} = \\Delta T - T_{II}$")
-        for key, va in (("max", "bottom"), ("min", "top")):
+        notes = LabelPlacer(ax, fontsize=9)      # the extremes' notes clear of the curves and the legend
+        for key, up in (("max", 1), ("min", -1)):
             px = _x(study, sc[f"q_dT_I_{key}"])
             v = sc[f"dT_I_{key}"]
             ax.plot([px], [v], "o", color=INK, ms=5)
             ax.axhline(v, color="0.4", lw=0.6, ls=(0, (4, 2)))
-            ax.annotate(f"$\\Delta T_{{I\\,{key}}}$ = {fmt(v, sig=5)} Дж", (px, v),
-                        xytext=(10, 6 if va == "bottom" else -6), textcoords="offset points", fontsize=9, va=va,
-                        bbox=dict(boxstyle="square,pad=0.15", fc="white", ec="none"))
+            notes.add(px, v, f"$\\Delta T_{{I\\,{key}}}$ = {fmt(v, sig=5)} Дж", prefer=(1, up), point=True)
         ax.axhline(0, color="0.3", lw=0.6)
         ax.margins(y=0.2)             # room for the notes of the extremes inside the axes
         _xaxis(ax, study)
@@ -215,7 +214,11 @@ class EnergyCurves:
         # in the lower corner away from the minimum, whose note the legend would hide
         lo, hi = ax.get_xlim()
         left = _x(study, sc["q_dT_I_min"]) < (lo + hi) / 2
-        ax.legend(fontsize=9, loc="lower right" if left else "lower left")
+        legend = ax.legend(fontsize=9, loc="lower right" if left else "lower left")
+        fig.get_layout_engine().execute(fig)
+        fig.set_layout_engine("none")           # the layout kept (place_on_chart): the legend's box is final
+        notes.avoid_boxes.append(legend.get_window_extent())
+        place_on_chart(notes)
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 
