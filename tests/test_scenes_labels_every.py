@@ -71,3 +71,23 @@ def test_gear_drawings_texts_clear_of_lines(path):
             for t in ax.texts:
                 a, c = ax.transData.transform(t.anchor), ax.transData.transform(t.get_position())
                 assert ((a - c) ** 2).sum() ** 0.5 <= L.RADII_MM[-1] * fig.dpi / 25.4 + 1e-6, t.get_text()
+
+
+@pytest.mark.parametrize("path", _cases("dynamics"))
+def test_energy_and_motion_notes_clear_of_lines(path, captured):
+    """The notes ΔT_I max, ΔT_I min of the energy curves and ω_ср of the motion curves: near their
+    points, over no curve and not under the legend (before: written at a fixed offset, across
+    the curves)."""
+    from reportgen.scenes.dynamics import EnergyCurves, MotionCurves
+    st = _study(path)
+    for scene in (EnergyCurves(), MotionCurves()):
+        captured.clear()
+        scene.draw(st)
+        fig = captured[-1]
+        assert _clean(fig) == []
+        for ax in fig.axes:
+            legend = ax.get_legend()
+            for t in ax.texts:
+                assert hasattr(t, "anchor"), t.get_text()
+                if legend is not None:
+                    assert not t.get_window_extent().overlaps(legend.get_window_extent()), t.get_text()

@@ -294,15 +294,20 @@ class MotionCurves:
         if s.method == "mertsalov":
             a1.plot(x, cyc["omega_exact"], lw=1.0, ls="--", label="точное решение с тем же $J_I$")
         a1.axhline(s.omega_m, color="0.3", lw=0.7, ls=(0, (4, 2)))
-        a1.annotate("$\\omega_{ср}$", (x[-1], s.omega_m), xytext=(-24, 3), textcoords="offset points", fontsize=9)
+        mean = LabelPlacer(a1, fontsize=9)       # at the right end of its line, clear of the curves and the legend
+        mean.add(x[-1], s.omega_m, "$\\omega_{ср}$", prefer=(-24, 3), point=True)
         _marks(a1, study, "omega")
         a1.set_ylabel("ω, рад/с")
-        a1.legend(fontsize=9, loc="best")
+        legend = a1.legend(fontsize=9, loc="best")
         a2.plot(x, cyc["eps"], lw=1.4, color=INK)
         a2.axhline(0, color="0.3", lw=0.6)
         _marks(a2, study, "eps")
         a2.set_ylabel("ε, рад/с²")
         _xaxis(a2, study)
+        fig.get_layout_engine().execute(fig)
+        fig.set_layout_engine("none")           # the layout kept (place_on_chart): the legend's box is final
+        mean.avoid_boxes.append(legend.get_window_extent())
+        place_on_chart(mean)
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 
