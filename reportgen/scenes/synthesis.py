@@ -20,7 +20,7 @@ _FS = 9
 
 def _pt(cv: Canvas, p, name: str, dx=1.5, dy=1.5, filled=True, color=INK):
     cv.ax.add_patch(Circle(p, cv.mm(0.9), fc=color if filled else "white", ec=color, lw=0.9, zorder=5))
-    cv.ax.text(p[0] + cv.mm(dx), p[1] + cv.mm(dy), name, fontsize=_FS, color=color, zorder=6)
+    cv.labels.add(*p, name, prefer=(dx, dy), point=True, fontsize=_FS, color=color)     # placed by cv.svg()
 
 
 def _seg(cv: Canvas, p, q, lw=1.4, ls="-", color=INK, z=3):
@@ -32,8 +32,7 @@ def _dim(cv: Canvas, a, b, label: str, **text):
     cv.ax.annotate("", xy=b, xytext=a, xycoords="data",
                    arrowprops=dict(arrowstyle="<->", lw=0.7, shrinkA=0, shrinkB=0))
     dx, dy = text.pop("dx", 0.0), text.pop("dy", 1.0)
-    cv.ax.text((a[0] + b[0]) / 2 + cv.mm(dx), (a[1] + b[1]) / 2 + cv.mm(dy), label, fontsize=_FS,
-               **({"ha": "center"} | text))
+    cv.labels.add((a[0] + b[0]) / 2, (a[1] + b[1]) / 2, label, prefer=(dx, dy), fontsize=_FS, **text)
 
 
 def _angle(cv: Canvas, o, p, q, label: str, r_mm=10.0):
@@ -45,8 +44,8 @@ def _angle(cv: Canvas, o, p, q, label: str, r_mm=10.0):
     r = cv.mm(r_mm)
     cv.ax.add_patch(Arc(o, 2 * r, 2 * r, theta1=a1, theta2=a2 if a2 > a1 else a2 + 360, lw=0.8, color=INK))
     mid = math.radians(a1 + ((a2 - a1) % 360) / 2)
-    cv.ax.text(o[0] + 1.35 * r * math.cos(mid), o[1] + 1.35 * r * math.sin(mid), label, fontsize=_FS,
-               ha="center", va="center")
+    cv.labels.add(o[0] + r * math.cos(mid), o[1] + r * math.sin(mid), label, prefer=(math.cos(mid), math.sin(mid)),
+                  fontsize=_FS)
 
 
 class SynthesisConstruction:
@@ -234,7 +233,7 @@ class SynthesisConstruction:
         self._circles(cv, c1, c2, v["theta"], [o])
         self._crank(cv, v, c2, c1, o)
         _seg(cv, o, (o[0], 0.0), lw=0.6, ls="--", color=GREY)
-        cv.ax.text(o[0] - cv.mm(4), o[1] / 2, "e", fontsize=_FS)
+        cv.labels.add(o[0], o[1] / 2, "e", prefer=(-1, 0), fontsize=_FS)
         _pt(cv, c1, "C₁", dx=-2, dy=2)
         _pt(cv, c2, "C₂", dx=1, dy=2)
         _pt(cv, o, "O", dx=-4, dy=-4)
