@@ -1,4 +1,4 @@
-"""Every text of the drawings of the cam, train, structure-graph, governor and cross-slide
+"""Every text of the drawings of the cam, train, structure-graph, governor, cross-slide and synthesis
 sections and of the gear drawings (mesh, rack, sliding) is crossed by no line, arrow or outline
 (``line_problems(every=True)``: not only the labels a placer set, every text of the axes), none
 overlaps another or is clipped (``check_figure``), in every case of cases/ that has the section.
@@ -14,7 +14,7 @@ import pytest
 from reportgen.scenes import labels as L
 
 CASES = Path(__file__).resolve().parents[1] / "cases"
-SECTIONS = ("cam", "train", "dof", "governor", "cross")
+SECTIONS = ("cam", "train", "dof", "governor", "cross", "synthesis")
 
 
 @lru_cache(maxsize=None)
