@@ -215,10 +215,7 @@ class EnergyCurves:
         lo, hi = ax.get_xlim()
         left = _x(study, sc["q_dT_I_min"]) < (lo + hi) / 2
         legend = ax.legend(fontsize=9, loc="lower right" if left else "lower left")
-        fig.get_layout_engine().execute(fig)
-        fig.set_layout_engine("none")           # the layout kept (place_on_chart): the legend's box is final
-        notes.avoid_boxes.append(legend.get_window_extent())
-        place_on_chart(notes)
+        place_on_chart(notes, avoid=[legend])
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 
@@ -304,10 +301,7 @@ class MotionCurves:
         _marks(a2, study, "eps")
         a2.set_ylabel("ε, рад/с²")
         _xaxis(a2, study)
-        fig.get_layout_engine().execute(fig)
-        fig.set_layout_engine("none")           # the layout kept (place_on_chart): the legend's box is final
-        mean.avoid_boxes.append(legend.get_window_extent())
-        place_on_chart(mean)
+        place_on_chart(mean, avoid=[legend])
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 

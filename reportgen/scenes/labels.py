@@ -287,10 +287,11 @@ class _Box:
         self.x0, self.y0, self.x1, self.y1 = x0, y0, x1, y1
 
 
-def place_on_chart(placer: "LabelPlacer") -> list[Text]:
+def place_on_chart(placer: "LabelPlacer", avoid=()) -> list[Text]:
     """Place the labels of a chart whose figure has a layout engine (constrained layout): the
     layout is done first and then kept, so that the axes do not move under the placed labels;
-    an axes of equal aspect is shrunk to its drawn box first (as drawing would)."""
+    an axes of equal aspect is shrunk to its drawn box first (as drawing would). ``avoid``:
+    artists (a legend) whose boxes, once laid out, no label may overlap."""
     fig = placer.fig
     engine = fig.get_layout_engine()
     if engine is not None:
@@ -298,6 +299,7 @@ def place_on_chart(placer: "LabelPlacer") -> list[Text]:
         fig.set_layout_engine("none")
     for ax in fig.axes:
         ax.apply_aspect()
+    placer.avoid_boxes += [a.get_window_extent(_renderer(fig)) for a in avoid]
     return placer.place()
 
 
