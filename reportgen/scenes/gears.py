@@ -304,8 +304,8 @@ def sliding_diagram(gears):
     ax.set_xlim(0, hi)
     ax.set_xlabel("расстояние от $N_1$ вдоль линии зацепления, мм")
     ax.set_ylabel("$\\lambda$")
-    ax.legend(loc="lower center")
-    place_on_chart(labels)
+    legend = ax.legend(loc="lower center")
+    place_on_chart(labels, avoid=[legend])
     return fig
 
 
