@@ -155,3 +155,22 @@ def test_variant_after_a_neighbour_is_the_variant_built_alone(tmp_path, monkeypa
     alone, cold_passes = build(_variant(1), "cold")
     assert max(cold_passes) > 1
     assert after == alone
+
+
+def test_kinematics_of_variant_01_from_none_ends_on_the_reference():
+    """Class variant 01's kinematics part from no split points: a figure whose rule reads the
+    tables after it (held back once, it gives no entry either way) and a table whose model sends
+    it back to the entry the literal rule just left used to alternate two layouts until
+    MAX_PASSES; now the passes end, on the reference split points."""
+    from reportgen.analysis.study import Study
+    from reportgen.case.load import load_spec
+    from reportgen.report.assemble import build_report
+
+    l_oa, l_ab, y_h = VARIANTS[0]
+    spec = load_spec(CASES / "ws000_six_bar.toml", {"l_OA": l_oa, "l_AB": l_ab, "Y_H": y_h})
+    part = _Part(build_report(Study(spec), ["kinematics"]), 1)
+    ref = _reference(part)
+    assert any(not k.startswith(render.FIGURE_KEY) for k in ref)
+    got, passes = _fast(part)
+    assert got == ref
+    assert passes < render.MAX_PASSES

@@ -2055,8 +2055,11 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
       change (``state["literal"]``), is checked by that rule directly;
     * a figure without an entry: :func:`_figure_fix_at` does not trigger, or triggers and no
       later entry lies before the end of what it read (the layout it read is then the
-      canonical one); a figure with one: :func:`_figure_verdict`. A decided figure's entry holds
-      for the later passes (``state["proven"]``, dropped when a point before it changes).
+      canonical one), or gave none on the layout with the later entries held back and gives
+      none with them (``state["clean_none"]``: both layouts agree, so it is not held back again,
+      which would alternate the two layouts without end); a figure with one:
+      :func:`_figure_verdict`. A decided figure's entry holds for the later passes
+      (``state["proven"]``, dropped when a point before it changes).
 
     At the first point not proved right: its canonical entry when known (a table whose right
     entry ends where this one does leaves the later layout as it is, so the walk goes on),
@@ -2098,8 +2101,10 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
 
     def finish(idx: int, guess: bool):
         """Drop what was proved after ``idx``, guess the later points, return the next entries."""
-        for _p, _y, k in points[idx + 1:]:
+        later = {k for _p, _y, k in points[idx + 1:]}
+        for k in later:
             proven.pop(k, None)
+        state["clean_none"] = [k for k in state.get("clean_none", ()) if k not in later]
         if guess:
             for p, _y, k in points[idx + 1:]:
                 if _norm(k, new.get(k)) or k in held:
@@ -2138,7 +2143,7 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
             decided = None
             if fid is not None and FIGURE_KEY + fid == key:
                 unclean = _entries_before(points, idx, new, read)
-                if unclean:
+                if unclean and not (key in state.get("clean_none", ()) and not fix.get(key)):
                     hold(unclean)
                     put(key, None)
                     return finish(idx, False)
@@ -2149,6 +2154,10 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
                 put(key, decided)
             if state.get("held_for") == key:
                 state["held_for"] = None
+                if not decided and key not in state.setdefault("clean_none", []):
+                    # no entry on the layout without the later entries: where the rule reads
+                    # them back in and still gives none, the figure is not held back again
+                    state["clean_none"].append(key)
                 if held:
                     new.update(held)
                     held.clear()
@@ -2164,6 +2173,15 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
             state["literal"] = key
             put(key, step)
             return finish(idx, True)
+        if state.get("literal") == key:
+            # its entry came by the literal rule, which its model may contradict (a model that
+            # sends it back to the entry the rule just left would alternate without end)
+            step = _table_step(where, rb, bottoms, cur, False, min_rows)
+            if step is None:
+                proven[key] = cur
+                continue
+            put(key, step)
+            return finish(idx, True)
         p0 = where[min(where)]
         before = _block_before(document, p0, key) if 0 in cur and p0 > 0 else None
         verdict, entry, same_end = _table_verdict(where, rb, table_tops.get(key), tops, bottoms, cur,
@@ -2176,17 +2194,14 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
             if same_end:
                 continue  # the layout after it stays as it is: the walk goes on
             return finish(idx, True)
-        if state.get("literal") == key:
-            step = _table_step(where, rb, bottoms, cur, False, min_rows)
-            if step is None:
-                proven[key] = cur
-                continue
-            put(key, step)
-            return finish(idx, True)
         state["literal"] = None
         put(key, None)
         return finish(idx, False)
     if held:
+        # the figure they were held back for gave no entry without them (as above)
+        if state.get("held_for") and state["held_for"] not in state.setdefault("clean_none", []):
+            state["clean_none"].append(state["held_for"])
+        state["held_for"] = None
         new.update(held)
         held.clear()
         changed = True
