@@ -242,8 +242,10 @@ def test_beam_pump_K_printed_alike_in_section_and_conclusion():
     from reportgen.style.numbers import fmt
     st = _study("beam_pump")
     K = _strokes(st, st.cycle["y_D"].to_numpy())[3]
-    assert fmt(K, digits=3) == "1,064"
-    assert "<i>K</i>&nbsp;=&nbsp;1,064" in " ".join(conclusion_lines(st))
+    q1, q2 = sorted((st.scalars["output_q1"], st.scalars["output_q2"]))
+    arc = math.degrees(q2 - q1)                     # the crank's turn over one stroke, from the exact roots
+    assert K == pytest.approx((360 - min(arc, 360 - arc)) / min(arc, 360 - arc), rel=1e-12)
+    assert f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}" in " ".join(conclusion_lines(st))
 
 
 # ------------------------------------------------------------------ conclusion of the force analysis
@@ -279,7 +281,10 @@ def test_lever_discrepancy_over_the_tolerance_is_explained():
     k = int(re.search(r"в (\d+)\u00a0раза? более крупном", text).group(1))
     assert bound > float(m.group(1).replace(",", ".")) and k == math.ceil(bound / 5)
     assert "объясняется точностью построения" in text
-    assert "в положении, где уравновешивающий момент больше (здесь 3,66\u00a0Н·м" in text   # |M_ур| ≪ 117 Н·м
+    here, peak = (float(x.replace("\u00a0", "").replace(",", ".")) for x in re.search(
+        r"в положении, где уравновешивающий момент больше \(здесь ([\d,\u00a0]+)\u00a0Н·м при наибольшем по "
+        r"модулю ([\d,\u00a0]+)\u00a0Н·м\)", text).groups())
+    assert here < 0.5 * peak                        # named only where this position's |M_ур| is small
 
 
 def test_lever_within_the_tolerance_says_nothing_more():
@@ -342,10 +347,17 @@ def test_balancing_moment_of_a_crank_with_one_force_in_one_formula():
 # ------------------------------------------------------------------ K ≈ 1: no slow and fast stroke
 def test_practically_equal_strokes_not_called_slow_and_fast():
     from reportgen.report.sections.kinematics import QUICK_RETURN_K, conclusion_lines
+    from reportgen.style.numbers import fmt
     st = _study("jaw_crusher")
     assert 1.0 < st.scalars["output_K"] <= QUICK_RETURN_K
     line = next(x for x in conclusion_lines(st) if x.startswith("Средняя"))
-    assert "практически одинакова: 0,177 и 0,178&nbsp;рад/с" in line and "медленном" not in line
+    # mean angular speeds of the strokes ψ·ω₁/φ, φ — the crank's turn over each (exact extremes)
+    sc, w = st.scalars, abs(float(st.mechanism.driver.omega))
+    q1, q2 = sorted((sc["output_q1"], sc["output_q2"]))
+    swing = float(np.ptp(np.unwrap(st.cycle[sc["output"]].to_numpy())))
+    arcs = sorted((q2 - q1, 2 * math.pi - (q2 - q1)), reverse=True)
+    slow, fast = (fmt(swing * w / a, sig=3) for a in arcs)
+    assert f"практически одинакова: {slow} и {fast}&nbsp;рад/с" in line and "медленном" not in line
     beam = next(x for x in conclusion_lines(_study("beam_pump")) if x.startswith("Средняя"))
     assert "на медленном ходе" in beam            # K = 1,064: the strokes differ
 
