@@ -37,6 +37,8 @@ class Plan:
     tips: dict[str, np.ndarray] = field(default_factory=dict)    # label → vector from the pole
     segments: list[Segment] = field(default_factory=list)
     point_of_tip: dict[str, str] = field(default_factory=dict)   # tip label → mechanism point
+    owner: dict[str, str] = field(default_factory=dict)          # tip label → its link, kept for the labels
+                                                                 # when the link's segment is dropped
 
 
 def _vec(row, pre: str, p: str) -> np.ndarray:

@@ -25,9 +25,8 @@ from ..core import kinetostatics as KS
 from ..style import mplstyle
 from ..style.numbers import fmt, shared_decimals
 from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow, draw_mechanism, gost_scale, nice_scale
-from .labels import tex_point
 from .mechanism import LANDSCAPE_GAIN, LANDSCAPE_H, LANDSCAPE_W, Drawing
-from .plans import INSET_MARKS, PlanScene, find_insets
+from .plans import INSET_MARKS, PlanScene, find_insets, tip_label
 
 BLUE = "#1f4e9c"
 RED = "#b2182b"
@@ -1093,7 +1092,7 @@ class ZhukovskyLever:
         for lab, v in rot.items():
             if lab not in plan.point_of_tip or np.hypot(*v) < 1e-12 or lab in hidden:
                 continue
-            cv.labels.add(v[0], v[1], tex_point(lab, lower=True), prefer=v, fontsize=10, color=GREY)
+            cv.labels.add(v[0], v[1], tip_label(lab, plan, "velocity"), prefer=v, fontsize=10, color=GREY)
         for n, ins in enumerate(insets):
             ins.mark = INSET_MARKS[n % len(INSET_MARKS)]
             PlanScene(self.label, "velocity")._draw_inset(cv, lever_plan, ins, "$p$")

@@ -328,10 +328,12 @@ def build(study) -> Section:
         ws, es = _plan_formulas(s4, study, row, vrow, vplan, aplan)
         vectors.add_velocities(s4, study, vrow)
         if ws:
-            stones = sum(f.symbolic.startswith("V") for f in ws)
+            slides = sum(f.symbolic.startswith("V") for f in ws)
+            word = ("камня", "камней") if all(vectors.is_stone(study.mechanism, j)
+                                              for j in study.mechanism.prismatic) else ("в поступательной паре", "в поступательных парах")
             s4.paragraph("По отрезкам плана скоростей найдены угловые скорости звеньев"
-                         + (" и относительная скорость камня" if stones == 1 else
-                            " и относительные скорости камней" if stones else "") + ":")
+                         + (" и относительная скорость " + word[0] if slides == 1 else
+                            " и относительные скорости " + word[1] if slides else "") + ":")
             s4.formula(*ws)
         vectors.add_accelerations(s4, study, vrow)
         if es:
@@ -442,9 +444,16 @@ def _guide_transmission(study) -> tuple[list[dict], str]:
         if e <= 1e-9 * mech.size() or fl["min"] <= e:
             if e <= 1e-9 * mech.size():
                 rows.append({"g": label, "mu": math.pi / 2, "q": None})
-                told.append(f"В группе {name} давление камня на кулису направлено по нормали к кулисе, а "
-                            f"точка кулисы под камнем движется перпендикулярно её радиусу {pivot}{pin}, "
-                            f"лежащему на оси кулисы: угол передачи равен 90° во всех положениях.")
+                if vectors.is_stone(mech, pri):
+                    told.append(f"В группе {name} давление камня на кулису направлено по нормали к кулисе, а "
+                                f"точка кулисы под камнем движется перпендикулярно её радиусу {pivot}{pin}, "
+                                f"лежащему на оси кулисы: угол передачи равен 90° во всех положениях.")
+                else:            # a piston rod in a rocking cylinder: no stone, the links by number
+                    s_, g_ = pri.links[1], pri.links[0]
+                    told.append(f"В группе {name} давление звена {s_} на звено {g_} в поступательной паре "
+                                f"направлено по нормали к направляющей, а точка звена {g_}, совпадающая с "
+                                f"точкой {pin}, движется перпендикулярно радиусу {pivot}{pin}, лежащему на оси "
+                                f"направляющей: угол передачи равен 90° во всех положениях.")
             continue
         rows.append({"g": label, "mu": math.pi / 2 - math.asin(e / fl["min"]), "q": fl["q_min"]})
         told.append(f"В группе {name} угол передачи μ&nbsp;=&nbsp;90°&nbsp;−&nbsp;arcsin(<i>e</i>/ρ), где "
@@ -614,8 +623,10 @@ def _plan_formulas(sec: Section, study, row, vrow, vplan, aplan) -> tuple[list[F
         kinds.append("для ползуна на неподвижной направляющей — скорость и ускорение вдоль направляющей")
     moving = [j for j in mech.prismatic if j.links[0] != FRAME]
     if any(_rotates(study, j.links[0]) for j in moving):
-        kinds.append("для камня на вращающейся направляющей — переносное и относительное движение с "
-                     "кориолисовым ускорением")
+        kinds.append(("для камня на вращающейся направляющей" if all(vectors.is_stone(mech, j) for j in moving
+                                                                     if _rotates(study, j.links[0]))
+                      else "для звена, скользящего по вращающейся направляющей,")
+                     + " — переносное и относительное движение с кориолисовым ускорением")
     if any(not _rotates(study, j.links[0]) for j in moving):
         kinds.append("для ползуна на поступательно движущейся направляющей — переносное и относительное "
                      "движение без кориолисова ускорения")

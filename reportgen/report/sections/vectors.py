@@ -31,6 +31,13 @@ from ..formulas import Formula, inline_math
 from .common import tex_point
 
 
+def is_stone(mech, joint) -> bool:
+    """Whether the slider of a prismatic pair is a stone (камень кулисы): a block with no point but
+    its pin. A slider with points of its own (a piston rod in a rocking cylinder: its centre of
+    mass, the piston) is not called a stone; the note names it by its number."""
+    return len(mech.link(joint.links[1]).points) <= 1
+
+
 def _len(row, a: str, b: str) -> float:
     return math.hypot(row[f"x_{a}"] - row[f"x_{b}"], row[f"y_{a}"] - row[f"y_{b}"])
 
@@ -169,7 +176,9 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
         lg = _len(row, j.point, gref)
         an.append(a_pin + Markup("{}: {}, {} (направлено от точки {} к точке {}), {}").format(
             _m(rf"\bar{{a}}_{{{Pg}}} = \bar{{a}}_{{{G}}} + \bar{{a}}^{{n}}_{{{Pg}{G}}} + \bar{{a}}^{{\tau}}_{{{Pg}{G}}}"),
-            Markup("ускорение точки звена {} под ползуном").format(guide),
+            (Markup("ускорение точки звена {} под ползуном").format(guide) if is_stone(mech, j) else
+             Markup("ускорение точки звена {}, совпадающей в данный момент с точкой {} звена {}").format(
+                 guide, _m(P), slider)),
             _m(rf"a^{{n}}_{{{Pg}{G}}} = \omega_{{{_ang(guide)}}}^{{2}} l_{{{G}{P}}} = {tex_num(wg, sig=4)}^{{2}} \cdot "
                rf"{tex_num(lg, sig=4)} = {tex_num(wg * wg * lg, sig=4, unit='м/с²')}"), _m(P), _m(G),
             _m(rf"\bar{{a}}^{{\tau}}_{{{Pg}{G}}} \;\perp\; {G}{P}")))

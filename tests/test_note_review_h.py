@@ -1,0 +1,144 @@
+"""Defects found reviewing, page by page as a ТММ teacher, the notes of two mechanisms new to
+cases/ (session 9, #9): a rocking-cylinder drive «механизм с качающимся цилиндром» (ВПВ group
+whose slider is a piston rod with its own centre of mass and piston, the cylinder the output with
+a resistance moment on its working swing, the crank turning clockwise about a centre off the
+origin) and a knuckle press «коленно-рычажный пресс» (ВВВ + ВВП on the compound knee hinge, a
+coining force from a table over the last millimetres of the down stroke, weights of all links).
+Each test fails on what the review found:
+
+* the velocity plan and the Жуковский lever of the rocking cylinder print two «p»: the pole and
+  the image of the piston's point P;
+* §2.4 and the transmission-angle note call the piston rod «камень» («относительная скорость
+  камня», «ускорение точки звена 3 под ползуном», «давление камня на кулису»);
+* Table 3.2 reads the load condition «при φ′₃ > 0 1» (a dimensionless side printed with the
+  unit «1»), where a student writes «при повороте звена 3 против часовой стрелки»;
+* §4.2 says the prismatic pair's reaction of a ВПВ group is found «из уравнения моментов сил
+  звена относительно его внешнего шарнира»: one equation, while the rod's reaction has an
+  unknown point of application too (two unknowns, the moment equations of both links).
+"""
+import numpy as np
+import pytest
+
+from conftest import CASES
+from notehelpers import plain
+
+_STUDIES: dict = {}
+
+
+def _study(stem):
+    from reportgen import load_case
+    if stem not in _STUDIES:
+        _STUDIES[stem] = load_case(CASES / f"{stem}.toml")
+    return _STUDIES[stem]
+
+
+def _owner(mech, point: str) -> str:
+    """The link whose points hold ``point`` (independent of the plans' segments)."""
+    return next(l.name for l in mech.links if point in l.points)
+
+
+# ------------------------------------------------------------------ the pole and the point P
+def test_image_of_point_P_is_not_labelled_as_the_pole(captured):
+    """On the velocity plan and on the Жуковский lever the pole is «p»; the image of a point
+    named P carries its link's number (p₂), as the guide's point under a slider carries its own."""
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.forces import ZhukovskyLever
+    from reportgen.scenes.plans import PlanScene
+    st = _study("rocking_cylinder")
+    mech = st.mechanism
+    assert any("P" in l.points for l in mech.links)
+    want = "$p_{" + _owner(mech, "P") + "}$"
+    lab = chosen_position(st)
+    for scene in (PlanScene(lab, "velocity", landscape=True), ZhukovskyLever(lab)):
+        captured.clear()
+        drawing = scene.draw(st)
+        texts = [t.get_text() for fig in captured for ax in fig.axes for t in ax.texts]
+        poles_in_views = sum("p" in ins.tips for ins in (getattr(drawing, "insets", None) or []))
+        assert texts.count("$p$") == 1 + poles_in_views, (type(scene).__name__, texts)
+        assert want in texts, (type(scene).__name__, texts)
+
+
+def test_tip_label_of_a_point_P_on_the_acceleration_plan_is_unchanged():
+    """The acceleration plan's pole is π: the image p′ of P needs no index."""
+    from reportgen.analysis.plans import Plan
+    from reportgen.scenes.plans import tip_label
+    plan = Plan("acceleration", {"P": np.ones(2)}, [], {"P": "P"}, {"P": "2"})
+    assert tip_label("P", plan, "acceleration") == "$p′$"
+    assert tip_label("P", Plan("velocity", {"P": np.ones(2)}, [], {"P": "P"}, {"P": "2"}), "velocity") == "$p_{2}$"
+
+
+# ------------------------------------------------------------------ a rod is not a stone
+@pytest.fixture(scope="module")
+def kin_texts():
+    """The paragraphs and the tables' notes of §2 of each case, as plain text."""
+    from notehelpers import blocks, paragraph_text
+    from reportgen.report.document import Table
+    from reportgen.report.sections import kinematics
+    out = {}
+    for stem in ("rocking_cylinder", "ws004_slotted_lever"):
+        sec = kinematics.build(_study(stem))
+        notes = " ".join(b.note or "" for b in blocks(sec) if isinstance(b, Table))
+        out[stem] = plain(paragraph_text(sec) + " " + notes)
+    return out
+
+
+def test_piston_rod_is_not_called_a_stone(kin_texts):
+    """A slider with points of its own (the rod: S₂, the piston P) is named by its number; a
+    slider that is only its pin (ws004's камень кулисы) keeps the textbook's «камень»."""
+    from reportgen.report.sections.vectors import is_stone
+    for stem, text in kin_texts.items():
+        mech = _study(stem).mechanism
+        moving = [j for j in mech.prismatic if j.links[0] != "0"]
+        assert moving
+        stones = [is_stone(mech, j) for j in moving]
+        assert stones == [len(mech.link(j.links[1]).points) == 1 for j in moving]
+        if all(stones):
+            assert "камня" in text and "под ползуном" in text, stem
+        else:
+            assert "камн" not in text and "под ползуном" not in text, stem
+            j = moving[0]
+            assert (f"ускорение точки звена {j.links[0]}, совпадающей в данный момент с точкой {j.point} "
+                    f"звена {j.links[1]}") in text
+            assert f"давление звена {j.links[1]} на звено {j.links[0]}" in text
+            assert "относительная скорость в поступательной паре" in text
+
+
+# ------------------------------------------------------------------ the load's condition
+def test_condition_on_a_link_turning_reads_as_words():
+    from reportgen.report.russian import condition_html
+    assert str(condition_html("wq_3 > 0")) == "при повороте звена 3 против часовой стрелки"
+    assert str(condition_html("wq_5 <= 0", 0.0, "1")) == "при повороте звена 5 по часовой стрелки"
+    # a dimensionless right side has no unit «1»
+    from reportgen.style.numbers import fmt
+    out = str(condition_html("wq_3 >= 0.25", 0.25, "1"))
+    assert out.endswith(fmt(0.25, sig=4)), out
+
+
+def test_rocking_cylinder_load_table_names_the_working_swing():
+    """Table 3.2: the resistance moment acts while the cylinder turns counter-clockwise (φ₃ grows
+    with the crank's angle, wq_3 > 0 on the cycle where it is non-zero)."""
+    from reportgen.report.sections.dynamics import _law
+    st = _study("rocking_cylinder")
+    ld = next(l for l in st.loads.loads if l.kind == "moment")
+    text = plain(_law(ld))
+    assert "при повороте звена 3 против часовой стрелки" in text and " 1" not in text.replace("60,00", "")
+    dyn = st.dynamics.cycle
+    M = dyn["M_" + ld.name].to_numpy()
+    wq = st.cycle["wq_3"].to_numpy()
+    n = min(len(M), len(wq))
+    on = np.abs(M[:n]) > 1e-9
+    assert on.any() and (wq[:n][on] > -1e-9).all()
+
+
+# ------------------------------------------------------------------ ВПВ reaction: two equations
+def test_vpv_reaction_text_names_both_moment_equations():
+    """The rod's reaction from the cylinder does not pass through the pin A (its moment about A is
+    not zero): its magnitude and point need the moment equations of both links."""
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.report.sections.forces import CONSTRUCTION_TEXT
+    st = _study("rocking_cylinder")
+    det = st.forces.details(chosen_position(st))
+    pri = [p for p in det["pairs"] if "Mp" in p and "F" not in p]
+    assert pri and all(abs(p["Mp"]) > 1e-6 * abs(p["N"]) * st.mechanism.size() for p in pri)
+    text = CONSTRUCTION_TEXT["links"]
+    assert "модуль и точка приложения" in text and "двух звеньев" in text
