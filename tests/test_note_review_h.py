@@ -142,3 +142,44 @@ def test_vpv_reaction_text_names_both_moment_equations():
     assert pri and all(abs(p["Mp"]) > 1e-6 * abs(p["N"]) * st.mechanism.size() for p in pri)
     text = CONSTRUCTION_TEXT["links"]
     assert "модуль и точка приложения" in text and "двух звеньев" in text
+
+
+# ------------------------------------------------------------------ the knuckle press
+def test_switching_points_listed_only_where_a_load_changes():
+    """The coining force's table corners are crossed again on the way up, where its condition
+    (moving down) holds it at zero: those points (and the top dead centre, where the force is
+    zero on both sides) are not «points where the loads change their law»."""
+    from reportgen.report.sections.dynamics import _breaks_text, law_breaks
+    st = _study("knuckle_press")
+    d = st.dynamics
+    dq = 1e-7 * d.loads.cycle_length
+    force = next(l for l in d.loads.loads if l.kind == "force")      # the coining force Pч
+
+    def value(q):
+        cols = d.ev(np.array([q]))
+        return float(np.hypot(*[np.asarray(c, float)[0] for c in force.components(cols, d.loads.phase(cols))]))
+
+    dead = [q for q in d.breaks if value(q - dq) == 0.0 and value(q + dq) == 0.0]
+    assert dead                                   # the defect's condition exists in this case
+    kept = law_breaks(d)
+    assert kept.size == d.breaks.size - len(dead)
+    assert all(value(q - dq) > 0 or value(q + dq) > 0 for q in kept)
+    text = plain(_breaks_text(st, kept))
+    from reportgen.report.sections.dynamics import _phase_deg
+    assert not any(_phase_deg(st, q) in text for q in dead)
+
+
+def test_slider_has_no_angular_acceleration_in_the_inertia_table():
+    """Table 4.1: a link without J_S (the press's slider moving in translation) prints «—» for ε,
+    as for M_Φ, not «0,000»."""
+    from notehelpers import blocks
+    from reportgen.report.document import Table
+    from reportgen.report.sections import forces
+    st = _study("knuckle_press")
+    sec = forces.build(st)
+    tab = next(b for b in blocks(sec) if isinstance(b, Table) and b.id == "tab-frc-inertia")
+    df = tab.data.set_index("n")
+    for l in st.mechanism.links:
+        if l.name in df.index:
+            assert np.isnan(df.loc[l.name, "e"]) == (not l.J_S), l.name
+    assert np.isnan(df.loc["5", "e"])

@@ -278,8 +278,9 @@ def _model(sec: Section, study, d) -> None:
         s.table("Нагрузки, действующие на звенья", [
             Column("name", "Обозначение", fmt=lambda v: Markup(html_label(v))), Column("what", "Нагрузка"), Column("where", "Точка приложения", fmt=Markup),
             Column("law", "Закон изменения", fmt=Markup)], pd.DataFrame(lrows), id="tab-dyn-loads")
-    if d.breaks.size:
-        s.paragraph(_breaks_text(study, d.breaks))
+    live = law_breaks(d)
+    if live.size:
+        s.paragraph(_breaks_text(study, live))
     laws = shown_laws(study)
     if laws:
         fig = LoadLaws().draw(study)
@@ -296,6 +297,26 @@ def _model(sec: Section, study, d) -> None:
         s.paragraph(f"Нагрузки, заданные таблицами, показаны на рисунке {ref('fig-dyn-laws')} так, как они заданы: "
                     f"по оси абсцисс — величина <i>x</i>, от которой задана таблица ({xs}), точки — строки таблиц.")
         s.figure("Законы изменения нагрузок, заданных таблицами", fig.svg, fig.width_mm, id="fig-dyn-laws")
+
+
+def law_breaks(d) -> np.ndarray:
+    """The switching points of the dynamics (``d.breaks``) at which some given load (not a weight)
+    is non-zero on at least one side: a table's corner crossed while the load's condition holds
+    it at zero (a press's coining diagram passed again on the way up) changes no law a student
+    can see. The integrals still use every switching point."""
+    b = np.asarray(d.breaks, dtype=float)
+    if b.size == 0:
+        return b
+    dq = 1e-7 * d.loads.cycle_length
+    cols = d.ev(np.concatenate([b - dq, b + dq]))
+    ph = d.loads.phase(cols)
+    live = np.zeros(2 * b.size, dtype=bool)
+    for ld in d.loads.loads:
+        if ld.kind == "weight":
+            continue
+        for c in ld.components(cols, ph):
+            live |= np.abs(np.broadcast_to(np.asarray(c, dtype=float), live.shape)) > 0.0
+    return b[live[:b.size] | live[b.size:]]
 
 
 def _breaks_text(study, breaks) -> str:

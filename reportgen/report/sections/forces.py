@@ -275,7 +275,8 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
             l = mech.link(name)
             rows.append({"n": name, "m": m or math.nan, "a": row.get("aS_" + name, math.nan) if m else math.nan,
                          "Phi": row.get("Phi_" + name, math.nan) if m else math.nan, "J": J or math.nan,
-                         "e": row["eps_" + name], "MPhi": row["MPhi_" + name] if J else math.nan,
+                         # ε only where it makes M_Φ = −J_S·ε (a slider moving in translation: «—», not 0)
+                         "e": row["eps_" + name] if J else math.nan, "MPhi": row["MPhi_" + name] if J else math.nan,
                          "G": l.weight or math.nan})
         s.table(f"Массы, ускорения, силы и моменты сил инерции звеньев (положение {pos_no(study, lab)})", [
             Column("n", "Звено"), Column("m", "<i>m</i>", "кг", sig=4), Column("a", sub("a", "S"), "м/с²", sig=4),
