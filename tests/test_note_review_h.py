@@ -183,3 +183,52 @@ def test_slider_has_no_angular_acceleration_in_the_inertia_table():
         if l.name in df.index:
             assert np.isnan(df.loc[l.name, "e"]) == (not l.J_S), l.name
     assert np.isnan(df.loc["5", "e"])
+
+
+# ------------------------------------------------------------------ ω of a rocking cylinder
+def _formulas(sec):
+    from notehelpers import blocks
+    from reportgen.report.document import FormulaBlock
+    return [f for b in blocks(sec) if isinstance(b, FormulaBlock) for f in b.formulas]
+
+
+@pytest.mark.parametrize("stem", ["rocking_cylinder", "ws004_slotted_lever", "swing_conveyor"])
+def test_every_rotating_link_gets_its_omega_and_epsilon_in_section_2_4(stem):
+    """The cylinder 3 (points C, S₃, K: none a pair but its pivot) had no «ω₃ = V/l» in §2.4 while
+    aⁿ = ω₃²·l_CA and a^k = 2ω₃V_r used ω₃ = 3,143; the rod 2 turns with it: ω₂ = ω₃, ε₂ = ε₃, one
+    number each (not a second, different reading)."""
+    import re
+    from reportgen.analysis.plans import group_rank, measured_omegas
+    from reportgen.report.sections import kinematics
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.plans import PlanScene
+    st = _study(stem)
+    mech = st.mechanism
+    fs = _formulas(kinematics.build(st))
+    heads = {}
+    for f in fs:
+        m = re.match(r"\\(omega|varepsilon)_\{(\w+)\} = ", f.symbolic)
+        if m:
+            heads.setdefault(m.group(1), {})[m.group(2)] = f.result
+    from reportgen.report.sections.vectors import is_stone
+    stones = {j.links[1] for j in mech.prismatic if j.links[0] != "0" and is_stone(mech, j)}
+    # every rotating link but a stone (its ω, the guide's, enters no formula: no J, no aⁿ of its own)
+    rotating = [l.name for l in mech.moving if l.name != mech.driver.link and l.name not in stones
+                and float(np.abs(st.cycle["wq_" + l.name]).max()) > 1e-9]
+    assert set(rotating) <= set(heads["omega"]), (rotating, heads["omega"])
+    for j in mech.prismatic:
+        g, s = j.links
+        if g != "0" and s in rotating:
+            assert heads["omega"][s] == heads["omega"][g]
+            if s in heads.get("varepsilon", {}):
+                assert heads["varepsilon"][s] == heads["varepsilon"][g]
+    # the acceleration plan is drawn with the same ω for the slider and its guide
+    lab = chosen_position(st)
+    row = st.kinematics[st.kinematics["pos"] == lab].iloc[0]
+    from reportgen.analysis.plans import construct_velocity
+    mu = PlanScene(lab, "velocity", landscape=True).draw(st).mu
+    vrow, vplan = construct_velocity(row, st, mu)
+    om = measured_omegas(vrow, vplan, mech, mu, group_rank(st))
+    for j in mech.prismatic:
+        if j.links[0] != "0":
+            assert om[j.links[1]] == om[j.links[0]]

@@ -443,7 +443,10 @@ def measured_omegas(vrow, vplan: Plan, mech: Mechanism, mu_v: float,
         else:
             out[l.name] = w
     for j in mech.prismatic:
-        if j.links[0] != FRAME and _longest_rel(vplan, j.links[1]) is None:
+        # a slider turns with its moving guide: ω_slider = ω_guide exactly (a stone has no segment
+        # of its own; a piston rod's own reading would give a second, different ω of one rotation)
+        if j.links[0] != FRAME and (_longest_rel(vplan, j.links[1]) is None
+                                    or _longest_rel(vplan, j.links[0]) is not None):
             out[j.links[1]] = out[j.links[0]]
     return out
 

@@ -596,10 +596,30 @@ def _plan_formulas(sec: Section, study, row, vrow, vplan, aplan) -> tuple[list[F
     # rocker of group (2,3)), not from a point of a later group's pair found from it (V_DC)
     # (the choice is plans.omega_segment, the one the acceleration plan's ω are read from too)
     rank = group_rank(study)
+    full = []       # the plans as constructed, before the similarity points' components are dropped
+
+    def constructed():
+        if not full:
+            lab_ = row["pos"]
+            full.append(PlanScene(lab_, "velocity", mu_v=vplan.mu).construct(study)[0])
+            full.append({s.name: s for s in PlanScene(lab_, "acceleration", mu_v=vplan.mu, mu_a=aplan.mu)
+                         .construct(study)[0].segments})
+        return full
+    # a slider with points of its own on a moving guide (a piston rod in a rocking cylinder) turns
+    # with the guide: ω and ε written as the guide's, not read a second time (plans.measured_omegas)
+    twins = {j.links[1]: j.links[0] for j in mech.prismatic
+             if j.links[0] != FRAME and len(mech.link(j.links[1]).points) > 1}
+    w_read, e_read = {}, {}
     for link in mech.moving:
-        if d.rotary and link.name == d.link:
+        if d.rotary and link.name == d.link or link.name in twins:
             continue
         s0 = omega_segment(vplan.plan, mech, link.name, rank)
+        if s0 is None:
+            # a link whose points besides its pairs' are only found by similarity (a rocking
+            # cylinder: its pivot C, the rod's point under it, its end K): its ω is read, as
+            # plans.measured_omegas reads it for the acceleration plan, from the segment the
+            # construction drew to such a point (V_KC) — not left out while aⁿ = ω²·l uses it
+            s0 = omega_segment(constructed()[0], mech, link.name, rank)
         if s0 is None or abs(row[f"w_{link.name}"]) < 1e-12 and float(np.abs(study.cycle["wq_" + link.name]).max()) < 1e-12:
             continue
         q_, r_ = s0.end, s0.start
@@ -611,12 +631,20 @@ def _plan_formulas(sec: Section, study, row, vrow, vplan, aplan) -> tuple[list[F
         fs.append(Formula(rf"\omega_{{{link.name}}} = \frac{{V_{{{Q}{R}}}}}{{l_{{{R}{Q}}}}}",
                           rf"\frac{{{tex_num(v_read, sig=4)}}}{{{tex_num(lq, digits=4)}}}",
                           tex_num(v_read / lq, sig=4, unit="рад/с")))
-        tn = aseg.get(f"a^τ_{q_}{r_}")
+        w_read[link.name] = v_read / lq
+        tn = aseg.get(f"a^τ_{q_}{r_}") or (constructed()[1].get(f"a^τ_{q_}{r_}") if full else None)
         if tn is not None:
             a_read = drawn(tn.length, aplan.mu)
             es.append(Formula(rf"\varepsilon_{{{link.name}}} = \frac{{a^{{\tau}}_{{{Q}{R}}}}}{{l_{{{R}{Q}}}}}",
                               rf"\frac{{{tex_num(a_read, sig=4)}}}{{{tex_num(lq, digits=4)}}}",
                               tex_num(a_read / lq, sig=4, unit="рад/с²")))
+            e_read[link.name] = a_read / lq
+    for s_, g_ in twins.items():
+        if g_ in w_read:
+            fs.append(Formula(rf"\omega_{{{s_}}} = \omega_{{{g_}}}", None, tex_num(w_read[g_], sig=4, unit="рад/с")))
+        if g_ in e_read:
+            es.append(Formula(rf"\varepsilon_{{{s_}}} = \varepsilon_{{{g_}}}", None,
+                              tex_num(e_read[g_], sig=4, unit="рад/с²")))
     # only what the mechanism has: a slider on the frame, a stone on a moving guide (Coriolis)
     kinds = ["для точки, общей двум звеньям, — относительное вращательное движение вокруг соседних шарниров"]
     if any(j.links[0] == FRAME for j in mech.prismatic):
