@@ -232,3 +232,34 @@ def test_every_rotating_link_gets_its_omega_and_epsilon_in_section_2_4(stem):
     for j in mech.prismatic:
         if j.links[0] != "0":
             assert om[j.links[1]] == om[j.links[0]]
+
+
+# ------------------------------------------------------------------ the articulated-rod compressor
+def test_master_rod_piston_is_an_output_too():
+    """The articulated rod's group (4,5) hangs on the master rod's point E, so group (2,3) is not
+    terminal; its piston B still compresses air (pressure loads act on it): §2.5 and the
+    conclusion give both pistons, as for the V-compressor. A rocker a later group hangs on (ws000)
+    stays an intermediate link."""
+    from reportgen.analysis.plans import parallel_outputs
+    st = _study("articulated_compressor")
+    mech = st.mechanism
+    loaded = {ld.link for ld in st.loads.loads if ld.kind != "weight"}
+    pistons = [j for j in mech.prismatic if j.links[0] == "0" and j.links[1] in loaded]
+    assert len(pistons) == 2
+    # the defect's condition: the master rod's group carries another group (a pair of link 4 on link 2)
+    assert any(set(j.links) == {"2", "4"} for j in mech.joints)
+    assert sorted(o[0] for o in parallel_outputs(st)) == sorted(f"s_{j.name}" for j in pistons)
+    assert len(parallel_outputs(_study("ws000_six_bar"))) == 1
+
+
+def test_articulated_compressor_note_gives_both_strokes():
+    from notehelpers import paragraph_text
+    from reportgen.report.sections import kinematics
+    from reportgen.report.sections.kinematics import conclusion_lines
+    st = _study("articulated_compressor")
+    text = plain(paragraph_text(kinematics.build(st))) + " " + plain(" ".join(map(str, conclusion_lines(st))))
+    for j in st.mechanism.prismatic:
+        if j.links[0] == "0":
+            H = float(st.cycle["s_" + j.name].max() - st.cycle["s_" + j.name].min())
+            from reportgen.style.numbers import fmt
+            assert fmt(H, sig=4) in text, (j.name, fmt(H, sig=4))
