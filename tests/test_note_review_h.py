@@ -263,3 +263,24 @@ def test_articulated_compressor_note_gives_both_strokes():
             H = float(st.cycle["s_" + j.name].max() - st.cycle["s_" + j.name].min())
             from reportgen.style.numbers import fmt
             assert fmt(H, sig=4) in text, (j.name, fmt(H, sig=4))
+
+
+@pytest.mark.parametrize("stem", ["articulated_compressor", "v_compressor"])
+def test_outputs_said_parallel_only_when_their_groups_are(stem):
+    """«их группы присоединены параллельно» was printed for the articulated-rod compressor, whose
+    group (4,5) hangs on the master rod 2 of group (2,3)."""
+    from notehelpers import paragraph_text
+    from reportgen.report.sections import kinematics
+    st = _study(stem)
+    mech = st.mechanism
+    groups = [g for g in st.structure.groups if "0" not in g.links and len(g.links) > 1]
+    text = plain(paragraph_text(kinematics.build(st)))
+    serial = [(g, j) for i, g in enumerate(groups) for later in groups[i + 1:] for j in mech.joints
+              if len(set(j.links) & set(g.links)) == 1 and len(set(j.links) & set(later.links)) == 1]
+    if serial:
+        g, j = serial[0]
+        link = next(l for l in j.links if l in g.links)
+        assert "присоединены параллельно" not in text
+        assert f"присоединена к звену {link} группы ({','.join(g.links)})" in text
+    else:
+        assert "их группы присоединены параллельно" in text

@@ -368,9 +368,13 @@ def build(study) -> Section:
     if several:
         # groups hung on the input link in parallel (a V-compressor's two pistons): each has its output
         names = [str(o[3]) for o in outputs]
-        s5.paragraph(f"Выходные звенья — {', '.join(names[:-1])} и {names[-1]}: их группы присоединены "
-                     f"параллельно, каждая ведёт своё звено; диаграммы построены для каждого из них (рисунки "
-                     f"{', '.join(ref(f) for f in figs[:-1])} и {ref(figs[-1])}).")
+        hung = _hung_on_outputs(study, outputs)
+        how = ("их группы присоединены параллельно, каждая ведёт своё звено" if not hung else
+               "на каждое из них действуют рабочие нагрузки (" + "; ".join(
+                   f"группа ({','.join(later.links)}) присоединена к звену {link} группы ({','.join(g.links)})"
+                   for g, link, later in hung) + ")")
+        s5.paragraph(f"Выходные звенья — {', '.join(names[:-1])} и {names[-1]}: {how}; диаграммы построены для "
+                     f"каждого из них (рисунки {', '.join(ref(f) for f in figs[:-1])} и {ref(figs[-1])}).")
     main = output_quantity(study)[0]
     for out, fig_id in zip(outputs, figs):
         _output_diagrams(s5, study, out, fig_id, several, out[0] == main)
@@ -421,6 +425,28 @@ def _zero_note(zero: list[Column]) -> str | None:
     names = ", ".join(c.header for c in zero)
     return (f"{names}&nbsp;=&nbsp;0 во всех положениях ("
             + ("в таблицу не включён" if len(zero) == 1 else "в таблицу не включены") + ").")
+
+
+def _hung_on_outputs(study, outputs) -> list[tuple]:
+    """(group, link, later group) for each output's group that a later group hangs on (the master
+    rod of an articulated-rod compressor carries the articulated rod at its point E): such outputs
+    are not «attached in parallel»."""
+    mech = study.mechanism
+    groups = [g for g in study.structure.groups if FRAME not in g.links and len(g.links) > 1]
+    out_links = set()
+    for col, *_ in outputs:
+        pre, _, name = col.partition("_")
+        out_links |= {j.links[1] for j in mech.prismatic if j.name == name} if pre == "s" else {name}
+    hung = []
+    for i, g in enumerate(groups):
+        if not out_links & set(g.links):
+            continue
+        for later in groups[i + 1:]:
+            link = next((a if a in g.links else b for j in mech.joints for a, b in [j.links]
+                         if (a in g.links and b in later.links) or (b in g.links and a in later.links)), None)
+            if link is not None:
+                hung.append((g, link, later))
+    return hung
 
 
 def _guide_transmission(study) -> tuple[list[dict], str]:
