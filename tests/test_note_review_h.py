@@ -284,3 +284,28 @@ def test_outputs_said_parallel_only_when_their_groups_are(stem):
         assert f"присоединена к звену {link} группы ({','.join(g.links)})" in text
     else:
         assert "их группы присоединены параллельно" in text
+
+
+@pytest.mark.parametrize("stem", ["articulated_compressor", "ws000_six_bar", "jaw_crusher"])
+def test_point_a_later_group_hangs_on_is_found_by_similarity(stem):
+    """«V_EA = ω₂·l_AE — величина находится построением» for the master rod's pin E: E is not found
+    by intersecting lines but, once ω₂ and ε₂ are known, by the similarity theorem. A pair of the
+    group's own links at the same point (the crusher's compound hinge B) is still constructed."""
+    from notehelpers import paragraph_text
+    from reportgen.report.sections import kinematics
+    st = _study(stem)
+    mech = st.mechanism
+    text = plain(paragraph_text(kinematics.build(st)))
+    groups = [g for g in st.structure.groups if "0" not in g.links and len(g.links) > 1]
+    expected = []
+    for i, g in enumerate(groups):
+        later = {l for h in groups[i + 1:] for l in h.links}
+        for j in mech.joints:
+            inner = [l for l in j.links if l in g.links]
+            if len(inner) == 1 and set(j.links) - set(inner) <= later and set(j.links) - set(inner):
+                own = any(k.point == j.point and set(k.links) <= set(g.links) for k in mech.joints)
+                expected.append((inner[0], j.point, own))
+    assert expected
+    for link, p, own in expected:
+        phrase = f"по найденной ω{link}: точка {p.lower()} плана — по теореме подобия"
+        assert (phrase in text) != own, (link, p, own)

@@ -111,11 +111,19 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
             base_v = "" if fixed_ref else rf"\bar{{V}}_{{{R}}} + "
             out[0].append(Formula(rf"\bar{{V}}_{{{P}}} = {base_v}\bar{{V}}_{{{P}{R}}}"))
             known = g.klass == 1 and name == d.link and d.rotary
+            # a point a later group hangs on, not a pair of this group's own links (E of a master rod,
+            # B of a slotted lever): found after the link's ω and ε, by the similarity theorem
+            similar = onward and not known and not any(j.point == p and set(j.links) <= links for j in mech.joints)
+            after_v = Markup(" — по найденной {}: точка {} плана — по теореме подобия").format(
+                _m(rf"\omega_{{{_ang(name)}}}"), _m(P.lower()))
+            after_a = Markup(" — по найденной {}: точка {} плана — по теореме подобия").format(
+                _m(rf"\varepsilon_{{{_ang(name)}}}"), _m(P.lower() + "'"))
             mag = (rf"V_{{{P}{R}}} = \omega_{{{_ang(name)}}} l_{{{R}{P}}} = {tex_num(abs(w), sig=4)} \cdot "
                    rf"{tex_num(l, sig=4)} = {tex_num(abs(w) * l, sig=4, unit='м/с')}") if known else \
                 rf"V_{{{P}{R}}} = \omega_{{{_ang(name)}}} l_{{{R}{P}}}"
             out[1].append(Markup("{}, {}{}").format(_m(rf"\bar{{V}}_{{{P}{R}}} \;\perp\; {R}{P}"), _m(mag),
-                                                "" if known else Markup(" — величина находится построением")))
+                                                "" if known else after_v if similar
+                                                else Markup(" — величина находится построением")))
             base_a = "" if fixed_ref else rf"\bar{{a}}_{{{R}}} + "
             out[2].append(Formula(rf"\bar{{a}}_{{{P}}} = {base_a}\bar{{a}}^{{n}}_{{{P}{R}}} + \bar{{a}}^{{\tau}}_{{{P}{R}}}"))
             out[3].append(Markup("{} (направлено от точки {} к точке {}); {}, {}").format(
@@ -123,7 +131,8 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
                    rf"{tex_num(abs(w), sig=4)}^{{2}} \cdot {tex_num(l, sig=4)} = {tex_num(w * w * l, sig=4, unit='м/с²')}"),
                 _m(P), _m(R), _m(rf"\bar{{a}}^{{\tau}}_{{{P}{R}}} \;\perp\; {R}{P}"),
                 _m(rf"a^{{\tau}}_{{{P}{R}}} = \varepsilon_{{{_ang(name)}}} l_{{{R}{P}}}"
-                   + (rf" = {tex_num(abs(e) * l, sig=4, unit='м/с²')}" if known else ""))))
+                   + (rf" = {tex_num(abs(e) * l, sig=4, unit='м/с²')}" if known else "")))
+                          + (after_a if similar else ""))
     known = _solved_before(study, g) | links
     for j in mech.prismatic:
         guide, slider = j.links
