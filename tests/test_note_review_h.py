@@ -309,3 +309,21 @@ def test_point_a_later_group_hangs_on_is_found_by_similarity(stem):
     for link, p, own in expected:
         phrase = f"по найденной ω{link}: точка {p.lower()} плана — по теореме подобия"
         assert (phrase in text) != own, (link, p, own)
+
+
+def test_lever_crank_couple_on_the_balancing_force_line_readable(captured):
+    """The knuckle press in its coining position: the crank's inertia couple M′_Φ1 (9 Н at a, ⊥ pa)
+    lies on the line of F_ур; F_ур's label, placed last, took a leader through M′_Φ1's label."""
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes import labels as L
+    from reportgen.scenes.forces import ZhukovskyLever
+    st = _study("knuckle_press")
+    lab = chosen_position(st)
+    drawing = ZhukovskyLever(lab).draw(st)
+    texts = [t.get_text() for fig in captured for ax in fig.axes for t in ax.texts]
+    assert any("Phi 1" in t and "M" in t for t in texts)          # the couple is drawn
+    assert any("ур" in t for t in texts)
+    for fig in captured:
+        assert L.check_figure(fig) == []
+    m = drawing.moments
+    assert list(m["balancing"].astype(bool)) == sorted(m["balancing"].astype(bool))   # F_ур last in the table

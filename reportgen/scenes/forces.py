@@ -1102,7 +1102,9 @@ class ZhukovskyLever:
         dec = shared_decimals([float(np.hypot(*it[2])) for it in items + bal])
         rows = []
         in_views = 0
-        for lab, p, F, is_bal in items + bal:
+        # the balancing force placed first: its label and leader at the crank pin are settled before
+        # the loads sharing its line there (the crank's own inertia couple M′_Φ1 ⊥ pa at a) look for room
+        for lab, p, F, is_bal in bal + items:
             n = float(np.hypot(*F))
             if n < 1e-9 * Fmax or (not is_bal and round(n, dec) == 0):
                 continue
@@ -1120,6 +1122,7 @@ class ZhukovskyLever:
             h = round(abs(mom) / n / READ_MM) * READ_MM          # the arm as measured on the drawing
             rows.append(dict(label=lab, F=n, h=h, Fh=math.copysign(n * h, mom) if h > 0 else 0.0,
                              balancing=is_bal, h_exact=abs(mom) / n))
+        rows = [r for r in rows if not r["balancing"]] + [r for r in rows if r["balancing"]]   # F_ур last
         table = pd.DataFrame(rows, columns=["label", "F", "h", "Fh", "balancing", "h_exact"])
         arm_mm = arm / cv.mu
         arm_read = math.copysign(round(abs(arm_mm) / READ_MM) * READ_MM, arm_mm)
