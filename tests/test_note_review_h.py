@@ -327,3 +327,27 @@ def test_lever_crank_couple_on_the_balancing_force_line_readable(captured):
         assert L.check_figure(fig) == []
     m = drawing.moments
     assert list(m["balancing"].astype(bool)) == sorted(m["balancing"].astype(bool))   # F_ур last in the table
+
+
+def test_prismatic_reaction_arm_says_from_which_point():
+    """Table 4.3 printed «h = −0,02553 м» for the rod's reaction with no word of where h is
+    measured from: the reaction acts h = M/N from the slider's point along the guide (the point
+    the forces table gives as xN, yN)."""
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.report.sections.forces import _prismatic_text
+    from reportgen.style.numbers import fmt
+    st = _study("rocking_cylinder")
+    f = st.forces
+    lab = chosen_position(st)
+    det = f.details(lab)
+    row = f.row(lab)
+    kin = st.kinematics[st.kinematics["pos"] == lab].iloc[0]
+    for k, p in enumerate(f.model.pairs):
+        pv = det["pairs"][k]
+        text = _prismatic_text(p, pv)
+        if "h\u00a0=" not in text:
+            continue
+        # independent: the distance from the slider's point to the reaction's point of application
+        d = float(np.hypot(row[f"xN_{p.name}"] - kin[f"x_{p.point}"], row[f"yN_{p.name}"] - kin[f"y_{p.point}"]))
+        assert fmt(abs(pv["Mp"] / pv["N"]), sig=4) == fmt(d, sig=4)
+        assert f"от точки {p.point} вдоль направляющей" in text

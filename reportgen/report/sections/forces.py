@@ -496,8 +496,13 @@ def _prismatic_text(p, pv, nd: int | None = None) -> str:
     decimals (those of the reaction columns), else to five significant digits."""
     force = {"sig": 5} if nd is None else {"digits": nd, "sig": None}
     if p.kind == KS.K_PRI:
+        # the point of application lies h = M/N from the slider's point along the guide (forces.frame: xN, yN)
+        h = pv['Mp'] / pv['N'] if pv['N'] else 0.0
+        at = getattr(p, "point", "")
+        where = ("" if not at else f" (реакция приложена в точке {at})" if fmt(h, sig=4) in ("0", "−0")
+                 else f" — смещение точки приложения от точки {at} вдоль направляющей")
         return (f"N\u00a0=\u00a0{fmt(pv['N'], **force)}\u00a0Н, M\u00a0=\u00a0{fmt(pv['Mp'], sig=4)}\u00a0Н·м, "
-                f"h\u00a0=\u00a0{fmt(pv['Mp'] / pv['N'] if pv['N'] else 0.0, sig=4)}\u00a0м")
+                f"h\u00a0=\u00a0M/N\u00a0=\u00a0{fmt(h, sig=4)}\u00a0м{where}")
     if p.kind == KS.K_ACT:
         # the normal force and moment of the cylinder–rod pair vanish when the rod carries no lateral
         # load: rounding residues (1e-13 of F) are printed as the zero they are
