@@ -326,19 +326,25 @@ def build(study) -> Section:
         # those ω and V_r are derived between the velocity and the acceleration equations
         vrow = read_velocities(row, study, vplan.mu)
         ws, es = _plan_formulas(s4, study, row, vrow, vplan, aplan)
+        # each plan follows the text that reads it (ГОСТ 7.32: a figure after its first mention), so
+        # the text after a plan on a landscape page of its own can fill the page before it
         vectors.add_velocities(s4, study, vrow)
         if ws:
             stones = sum(f.symbolic.startswith("V") for f in ws)
-            s4.paragraph("По отрезкам плана скоростей найдены угловые скорости звеньев"
+            s4.paragraph(f"По отрезкам плана скоростей (рисунок {ref('fig-vplan')}) найдены угловые скорости звеньев"
                          + (" и относительная скорость камня" if stones == 1 else
                             " и относительные скорости камней" if stones else "") + ":")
             s4.formula(*ws)
-        vectors.add_accelerations(s4, study, vrow)
-        if es:
-            s4.paragraph("По отрезкам плана ускорений найдены угловые ускорения звеньев:")
-            s4.formula(*es)
+        else:
+            s4.paragraph(f"План скоростей построен на рисунке {ref('fig-vplan')}.")
         s4.figure(f"План скоростей для положения {pos_no(study, lab)} (μ<sub>v</sub> = {mu_text(vplan.mu)} м·с⁻¹/мм)",
                   vplan.svg, vplan.width_mm, id="fig-vplan", landscape=vplan.landscape)
+        vectors.add_accelerations(s4, study, vrow)
+        if es:
+            s4.paragraph(f"По отрезкам плана ускорений (рисунок {ref('fig-aplan')}) найдены угловые ускорения звеньев:")
+            s4.formula(*es)
+        else:
+            s4.paragraph(f"План ускорений построен на рисунке {ref('fig-aplan')}.")
         s4.figure(f"План ускорений для положения {pos_no(study, lab)} (μ<sub>a</sub> = {mu_text(aplan.mu)} м·с⁻²/мм)",
                   aplan.svg, aplan.width_mm, id="fig-aplan", landscape=aplan.landscape)
         cmp_cols = [Column("name", "Вектор", fmt=_vec_name), Column("mm", "Длина на плане", "мм", digits=1),
