@@ -358,10 +358,14 @@ class GroupForces:
         landscape = False
         if self.landscape and self.mu_l is None and self.mu_F is None:
             # on a landscape page when that enlarges both the scheme and the polygon LANDSCAPE_GAIN
-            # times and the drawing fits the page
+            # times and the drawing fits the page; a drawing that large still within the portrait
+            # text width stays on the portrait page (no landscape page for a small figure)
             wide = self._layout(xs, ys, ext, internal, g, Fmax, LANDSCAPE_GAIN * 1.05, floor)
-            landscape = (lay.mu_l >= LANDSCAPE_GAIN * wide.mu_l and lay.mu_F >= LANDSCAPE_GAIN * wide.mu_F
-                         and wide.w_mm <= LANDSCAPE_W and wide.h_mm <= LANDSCAPE_H)
+            larger = lay.mu_l >= LANDSCAPE_GAIN * wide.mu_l and lay.mu_F >= LANDSCAPE_GAIN * wide.mu_F
+            if larger and wide.w_mm <= PORTRAIT_W and wide.h_mm <= GROUP_MAX_H:
+                lay, gain = wide, LANDSCAPE_GAIN * 1.05
+            else:
+                landscape = larger and wide.w_mm <= LANDSCAPE_W and wide.h_mm <= LANDSCAPE_H
             if landscape:
                 lay = wide
         if (not landscape and self.mu_l is None and self.mu_F is None
