@@ -749,7 +749,6 @@ def _balance(sec: Section, study, f, lab: str) -> None:
         cols.append(Column("M_bal_dyn", sub("M", "д") + " − " + sub("J", "I") + "ε (динамика)", "Н·м", **nd))
     chunked_tables(s, "Уравновешивающий момент и его проверки" if rot else "Усилие гидроцилиндра и его проверки",
                    f.table, cols, _lead(study), "tab-frc-checks")
-    sc = f.scalars
     text = ("Аналитически три способа (по группам, по балансу мощностей, по рычагу Жуковского) дают одно и то же "
             "значение во всех положениях: различие — в пределах погрешности округления чисел.")
     if f.settings.flywheel:
