@@ -14,7 +14,6 @@ import functools
 import re
 import subprocess
 
-import numpy as np
 import pytest
 from conftest import CASES
 from markupsafe import Markup
@@ -184,3 +183,22 @@ def test_mertsalov_extremes_signs_and_range(stem):
     # J_I = ΔT_I нб / (ω² δ) with the range that was printed
     st_d = st.dynamics.settings
     assert _tex_value(f_J.result) == pytest.approx(printed_rng / (st_d.omega_m ** 2 * st_d.delta), rel=1e-3)
+
+
+# ------------------------------------------------------------------ every figure named before it
+@pytest.mark.parametrize("stem, name", [("ws002_tractor_hitch", "forces"), ("ws002_tractor_hitch", "kinematics"),
+                                        ("screen_shaker", "dynamics"), ("gear_pair_shifted", "gears"),
+                                        ("ws001_p7_governor", "governor")])
+def test_every_figure_is_named_in_the_text_before_it(stem, name):
+    """ГОСТ 7.32: every figure is referred to in the text, and stands after the text that first
+    names it (the analogs' curves, the flywheel drawing, the sliding diagrams were named nowhere;
+    the capacity and axle curves and the governor's construction were named after them)."""
+    import importlib
+    from reportgen.report.document import Figure, Paragraph
+    sec = importlib.import_module(f"reportgen.report.sections.{name}").build(_study(stem))
+    items = list(blocks(sec))
+    figures = [(i, b.id) for i, b in enumerate(items) if isinstance(b, Figure)]
+    assert figures
+    for i, fid in figures:
+        named = [j for j, b in enumerate(items) if isinstance(b, Paragraph) and f'href="#{fid}"' in str(b.html)]
+        assert named and named[0] < i, fid

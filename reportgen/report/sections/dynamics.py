@@ -702,7 +702,7 @@ def _dimensions(sec, study, d) -> None:
                           rf"\frac{{{_t(d.result.J_flywheel, sig=6)}}}{{{_ratio(u)}^2}}",
                           _t(J, sig=5, unit="кг·м²"), label="eq-Jshaft"))
     r5 = rf"\sqrt[5]{{{_t(J, sig=6)}}}"
-    s.paragraph("Маховик в виде обода со спицами и ступицей (эмпирические зависимости курсового пособия, "
+    s.paragraph(f"Маховик в виде обода со спицами и ступицей (рисунок {ref('fig-dyn-flywheel')}; эмпирические зависимости курсового пособия, "
                 f"ψ<sub>b</sub>&nbsp;=&nbsp;{fmt(kw['psi_b'], sig=3)}, ψ<sub>h</sub>&nbsp;=&nbsp;{fmt(kw['psi_h'], sig=3)}, "
                 f"ρ&nbsp;=&nbsp;{fmt(kw['rho'], sig=4)}&nbsp;кг/м³):")
     rim, disk = fw.rim, fw.disk

@@ -894,8 +894,6 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
     cols += [Column("Gcap_" + q, sub("G", q), "Н", digits=0, sig=None) for q in list(c.points) + [c.point]]
     cols += [Column("reserve_pct", "Δ<i>G</i>", "%", digits=1)]
     s.table("Результаты анализа механизма на грузоподъёмность", _lead(study) + cols, f.table, id="tab-frc-capacity")
-    s.figure("Грузоподъёмность, усилие и давление в гидроцилиндрах по ходу поршня", CapacityCurves().draw(study).svg,
-             160, id="fig-frc-capacity")
     sc = f.scalars
     txt = (f"Результаты — в таблице {ref('tab-frc-capacity')} и на рисунке {ref('fig-frc-capacity')}. Усилие гидроцилиндров "
            f"при давлении в гидросистеме {_fin(a.pressure / 1e6)}&nbsp;МПа: <i>k</i>·<i>p</i>·<i>η</i>·<i>A</i>&nbsp;=&nbsp;{fmt(a.F_max, sig=6)}&nbsp;Н. ")
@@ -908,6 +906,9 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
     else:
         txt += f"Наименьший запас грузоподъёмности — {fmt(sc['reserve_min_pct'], digits=1)}&nbsp;%."
     s.paragraph(txt)
+    # (after the text that first names it, ГОСТ 7.32)
+    s.figure("Грузоподъёмность, усилие и давление в гидроцилиндрах по ходу поршня", CapacityCurves().draw(study).svg,
+             160, id="fig-frc-capacity")
 
 
 # --------------------------------------------------------------------------------------------
@@ -956,13 +957,14 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
             Column("Gmax_carrier", sub("G", "max"), "Н", digits=0, sig=None),
             Column("Gmax_carrier_consistent", sub("G", "max") + "<sup>*</sup>", "Н", digits=0, sig=None)]
     s.table("Результаты анализа устойчивости и управляемости", _lead(study) + cols, f.table, id="tab-frc-carrier")
-    s.figure("Доля веса на управляемом мосту и наибольший груз по ходу поршня", AxleCurves().draw(study).svg, 160,
-             id="fig-frc-carrier")
     sc = f.scalars
     s.paragraph(f"Результаты — в таблице {ref('tab-frc-carrier')} и на рисунке {ref('fig-frc-carrier')}. Наименьшая "
                 f"нагрузка на управляемый мост — {fmt(sc['R_front_min_value'], sig=5)}&nbsp;Н "
                 f"({fmt(sc['R_front_min_value'] / total * 100, digits=1)}&nbsp;% веса, допускается не менее "
                 f"{fmt(100 * c.min_share, digits=0)}&nbsp;%).")
+    # (after the text that first names it, ГОСТ 7.32)
+    s.figure("Доля веса на управляемом мосту и наибольший груз по ходу поршня", AxleCurves().draw(study).svg, 160,
+             id="fig-frc-carrier")
 
 
 # --------------------------------------------------------------------------------------------

@@ -289,6 +289,7 @@ def build(study) -> Section:
     chunked_tables(s2, "Аналоги скоростей точек", k, vcols, lead, "tab-vq", note=_zero_note(zero))
     if wcols and study.has_cycle:
         curves = AnalogCurves().draw(study)
+        s2.paragraph(f"Графики аналогов угловых скоростей звеньев показаны на рисунке {ref('fig-analogs')}.")
         s2.figure("Аналоги угловых скоростей звеньев " + ("в диапазоне качания входного звена" if mech.driver.swing
                                                            else "за цикл" if rotary else "по ходу гидроцилиндра"), curves.svg, curves.width_mm, id="fig-analogs")
 
