@@ -893,9 +893,13 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
             Column("p_act", "<i>p</i>", "МПа", fmt=lambda v: fmt(v / 1e6, digits=3, sig=None))]
     cols += [Column("Gcap_" + q, sub("G", q), "Н", digits=0, sig=None) for q in list(c.points) + [c.point]]
     cols += [Column("reserve_pct", "Δ<i>G</i>", "%", digits=1)]
+    # the figure named before the table, both after the text that names them (ГОСТ 7.32)
+    s.paragraph(f"Результаты — в таблице {ref('tab-frc-capacity')} и на рисунке {ref('fig-frc-capacity')}.")
     s.table("Результаты анализа механизма на грузоподъёмность", _lead(study) + cols, f.table, id="tab-frc-capacity")
+    s.figure("Грузоподъёмность, усилие и давление в гидроцилиндрах по ходу поршня", CapacityCurves().draw(study).svg,
+             160, id="fig-frc-capacity")
     sc = f.scalars
-    txt = (f"Результаты — в таблице {ref('tab-frc-capacity')} и на рисунке {ref('fig-frc-capacity')}. Усилие гидроцилиндров "
+    txt = ("Усилие гидроцилиндров "
            f"при давлении в гидросистеме {_fin(a.pressure / 1e6)}&nbsp;МПа: <i>k</i>·<i>p</i>·<i>η</i>·<i>A</i>&nbsp;=&nbsp;{fmt(a.F_max, sig=6)}&nbsp;Н. ")
     if sc["pressure_exceeded"]:
         bad = f.table[f.table["p_act"] > a.pressure]
@@ -906,9 +910,6 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
     else:
         txt += f"Наименьший запас грузоподъёмности — {fmt(sc['reserve_min_pct'], digits=1)}&nbsp;%."
     s.paragraph(txt)
-    # (after the text that first names it, ГОСТ 7.32)
-    s.figure("Грузоподъёмность, усилие и давление в гидроцилиндрах по ходу поршня", CapacityCurves().draw(study).svg,
-             160, id="fig-frc-capacity")
 
 
 # --------------------------------------------------------------------------------------------
@@ -956,15 +957,15 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
             Column("rear_share_pct", "Δ" + sub("R", "B"), "%", digits=1),
             Column("Gmax_carrier", sub("G", "max"), "Н", digits=0, sig=None),
             Column("Gmax_carrier_consistent", sub("G", "max") + "<sup>*</sup>", "Н", digits=0, sig=None)]
+    s.paragraph(f"Результаты — в таблице {ref('tab-frc-carrier')} и на рисунке {ref('fig-frc-carrier')}.")
     s.table("Результаты анализа устойчивости и управляемости", _lead(study) + cols, f.table, id="tab-frc-carrier")
+    s.figure("Доля веса на управляемом мосту и наибольший груз по ходу поршня", AxleCurves().draw(study).svg, 160,
+             id="fig-frc-carrier")
     sc = f.scalars
-    s.paragraph(f"Результаты — в таблице {ref('tab-frc-carrier')} и на рисунке {ref('fig-frc-carrier')}. Наименьшая "
+    s.paragraph("Наименьшая "
                 f"нагрузка на управляемый мост — {fmt(sc['R_front_min_value'], sig=5)}&nbsp;Н "
                 f"({fmt(sc['R_front_min_value'] / total * 100, digits=1)}&nbsp;% веса, допускается не менее "
                 f"{fmt(100 * c.min_share, digits=0)}&nbsp;%).")
-    # (after the text that first names it, ГОСТ 7.32)
-    s.figure("Доля веса на управляемом мосту и наибольший груз по ходу поршня", AxleCurves().draw(study).svg, 160,
-             id="fig-frc-carrier")
 
 
 # --------------------------------------------------------------------------------------------
