@@ -868,7 +868,8 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
                 f"для единственной вертикальной нагрузки {html_label(c.load)} оно равно произведению нагрузки на передаточное "
                 f"число {inline_math(rf'i_{{{pt}}} = dy_{{{pt}}}/dS')} её точки приложения. Площадь поршня, "
                 f"давление {_in_cylinders(a.count)} и грузоподъёмность (в точке {html_point(c.point)} и на оси "
-                + ", ".join(c.points) + f") для положения {pos_no(study, lab)} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м):")
+                + ", ".join(c.points) + f") для положения {pos_no(study, lab)} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м; "
+                f"по всем положениям — таблица {ref('tab-frc-capacity')} и рисунок {ref('fig-frc-capacity')}):")
     ip = row["i_" + c.point]
     L_ = _name_tex(c.load)
     fs = [Formula(rf"F = {L_} \cdot i_{{{pt}}}", rf"{_in(P)} \cdot {_t(ip, sig=5)}", _t(row["F_act"], sig=6, unit="Н"),
@@ -893,13 +894,11 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
             Column("p_act", "<i>p</i>", "МПа", fmt=lambda v: fmt(v / 1e6, digits=3, sig=None))]
     cols += [Column("Gcap_" + q, sub("G", q), "Н", digits=0, sig=None) for q in list(c.points) + [c.point]]
     cols += [Column("reserve_pct", "Δ<i>G</i>", "%", digits=1)]
-    # the figure named before the table, both after the text that names them (ГОСТ 7.32)
-    s.paragraph(f"Результаты — в таблице {ref('tab-frc-capacity')} и на рисунке {ref('fig-frc-capacity')}.")
     s.table("Результаты анализа механизма на грузоподъёмность", _lead(study) + cols, f.table, id="tab-frc-capacity")
     s.figure("Грузоподъёмность, усилие и давление в гидроцилиндрах по ходу поршня", CapacityCurves().draw(study).svg,
              160, id="fig-frc-capacity")
     sc = f.scalars
-    txt = ("Усилие гидроцилиндров "
+    txt = (f"Результаты — в таблице {ref('tab-frc-capacity')} и на рисунке {ref('fig-frc-capacity')}. Усилие гидроцилиндров "
            f"при давлении в гидросистеме {_fin(a.pressure / 1e6)}&nbsp;МПа: <i>k</i>·<i>p</i>·<i>η</i>·<i>A</i>&nbsp;=&nbsp;{fmt(a.F_max, sig=6)}&nbsp;Н. ")
     if sc["pressure_exceeded"]:
         bad = f.table[f.table["p_act"] > a.pressure]
@@ -928,7 +927,8 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
                 f"{_fin(c.weight_arm, 'м')} впереди задней оси, противовесы <i>P</i><sub>гр</sub>&nbsp;=&nbsp;"
                 f"{_fin(c.ballast, 'Н')} — на <i>a</i>&nbsp;=&nbsp;{_fin(c.ballast_arm, 'м')} впереди "
                 f"передней оси, база <i>L</i>&nbsp;=&nbsp;{_fin(c.wheelbase, 'м')}, груз <i>G</i>&nbsp;=&nbsp;{html_label(c.load)} — на расстоянии "
-                f"<i>x</i><sub>G</sub> (координата его центра масс) позади задней оси. Для положения {pos_no(study, lab)}:")
+                f"<i>x</i><sub>G</sub> (координата его центра масс) позади задней оси. Для положения {pos_no(study, lab)} "
+                f"(по всем положениям — таблица {ref('tab-frc-carrier')} и рисунок {ref('fig-frc-carrier')}):")
     RA = row["R_front"]
     s.formula(
         Formula(r"R_A = \frac{P_{гр} (a + L) + P_в b - G x_G}{L}",
@@ -957,12 +957,11 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
             Column("rear_share_pct", "Δ" + sub("R", "B"), "%", digits=1),
             Column("Gmax_carrier", sub("G", "max"), "Н", digits=0, sig=None),
             Column("Gmax_carrier_consistent", sub("G", "max") + "<sup>*</sup>", "Н", digits=0, sig=None)]
-    s.paragraph(f"Результаты — в таблице {ref('tab-frc-carrier')} и на рисунке {ref('fig-frc-carrier')}.")
     s.table("Результаты анализа устойчивости и управляемости", _lead(study) + cols, f.table, id="tab-frc-carrier")
     s.figure("Доля веса на управляемом мосту и наибольший груз по ходу поршня", AxleCurves().draw(study).svg, 160,
              id="fig-frc-carrier")
     sc = f.scalars
-    s.paragraph("Наименьшая "
+    s.paragraph(f"Результаты — в таблице {ref('tab-frc-carrier')} и на рисунке {ref('fig-frc-carrier')}. Наименьшая "
                 f"нагрузка на управляемый мост — {fmt(sc['R_front_min_value'], sig=5)}&nbsp;Н "
                 f"({fmt(sc['R_front_min_value'] / total * 100, digits=1)}&nbsp;% веса, допускается не менее "
                 f"{fmt(100 * c.min_share, digits=0)}&nbsp;%).")
