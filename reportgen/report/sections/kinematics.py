@@ -259,13 +259,6 @@ def build(study) -> Section:
     # ----- analogs
     s2 = sec.subsection("Аналоги скоростей и ускорений", "sec-analogs")
     qs = "φ" if rotary else "S"
-    s2.paragraph(
-        f"Положения звеньев найдены в замкнутом виде для каждой группы Ассура; аналоги скоростей "
-        f"и ускорений (производные по обобщённой координате {qs}) получены точно из линейных систем "
-        f"групп, без численного дифференцирования. Истинные скорости и ускорения: "
-        f"{v_m}, {a_m}" + ("" if rotary else f", где {inline_math('v_{' + rel + '}')} и "
-                           f"{inline_math('a_{' + rel + '}')} — скорость и ускорение штока {d_.rod} "
-                           f"относительно цилиндра {d_.link} (первая и вторая производные длины S по времени)") + ".")
     # units of the analogs follow the generalized coordinate: d/dφ keeps a length a length and an
     # angle dimensionless; d/dS makes a point's analog dimensionless and a link's 1/м
     u_w, u_e, u_x = (None, None, "м") if rotary else ("1/м", "1/м²", None)   # as the diagrams (rad dimensionless)
@@ -273,9 +266,22 @@ def build(study) -> Section:
              if not (rotary and l.name == mech.driver.link)]
     ecols = [Column(f"eq_{l.name}", sub("φ″", l.name), u_e, digits=4) for l in _links(study)
              if not (rotary and l.name == mech.driver.link)]
-    if wcols:        # no table of angular analogues where every other link only translates
+    angular = bool(wcols)   # no table of angular analogues where every other link only translates
+    if angular:
         wcols, wzero = zero_columns(k, wcols)
         ecols, ezero = zero_columns(k, ecols)
+    curves_named = bool(wcols) and study.has_cycle
+    s2.paragraph(
+        f"Положения звеньев найдены в замкнутом виде для каждой группы Ассура; аналоги скоростей "
+        f"и ускорений (производные по обобщённой координате {qs}) получены точно из линейных систем "
+        f"групп, без численного дифференцирования. Истинные скорости и ускорения: "
+        f"{v_m}, {a_m}" + ("" if rotary else f", где {inline_math('v_{' + rel + '}')} и "
+                           f"{inline_math('a_{' + rel + '}')} — скорость и ускорение штока {d_.rod} "
+                           f"относительно цилиндра {d_.link} (первая и вторая производные длины S по времени)") + "."
+        # the curves named before them (ГОСТ 7.32), in this paragraph: a line of its own just before
+        # the figure was left alone at a page foot (ws004)
+        + (f" Графики аналогов угловых скоростей звеньев — на рисунке {ref('fig-analogs')}." if curves_named else ""))
+    if angular:
         chunked_tables(s2, "Аналоги угловых скоростей звеньев", k, wcols, lead, "tab-wq", note=_zero_note(wzero))
         chunked_tables(s2, "Аналоги угловых ускорений звеньев", k, ecols, lead, "tab-eq", note=_zero_note(ezero))
     else:
@@ -287,9 +293,8 @@ def build(study) -> Section:
                   Column(f"vqy_{p}", f"<i>y′</i><sub>{p}</sub>", u_x, digits=4)]
     vcols, zero = zero_columns(k, vcols)
     chunked_tables(s2, "Аналоги скоростей точек", k, vcols, lead, "tab-vq", note=_zero_note(zero))
-    if wcols and study.has_cycle:
+    if curves_named:
         curves = AnalogCurves().draw(study)
-        s2.paragraph(f"Графики аналогов угловых скоростей звеньев показаны на рисунке {ref('fig-analogs')}.")
         s2.figure("Аналоги угловых скоростей звеньев " + ("в диапазоне качания входного звена" if mech.driver.swing
                                                            else "за цикл" if rotary else "по ходу гидроцилиндра"), curves.svg, curves.width_mm, id="fig-analogs")
 
