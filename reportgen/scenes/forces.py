@@ -357,18 +357,22 @@ class GroupForces:
         landscape = False
         if self.landscape and self.mu_l is None and self.mu_F is None:
             # on a landscape page when that enlarges both the scheme and the polygon LANDSCAPE_GAIN
-            # times and the drawing fits the page
+            # times and the drawing fits the page; a drawing that large still within the portrait
+            # text width stays on the portrait page (no landscape page for a small figure)
             wide = self._layout(xs, ys, ext, internal, g, Fmax, LANDSCAPE_GAIN * 1.05, floor)
-            landscape = (lay.mu_l >= LANDSCAPE_GAIN * wide.mu_l and lay.mu_F >= LANDSCAPE_GAIN * wide.mu_F
-                         and wide.w_mm <= LANDSCAPE_W and wide.h_mm <= LANDSCAPE_H)
+            larger = lay.mu_l >= LANDSCAPE_GAIN * wide.mu_l and lay.mu_F >= LANDSCAPE_GAIN * wide.mu_F
+            if larger and wide.w_mm <= PORTRAIT_W and wide.h_mm <= GROUP_MAX_H:
+                lay, gain = wide, LANDSCAPE_GAIN * 1.05
+            else:
+                landscape = larger and wide.w_mm <= LANDSCAPE_W and wide.h_mm <= LANDSCAPE_H
             if landscape:
                 lay = wide
         if (not landscape and self.mu_l is None and self.mu_F is None
                 and max(np.ptp(xs), np.ptp(ys)) / lay.mu_l < SMALL_SCHEME_MM):
             lay = self._grown(lay, (xs, ys, ext, internal, g, Fmax, gain, floor))
-        mu_l, mu_F, allx, ally, seq, constructed, internal, count, order, cum, poly, inset, ext_pts, built = (
+        mu_l, mu_F, allx, ally, seq, constructed, internal, count, order, poly, inset, ext_pts, built = (
             lay.mu_l, lay.mu_F, lay.allx, lay.ally, lay.seq, lay.constructed, lay.internal, lay.count, lay.order,
-            lay.cum, lay.poly, lay.inset, lay.ext_pts, lay.built)
+            lay.poly, lay.inset, lay.ext_pts, lay.built)
         cv = Canvas(min(allx.min(), ext_pts[:, 0].min()), max(allx.max(), ext_pts[:, 0].max()),
                     min(ally.min(), ext_pts[:, 1].min()), max(ally.max(), ext_pts[:, 1].max()), mu_l,
                     margin_mm=10, max_w=1e4 if self.mu_l is not None else LANDSCAPE_W if landscape else PORTRAIT_W)

@@ -200,6 +200,21 @@ def _phase_deg(study, q) -> str:
     return fmt(math.degrees(float(q) - study.dynamics.settings.cycle_start), digits=2) + "°"
 
 
+def mertsalov_extremes_text(study) -> str:
+    """Where ΔT_I = ΔT − T_II (Мерцалов; Артоболевский [1]) has its extremes over the cycle, and
+    that only their difference, the greatest change of the first group's kinetic energy
+    ΔT_I нб = ΔT_I max − ΔT_I min, enters J_I. ΔT_I starts at −T_II < 0 (ΔT = 0 at the start of
+    the cycle): both extremes negative are said to be so, not left to read as a «negative maximum»."""
+    me = study.dynamics.result.mertsalov
+    both = (" (оба значения отрицательны: в начальном положении Δ<i>T</i>&nbsp;=&nbsp;0 и "
+            "Δ<i>T</i><sub>I</sub>&nbsp;=&nbsp;−<i>T</i><sub>II</sub>, а за цикл Δ<i>T</i> нигде не превышает "
+            "<i>T</i><sub>II</sub>; постоянное слагаемое в разность экстремумов не входит)" if me.dT_I_max < 0 else "")
+    return (f"Экстремумы Δ<i>T</i><sub>I</sub> найдены по всему циклу решением уравнения {_im('mert_ext')}: "
+            f"наибольшее значение — при φ&nbsp;=&nbsp;{_phase_deg(study, me.phi_dT_max)}, наименьшее — при "
+            f"φ&nbsp;=&nbsp;{_phase_deg(study, me.phi_dT_min)}{both}. Момент инерции первой группы звеньев "
+            f"определяется наибольшим изменением её кинетической энергии за цикл — разностью экстремумов:")
+
+
 # --------------------------------------------------------------------------------------------
 # build
 # --------------------------------------------------------------------------------------------
@@ -589,16 +604,17 @@ def _flywheel(sec, study, d) -> None:
     s.paragraph("<b>Метод Мерцалова.</b> Кинетическая энергия второй группы приближённо вычисляется по средней "
                 "скорости, изменение кинетической энергии первой группы — как разность:")
     s.formula(Formula(r"T_{II}(\varphi) \approx \frac{J_{II}(\varphi)\,\omega_{\text{ср}}^2}{2}, \quad"
-                      r" \Delta T_I(\varphi) = \Delta T(\varphi) - T_{II}(\varphi)", label="eq-mertsalov"),
-              Formula(r"\Delta T_{I\,max}", None, _t(me.dT_I_max, sig=5, unit="Дж")),
+                      r" \Delta T_I(\varphi) = \Delta T(\varphi) - T_{II}(\varphi)", label="eq-mertsalov"))
+    s.paragraph(mertsalov_extremes_text(study))
+    dT_range = me.dT_I_max - me.dT_I_min
+    s.formula(Formula(r"\Delta T_{I\,max}", None, _t(me.dT_I_max, sig=5, unit="Дж")),
               Formula(r"\Delta T_{I\,min}", None, _t(me.dT_I_min, sig=5, unit="Дж")),
-              Formula(r"J_I = \frac{\Delta T_{I\,max} - \Delta T_{I\,min}}{\omega_{\text{ср}}^2\,\delta}",
-                      rf"\frac{{{_t(me.dT_I_max, sig=5, paren=True)} - {_t(me.dT_I_min, sig=5, paren=True)}}}"
-                      rf"{{{_t(w, digits=3)}^2 \cdot {dl_tex}}}",
+              Formula(r"\Delta T_{I\,\text{нб}} = \Delta T_{I\,max} - \Delta T_{I\,min}",
+                      rf"{_t(me.dT_I_max, sig=5)} - {_t(me.dT_I_min, sig=5, paren=True)}",
+                      _t(dT_range, sig=5, unit="Дж")),
+              Formula(r"J_I = \frac{\Delta T_{I\,\text{нб}}}{\omega_{\text{ср}}^2\,\delta}",
+                      rf"\frac{{{_t(dT_range, sig=5)}}}{{{_t(w, digits=3)}^2 \cdot {dl_tex}}}",
                       _t(me.J_I, sig=5, unit="кг·м²"), label="eq-JI-mertsalov"))
-    s.paragraph(f"Экстремумы Δ<i>T</i><sub>I</sub> найдены по всему циклу решением уравнения "
-                f"{_im('mert_ext')} "
-                f"(при φ&nbsp;=&nbsp;{_phase_deg(study, me.phi_dT_max)} и {_phase_deg(study, me.phi_dT_min)}).")
     # Виттенбауэр
     fig = WittenbauerDiagram().draw(study)
     s.paragraph(f"<b>Метод Виттенбауэра.</b> Строится диаграмма энергия–масса ΔT(J<sub>II</sub>) (рисунок "
@@ -707,7 +723,7 @@ def _dimensions(sec, study, d) -> None:
                           rf"\frac{{{_t(d.result.J_flywheel, sig=6)}}}{{{_ratio(u)}^2}}",
                           _t(J, sig=5, unit="кг·м²"), label="eq-Jshaft"))
     r5 = rf"\sqrt[5]{{{_t(J, sig=6)}}}"
-    s.paragraph("Маховик в виде обода со спицами и ступицей (эмпирические зависимости курсового пособия, "
+    s.paragraph(f"Маховик в виде обода со спицами и ступицей (рисунок {ref('fig-dyn-flywheel')}; эмпирические зависимости курсового пособия, "
                 f"ψ<sub>b</sub>&nbsp;=&nbsp;{fmt(kw['psi_b'], sig=3)}, ψ<sub>h</sub>&nbsp;=&nbsp;{fmt(kw['psi_h'], sig=3)}, "
                 f"ρ&nbsp;=&nbsp;{fmt(kw['rho'], sig=4)}&nbsp;кг/м³):")
     rim, disk = fw.rim, fw.disk

@@ -759,7 +759,6 @@ def _balance(sec: Section, study, f, lab: str) -> None:
         cols.append(Column("M_bal_dyn", sub("M", "д") + " − " + sub("J", "I") + "ε (динамика)", "Н·м", **nd))
     chunked_tables(s, "Уравновешивающий момент и его проверки" if rot else "Усилие гидроцилиндра и его проверки",
                    f.table, cols, _lead(study), "tab-frc-checks")
-    sc = f.scalars
     text = ("Аналитически три способа (по группам, по балансу мощностей, по рычагу Жуковского) дают одно и то же "
             "значение во всех положениях: различие — в пределах погрешности округления чисел.")
     if f.settings.flywheel:
@@ -879,7 +878,8 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
                 f"для единственной вертикальной нагрузки {html_label(c.load)} оно равно произведению нагрузки на передаточное "
                 f"число {inline_math(rf'i_{{{pt}}} = dy_{{{pt}}}/dS')} её точки приложения. Площадь поршня, "
                 f"давление {_in_cylinders(a.count)} и грузоподъёмность (в точке {html_point(c.point)} и на оси "
-                + ", ".join(c.points) + f") для положения {pos_no(study, lab)} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м):")
+                + ", ".join(c.points) + f") для положения {pos_no(study, lab)} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м; "
+                f"по всем положениям — таблица {ref('tab-frc-capacity')} и рисунок {ref('fig-frc-capacity')}):")
     ip = row["i_" + c.point]
     L_ = _name_tex(c.load)
     fs = [Formula(rf"F = {L_} \cdot i_{{{pt}}}", rf"{_in(P)} \cdot {_t(ip, sig=5)}", _t(row["F_act"], sig=6, unit="Н"),
@@ -937,7 +937,8 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
                 f"{_fin(c.weight_arm, 'м')} впереди задней оси, противовесы <i>P</i><sub>гр</sub>&nbsp;=&nbsp;"
                 f"{_fin(c.ballast, 'Н')} — на <i>a</i>&nbsp;=&nbsp;{_fin(c.ballast_arm, 'м')} впереди "
                 f"передней оси, база <i>L</i>&nbsp;=&nbsp;{_fin(c.wheelbase, 'м')}, груз <i>G</i>&nbsp;=&nbsp;{html_label(c.load)} — на расстоянии "
-                f"<i>x</i><sub>G</sub> (координата его центра масс) позади задней оси. Для положения {pos_no(study, lab)}:")
+                f"<i>x</i><sub>G</sub> (координата его центра масс) позади задней оси. Для положения {pos_no(study, lab)} "
+                f"(по всем положениям — таблица {ref('tab-frc-carrier')} и рисунок {ref('fig-frc-carrier')}):")
     RA = row["R_front"]
     s.formula(
         Formula(r"R_A = \frac{P_{гр} (a + L) + P_в b - G x_G}{L}",

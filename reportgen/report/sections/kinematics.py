@@ -259,13 +259,6 @@ def build(study) -> Section:
     # ----- analogs
     s2 = sec.subsection("Аналоги скоростей и ускорений", "sec-analogs")
     qs = "φ" if rotary else "S"
-    s2.paragraph(
-        f"Положения звеньев найдены в замкнутом виде для каждой группы Ассура; аналоги скоростей "
-        f"и ускорений (производные по обобщённой координате {qs}) получены точно из линейных систем "
-        f"групп, без численного дифференцирования. Истинные скорости и ускорения: "
-        f"{v_m}, {a_m}" + ("" if rotary else f", где {inline_math('v_{' + rel + '}')} и "
-                           f"{inline_math('a_{' + rel + '}')} — скорость и ускорение штока {d_.rod} "
-                           f"относительно цилиндра {d_.link} (первая и вторая производные длины S по времени)") + ".")
     # units of the analogs follow the generalized coordinate: d/dφ keeps a length a length and an
     # angle dimensionless; d/dS makes a point's analog dimensionless and a link's 1/м
     u_w, u_e, u_x = (None, None, "м") if rotary else ("1/м", "1/м²", None)   # as the diagrams (rad dimensionless)
@@ -273,9 +266,22 @@ def build(study) -> Section:
              if not (rotary and l.name == mech.driver.link)]
     ecols = [Column(f"eq_{l.name}", sub("φ″", l.name), u_e, digits=4) for l in _links(study)
              if not (rotary and l.name == mech.driver.link)]
-    if wcols:        # no table of angular analogues where every other link only translates
+    angular = bool(wcols)   # no table of angular analogues where every other link only translates
+    if angular:
         wcols, wzero = zero_columns(k, wcols)
         ecols, ezero = zero_columns(k, ecols)
+    curves_named = bool(wcols) and study.has_cycle
+    s2.paragraph(
+        f"Положения звеньев найдены в замкнутом виде для каждой группы Ассура; аналоги скоростей "
+        f"и ускорений (производные по обобщённой координате {qs}) получены точно из линейных систем "
+        f"групп, без численного дифференцирования. Истинные скорости и ускорения: "
+        f"{v_m}, {a_m}" + ("" if rotary else f", где {inline_math('v_{' + rel + '}')} и "
+                           f"{inline_math('a_{' + rel + '}')} — скорость и ускорение штока {d_.rod} "
+                           f"относительно цилиндра {d_.link} (первая и вторая производные длины S по времени)") + "."
+        # the curves named before them (ГОСТ 7.32), in this paragraph: a line of its own just before
+        # the figure was left alone at a page foot (ws004)
+        + (f" Графики аналогов угловых скоростей звеньев — на рисунке {ref('fig-analogs')}." if curves_named else ""))
+    if angular:
         chunked_tables(s2, "Аналоги угловых скоростей звеньев", k, wcols, lead, "tab-wq", note=_zero_note(wzero))
         chunked_tables(s2, "Аналоги угловых ускорений звеньев", k, ecols, lead, "tab-eq", note=_zero_note(ezero))
     else:
@@ -287,7 +293,7 @@ def build(study) -> Section:
                   Column(f"vqy_{p}", f"<i>y′</i><sub>{p}</sub>", u_x, digits=4)]
     vcols, zero = zero_columns(k, vcols)
     chunked_tables(s2, "Аналоги скоростей точек", k, vcols, lead, "tab-vq", note=_zero_note(zero))
-    if wcols and study.has_cycle:
+    if curves_named:
         curves = AnalogCurves().draw(study)
         s2.figure("Аналоги угловых скоростей звеньев " + ("в диапазоне качания входного звена" if mech.driver.swing
                                                            else "за цикл" if rotary else "по ходу гидроцилиндра"), curves.svg, curves.width_mm, id="fig-analogs")
@@ -326,21 +332,27 @@ def build(study) -> Section:
         # those ω and V_r are derived between the velocity and the acceleration equations
         vrow = read_velocities(row, study, vplan.mu)
         ws, es = _plan_formulas(s4, study, row, vrow, vplan, aplan)
+        # each plan follows the text that reads it (ГОСТ 7.32: a figure after its first mention), so
+        # the text after a plan on a landscape page of its own can fill the page before it
         vectors.add_velocities(s4, study, vrow)
         if ws:
             slides = sum(f.symbolic.startswith("V") for f in ws)
             word = ("камня", "камней") if all(vectors.is_stone(study.mechanism, j)
                                               for j in study.mechanism.prismatic) else ("в поступательной паре", "в поступательных парах")
-            s4.paragraph("По отрезкам плана скоростей найдены угловые скорости звеньев"
+            s4.paragraph(f"По отрезкам плана скоростей (рисунок {ref('fig-vplan')}) найдены угловые скорости звеньев"
                          + (" и относительная скорость " + word[0] if slides == 1 else
                             " и относительные скорости " + word[1] if slides else "") + ":")
             s4.formula(*ws)
-        vectors.add_accelerations(s4, study, vrow)
-        if es:
-            s4.paragraph("По отрезкам плана ускорений найдены угловые ускорения звеньев:")
-            s4.formula(*es)
+        else:
+            s4.paragraph(f"План скоростей построен на рисунке {ref('fig-vplan')}.")
         s4.figure(f"План скоростей для положения {pos_no(study, lab)} (μ<sub>v</sub> = {mu_text(vplan.mu)} м·с⁻¹/мм)",
                   vplan.svg, vplan.width_mm, id="fig-vplan", landscape=vplan.landscape)
+        vectors.add_accelerations(s4, study, vrow)
+        if es:
+            s4.paragraph(f"По отрезкам плана ускорений (рисунок {ref('fig-aplan')}) найдены угловые ускорения звеньев:")
+            s4.formula(*es)
+        else:
+            s4.paragraph(f"План ускорений построен на рисунке {ref('fig-aplan')}.")
         s4.figure(f"План ускорений для положения {pos_no(study, lab)} (μ<sub>a</sub> = {mu_text(aplan.mu)} м·с⁻²/мм)",
                   aplan.svg, aplan.width_mm, id="fig-aplan", landscape=aplan.landscape)
         cmp_cols = [Column("name", "Вектор", fmt=_vec_name), Column("mm", "Длина на плане", "мм", digits=1),
