@@ -79,3 +79,34 @@ def test_print_tables_ask_no_font_feature(report, kinematics_html):
                                    "</style>\n</head>", 1)
     assert back != kinematics_html
     assert _pdf(back) == _pdf(kinematics_html)
+
+
+def test_parts_parsed_as_they_come_back_join_the_same(report, tmp_path, monkeypatch):
+    """With workers, every document of the note (title page, contents, body parts) is parsed by
+    :func:`parallel.prepare` as it comes back, and the join takes those readers; the note is
+    the same bytes as laid out in one process (no reader prepared) and as joined from the bytes."""
+    prepared, joins = [], []
+    real_prepare, real_join = parallel.prepare, parallel.join
+
+    def spy_prepare(part):
+        prepared.append(part.index)
+        return real_prepare(part)
+
+    def spy_join(parts, numbers, first_numbered, readers=None):
+        given = dict(readers or {})
+        joins.append(({p.index for p in parts}, set(given)))
+        out = real_join(parts, numbers, first_numbered, readers)
+        assert not readers, "the join takes the readers it was given"
+        assert real_join(parts, numbers, first_numbered) == out  # from the bytes: the same
+        return out
+
+    monkeypatch.setattr(parallel, "prepare", spy_prepare)
+    monkeypatch.setattr(parallel, "join", spy_join)
+    two = render.write_pdf(report, tmp_path / "two.pdf", jobs=2).read_bytes()
+    (indexes, given), = joins
+    assert given == indexes and set(prepared) >= indexes
+    assert parallel.NUMBERS not in prepared
+    prepared.clear()
+    one = render.write_pdf(report, tmp_path / "one.pdf", jobs=1).read_bytes()
+    assert prepared == [] and joins[1][1] == set()
+    assert one == two
