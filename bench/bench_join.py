@@ -54,7 +54,7 @@ def main(argv: list[str]) -> None:
         fresh.append(time.process_time() - c0)
         parts, numbers, first = pickle.loads(seen["args"])
         c0 = time.process_time()
-        readers = {p.index: parallel.prepare(p) for p in parts}
+        readers = {id(p): (p, parallel.prepare(p)) for p in parts}
         c1 = time.process_time()
         b = parallel.join(parts, numbers, first, readers=readers)
         prepared.append(c1 - c0)

@@ -94,10 +94,14 @@ def test_parts_parsed_as_they_come_back_join_the_same(report, tmp_path, monkeypa
 
     def spy_join(parts, numbers, first_numbered, readers=None):
         given = dict(readers or {})
-        joins.append(({p.index for p in parts}, set(given)))
+        assert all(given[id(p)][0] is p for p in parts if id(p) in given)
+        joins.append(({p.index for p in parts}, {part.index for part, _ in given.values()}))
         out = real_join(parts, numbers, first_numbered, readers)
         assert not readers, "the join takes the readers it was given"
         assert real_join(parts, numbers, first_numbered) == out  # from the bytes: the same
+        # a reader kept for another document (the contents laid out again) is not taken for this one
+        swapped = {id(p): (q, real_prepare(q)) for p, q in zip(parts, parts[1:] + parts[:1])}
+        assert real_join(parts, numbers, first_numbered, swapped) == out
         return out
 
     monkeypatch.setattr(parallel, "prepare", spy_prepare)

@@ -350,7 +350,7 @@ class PartsJob:
         tasks.sort(key=lambda t: (-_cost(t.html), t.index))
         _REPORT = report
         self.done: dict[int, _Laid] = {}
-        self.readers: dict = {}  # index -> the part's PDF parsed as it came back (prepare)
+        self.readers: dict = {}  # id(part) -> (part, its PDF parsed as it came back: prepare)
         self.waiting: set[int] = set()
         self.results: queue.Queue = queue.Queue()
         self.own_pool = None
@@ -397,7 +397,7 @@ class PartsJob:
             self.waiting.discard(task.index)
             self.done[task.index] = laid
             if self.pool is not None and task.index != NUMBERS:  # (while a worker lays out another part)
-                self.readers[task.index] = prepare(laid)
+                self.readers[id(laid)] = (laid, prepare(laid))
         self.stats.seconds_wait += time.perf_counter() - t0
 
     def _run(self, task: _Task) -> _Laid:
@@ -703,8 +703,9 @@ def prepare(part: _Laid):
 def join(parts: list[_Laid], numbers: bytes, first_numbered: int, readers: dict | None = None) -> bytes:
     """One PDF of the laid-out parts in order: pages, the footer numbers of ``numbers`` drawn
     on every page from ``first_numbered`` (0-based), internal links and the outline with
-    explicit destinations, the document information of the first part. ``readers``: a part's
-    reader from :func:`prepare` by its index (taken: the join changes its pages' links)."""
+    explicit destinations, the document information of the first part. ``readers``:
+    ``{id(part): (part, reader)}``, the readers of :func:`prepare` (taken: the join changes their
+    pages' links); a part without one is read from its bytes."""
     from pypdf import PdfReader, PdfWriter
     from pypdf.annotations import Link
     from pypdf.generic import ArrayObject, Fit, NameObject
@@ -713,7 +714,8 @@ def join(parts: list[_Laid], numbers: bytes, first_numbered: int, readers: dict 
     starts = []
     meta = None
     for p in parts:
-        reader = (readers or {}).pop(p.index, None) or PdfReader(io.BytesIO(p.pdf))
+        kept = (readers or {}).pop(id(p), None)
+        reader = kept[1] if kept is not None and kept[0] is p else PdfReader(io.BytesIO(p.pdf))
         if meta is None:
             meta = reader.metadata
         starts.append(len(writer.pages))
