@@ -8,14 +8,15 @@ The parts kinematics, dynamics and forces are taken as the workers of ``write_pd
 (their print HTML with the split points known: the second write in one process). Each is laid
 out and written (``parallel._lay_out`` and ``parallel._write``) as it is and with ``CSS``
 appended to the note's stylesheet (default: ``table.tbl { font-variant-numeric: tabular-nums; }``,
-the rule gost.css had before session 9), alternating, REPEAT times after one warm-up of each.
-Printed: the CPU seconds of this process (``time.process_time``: the machine may be shared),
-summed over the three parts, median and minimum, and whether the two PDFs of each part are the
-same bytes.
+the rule gost.css had before session 9): part by part, REPEAT rounds after one warm-up round, the
+two variants in a shuffled order in each round (fixed seed). Printed: the CPU seconds of this
+process (``time.process_time``: the machine may be shared), minimum and median per part and their
+sums, and whether the two PDFs of each part are the same bytes.
 """
 from __future__ import annotations
 
 import os
+import random
 import statistics
 import sys
 import tempfile
@@ -57,22 +58,25 @@ def main(argv: list[str]) -> None:
         html = htmls[i].replace("</style>\n</head>", rule + "</style>\n</head>", 1)
         assert html != htmls[i], "the stylesheet was not found"
         variants["with the rule"][i] = html
-    cpu = {name: [] for name in variants}
+    cpu: dict = {}
     pdfs: dict = {}
-    for r in range(n + 1):
-        for name, docs in variants.items():
-            total = 0.0
-            for i, html in docs.items():
+    order = random.Random(1)
+    for i in heavy:  # a part's rounds together (the machine's load drifts), the two in a shuffled order
+        for r in range(n + 1):
+            names = list(variants)
+            order.shuffle(names)
+            for name in names:
                 c0 = time.process_time()
                 with render._fixed_font_timestamp():
-                    pdfs[name, i] = parallel._write(parallel._lay_out(html))
-                total += time.process_time() - c0
-            if r:  # the first round warms up
-                cpu[name].append(total)
+                    pdfs[name, i] = parallel._write(parallel._lay_out(variants[name][i]))
+                if r:  # the first round warms up
+                    cpu.setdefault((name, i), []).append(time.process_time() - c0)
     print(f"parts {heavy} of ws000 (cells {[htmls[i].count('<td') for i in heavy]}); rule: {rule}")
-    for name, v in cpu.items():
-        print(f"{name:>14}: median {statistics.median(v):.2f} s CPU, min {min(v):.2f} "
-              f"(runs {', '.join(f'{x:.2f}' for x in v)})")
+    for name in variants:
+        per = [cpu[name, i] for i in heavy]
+        print(f"{name:>14}: sum of the parts' minimums {sum(min(v) for v in per):.3f} s CPU, of medians "
+              f"{sum(statistics.median(v) for v in per):.3f}; per part min/median "
+              + ", ".join(f"{min(v):.3f}/{statistics.median(v):.3f}" for v in per))
     print("same PDF bytes: " + ", ".join(f"part {i}: {pdfs['as is', i] == pdfs['with the rule', i]}" for i in heavy))
     print(f"load {os.getloadavg()}")
 
