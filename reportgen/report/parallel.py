@@ -350,6 +350,7 @@ class PartsJob:
         tasks.sort(key=lambda t: (-_cost(t.html), t.index))
         _REPORT = report
         self.done: dict[int, _Laid] = {}
+        self.readers: dict = {}  # id(part) -> (part, its PDF parsed as it came back: prepare)
         self.waiting: set[int] = set()
         self.results: queue.Queue = queue.Queue()
         self.own_pool = None
@@ -395,6 +396,8 @@ class PartsJob:
                 continue
             self.waiting.discard(task.index)
             self.done[task.index] = laid
+            if self.pool is not None and task.index != NUMBERS:  # (while a worker lays out another part)
+                self.readers[id(laid)] = (laid, prepare(laid))
         self.stats.seconds_wait += time.perf_counter() - t0
 
     def _run(self, task: _Task) -> _Laid:
@@ -487,7 +490,7 @@ class PartsJob:
             t0 = time.perf_counter()
             # every page gets its number from the page-number document, whose first page (as
             # the note's first page, ``@page :first``) has none
-            pdf = join(front + [toc] + parts, numbers, first_numbered=1)
+            pdf = join(front + [toc] + parts, numbers, first_numbered=1, readers=self.readers)
             st.seconds_join = time.perf_counter() - t0
             st.pages = n
             return pdf
@@ -654,10 +657,55 @@ def _numbers_pdf(views, n: int, turned: frozenset | set = frozenset(), run=None)
     return pdf
 
 
-def join(parts: list[_Laid], numbers: bytes, first_numbered: int) -> bytes:
+def _walk_objects(reader) -> int:
+    """Resolve every object reachable from the pages of ``reader`` (not through ``/Parent``:
+    what pypdf's ``add_page`` copies); the count of indirect objects resolved."""
+    from pypdf.generic import ArrayObject, DictionaryObject, IndirectObject
+
+    seen: set = set()
+    refs = [page.indirect_reference for page in reader.pages]
+    while refs:
+        ref = refs.pop()
+        if ref.idnum in seen:
+            continue
+        seen.add(ref.idnum)
+        todo = [reader.get_object(ref)]
+        while todo:
+            obj = todo.pop()
+            if isinstance(obj, DictionaryObject):
+                values = [v for k, v in obj.items() if k != "/Parent"]
+            elif isinstance(obj, ArrayObject):
+                values = list(obj)
+            else:
+                continue
+            for v in values:
+                if isinstance(v, IndirectObject):
+                    refs.append(v)
+                elif isinstance(v, (DictionaryObject, ArrayObject)):
+                    todo.append(v)
+    return len(seen)
+
+
+def prepare(part: _Laid):
+    """A pypdf reader of ``part``'s PDF with what :func:`join` copies of it (its pages and every
+    object they reach) parsed now: pypdf keeps the objects it parsed, so a join given the reader
+    only copies them. :meth:`PartsJob._collect` prepares each part as it comes back, while a
+    worker still lays out another one, and the join after the last part does about half its
+    work (``python bench/bench_join.py``). The joined bytes are the same: the same objects,
+    copied in the same order."""
+    from pypdf import PdfReader
+
+    reader = PdfReader(io.BytesIO(part.pdf))
+    _walk_objects(reader)
+    return reader
+
+
+def join(parts: list[_Laid], numbers: bytes, first_numbered: int, readers: dict | None = None) -> bytes:
     """One PDF of the laid-out parts in order: pages, the footer numbers of ``numbers`` drawn
     on every page from ``first_numbered`` (0-based), internal links and the outline with
-    explicit destinations, the document information of the first part."""
+    explicit destinations, the document information of the first part. ``readers``:
+    ``{id(part): (part, reader)}``, the readers of :func:`prepare` (taken: the join changes their
+    pages' links); a part without one is read from its bytes."""
     from pypdf import PdfReader, PdfWriter
     from pypdf.annotations import Link
     from pypdf.generic import ArrayObject, Fit, NameObject
@@ -666,7 +714,8 @@ def join(parts: list[_Laid], numbers: bytes, first_numbered: int) -> bytes:
     starts = []
     meta = None
     for p in parts:
-        reader = PdfReader(io.BytesIO(p.pdf))
+        kept = (readers or {}).pop(id(p), None)
+        reader = kept[1] if kept is not None and kept[0] is p else PdfReader(io.BytesIO(p.pdf))
         if meta is None:
             meta = reader.metadata
         starts.append(len(writer.pages))
