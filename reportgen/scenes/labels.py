@@ -40,6 +40,7 @@ import numpy as np
 from matplotlib import patheffects
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.collections import LineCollection
+from matplotlib.contour import ContourSet
 from matplotlib.lines import Line2D
 from matplotlib.text import Text
 
@@ -101,11 +102,16 @@ def _segments(ax, renderer, skip) -> np.ndarray:
         if drawn:
             add_poly(v)
     for coll in ax.collections:
-        if coll in skip or not isinstance(coll, LineCollection) or not coll.get_visible():
+        if coll in skip or not coll.get_visible():
             continue
         tr = coll.get_transform()
-        for s in coll.get_segments():
-            add_poly(tr.transform(np.asarray(s, float)))
+        if isinstance(coll, LineCollection):
+            for s in coll.get_segments():
+                add_poly(tr.transform(np.asarray(s, float)))
+        elif isinstance(coll, ContourSet) and not coll.filled:      # contour lines (a filled one has no edge)
+            for path in coll.get_paths():
+                for poly in path.to_polygons(tr, closed_only=False):
+                    add_poly(poly)
     for p in ax.patches:
         if p in skip or not p.get_visible():
             continue
@@ -301,6 +307,66 @@ def place_on_chart(placer: "LabelPlacer", avoid=()) -> list[Text]:
         ax.apply_aspect()
     placer.avoid_boxes += [a.get_window_extent(_renderer(fig)) for a in avoid]
     return placer.place()
+
+
+CONTOUR_STEP_MM = 1.5     # label_contours: candidate places along a contour line this far apart
+CONTOUR_SPACING_PX = 3   # the contour line's gap beyond the label, each side (matplotlib's inline_spacing)
+
+
+def label_contours(ax, cs: ContourSet, fmt, *, fontsize: float) -> list[Text]:
+    """One inline label per level of the contour lines ``cs`` (what ``ax.clabel`` writes: the value
+    along the line, which is cut under it), set where no line crosses it: the places along the
+    level's line, ``CONTOUR_STEP_MM`` apart from the middle of each of its pieces outwards (longest
+    piece first), are tried in turn; the first whose rendered extent (shrunk as
+    :func:`line_problems` reads it) stays in the axes, meets no other text and is crossed by no
+    drawn line, no other contour and not by its own line beside the cut wins, else the one crossed
+    least. To be called when everything else is drawn and laid out (:func:`place_on_chart`)."""
+    renderer = _renderer(ax.figure)
+    px_mm = ax.figure.dpi / 25.4
+    tol = (LINE_TOL_MM - 0.1) * px_mm + PAD_PX
+    frame = ax.get_window_extent(renderer)
+    cs.clabel(fmt=fmt, fontsize=fontsize, manual=[])         # the labeller set up, no label yet
+    rest = _segments(ax, renderer, skip=(cs,))
+    tr = cs.get_transform()
+    out = []
+    for i in range(len(cs.levels)):
+        path = cs.get_paths()[i]
+        pieces = [p for p in path.to_polygons(tr, closed_only=False) if len(p) >= 2]
+        if not pieces:
+            continue
+        others = [q for j, p in enumerate(cs.get_paths()) if j != i for q in p.to_polygons(tr, closed_only=False)]
+        segs = _Segs(np.vstack([rest] + [np.hstack([q[:-1], q[1:]]) for q in others if len(q) >= 2]))
+        boxes = [t.get_window_extent(renderer) for t in ax.texts]
+        cands = []
+        for piece in sorted(pieces, key=len, reverse=True):
+            d = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(piece, axis=0).T))])
+            at = np.arange(0.0, d[-1], CONTOUR_STEP_MM * px_mm)
+            at = at[np.argsort(np.abs(at - d[-1] / 2), kind="stable")]
+            cands += [(np.interp(a, d, piece[:, 0]), np.interp(a, d, piece[:, 1])) for a in at]
+        best = None
+        for x, y in cands:
+            kept = list(cs._paths)
+            cs.add_label_near(x, y, inline=True, inline_spacing=CONTOUR_SPACING_PX, transform=False)
+            t = cs.labelTexts[-1]
+            bb = t.get_window_extent(renderer)
+            cs.pop_label()
+            own = cs._paths[i]
+            cs._paths[:] = kept
+            inside = (bb.x0 >= frame.x0 + 1 and bb.x1 <= frame.x1 - 1 and bb.y0 >= frame.y0 + 1
+                      and bb.y1 <= frame.y1 - 1)
+            if not inside or any(_overlap(bb, o) for o in boxes):
+                continue
+            box = _Box(bb.x0 + tol, bb.y0 + tol, bb.x1 - tol, bb.y1 - tol)
+            mine = [q for q in own.to_polygons(tr, closed_only=False) if len(q) >= 2]
+            hits = segs.crossings(box) + sum(_crossings(np.hstack([q[:-1], q[1:]]), box) for q in mine)
+            if best is None or hits < best[0]:
+                best = (hits, x, y)
+            if hits == 0:
+                break
+        if best is not None:
+            cs.add_label_near(best[1], best[2], inline=True, inline_spacing=CONTOUR_SPACING_PX, transform=False)
+            out.append(cs.labelTexts[-1])
+    return out
 
 
 class LabelPlacer:
