@@ -91,3 +91,34 @@ def test_energy_and_motion_notes_clear_of_lines(path, captured):
                 assert hasattr(t, "anchor"), t.get_text()
                 if legend is not None:
                     assert not t.get_window_extent().overlaps(legend.get_window_extent()), t.get_text()
+
+
+@pytest.mark.parametrize("path", [p for p in _cases("gears") if _study(p.values[0]).gears.geo is not None])
+def test_blocking_contour_texts_clear_of_lines(path):
+    """The blocking contour: every isoline's value (ε = 1,3 … 1,6) along its line, crossed by no
+    other line, contour or the isoline itself beside its cut, and «выбрано» beside its point
+    (before: ``ax.clabel``'s own places, ε = 1,5 and 1,6 across the x_min lines; the contour
+    lines were not seen by the check at all)."""
+    from matplotlib.contour import ContourSet
+    from reportgen.scenes import gears as S
+    fig = S.blocking_contour(_study(path).gears)
+    assert _clean(fig) == []
+    ax = fig.axes[0]
+    isolines = [c for c in ax.collections if isinstance(c, ContourSet) and not c.filled and len(c.levels) > 1]
+    assert len(isolines) == 1 and len(isolines[0].labelTexts) == len(isolines[0].levels)
+    # the check sees the contour lines: a text set on one is crossed
+    t = ax.text(float(_study(path).gears.x1), float(_study(path).gears.x2), "выбрано выбрано", ha="center")
+    assert L.line_problems(fig, every=True)
+    t.remove()
+
+
+@pytest.mark.parametrize("path", [p for p in _cases("dynamics") if _study(p.values[0]).dynamics.result.flywheel.needed])
+def test_flywheel_dimensions_clear_of_lines(path, captured):
+    """The flywheel's drawing: every dimension number (Ø D₂, Ø D₁, b, Ø D) crossed by no line and
+    clear of the neighbouring view (before: swing_conveyor's Ø257 and Ø205 at 1:10 across the rim's
+    and the disk's outlines, its views 4 mm apart)."""
+    from reportgen.scenes.dynamics import FlywheelDrawing
+    FlywheelDrawing().draw(_study(path))
+    fig = captured[-1]
+    assert len([t for t in fig.axes[0].texts if t.get_text()]) == 7     # five dimensions, two captions
+    assert _clean(fig) == []
