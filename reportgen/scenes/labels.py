@@ -60,6 +60,9 @@ HALO_PT = 2.5
 ANCHOR_CLEAR_MM = 0.5    # what a label keeps clear of the point another label names
 SAME_POINT_MM = 0.5      # anchors nearer than this are one point (their labels share it)
 LINE_TOL_MM = 0.3        # check_figure: a line within this of a label's glyph box edge only touches it
+BREAK_MM = 2.5           # what interrupting a thin line (``breakable``) under a label costs, mm of distance
+MAX_BREAKS = 3           # thin lines a label may interrupt at most
+BREAK_PAD_MM = 0.4       # the gap of an interrupted line round the label's box
 
 
 @dataclass
@@ -81,8 +84,9 @@ def _renderer(fig):
     return fig.canvas.get_renderer()
 
 
-def _segments(ax, renderer, skip) -> np.ndarray:
-    """All drawn segments of the axes in display coordinates, shape (n, 4)."""
+def _segments(ax, renderer, skip, only=None) -> np.ndarray:
+    """All drawn segments of the axes in display coordinates, shape (n, 4); ``only``: of those
+    lines only."""
     segs = []
 
     def add_poly(v):
@@ -90,17 +94,20 @@ def _segments(ax, renderer, skip) -> np.ndarray:
         if len(v) >= 2:
             segs.append(np.hstack([v[:-1], v[1:]]))
     for ln in ax.lines:
-        if ln in skip or not ln.get_visible():
+        if ln in skip or not ln.get_visible() or (only is not None and ln not in only):
             continue
         v = ln.get_transform().transform(np.column_stack(ln.get_data()).astype(float))
-        v = v[np.all(np.isfinite(v), axis=1)]
+        ok = np.all(np.isfinite(v), axis=1)
         drawn = ln.get_linestyle() not in ("None", "none", "", " ")
-        if (len(v) == 1 or not drawn) and ln.get_marker() not in (None, "", "None", " "):
+        if (np.count_nonzero(ok) == 1 or not drawn) and ln.get_marker() not in (None, "", "None", " "):
             r = ln.get_markersize() / 2 * renderer.points_to_pixels(1)
-            for x, y in v:       # the markers' squares (a marker-only line has no segments between)
+            for x, y in v[ok]:       # the markers' squares (a marker-only line has no segments between)
                 add_poly([(x - r, y - r), (x + r, y - r), (x + r, y + r), (x - r, y + r), (x - r, y - r)])
-        if drawn:
-            add_poly(v)
+        if drawn:                    # a run of finite vertices each: a line broken (NaN) has gaps
+            for run in np.split(v, np.flatnonzero(~ok)):
+                add_poly(run[np.all(np.isfinite(run), axis=1)])
+    if only is not None:
+        return np.vstack(segs) if segs else np.zeros((0, 4))
     for coll in ax.collections:
         if coll in skip or not coll.get_visible():
             continue
@@ -369,6 +376,42 @@ def label_contours(ax, cs: ContourSet, fmt, *, fontsize: float) -> list[Text]:
     return out
 
 
+def _break_lines(lines, box: _Box) -> None:
+    """Interrupt the lines where they pass through ``box`` (display coordinates): the part of
+    each segment inside it (Liang–Barsky) is left out, the line's data get a NaN gap there."""
+    for ln in lines:
+        tr = ln.get_transform()
+        v = tr.transform(np.column_stack(ln.get_data()).astype(float))
+        out, changed = [], False
+        for i in range(len(v)):
+            if i == 0 or not (np.all(np.isfinite(v[i - 1])) and np.all(np.isfinite(v[i]))):
+                out.append(v[i])
+                continue
+            (sx, sy), (ex, ey) = v[i - 1], v[i]
+            dx, dy = ex - sx, ey - sy
+            t0, t1 = 0.0, 1.0
+            for p, q in ((-dx, sx - box.x0), (dx, box.x1 - sx), (-dy, sy - box.y0), (dy, box.y1 - sy)):
+                if abs(p) < 1e-12:
+                    if q < 0:
+                        t0, t1 = 1.0, 0.0
+                elif p < 0:
+                    t0 = max(t0, q / p)
+                else:
+                    t1 = min(t1, q / p)
+            if t0 > t1:
+                out.append(v[i])
+                continue
+            changed = True
+            if t0 > 0:
+                out.append((sx + t0 * dx, sy + t0 * dy))
+            out.append((np.nan, np.nan))
+            if t1 < 1:
+                out += [(sx + t1 * dx, sy + t1 * dy), v[i]]
+        if changed:
+            d = tr.inverted().transform(np.array(out, float))
+            ln.set_data(d[:, 0], d[:, 1])
+
+
 class LabelPlacer:
     """Collects the labels of one axes and places them after the drawing is complete."""
 
@@ -406,7 +449,9 @@ class LabelPlacer:
     def place(self) -> list[Text]:
         ax, fig = self.ax, self.fig
         renderer = _renderer(fig)
-        segs = _Segs(_segments(ax, renderer, skip=()))
+        thin = [ln for ln in ax.lines if getattr(ln, "breakable", False)]
+        segs = _Segs(_segments(ax, renderer, skip=tuple(thin)))
+        bsegs = _Segs(_segments(ax, renderer, skip=(), only=thin)) if thin else None
         frame = ax.get_window_extent(renderer)
         # the axes' limits and place do not change while the labels are placed: one inverse
         inv = ax.transData.inverted()
@@ -418,6 +463,7 @@ class LabelPlacer:
         out = []
         anchors = self.ax.transData.transform(np.array([(o.x, o.y) for o in self.items]).reshape(-1, 2))
         clear = ANCHOR_CLEAR_MM * px_mm
+        pad = BREAK_PAD_MM * px_mm      # a thin line interrupted this far round a label's box
         leaders: list = []              # the leader lines drawn so far: x0, y0, x1, y1, then their box
         for it in self.items:
             kw = dict(fontsize=self.fontsize, ha="center", va="center", zorder=10)
@@ -464,19 +510,26 @@ class LabelPlacer:
                     if near:
                         hits += _crossings_few([ld[:4] for ld in near], bb.x0 - PAD_PX, bb.y0 - PAD_PX,
                                                bb.x1 + PAD_PX, bb.y1 + PAD_PX)
+                # the thin lines it would interrupt (ГОСТ 2.307: thin lines break at a number)
+                brk = bsegs.crossings(_Box(bb.x0 - pad, bb.y0 - pad, bb.x1 + pad, bb.y1 + pad)) if thin else 0
+                if brk > MAX_BREAKS:
+                    hits += brk
                 # a stray label far enough for a leader to be seen gets one: the leader tells whose
                 led = r_mm * px_mm > lead_px or (stray and r_mm > LEADER_MM)
                 cut = 0
                 if led and hits == 0:
                     # its leader: through no label (a must), across as few lines as may be
                     hits += _through_boxes(_leader_segment(ax0, bb, 0.0), placed)
-                    cut = segs.cuts(_leader_segment(ax0, bb, LEADER_FREE_MM * px_mm)) if hits == 0 else 0
+                    if hits == 0:
+                        lead = _leader_segment(ax0, bb, LEADER_FREE_MM * px_mm)
+                        cut = segs.cuts(lead) + (bsegs.cuts(lead) if thin else 0)
                 # a leader across a line is worth CUT_MM more of distance
-                score = r_mm + CUT_MM * cut + GRAZE_MM * graze + (STRAY_MM if stray and led else 0.0)
+                score = (r_mm + CUT_MM * cut + GRAZE_MM * graze + BREAK_MM * brk
+                         + (STRAY_MM if stray and led else 0.0))
                 cost = (hits > 0, stray and not led, crowded, hits, score, k)
                 if best is None or cost < best[0]:
                     best = (cost, (cx, cy), bb, led)
-                if hits == 0 and not stray and not crowded and cut == 0 and graze == 0:
+                if hits == 0 and not stray and not crowded and cut == 0 and graze == 0 and brk == 0:
                     break
             if best is None:       # nowhere free inside: nearest candidate inside the figure
                 cands = list(self._candidates(it, px_mm))
@@ -496,6 +549,8 @@ class LabelPlacer:
                 # no free place: the lines under the label are broken by a white halo round its glyphs
                 t.set_path_effects([patheffects.withStroke(linewidth=HALO_PT, foreground="white")])
             placed.append((bb, gap))
+            if thin and not cost[0]:
+                _break_lines(thin, _Box(bb.x0 - pad, bb.y0 - pad, bb.x1 + pad, bb.y1 + pad))
             if led or math.hypot(cx, cy) > lead_px:
                 t.leader = self._leader(ax0, bb)
                 ld = _leader_segment(ax0, bb, 0.0)
