@@ -238,6 +238,11 @@ def _crossings(segs: np.ndarray, bb) -> int:
     """How many segments meet the rectangle ``bb`` (Liang–Barsky clipping, vectorized)."""
     if len(segs) == 0:
         return 0
+    return int(np.count_nonzero(_meets(segs, bb)))
+
+
+def _meets(segs: np.ndarray, bb) -> np.ndarray:
+    """Which segments meet the rectangle ``bb`` padded by PAD_PX (a segment with a NaN end: none)."""
     x0, y0, x1, y1 = bb.x0 - PAD_PX, bb.y0 - PAD_PX, bb.x1 + PAD_PX, bb.y1 + PAD_PX
     px, py = segs[:, 0], segs[:, 1]
     dx, dy = segs[:, 2] - px, segs[:, 3] - py
@@ -251,7 +256,7 @@ def _crossings(segs: np.ndarray, bb) -> int:
             r = np.where(par, 0.0, q / np.where(par, 1.0, p))
         t0 = np.where(~par & (p < 0), np.maximum(t0, r), t0)
         t1 = np.where(~par & (p > 0), np.minimum(t1, r), t1)
-    return int(np.count_nonzero(ok & (t0 <= t1)))
+    return ok & (t0 <= t1)
 
 
 def _overlap(a, b, gap: float = 0.0) -> bool:
@@ -376,40 +381,65 @@ def label_contours(ax, cs: ContourSet, fmt, *, fontsize: float) -> list[Text]:
     return out
 
 
-def _break_lines(lines, box: _Box) -> None:
-    """Interrupt the lines where they pass through ``box`` (display coordinates): the part of
-    each segment inside it (Liang–Barsky) is left out, the line's data get a NaN gap there."""
-    for ln in lines:
-        tr = ln.get_transform()
-        v = tr.transform(np.column_stack(ln.get_data()).astype(float))
-        out, changed = [], False
-        for i in range(len(v)):
-            if i == 0 or not (np.all(np.isfinite(v[i - 1])) and np.all(np.isfinite(v[i]))):
-                out.append(v[i])
-                continue
-            (sx, sy), (ex, ey) = v[i - 1], v[i]
-            dx, dy = ex - sx, ey - sy
-            t0, t1 = 0.0, 1.0
-            for p, q in ((-dx, sx - box.x0), (dx, box.x1 - sx), (-dy, sy - box.y0), (dy, box.y1 - sy)):
-                if abs(p) < 1e-12:
-                    if q < 0:
-                        t0, t1 = 1.0, 0.0
-                elif p < 0:
-                    t0 = max(t0, q / p)
-                else:
-                    t1 = min(t1, q / p)
-            if t0 > t1:
-                out.append(v[i])
-                continue
-            changed = True
-            if t0 > 0:
-                out.append((sx + t0 * dx, sy + t0 * dy))
-            out.append((np.nan, np.nan))
-            if t1 < 1:
-                out += [(sx + t1 * dx, sy + t1 * dy), v[i]]
-        if changed:
-            d = tr.inverted().transform(np.array(out, float))
-            ln.set_data(d[:, 0], d[:, 1])
+class _Thin:
+    """The thin lines a label may interrupt (``breakable``) with their vertices in display
+    coordinates, stacked as segments so that those under a label's box are found at once."""
+
+    def __init__(self, lines: list):
+        self.lines = lines
+        self.v = [ln.get_transform().transform(np.column_stack(ln.get_data()).astype(float)) for ln in lines]
+        self._stack()
+
+    def _stack(self) -> None:
+        parts = [np.hstack([v[:-1], v[1:]]) for v in self.v]
+        self.segs = np.vstack(parts) if parts else np.zeros((0, 4))
+        self.owner = np.repeat(np.arange(len(self.v)), [len(p) for p in parts])
+
+    def cut(self, box: _Box) -> None:
+        """Interrupt the lines where they pass through ``box``: the part of each segment inside
+        it (Liang–Barsky) is left out, the line's data get a NaN gap there."""
+        touched = np.unique(self.owner[_meets(self.segs, box)]) if len(self.segs) else []
+        for i in touched:
+            v = _cut_polyline(self.v[i], box)
+            if v is not None:
+                ln = self.lines[i]
+                d = ln.get_transform().inverted().transform(v)
+                ln.set_data(d[:, 0], d[:, 1])
+                self.v[i] = v
+        if len(touched):
+            self._stack()
+
+
+def _cut_polyline(v: np.ndarray, box: _Box) -> np.ndarray | None:
+    """The vertices ``v`` (display) less the parts inside ``box``, a NaN row at each gap; None if
+    no segment passes through the box."""
+    out, changed = [], False
+    for i in range(len(v)):
+        if i == 0 or not (math.isfinite(v[i - 1][0]) and math.isfinite(v[i][0])):
+            out.append(v[i])
+            continue
+        (sx, sy), (ex, ey) = v[i - 1], v[i]
+        dx, dy = ex - sx, ey - sy
+        t0, t1 = 0.0, 1.0
+        for p, q in ((-dx, sx - box.x0), (dx, box.x1 - sx), (-dy, sy - box.y0), (dy, box.y1 - sy)):
+            if abs(p) < 1e-12:
+                if q < 0:
+                    t0, t1 = 1.0, 0.0
+            elif p < 0:
+                t0 = max(t0, q / p)
+            else:
+                t1 = min(t1, q / p)
+        if t0 > t1:
+            out.append(v[i])
+            continue
+        changed = True
+        if t0 > 0:
+            out.append((sx + t0 * dx, sy + t0 * dy))
+        if math.isfinite(out[-1][0]):     # one gap for a run of segments cut (a vertex inside the box)
+            out.append((math.nan, math.nan))
+        if t1 < 1:
+            out += [(sx + t1 * dx, sy + t1 * dy), v[i]]
+    return np.array(out, float) if changed else None
 
 
 class LabelPlacer:
@@ -452,6 +482,7 @@ class LabelPlacer:
         thin = [ln for ln in ax.lines if getattr(ln, "breakable", False)]
         segs = _Segs(_segments(ax, renderer, skip=tuple(thin)))
         bsegs = _Segs(_segments(ax, renderer, skip=(), only=thin)) if thin else None
+        breaker = None
         frame = ax.get_window_extent(renderer)
         # the axes' limits and place do not change while the labels are placed: one inverse
         inv = ax.transData.inverted()
@@ -528,7 +559,7 @@ class LabelPlacer:
                          + (STRAY_MM if stray and led else 0.0))
                 cost = (hits > 0, stray and not led, crowded, hits, score, k)
                 if best is None or cost < best[0]:
-                    best = (cost, (cx, cy), bb, led)
+                    best = (cost, (cx, cy), bb, led, brk)
                 if hits == 0 and not stray and not crowded and cut == 0 and graze == 0 and brk == 0:
                     break
             if best is None:       # nowhere free inside: nearest candidate inside the figure
@@ -536,12 +567,12 @@ class LabelPlacer:
                 for cx, cy in cands:
                     bb = extent.at(inv.transform((ax0[0] + cx, ax0[1] + cy)))
                     if bb.x0 >= figbox.x0 and bb.x1 <= figbox.x1 and bb.y0 >= figbox.y0 and bb.y1 <= figbox.y1:
-                        best = ((True, 99), (cx, cy), bb, False)
+                        best = ((True, 99), (cx, cy), bb, False, 0)
                         break
                 else:
                     best = ((True, 99), cands[0], extent.at(inv.transform((ax0[0] + cands[0][0], ax0[1] + cands[0][1]))),
-                            False)
-            cost, (cx, cy), bb, led = best
+                            False, 0)
+            cost, (cx, cy), bb, led, brk = best
             t.set_position(inv.transform((ax0[0] + cx, ax0[1] + cy)))
             t.anchor = (it.x, it.y)        # what the label names (data coordinates), for the checks
             t.lead_mm = lead_px / px_mm       # and from how far it gets a leader
@@ -549,8 +580,11 @@ class LabelPlacer:
                 # no free place: the lines under the label are broken by a white halo round its glyphs
                 t.set_path_effects([patheffects.withStroke(linewidth=HALO_PT, foreground="white")])
             placed.append((bb, gap))
-            if thin and not cost[0]:
-                _break_lines(thin, _Box(bb.x0 - pad, bb.y0 - pad, bb.x1 + pad, bb.y1 + pad))
+            if brk and not cost[0]:        # the thin lines under it interrupted
+                if breaker is None:
+                    breaker = _Thin(thin)
+                breaker.cut(_Box(bb.x0 - pad, bb.y0 - pad, bb.x1 + pad, bb.y1 + pad))
+                bsegs = _Segs(breaker.segs[np.all(np.isfinite(breaker.segs), axis=1)])
             if led or math.hypot(cx, cy) > lead_px:
                 t.leader = self._leader(ax0, bb)
                 ld = _leader_segment(ax0, bb, 0.0)
