@@ -122,3 +122,29 @@ def test_flywheel_dimensions_clear_of_lines(path, captured):
     fig = captured[-1]
     assert len([t for t in fig.axes[0].texts if t.get_text()]) == 7     # five dimensions, two captions
     assert _clean(fig) == []
+
+
+@pytest.mark.parametrize("path", _cases("forces"))
+def test_group_force_arrows_inside_the_figure(path, captured):
+    """Every arrow of every group's force drawing lies inside the figure (before: a reaction
+    opposite to a load at its point, swing_conveyor's R₀₇ against G₇, is drawn from the point as
+    the load is, but the canvas was sized for it ending at the point: it ran off the top)."""
+    from matplotlib.patches import FancyArrowPatch
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.forces import GroupForces
+    st = _study(path)
+    lab = chosen_position(st)
+    if lab not in st.forces.labels:
+        lab = st.forces.labels[1]
+    for gi in range(len(st.forces.model.groups)):
+        captured.clear()
+        GroupForces(lab, gi).draw(st)
+        fig = captured[-1]
+        r = L._renderer(fig)
+        fb = fig.bbox
+        for ax in fig.axes:
+            for p in ax.patches:
+                if isinstance(p, FancyArrowPatch):
+                    bb = p.get_window_extent(r)
+                    assert fb.x0 - 0.5 <= bb.x0 and bb.x1 <= fb.x1 + 0.5 and fb.y0 - 0.5 <= bb.y0 \
+                        and bb.y1 <= fb.y1 + 0.5, (gi, bb, fb)

@@ -280,7 +280,10 @@ class GroupForces:
             n = float(np.hypot(*v.F))
             if i not in lengths:
                 continue
-            L = (lengths[i] + 4.0) * mu_l * (1 if v.role == "load" else -1)
+            # drawn from its point as a load (a reaction opposite to a load at its point too), else
+            # ending at its pair or point (a load along a link's line), as draw does
+            along = _along_bar(v, lengths[i] * mu_l, self._bars, NEAR_MM * mu_l)
+            L = (lengths[i] + 4.0) * mu_l * (1 if (v.role == "load" and not along) or _opposes_load(v, ext) else -1)
             tips.append((v.at[0] + v.F[0] / n * L, v.at[1] + v.F[1] / n * L))
         allx = np.concatenate([xs, [t[0] for t in tips]])
         ally = np.concatenate([ys, [t[1] for t in tips]])
@@ -341,6 +344,11 @@ class GroupForces:
         g = f.model.groups[self.gi]
         ext, moments, internal = group_vectors(study, self.label, self.gi)
         pts = {p for l in g.links for p in mech.link(l).points}
+        # the links' lines (every pair of a link's points): a load drawn along one is turned to end
+        # at its point (a slider's resistance pushing up the rod's line)
+        self._bars = bars = [(np.array([cols["x_" + a], cols["y_" + a]]), np.array([cols["x_" + b], cols["y_" + b]]))
+                             for l in g.links for k, a in enumerate(list(mech.link(l).points))
+                             for b in list(mech.link(l).points)[k + 1:]]
         xs = np.array([cols["x_" + p] for p in pts])
         ys = np.array([cols["y_" + p] for p in pts])
         Fmax = max([float(np.hypot(*v.F)) for v in ext + internal] + [1e-12])
@@ -377,11 +385,6 @@ class GroupForces:
         draw_mechanism(cv, mech, cols, only=set(g.links), supports=False, lw=1.4, com=True)
         lengths = _scheme_arrows(ext, Fmax, mu_l)
         scheme: list[tuple[np.ndarray, np.ndarray]] = []     # arrows drawn on the scheme
-        # the links' lines (every pair of a link's points): a load drawn along one is turned to end
-        # at its point (a slider's resistance pushing up the rod's line)
-        bars = [(np.array([cols["x_" + a], cols["y_" + a]]), np.array([cols["x_" + b], cols["y_" + b]]))
-                for l in g.links for k, a in enumerate(list(mech.link(l).points))
-                for b in list(mech.link(l).points)[k + 1:]]
         for i, v in enumerate(ext):
             n = float(np.hypot(*v.F))
             if i not in lengths:
@@ -389,11 +392,7 @@ class GroupForces:
             L = lengths[i] * mu_l
             color = {"load": INK, "known": INK, "unknown": BLUE}[v.role]
             ex, ey = v.F[0] / n, v.F[1] / n
-            def on_bar(sign):
-                tip = np.array([v.at[0] + sign * ex * L, v.at[1] + sign * ey * L])
-                return any(covered(np.asarray(v.at, float), tip, b0, b1, cv.mm(NEAR_MM)) > 0.2
-                           for b0, b1 in bars if float(np.hypot(*(b1 - b0))) > 0)
-            along = v.role == "load" and on_bar(1.0) and not on_bar(-1.0)
+            along = _along_bar(v, L, bars, cv.mm(NEAR_MM))
             # loads start at their point, reactions end at the pair; a reaction opposite to a load
             # at its point (R₀₅ against G₅) starts there too, so that the two do not cover each other
             if (v.role == "load" and not along) or _opposes_load(v, ext):
@@ -918,6 +917,22 @@ def covered(a0, a1, b0, b1, near: float, samples: int = 41) -> float:
     u = np.clip((pts - b0) @ d / dd, 0.0, 1.0) if dd > 0 else np.zeros(samples)
     dist = np.hypot(*(pts - (b0 + u[:, None] * d)).T)
     return float(np.mean(dist < near))
+
+
+def _along_bar(v, L: float, bars, near: float) -> bool:
+    """Whether the load ``v``, drawn from its point ``L`` long (data units), would lie along one of
+    the ``bars`` (a link's line) and drawn the other way would not: it is then drawn ending at its
+    point (a slider's resistance pushing up the rod's line)."""
+    if v.role != "load":
+        return False
+    n = float(np.hypot(*v.F))
+    ex, ey = v.F[0] / n, v.F[1] / n
+
+    def on_bar(sign):
+        tip = np.array([v.at[0] + sign * ex * L, v.at[1] + sign * ey * L])
+        return any(covered(np.asarray(v.at, float), tip, b0, b1, near) > 0.2
+                   for b0, b1 in bars if float(np.hypot(*(b1 - b0))) > 0)
+    return on_bar(1.0) and not on_bar(-1.0)
 
 
 def _opposes_load(v, ext) -> bool:
