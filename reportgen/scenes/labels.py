@@ -30,6 +30,15 @@ as the couples' forces at the pole of Жуковский's lever): its box keeps
 every other anchor farther than ``SAME_POINT_MM`` from its own, else it counts as crowded; a label
 set over the tip of another force would leave that force's label no place a leader can reach
 without passing through it.
+
+Thin lines a scene marks ``breakable`` (the other positions and the trajectories on a plan of
+positions) may be interrupted under a label, as ГОСТ 2.307 interrupts hatching and centre lines at
+a dimension number: a place that crosses at most ``MAX_BREAKS`` of them costs ``BREAK_MM`` each
+(a leader across them costs ``CUT_MM`` each, as across any line), and the lines under the chosen
+place get a gap ``BREAK_PAD_MM`` round its box (a NaN in their data), so that no line crosses the
+label. :func:`label_contours` sets the values of contour lines (``ax.clabel``'s kind) along their
+lines where no other line crosses them; contour lines count as drawn lines for the placer and the
+check.
 """
 from __future__ import annotations
 
