@@ -551,7 +551,7 @@ class LabelPlacer:
                         hits += _crossings_few([ld[:4] for ld in near], bb.x0 - PAD_PX, bb.y0 - PAD_PX,
                                                bb.x1 + PAD_PX, bb.y1 + PAD_PX)
                 # the thin lines it would interrupt (ГОСТ 2.307: thin lines break at a number)
-                brk = bsegs.crossings(_Box(bb.x0 - pad, bb.y0 - pad, bb.x1 + pad, bb.y1 + pad)) if thin else 0
+                brk = bsegs.crossings(_Box(bb.x0 - pad, bb.y0 - pad, bb.x1 + pad, bb.y1 + pad)) if thin and not hits else 0
                 if brk > MAX_BREAKS:
                     hits += brk
                 # a stray label far enough for a leader to be seen gets one: the leader tells whose
