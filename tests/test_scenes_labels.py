@@ -431,9 +431,10 @@ def test_every_input_kind_gets_an_enlarged_view(st, captured):
     fig = captured[-1]
     assert v.detail_mu is not None and v.detail_mu * 1000 in GOST_K and v.detail_mu < coarse
     assert position_gap_mm(groups, v.detail_mu) >= POSITION_GAP_MM
-    head = p.rstrip("0123456789") or p
+    head = p.rstrip("0123456789")
     numbers = [t.get_text() for ax in fig.axes for t in ax.texts if t.get_label() == POSITION_NUMBER]
-    assert numbers and all(t.startswith("$" + head) for t in numbers)
+    # named as the crank's (A₀ …), a point named by digits only (ws002's «56») by the number alone
+    assert numbers and all(t.startswith("$" + head) if head else re.fullmatch(r"\([\d, ]+\)", t) for t in numbers)
     assert any(gost_ratio(v.detail_mu) in t.get_text() for ax in fig.axes for t in ax.texts)
     assert L.check_figure(fig) == []
     if st.mechanism.driver.swing:        # a rocker's arc, not a whole circle
@@ -442,3 +443,23 @@ def test_every_input_kind_gets_an_enlarged_view(st, captured):
         k_view = coarse / v.detail_mu
         assert not any(isinstance(c, Circle) and abs(c.radius - r * k_view) < 1e-9 * r * k_view
                        for ax in fig.axes for c in ax.patches)
+
+
+@pytest.mark.parametrize("st", STUDIES)
+def test_plan_of_positions_labels_distinct(st, captured):
+    """On the plan of positions no two labels carry the same text unless they name the same
+    point (a point drawn on the main view and again on the crank's enlarged view): position
+    numbers are the numbered point's letter with the number as index (A₀, A₁ …; a point named by
+    digits only: «(5)»), never a plain digit read as a link number (yoke_pump had two «1», «2», «3»:
+    link 1 and position 1)."""
+    from collections import Counter
+
+    from reportgen.scenes.mechanism import POSITION_NUMBER, PositionsPlan
+    PositionsPlan().draw(st)
+    texts = [t for ax in captured[-1].axes for t in ax.texts if t.get_text().strip()]
+    points = {L.tex_point(p) for p in st.kinematics.columns.str[2:][st.kinematics.columns.str.startswith("x_")]}
+    twice = {t for t, n in Counter(t.get_text() for t in texts).items() if n > 1}
+    assert twice <= points, twice
+    links = {ln.name for ln in st.mechanism.moving}
+    numbers = [t.get_text() for t in texts if t.get_label() == POSITION_NUMBER]
+    assert numbers and not set(numbers) & links

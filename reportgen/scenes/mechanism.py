@@ -176,7 +176,7 @@ class PositionsPlan:
                 n = np.array([-t[1], t[0]])
                 prefer = tuple(n if n @ (np.array([x, y]) - mid) >= 0 else -n)
             # a character's width clear of every other label: «1» beside «3» reads as «13»
-            cv.labels.add(x, y, ", ".join(names), prefer=prefer, fontsize=8, gap_mm=NUMBER_GAP_MM,
+            cv.labels.add(x, y, position_text(num, names), prefer=prefer, fontsize=8, gap_mm=NUMBER_GAP_MM,
                           label=POSITION_NUMBER)
         return Drawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape)
 
@@ -212,6 +212,22 @@ def _position_groups(k, rows, p: str, near: float) -> list[tuple[float, float, l
         else:
             groups.append((x, y, [no]))
     return groups
+
+
+def position_text(p: str, names) -> str:
+    """The label of the numbered point ``p``'s positions ``names`` on a plan of positions, as
+    textbooks number a crank pin's positions (Артоболевский И. И. Теория механизмов и машин,
+    план положений): the point's letter with the position number as its index, A₀, A₁ … (coinciding
+    positions together, A₀,₁₂), so that a position is never read as a link number (plain digits on
+    the same drawing); a point with an index of its own (O₃) takes the numbers as an upper index in
+    brackets, O₃⁽⁵⁾; a point named by digits only (a joint named by its links, «56») has no letter:
+    the number alone in brackets, (5), apart from the link numbers."""
+    no = ",".join(names)
+    head = p.rstrip("0123456789")
+    sub = p[len(head):]
+    if not head:
+        return f"({', '.join(names)})"
+    return f"${head}_{{{sub}}}^{{({no})}}$" if sub else f"${head}_{{{no}}}$"
 
 
 def position_gap_mm(groups, mu: float) -> float:
@@ -272,15 +288,11 @@ class CrankView:
             ax.plot([self.at[0]], [self.at[1]], marker="o", ms=4, mfc="white", mec=INK, mew=0.8, zorder=5)
             cv.labels.add(self.at[0], self.at[1], tex_point(study.mechanism.driver.center), prefer=self.at - a0,
                           fontsize=10, point=True)
-        head = tip.rstrip("0123456789") or tip
-        sub = tip[len(head):]
         for x, y, names in groups:
             v = to_view((x, y))
             ax.plot([v[0]], [v[1]], marker="o", ms=3.5, mfc="white", mec=INK, mew=0.7, zorder=5)
-            no = ", ".join(names)
-            text = f"${head}_{{{sub}}}^{{({no})}}$" if sub else f"${head}_{{{no}}}$"
-            cv.labels.add(v[0], v[1], text, prefer=v - self.at, fontsize=8, gap_mm=NUMBER_GAP_MM,
-                          label=POSITION_NUMBER)
+            cv.labels.add(v[0], v[1], position_text(tip, names), prefer=v - self.at, fontsize=8,
+                          gap_mm=NUMBER_GAP_MM, label=POSITION_NUMBER)
         for mark, row in zip(("′", "″"), ext):
             v = to_view((float(row[f"x_{tip}"]), float(row[f"y_{tip}"])))
             ax.plot([v[0]], [v[1]], marker="o", ms=3.5, mfc=INK, mec=INK, zorder=5)
