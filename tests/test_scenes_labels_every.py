@@ -172,3 +172,35 @@ def test_case_without_loads_has_no_force_drawings():
     st = _study(CASES / "ws004_slotted_lever.toml")
     assert not forces.present(st)
     assert all(abs(float(x)) < 1e-12 for x in st.forces.tables()["forces"].filter(regex=r"^R_").to_numpy().ravel())
+
+
+@pytest.mark.parametrize("path", _cases("forces"))
+def test_lever_arrows_apart(path, captured):
+    """On Жуковский's lever as the note draws it, every arrow is MIN_ARROW_MM long at least (a
+    shorter one is all head) and arrows leaving one image in nearly one direction (within FAN_DEG)
+    end FAN_STEP_MM apart at least (ws000's G₃ and M′Φ₂ at b, M″Φ₄ and G₅ at h lay head on head)."""
+    import math
+
+    import numpy as np
+    from matplotlib.patches import FancyArrowPatch
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.forces import FAN_DEG, FAN_STEP_MM, MIN_ARROW_MM, ZhukovskyLever
+    st = _study(path)
+    lab = chosen_position(st)
+    if lab not in st.forces.labels:
+        lab = st.forces.labels[1]
+    ZhukovskyLever(lab, landscape=True).draw(st)
+    fig = captured[-1]
+    ax = fig.axes[0]
+    px_mm = fig.dpi / 25.4
+    ends = [tuple(ax.transData.transform(q) / px_mm for q in p._posA_posB)     # the forces (an inset's
+            for p in ax.patches if isinstance(p, FancyArrowPatch) and p.get_zorder() == 6]   # plan arrows apart)
+    assert ends
+    for i, (a0, a1) in enumerate(ends):
+        n0 = float(np.hypot(*(a1 - a0)))
+        assert n0 >= MIN_ARROW_MM - 1e-6
+        for b0, b1 in ends[i + 1:]:
+            n1 = float(np.hypot(*(b1 - b0)))
+            if np.hypot(*(a0 - b0)) < 2.0 and np.dot(a1 - a0, b1 - b0) / (n0 * n1) > math.cos(math.radians(FAN_DEG)) + 1e-6:
+                assert abs(n0 - n1) >= FAN_STEP_MM - 1e-6, (a0, n0, n1)
+    assert L.check_figure(fig) == []

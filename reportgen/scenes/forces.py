@@ -205,20 +205,30 @@ def _scheme_arrows(ext, Fmax: float, mu_l: float) -> dict[int, float]:
     at one pair: G₄ and G₅, Φ₄ and Φ₅) are staggered, the shorter first, so that their free ends
     and labels do not pile up at one spot."""
     out: dict[int, float] = {}
-    fans: list[tuple[tuple[float, float], np.ndarray, list[int]]] = []
+    free: dict[int, tuple] = {}
     for i, v in enumerate(ext):
         n = float(np.hypot(*v.F))
         if n < 1e-9 * Fmax:
             continue
         out[i] = _arrow_mm(n, Fmax)
-        u = v.F / n * (1 if v.role == "load" else -1)          # from the point to the free end
-        for at, d, members in fans:
-            if (math.hypot(at[0] - v.at[0], at[1] - v.at[1]) < 2.0 * mu_l
-                    and float(np.dot(d, u)) > math.cos(math.radians(FAN_DEG))):
+        free[i] = (v.at, v.F / n * (1 if v.role == "load" else -1))    # from the point to the free end
+    return _staggered(out, free, 2.0 * mu_l)
+
+
+def _staggered(lengths: dict, free: dict, near: float) -> dict:
+    """The arrows' lengths (mm, by key) with the arrows drawn from one point (``free[key]`` =
+    (point, unit vector from it to the free end); points closer than ``near``, data units) in
+    nearly one direction (within FAN_DEG) staggered, the shorter first, each one's free end
+    FAN_STEP_MM beyond the previous: their heads and labels do not pile up at one spot."""
+    out = dict(lengths)
+    fans: list[tuple[tuple[float, float], np.ndarray, list]] = []
+    for i, (at, u) in free.items():
+        for p, d, members in fans:
+            if math.hypot(p[0] - at[0], p[1] - at[1]) < near and float(np.dot(d, u)) > math.cos(math.radians(FAN_DEG)):
                 members.append(i)
                 break
         else:
-            fans.append(((v.at[0], v.at[1]), u, [i]))
+            fans.append(((at[0], at[1]), u, [i]))
     for _, _, members in fans:
         last = -math.inf
         for i in sorted(members, key=lambda j: out[j]):
@@ -1118,16 +1128,25 @@ class ZhukovskyLever:
         dec = shared_decimals([float(np.hypot(*it[2])) for it in items + bal])
         rows = []
         in_views = 0
-        for lab, p, F, is_bal in items + bal:
+        # a force at an image inside an enlarged view is drawn there only (the region of the
+        # lever is marked by its circle), not crowded on the lever itself
+        drawn, free = {}, {}
+        for j, (_, p, F, is_bal) in enumerate(items + bal):
             n = float(np.hypot(*F))
-            if n < 1e-9 * Fmax or (not is_bal and round(n, dec) == 0):
+            if n >= 1e-9 * Fmax and (is_bal or round(n, dec) != 0):
+                drawn[j] = max(MIN_ARROW_MM, 0.8 * _arrow_mm(n, Fmax))
+                free[j] = (next((ins.at + (p - ins.centre) * ins.k for ins in insets
+                                 if np.hypot(*(p - ins.centre)) <= ins.radius), p), F / n)
+        # by magnitude (at least MIN_ARROW_MM: a shorter one is all head), staggered where several
+        # leave one image in nearly one direction (ws000's G₃ and M′Φ₂ at b, M″Φ₄ and G₅ at h)
+        drawn = _staggered(drawn, free, cv.mm(2.0))
+        for j, (lab, p, F, is_bal) in enumerate(items + bal):
+            if j not in drawn:
                 continue
-            L = cv.mm(_arrow_mm(n, Fmax) * 0.8)
+            n = float(np.hypot(*F))
+            L = cv.mm(drawn[j])
             color = RED if is_bal else INK
-            # a force at an image inside an enlarged view is drawn there only (the region of the
-            # lever is marked by its circle), not crowded on the lever itself
-            at = next((ins.at + (p - ins.centre) * ins.k for ins in insets
-                       if np.hypot(*(p - ins.centre)) <= ins.radius), p)
+            at = free[j][0]
             in_views += at is not p
             tip = at + F / n * L
             arrow(ax, at[0], at[1], tip[0], tip[1], color=color, lw=1.1, zorder=6)
