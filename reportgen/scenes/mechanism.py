@@ -86,6 +86,7 @@ class PositionsPlan:
 
     def draw(self, study) -> Drawing:
         from ..analysis.plans import output_quantity
+        from .labels import tex_point
         mech = study.mechanism
         k = study.kinematics
         regular = k[~k["pos"].str.startswith("д")] if k["pos"].dtype == object else k
@@ -155,6 +156,7 @@ class PositionsPlan:
         if self.centre_lines:
             radii = {mech.driver.center: r} if mech.driver.rotary else {}
             mechanism_centre_lines(cv, mech, rows[0], spans=spans, radii=radii)
+        first_mark = len(cv.labels.items)
         for mark, row in zip(("′", "″"), ext):
             for p in dict.fromkeys([out, tip]):
                 if view is None or p != view.tip:       # the numbered point's marks in its view
@@ -167,6 +169,15 @@ class PositionsPlan:
         groups = _position_groups(k, rows, num, cv.mm(0.5))
         path = np.array([[float(r[f"x_{num}"]), float(r[f"y_{num}"])] for r in rows])
         mid = np.array([np.mean(xs), np.mean(ys)])
+        own = next((it for it in cv.labels.items if num.rstrip("0123456789") and it.text == tex_point(num)
+                    and (it.x, it.y) == groups[0][:2]), None)
+        if own is not None:
+            # the drawn position's pin named once, by its number (A₀ for A: one label fewer in the
+            # crowd at a small crank), keeping its place in the placer's order
+            own.text = position_text(num, groups[0][2])
+            own.kw.update(fontsize=8, label=POSITION_NUMBER)
+            own.gap_mm = NUMBER_GAP_MM
+            groups = groups[1:]
         for x, y, names in groups:
             prefer = (x - cx, y - cy)
             if num != tip and len(path) > 1:
@@ -178,6 +189,11 @@ class PositionsPlan:
             # a character's width clear of every other label: «1» beside «3» reads as «13»
             cv.labels.add(x, y, position_text(num, names), prefer=prefer, fontsize=8, gap_mm=NUMBER_GAP_MM,
                           label=POSITION_NUMBER)
+        # the position numbers placed before the extreme positions' marks A′, A″ (which take the
+        # room of the neighbouring numbers at a small crank: the screen shaker's A₁ went 23 mm off)
+        items, n = cv.labels.items, len(groups)
+        if n:
+            items[first_mark:] = items[-n:] + items[first_mark:-n]
         return Drawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape)
 
 
