@@ -237,7 +237,7 @@ def test_html_is_self_contained(outputs):
 def test_print_html_uses_font_files_and_counters(demo):
     html = render.render_html(demo, for_print=True)
     assert "file://" in html  # fonts by path for WeasyPrint
-    assert "target-counter(attr(href), page)" in html
+    assert "target-counter(attr(data-href), page)" in html   # the contents: on the title's last word
     assert "@page" in html and "size: A4" in html
     assert 'data-row="tab-kin__r59"' in html  # rows named for the split passes (not by ids)
     # no no-break space right before an inline element (WeasyPrint 70 bug)

@@ -37,6 +37,8 @@ class Plan:
     tips: dict[str, np.ndarray] = field(default_factory=dict)    # label → vector from the pole
     segments: list[Segment] = field(default_factory=list)
     point_of_tip: dict[str, str] = field(default_factory=dict)   # tip label → mechanism point
+    owner: dict[str, str] = field(default_factory=dict)          # tip label → its link, kept for the labels
+                                                                 # when the link's segment is dropped
 
 
 def _vec(row, pre: str, p: str) -> np.ndarray:
@@ -191,7 +193,9 @@ def parallel_outputs(study) -> list[tuple[str, str, str, str]]:
     """The outputs of a mechanism whose last groups hang in parallel (a V-compressor: two ВВП
     groups on one crank pin, each with its piston): one :func:`output_quantity` tuple per terminal
     group (a group no other group is attached to) that has a slider on the frame or a rocker
-    pivoted on it, in the order of the groups. A single output (a chain of groups, or the output
+    pivoted on it, and per group with a slider on the frame that carries a working load though a
+    later group hangs on it (the master rod's piston of an articulated-rod compressor), in the
+    order of the groups. A single output (a chain of groups, or the output
     the case names in ``[report] output``) gives ``[output_quantity(study)]``."""
     main = output_quantity(study)
     if study.root.table("report").string("output"):
@@ -204,11 +208,14 @@ def parallel_outputs(study) -> list[tuple[str, str, str, str]]:
         a, b = j.links
         if a in group_of and b in group_of and group_of[a] != group_of[b]:
             fed.add(min(group_of[a], group_of[b]))
+    # a piston of a group another group hangs on (a compressor's master rod carrying the
+    # articulated rod) is an output too when a working load acts on it
+    worked = {ld.link for ld in study.loads.loads if ld.kind != "weight"} if study.root.has("loads") else set()
     outs = []
     for i, g in enumerate(groups):
-        if i in fed:
-            continue
         slider = next((j for j in mech.prismatic if j.links[0] == FRAME and j.links[1] in g.links), None)
+        if i in fed and (slider is None or slider.links[1] not in worked):
+            continue
         if slider is not None:
             outs.append((f"s_{slider.name}", f"vqs_{slider.name}", f"aqs_{slider.name}",
                          _link_named(mech, slider.links[1], "ползун")))
@@ -441,7 +448,10 @@ def measured_omegas(vrow, vplan: Plan, mech: Mechanism, mu_v: float,
         else:
             out[l.name] = w
     for j in mech.prismatic:
-        if j.links[0] != FRAME and _longest_rel(vplan, j.links[1]) is None:
+        # a slider turns with its moving guide: ω_slider = ω_guide exactly (a stone has no segment
+        # of its own; a piston rod's own reading would give a second, different ω of one rotation)
+        if j.links[0] != FRAME and (_longest_rel(vplan, j.links[1]) is None
+                                    or _longest_rel(vplan, j.links[0]) is not None):
             out[j.links[1]] = out[j.links[0]]
     return out
 

@@ -704,7 +704,33 @@ def _env() -> jinja2.Environment:
     )
     env.filters["mm"] = lambda v: f"{float(v):.2f}".rstrip("0").rstrip(".") + "mm"
     env.filters["num"] = lambda v: f"{float(v):.3f}".rstrip("0").rstrip(".")
+    env.filters["last_word"] = last_word
     return env
+
+
+_VOID_TAGS = frozenset("area base br col embed hr img input link meta source track wbr".split())
+
+
+def last_word(html) -> tuple[Markup, Markup]:
+    """``(head, tail)`` of a title's HTML split at its last space outside any element: the
+    contents keep the tail, the leader dots and the page number on one line (ГОСТ 7.32: a long
+    title wraps, its dots and number stay on its last line); ``head`` ends with the space."""
+    html = escape(html)          # a plain string is text; Markup stays as it is
+    parts = _TAG_SPLIT.split(str(html))
+    depth, cut = 0, None
+    for n, part in enumerate(parts):
+        if part.startswith("<"):
+            name = part[1:].lstrip("/").split(None, 1)[0].rstrip("/>").lower() if len(part) > 2 else ""
+            if part.startswith("</"):
+                depth -= 1
+            elif name not in _VOID_TAGS and not part.endswith("/>"):
+                depth += 1
+        elif depth == 0 and " " in part:
+            cut = (n, part.rindex(" ") + 1)
+    if cut is None:
+        return Markup(""), html
+    n, k = cut
+    return Markup("".join(parts[:n]) + parts[n][:k]), Markup(parts[n][k:] + "".join(parts[n + 1:]))
 
 
 _ENV: jinja2.Environment | None = None

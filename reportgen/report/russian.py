@@ -171,6 +171,7 @@ def param_title(name: str, unit: str | None = None) -> str:
 
 _COND = re.compile(r"^\s*vq([xy])_(\w+)\s*(>=|>|<=|<)\s*0\s*$")
 _COND_S = re.compile(r"^\s*vqs_(\w+)\s*(>=|>|<=|<)\s*0\s*$")
+_COND_W = re.compile(r"^\s*wq_(\w+)\s*(>=|>|<=|<)\s*0\s*$")
 _OPS = {">=": "≥", "<=": "≤", "!=": "≠", "==": "="}
 _TOKEN = re.compile(r"\b(vq|aq|v|a|x|y|phi|wq|eq|w|e)([xy]?)_(\w+)\b")
 
@@ -231,11 +232,17 @@ def condition_html(text: str, rhs_value: float | None = None, unit: str = "") ->
         name, op = m.groups()
         return Markup("при {} <i>s</i><sub>{}</sub>").format(
             "возрастании" if op in (">=", ">") else "убывании", name)
+    m = _COND_W.match(text)
+    if m:           # the sign of a link's angular analog: the link turns one way (angles ccw-positive)
+        name, op = m.groups()
+        return Markup("при повороте звена {} {} часовой стрелки").format(
+            name, "против" if op in (">=", ">") else "по")
     parts = _CMP.split(text)
     if len(parts) == 3:
         lhs, op, rhs = (x.strip() for x in parts)
         left = column_html(lhs) or expr_html(lhs)
         if rhs_value is not None:
+            unit = "" if unit == "1" else unit          # a dimensionless side has no unit
             right = Markup(escape(fmt(rhs_value, sig=4))) + (Markup(NBSP) + unit if unit and unit != "°"
                                                              else Markup(unit))
         else:

@@ -25,9 +25,8 @@ from ..core import kinetostatics as KS
 from ..style import mplstyle
 from ..style.numbers import fmt, shared_decimals
 from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow, draw_mechanism, gost_scale, nice_scale
-from .labels import tex_point
 from .mechanism import LANDSCAPE_GAIN, LANDSCAPE_H, LANDSCAPE_W, Drawing
-from .plans import INSET_MARKS, PlanScene, find_insets
+from .plans import INSET_MARKS, PlanScene, find_insets, tip_label
 
 BLUE = "#1f4e9c"
 RED = "#b2182b"
@@ -376,18 +375,22 @@ class GroupForces:
         landscape = False
         if self.landscape and self.mu_l is None and self.mu_F is None:
             # on a landscape page when that enlarges both the scheme and the polygon LANDSCAPE_GAIN
-            # times and the drawing fits the page
+            # times and the drawing fits the page; a drawing that large still within the portrait
+            # text width stays on the portrait page (no landscape page for a small figure)
             wide = self._layout(xs, ys, ext, internal, g, Fmax, LANDSCAPE_GAIN * 1.05, floor)
-            landscape = (lay.mu_l >= LANDSCAPE_GAIN * wide.mu_l and lay.mu_F >= LANDSCAPE_GAIN * wide.mu_F
-                         and wide.w_mm <= LANDSCAPE_W and wide.h_mm <= LANDSCAPE_H)
+            larger = lay.mu_l >= LANDSCAPE_GAIN * wide.mu_l and lay.mu_F >= LANDSCAPE_GAIN * wide.mu_F
+            if larger and wide.w_mm <= PORTRAIT_W and wide.h_mm <= GROUP_MAX_H:
+                lay, gain = wide, LANDSCAPE_GAIN * 1.05
+            else:
+                landscape = larger and wide.w_mm <= LANDSCAPE_W and wide.h_mm <= LANDSCAPE_H
             if landscape:
                 lay = wide
         if (not landscape and self.mu_l is None and self.mu_F is None
                 and max(np.ptp(xs), np.ptp(ys)) / lay.mu_l < SMALL_SCHEME_MM):
             lay = self._grown(lay, (xs, ys, ext, internal, g, Fmax, gain, floor))
-        mu_l, mu_F, allx, ally, seq, constructed, internal, count, order, cum, poly, inset, ext_pts, built = (
+        mu_l, mu_F, allx, ally, seq, constructed, internal, count, order, poly, inset, ext_pts, built = (
             lay.mu_l, lay.mu_F, lay.allx, lay.ally, lay.seq, lay.constructed, lay.internal, lay.count, lay.order,
-            lay.cum, lay.poly, lay.inset, lay.ext_pts, lay.built)
+            lay.poly, lay.inset, lay.ext_pts, lay.built)
         cv = Canvas(min(allx.min(), ext_pts[:, 0].min()), max(allx.max(), ext_pts[:, 0].max()),
                     min(ally.min(), ext_pts[:, 1].min()), max(ally.max(), ext_pts[:, 1].max()), mu_l,
                     margin_mm=10, max_w=1e4 if self.mu_l is not None else LANDSCAPE_W if landscape else PORTRAIT_W)
@@ -1118,7 +1121,7 @@ class ZhukovskyLever:
         for lab, v in rot.items():
             if lab not in plan.point_of_tip or np.hypot(*v) < 1e-12 or lab in hidden:
                 continue
-            cv.labels.add(v[0], v[1], tex_point(lab, lower=True), prefer=v, fontsize=10, color=GREY)
+            cv.labels.add(v[0], v[1], tip_label(lab, plan, "velocity"), prefer=v, fontsize=10, color=GREY)
         for n, ins in enumerate(insets):
             ins.mark = INSET_MARKS[n % len(INSET_MARKS)]
             PlanScene(self.label, "velocity")._draw_inset(cv, lever_plan, ins, "$p$")
@@ -1128,10 +1131,13 @@ class ZhukovskyLever:
         dec = shared_decimals([float(np.hypot(*it[2])) for it in items + bal])
         rows = []
         in_views = 0
+        # the balancing force placed first: its label and leader at the crank pin are settled before
+        # the loads sharing its line there (the crank's own inertia couple M′_Φ1 ⊥ pa at a) look for room
+        order = bal + items
         # a force at an image inside an enlarged view is drawn there only (the region of the
         # lever is marked by its circle), not crowded on the lever itself
         drawn, free = {}, {}
-        for j, (_, p, F, is_bal) in enumerate(items + bal):
+        for j, (_, p, F, is_bal) in enumerate(order):
             n = float(np.hypot(*F))
             if n >= 1e-9 * Fmax and (is_bal or round(n, dec) != 0):
                 drawn[j] = max(MIN_ARROW_MM, 0.8 * _arrow_mm(n, Fmax))
@@ -1140,7 +1146,7 @@ class ZhukovskyLever:
         # by magnitude (at least MIN_ARROW_MM: a shorter one is all head), staggered where several
         # leave one image in nearly one direction (ws000's G₃ and M′Φ₂ at b, M″Φ₄ and G₅ at h)
         drawn = _staggered(drawn, free, cv.mm(2.0))
-        for j, (lab, p, F, is_bal) in enumerate(items + bal):
+        for j, (lab, p, F, is_bal) in enumerate(order):
             if j not in drawn:
                 continue
             n = float(np.hypot(*F))
@@ -1155,6 +1161,7 @@ class ZhukovskyLever:
             h = round(abs(mom) / n / READ_MM) * READ_MM          # the arm as measured on the drawing
             rows.append(dict(label=lab, F=n, h=h, Fh=math.copysign(n * h, mom) if h > 0 else 0.0,
                              balancing=is_bal, h_exact=abs(mom) / n))
+        rows = [r for r in rows if not r["balancing"]] + [r for r in rows if r["balancing"]]   # F_ур last
         table = pd.DataFrame(rows, columns=["label", "F", "h", "Fh", "balancing", "h_exact"])
         arm_mm = arm / cv.mu
         arm_read = math.copysign(round(abs(arm_mm) / READ_MM) * READ_MM, arm_mm)

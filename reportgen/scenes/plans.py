@@ -51,7 +51,9 @@ class PlanDrawing:
 
 def tip_label(lab: str, plan: Plan, kind: str) -> str:
     """Plan point in textbook notation (mathtext): a, b, s₂ on the velocity plan; a′, b′, s′₂ on
-    the acceleration plan; n_BA, k for the ends of the normal and Coriolis components."""
+    the acceleration plan; n_BA, k for the ends of the normal and Coriolis components. The image
+    of a point named P on the velocity plan (and the Жуковский lever) is p with its link's number,
+    p₂: a bare p is the pole."""
     if lab.startswith("n") and lab not in plan.point_of_tip:
         return "$n_{" + lab[1:] + "}$"
     if lab.startswith("k") and lab not in plan.point_of_tip:
@@ -65,6 +67,9 @@ def tip_label(lab: str, plan: Plan, kind: str) -> str:
     tail = lab[len(head):]
     if not head:                       # a point named by a number (a pair 34): the number itself
         head, tail = lab, ""
+    if kind == "velocity" and head.lower() == "p" and not tail:
+        # the image of a point P would read as the pole p: its link as the index (p₂), as b₃ above
+        tail = plan.owner.get(lab) or next((s.link for s in plan.segments if s.end == lab and s.link), "")
     return "$" + head.lower() + ("′" if kind == "acceleration" else "") + (f"_{{{tail}}}" if tail else "") + "$"
 
 
@@ -377,7 +382,8 @@ def similarity_only(plan: Plan, mech) -> Plan:
     drop = set(sim) | {t for t in plan.tips if t not in plan.point_of_tip and t.startswith("n")
                        and any(t[1:].startswith(p) and t[1 + len(p):] in plan.tips for p in sim)}
     out = Plan(plan.kind, {k: v for k, v in plan.tips.items() if k in sim or k not in drop},
-               [s for s in plan.segments if s.kind == "abs" or s.end not in drop], dict(plan.point_of_tip))
+               [s for s in plan.segments if s.kind == "abs" or s.end not in drop], dict(plan.point_of_tip),
+               {**plan.owner, **{s.end: s.link for s in plan.segments if s.link}})
     return out
 
 

@@ -200,6 +200,21 @@ def _phase_deg(study, q) -> str:
     return fmt(math.degrees(float(q) - study.dynamics.settings.cycle_start), digits=2) + "°"
 
 
+def mertsalov_extremes_text(study) -> str:
+    """Where ΔT_I = ΔT − T_II (Мерцалов; Артоболевский [1]) has its extremes over the cycle, and
+    that only their difference, the greatest change of the first group's kinetic energy
+    ΔT_I нб = ΔT_I max − ΔT_I min, enters J_I. ΔT_I starts at −T_II < 0 (ΔT = 0 at the start of
+    the cycle): both extremes negative are said to be so, not left to read as a «negative maximum»."""
+    me = study.dynamics.result.mertsalov
+    both = (" (оба значения отрицательны: в начальном положении Δ<i>T</i>&nbsp;=&nbsp;0 и "
+            "Δ<i>T</i><sub>I</sub>&nbsp;=&nbsp;−<i>T</i><sub>II</sub>, а за цикл Δ<i>T</i> нигде не превышает "
+            "<i>T</i><sub>II</sub>; постоянное слагаемое в разность экстремумов не входит)" if me.dT_I_max < 0 else "")
+    return (f"Экстремумы Δ<i>T</i><sub>I</sub> найдены по всему циклу решением уравнения {_im('mert_ext')}: "
+            f"наибольшее значение — при φ&nbsp;=&nbsp;{_phase_deg(study, me.phi_dT_max)}, наименьшее — при "
+            f"φ&nbsp;=&nbsp;{_phase_deg(study, me.phi_dT_min)}{both}. Момент инерции первой группы звеньев "
+            f"определяется наибольшим изменением её кинетической энергии за цикл — разностью экстремумов:")
+
+
 # --------------------------------------------------------------------------------------------
 # build
 # --------------------------------------------------------------------------------------------
@@ -278,8 +293,9 @@ def _model(sec: Section, study, d) -> None:
         s.table("Нагрузки, действующие на звенья", [
             Column("name", "Обозначение", fmt=lambda v: Markup(html_label(v))), Column("what", "Нагрузка"), Column("where", "Точка приложения", fmt=Markup),
             Column("law", "Закон изменения", fmt=Markup)], pd.DataFrame(lrows), id="tab-dyn-loads")
-    if d.breaks.size:
-        s.paragraph(_breaks_text(study, d.breaks))
+    live = law_breaks(d)
+    if live.size:
+        s.paragraph(_breaks_text(study, live))
     laws = shown_laws(study)
     if laws:
         fig = LoadLaws().draw(study)
@@ -296,6 +312,26 @@ def _model(sec: Section, study, d) -> None:
         s.paragraph(f"Нагрузки, заданные таблицами, показаны на рисунке {ref('fig-dyn-laws')} так, как они заданы: "
                     f"по оси абсцисс — величина <i>x</i>, от которой задана таблица ({xs}), точки — строки таблиц.")
         s.figure("Законы изменения нагрузок, заданных таблицами", fig.svg, fig.width_mm, id="fig-dyn-laws")
+
+
+def law_breaks(d) -> np.ndarray:
+    """The switching points of the dynamics (``d.breaks``) at which some given load (not a weight)
+    is non-zero on at least one side: a table's corner crossed while the load's condition holds
+    it at zero (a press's coining diagram passed again on the way up) changes no law a student
+    can see. The integrals still use every switching point."""
+    b = np.asarray(d.breaks, dtype=float)
+    if b.size == 0:
+        return b
+    dq = 1e-7 * d.loads.cycle_length
+    cols = d.ev(np.concatenate([b - dq, b + dq]))
+    ph = d.loads.phase(cols)
+    live = np.zeros(2 * b.size, dtype=bool)
+    for ld in d.loads.loads:
+        if ld.kind == "weight":
+            continue
+        for c in ld.components(cols, ph):
+            live |= np.abs(np.broadcast_to(np.asarray(c, dtype=float), live.shape)) > 0.0
+    return b[live[:b.size] | live[b.size:]]
 
 
 def _breaks_text(study, breaks) -> str:
@@ -568,16 +604,17 @@ def _flywheel(sec, study, d) -> None:
     s.paragraph("<b>Метод Мерцалова.</b> Кинетическая энергия второй группы приближённо вычисляется по средней "
                 "скорости, изменение кинетической энергии первой группы — как разность:")
     s.formula(Formula(r"T_{II}(\varphi) \approx \frac{J_{II}(\varphi)\,\omega_{\text{ср}}^2}{2}, \quad"
-                      r" \Delta T_I(\varphi) = \Delta T(\varphi) - T_{II}(\varphi)", label="eq-mertsalov"),
-              Formula(r"\Delta T_{I\,max}", None, _t(me.dT_I_max, sig=5, unit="Дж")),
+                      r" \Delta T_I(\varphi) = \Delta T(\varphi) - T_{II}(\varphi)", label="eq-mertsalov"))
+    s.paragraph(mertsalov_extremes_text(study))
+    dT_range = me.dT_I_max - me.dT_I_min
+    s.formula(Formula(r"\Delta T_{I\,max}", None, _t(me.dT_I_max, sig=5, unit="Дж")),
               Formula(r"\Delta T_{I\,min}", None, _t(me.dT_I_min, sig=5, unit="Дж")),
-              Formula(r"J_I = \frac{\Delta T_{I\,max} - \Delta T_{I\,min}}{\omega_{\text{ср}}^2\,\delta}",
-                      rf"\frac{{{_t(me.dT_I_max, sig=5, paren=True)} - {_t(me.dT_I_min, sig=5, paren=True)}}}"
-                      rf"{{{_t(w, digits=3)}^2 \cdot {dl_tex}}}",
+              Formula(r"\Delta T_{I\,\text{нб}} = \Delta T_{I\,max} - \Delta T_{I\,min}",
+                      rf"{_t(me.dT_I_max, sig=5)} - {_t(me.dT_I_min, sig=5, paren=True)}",
+                      _t(dT_range, sig=5, unit="Дж")),
+              Formula(r"J_I = \frac{\Delta T_{I\,\text{нб}}}{\omega_{\text{ср}}^2\,\delta}",
+                      rf"\frac{{{_t(dT_range, sig=5)}}}{{{_t(w, digits=3)}^2 \cdot {dl_tex}}}",
                       _t(me.J_I, sig=5, unit="кг·м²"), label="eq-JI-mertsalov"))
-    s.paragraph(f"Экстремумы Δ<i>T</i><sub>I</sub> найдены по всему циклу решением уравнения "
-                f"{_im('mert_ext')} "
-                f"(при φ&nbsp;=&nbsp;{_phase_deg(study, me.phi_dT_max)} и {_phase_deg(study, me.phi_dT_min)}).")
     # Виттенбауэр
     fig = WittenbauerDiagram().draw(study)
     s.paragraph(f"<b>Метод Виттенбауэра.</b> Строится диаграмма энергия–масса ΔT(J<sub>II</sub>) (рисунок "
@@ -686,7 +723,7 @@ def _dimensions(sec, study, d) -> None:
                           rf"\frac{{{_t(d.result.J_flywheel, sig=6)}}}{{{_ratio(u)}^2}}",
                           _t(J, sig=5, unit="кг·м²"), label="eq-Jshaft"))
     r5 = rf"\sqrt[5]{{{_t(J, sig=6)}}}"
-    s.paragraph("Маховик в виде обода со спицами и ступицей (эмпирические зависимости курсового пособия, "
+    s.paragraph(f"Маховик в виде обода со спицами и ступицей (рисунок {ref('fig-dyn-flywheel')}; эмпирические зависимости курсового пособия, "
                 f"ψ<sub>b</sub>&nbsp;=&nbsp;{fmt(kw['psi_b'], sig=3)}, ψ<sub>h</sub>&nbsp;=&nbsp;{fmt(kw['psi_h'], sig=3)}, "
                 f"ρ&nbsp;=&nbsp;{fmt(kw['rho'], sig=4)}&nbsp;кг/м³):")
     rim, disk = fw.rim, fw.disk

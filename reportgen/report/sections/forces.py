@@ -275,7 +275,8 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
             l = mech.link(name)
             rows.append({"n": name, "m": m or math.nan, "a": row.get("aS_" + name, math.nan) if m else math.nan,
                          "Phi": row.get("Phi_" + name, math.nan) if m else math.nan, "J": J or math.nan,
-                         "e": row["eps_" + name], "MPhi": row["MPhi_" + name] if J else math.nan,
+                         # ε only where it makes M_Φ = −J_S·ε (a slider moving in translation: «—», not 0)
+                         "e": row["eps_" + name] if J else math.nan, "MPhi": row["MPhi_" + name] if J else math.nan,
                          "G": l.weight or math.nan})
         s.table(f"Массы, ускорения, силы и моменты сил инерции звеньев (положение {pos_no(study, lab)})", [
             Column("n", "Звено"), Column("m", "<i>m</i>", "кг", sig=4), Column("a", sub("a", "S"), "м/с²", sig=4),
@@ -424,8 +425,12 @@ CONSTRUCTION_TEXT = {
     "actuated": ("Гидроцилиндр и шток рассматриваются как одно звено переменной длины (усилие цилиндра — "
                  "внутренняя сила этого звена). " + _INTERSECTION.format(
                      along="звена, для цилиндра со штоком — вдоль оси гидроцилиндра")),
-    "links": ("Реакция во внутренней поступательной паре перпендикулярна направляющей; её модуль найден из "
-              "уравнения моментов сил звена относительно его внешнего шарнира. Она и известные силы " + _LAID
+    # two unknowns (the force and its point on the guide), two moment equations: a stone's own
+    # equation puts the point at its pin only when its inertia moment is zero; a rod in a cylinder
+    # needs both
+    "links": ("Реакция во внутренней поступательной паре перпендикулярна направляющей; её модуль и точка "
+              "приложения найдены из уравнений моментов сил каждого из двух звеньев относительно его "
+              "внешнего шарнира. Она и известные силы " + _LAID
               + "; план сил каждого звена замыкается реакцией в его внешнем шарнире (сплошные стороны), "
               "реакция во внутренней паре показана штриховой линией; реакции измерены на чертеже"),
     # both unknown reactions have known lines (prismatic pairs, e.g. ПВП): no R^τ, no R^n
@@ -491,8 +496,13 @@ def _prismatic_text(p, pv, nd: int | None = None) -> str:
     decimals (those of the reaction columns), else to five significant digits."""
     force = {"sig": 5} if nd is None else {"digits": nd, "sig": None}
     if p.kind == KS.K_PRI:
+        # the point of application lies h = M/N from the slider's point along the guide (forces.frame: xN, yN)
+        h = pv['Mp'] / pv['N'] if pv['N'] else 0.0
+        at = getattr(p, "point", "")
+        where = ("" if not at else f" (реакция приложена в точке {at})" if fmt(h, sig=4) in ("0", "−0")
+                 else f" — смещение точки приложения от точки {at} вдоль направляющей")
         return (f"N\u00a0=\u00a0{fmt(pv['N'], **force)}\u00a0Н, M\u00a0=\u00a0{fmt(pv['Mp'], sig=4)}\u00a0Н·м, "
-                f"h\u00a0=\u00a0{fmt(pv['Mp'] / pv['N'] if pv['N'] else 0.0, sig=4)}\u00a0м")
+                f"h\u00a0=\u00a0M/N\u00a0=\u00a0{fmt(h, sig=4)}\u00a0м{where}")
     if p.kind == KS.K_ACT:
         # the normal force and moment of the cylinder–rod pair vanish when the rod carries no lateral
         # load: rounding residues (1e-13 of F) are printed as the zero they are
@@ -749,7 +759,6 @@ def _balance(sec: Section, study, f, lab: str) -> None:
         cols.append(Column("M_bal_dyn", sub("M", "д") + " − " + sub("J", "I") + "ε (динамика)", "Н·м", **nd))
     chunked_tables(s, "Уравновешивающий момент и его проверки" if rot else "Усилие гидроцилиндра и его проверки",
                    f.table, cols, _lead(study), "tab-frc-checks")
-    sc = f.scalars
     text = ("Аналитически три способа (по группам, по балансу мощностей, по рычагу Жуковского) дают одно и то же "
             "значение во всех положениях: различие — в пределах погрешности округления чисел.")
     if f.settings.flywheel:
@@ -869,7 +878,8 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
                 f"для единственной вертикальной нагрузки {html_label(c.load)} оно равно произведению нагрузки на передаточное "
                 f"число {inline_math(rf'i_{{{pt}}} = dy_{{{pt}}}/dS')} её точки приложения. Площадь поршня, "
                 f"давление {_in_cylinders(a.count)} и грузоподъёмность (в точке {html_point(c.point)} и на оси "
-                + ", ".join(c.points) + f") для положения {pos_no(study, lab)} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м):")
+                + ", ".join(c.points) + f") для положения {pos_no(study, lab)} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м; "
+                f"по всем положениям — таблица {ref('tab-frc-capacity')} и рисунок {ref('fig-frc-capacity')}):")
     ip = row["i_" + c.point]
     L_ = _name_tex(c.load)
     fs = [Formula(rf"F = {L_} \cdot i_{{{pt}}}", rf"{_in(P)} \cdot {_t(ip, sig=5)}", _t(row["F_act"], sig=6, unit="Н"),
@@ -927,7 +937,8 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
                 f"{_fin(c.weight_arm, 'м')} впереди задней оси, противовесы <i>P</i><sub>гр</sub>&nbsp;=&nbsp;"
                 f"{_fin(c.ballast, 'Н')} — на <i>a</i>&nbsp;=&nbsp;{_fin(c.ballast_arm, 'м')} впереди "
                 f"передней оси, база <i>L</i>&nbsp;=&nbsp;{_fin(c.wheelbase, 'м')}, груз <i>G</i>&nbsp;=&nbsp;{html_label(c.load)} — на расстоянии "
-                f"<i>x</i><sub>G</sub> (координата его центра масс) позади задней оси. Для положения {pos_no(study, lab)}:")
+                f"<i>x</i><sub>G</sub> (координата его центра масс) позади задней оси. Для положения {pos_no(study, lab)} "
+                f"(по всем положениям — таблица {ref('tab-frc-carrier')} и рисунок {ref('fig-frc-carrier')}):")
     RA = row["R_front"]
     s.formula(
         Formula(r"R_A = \frac{P_{гр} (a + L) + P_в b - G x_G}{L}",

@@ -254,6 +254,9 @@ def _mesh(sec: Section, gr) -> None:
 def _sliding(sec: Section, gr) -> None:
     s = sec.subsection("Удельное скольжение", "sec-gears-sliding")
     g = gr.geo
+    s.paragraph(f"Удельные скольжения профилей в точках активной части линии зацепления (таблица "
+                f"{ref('tab-gears-sliding')}, диаграммы — на рисунке {ref('fig-gears-sliding')}) вычислены по "
+                "радиусам кривизны профилей ρ<sub>1</sub> и ρ<sub>2</sub> в точке контакта:")
     s.formula(Formula(r"\lambda_1 = 1 - \frac{\rho_2}{u\,\rho_1},\quad \lambda_2 = 1 - \frac{u\,\rho_1}{\rho_2},"
                       rf"\quad u = \frac{{z_2}}{{z_1}} = {_t(g.u, 5)}"))
     s.figure("Диаграммы удельного скольжения", S.sliding_diagram(gr), 160, id="fig-gears-sliding")

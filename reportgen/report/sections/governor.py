@@ -63,14 +63,15 @@ def build(study) -> Section:
     sec.formula(r"\omega = \sqrt{\frac{F_и}{m\,x_D}}", rf"\sqrt{{\frac{{{_t(r['F_i'])}}}{{{_t(gv.m, sig=4)} \cdot {_t(r['r_D'], sig=4)}}}}}",
                 _t(r["omega"], "рад/с", 4), label="eq-governor-omega")
     d = GovernorScheme().draw(study)
-    sec.figure("Регулятор с кругами трения и линиями действия реакций; планы сил муфты и рычага",
-               d.svg, d.width_mm, id="fig-governor")
     sec.paragraph(f"Построение показано на рисунке {ref('fig-governor')}: линия действия R<sub>76</sub> проходит "
                   f"через точку K пересечения линий P и F<sub>и</sub> (теорема о трёх силах) и наклонена к "
                   f"горизонту под углом {fmt(math.degrees(r['R76_angle']), sig=4)}°. Без трения ω<sub>0</sub> = "
                   f"{fmt(gv.cases[0]['omega'], sig=4)}&nbsp;рад/с; муфта неподвижна при "
                   f"{fmt(gv.cases[-1]['omega'], sig=4)} ≤ ω ≤ {fmt(gv.cases[1]['omega'], sig=4)}&nbsp;рад/с "
                   "(зона нечувствительности регулятора).")
+    # (after the text that first names it, ГОСТ 7.32)
+    sec.figure("Регулятор с кругами трения и линиями действия реакций; планы сил муфты и рычага",
+               d.svg, d.width_mm, id="fig-governor")
     return sec
 
 

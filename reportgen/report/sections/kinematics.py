@@ -259,13 +259,6 @@ def build(study) -> Section:
     # ----- analogs
     s2 = sec.subsection("Аналоги скоростей и ускорений", "sec-analogs")
     qs = "φ" if rotary else "S"
-    s2.paragraph(
-        f"Положения звеньев найдены в замкнутом виде для каждой группы Ассура; аналоги скоростей "
-        f"и ускорений (производные по обобщённой координате {qs}) получены точно из линейных систем "
-        f"групп, без численного дифференцирования. Истинные скорости и ускорения: "
-        f"{v_m}, {a_m}" + ("" if rotary else f", где {inline_math('v_{' + rel + '}')} и "
-                           f"{inline_math('a_{' + rel + '}')} — скорость и ускорение штока {d_.rod} "
-                           f"относительно цилиндра {d_.link} (первая и вторая производные длины S по времени)") + ".")
     # units of the analogs follow the generalized coordinate: d/dφ keeps a length a length and an
     # angle dimensionless; d/dS makes a point's analog dimensionless and a link's 1/м
     u_w, u_e, u_x = (None, None, "м") if rotary else ("1/м", "1/м²", None)   # as the diagrams (rad dimensionless)
@@ -273,9 +266,22 @@ def build(study) -> Section:
              if not (rotary and l.name == mech.driver.link)]
     ecols = [Column(f"eq_{l.name}", sub("φ″", l.name), u_e, digits=4) for l in _links(study)
              if not (rotary and l.name == mech.driver.link)]
-    if wcols:        # no table of angular analogues where every other link only translates
+    angular = bool(wcols)   # no table of angular analogues where every other link only translates
+    if angular:
         wcols, wzero = zero_columns(k, wcols)
         ecols, ezero = zero_columns(k, ecols)
+    curves_named = bool(wcols) and study.has_cycle
+    s2.paragraph(
+        f"Положения звеньев найдены в замкнутом виде для каждой группы Ассура; аналоги скоростей "
+        f"и ускорений (производные по обобщённой координате {qs}) получены точно из линейных систем "
+        f"групп, без численного дифференцирования. Истинные скорости и ускорения: "
+        f"{v_m}, {a_m}" + ("" if rotary else f", где {inline_math('v_{' + rel + '}')} и "
+                           f"{inline_math('a_{' + rel + '}')} — скорость и ускорение штока {d_.rod} "
+                           f"относительно цилиндра {d_.link} (первая и вторая производные длины S по времени)") + "."
+        # the curves named before them (ГОСТ 7.32), in this paragraph: a line of its own just before
+        # the figure was left alone at a page foot (ws004)
+        + (f" Графики аналогов угловых скоростей звеньев — на рисунке {ref('fig-analogs')}." if curves_named else ""))
+    if angular:
         chunked_tables(s2, "Аналоги угловых скоростей звеньев", k, wcols, lead, "tab-wq", note=_zero_note(wzero))
         chunked_tables(s2, "Аналоги угловых ускорений звеньев", k, ecols, lead, "tab-eq", note=_zero_note(ezero))
     else:
@@ -287,7 +293,7 @@ def build(study) -> Section:
                   Column(f"vqy_{p}", f"<i>y′</i><sub>{p}</sub>", u_x, digits=4)]
     vcols, zero = zero_columns(k, vcols)
     chunked_tables(s2, "Аналоги скоростей точек", k, vcols, lead, "tab-vq", note=_zero_note(zero))
-    if wcols and study.has_cycle:
+    if curves_named:
         curves = AnalogCurves().draw(study)
         s2.figure("Аналоги угловых скоростей звеньев " + ("в диапазоне качания входного звена" if mech.driver.swing
                                                            else "за цикл" if rotary else "по ходу гидроцилиндра"), curves.svg, curves.width_mm, id="fig-analogs")
@@ -326,19 +332,27 @@ def build(study) -> Section:
         # those ω and V_r are derived between the velocity and the acceleration equations
         vrow = read_velocities(row, study, vplan.mu)
         ws, es = _plan_formulas(s4, study, row, vrow, vplan, aplan)
+        # each plan follows the text that reads it (ГОСТ 7.32: a figure after its first mention), so
+        # the text after a plan on a landscape page of its own can fill the page before it
         vectors.add_velocities(s4, study, vrow)
         if ws:
-            stones = sum(f.symbolic.startswith("V") for f in ws)
-            s4.paragraph("По отрезкам плана скоростей найдены угловые скорости звеньев"
-                         + (" и относительная скорость камня" if stones == 1 else
-                            " и относительные скорости камней" if stones else "") + ":")
+            slides = sum(f.symbolic.startswith("V") for f in ws)
+            word = ("камня", "камней") if all(vectors.is_stone(study.mechanism, j)
+                                              for j in study.mechanism.prismatic) else ("в поступательной паре", "в поступательных парах")
+            s4.paragraph(f"По отрезкам плана скоростей (рисунок {ref('fig-vplan')}) найдены угловые скорости звеньев"
+                         + (" и относительная скорость " + word[0] if slides == 1 else
+                            " и относительные скорости " + word[1] if slides else "") + ":")
             s4.formula(*ws)
-        vectors.add_accelerations(s4, study, vrow)
-        if es:
-            s4.paragraph("По отрезкам плана ускорений найдены угловые ускорения звеньев:")
-            s4.formula(*es)
+        else:
+            s4.paragraph(f"План скоростей построен на рисунке {ref('fig-vplan')}.")
         s4.figure(f"План скоростей для положения {pos_no(study, lab)} (μ<sub>v</sub> = {mu_text(vplan.mu)} м·с⁻¹/мм)",
                   vplan.svg, vplan.width_mm, id="fig-vplan", landscape=vplan.landscape)
+        vectors.add_accelerations(s4, study, vrow)
+        if es:
+            s4.paragraph(f"По отрезкам плана ускорений (рисунок {ref('fig-aplan')}) найдены угловые ускорения звеньев:")
+            s4.formula(*es)
+        else:
+            s4.paragraph(f"План ускорений построен на рисунке {ref('fig-aplan')}.")
         s4.figure(f"План ускорений для положения {pos_no(study, lab)} (μ<sub>a</sub> = {mu_text(aplan.mu)} м·с⁻²/мм)",
                   aplan.svg, aplan.width_mm, id="fig-aplan", landscape=aplan.landscape)
         cmp_cols = [Column("name", "Вектор", fmt=_vec_name), Column("mm", "Длина на плане", "мм", digits=1),
@@ -366,9 +380,13 @@ def build(study) -> Section:
     if several:
         # groups hung on the input link in parallel (a V-compressor's two pistons): each has its output
         names = [str(o[3]) for o in outputs]
-        s5.paragraph(f"Выходные звенья — {', '.join(names[:-1])} и {names[-1]}: их группы присоединены "
-                     f"параллельно, каждая ведёт своё звено; диаграммы построены для каждого из них (рисунки "
-                     f"{', '.join(ref(f) for f in figs[:-1])} и {ref(figs[-1])}).")
+        hung = _hung_on_outputs(study, outputs)
+        how = ("их группы присоединены параллельно, каждая ведёт своё звено" if not hung else
+               "на каждое из них действуют рабочие нагрузки (" + "; ".join(
+                   f"группа ({','.join(later.links)}) присоединена к звену {link} группы ({','.join(g.links)})"
+                   for g, link, later in hung) + ")")
+        s5.paragraph(f"Выходные звенья — {', '.join(names[:-1])} и {names[-1]}: {how}; диаграммы построены для "
+                     f"каждого из них (рисунки {', '.join(ref(f) for f in figs[:-1])} и {ref(figs[-1])}).")
     main = output_quantity(study)[0]
     for out, fig_id in zip(outputs, figs):
         _output_diagrams(s5, study, out, fig_id, several, out[0] == main)
@@ -421,6 +439,28 @@ def _zero_note(zero: list[Column]) -> str | None:
             + ("в таблицу не включён" if len(zero) == 1 else "в таблицу не включены") + ").")
 
 
+def _hung_on_outputs(study, outputs) -> list[tuple]:
+    """(group, link, later group) for each output's group that a later group hangs on (the master
+    rod of an articulated-rod compressor carries the articulated rod at its point E): such outputs
+    are not «attached in parallel»."""
+    mech = study.mechanism
+    groups = [g for g in study.structure.groups if FRAME not in g.links and len(g.links) > 1]
+    out_links = set()
+    for col, *_ in outputs:
+        pre, _, name = col.partition("_")
+        out_links |= {j.links[1] for j in mech.prismatic if j.name == name} if pre == "s" else {name}
+    hung = []
+    for i, g in enumerate(groups):
+        if not out_links & set(g.links):
+            continue
+        for later in groups[i + 1:]:
+            link = next((a if a in g.links else b for j in mech.joints for a, b in [j.links]
+                         if (a in g.links and b in later.links) or (b in g.links and a in later.links)), None)
+            if link is not None:
+                hung.append((g, link, later))
+    return hung
+
+
 def _guide_transmission(study) -> tuple[list[dict], str]:
     """Rows of the transmission-angle table for the ВПВ groups (a stone in a rotating кулиса) and
     the note that explains them. The stone presses on the кулиса along the guide's normal; the
@@ -442,9 +482,16 @@ def _guide_transmission(study) -> tuple[list[dict], str]:
         if e <= 1e-9 * mech.size() or fl["min"] <= e:
             if e <= 1e-9 * mech.size():
                 rows.append({"g": label, "mu": math.pi / 2, "q": None})
-                told.append(f"В группе {name} давление камня на кулису направлено по нормали к кулисе, а "
-                            f"точка кулисы под камнем движется перпендикулярно её радиусу {pivot}{pin}, "
-                            f"лежащему на оси кулисы: угол передачи равен 90° во всех положениях.")
+                if vectors.is_stone(mech, pri):
+                    told.append(f"В группе {name} давление камня на кулису направлено по нормали к кулисе, а "
+                                f"точка кулисы под камнем движется перпендикулярно её радиусу {pivot}{pin}, "
+                                f"лежащему на оси кулисы: угол передачи равен 90° во всех положениях.")
+                else:            # a piston rod in a rocking cylinder: no stone, the links by number
+                    s_, g_ = pri.links[1], pri.links[0]
+                    told.append(f"В группе {name} давление звена {s_} на звено {g_} в поступательной паре "
+                                f"направлено по нормали к направляющей, а точка звена {g_}, совпадающая с "
+                                f"точкой {pin}, движется перпендикулярно радиусу {pivot}{pin}, лежащему на оси "
+                                f"направляющей: угол передачи равен 90° во всех положениях.")
             continue
         rows.append({"g": label, "mu": math.pi / 2 - math.asin(e / fl["min"]), "q": fl["q_min"]})
         told.append(f"В группе {name} угол передачи μ&nbsp;=&nbsp;90°&nbsp;−&nbsp;arcsin(<i>e</i>/ρ), где "
@@ -587,10 +634,30 @@ def _plan_formulas(sec: Section, study, row, vrow, vplan, aplan) -> tuple[list[F
     # rocker of group (2,3)), not from a point of a later group's pair found from it (V_DC)
     # (the choice is plans.omega_segment, the one the acceleration plan's ω are read from too)
     rank = group_rank(study)
+    full = []       # the plans as constructed, before the similarity points' components are dropped
+
+    def constructed():
+        if not full:
+            lab_ = row["pos"]
+            full.append(PlanScene(lab_, "velocity", mu_v=vplan.mu).construct(study)[0])
+            full.append({s.name: s for s in PlanScene(lab_, "acceleration", mu_v=vplan.mu, mu_a=aplan.mu)
+                         .construct(study)[0].segments})
+        return full
+    # a slider with points of its own on a moving guide (a piston rod in a rocking cylinder) turns
+    # with the guide: ω and ε written as the guide's, not read a second time (plans.measured_omegas)
+    twins = {j.links[1]: j.links[0] for j in mech.prismatic
+             if j.links[0] != FRAME and len(mech.link(j.links[1]).points) > 1}
+    w_read, e_read = {}, {}
     for link in mech.moving:
-        if d.rotary and link.name == d.link:
+        if d.rotary and link.name == d.link or link.name in twins:
             continue
         s0 = omega_segment(vplan.plan, mech, link.name, rank)
+        if s0 is None:
+            # a link whose points besides its pairs' are only found by similarity (a rocking
+            # cylinder: its pivot C, the rod's point under it, its end K): its ω is read, as
+            # plans.measured_omegas reads it for the acceleration plan, from the segment the
+            # construction drew to such a point (V_KC) — not left out while aⁿ = ω²·l uses it
+            s0 = omega_segment(constructed()[0], mech, link.name, rank)
         if s0 is None or abs(row[f"w_{link.name}"]) < 1e-12 and float(np.abs(study.cycle["wq_" + link.name]).max()) < 1e-12:
             continue
         q_, r_ = s0.end, s0.start
@@ -602,20 +669,30 @@ def _plan_formulas(sec: Section, study, row, vrow, vplan, aplan) -> tuple[list[F
         fs.append(Formula(rf"\omega_{{{link.name}}} = \frac{{V_{{{Q}{R}}}}}{{l_{{{R}{Q}}}}}",
                           rf"\frac{{{tex_num(v_read, sig=4)}}}{{{tex_num(lq, digits=4)}}}",
                           tex_num(v_read / lq, sig=4, unit="рад/с")))
-        tn = aseg.get(f"a^τ_{q_}{r_}")
+        w_read[link.name] = v_read / lq
+        tn = aseg.get(f"a^τ_{q_}{r_}") or (constructed()[1].get(f"a^τ_{q_}{r_}") if full else None)
         if tn is not None:
             a_read = drawn(tn.length, aplan.mu)
             es.append(Formula(rf"\varepsilon_{{{link.name}}} = \frac{{a^{{\tau}}_{{{Q}{R}}}}}{{l_{{{R}{Q}}}}}",
                               rf"\frac{{{tex_num(a_read, sig=4)}}}{{{tex_num(lq, digits=4)}}}",
                               tex_num(a_read / lq, sig=4, unit="рад/с²")))
+            e_read[link.name] = a_read / lq
+    for s_, g_ in twins.items():
+        if g_ in w_read:
+            fs.append(Formula(rf"\omega_{{{s_}}} = \omega_{{{g_}}}", None, tex_num(w_read[g_], sig=4, unit="рад/с")))
+        if g_ in e_read:
+            es.append(Formula(rf"\varepsilon_{{{s_}}} = \varepsilon_{{{g_}}}", None,
+                              tex_num(e_read[g_], sig=4, unit="рад/с²")))
     # only what the mechanism has: a slider on the frame, a stone on a moving guide (Coriolis)
     kinds = ["для точки, общей двум звеньям, — относительное вращательное движение вокруг соседних шарниров"]
     if any(j.links[0] == FRAME for j in mech.prismatic):
         kinds.append("для ползуна на неподвижной направляющей — скорость и ускорение вдоль направляющей")
     moving = [j for j in mech.prismatic if j.links[0] != FRAME]
     if any(_rotates(study, j.links[0]) for j in moving):
-        kinds.append("для камня на вращающейся направляющей — переносное и относительное движение с "
-                     "кориолисовым ускорением")
+        kinds.append(("для камня на вращающейся направляющей" if all(vectors.is_stone(mech, j) for j in moving
+                                                                     if _rotates(study, j.links[0]))
+                      else "для звена, скользящего по вращающейся направляющей,")
+                     + " — переносное и относительное движение с кориолисовым ускорением")
     if any(not _rotates(study, j.links[0]) for j in moving):
         kinds.append("для ползуна на поступательно движущейся направляющей — переносное и относительное "
                      "движение без кориолисова ускорения")

@@ -31,6 +31,13 @@ from ..formulas import Formula, inline_math
 from .common import tex_point
 
 
+def is_stone(mech, joint) -> bool:
+    """Whether the slider of a prismatic pair is a stone (камень кулисы): a block with no point but
+    its pin. A slider with points of its own (a piston rod in a rocking cylinder: its centre of
+    mass, the piston) is not called a stone; the note names it by its number."""
+    return len(mech.link(joint.links[1]).points) <= 1
+
+
 def _len(row, a: str, b: str) -> float:
     return math.hypot(row[f"x_{a}"] - row[f"x_{b}"], row[f"y_{a}"] - row[f"y_{b}"])
 
@@ -104,11 +111,19 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
             base_v = "" if fixed_ref else rf"\bar{{V}}_{{{R}}} + "
             out[0].append(Formula(rf"\bar{{V}}_{{{P}}} = {base_v}\bar{{V}}_{{{P}{R}}}"))
             known = g.klass == 1 and name == d.link and d.rotary
+            # a point a later group hangs on, not a pair of this group's own links (E of a master rod,
+            # B of a slotted lever): found after the link's ω and ε, by the similarity theorem
+            similar = onward and not known and not any(j.point == p and set(j.links) <= links for j in mech.joints)
+            after_v = Markup(" — по найденной {}: точка {} плана — по теореме подобия").format(
+                _m(rf"\omega_{{{_ang(name)}}}"), _m(P.lower()))
+            after_a = Markup(" — по найденной {}: точка {} плана — по теореме подобия").format(
+                _m(rf"\varepsilon_{{{_ang(name)}}}"), _m(P.lower() + "'"))
             mag = (rf"V_{{{P}{R}}} = \omega_{{{_ang(name)}}} l_{{{R}{P}}} = {tex_num(abs(w), sig=4)} \cdot "
                    rf"{tex_num(l, sig=4)} = {tex_num(abs(w) * l, sig=4, unit='м/с')}") if known else \
                 rf"V_{{{P}{R}}} = \omega_{{{_ang(name)}}} l_{{{R}{P}}}"
             out[1].append(Markup("{}, {}{}").format(_m(rf"\bar{{V}}_{{{P}{R}}} \;\perp\; {R}{P}"), _m(mag),
-                                                "" if known else Markup(" — величина находится построением")))
+                                                "" if known else after_v if similar
+                                                else Markup(" — величина находится построением")))
             base_a = "" if fixed_ref else rf"\bar{{a}}_{{{R}}} + "
             out[2].append(Formula(rf"\bar{{a}}_{{{P}}} = {base_a}\bar{{a}}^{{n}}_{{{P}{R}}} + \bar{{a}}^{{\tau}}_{{{P}{R}}}"))
             out[3].append(Markup("{} (направлено от точки {} к точке {}); {}, {}").format(
@@ -116,7 +131,8 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
                    rf"{tex_num(abs(w), sig=4)}^{{2}} \cdot {tex_num(l, sig=4)} = {tex_num(w * w * l, sig=4, unit='м/с²')}"),
                 _m(P), _m(R), _m(rf"\bar{{a}}^{{\tau}}_{{{P}{R}}} \;\perp\; {R}{P}"),
                 _m(rf"a^{{\tau}}_{{{P}{R}}} = \varepsilon_{{{_ang(name)}}} l_{{{R}{P}}}"
-                   + (rf" = {tex_num(abs(e) * l, sig=4, unit='м/с²')}" if known else ""))))
+                   + (rf" = {tex_num(abs(e) * l, sig=4, unit='м/с²')}" if known else "")))
+                          + (after_a if similar else ""))
     known = _solved_before(study, g) | links
     for j in mech.prismatic:
         guide, slider = j.links
@@ -169,7 +185,9 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
         lg = _len(row, j.point, gref)
         an.append(a_pin + Markup("{}: {}, {} (направлено от точки {} к точке {}), {}").format(
             _m(rf"\bar{{a}}_{{{Pg}}} = \bar{{a}}_{{{G}}} + \bar{{a}}^{{n}}_{{{Pg}{G}}} + \bar{{a}}^{{\tau}}_{{{Pg}{G}}}"),
-            Markup("ускорение точки звена {} под ползуном").format(guide),
+            (Markup("ускорение точки звена {} под ползуном").format(guide) if is_stone(mech, j) else
+             Markup("ускорение точки звена {}, совпадающей в данный момент с точкой {} звена {}").format(
+                 guide, _m(P), slider)),
             _m(rf"a^{{n}}_{{{Pg}{G}}} = \omega_{{{_ang(guide)}}}^{{2}} l_{{{G}{P}}} = {tex_num(wg, sig=4)}^{{2}} \cdot "
                rf"{tex_num(lg, sig=4)} = {tex_num(wg * wg * lg, sig=4, unit='м/с²')}"), _m(P), _m(G),
             _m(rf"\bar{{a}}^{{\tau}}_{{{Pg}{G}}} \;\perp\; {G}{P}")))
