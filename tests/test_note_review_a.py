@@ -38,7 +38,7 @@ def test_extra_position_numbered_on_plan_of_positions(ws000, monkeypatch):
     from reportgen.scenes.mechanism import PositionsPlan
     seen = _labels(monkeypatch)
     PositionsPlan().draw(ws000)
-    names = {n.strip() for t in seen for n in t.split(",")}
+    names = {n for t in seen for n in re.findall(r"[^\W_]+", t)}     # «$A_{0,12}$» → A, 0, 12
     assert "f" not in names and "12" in names
 
 

@@ -335,6 +335,10 @@ def _dim(ax, p1, p2, text, off, mu, vertical=False):
         ax.text(mx, my + 1.0 * mu, text, ha="center", va="bottom", fontsize=9)
 
 
+DIM_GAP_MM = 7.0     # the flywheel's views at least this far apart on paper: dimension line, number, clearance
+DIM_TEXT_MM = 1.5    # a vertical dimension's number this far beyond its line (the number's height in the margin)
+
+
 def _mm(x: float) -> str:
     return fmt(x * 1000, digits=0)
 
@@ -352,14 +356,23 @@ class FlywheelDrawing:
         rim, disk = fw.rim, fw.disk
         R2, R1, b = rim.D2 / 2, rim.D1 / 2, rim.b
         Rd, bd = disk.D / 2, disk.b
-        gap = 0.35 * R2
-        # layout (m): rim front at (0, 0), rim section at (R2 + gap + b/2, 0),
-        # disk front at (x3, 0), disk section at (x4, 0)
-        xs_rim = R2 + gap + b / 2
-        x3 = xs_rim + b / 2 + gap + Rd
-        x4 = x3 + Rd + gap + bd / 2
-        xs = [-R2 - 0.2 * R2, x4 + bd / 2 + 0.25 * R2]
         ys = [-R2 - 0.3 * R2, R2 + 0.3 * R2]
+        gap, mu = 0.35 * R2, 0.0
+        for _ in range(6):
+            # layout (m): rim front at (0, 0), rim section at (R2 + gap + b/2, 0),
+            # disk front at (x3, 0), disk section at (x4, 0); the last diameter's number right of
+            # the disk's section, beyond its dimension line (0,35·gap out) by DIM_TEXT_MM
+            xs_rim = R2 + gap + b / 2
+            x3 = xs_rim + b / 2 + gap + Rd
+            x4 = x3 + Rd + gap + bd / 2
+            xs = [-R2 - 0.2 * R2, x4 + bd / 2 + max(0.25 * R2, 0.35 * gap + DIM_TEXT_MM * mu)]
+            # the views DIM_GAP_MM apart on paper at least: room for a diameter's dimension and
+            # its number between two views (at a small scale 0,35·D₂/2 is a few millimetres)
+            fit = Canvas.scale(xs, ys, avail_w=150, avail_h=90, margin_mm=4, gost=True)
+            if fit <= mu and gap >= DIM_GAP_MM * mu * (1 - 1e-9):
+                break
+            mu = max(mu, fit)
+            gap = max(gap, DIM_GAP_MM * mu)
         cv = Canvas.fit(xs, ys, avail_w=150, avail_h=90, margin_mm=4, gost=True)
         ax, mu = cv.ax, cv.mu
         hub_R, bore_R = 0.125 * rim.D2, 0.05 * rim.D2

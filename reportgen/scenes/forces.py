@@ -204,20 +204,30 @@ def _scheme_arrows(ext, Fmax: float, mu_l: float) -> dict[int, float]:
     at one pair: G₄ and G₅, Φ₄ and Φ₅) are staggered, the shorter first, so that their free ends
     and labels do not pile up at one spot."""
     out: dict[int, float] = {}
-    fans: list[tuple[tuple[float, float], np.ndarray, list[int]]] = []
+    free: dict[int, tuple] = {}
     for i, v in enumerate(ext):
         n = float(np.hypot(*v.F))
         if n < 1e-9 * Fmax:
             continue
         out[i] = _arrow_mm(n, Fmax)
-        u = v.F / n * (1 if v.role == "load" else -1)          # from the point to the free end
-        for at, d, members in fans:
-            if (math.hypot(at[0] - v.at[0], at[1] - v.at[1]) < 2.0 * mu_l
-                    and float(np.dot(d, u)) > math.cos(math.radians(FAN_DEG))):
+        free[i] = (v.at, v.F / n * (1 if v.role == "load" else -1))    # from the point to the free end
+    return _staggered(out, free, 2.0 * mu_l)
+
+
+def _staggered(lengths: dict, free: dict, near: float) -> dict:
+    """The arrows' lengths (mm, by key) with the arrows drawn from one point (``free[key]`` =
+    (point, unit vector from it to the free end); points closer than ``near``, data units) in
+    nearly one direction (within FAN_DEG) staggered, the shorter first, each one's free end
+    FAN_STEP_MM beyond the previous: their heads and labels do not pile up at one spot."""
+    out = dict(lengths)
+    fans: list[tuple[tuple[float, float], np.ndarray, list]] = []
+    for i, (at, u) in free.items():
+        for p, d, members in fans:
+            if math.hypot(p[0] - at[0], p[1] - at[1]) < near and float(np.dot(d, u)) > math.cos(math.radians(FAN_DEG)):
                 members.append(i)
                 break
         else:
-            fans.append(((v.at[0], v.at[1]), u, [i]))
+            fans.append(((at[0], at[1]), u, [i]))
     for _, _, members in fans:
         last = -math.inf
         for i in sorted(members, key=lambda j: out[j]):
@@ -279,7 +289,10 @@ class GroupForces:
             n = float(np.hypot(*v.F))
             if i not in lengths:
                 continue
-            L = (lengths[i] + 4.0) * mu_l * (1 if v.role == "load" else -1)
+            # drawn from its point as a load (a reaction opposite to a load at its point too), else
+            # ending at its pair or point (a load along a link's line), as draw does
+            along = _along_bar(v, lengths[i] * mu_l, self._bars, NEAR_MM * mu_l)
+            L = (lengths[i] + 4.0) * mu_l * (1 if (v.role == "load" and not along) or _opposes_load(v, ext) else -1)
             tips.append((v.at[0] + v.F[0] / n * L, v.at[1] + v.F[1] / n * L))
         allx = np.concatenate([xs, [t[0] for t in tips]])
         ally = np.concatenate([ys, [t[1] for t in tips]])
@@ -340,6 +353,11 @@ class GroupForces:
         g = f.model.groups[self.gi]
         ext, moments, internal = group_vectors(study, self.label, self.gi)
         pts = {p for l in g.links for p in mech.link(l).points}
+        # the links' lines (every pair of a link's points): a load drawn along one is turned to end
+        # at its point (a slider's resistance pushing up the rod's line)
+        self._bars = bars = [(np.array([cols["x_" + a], cols["y_" + a]]), np.array([cols["x_" + b], cols["y_" + b]]))
+                             for l in g.links for k, a in enumerate(list(mech.link(l).points))
+                             for b in list(mech.link(l).points)[k + 1:]]
         xs = np.array([cols["x_" + p] for p in pts])
         ys = np.array([cols["y_" + p] for p in pts])
         Fmax = max([float(np.hypot(*v.F)) for v in ext + internal] + [1e-12])
@@ -380,11 +398,6 @@ class GroupForces:
         draw_mechanism(cv, mech, cols, only=set(g.links), supports=False, lw=1.4, com=True)
         lengths = _scheme_arrows(ext, Fmax, mu_l)
         scheme: list[tuple[np.ndarray, np.ndarray]] = []     # arrows drawn on the scheme
-        # the links' lines (every pair of a link's points): a load drawn along one is turned to end
-        # at its point (a slider's resistance pushing up the rod's line)
-        bars = [(np.array([cols["x_" + a], cols["y_" + a]]), np.array([cols["x_" + b], cols["y_" + b]]))
-                for l in g.links for k, a in enumerate(list(mech.link(l).points))
-                for b in list(mech.link(l).points)[k + 1:]]
         for i, v in enumerate(ext):
             n = float(np.hypot(*v.F))
             if i not in lengths:
@@ -392,11 +405,7 @@ class GroupForces:
             L = lengths[i] * mu_l
             color = {"load": INK, "known": INK, "unknown": BLUE}[v.role]
             ex, ey = v.F[0] / n, v.F[1] / n
-            def on_bar(sign):
-                tip = np.array([v.at[0] + sign * ex * L, v.at[1] + sign * ey * L])
-                return any(covered(np.asarray(v.at, float), tip, b0, b1, cv.mm(NEAR_MM)) > 0.2
-                           for b0, b1 in bars if float(np.hypot(*(b1 - b0))) > 0)
-            along = v.role == "load" and on_bar(1.0) and not on_bar(-1.0)
+            along = _along_bar(v, L, bars, cv.mm(NEAR_MM))
             # loads start at their point, reactions end at the pair; a reaction opposite to a load
             # at its point (R₀₅ against G₅) starts there too, so that the two do not cover each other
             if (v.role == "load" and not along) or _opposes_load(v, ext):
@@ -923,6 +932,22 @@ def covered(a0, a1, b0, b1, near: float, samples: int = 41) -> float:
     return float(np.mean(dist < near))
 
 
+def _along_bar(v, L: float, bars, near: float) -> bool:
+    """Whether the load ``v``, drawn from its point ``L`` long (data units), would lie along one of
+    the ``bars`` (a link's line) and drawn the other way would not: it is then drawn ending at its
+    point (a slider's resistance pushing up the rod's line)."""
+    if v.role != "load":
+        return False
+    n = float(np.hypot(*v.F))
+    ex, ey = v.F[0] / n, v.F[1] / n
+
+    def on_bar(sign):
+        tip = np.array([v.at[0] + sign * ex * L, v.at[1] + sign * ey * L])
+        return any(covered(np.asarray(v.at, float), tip, b0, b1, near) > 0.2
+                   for b0, b1 in bars if float(np.hypot(*(b1 - b0))) > 0)
+    return on_bar(1.0) and not on_bar(-1.0)
+
+
 def _opposes_load(v, ext) -> bool:
     """Whether the reaction ``v`` is nearly opposite (within 25°) to a load applied at its point."""
     u = _unit(v.F)
@@ -1108,16 +1133,26 @@ class ZhukovskyLever:
         in_views = 0
         # the balancing force placed first: its label and leader at the crank pin are settled before
         # the loads sharing its line there (the crank's own inertia couple M′_Φ1 ⊥ pa at a) look for room
-        for lab, p, F, is_bal in bal + items:
+        order = bal + items
+        # a force at an image inside an enlarged view is drawn there only (the region of the
+        # lever is marked by its circle), not crowded on the lever itself
+        drawn, free = {}, {}
+        for j, (_, p, F, is_bal) in enumerate(order):
             n = float(np.hypot(*F))
-            if n < 1e-9 * Fmax or (not is_bal and round(n, dec) == 0):
+            if n >= 1e-9 * Fmax and (is_bal or round(n, dec) != 0):
+                drawn[j] = max(MIN_ARROW_MM, 0.8 * _arrow_mm(n, Fmax))
+                free[j] = (next((ins.at + (p - ins.centre) * ins.k for ins in insets
+                                 if np.hypot(*(p - ins.centre)) <= ins.radius), p), F / n)
+        # by magnitude (at least MIN_ARROW_MM: a shorter one is all head), staggered where several
+        # leave one image in nearly one direction (ws000's G₃ and M′Φ₂ at b, M″Φ₄ and G₅ at h)
+        drawn = _staggered(drawn, free, cv.mm(2.0))
+        for j, (lab, p, F, is_bal) in enumerate(order):
+            if j not in drawn:
                 continue
-            L = cv.mm(_arrow_mm(n, Fmax) * 0.8)
+            n = float(np.hypot(*F))
+            L = cv.mm(drawn[j])
             color = RED if is_bal else INK
-            # a force at an image inside an enlarged view is drawn there only (the region of the
-            # lever is marked by its circle), not crowded on the lever itself
-            at = next((ins.at + (p - ins.centre) * ins.k for ins in insets
-                       if np.hypot(*(p - ins.centre)) <= ins.radius), p)
+            at = free[j][0]
             in_views += at is not p
             tip = at + F / n * L
             arrow(ax, at[0], at[1], tip[0], tip[1], color=color, lw=1.1, zorder=6)

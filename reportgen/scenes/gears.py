@@ -13,7 +13,7 @@ from matplotlib.path import Path
 from ..core import gears as G
 from ..style import mplstyle
 from .draw import GREY, INK, Canvas
-from .labels import LabelPlacer, place_on_chart
+from .labels import LabelPlacer, label_contours, place_on_chart
 
 __all__ = ["tooth_outline", "ring_outline", "MeshDrawing", "mesh_drawing", "internal_mesh_drawing", "rack_drawing", "sliding_diagram",
            "blocking_contour", "segment_circle_hits"]
@@ -341,18 +341,21 @@ def blocking_contour(gears):
     iso(L1 - L2, 0.0, "#e08214", "-.", "$\\lambda_{1max} = \\lambda_{2max}$")
     cs = ax.contour(X1, X2, np.where(np.isfinite(geo.eps), geo.eps, np.nan), levels=[1.3, 1.4, 1.5, 1.6],
                     colors=[GREY], linewidths=0.5)
-    ax.clabel(cs, fmt=lambda v: f"ε={v:.1f}".replace(".", ","), fontsize=6)
     x1m = float(G.x_min_undercut(gears.z1, gears.rack))
     ax.axvline(x1m, color=GREY, lw=1.0)
     handles.append(ax.plot([], [], color=GREY, lw=1.0, label="$x_{min}$ (подрезание)")[0])
     if not geo.internal:
         ax.axhline(float(G.x_min_undercut(gears.z2, gears.rack)), color=GREY, lw=1.0)
     ax.plot([gears.x1], [gears.x2], "o", ms=6, mfc="white", mec=INK, mew=1.5, zorder=6)
-    ax.annotate(f"выбрано ({gears.x1:.2f}; {gears.x2:.2f})".replace(".", ","), (gears.x1, gears.x2),
-                xytext=(6, 6), textcoords="offset points", fontsize=9)
+    chosen = LabelPlacer(ax, fontsize=9)        # beside the point, clear of the lines
+    chosen.add(gears.x1, gears.x2, f"выбрано\n({gears.x1:.2f}; {gears.x2:.2f})".replace(".", ","), prefer=(1, 1),
+               point=True)
     ax.set_xlabel("$x_1$")
     ax.set_ylabel("$x_2$")
     ax.set_xlim(float(X1.min()), float(X1.max()))
     ax.set_ylim(float(X2.min()), float(X2.max()))
-    ax.legend(handles=handles, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncols=3)
+    legend = ax.legend(handles=handles, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncols=3)
+    place_on_chart(chosen, avoid=[legend])
+    # the isolines' values where no other line crosses them (ax.clabel's own places were crossed)
+    label_contours(ax, cs, lambda v: f"ε={v:.1f}".replace(".", ","), fontsize=6)
     return fig

@@ -30,6 +30,15 @@ as the couples' forces at the pole of Жуковский's lever): its box keeps
 every other anchor farther than ``SAME_POINT_MM`` from its own, else it counts as crowded; a label
 set over the tip of another force would leave that force's label no place a leader can reach
 without passing through it.
+
+Thin lines a scene marks ``breakable`` (the other positions and the trajectories on a plan of
+positions) may be interrupted under a label, as ГОСТ 2.307 interrupts hatching and centre lines at
+a dimension number: a place that crosses at most ``MAX_BREAKS`` of them costs ``BREAK_MM`` each
+(a leader across them costs ``CUT_MM`` each, as across any line), and the lines under the chosen
+place get a gap ``BREAK_PAD_MM`` round its box (a NaN in their data), so that no line crosses the
+label. :func:`label_contours` sets the values of contour lines (``ax.clabel``'s kind) along their
+lines where no other line crosses them; contour lines count as drawn lines for the placer and the
+check.
 """
 from __future__ import annotations
 
@@ -40,6 +49,7 @@ import numpy as np
 from matplotlib import patheffects
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.collections import LineCollection
+from matplotlib.contour import ContourSet
 from matplotlib.lines import Line2D
 from matplotlib.text import Text
 
@@ -59,6 +69,9 @@ HALO_PT = 2.5
 ANCHOR_CLEAR_MM = 0.5    # what a label keeps clear of the point another label names
 SAME_POINT_MM = 0.5      # anchors nearer than this are one point (their labels share it)
 LINE_TOL_MM = 0.3        # check_figure: a line within this of a label's glyph box edge only touches it
+BREAK_MM = 2.5           # what interrupting a thin line (``breakable``) under a label costs, mm of distance
+MAX_BREAKS = 3           # thin lines a label may interrupt at most
+BREAK_PAD_MM = 0.4       # the gap of an interrupted line round the label's box
 
 
 @dataclass
@@ -80,8 +93,9 @@ def _renderer(fig):
     return fig.canvas.get_renderer()
 
 
-def _segments(ax, renderer, skip) -> np.ndarray:
-    """All drawn segments of the axes in display coordinates, shape (n, 4)."""
+def _segments(ax, renderer, skip, only=None) -> np.ndarray:
+    """All drawn segments of the axes in display coordinates, shape (n, 4); ``only``: of those
+    lines only."""
     segs = []
 
     def add_poly(v):
@@ -89,23 +103,31 @@ def _segments(ax, renderer, skip) -> np.ndarray:
         if len(v) >= 2:
             segs.append(np.hstack([v[:-1], v[1:]]))
     for ln in ax.lines:
-        if ln in skip or not ln.get_visible():
+        if ln in skip or not ln.get_visible() or (only is not None and ln not in only):
             continue
         v = ln.get_transform().transform(np.column_stack(ln.get_data()).astype(float))
-        v = v[np.all(np.isfinite(v), axis=1)]
+        ok = np.all(np.isfinite(v), axis=1)
         drawn = ln.get_linestyle() not in ("None", "none", "", " ")
-        if (len(v) == 1 or not drawn) and ln.get_marker() not in (None, "", "None", " "):
+        if (np.count_nonzero(ok) == 1 or not drawn) and ln.get_marker() not in (None, "", "None", " "):
             r = ln.get_markersize() / 2 * renderer.points_to_pixels(1)
-            for x, y in v:       # the markers' squares (a marker-only line has no segments between)
+            for x, y in v[ok]:       # the markers' squares (a marker-only line has no segments between)
                 add_poly([(x - r, y - r), (x + r, y - r), (x + r, y + r), (x - r, y + r), (x - r, y - r)])
-        if drawn:
-            add_poly(v)
+        if drawn:                    # a run of finite vertices each: a line broken (NaN) has gaps
+            for run in np.split(v, np.flatnonzero(~ok)):
+                add_poly(run[np.all(np.isfinite(run), axis=1)])
+    if only is not None:
+        return np.vstack(segs) if segs else np.zeros((0, 4))
     for coll in ax.collections:
-        if coll in skip or not isinstance(coll, LineCollection) or not coll.get_visible():
+        if coll in skip or not coll.get_visible():
             continue
         tr = coll.get_transform()
-        for s in coll.get_segments():
-            add_poly(tr.transform(np.asarray(s, float)))
+        if isinstance(coll, LineCollection):
+            for s in coll.get_segments():
+                add_poly(tr.transform(np.asarray(s, float)))
+        elif isinstance(coll, ContourSet) and not coll.filled:      # contour lines (a filled one has no edge)
+            for path in coll.get_paths():
+                for poly in path.to_polygons(tr, closed_only=False):
+                    add_poly(poly)
     for p in ax.patches:
         if p in skip or not p.get_visible():
             continue
@@ -225,6 +247,11 @@ def _crossings(segs: np.ndarray, bb) -> int:
     """How many segments meet the rectangle ``bb`` (Liang–Barsky clipping, vectorized)."""
     if len(segs) == 0:
         return 0
+    return int(np.count_nonzero(_meets(segs, bb)))
+
+
+def _meets(segs: np.ndarray, bb) -> np.ndarray:
+    """Which segments meet the rectangle ``bb`` padded by PAD_PX (a segment with a NaN end: none)."""
     x0, y0, x1, y1 = bb.x0 - PAD_PX, bb.y0 - PAD_PX, bb.x1 + PAD_PX, bb.y1 + PAD_PX
     px, py = segs[:, 0], segs[:, 1]
     dx, dy = segs[:, 2] - px, segs[:, 3] - py
@@ -238,7 +265,7 @@ def _crossings(segs: np.ndarray, bb) -> int:
             r = np.where(par, 0.0, q / np.where(par, 1.0, p))
         t0 = np.where(~par & (p < 0), np.maximum(t0, r), t0)
         t1 = np.where(~par & (p > 0), np.minimum(t1, r), t1)
-    return int(np.count_nonzero(ok & (t0 <= t1)))
+    return ok & (t0 <= t1)
 
 
 def _overlap(a, b, gap: float = 0.0) -> bool:
@@ -303,6 +330,127 @@ def place_on_chart(placer: "LabelPlacer", avoid=()) -> list[Text]:
     return placer.place()
 
 
+CONTOUR_STEP_MM = 1.5     # label_contours: candidate places along a contour line this far apart
+CONTOUR_SPACING_PX = 3   # the contour line's gap beyond the label, each side (matplotlib's inline_spacing)
+
+
+def label_contours(ax, cs: ContourSet, fmt, *, fontsize: float) -> list[Text]:
+    """One inline label per level of the contour lines ``cs`` (what ``ax.clabel`` writes: the value
+    along the line, which is cut under it), set where no line crosses it: the places along the
+    level's line, ``CONTOUR_STEP_MM`` apart from the middle of each of its pieces outwards (longest
+    piece first), are tried in turn; the first whose rendered extent (shrunk as
+    :func:`line_problems` reads it) stays in the axes, meets no other text and is crossed by no
+    drawn line, no other contour and not by its own line beside the cut wins, else the one crossed
+    least. To be called when everything else is drawn and laid out (:func:`place_on_chart`)."""
+    renderer = _renderer(ax.figure)
+    px_mm = ax.figure.dpi / 25.4
+    tol = (LINE_TOL_MM - 0.1) * px_mm + PAD_PX
+    frame = ax.get_window_extent(renderer)
+    cs.clabel(fmt=fmt, fontsize=fontsize, manual=[])         # the labeller set up, no label yet
+    rest = _segments(ax, renderer, skip=(cs,))
+    tr = cs.get_transform()
+    out = []
+    for i in range(len(cs.levels)):
+        path = cs.get_paths()[i]
+        pieces = [p for p in path.to_polygons(tr, closed_only=False) if len(p) >= 2]
+        if not pieces:
+            continue
+        others = [q for j, p in enumerate(cs.get_paths()) if j != i for q in p.to_polygons(tr, closed_only=False)]
+        segs = _Segs(np.vstack([rest] + [np.hstack([q[:-1], q[1:]]) for q in others if len(q) >= 2]))
+        boxes = [t.get_window_extent(renderer) for t in ax.texts]
+        cands = []
+        for piece in sorted(pieces, key=len, reverse=True):
+            d = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(piece, axis=0).T))])
+            at = np.arange(0.0, d[-1], CONTOUR_STEP_MM * px_mm)
+            at = at[np.argsort(np.abs(at - d[-1] / 2), kind="stable")]
+            cands += [(np.interp(a, d, piece[:, 0]), np.interp(a, d, piece[:, 1])) for a in at]
+        best = None
+        for x, y in cands:
+            kept = list(cs._paths)
+            cs.add_label_near(x, y, inline=True, inline_spacing=CONTOUR_SPACING_PX, transform=False)
+            t = cs.labelTexts[-1]
+            bb = t.get_window_extent(renderer)
+            cs.pop_label()
+            own = cs._paths[i]
+            cs._paths[:] = kept
+            inside = (bb.x0 >= frame.x0 + 1 and bb.x1 <= frame.x1 - 1 and bb.y0 >= frame.y0 + 1
+                      and bb.y1 <= frame.y1 - 1)
+            if not inside or any(_overlap(bb, o) for o in boxes):
+                continue
+            box = _Box(bb.x0 + tol, bb.y0 + tol, bb.x1 - tol, bb.y1 - tol)
+            mine = [q for q in own.to_polygons(tr, closed_only=False) if len(q) >= 2]
+            hits = segs.crossings(box) + sum(_crossings(np.hstack([q[:-1], q[1:]]), box) for q in mine)
+            if best is None or hits < best[0]:
+                best = (hits, x, y)
+            if hits == 0:
+                break
+        if best is not None:
+            cs.add_label_near(best[1], best[2], inline=True, inline_spacing=CONTOUR_SPACING_PX, transform=False)
+            out.append(cs.labelTexts[-1])
+    return out
+
+
+class _Thin:
+    """The thin lines a label may interrupt (``breakable``) with their vertices in display
+    coordinates, stacked as segments so that those under a label's box are found at once."""
+
+    def __init__(self, lines: list):
+        self.lines = lines
+        self.v = [ln.get_transform().transform(np.column_stack(ln.get_data()).astype(float)) for ln in lines]
+        self._stack()
+
+    def _stack(self) -> None:
+        parts = [np.hstack([v[:-1], v[1:]]) for v in self.v]
+        self.segs = np.vstack(parts) if parts else np.zeros((0, 4))
+        self.owner = np.repeat(np.arange(len(self.v)), [len(p) for p in parts])
+
+    def cut(self, box: _Box) -> None:
+        """Interrupt the lines where they pass through ``box``: the part of each segment inside
+        it (Liang–Barsky) is left out, the line's data get a NaN gap there."""
+        touched = np.unique(self.owner[_meets(self.segs, box)]) if len(self.segs) else []
+        for i in touched:
+            v = _cut_polyline(self.v[i], box)
+            if v is not None:
+                ln = self.lines[i]
+                d = ln.get_transform().inverted().transform(v)
+                ln.set_data(d[:, 0], d[:, 1])
+                self.v[i] = v
+        if len(touched):
+            self._stack()
+
+
+def _cut_polyline(v: np.ndarray, box: _Box) -> np.ndarray | None:
+    """The vertices ``v`` (display) less the parts inside ``box``, a NaN row at each gap; None if
+    no segment passes through the box."""
+    out, changed = [], False
+    for i in range(len(v)):
+        if i == 0 or not (math.isfinite(v[i - 1][0]) and math.isfinite(v[i][0])):
+            out.append(v[i])
+            continue
+        (sx, sy), (ex, ey) = v[i - 1], v[i]
+        dx, dy = ex - sx, ey - sy
+        t0, t1 = 0.0, 1.0
+        for p, q in ((-dx, sx - box.x0), (dx, box.x1 - sx), (-dy, sy - box.y0), (dy, box.y1 - sy)):
+            if abs(p) < 1e-12:
+                if q < 0:
+                    t0, t1 = 1.0, 0.0
+            elif p < 0:
+                t0 = max(t0, q / p)
+            else:
+                t1 = min(t1, q / p)
+        if t0 > t1:
+            out.append(v[i])
+            continue
+        changed = True
+        if t0 > 0:
+            out.append((sx + t0 * dx, sy + t0 * dy))
+        if math.isfinite(out[-1][0]):     # one gap for a run of segments cut (a vertex inside the box)
+            out.append((math.nan, math.nan))
+        if t1 < 1:
+            out += [(sx + t1 * dx, sy + t1 * dy), v[i]]
+    return np.array(out, float) if changed else None
+
+
 class LabelPlacer:
     """Collects the labels of one axes and places them after the drawing is complete."""
 
@@ -340,7 +488,10 @@ class LabelPlacer:
     def place(self) -> list[Text]:
         ax, fig = self.ax, self.fig
         renderer = _renderer(fig)
-        segs = _Segs(_segments(ax, renderer, skip=()))
+        thin = [ln for ln in ax.lines if getattr(ln, "breakable", False)]
+        segs = _Segs(_segments(ax, renderer, skip=tuple(thin)))
+        bsegs = _Segs(_segments(ax, renderer, skip=(), only=thin)) if thin else None
+        breaker = None
         frame = ax.get_window_extent(renderer)
         # the axes' limits and place do not change while the labels are placed: one inverse
         inv = ax.transData.inverted()
@@ -352,6 +503,7 @@ class LabelPlacer:
         out = []
         anchors = self.ax.transData.transform(np.array([(o.x, o.y) for o in self.items]).reshape(-1, 2))
         clear = ANCHOR_CLEAR_MM * px_mm
+        pad = BREAK_PAD_MM * px_mm      # a thin line interrupted this far round a label's box
         leaders: list = []              # the leader lines drawn so far: x0, y0, x1, y1, then their box
         for it in self.items:
             kw = dict(fontsize=self.fontsize, ha="center", va="center", zorder=10)
@@ -398,31 +550,38 @@ class LabelPlacer:
                     if near:
                         hits += _crossings_few([ld[:4] for ld in near], bb.x0 - PAD_PX, bb.y0 - PAD_PX,
                                                bb.x1 + PAD_PX, bb.y1 + PAD_PX)
+                # the thin lines it would interrupt (ГОСТ 2.307: thin lines break at a number)
+                brk = bsegs.crossings(_Box(bb.x0 - pad, bb.y0 - pad, bb.x1 + pad, bb.y1 + pad)) if thin and not hits else 0
+                if brk > MAX_BREAKS:
+                    hits += brk
                 # a stray label far enough for a leader to be seen gets one: the leader tells whose
                 led = r_mm * px_mm > lead_px or (stray and r_mm > LEADER_MM)
                 cut = 0
                 if led and hits == 0:
                     # its leader: through no label (a must), across as few lines as may be
                     hits += _through_boxes(_leader_segment(ax0, bb, 0.0), placed)
-                    cut = segs.cuts(_leader_segment(ax0, bb, LEADER_FREE_MM * px_mm)) if hits == 0 else 0
+                    if hits == 0:
+                        lead = _leader_segment(ax0, bb, LEADER_FREE_MM * px_mm)
+                        cut = segs.cuts(lead) + (bsegs.cuts(lead) if thin else 0)
                 # a leader across a line is worth CUT_MM more of distance
-                score = r_mm + CUT_MM * cut + GRAZE_MM * graze + (STRAY_MM if stray and led else 0.0)
+                score = (r_mm + CUT_MM * cut + GRAZE_MM * graze + BREAK_MM * brk
+                         + (STRAY_MM if stray and led else 0.0))
                 cost = (hits > 0, stray and not led, crowded, hits, score, k)
                 if best is None or cost < best[0]:
-                    best = (cost, (cx, cy), bb, led)
-                if hits == 0 and not stray and not crowded and cut == 0 and graze == 0:
+                    best = (cost, (cx, cy), bb, led, brk)
+                if hits == 0 and not stray and not crowded and cut == 0 and graze == 0 and brk == 0:
                     break
             if best is None:       # nowhere free inside: nearest candidate inside the figure
                 cands = list(self._candidates(it, px_mm))
                 for cx, cy in cands:
                     bb = extent.at(inv.transform((ax0[0] + cx, ax0[1] + cy)))
                     if bb.x0 >= figbox.x0 and bb.x1 <= figbox.x1 and bb.y0 >= figbox.y0 and bb.y1 <= figbox.y1:
-                        best = ((True, 99), (cx, cy), bb, False)
+                        best = ((True, 99), (cx, cy), bb, False, 0)
                         break
                 else:
                     best = ((True, 99), cands[0], extent.at(inv.transform((ax0[0] + cands[0][0], ax0[1] + cands[0][1]))),
-                            False)
-            cost, (cx, cy), bb, led = best
+                            False, 0)
+            cost, (cx, cy), bb, led, brk = best
             t.set_position(inv.transform((ax0[0] + cx, ax0[1] + cy)))
             t.anchor = (it.x, it.y)        # what the label names (data coordinates), for the checks
             t.lead_mm = lead_px / px_mm       # and from how far it gets a leader
@@ -430,6 +589,11 @@ class LabelPlacer:
                 # no free place: the lines under the label are broken by a white halo round its glyphs
                 t.set_path_effects([patheffects.withStroke(linewidth=HALO_PT, foreground="white")])
             placed.append((bb, gap))
+            if brk and not cost[0]:        # the thin lines under it interrupted
+                if breaker is None:
+                    breaker = _Thin(thin)
+                breaker.cut(_Box(bb.x0 - pad, bb.y0 - pad, bb.x1 + pad, bb.y1 + pad))
+                bsegs = _Segs(breaker.segs[np.all(np.isfinite(breaker.segs), axis=1)])
             if led or math.hypot(cx, cy) > lead_px:
                 t.leader = self._leader(ax0, bb)
                 ld = _leader_segment(ax0, bb, 0.0)

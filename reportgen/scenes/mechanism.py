@@ -8,7 +8,7 @@ import numpy as np
 
 from ..mechanism.model import FRAME
 from ..style.numbers import position_names
-from matplotlib.patches import Circle
+from matplotlib.patches import Circle, Polygon
 
 from .draw import (GREY, INK, NUMBER_GAP_MM, Canvas, draw_guide, draw_mechanism, mechanism_centre_lines,
                    mechanism_points)
@@ -86,6 +86,7 @@ class PositionsPlan:
 
     def draw(self, study) -> Drawing:
         from ..analysis.plans import output_quantity
+        from .labels import tex_point
         mech = study.mechanism
         k = study.kinematics
         regular = k[~k["pos"].str.startswith("д")] if k["pos"].dtype == object else k
@@ -104,15 +105,22 @@ class PositionsPlan:
               else fit_canvas(xs, ys, self.mu, avail_w=155, avail_h=190, margin_mm=12))
         tip = _tracer_point(study)
         cx, cy = _centre(study, rows)
+        s_col = output_quantity(study)[0]
+        out = _output_point(study, s_col)
+        # position numbers at the crank pin; for a cylinder or a rocker at its moving point or at the
+        # output point, whichever travels farther (the numbers of a short stroke pile up)
+        num = numbered_point(mech, rows, tip, out)
         # (on a sheet too: at the sheet's scale, whose redrawing makes room for a view that appears)
-        view = crank_view(study, rows, cv, (cx, cy), tip, coms)
+        view = crank_view(study, rows, cv, (cx, cy), num, coms)
         if view is not None:         # the canvas grown, at its scale, to hold the enlarged view
             h = view.r_view + VIEW_PAD_MM * cv.mu
             cv = Canvas(min(min(xs), view.at[0] - h), max(max(xs), view.at[0] + h), min(min(ys), view.at[1] - h),
                         max(max(ys), view.at[1] + h), cv.mu, 12,
                         max_w=1e4 if self.mu is not None else LANDSCAPE_W if landscape else 165.0)
+        thin = len(cv.ax.lines)
         for p in coms:
             cv.ax.plot(cyc[f"x_{p}"], cyc[f"y_{p}"], ls=(0, (5, 3)), lw=0.7, color=INK, zorder=2)
+        _thin_lines(cv.ax, thin)
         if mech.driver.swing:
             # the input rocker's tip moves on an arc between the extreme positions of the swing
             r = float(np.hypot(rows[0][f"x_{tip}"] - cx, rows[0][f"y_{tip}"] - cy))
@@ -122,10 +130,11 @@ class PositionsPlan:
         elif mech.driver.rotary:
             r = float(np.hypot(rows[0][f"x_{tip}"] - cx, rows[0][f"y_{tip}"] - cy))
             cv.ax.add_patch(Circle((cx, cy), r, fill=False, lw=0.6, color=INK, zorder=1))
+        thin, plates = len(cv.ax.lines), len(cv.ax.patches)
         for i, row in enumerate(rows[1:], start=1):
             draw_mechanism(cv, mech, row, color=GREY, lw=0.7, labels=False, numbers=False, alpha=0.9,
                            zorder=1, com=False, supports=False, tint=False)
-        s_col = output_quantity(study)[0]
+        _thin_lines(cv.ax, thin, plates)
         if cyc is not None:       # the output's extreme positions over the cycle
             s = cyc[s_col].to_numpy()
             ext = [cyc.iloc[int(np.argmin(s))], cyc.iloc[int(np.argmax(s))]]
@@ -147,14 +156,12 @@ class PositionsPlan:
         if self.centre_lines:
             radii = {mech.driver.center: r} if mech.driver.rotary else {}
             mechanism_centre_lines(cv, mech, rows[0], spans=spans, radii=radii)
-        out = _output_point(study, s_col)
+        first_mark = len(cv.labels.items)
         for mark, row in zip(("′", "″"), ext):
-            for p in dict.fromkeys([out] + ([tip] if view is None else [])):
-                cv.labels.add(float(row[f"x_{p}"]), float(row[f"y_{p}"]), _marked(p, mark), fontsize=10,
-                              point=True)
-        # position numbers at the crank pin; for a cylinder or a rocker at its moving point or at the
-        # output point, whichever travels farther (the numbers of a short stroke pile up)
-        num = numbered_point(mech, rows, tip, out)
+            for p in dict.fromkeys([out, tip]):
+                if view is None or p != view.tip:       # the numbered point's marks in its view
+                    cv.labels.add(float(row[f"x_{p}"]), float(row[f"y_{p}"]), _marked(p, mark), fontsize=10,
+                                  point=True)
         if view is not None:         # numbered in the enlarged view, not at the tiny crank
             view.draw(cv, study, rows, ext)
             return Drawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape, detail_mu=view.mu,
@@ -162,6 +169,15 @@ class PositionsPlan:
         groups = _position_groups(k, rows, num, cv.mm(0.5))
         path = np.array([[float(r[f"x_{num}"]), float(r[f"y_{num}"])] for r in rows])
         mid = np.array([np.mean(xs), np.mean(ys)])
+        own = next((it for it in cv.labels.items if num.rstrip("0123456789") and it.text == tex_point(num)
+                    and (it.x, it.y) == groups[0][:2]), None)
+        if own is not None:
+            # the drawn position's pin named once, by its number (A₀ for A: one label fewer in the
+            # crowd at a small crank), keeping its place in the placer's order
+            own.text = position_text(num, groups[0][2])
+            own.kw.update(fontsize=8, label=POSITION_NUMBER)
+            own.gap_mm = NUMBER_GAP_MM
+            groups = groups[1:]
         for x, y, names in groups:
             prefer = (x - cx, y - cy)
             if num != tip and len(path) > 1:
@@ -171,9 +187,30 @@ class PositionsPlan:
                 n = np.array([-t[1], t[0]])
                 prefer = tuple(n if n @ (np.array([x, y]) - mid) >= 0 else -n)
             # a character's width clear of every other label: «1» beside «3» reads as «13»
-            cv.labels.add(x, y, ", ".join(names), prefer=prefer, fontsize=8, gap_mm=NUMBER_GAP_MM,
+            cv.labels.add(x, y, position_text(num, names), prefer=prefer, fontsize=8, gap_mm=NUMBER_GAP_MM,
                           label=POSITION_NUMBER)
+        # the position numbers placed before the extreme positions' marks A′, A″ (which take the
+        # room of the neighbouring numbers at a small crank: the screen shaker's A₁ went 23 mm off)
+        items, n = cv.labels.items, len(groups)
+        if n:
+            items[first_mark:] = items[-n:] + items[first_mark:-n]
         return Drawing(cv.svg(), cv.width_mm, cv.mu, landscape=landscape)
+
+
+def _thin_lines(ax, lines: int, patches: int | None = None) -> None:
+    """The thin lines drawn since ``ax.lines[lines]`` (the other positions, the trajectories) made
+    ``breakable``: a label may interrupt them (ГОСТ 2.307, as hatching and centre lines at a
+    number) rather than sit far from its point on a leader; the unfilled plates drawn since
+    ``ax.patches[patches]`` redrawn as such lines (their outlines, same look)."""
+    if patches is not None:
+        for pt in list(ax.patches[patches:]):
+            if isinstance(pt, Polygon) and pt.get_facecolor()[3] == 0:
+                v = pt.get_xy()
+                ax.plot(v[:, 0], v[:, 1], color=pt.get_edgecolor(), lw=pt.get_linewidth(), zorder=pt.get_zorder(),
+                        solid_joinstyle="miter")
+                pt.remove()
+    for ln in ax.lines[lines:]:
+        ln.breakable = True
 
 
 def _position_groups(k, rows, p: str, near: float) -> list[tuple[float, float, list[str]]]:
@@ -191,6 +228,22 @@ def _position_groups(k, rows, p: str, near: float) -> list[tuple[float, float, l
         else:
             groups.append((x, y, [no]))
     return groups
+
+
+def position_text(p: str, names) -> str:
+    """The label of the numbered point ``p``'s positions ``names`` on a plan of positions, as
+    textbooks number a crank pin's positions (Артоболевский И. И. Теория механизмов и машин,
+    план положений): the point's letter with the position number as its index, A₀, A₁ … (coinciding
+    positions together, A₀,₁₂), so that a position is never read as a link number (plain digits on
+    the same drawing); a point with an index of its own (O₃) takes the numbers as an upper index in
+    brackets, O₃⁽⁵⁾; a point named by digits only (a joint named by its links, «56») has no letter:
+    the number alone in brackets, (5), apart from the link numbers."""
+    no = ",".join(names)
+    head = p.rstrip("0123456789")
+    sub = p[len(head):]
+    if not head:
+        return f"({', '.join(names)})"
+    return f"${head}_{{{sub}}}^{{({no})}}$" if sub else f"${head}_{{{no}}}$"
 
 
 def position_gap_mm(groups, mu: float) -> float:
@@ -212,10 +265,13 @@ LATIN_LOOK = {"А": "A", "В": "B", "Е": "E"}   # letters of the views that rea
 
 @dataclass
 class CrankView:
-    """The enlarged view of a crank too small for its position marks (ГОСТ 2.305 «выносной
+    """The enlarged view of an input too small for its position marks (ГОСТ 2.305 «выносной
     элемент», as the plans' views, :func:`scenes.plans.view_frame`): the region (``centre``,
     ``radius``, data units; clear of the pile of joint symbols) drawn ``k`` times larger in the
-    circle (``at``, ``r_view``), at the ГОСТ 2.302 scale ``mu`` (m/mm) written over it («Б (1:2)»)."""
+    circle (``at``, ``r_view``), at the ГОСТ 2.302 scale ``mu`` (m/mm) written over it («Б (1:2)»).
+    ``tip``: the numbered point (a crank's or an input rocker's pin, a cylinder's rod end or the
+    output point); ``path``: its trajectory (data units) when it does not run round the whole
+    circle of a crank (a rocker's arc, a point driven by a cylinder), else None."""
     centre: np.ndarray
     radius: float
     r_view: float
@@ -224,10 +280,12 @@ class CrankView:
     mu: float
     tip: str
     mark: str            # the view's letter
+    path: np.ndarray | None = None
 
     def draw(self, cv: Canvas, study, rows, ext) -> None:
-        """The crank circle, the crank in position 0 (bold), the crank pin's positions as hinges,
-        numbered A₀ … A₁₁ (coinciding ones together), the extreme positions A′, A″, and the frame."""
+        """The crank circle (a rocker's arc, a driven point's path), the crank or rocker in
+        position 0 (bold), the numbered point's positions as hinges, numbered A₀ … A₁₁ (coinciding
+        ones together), the extreme positions A′, A″, and the frame."""
         from .draw import gost_ratio
         from .labels import tex_point
         from .plans import view_frame, view_marks
@@ -235,21 +293,22 @@ class CrankView:
         to_view = lambda p: self.at + (np.asarray(p, float) - c) * k  # noqa: E731 - the view's similarity
         groups = _position_groups(study.kinematics, rows, tip, cv.mm(0.5) / k)
         r = float(np.hypot(*(np.array(groups[0][:2]) - c)))
-        ax.add_patch(Circle(self.at, r * k, fill=False, lw=0.6, color=INK, zorder=1))
+        if self.path is None:
+            ax.add_patch(Circle(self.at, r * k, fill=False, lw=0.6, color=INK, zorder=1))
+        else:
+            v = to_view(self.path)
+            ax.plot(v[:, 0], v[:, 1], lw=0.6, color=INK, zorder=1)
         a0 = to_view(groups[0][:2])
-        ax.plot([self.at[0], a0[0]], [self.at[1], a0[1]], lw=1.5, color=INK, zorder=4)
-        ax.plot([self.at[0]], [self.at[1]], marker="o", ms=4, mfc="white", mec=INK, mew=0.8, zorder=5)
-        cv.labels.add(self.at[0], self.at[1], tex_point(study.mechanism.driver.center), prefer=self.at - a0,
-                      fontsize=10, point=True)
-        head = tip.rstrip("0123456789") or tip
-        sub = tip[len(head):]
+        if study.mechanism.driver.rotary:        # the crank or rocker from its pivot, the view's centre
+            ax.plot([self.at[0], a0[0]], [self.at[1], a0[1]], lw=1.5, color=INK, zorder=4)
+            ax.plot([self.at[0]], [self.at[1]], marker="o", ms=4, mfc="white", mec=INK, mew=0.8, zorder=5)
+            cv.labels.add(self.at[0], self.at[1], tex_point(study.mechanism.driver.center), prefer=self.at - a0,
+                          fontsize=10, point=True)
         for x, y, names in groups:
             v = to_view((x, y))
             ax.plot([v[0]], [v[1]], marker="o", ms=3.5, mfc="white", mec=INK, mew=0.7, zorder=5)
-            no = ", ".join(names)
-            text = f"${head}_{{{sub}}}^{{({no})}}$" if sub else f"${head}_{{{no}}}$"
-            cv.labels.add(v[0], v[1], text, prefer=v - self.at, fontsize=8, gap_mm=NUMBER_GAP_MM,
-                          label=POSITION_NUMBER)
+            cv.labels.add(v[0], v[1], position_text(tip, names), prefer=v - self.at, fontsize=8,
+                          gap_mm=NUMBER_GAP_MM, label=POSITION_NUMBER)
         for mark, row in zip(("′", "″"), ext):
             v = to_view((float(row[f"x_{tip}"]), float(row[f"y_{tip}"])))
             ax.plot([v[0]], [v[1]], marker="o", ms=3.5, mfc=INK, mec=INK, zorder=5)
@@ -259,21 +318,27 @@ class CrankView:
 
 
 def crank_view(study, rows, cv: Canvas, centre, tip: str, coms) -> CrankView | None:
-    """The enlarged view a crank needs when its pin's numbered positions are closer than
-    POSITION_GAP_MM on paper: at the ГОСТ 2.302 scale of least enlargement that draws the crank
-    circle with a radius of VIEW_R_MM at least and its positions 2·POSITION_GAP_MM apart, in the
-    free place of the drawing found as for the plans' views (:func:`scenes.plans.free_place`)."""
+    """The enlarged view an input needs when the positions of its numbered point ``tip``
+    (:func:`numbered_point`) are closer than POSITION_GAP_MM on paper: at the ГОСТ 2.302 scale of
+    least enlargement that draws the crank circle (a rocker's arc about its pivot; for a cylinder
+    the point's path about the middle of its extent) with a radius of VIEW_R_MM at least and its
+    positions 2·POSITION_GAP_MM apart, in the free place of the drawing found as for the plans'
+    views (:func:`scenes.plans.free_place`)."""
     from .draw import GOST_K
     from .plans import INSET_MARKS, free_place
     mech = study.mechanism
-    if not mech.driver.rotary:
-        return None
     groups = _position_groups(study.kinematics, rows, tip, cv.mm(0.5))
     gap = position_gap_mm(groups, cv.mu)
     if gap >= POSITION_GAP_MM:
         return None
-    c = np.asarray(centre, float)
-    r_m = float(np.hypot(*(np.array(groups[0][:2]) - c)))
+    tr = study.cycle if study.has_cycle else study.kinematics
+    path = None if mech.driver.periodic else np.column_stack([tr[f"x_{tip}"], tr[f"y_{tip}"]]).astype(float)
+    if mech.driver.rotary:
+        c = np.asarray(centre, float)
+        r_m = float(np.hypot(*(np.array(groups[0][:2]) - c)))
+    else:
+        c = (path.min(axis=0) + path.max(axis=0)) / 2
+        r_m = float(np.hypot(*(path - c).T).max())
     fine = [q / 1000.0 for q in GOST_K if q / 1000.0 < cv.mu * (1 - 1e-9)
             and r_m / (q / 1000.0) >= VIEW_R_MM and gap * cv.mu / (q / 1000.0) >= 2 * POSITION_GAP_MM]
     if not fine:
@@ -303,7 +368,7 @@ def crank_view(study, rows, cv: Canvas, centre, tip: str, coms) -> CrankView | N
     # the first view letter that cannot be read as a point of the mechanism (not А beside a point A)
     names = {p for link in mech.links for p in link.points}
     mark = next((m for m in INSET_MARKS if LATIN_LOOK.get(m) not in names), INSET_MARKS[0])
-    return CrankView(c, radius, r_view, k, at * cv.mu, mu_v, tip, mark)
+    return CrankView(c, radius, r_view, k, at * cv.mu, mu_v, tip, mark, path)
 
 
 def numbered_point(mech, rows, tip: str, out: str) -> str:
