@@ -1925,6 +1925,40 @@ def _section_blocks(document, parent_el) -> list[list]:
     return out
 
 
+def _figure_box(document, page: int, key: str):
+    """``(flow box of page ``page``, box of the figure of entry ``key`` on it or None)``."""
+    fid = key[len(FIGURE_KEY):]
+    flow = _flow_box(document.pages[page])
+    fig = next((b for b in flow.descendants() if getattr(b, "element_tag", None) == "figure"
+                and b.element is not None and b.element.get("id") == fid), None) if flow is not None else None
+    return flow, fig
+
+
+def _decision_order(document, points: list, splits: dict) -> list:
+    """The decision points (:func:`_points`) in the order their decisions change the HTML: a
+    figure with text moved before it (entry ``[n, 1000]``, ``n > 0``) decides from where the
+    first of those blocks starts, so it comes before the tables among them (their layout is
+    the figure's decision's). Laid out after the figure, they would be decided first and a
+    changed figure entry would not undo what was proved of them."""
+    def where(point):
+        page, y, key = point
+        cur = _norm(key, splits.get(key)) if key.startswith(FIGURE_KEY) else None
+        if not cur or not cur[0]:
+            return point
+        flow, fig = _figure_box(document, page, key)
+        parent = _parent_of(flow, fig) if fig is not None else None
+        if parent is None:
+            return point
+        blocks = _section_blocks(document, parent.element)
+        at = next((n for n, b in enumerate(blocks) if b[0] is fig.element), None)
+        if at is None or at < cur[0]:
+            return point
+        first_page, top = blocks[at - cur[0]][4]
+        return (first_page, top - SPLIT_EPS, key)
+
+    return sorted(points, key=where)
+
+
 FIGURE_MARGIN = 0.5  # CSS px: a figure quantity this close to what a rule compares it with is not decided
 
 
@@ -1950,10 +1984,7 @@ def _figure_verdict(document, page: int, key: str, cur: list[int], bottoms: list
     if len(cur) != 2 or (cur[0] and cur[1] != 1000) or not (cur[0] or cur[1] < 1000):
         return _why(unknown, "entry not made by the rule")
     moved_n, s = int(cur[0]), int(cur[1])
-    fid = key[len(FIGURE_KEY):]
-    flow = _flow_box(document.pages[page])
-    fig = next((b for b in flow.descendants() if getattr(b, "element_tag", None) == "figure"
-                and b.element is not None and b.element.get("id") == fid), None) if flow is not None else None
+    flow, fig = _figure_box(document, page, key)
     if fig is None:
         return _why(unknown, "figure not found")
     land = "landscape" in (fig.element.get("class") or "")  # on a landscape page of its own
@@ -2082,7 +2113,7 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
         for name, pos in page.anchors.items():
             if name in rows and len(pos) >= 4:
                 table_tops.setdefault(name, pos[1])
-    points = _points(document, rows, boxes)
+    points = _decision_order(document, _points(document, rows, boxes), splits)
     new = {k: list(v) for k, v in splits.items()}
     changed = False
 
