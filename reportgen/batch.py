@@ -388,6 +388,19 @@ def _progress(total: int):
     return tqdm(total=total, file=sys.stderr, unit="вар.", desc="Отчёты")
 
 
+def _interleaved(variants: list[Variant], runs: int) -> list[Variant]:
+    """The variants in the order the workers take them: the table cut into ``runs`` runs of
+    neighbouring rows, one variant taken from each run in turn. The workers then build variants
+    from different parts of the table at a time, and each next variant of a run comes after its
+    neighbour: a class table varies its rows gradually, so neighbours share the note's sequence
+    of headings, figures and tables, whose split points the first of them finds and the next
+    takes as a guess (``render._start_splits``). Taken in table order, two workers built two
+    neighbours at once, each finding the same split points from none."""
+    size = -(-len(variants) // max(1, runs))
+    parts = [variants[i:i + size] for i in range(0, len(variants), size)]
+    return [p[k] for k in range(size) for p in parts if k < len(p)]
+
+
 def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
               formats: tuple[str, ...] = ("pdf", "html"), sections=None, key: bool = False,
               sheets: bool = False) -> list[Outcome]:
@@ -415,9 +428,10 @@ def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
         # Workers are started once and kept for the whole class (no max_tasks_per_child):
         # the warm-up in _init_worker is paid once per worker, not once per variant.
         ctx = multiprocessing.get_context("forkserver")
-        with ProcessPoolExecutor(max_workers=min(jobs, len(variants)), mp_context=ctx,
-                                 initializer=_init_worker) as ex:
-            futs = [ex.submit(run_variant, v, str(out_dir), formats, sections, key, sheets) for v in variants]
+        workers = min(jobs, len(variants))
+        with ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_init_worker) as ex:
+            futs = [ex.submit(run_variant, v, str(out_dir), formats, sections, key, sheets)
+                    for v in _interleaved(variants, workers)]
             for f in as_completed(futs):
                 results.append(f.result())
                 if bar:

@@ -49,3 +49,14 @@ def test_mathtext_cache_is_shared_and_gives_the_same_parse(monkeypatch):
     assert [g[1:] for g in after.glyphs] == [g[1:] for g in before.glyphs]
     raster = mathtext.MathTextParser("agg").parse(r"$\omega_{2}$", 72, FontProperties(size=10))
     assert type(raster).__name__ == "RasterParse"   # the output type is part of the key
+
+
+def test_workers_take_the_class_from_different_runs_of_neighbours():
+    """Two workers start on rows 1 and 5 of an 8-row class (not on neighbours, which found the
+    same split points from none at once), and each run goes on row after row (a neighbour's
+    split points a guess for the next); every variant once, a short last run included."""
+    rows = [f"{i:02d}" for i in range(1, 9)]
+    assert batch._interleaved(rows, 2) == ["01", "05", "02", "06", "03", "07", "04", "08"]
+    assert batch._interleaved(rows, 3) == ["01", "04", "07", "02", "05", "08", "03", "06"]
+    assert batch._interleaved(rows[:7], 2) == ["01", "05", "02", "06", "03", "07", "04"]
+    assert batch._interleaved(rows, 1) == rows and batch._interleaved(rows[:1], 2) == ["01"]
