@@ -51,12 +51,27 @@ def test_mathtext_cache_is_shared_and_gives_the_same_parse(monkeypatch):
     assert type(raster).__name__ == "RasterParse"   # the output type is part of the key
 
 
-def test_workers_take_the_class_from_different_runs_of_neighbours():
-    """Two workers start on rows 1 and 5 of an 8-row class (not on neighbours, which found the
-    same split points from none at once), and each run goes on row after row (a neighbour's
-    split points a guess for the next); every variant once, a short last run included."""
+def _order(runs: "batch._Runs", finishing: list[int]) -> list[tuple[int, str]]:
+    """The order the variants are taken in when the workers finish in the order ``finishing``
+    (a worker's index each time one finishes a variant)."""
+    taken = runs.first()
+    for r in finishing:
+        nxt = runs.next(r)
+        if nxt is None:
+            break
+        taken.append(nxt)
+    return taken
+
+
+def test_workers_take_the_class_in_runs_of_neighbours():
+    """Two workers start on rows 1 and 5 of an 8-row class (not on two neighbours, which found
+    the same split points from none at once); each goes on row after row of its run (the row
+    before it a guess of its split points), however fast; the one done first takes the last
+    rows of the other's run, backwards; every variant once."""
     rows = [f"{i:02d}" for i in range(1, 9)]
-    assert batch._interleaved(rows, 2) == ["01", "05", "02", "06", "03", "07", "04", "08"]
-    assert batch._interleaved(rows, 3) == ["01", "04", "07", "02", "05", "08", "03", "06"]
-    assert batch._interleaved(rows[:7], 2) == ["01", "05", "02", "06", "03", "07", "04"]
-    assert batch._interleaved(rows, 1) == rows and batch._interleaved(rows[:1], 2) == ["01"]
+    got = _order(batch._Runs(rows, 2), [1, 1, 0, 1, 1, 0, 0, 0])
+    assert got == [(0, "01"), (1, "05"), (1, "06"), (1, "07"), (0, "02"), (1, "08"), (1, "04"), (0, "03")]
+    assert sorted(v for _r, v in got) == rows
+    three = _order(batch._Runs(rows, 3), [0, 1, 2, 0, 1, 2, 0, 1])
+    assert [v for _r, v in three] == ["01", "04", "07", "02", "05", "08", "03", "06"]
+    assert _order(batch._Runs(rows[:1], 2), [0]) == [(0, "01")]
