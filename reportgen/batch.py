@@ -423,7 +423,7 @@ def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
     jobs = max(1, jobs or os.cpu_count() or 1)
     bar = _progress(len(variants))
     results: list[Outcome] = []
-    if jobs == 1 or len(variants) == 1:
+    if jobs == 1 or len(variants) <= 1:  # (an empty table: no pool, an empty manifest)
         from .report import parallel
         from .report.parallel import set_note_jobs
         if jobs == 1:

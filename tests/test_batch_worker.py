@@ -75,3 +75,20 @@ def test_workers_take_the_class_in_runs_of_neighbours():
     three = _order(batch._Runs(rows, 3), [0, 1, 2, 0, 1, 2, 0, 1])
     assert [v for _r, v in three] == ["01", "04", "07", "02", "05", "08", "03", "06"]
     assert _order(batch._Runs(rows[:1], 2), [0]) == [(0, "01")]
+
+
+def test_empty_class_table_gives_an_empty_manifest(tmp_path):
+    """A table with a header and no rows: no pool of workers (it failed with an internal error),
+    an empty manifest."""
+    import json
+
+    from conftest import CASES
+    from reportgen.cli import main
+
+    table = tmp_path / "v.csv"
+    table.write_text("variant,l_OA\n", encoding="utf-8")
+    rc = main(["batch", str(table), "--base", str(CASES / "ws000_six_bar.toml"), "-o", str(tmp_path / "o"),
+               "--jobs", "2", "--format", "html"])
+    assert rc == 0
+    m = json.loads((tmp_path / "o" / "manifest.json").read_text(encoding="utf-8"))
+    assert m["variants"] == [] and m["ok"] == 0 and m["failed"] == 0
