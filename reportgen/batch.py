@@ -16,7 +16,7 @@ import sys
 import time
 import re
 from collections.abc import Mapping
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
@@ -388,6 +388,33 @@ def _progress(total: int):
     return tqdm(total=total, file=sys.stderr, unit="вар.", desc="Отчёты")
 
 
+class _Runs:
+    """The order the workers take a class in: the table cut into one run of neighbouring rows
+    per worker; a worker that finished a variant takes the next of its run, and when its run is
+    done, the last of the longest run left (working backwards from there).
+
+    A class table varies its rows gradually, so a variant's neighbour shares its note's
+    sequence of headings, figures and tables, and the split points the neighbour's layout found
+    are a guess for its own (``render._start_splits``): a worker that builds a run row after
+    row takes every such guess from the row before. Taken in table order, two workers built
+    two neighbours at once, both finding the same split points from none."""
+
+    def __init__(self, variants: list, workers: int):
+        size = -(-len(variants) // max(1, workers))
+        self.runs = [list(variants[i:i + size]) for i in range(0, len(variants), size)]
+
+    def first(self) -> list[tuple[int, object]]:
+        """``(run, variant)`` for each worker to start with."""
+        return [(r, run.pop(0)) for r, run in enumerate(self.runs)]
+
+    def next(self, r: int) -> tuple[int, object] | None:
+        """``(run, variant)`` after a variant of run ``r`` is done, or ``None`` when all are taken."""
+        if self.runs[r]:
+            return r, self.runs[r].pop(0)
+        longest = max(range(len(self.runs)), key=lambda i: len(self.runs[i]))
+        return (r, self.runs[longest].pop()) if self.runs[longest] else None
+
+
 def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
               formats: tuple[str, ...] = ("pdf", "html"), sections=None, key: bool = False,
               sheets: bool = False) -> list[Outcome]:
@@ -396,7 +423,7 @@ def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
     jobs = max(1, jobs or os.cpu_count() or 1)
     bar = _progress(len(variants))
     results: list[Outcome] = []
-    if jobs == 1 or len(variants) == 1:
+    if jobs == 1 or len(variants) <= 1:  # (an empty table: no pool, an empty manifest)
         from .report import parallel
         from .report.parallel import set_note_jobs
         if jobs == 1:
@@ -415,13 +442,27 @@ def run_batch(variants: list[Variant], out_dir: Path, jobs: int | None = None,
         # Workers are started once and kept for the whole class (no max_tasks_per_child):
         # the warm-up in _init_worker is paid once per worker, not once per variant.
         ctx = multiprocessing.get_context("forkserver")
-        with ProcessPoolExecutor(max_workers=min(jobs, len(variants)), mp_context=ctx,
-                                 initializer=_init_worker) as ex:
-            futs = [ex.submit(run_variant, v, str(out_dir), formats, sections, key, sheets) for v in variants]
-            for f in as_completed(futs):
-                results.append(f.result())
-                if bar:
-                    bar.update()
+        # One variant in flight per worker, so the next one submitted goes to the worker that
+        # just finished one: the next variant of its run (_Runs).
+        workers = min(jobs, len(variants))
+        runs = _Runs(variants, workers)
+        with ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_init_worker) as ex:
+            def submit(task):
+                r, v = task
+                pending[ex.submit(run_variant, v, str(out_dir), formats, sections, key, sheets)] = r
+
+            pending: dict = {}
+            for task in runs.first():
+                submit(task)
+            while pending:
+                done, _ = wait(pending, return_when=FIRST_COMPLETED)
+                for f in done:
+                    results.append(f.result())
+                    task = runs.next(pending.pop(f))
+                    if task is not None:
+                        submit(task)
+                    if bar:
+                        bar.update()
     if bar:
         bar.close()
     order = {v.name: i for i, v in enumerate(variants)}

@@ -102,6 +102,22 @@ def test_shape_key_ignores_numbers_and_images():
     assert render._split_key(a) != render._split_key(b)
 
 
+def test_skeleton_key_keeps_only_headings_figures_and_tables_in_order():
+    """The coarser key of a guess: the same for another text (a paragraph more, other words),
+    another for a figure on a page of its own (class ``landscape``), a figure moved past a
+    table, or another table."""
+    fig = '<figure class="fig" id="fig-a"><img src="data:image/svg+xml;base64,QUJD"></figure>'
+    tab = '<table class="tbl"><tr class="cap" id="tab-b"><td>Таблица</td></tr><tr data-row="t__r0"></tr></table>'
+    head = '<h2 class="numbered" id="sec-x">2.1 Кинематика</h2>'
+    a = head + "<p>Текст.</p>" + fig + "<p>Ещё.</p>" + tab
+    key = render._skeleton_key
+    assert key(a) == key(head + "<p>Другой текст, длиннее.</p><p>И абзац.</p>" + fig + tab)
+    assert key(a) != key(a.replace('class="fig"', 'class="fig landscape"'))
+    assert key(a) != key(head + tab + fig)
+    assert key(a) != key(a.replace("tab-b", "tab-c"))
+    assert render._shape_key(a) != render._shape_key(a.replace("Ещё.", "Ещё.</p><p>Абзац."))
+
+
 # ---------------------------------------------------------------- real layouts (WeasyPrint)
 
 
@@ -165,6 +181,35 @@ def test_wrong_guess_costs_passes_never_a_page(empty_cache):
         f.write_text("{damaged", encoding="utf-8")
     cold, cold_passes, cold_splits = _pdf(other, tmp / "b-cold.pdf")
     assert cold_passes == [2] and cold_splits == splits and cold == guessed
+
+
+def _report_with_tail(tail: int) -> Report:
+    """:func:`_report` with ``tail`` paragraphs after its table (a note with more text at the end)."""
+    report = _report(1.0)
+    for _ in range(tail):
+        report.sections[0].paragraph("Вывод по таблице, который занимает место после неё.")
+    return report
+
+
+def test_other_text_after_a_table_takes_the_guess_of_the_same_skeleton(empty_cache):
+    """A note with a paragraph more after its table (another shape key: the neighbour's split
+    points are not found under it) starts from the split points of the note with the same
+    headings, figures and tables (the skeleton key): laid out once, where from none it takes
+    two layouts, and the bytes of that note built with nothing remembered."""
+    tmp = empty_cache
+    _a, a_passes, a_splits = _pdf(_report_with_tail(2), tmp / "a.pdf")
+    assert a_passes == [2] and a_splits["t"]
+    b = _report_with_tail(3)
+    one = render._views(b, for_print=True, splits={})
+    html = one.html(front=False, body=[one.ctx["body"][0]], chunk=True)
+    assert render._recall_splits(render._shape_key(html)) is None
+    guessed, b_passes, b_splits = _pdf(b, tmp / "b.pdf")
+    assert b_passes == [1]
+    render._SPLIT_MEMO.clear()
+    (tmp / "cache").rename(tmp / "old")
+    cold, cold_passes, cold_splits = _pdf(b, tmp / "b-cold.pdf")
+    assert cold_passes == [2]
+    assert b_splits == cold_splits and guessed == cold
 
 
 def test_real_variant_after_another(empty_cache):

@@ -148,7 +148,7 @@ class _Task:
     key: str = ""
     start: str = ""  # the split points are remembered: "known" (this HTML) or "guess" (render._start_splits)
     passes: int = 0  # layout passes made before (by an early worker, see start_pool)
-    shape: str = ""
+    shape: tuple = ()  # the keys its split points are remembered under as a guess (render._start_splits)
     state: dict = field(default_factory=dict)  # of the fast passes (render._settle_step)
 
 
@@ -170,7 +170,7 @@ class _Laid:
     start: str = ""  # the remembered split points kept ("known", "guess") or none ("")
     refused: list = field(default_factory=list)  # URLs the fetcher refused (safety.refused)
     resplit: dict | None = None  # an early worker asks for the part rendered with these split points
-    shape: str = ""
+    shape: tuple = ()
     state: dict = field(default_factory=dict)  # of the fast passes, sent back with a resplit
 
 
@@ -317,7 +317,7 @@ class PartsJob:
         views = _views(report, for_print=True, splits={})
         body = views.ctx["body"]
         bare = [views.html(front=False, body=[node], chunk=True) for node in body]
-        starts = [_start_splits(h) for h in bare]  # (key, shape, split points, start) per part
+        starts = [_start_splits(h) for h in bare]  # (key, guess keys, split points, start) per part
         known = [{tid: cuts for tid, cuts in s[2].items() if f'id="{split_target(tid)}"' in h}  # its own tables and figures
                  for s, h in zip(starts, bare)]
         splits = {tid: cuts for part in known for tid, cuts in part.items()}

@@ -1243,6 +1243,21 @@ def _shape_key(html: str) -> str:
     return h.hexdigest()
 
 
+_SKELETON = re.compile(r"<(?:h[1-6]|figure|tr)\b[^>]*\bid=\"[^\"]*\"[^>]*>")
+
+
+def _skeleton_key(html: str) -> str:
+    """Key of a coarser guess of the split points: the headings, figures (with their classes:
+    a landscape one has a page of its own) and tables (their caption rows) of the print HTML, by
+    id and in order, whatever the text between them. A variant whose text differs from the
+    notes built before (a paragraph more, a figure drawn on a portrait page) takes the split
+    points of one with the same sequence: the first variant of a class from its base case, a
+    note from a neighbour with a sentence more. Only a guess, checked as the shape key's is."""
+    h = hashlib.sha256(f"skeleton|{_SPLIT_CACHE_VERSION}|{weasyprint_version()}|".encode())
+    h.update("".join(_SKELETON.findall(html)).encode("utf-8"))
+    return h.hexdigest()
+
+
 def _split_file(key: str) -> Path | None:
     """``<cache>/splits/<key>.json`` in the cache folder of the formulas (REPORTGEN_CACHE or
     XDG_CACHE_HOME/reportgen; none when the cache is off)."""
@@ -1283,18 +1298,20 @@ def _remember_splits(key: str, splits: dict[str, list[int]]) -> None:
         pass  # a read-only cache folder is no reason to fail a report
 
 
-def _start_splits(html: str) -> tuple[str, str, dict[str, list[int]], str]:
-    """``(key, shape, splits, start)`` for the unsplit print HTML of a note or part: the split
+def _start_splits(html: str) -> tuple[str, tuple[str, ...], dict[str, list[int]], str]:
+    """``(key, guesses, splits, start)`` for the unsplit print HTML of a note or part: the split
     points remembered under its exact key (``start`` "known"), else those of a similar HTML
-    under its shape key (:func:`_shape_key`, ``start`` "guess"), else none (""). A known start
-    is kept when its layout is a fixed point of :func:`_next_splits`, a guess only when
-    :func:`_settle_step` proves it or sets it right (:func:`_next_pass`)."""
-    key, shape = _split_key(html), _shape_key(html)
+    under its shape key (:func:`_shape_key`) or, failing that, its skeleton key
+    (:func:`_skeleton_key`; ``start`` "guess"), else none (""). ``guesses``: the keys the result
+    is remembered under as a guess. A known start is kept when its layout is a fixed point of
+    :func:`_next_splits`, a guess only when :func:`_settle_step` proves it or sets it right
+    (:func:`_next_pass`)."""
+    key, guesses = _split_key(html), (_shape_key(html), _skeleton_key(html))
     known = _recall_splits(key)
     if known:
-        return key, shape, known, "known"
-    guess = _recall_splits(shape)
-    return key, shape, guess or {}, "guess" if guess else ""
+        return key, guesses, known, "known"
+    guess = next((g for g in map(_recall_splits, guesses) if g), None)
+    return key, guesses, guess or {}, "guess" if guess else ""
 
 
 COLD_PASSES = 6  # passes from none that change every point at once before the checked ones
@@ -1326,14 +1343,15 @@ def _next_pass(document, splits: dict[str, list[int]], start: str, state: dict):
     return _settle_step(document, splits, state), start
 
 
-def _remember_result(key: str, shape: str, splits: dict[str, list[int]], start: str) -> None:
-    """Remember the canonical split points under the exact key, and under the shape key as a
-    guess for a similar HTML (checked there by :func:`_settle_step`, so a guess only saves
-    passes)."""
+def _remember_result(key: str, guesses, splits: dict[str, list[int]], start: str) -> None:
+    """Remember the canonical split points under the exact key, and under the keys of a guess
+    (:func:`_start_splits`) for a similar HTML (checked there by :func:`_settle_step`, so a
+    guess only saves passes)."""
     if not splits or start == "known":
         return
     _remember_splits(key, splits)
-    _remember_splits(shape, splits)
+    for g in guesses:
+        _remember_splits(g, splits)
 
 
 def _named_rows(page) -> dict[str, tuple[float, float, float, float]]:
@@ -1951,6 +1969,40 @@ def _section_blocks(document, parent_el) -> list[list]:
     return out
 
 
+def _figure_box(document, page: int, key: str):
+    """``(flow box of page ``page``, box of the figure of entry ``key`` on it or None)``."""
+    fid = key[len(FIGURE_KEY):]
+    flow = _flow_box(document.pages[page])
+    fig = next((b for b in flow.descendants() if getattr(b, "element_tag", None) == "figure"
+                and b.element is not None and b.element.get("id") == fid), None) if flow is not None else None
+    return flow, fig
+
+
+def _decision_order(document, points: list, splits: dict) -> list:
+    """The decision points (:func:`_points`) in the order their decisions change the HTML: a
+    figure with text moved before it (entry ``[n, 1000]``, ``n > 0``) decides from where the
+    first of those blocks starts, so it comes before the tables among them (their layout is
+    the figure's decision's). Laid out after the figure, they would be decided first and a
+    changed figure entry would not undo what was proved of them."""
+    def where(point):
+        page, y, key = point
+        cur = _norm(key, splits.get(key)) if key.startswith(FIGURE_KEY) else None
+        if not cur or not cur[0]:
+            return point
+        flow, fig = _figure_box(document, page, key)
+        parent = _parent_of(flow, fig) if fig is not None else None
+        if parent is None:
+            return point
+        blocks = _section_blocks(document, parent.element)
+        at = next((n for n, b in enumerate(blocks) if b[0] is fig.element), None)
+        if at is None or at < cur[0]:
+            return point
+        first_page, top = blocks[at - cur[0]][4]
+        return (first_page, top - SPLIT_EPS, key)
+
+    return sorted(points, key=where)
+
+
 FIGURE_MARGIN = 0.5  # CSS px: a figure quantity this close to what a rule compares it with is not decided
 
 
@@ -1976,10 +2028,7 @@ def _figure_verdict(document, page: int, key: str, cur: list[int], bottoms: list
     if len(cur) != 2 or (cur[0] and cur[1] != 1000) or not (cur[0] or cur[1] < 1000):
         return _why(unknown, "entry not made by the rule")
     moved_n, s = int(cur[0]), int(cur[1])
-    fid = key[len(FIGURE_KEY):]
-    flow = _flow_box(document.pages[page])
-    fig = next((b for b in flow.descendants() if getattr(b, "element_tag", None) == "figure"
-                and b.element is not None and b.element.get("id") == fid), None) if flow is not None else None
+    flow, fig = _figure_box(document, page, key)
     if fig is None:
         return _why(unknown, "figure not found")
     land = "landscape" in (fig.element.get("class") or "")  # on a landscape page of its own
@@ -2108,7 +2157,7 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
         for name, pos in page.anchors.items():
             if name in rows and len(pos) >= 4:
                 table_tops.setdefault(name, pos[1])
-    points = _points(document, rows, boxes)
+    points = _decision_order(document, _points(document, rows, boxes), splits)
     new = {k: list(v) for k, v in splits.items()}
     changed = False
 
@@ -2354,7 +2403,7 @@ def _layout(report: Report, font_config):
     splits: dict[str, list[int]] = {}
     stats = RenderStats()
     document = None
-    key = shape = None
+    key, guesses = None, ()
     start = ""
     views = _views(report, for_print=True, splits=splits)
     state: dict = {}  # of the fast passes (_settle_step)
@@ -2366,7 +2415,7 @@ def _layout(report: Report, font_config):
             # The same report laid out again (batch re-runs, determinism checks), or a similar
             # one (another variant, a changed length), starts from split points remembered;
             # they are kept only when the passes from none provably give them.
-            key, shape, splits, start = _start_splits(html)
+            key, guesses, splits, start = _start_splits(html)
             if start:
                 views.builder.resplit(splits)
                 html = _checked_html(views)
@@ -2385,7 +2434,7 @@ def _layout(report: Report, font_config):
     else:
         log.warning("Разбиение таблиц не сошлось за %d проходов", MAX_PASSES)
     if key is not None:
-        _remember_result(key, shape, splits, start)
+        _remember_result(key, guesses, splits, start)
     stats.pages = len(document.pages)
     stats.splits = splits
     return document, stats
