@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+from itertools import accumulate
 
 import pandas as pd
 
@@ -84,12 +85,22 @@ def q_header(study) -> tuple[str, str, str, dict]:
     return "q", "<i>S</i>", "м", dict(digits=3)
 
 
+def balanced_parts(n: int, most: int = MAX_COLS) -> list[int]:
+    """Widths of the parts when ``n`` columns split into the fewest parts of at most ``most``
+    columns: nearly equal, the wider first (13 at 6 → 5, 4, 4)."""
+    parts = max(1, math.ceil(n / max(1, most)))
+    return [n // parts + (1 if k < n % parts else 0) for k in range(parts)]
+
+
 def chunked_tables(sec: Section, caption: str, df: pd.DataFrame, columns: list[Column], lead: list[Column],
                    id_prefix: str, per: int = MAX_COLS, note: str | None = None) -> list[str]:
     """Split a wide table into tables of at most ``per`` data columns, each with the lead
-    columns repeated; returns the ids. ``note`` goes under the last part."""
+    columns repeated; returns the ids. ``note`` goes under the last part. The parts are of
+    nearly equal width (9 columns at
+    ``per`` = 8 → 5 + 4, never 8 + a part of one column)."""
     ids = []
-    chunks = [columns[i:i + per] for i in range(0, len(columns), per)] or [[]]
+    ends = list(accumulate([0] + balanced_parts(len(columns), per)))
+    chunks = [columns[a:b] for a, b in zip(ends[:-1], ends[1:])] or [[]]
     for k, ch in enumerate(chunks):
         tid = f"{id_prefix}-{k + 1}" if len(chunks) > 1 else id_prefix
         cap = caption if len(chunks) == 1 else f"{caption} (часть\u00a0{k + 1})"  # «1)» never alone on a line

@@ -24,7 +24,7 @@ from ...style.numbers import fmt, fmt_given, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import condition_html, expr_html, plural
-from .common import (MAX_COLS, as_written, chosen_position, chunked_tables, html_point, sub, tex_point, pos_fmt,
+from .common import (as_written, chosen_position, chunked_tables, html_point, sub, tex_point, pos_fmt,
                      pos_no)
 
 NEEDS = ("kinematics", "cycle", "dynamics")
@@ -130,12 +130,6 @@ def _clean(df: pd.DataFrame) -> pd.DataFrame:
             big = float(np.nanmax(np.abs(v))) if v.size else 0.0
             out[c] = np.where(np.abs(v) <= 1e-12 * big, 0.0, v)
     return out
-
-
-def _per(n: int, most: int = MAX_COLS) -> int:
-    """Columns per part so that a wide table splits into parts of nearly equal width."""
-    parts = max(1, math.ceil(n / most))
-    return max(1, math.ceil(n / parts))
 
 
 def _ratio(u: float) -> str:
@@ -457,8 +451,7 @@ def _inertia(sec, study, d, tab, lab, row, kv, lead) -> None:
     s.formula(*fs)
     cols = [Column("J_II_" + il.name, _h("J", "II," + il.name), "кг·м²", sig=4) for il in d.model.links]
     cols += [Column("J_II", _h("J", "II"), "кг·м²", sig=5), Column("dJ_II", "<i>dJ</i><sub>II</sub>/<i>dφ</i>", "кг·м²", sig=4)]
-    ids = chunked_tables(s, "Приведённый момент инерции второй группы звеньев", tab, cols, lead, "tab-dyn-J",
-                         per=_per(len(cols)))
+    ids = chunked_tables(s, "Приведённый момент инерции второй группы звеньев", tab, cols, lead, "tab-dyn-J")
     fig = InertiaCurves().draw(study)
     s.paragraph(f"Значения по положениям — в таблице {ref(ids[0])}, график {_im('J2')} "
                 f"с вкладом каждого звена — на рисунке {ref('fig-dyn-J')}.")
@@ -517,7 +510,7 @@ def _moments(sec, study, d, tab, lab, row, kv, lead) -> None:
     cols = [Column("M_" + ld.name, _h("M", ld.name), "Н·м", sig=4) for ld in working]
     cols += [Column("M_c", _h("M", "с"), "Н·м", sig=4), Column("M_d", _h("M", "д"), "Н·м", sig=4),
              Column("M_sum", _h("M", "Σ"), "Н·м", sig=4)]
-    ids = chunked_tables(s, "Приведённые моменты сил", tab, cols, lead, "tab-dyn-M", per=_per(len(cols)))
+    ids = chunked_tables(s, "Приведённые моменты сил", tab, cols, lead, "tab-dyn-M")
     fig = MomentCurves().draw(study)
     s.paragraph(f"Приведённые моменты по положениям — в таблице {ref(ids[0])}, их графики — на рисунке "
                 f"{ref('fig-dyn-M')}.")
@@ -825,12 +818,10 @@ def _motion(sec, study, d, tab, mot, lab, row, lead) -> None:
                 f"{_im('ek')}.")
     tv = [Column(f"v_{p}", sub("V", p), "м/с", sig=4) for p in pts]
     tv += [Column(f"w_{k}", sub("ω", k), "рад/с", sig=4) for k in links]
-    chunked_tables(s, "Истинные скорости точек и угловые скорости звеньев", mot, tv, lead, "tab-dyn-v",
-                   per=_per(len(tv)))
+    chunked_tables(s, "Истинные скорости точек и угловые скорости звеньев", mot, tv, lead, "tab-dyn-v")
     ta = [Column(f"a_{p}", sub("a", p), "м/с²", sig=4) for p in pts]
     ta += [Column(f"e_{k}", sub("ε", k), "рад/с²", sig=4) for k in links]
-    chunked_tables(s, "Истинные ускорения точек и угловые ускорения звеньев", mot, ta, lead, "tab-dyn-a",
-                   per=_per(len(ta)))
+    chunked_tables(s, "Истинные ускорения точек и угловые ускорения звеньев", mot, ta, lead, "tab-dyn-a")
 
 
 def comparison_block(sec, study) -> None:
