@@ -132,3 +132,14 @@ def test_numerals_agree_with_nouns(path, notes):
 def test_page_fill(path, notes):
     pdf, _, _ = notes(path)
     assert short_pages(pdf) == []
+
+
+@pytest.mark.parametrize("path", ALL)
+def test_every_source_of_the_list_is_cited(path, notes):
+    """ГОСТ 7.32: each source of the list is cited in the text as [n] (ГОСТ 2.770 and ГОСТ 7.32
+    stood in every list and were cited nowhere)."""
+    from reportgen.report.assemble import REFERENCES
+    _, text, _ = notes(path)
+    body = text.rsplit("СПИСОК ИСПОЛЬЗОВАННЫХ ИСТОЧНИКОВ", 1)[0]
+    cited = {int(n) for g in re.findall(r"\[(\d+(?:,\s*\d+)*)\]", body) for n in re.split(r",\s*", g)}
+    assert cited == set(range(1, len(REFERENCES) + 1))

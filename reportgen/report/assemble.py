@@ -362,6 +362,12 @@ def _determined(study, names) -> str:
     return ", ".join(what[:-1]) + (", и " if "," in what[-2] else " и ") + what[-1]
 
 
+def _cite(start: str) -> int:
+    """The number [n] of the reference whose entry begins with ``start`` (the list's order)."""
+    start = _typeset(start)
+    return next(k for k, r in enumerate(REFERENCES, 1) if r.startswith(start))
+
+
 def _introduction(study, names, built) -> list:
     st = study.structure if study.has_linkage else None
     parts = [Paragraph(
@@ -380,7 +386,9 @@ def _introduction(study, names, built) -> list:
         mech = ""
         method = (" Расчёты выполнены аналитически по точным формулам; графические построения выполнены в "
                   "масштабе и сопоставлены с аналитическими результатами.")
-    parts.append(Paragraph(f"В пояснительной записке выполнены: {what}.{mech}{method}"))
+    rules = (f" Схемы выполнены условными графическими обозначениями по ГОСТ\u00a02.770 [{_cite('ГОСТ 2.770')}], "
+             f"записка оформлена по ГОСТ\u00a07.32 [{_cite('ГОСТ 7.32')}].")
+    parts.append(Paragraph(f"В пояснительной записке выполнены: {what}.{mech}{method}{rules}"))
     if "dynamics" in names:
         chain = SECTIONS["dynamics"][0].drive_chain(study)
         if chain:
