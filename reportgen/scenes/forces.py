@@ -1286,8 +1286,10 @@ class CapacityCurves:
 
 
 class AxleCurves:
-    """Worksheet 002, figure 6.2: the shares of the weight on the steered and the rear axle
-    and the maximum capacity (corrected, self-consistent, and as printed in the worksheet)."""
+    """Worksheet 002, figure 6.2: the share of the weight on the steered axle and the maximum
+    capacity G_max (R_A,min of the nominal load) and G*_max (R_A ≥ k_A·ΣG with the load itself),
+    as the note's formulas name them. The worksheet's own (wrong) G_max is the answer key's, not
+    the student's figure."""
 
     needs = ("forces",)
 
@@ -1298,14 +1300,13 @@ class AxleCurves:
         S = cyc["q"].to_numpy()
         fig = mplstyle.figure(160, 130)
         ax1, ax2 = fig.subplots(2, 1, sharex=True)
-        ax1.plot(S, cyc["front_share_pct"], lw=1.3, label="управляемый мост R_A")
+        ax1.plot(S, cyc["front_share_pct"], lw=1.3, label="управляемый мост $R_A$")
         ax1.plot(tab["q"], tab["front_share_pct"], "o", ms=3)
         ax1.axhline(100 * c.min_share, color=RED, lw=1.0, ls="--", label="наименьшая допустимая доля")
-        ax1.set_ylabel("R_A/ΣG, %")
+        ax1.set_ylabel(r"$R_A/\Sigma G$, %")
         ax1.legend(fontsize=8, loc="best")
-        ax2.plot(S, cyc["Gmax_carrier"] / 1e3, lw=1.3, label="G_max (исправлено)")
-        ax2.plot(S, cyc["Gmax_carrier_consistent"] / 1e3, lw=1.1, ls="-.", label="G_max при R_A,min(G)")
-        ax2.plot(S, cyc["Gmax_carrier_as_printed"] / 1e3, lw=1.0, ls=":", color=GREY, label="как в листе")
+        ax2.plot(S, cyc["Gmax_carrier"] / 1e3, lw=1.3, label=r"$G_{\mathrm{max}}$")
+        ax2.plot(S, cyc["Gmax_carrier_consistent"] / 1e3, lw=1.1, ls="-.", label=r"$G^{*}_{\mathrm{max}}$")
         ax2.set_ylabel("G, кН")
         ax2.set_xlabel("S, м")
         ax2.legend(fontsize=8, loc="best")
