@@ -1,0 +1,50 @@
+"""Caches of the section and figure building (issue #15) give what the plain paths give, and do
+save the work they are for: text extents measured through savefig's MixedModeRenderer come from
+the shared SVG cache (a second figure of the same texts measures nothing again) and equal a new
+SVG renderer's."""
+from __future__ import annotations
+
+import io
+
+import numpy as np
+from matplotlib.backends.backend_mixed import MixedModeRenderer
+from matplotlib.backends.backend_svg import RendererSVG
+from matplotlib.font_manager import FontProperties
+
+from reportgen.style import mplstyle
+
+
+def _chart():
+    fig = mplstyle.figure(120, 80)
+    ax = fig.add_subplot()
+    x = np.linspace(0, 360, 37)
+    ax.plot(x, np.sin(np.radians(x)), label=r"$M_{\Sigma}$")
+    ax.legend()
+    ax.set_xlabel("φ, град")
+    ax.set_ylabel(r"$A$, Дж")
+    return fig
+
+
+def test_savefig_measures_each_text_once_per_process(monkeypatch):
+    from matplotlib import textpath
+
+    first = mplstyle.to_svg(_chart())
+    calls = []
+    measure = textpath.TextToPath.get_text_width_height_descent
+    monkeypatch.setattr(textpath.TextToPath, "get_text_width_height_descent",
+                        lambda self, *a: calls.append(a) or measure(self, *a))
+    assert mplstyle.to_svg(_chart()) == first
+    assert calls == []
+
+
+def test_mixed_mode_renderer_extents_are_the_svg_renderers():
+    from matplotlib import text as mtext
+
+    mplstyle.apply_style()
+    fig = mplstyle.figure(50, 50)
+    for s, math in (("φ, град", False), ("−0,25", False), (r"$J_{II}$, кг·м²", True)):
+        prop = FontProperties(size=10, family="serif")
+        mixed = MixedModeRenderer(fig, 1, 1, 72, RendererSVG(100, 100, io.StringIO()))
+        got = mtext._get_text_metrics_with_cache(mixed, s, prop, math, 72)
+        want = RendererSVG(100, 100, io.StringIO()).get_text_width_height_descent(s, prop, math)
+        assert got == want
