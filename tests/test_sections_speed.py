@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import io
 
+import matplotlib
 import numpy as np
 from matplotlib.backends.backend_mixed import MixedModeRenderer
 from matplotlib.backends.backend_svg import RendererSVG
@@ -48,3 +49,36 @@ def test_mixed_mode_renderer_extents_are_the_svg_renderers():
         got = mtext._get_text_metrics_with_cache(mixed, s, prop, math, 72)
         want = RendererSVG(100, 100, io.StringIO()).get_text_width_height_descent(s, prop, math)
         assert got == want
+
+
+def _clear_slim_caches():
+    from reportgen.style import svgslim
+    for fn in (svgslim._transform, svgslim._parsed, svgslim._placed):
+        fn.cache_clear()
+
+
+def test_slim_with_its_caches_writes_what_it_writes_without():
+    """The text paths of a figure slimmed with the glyph caches cold, warm (the same texts in
+    another figure) and bypassed (each glyph parsed and written anew) are the same bytes."""
+    from reportgen.style import svgslim
+
+    fig = _chart()
+    buf = io.BytesIO()
+    with matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": mplstyle.SVG_HASHSALT}):
+        fig.savefig(buf, format="svg", metadata={"Date": None})
+    raw = buf.getvalue()
+    _clear_slim_caches()
+    cold = svgslim.slim(raw)
+    assert svgslim._placed.cache_info().currsize > 0
+    warm = svgslim.slim(raw)
+    assert svgslim._placed.cache_info().hits > 0
+    placed, parsed, transform = svgslim._placed, svgslim._parsed, svgslim._transform
+    try:
+        svgslim._placed = lambda d, m: svgslim._write_path(svgslim._parse_path(d), m)
+        svgslim._parsed = svgslim._parse_path
+        svgslim._transform = transform.__wrapped__
+        plain = svgslim.slim(raw)
+    finally:
+        svgslim._placed, svgslim._parsed, svgslim._transform = placed, parsed, transform
+    assert cold == warm == plain
+    assert b"<use" not in plain
