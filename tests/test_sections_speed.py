@@ -82,3 +82,38 @@ def test_slim_with_its_caches_writes_what_it_writes_without():
         svgslim._placed, svgslim._parsed, svgslim._transform = placed, parsed, transform
     assert cold == warm == plain
     assert b"<use" not in plain
+
+
+def _segments(rng, n):
+    a = rng.uniform(0, 400, (n, 2))
+    d = rng.normal(0, 12, (n, 2))
+    d[: n // 10] *= 25                        # long ones
+    d[rng.random(n) < 0.2, 0] = 0.0            # vertical
+    d[rng.random(n) < 0.2, 1] = 0.0            # horizontal
+    d[rng.random(n) < 0.03] = 0.0              # points
+    d[rng.random(n) < 0.05] *= 1e-13           # shorter than the parallel tolerance
+    segs = np.hstack([a, a + d])
+    segs[rng.random(n) < 0.01, 2] = np.nan     # non-finite ends
+    segs[rng.random(n) < 0.01, 1] = np.inf
+    segs[rng.random(n) < 0.01, 3] = -np.inf
+    return segs
+
+
+def test_clip_kernels_count_as_the_numpy_forms():
+    """The placer's compiled clipping (reportgen.core.clip) against the NumPy forms it replaced:
+    the same count for every rectangle and every leader, whatever the segments."""
+    from reportgen.scenes import labels as L
+
+    rng = np.random.default_rng(11)
+    for n in (0, 1, 7, 60, 2500):
+        segs = _segments(rng, n)
+        index = L._Segs(segs)
+        for _ in range(300):
+            x, y = rng.uniform(-20, 420, 2)
+            w, h = rng.uniform(0, 40, 2) * (rng.random() < 0.9)
+            box = L._Box(x, y, x + w, y + h)
+            assert index.crossings(box) == index.crossings_numpy(box) == L._crossings(segs, box)
+            lead = [x, y, *rng.uniform(-20, 420, 2)]
+            if rng.random() < 0.2:
+                lead[2] = lead[0]              # vertical leader
+            assert index.cuts(lead) == index.cuts_numpy(lead)
