@@ -117,3 +117,18 @@ def test_clip_kernels_count_as_the_numpy_forms():
             if rng.random() < 0.2:
                 lead[2] = lead[0]              # vertical leader
             assert index.cuts(lead) == index.cuts_numpy(lead)
+
+
+def test_clip_warm_compiles_what_the_placer_calls():
+    """``clip.warm`` (run by ``reportgen warmup`` and each batch worker) compiles the kernels
+    for the very argument types the placer passes: placing labels compiles nothing more."""
+    from reportgen.core import clip
+    from reportgen.scenes import labels as L
+
+    clip.warm()
+    before = (len(clip.crossings.signatures), len(clip.cuts.signatures))
+    index = L._Segs(_segments(np.random.default_rng(3), 50))
+    index.crossings(L._Box(10.0, 10.0, 60.0, 40.0))
+    index.crossings(L._Box(np.float64(10), 10, 60, 40))
+    index.cuts([0, 0, 200.0, 150.0])
+    assert (len(clip.crossings.signatures), len(clip.cuts.signatures)) == before

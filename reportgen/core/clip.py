@@ -141,3 +141,11 @@ def cuts(short, short_x, short_px, rest, rest_odd, ax_, ay_, bx_, by_):
         if not rest_odd[i]:
             n += _cut(rest, i, ax_, ay_, bx_, by_, x0, y0, x1, y1)
     return n
+
+
+def warm() -> None:
+    """Compile (or load) both kernels for the argument types ``labels._Segs`` passes, so that
+    the first note after setup does not compile them in each of its section workers."""
+    segs, xs, odd = np.zeros((0, 4)), np.zeros(0), np.zeros(0, dtype=np.bool_)
+    crossings(segs, xs, 24.0, segs, odd, 0.0, 0.0, 1.0, 1.0)
+    cuts(segs, xs, 24.0, segs, odd, 0.0, 0.0, 1.0, 1.0)
