@@ -132,3 +132,44 @@ def test_clip_warm_compiles_what_the_placer_calls():
     index.crossings(L._Box(np.float64(10), 10, 60, 40))
     index.cuts([0, 0, 200.0, 150.0])
     assert (len(clip.crossings.signatures), len(clip.cuts.signatures)) == before
+
+
+def test_brentq_finds_scipys_roots_to_the_bit():
+    """reportgen.analysis.roots.brentq against scipy.optimize.brentq: the same root (==) on
+    smooth, steep, flat and kinked functions, brackets either way round, tight and loose
+    tolerances, roots at an end; the same errors."""
+    import math
+
+    import pytest
+    from scipy import optimize
+
+    from reportgen.analysis.roots import brentq
+
+    rng = np.random.default_rng(5)
+    fns = [lambda x: math.cos(x) - x, lambda x: x ** 3 - 2 * x - 5, lambda x: math.exp(x) - 3.7,
+           lambda x: math.atan(50 * (x - 0.3)), lambda x: (x - 0.7) ** 3, lambda x: abs(x - 0.2) - 0.05,
+           lambda x: math.sin(7 * x) + 0.3 * x, lambda x: np.float64(math.tanh(x - 0.1))]
+    eps = np.finfo(float).eps
+    checked = 0
+    for f in fns:
+        for _ in range(60):
+            a, b = rng.uniform(-3, 3, 2)
+            if not f(a) * f(b) <= 0:
+                continue
+            for xtol, rtol, it in ((1e-15, 4 * eps, 200), (1e-13, 4 * eps, 200), (1e-6, 1e-8, 100), (1e-3, 1e-3, 5)):
+                try:
+                    want = optimize.brentq(f, a, b, xtol=xtol, rtol=rtol, maxiter=it)
+                except RuntimeError:
+                    with pytest.raises(RuntimeError):
+                        brentq(f, a, b, xtol=xtol, rtol=rtol, maxiter=it)
+                    continue
+                assert brentq(f, a, b, xtol=xtol, rtol=rtol, maxiter=it) == want
+                checked += 1
+    assert checked > 500
+    assert brentq(lambda x: x - 1.0, 1.0, 2.0) == optimize.brentq(lambda x: x - 1.0, 1.0, 2.0) == 1.0
+    for bad in (dict(f=lambda x: x * x + 1, a=-1, b=1), dict(f=lambda x: math.nan, a=0, b=1),
+                dict(f=lambda x: x, a=-1, b=1, xtol=0.0), dict(f=lambda x: x, a=-1, b=1, rtol=eps)):
+        with pytest.raises(ValueError):
+            optimize.brentq(**bad)
+        with pytest.raises(ValueError):
+            brentq(**bad)
