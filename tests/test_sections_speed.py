@@ -85,16 +85,13 @@ def test_slim_with_its_caches_writes_what_it_writes_without():
 
 
 def _segments(rng, n):
-    a = rng.uniform(0, 400, (n, 2))
-    d = rng.normal(0, 12, (n, 2))
-    d[: n // 10] *= 25                        # long ones
-    d[rng.random(n) < 0.2, 0] = 0.0            # vertical
-    d[rng.random(n) < 0.2, 1] = 0.0            # horizontal
-    d[rng.random(n) < 0.03] = 0.0              # points
-    d[rng.random(n) < 0.05] *= 1e-13           # shorter than the parallel tolerance
-    segs = np.hstack([a, a + d])
-    segs[rng.random(n) < 0.01, 2] = np.nan     # non-finite ends
-    segs[rng.random(n) < 0.01, 1] = np.inf
+    """test_figure_speed_paths' random segments, with some shorter than the parallel tolerance
+    and some ends at −∞ besides."""
+    from test_figure_speed_paths import _random_segments
+
+    segs = _random_segments(rng, n)
+    tiny = rng.random(n) < 0.05
+    segs[tiny, 2:] = segs[tiny, :2] + 1e-13
     segs[rng.random(n) < 0.01, 3] = -np.inf
     return segs
 
@@ -108,14 +105,16 @@ def test_clip_kernels_count_as_the_numpy_forms():
     for n in (0, 1, 7, 60, 2500):
         segs = _segments(rng, n)
         index = L._Segs(segs)
-        for _ in range(300):
-            x, y = rng.uniform(-20, 420, 2)
-            w, h = rng.uniform(0, 40, 2) * (rng.random() < 0.9)
+        corner = rng.uniform(-20, 420, (300, 2))
+        size = rng.uniform(0, 40, (300, 2)) * (rng.random((300, 1)) < 0.9)      # some empty boxes
+        ends = rng.uniform(-20, 420, (300, 2))
+        vertical = rng.random(300) < 0.2
+        ends[vertical, 0] = corner[vertical, 0]                                   # vertical leaders
+        for (x, y), (w, h), (ex, ey) in zip(corner, size, ends):
             box = L._Box(x, y, x + w, y + h)
-            assert index.crossings(box) == index.crossings_numpy(box) == L._crossings(segs, box)
-            lead = [x, y, *rng.uniform(-20, 420, 2)]
-            if rng.random() < 0.2:
-                lead[2] = lead[0]              # vertical leader
+            with np.errstate(invalid="ignore"):
+                assert index.crossings(box) == index.crossings_numpy(box) == L._crossings(segs, box)
+            lead = [x, y, ex, ey]
             assert index.cuts(lead) == index.cuts_numpy(lead)
 
 

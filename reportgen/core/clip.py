@@ -28,6 +28,18 @@ PAR = 1e-12    # |p| below this: the segment is parallel to that edge (as labels
 
 
 @njit(cache=True, error_model="numpy")
+def _edge(k, sx, sy, dx, dy, x0, y0, x1, y1):
+    """Liang–Barsky's (p, q) of edge ``k``: left, right, bottom, top (the order of labels._meets)."""
+    if k == 0:
+        return -dx, sx - x0
+    if k == 1:
+        return dx, x1 - sx
+    if k == 2:
+        return -dy, sy - y0
+    return dy, y1 - sy
+
+
+@njit(cache=True, error_model="numpy")
 def _lb_finite(sx, sy, ex, ey, x0, y0, x1, y1):
     """Liang–Barsky for a finite segment, as ``labels._crossings_few`` (max/min of floats)."""
     dx = ex - sx
@@ -35,14 +47,7 @@ def _lb_finite(sx, sy, ex, ey, x0, y0, x1, y1):
     t0 = 0.0
     t1 = 1.0
     for k in range(4):
-        if k == 0:
-            p, q = -dx, sx - x0
-        elif k == 1:
-            p, q = dx, x1 - sx
-        elif k == 2:
-            p, q = -dy, sy - y0
-        else:
-            p, q = dy, y1 - sy
+        p, q = _edge(k, sx, sy, dx, dy, x0, y0, x1, y1)
         if abs(p) < PAR:
             if q < 0:
                 return False
@@ -67,14 +72,7 @@ def _lb_any(sx, sy, ex, ey, x0, y0, x1, y1):
     t1 = 1.0
     ok = True
     for k in range(4):
-        if k == 0:
-            p, q = -dx, sx - x0
-        elif k == 1:
-            p, q = dx, x1 - sx
-        elif k == 2:
-            p, q = -dy, sy - y0
-        else:
-            p, q = dy, y1 - sy
+        p, q = _edge(k, sx, sy, dx, dy, x0, y0, x1, y1)
         par = abs(p) < PAR
         if par and q < 0:
             ok = False
