@@ -172,3 +172,20 @@ def test_brentq_finds_scipys_roots_to_the_bit():
             optimize.brentq(**bad)
         with pytest.raises(ValueError):
             brentq(**bad)
+
+
+def test_export_and_the_report_modules_import_no_scipy_optimize(tmp_path):
+    """``reportgen export`` of ws000 (roots by analysis.roots) and the note's modules (the cam's
+    laws included) leave scipy.optimize unimported: its import costs about 0,3 s of CPU."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    code = ("import sys; from reportgen.cli import main; from reportgen.report import assemble; "
+            f"main(['export', {str(root / 'cases/ws000_six_bar.toml')!r}, '-o', {str(tmp_path)!r}]); "
+            "print(sorted(m for m in sys.modules if m.startswith('scipy.optimize')))")
+    out = subprocess.run([sys.executable, "-c", code], cwd=root, capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip().splitlines()[-1] == "[]"
+    assert (tmp_path / "cycle.csv").exists()
