@@ -71,8 +71,10 @@ def warm_report() -> None:
     """Load what every report needs, so that the first build after setup finds it ready:
     matplotlib's font list (built on its first use and kept in its cache folder), the report's
     serif faces registered with it and the report style, WeasyPrint's font configuration with
-    the report's @font-face files, the Jinja templates compiled, and the bytecode of the report
+    the report's @font-face files, the Jinja templates compiled, the label placer's numba kernels
+    (:mod:`reportgen.core.clip`), and the bytecode of the report
     modules written (``__pycache__``). In a batch worker all of it stays loaded for every variant."""
+    from .core import clip
     from .report import assemble  # noqa: F401  (sections, formulas, ziamath)
     from .report import render
     from .style import mplstyle
@@ -80,3 +82,4 @@ def warm_report() -> None:
     mplstyle.apply_style()
     render._font_config()
     render.warm_caches()
+    clip.warm()        # the label placer's kernels

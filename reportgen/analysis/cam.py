@@ -34,10 +34,22 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
-from scipy.optimize import brentq, fsolve, minimize, minimize_scalar
 
 from ..case import units as U
 from ..core import cams as K
+from .roots import brentq
+
+
+def _scipy(name: str):
+    """``scipy.optimize.<name>``, imported when a cam is computed (every note imports this
+    module for its laws; importing scipy.optimize costs about 0,3 s of CPU)."""
+    def call(*args, **kw):
+        from scipy import optimize
+        return getattr(optimize, name)(*args, **kw)
+    return call
+
+
+fsolve, minimize, minimize_scalar = _scipy("fsolve"), _scipy("minimize"), _scipy("minimize_scalar")
 
 __all__ = ["Cam", "LAWS", "Phase"]
 

@@ -13,7 +13,6 @@ from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
-from scipy import optimize
 
 from ..case import units as U
 from ..case.expr import Q, evaluate
@@ -44,6 +43,7 @@ def split_condition(node: Node) -> tuple[str, str]:
 def solve_fit(node: Node, name: str, guess: float, residual: Callable[[float], float],
               scale: float) -> tuple[float, float, int]:
     """Root of residual(x) near ``guess``; returns (x, residual, evaluations)."""
+    from scipy import optimize      # only a case with [fit] needs it (its import costs 0,3 s)
     count = [0]
 
     def f(x: float) -> float:

@@ -42,7 +42,7 @@ from dataclasses import dataclass, field
 from typing import Callable, Iterable, NamedTuple, Protocol, Sequence
 
 import numpy as np
-from scipy.optimize import brentq
+from .roots import brentq
 
 from reportgen.core import extremum as XK
 from reportgen.core.quadrature import (CHEB_POINTS, Antiderivative, CellPoly, cheb_coefficients, cheb_points,

@@ -934,7 +934,7 @@ def _roots_in_cells(evaluator, fns, which, a, b, fa, fb, grid_cols) -> np.ndarra
     the root of that polynomial is found by ``brentq`` to ~4ε·|q| without evaluating the
     kinematics again.  Cells not resolved so (a non-smooth expression, a near-singular position)
     and roots on a grid point go to :func:`_refine`."""
-    from scipy.optimize import brentq
+    from .roots import brentq
     from ..core.quadrature import CHEB_POINTS, cell_fit, cheb_points
     a, b, fa, fb = (np.asarray(v, dtype=float) for v in (a, b, fa, fb))
     which = np.asarray(which)

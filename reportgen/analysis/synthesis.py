@@ -18,7 +18,7 @@ from functools import cached_property
 
 import numpy as np
 import pandas as pd
-from scipy.optimize import brentq
+from .roots import brentq
 
 from ..case import synthesis as SY
 from ..case.printed import read_printed

@@ -53,6 +53,8 @@ from matplotlib.contour import ContourSet
 from matplotlib.lines import Line2D
 from matplotlib.text import Text
 
+from ..core import clip
+
 MM_PT = 72 / 25.4        # points per millimetre
 RADII_MM = (2.2, 3.2, 4.5, 6.0, 8.0, 10.5, 14.0, 18.0, 23.0)
 FAR_MM, ARC_MM = 4.0, 1.5
@@ -167,9 +169,18 @@ class _Segs:
         self.short = idx[np.argsort(self.xmin[idx], kind="stable")]
         self.short_x = self.xmin[self.short]
         self.rest = np.flatnonzero(~short)
+        # the same, as the kernels of reportgen.core.clip read them (contiguous float64 rows)
+        self._k = (np.ascontiguousarray(segs[self.short], dtype=np.float64), np.ascontiguousarray(self.short_x),
+                   float(self.SHORT_PX), np.ascontiguousarray(segs[self.rest], dtype=np.float64),
+                   np.ascontiguousarray(self.odd[self.rest]))
 
     def crossings(self, bb) -> int:
-        """:func:`_crossings` of the segments and ``bb``."""
+        """:func:`_crossings` of the segments and ``bb`` (counted by :func:`reportgen.core.clip.crossings`,
+        the same arithmetic in one compiled pass; :meth:`crossings_numpy` is the NumPy form)."""
+        return int(clip.crossings(*self._k, bb.x0 - PAD_PX, bb.y0 - PAD_PX, bb.x1 + PAD_PX, bb.y1 + PAD_PX))
+
+    def crossings_numpy(self, bb) -> int:
+        """:meth:`crossings` by NumPy array operations (the reference of the kernel)."""
         x0, y0, x1, y1 = bb.x0 - PAD_PX, bb.y0 - PAD_PX, bb.x1 + PAD_PX, bb.y1 + PAD_PX
         lo = np.searchsorted(self.short_x, x0 - self.SHORT_PX, side="left")
         hi = np.searchsorted(self.short_x, x1, side="right")
@@ -182,7 +193,12 @@ class _Segs:
         return _crossings(self.segs[idx], bb)
 
     def cuts(self, lead) -> int:
-        """How many segments the segment ``lead`` = [x0, y0, x1, y1] crosses (a leader line)."""
+        """How many segments the segment ``lead`` = [x0, y0, x1, y1] crosses (a leader line;
+        :func:`reportgen.core.clip.cuts`, the arithmetic of :meth:`cuts_numpy`)."""
+        return int(clip.cuts(*self._k, *map(float, lead)))
+
+    def cuts_numpy(self, lead) -> int:
+        """:meth:`cuts` by NumPy array operations (the reference of the kernel)."""
         ax_, ay_, bx_, by_ = lead
         x0, x1 = min(ax_, bx_), max(ax_, bx_)
         y0, y1 = min(ay_, by_), max(ay_, by_)

@@ -188,6 +188,7 @@ def share_svg_text_metrics() -> None:
     the label placer) keep matplotlib's cache.
     """
     from matplotlib import text as mtext
+    from matplotlib.backends.backend_mixed import MixedModeRenderer
     from matplotlib.backends.backend_svg import RendererSVG
     from matplotlib.textpath import TextToPath
 
@@ -201,6 +202,9 @@ def share_svg_text_metrics() -> None:
         return measure.get_text_width_height_descent(text, fontprop, ismath)
 
     def metrics(renderer, text, fontprop, ismath, dpi):
+        # savefig draws through a MixedModeRenderer: in vector mode it measures with its SVG renderer
+        if type(renderer) is MixedModeRenderer and renderer._renderer is renderer._vector_renderer:
+            renderer = renderer._renderer
         if type(renderer) is RendererSVG and ismath != "TeX":
             return svg_metrics(text, fontprop.copy(), ismath, dpi, _rc_key())
         return original(renderer, text, fontprop, ismath, dpi)

@@ -32,6 +32,7 @@ The output is a function of the input alone (deterministic bytes).
 """
 from __future__ import annotations
 
+import functools
 import re
 import xml.etree.ElementTree as ET
 
@@ -62,8 +63,11 @@ def _mul(m: Matrix, n: Matrix) -> Matrix:
             a * E + c * F + e, b * E + d * F + f)
 
 
+@functools.lru_cache(maxsize=4096)
 def _transform(text: str | None) -> Matrix | None:
-    """An SVG ``transform`` list as one matrix (``None`` if it cannot be read)."""
+    """An SVG ``transform`` list as one matrix (``None`` if it cannot be read); cached: the
+    same few transforms (a glyph's place in a tick label, the text frames) recur in every
+    figure."""
     m = IDENTITY
     if not text:
         return m
@@ -125,6 +129,21 @@ def _parse_path(d: str) -> list | None:
         if (k == 0 and nums) or (k and (not nums or len(nums) % k)):
             return None
     return out
+
+
+@functools.lru_cache(maxsize=4096)
+def _parsed(d: str) -> list | None:
+    """:func:`_parse_path` of a glyph's path data, cached for the process (the glyphs of the
+    report's fonts recur in every figure; the result is only read)."""
+    return _parse_path(d)
+
+
+@functools.lru_cache(maxsize=16384)
+def _placed(d: str, m: Matrix) -> str:
+    """:func:`_write_path` of the glyph path data ``d`` (readable: :func:`_parsed`) mapped by
+    ``m``, cached: a character at its place in a string (the digits of tick labels, point
+    names) recurs in every figure with the same matrix, so the same text."""
+    return _write_path(_parsed(d), m)
 
 
 def _exact(v: float) -> bool:
@@ -208,7 +227,7 @@ class _Slimmer:
 
     def segments(self, pid: str) -> list | None:
         if pid not in self.parsed:
-            self.parsed[pid] = _parse_path(self.paths[pid].get("d", ""))
+            self.parsed[pid] = _parsed(self.paths[pid].get("d", ""))
         return self.parsed[pid]
 
     def inline(self, use: ET.Element) -> ET.Element | None | bool:
@@ -269,13 +288,13 @@ class _Slimmer:
                 segs = self.segments(ref.get("id"))
                 if segs is None:
                     return None
-                glyphs.append((_mul(mu, mr), segs))
+                glyphs.append((_mul(mu, mr), ref.get("d")))
         if not glyphs:
             return []
         frame, unit = _frame(outer)
         inv = (1 / unit, 0.0, 0.0, 1 / unit, 0.0, 0.0)
         path = ET.Element(_PATH)
-        path.set("d", "".join(_write_path(segs, _mul(inv, m)) for m, segs in glyphs))
+        path.set("d", "".join(_placed(d, _mul(inv, m)) for m, d in glyphs))
         if unit == 1.0:
             if g.get("transform"):
                 path.set("transform", g.get("transform"))

@@ -1,0 +1,191 @@
+"""Caches of the section and figure building (issue #15) give what the plain paths give, and do
+save the work they are for: text extents measured through savefig's MixedModeRenderer come from
+the shared SVG cache (a second figure of the same texts measures nothing again) and equal a new
+SVG renderer's."""
+from __future__ import annotations
+
+import io
+
+import matplotlib
+import numpy as np
+from matplotlib.backends.backend_mixed import MixedModeRenderer
+from matplotlib.backends.backend_svg import RendererSVG
+from matplotlib.font_manager import FontProperties
+
+from reportgen.style import mplstyle
+
+
+def _chart():
+    fig = mplstyle.figure(120, 80)
+    ax = fig.add_subplot()
+    x = np.linspace(0, 360, 37)
+    ax.plot(x, np.sin(np.radians(x)), label=r"$M_{\Sigma}$")
+    ax.legend()
+    ax.set_xlabel("φ, град")
+    ax.set_ylabel(r"$A$, Дж")
+    return fig
+
+
+def test_savefig_measures_each_text_once_per_process(monkeypatch):
+    from matplotlib import textpath
+
+    first = mplstyle.to_svg(_chart())
+    calls = []
+    measure = textpath.TextToPath.get_text_width_height_descent
+    monkeypatch.setattr(textpath.TextToPath, "get_text_width_height_descent",
+                        lambda self, *a: calls.append(a) or measure(self, *a))
+    assert mplstyle.to_svg(_chart()) == first
+    assert calls == []
+
+
+def test_mixed_mode_renderer_extents_are_the_svg_renderers():
+    from matplotlib import text as mtext
+
+    mplstyle.apply_style()
+    fig = mplstyle.figure(50, 50)
+    for s, math in (("φ, град", False), ("−0,25", False), (r"$J_{II}$, кг·м²", True)):
+        prop = FontProperties(size=10, family="serif")
+        mixed = MixedModeRenderer(fig, 1, 1, 72, RendererSVG(100, 100, io.StringIO()))
+        got = mtext._get_text_metrics_with_cache(mixed, s, prop, math, 72)
+        want = RendererSVG(100, 100, io.StringIO()).get_text_width_height_descent(s, prop, math)
+        assert got == want
+
+
+def _clear_slim_caches():
+    from reportgen.style import svgslim
+    for fn in (svgslim._transform, svgslim._parsed, svgslim._placed):
+        fn.cache_clear()
+
+
+def test_slim_with_its_caches_writes_what_it_writes_without():
+    """The text paths of a figure slimmed with the glyph caches cold, warm (the same texts in
+    another figure) and bypassed (each glyph parsed and written anew) are the same bytes."""
+    from reportgen.style import svgslim
+
+    fig = _chart()
+    buf = io.BytesIO()
+    with matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": mplstyle.SVG_HASHSALT}):
+        fig.savefig(buf, format="svg", metadata={"Date": None})
+    raw = buf.getvalue()
+    _clear_slim_caches()
+    cold = svgslim.slim(raw)
+    assert svgslim._placed.cache_info().currsize > 0
+    warm = svgslim.slim(raw)
+    assert svgslim._placed.cache_info().hits > 0
+    placed, parsed, transform = svgslim._placed, svgslim._parsed, svgslim._transform
+    try:
+        svgslim._placed = lambda d, m: svgslim._write_path(svgslim._parse_path(d), m)
+        svgslim._parsed = svgslim._parse_path
+        svgslim._transform = transform.__wrapped__
+        plain = svgslim.slim(raw)
+    finally:
+        svgslim._placed, svgslim._parsed, svgslim._transform = placed, parsed, transform
+    assert cold == warm == plain
+    assert b"<use" not in plain
+
+
+def _segments(rng, n):
+    """test_figure_speed_paths' random segments, with some shorter than the parallel tolerance
+    and some ends at −∞ besides."""
+    from test_figure_speed_paths import _random_segments
+
+    segs = _random_segments(rng, n)
+    tiny = rng.random(n) < 0.05
+    segs[tiny, 2:] = segs[tiny, :2] + 1e-13
+    segs[rng.random(n) < 0.01, 3] = -np.inf
+    return segs
+
+
+def test_clip_kernels_count_as_the_numpy_forms():
+    """The placer's compiled clipping (reportgen.core.clip) against the NumPy forms it replaced:
+    the same count for every rectangle and every leader, whatever the segments."""
+    from reportgen.scenes import labels as L
+
+    rng = np.random.default_rng(11)
+    for n in (0, 1, 7, 60, 2500):
+        segs = _segments(rng, n)
+        index = L._Segs(segs)
+        corner = rng.uniform(-20, 420, (300, 2))
+        size = rng.uniform(0, 40, (300, 2)) * (rng.random((300, 1)) < 0.9)      # some empty boxes
+        ends = rng.uniform(-20, 420, (300, 2))
+        vertical = rng.random(300) < 0.2
+        ends[vertical, 0] = corner[vertical, 0]                                   # vertical leaders
+        for (x, y), (w, h), (ex, ey) in zip(corner, size, ends):
+            box = L._Box(x, y, x + w, y + h)
+            with np.errstate(invalid="ignore"):
+                assert index.crossings(box) == index.crossings_numpy(box) == L._crossings(segs, box)
+            lead = [x, y, ex, ey]
+            assert index.cuts(lead) == index.cuts_numpy(lead)
+
+
+def test_clip_warm_compiles_what_the_placer_calls():
+    """``clip.warm`` (run by ``reportgen warmup`` and each batch worker) compiles the kernels
+    for the very argument types the placer passes: placing labels compiles nothing more."""
+    from reportgen.core import clip
+    from reportgen.scenes import labels as L
+
+    clip.warm()
+    before = (len(clip.crossings.signatures), len(clip.cuts.signatures))
+    index = L._Segs(_segments(np.random.default_rng(3), 50))
+    index.crossings(L._Box(10.0, 10.0, 60.0, 40.0))
+    index.crossings(L._Box(np.float64(10), 10, 60, 40))
+    index.cuts([0, 0, 200.0, 150.0])
+    assert (len(clip.crossings.signatures), len(clip.cuts.signatures)) == before
+
+
+def test_brentq_finds_scipys_roots_to_the_bit():
+    """reportgen.analysis.roots.brentq against scipy.optimize.brentq: the same root (==) on
+    smooth, steep, flat and kinked functions, brackets either way round, tight and loose
+    tolerances, roots at an end; the same errors."""
+    import math
+
+    import pytest
+    from scipy import optimize
+
+    from reportgen.analysis.roots import brentq
+
+    rng = np.random.default_rng(5)
+    fns = [lambda x: math.cos(x) - x, lambda x: x ** 3 - 2 * x - 5, lambda x: math.exp(x) - 3.7,
+           lambda x: math.atan(50 * (x - 0.3)), lambda x: (x - 0.7) ** 3, lambda x: abs(x - 0.2) - 0.05,
+           lambda x: math.sin(7 * x) + 0.3 * x, lambda x: np.float64(math.tanh(x - 0.1))]
+    eps = np.finfo(float).eps
+    checked = 0
+    for f in fns:
+        for _ in range(60):
+            a, b = rng.uniform(-3, 3, 2)
+            if not f(a) * f(b) <= 0:
+                continue
+            for xtol, rtol, it in ((1e-15, 4 * eps, 200), (1e-13, 4 * eps, 200), (1e-6, 1e-8, 100), (1e-3, 1e-3, 5)):
+                try:
+                    want = optimize.brentq(f, a, b, xtol=xtol, rtol=rtol, maxiter=it)
+                except RuntimeError:
+                    with pytest.raises(RuntimeError):
+                        brentq(f, a, b, xtol=xtol, rtol=rtol, maxiter=it)
+                    continue
+                assert brentq(f, a, b, xtol=xtol, rtol=rtol, maxiter=it) == want
+                checked += 1
+    assert checked > 500
+    assert brentq(lambda x: x - 1.0, 1.0, 2.0) == optimize.brentq(lambda x: x - 1.0, 1.0, 2.0) == 1.0
+    for bad in (dict(f=lambda x: x * x + 1, a=-1, b=1), dict(f=lambda x: math.nan, a=0, b=1),
+                dict(f=lambda x: x, a=-1, b=1, xtol=0.0), dict(f=lambda x: x, a=-1, b=1, rtol=eps)):
+        with pytest.raises(ValueError):
+            optimize.brentq(**bad)
+        with pytest.raises(ValueError):
+            brentq(**bad)
+
+
+def test_export_and_the_report_modules_import_no_scipy_optimize(tmp_path):
+    """``reportgen export`` of ws000 (roots by analysis.roots) and the note's modules (the cam's
+    laws included) leave scipy.optimize unimported: its import costs about 0,3 s of CPU."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    code = ("import sys; from reportgen.cli import main; from reportgen.report import assemble; "
+            f"main(['export', {str(root / 'cases/ws000_six_bar.toml')!r}, '-o', {str(tmp_path)!r}]); "
+            "print(sorted(m for m in sys.modules if m.startswith('scipy.optimize')))")
+    out = subprocess.run([sys.executable, "-c", code], cwd=root, capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip().splitlines()[-1] == "[]"
+    assert (tmp_path / "cycle.csv").exists()
