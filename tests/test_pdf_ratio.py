@@ -279,3 +279,35 @@ def test_parts_parsed_as_they_come_back_join_the_same(report, tmp_path, monkeypa
     one = render.write_pdf(report, tmp_path / "one.pdf", jobs=1).read_bytes()
     assert prepared == [] and joins[1][1] == set()
     assert one == two
+
+
+def test_workers_forked_for_a_note_collect_as_the_cli_does(report, tmp_path, monkeypatch):
+    """A note written through the API (``write_pdf`` with its own pool, as bench/bench_cli.py
+    writes it) lays its parts out in workers whose garbage collector runs as the CLI's
+    (``memory.collect_less``) and never scans what they inherited (``gc.freeze``); the
+    parent's own setting is left as it was."""
+    import gc
+    import json
+    import os
+
+    from reportgen.core.memory import GC_THRESHOLD
+
+    log = tmp_path / "gc.jsonl"
+    real = parallel.lay_out_part
+
+    def spy(task):  # looked up by name in the forked worker
+        with open(log, "a", encoding="utf-8") as f:
+            f.write(json.dumps([os.getpid(), gc.get_threshold()[0], gc.get_freeze_count()]) + "\n")
+        return real(task)
+
+    before = gc.get_threshold()
+    gc.set_threshold(700, 10, 10)
+    try:
+        monkeypatch.setattr(parallel, "lay_out_part", spy)
+        render.write_pdf(report, tmp_path / "note.pdf", jobs=2)
+        assert gc.get_threshold() == (700, 10, 10)
+    finally:
+        gc.set_threshold(*before)
+    seen = [json.loads(line) for line in log.read_text().splitlines()]
+    workers = [s for s in seen if s[0] != os.getpid()]
+    assert workers and all(s[1] >= GC_THRESHOLD[0] and s[2] > 0 for s in workers), seen
