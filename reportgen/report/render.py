@@ -2504,7 +2504,8 @@ def write_pdf(report: Report, path, *, jobs: int | None = None) -> Path:
         return _finish_parts(job, path)
     document, stats = _layout(report, _font_config())
     t0 = time.perf_counter()
-    with _fixed_font_timestamp():
+    from .wpfast import cell_borders
+    with _fixed_font_timestamp(), cell_borders():
         pdf = document.write_pdf()
     stats.seconds_pdf = time.perf_counter() - t0
     last_stats = stats
