@@ -352,3 +352,36 @@ def test_cell_borders_written_directly_are_weasyprints_bytes(report, tmp_path, m
         with borders():
             assert document.write_pdf() == plain
     assert drawn == ["td", "td"]  # .a and .f; the others went to WeasyPrint
+
+
+def test_nowrap_widths_measured_once_same_bytes(report, tmp_path, monkeypatch):
+    """While a document is laid out, a text that does not wrap (a number cell) has its
+    min- and max-content widths measured by one Pango layout (``wpfast.nowrap_widths``): many
+    answers are reused, and the note is the same bytes as with WeasyPrint measuring each."""
+    import contextlib
+
+    from reportgen.report import wpfast
+
+    reused = []
+    real = wpfast._line_widths
+
+    def counting(general):
+        calls = []
+
+        def spy(*args, **kw):
+            calls.append(1)
+            return split(*args, **kw)
+
+        def general_counted(*args, **kw):
+            calls.pop()
+            return general(*args, **kw)
+
+        split = real(general_counted)
+        reused.append(calls)
+        return spy
+
+    monkeypatch.setattr(wpfast, "_line_widths", counting)
+    fast = render.write_pdf(report, tmp_path / "fast.pdf", jobs=1).read_bytes()
+    assert sum(len(c) for c in reused) > 100  # calls answered from the memo (never reaching WeasyPrint)
+    monkeypatch.setattr(wpfast, "nowrap_widths", contextlib.nullcontext)
+    assert render.write_pdf(report, tmp_path / "weasyprint.pdf", jobs=1).read_bytes() == fast

@@ -2320,7 +2320,7 @@ def _html_class():
         from weasyprint import html as _wp_html
         from weasyprint.css.counters import CounterStyle
 
-        from . import fasthtml
+        from . import fasthtml, wpfast
 
         ua = _wp_html.UA.replace("\n::marker {", "\nli::marker {")
         ua = "\n".join(line for line in ua.splitlines()
@@ -2343,7 +2343,8 @@ def _html_class():
                 shared = _shared_sheets(self, font_config)
                 if shared:
                     options["stylesheets"] = [*(options.get("stylesheets") or []), *shared]
-                return super().render(font_config, counter_style, color_profiles, **options)
+                with wpfast.nowrap_widths():  # a number cell's min- and max-content width measured once
+                    return super().render(font_config, counter_style, color_profiles, **options)
 
         _HTML_CLASS = _HTML
     return _HTML_CLASS
