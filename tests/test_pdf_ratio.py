@@ -279,3 +279,109 @@ def test_parts_parsed_as_they_come_back_join_the_same(report, tmp_path, monkeypa
     one = render.write_pdf(report, tmp_path / "one.pdf", jobs=1).read_bytes()
     assert prepared == [] and joins[1][1] == set()
     assert one == two
+
+
+def test_workers_forked_for_a_note_collect_as_the_cli_does(report, tmp_path, monkeypatch):
+    """A note written through the API (``write_pdf`` with its own pool, as bench/bench_cli.py
+    writes it) lays its parts out in workers whose garbage collector runs as the CLI's
+    (``memory.collect_less``) and never scans what they inherited (``gc.freeze``); the
+    parent's own setting is left as it was."""
+    import gc
+    import json
+    import os
+
+    from reportgen.core.memory import GC_THRESHOLD
+
+    log = tmp_path / "gc.jsonl"
+    real = parallel.lay_out_part
+
+    def spy(task):  # looked up by name in the forked worker
+        with open(log, "a", encoding="utf-8") as f:
+            f.write(json.dumps([os.getpid(), gc.get_threshold()[0], gc.get_freeze_count()]) + "\n")
+        return real(task)
+
+    before = gc.get_threshold()
+    gc.set_threshold(700, 10, 10)
+    try:
+        monkeypatch.setattr(parallel, "lay_out_part", spy)
+        render.write_pdf(report, tmp_path / "note.pdf", jobs=2)
+        assert gc.get_threshold() == (700, 10, 10)
+    finally:
+        gc.set_threshold(*before)
+    seen = [json.loads(line) for line in log.read_text().splitlines()]
+    workers = [s for s in seen if s[0] != os.getpid()]
+    assert workers and all(s[1] >= GC_THRESHOLD[0] and s[2] > 0 for s in workers), seen
+
+
+def test_cell_borders_written_directly_are_weasyprints_bytes(report, tmp_path, monkeypatch):
+    """The table cells' borders (solid, on two or three sides) are written by
+    ``wpfast._draw_border`` without WeasyPrint's general routine, and the note is the same bytes
+    as with WeasyPrint's own routine; boxes of other borders (all four sides, a dashed side,
+    another colour per side, a rounded corner) are left to WeasyPrint, also the same bytes."""
+    import contextlib
+
+    from reportgen.report import wpfast
+
+    drawn = []
+    real, borders = wpfast._draw_border, wpfast.cell_borders
+
+    def spy(stream, box, general):
+        calls = []
+        real(stream, box, lambda s, b: calls.append(b) or general(s, b))
+        if not calls:
+            drawn.append(box.element_tag)
+
+    monkeypatch.setattr(wpfast, "_draw_border", spy)
+    fast = render.write_pdf(report, tmp_path / "fast.pdf", jobs=1).read_bytes()
+    assert drawn.count("td") > 100, set(drawn)
+    monkeypatch.setattr(wpfast, "cell_borders", contextlib.nullcontext)
+    assert render.write_pdf(report, tmp_path / "weasyprint.pdf", jobs=1).read_bytes() == fast
+
+    html = ('<html><head><style>td { padding: 2pt; } table { border-collapse: separate; }'
+            '.a { border-right: 1pt solid #000; border-bottom: 1pt solid #000; }'
+            '.b { border: 1pt solid #000; } .c { border-right: 1pt dashed #000; border-bottom: 1pt solid #000; }'
+            '.d { border-right: 1pt solid red; border-bottom: 1pt solid #000; }'
+            '.e { border-right: 2pt solid #000; border-left: 1pt solid #000; border-bottom-right-radius: 3pt; }'
+            '.f { border-top: 0.75pt solid #000; border-left: 1.5pt solid #000; }'
+            '</style></head><body><table><tr><td class="a">1</td><td class="b">2</td><td class="c">3</td>'
+            '<td class="d">4</td><td class="e">5</td><td class="f">6</td></tr></table></body></html>')
+    document = render._html_class()(string=html).render()
+    with render._fixed_font_timestamp():
+        plain = document.write_pdf()
+        drawn.clear()
+        with borders():
+            assert document.write_pdf() == plain
+    assert drawn == ["td", "td"]  # .a and .f; the others went to WeasyPrint
+
+
+def test_nowrap_widths_measured_once_same_bytes(report, tmp_path, monkeypatch):
+    """While a document is laid out, a text that does not wrap (a number cell) has its
+    min- and max-content widths measured by one Pango layout (``wpfast.nowrap_widths``): many
+    answers are reused, and the note is the same bytes as with WeasyPrint measuring each."""
+    import contextlib
+
+    from reportgen.report import wpfast
+
+    reused = []
+    real = wpfast._line_widths
+
+    def counting(general):
+        calls = []
+
+        def spy(*args, **kw):
+            calls.append(1)
+            return split(*args, **kw)
+
+        def general_counted(*args, **kw):
+            calls.pop()
+            return general(*args, **kw)
+
+        split = real(general_counted)
+        reused.append(calls)
+        return spy
+
+    monkeypatch.setattr(wpfast, "_line_widths", counting)
+    fast = render.write_pdf(report, tmp_path / "fast.pdf", jobs=1).read_bytes()
+    assert sum(len(c) for c in reused) > 100  # calls answered from the memo (never reaching WeasyPrint)
+    monkeypatch.setattr(wpfast, "nowrap_widths", contextlib.nullcontext)
+    assert render.write_pdf(report, tmp_path / "weasyprint.pdf", jobs=1).read_bytes() == fast

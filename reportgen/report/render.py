@@ -2320,7 +2320,7 @@ def _html_class():
         from weasyprint import html as _wp_html
         from weasyprint.css.counters import CounterStyle
 
-        from . import fasthtml
+        from . import fasthtml, wpfast
 
         ua = _wp_html.UA.replace("\n::marker {", "\nli::marker {")
         ua = "\n".join(line for line in ua.splitlines()
@@ -2343,7 +2343,8 @@ def _html_class():
                 shared = _shared_sheets(self, font_config)
                 if shared:
                     options["stylesheets"] = [*(options.get("stylesheets") or []), *shared]
-                return super().render(font_config, counter_style, color_profiles, **options)
+                with wpfast.nowrap_widths():  # a number cell's min- and max-content width measured once
+                    return super().render(font_config, counter_style, color_profiles, **options)
 
         _HTML_CLASS = _HTML
     return _HTML_CLASS
@@ -2504,7 +2505,8 @@ def write_pdf(report: Report, path, *, jobs: int | None = None) -> Path:
         return _finish_parts(job, path)
     document, stats = _layout(report, _font_config())
     t0 = time.perf_counter()
-    with _fixed_font_timestamp():
+    from .wpfast import cell_borders
+    with _fixed_font_timestamp(), cell_borders():
         pdf = document.write_pdf()
     stats.seconds_pdf = time.perf_counter() - t0
     last_stats = stats

@@ -1,0 +1,170 @@
+"""Shortcuts through WeasyPrint's drawing code that write the very same PDF operators.
+
+WeasyPrint (70.0, pinned in pyproject.toml) draws the borders of a box by its general
+routine (``weasyprint.draw.border.draw_border``). A table cell of the note has a border on
+two or three sides only (right and bottom, and left in the first column: the separate border
+model of gost.css), which WeasyPrint cannot draw as one rounded rectangle: it draws each side
+alone, clipped to the side's trapezoid — a clip path and an even-odd fill of the border box
+less the padding box (ГОСТ 2.303's solid line of the table grid). That is some 1 700 sides in
+a heavy part, and its general code (three closures built per side, the colours and styles of
+all four sides looked up, the rounded boxes computed three times per side) costs more than
+the operators it writes.
+
+:func:`cell_borders` puts in its place, while a note's PDF is written, a routine that writes
+those operators directly for the one case the note's tables need — solid sides of one colour,
+no rounded corner, no border image, no column rule — and hands every other box to
+WeasyPrint's own routine. The operators, their numbers and their order are WeasyPrint's: the
+same expressions on the same floats (a side's clip path as ``clip_border_segment`` traces it
+when no corner is rounded; ``draw_rounded_border``'s two rectangles), so the PDF is the same
+bytes (tests/test_pdf_ratio.py compares whole notes with and without it). ws000's parts
+written alternately with and without it (one process, 3 rounds, load 9,5): sum of the
+minimums 1,194 → 1,028 s CPU, heavy parts 0,367/0,349/0,272 → 0,287/0,305/0,249 s; ws004's
+kinematics 0,334 → 0,270 s; every part the same bytes.
+
+:func:`nowrap_widths` does the same for the layout: see :func:`_line_widths`.
+"""
+from __future__ import annotations
+
+import contextlib
+
+__all__ = ["cell_borders", "nowrap_widths"]
+
+_ORDER = (2, 3, 1, 0)  # bottom, left, right, top: WeasyPrint's order of the sides
+
+
+def _draw_border(stream, box, general):
+    """``weasyprint.draw.border.draw_border`` for a box whose drawn sides are all solid, of one
+    opaque colour, without rounded corners (and not all four: that WeasyPrint draws as one
+    rectangle); any other box goes to ``general`` (WeasyPrint's own routine)."""
+    style = box.style
+    widths = (box.border_top_width, box.border_right_width, box.border_bottom_width, box.border_left_width)
+    if (0 not in widths or not any(widths) or style["visibility"] != "visible"
+            or style["border_image_source"][0] != "none" or style["column_width"] != "auto"
+            or style["column_count"] != "auto" or box.border_top_left_radius != (0, 0)
+            or box.border_top_right_radius != (0, 0) or box.border_bottom_right_radius != (0, 0)
+            or box.border_bottom_left_radius != (0, 0)):
+        return general(stream, box)
+    from weasyprint.draw.color import get_color
+
+    color = None
+    for side, width in zip(("top", "right", "bottom", "left"), widths):
+        if width:
+            c = get_color(style, f"border_{side}_color")
+            if style[f"border_{side}_style"] != "solid" or not c.alpha or (color is not None and c != color):
+                return general(stream, box)
+            color = c
+    x, y, w, h, *radii = box.rounded_border_box()
+    if any(rx != 0 or ry != 0 for rx, ry in radii):
+        return general(stream, box)
+    px, py, pw, ph, *pradii = box.rounded_padding_box()
+    if not all(0 in corner for corner in pradii):
+        return general(stream, box)
+    bt, br, bb, bl = widths
+    for index in _ORDER:
+        if widths[index] == 0:
+            continue
+        with stream.artifact(), stream.stacked():
+            # clip_border_segment, solid, no rounded corner: each transition point is the
+            # inner corner of the border box, (±width of one side, ±width of the other)
+            if index == 0:  # top
+                stream.move_to(x + w, y)
+                stream.line_to(x, y)
+                stream.line_to(x + bl, y + bt)
+                stream.line_to(x + w + -br, y + bt)
+            elif index == 1:  # right
+                main = x + w
+                stream.move_to(main, y + h)
+                stream.line_to(main, y)
+                stream.line_to(main + -br, y + bt)
+                stream.line_to(main + -br, y + h + -bb)
+            elif index == 2:  # bottom
+                main = y + h
+                stream.move_to(x + w, main)
+                stream.line_to(x, main)
+                stream.line_to(x + bl, main + -bb)
+                stream.line_to(x + w + -br, main + -bb)
+            else:  # left
+                stream.move_to(x, y + h)
+                stream.line_to(x, y)
+                stream.line_to(x + bl, y + bt)
+                stream.line_to(x + bl, y + h + -bb)
+            stream.clip(even_odd=True)
+            stream.end()
+            # draw_rounded_border, solid, no rounded corner
+            stream.set_color(color)
+            stream.rectangle(px, py, pw, ph)
+            stream.rectangle(x, y, w, h)
+            stream.fill(even_odd=True)
+
+
+@contextlib.contextmanager
+def cell_borders():
+    """While a document is written (``write_pdf``): the borders of table cells drawn by
+    :func:`_draw_border`, the same operators as WeasyPrint's. WeasyPrint's drawing module
+    looks the routine up by name when it draws a box, so the name is replaced there and put
+    back on exit (nested uses keep the outermost)."""
+    from weasyprint import draw
+
+    general = draw.draw_border
+    if getattr(general, "_reportgen", False):
+        yield
+        return
+
+    def fast(stream, box):
+        return _draw_border(stream, box, general)
+
+    fast._reportgen = True
+    draw.draw_border = fast
+    try:
+        yield
+    finally:
+        draw.draw_border = general
+
+
+def _line_widths(general):
+    """``split_first_line`` as ``weasyprint.layout.preferred.inline_line_widths`` calls it (for the
+    min- and max-content widths of a text), remembering its answer for a text that may not wrap
+    (``white-space: nowrap``/``pre``): WeasyPrint then lays it out unconstrained whatever the
+    width asked (``max_width`` becomes ``None`` in ``split_first_line``, and ``create_layout``
+    sets no width on a text that does not wrap), so the min-content call (width 0) and the
+    max-content call (no width) of a table cell's number get the same answer, which is
+    computed once. The caller keeps only the resume index and the width; the layout object
+    is not handed out twice. ws000's parts laid out alternately with and without it (one
+    process, 3 rounds, load 5,9): sum of minimums 3,106 → 2,908 s CPU, heavy parts
+    0,854/1,086/0,759 → 0,842/0,973/0,681 s; the same PDF bytes."""
+    memo: dict = {}
+
+    def split(text, style, context, max_width, justification_spacing, is_line_start=True, minimum=False):
+        if style["white_space"] in ("normal", "pre-wrap", "pre-line"):
+            return general(text, style, context, max_width, justification_spacing, is_line_start, minimum)
+        key = (text, id(style), id(context), justification_spacing, is_line_start, minimum)
+        kept = memo.get(key)
+        if kept is not None and kept[0] is style and kept[1] is context:
+            return kept[2]
+        got = general(text, style, context, max_width, justification_spacing, is_line_start, minimum)
+        if len(memo) > 4096:
+            memo.clear()
+        memo[key] = (style, context, (None, got[1], got[2], got[3], got[4], got[5]))
+        return got
+
+    return split
+
+
+@contextlib.contextmanager
+def nowrap_widths():
+    """While a document is laid out (``render``): the min- and max-content widths of a text
+    that does not wrap measured once (:func:`_line_widths`) instead of twice; the widths, so
+    the layout and the PDF, are the same."""
+    from weasyprint.layout import preferred
+
+    general = preferred.split_first_line
+    if getattr(general, "_reportgen", False):
+        yield
+        return
+    fast = _line_widths(general)
+    fast._reportgen = True
+    preferred.split_first_line = fast
+    try:
+        yield
+    finally:
+        preferred.split_first_line = general
