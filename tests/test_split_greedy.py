@@ -234,3 +234,18 @@ def test_neighbours_guess_is_not_held_back_at_a_figure_it_can_prove():
     assert got.get("figure:fig-frc-lever", [0])[0] > 0  # text moved before the landscape lever
     assert got == _reference(part)
     assert passes <= 4
+
+
+def test_guessed_figure_entry_after_a_landscape_page_is_dropped_in_one_pass():
+    """Class variant 06's forces part from variant 05's split points: 05 moves text before its
+    second group's figure, 06 before its first (landscape) one, after which the text moved before
+    the second figure starts the page right after the landscape page. On the canonical layout the
+    second figure then starts that page, where its rule gives nothing: the verdict says so
+    (before: «no text before on its page», unknown, the figure set back to none with the table
+    after it held back, 4 passes; now 3), and the split points are the definition's."""
+    neighbour, _passes = _fast(_Part(_class_note("0.312 m", "1.440 m", "0.93 m"), FULL_FORCES))
+    part = _Part(_class_note("0.315 m", "1.450 m", "0.85 m"), FULL_FORCES)
+    got, passes = _fast(part, neighbour)
+    assert "figure:fig-frc-group-2" in neighbour and "figure:fig-frc-group-2" not in got
+    assert got == _reference(part)
+    assert passes <= 3

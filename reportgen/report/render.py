@@ -2059,6 +2059,11 @@ def _figure_verdict(document, page: int, key: str, cur: list[int], bottoms: list
                if isinstance(b, (LineBox, ReplacedBox, TableRowBox))
                and b.position_y + b.margin_height() <= y_cut + SPLIT_EPS), default=None)
     if ink is None:
+        if p > 0 and document.pages[p - 1].width > document.pages[p - 1].height:
+            # nothing before it on its page, after a landscape page (which holds one wide figure):
+            # on the canonical layout the figure starts the page after that one, where the rule
+            # (_figure_fix_at) gives no entry
+            return "fix", None
         return _why(unknown, "no text before on its page")
     margins = float(fig.style["margin_top"].value) + float(fig.style["margin_bottom"].value)
     h_img = img.margin_height() * 1000 / s
