@@ -204,3 +204,48 @@ def test_kinematics_of_variant_01_from_none_ends_on_the_reference():
     got, passes = _fast(part)
     assert got == ref
     assert passes < render.MAX_PASSES
+
+
+FULL_FORCES = 4  # the forces part of the whole note of ws000 (title, structure, kinematics, dynamics, …)
+
+
+def _class_note(l_oa: str, l_ab: str, y_h: str):
+    from reportgen.analysis.study import Study
+    from reportgen.case.load import load_spec
+    from reportgen.report.assemble import build_report
+
+    spec = load_spec(CASES / "ws000_six_bar.toml", {"l_OA": l_oa, "l_AB": l_ab, "Y_H": y_h})
+    return build_report(Study(spec), None)
+
+
+def test_neighbours_guess_is_not_held_back_at_a_figure_it_can_prove():
+    """Class variant 02's forces part from variant 01's split points (a batch: 02 after 01 in one
+    worker). A table fixed first moves the Жуковский lever's figure (landscape) so that its rule
+    moves text before it; the table after the moved text is too long to lie within the pages
+    the rule looks at, but the rule never reads it (it does not fit the room, and the room left
+    is less than half a page, so nothing is broken across the page). The figure's verdict used
+    to ask every block up to that table to lie within 1.5 pages: unknown, the figure set back to
+    none with the later entries held back, then decided again and the held entry dropped, 6
+    passes. Now the verdict reads only the blocks the rule reads: 4 passes, and the split points
+    of the definition (render._greedy_step from none)."""
+    neighbour, _passes = _fast(_Part(_class_note("0.300 m", "1.400 m", "0.85 m"), FULL_FORCES))
+    part = _Part(_class_note("0.303 m", "1.410 m", "0.87 m"), FULL_FORCES)
+    got, passes = _fast(part, neighbour)
+    assert got.get("figure:fig-frc-lever", [0])[0] > 0  # text moved before the landscape lever
+    assert got == _reference(part)
+    assert passes <= 4
+
+
+def test_guessed_figure_entry_after_a_landscape_page_is_dropped_in_one_pass():
+    """Class variant 06's forces part from variant 05's split points: 05 moves text before its
+    second group's figure, 06 before its first (landscape) one, after which the text moved before
+    the second figure starts the page right after the landscape page. On the canonical layout the
+    second figure then starts that page, where its rule gives nothing: the verdict says so
+    (before: «no text before on its page», unknown, the figure set back to none with the table
+    after it held back, 4 passes; now 3), and the split points are the definition's."""
+    neighbour, _passes = _fast(_Part(_class_note("0.312 m", "1.440 m", "0.93 m"), FULL_FORCES))
+    part = _Part(_class_note("0.315 m", "1.450 m", "0.85 m"), FULL_FORCES)
+    got, passes = _fast(part, neighbour)
+    assert "figure:fig-frc-group-2" in neighbour and "figure:fig-frc-group-2" not in got
+    assert got == _reference(part)
+    assert passes <= 3

@@ -2059,6 +2059,11 @@ def _figure_verdict(document, page: int, key: str, cur: list[int], bottoms: list
                if isinstance(b, (LineBox, ReplacedBox, TableRowBox))
                and b.position_y + b.margin_height() <= y_cut + SPLIT_EPS), default=None)
     if ink is None:
+        if p > 0 and document.pages[p - 1].width > document.pages[p - 1].height:
+            # nothing before it on its page, after a landscape page (which holds one wide figure):
+            # on the canonical layout the figure starts the page after that one, where the rule
+            # (_figure_fix_at) gives no entry
+            return "fix", None
         return _why(unknown, "no text before on its page")
     margins = float(fig.style["margin_top"].value) + float(fig.style["margin_bottom"].value)
     h_img = img.margin_height() * 1000 / s
@@ -2095,11 +2100,14 @@ def _figure_verdict(document, page: int, key: str, cur: list[int], bottoms: list
         k += 1
     if k < len(units) and close(used + units[k][1], room - FIGURE_SLACK):
         return _why(unknown, "block close to the room")
-    if full + (0.0 if land else margins) + sum(u[1] for u in units[:k + 1]) >= 1.5 * height:
+    # the rule reads whether a block goes on past its pages for the blocks it moves, and for
+    # the one after them only when it would break that one across the page (room left > half)
+    if k < len(units) and close(room - used, height / 2):
+        return _why(unknown, "room close to half")
+    broken = k < len(units) and room - used > height / 2
+    if full + (0.0 if land else margins) + sum(u[1] for u in units[:k + broken]) >= 1.5 * height:
         return _why(unknown, "blocks beyond 1.5 pages")  # (whether one goes on past the rule's pages)
-    if k < len(units) and room - used > height / 2:
-        if close(room - used, height / 2):
-            return _why(unknown, "room close to half")
+    if broken:
         n, h, breakable = units[k][:3]
         fits = (h - (room - used)) + rest + h_img + 3 * line
         if breakable and not land and close(fits, height):
