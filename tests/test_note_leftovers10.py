@@ -1,0 +1,94 @@
+"""Defects session 9 saw and left (#9, session 10 «leftovers»), each test failing on the defect:
+
+* ε₃ of the rocking cylinder read off a 5 mm a^τ vector is 8,7 % off the analytic value while the
+  comparison tables print neither ω nor ε and the text says the largest discrepancy is under 1 %:
+  the tables now hold the ω and ε the note derives from the plans, and a discrepancy over the
+  allowed 5 % is stated with the short segment's error in mm (the accuracy of the drawing).
+"""
+import math
+
+import pytest
+
+from conftest import CASES
+from notehelpers import blocks, plain
+
+_STUDIES: dict = {}
+_SECTIONS: dict = {}
+
+
+def _study(stem):
+    from reportgen import load_case
+    if stem not in _STUDIES:
+        _STUDIES[stem] = load_case(CASES / f"{stem}.toml")
+    return _STUDIES[stem]
+
+
+def _kinematics(stem):
+    from reportgen.report.sections import kinematics as K
+    if stem not in _SECTIONS:
+        _SECTIONS[stem] = K.build(_study(stem))
+    return _SECTIONS[stem]
+
+
+def _block(sec, id_):
+    return next(b for b in blocks(sec) if getattr(b, "id", None) == id_)
+
+
+# ------------------------------------------------------------------ ω and ε in the comparison tables
+@pytest.mark.parametrize("stem", ["rocking_cylinder", "ws000_six_bar"])
+def test_comparison_tables_hold_the_omega_and_epsilon_read_off_the_plans(stem):
+    """Every ω and ε the note finds from a plan segment of at least MIN_MM is a row of its plan's
+    comparison table (segment read to 0,5 mm, between two points of the link); its «аналитически»
+    is the kinematics table's |ω|, |ε| and its discrepancy the one of those two numbers."""
+    from reportgen.analysis.plans import READ_MM
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.plans import MIN_MM
+    st = _study(stem)
+    sec = _kinematics(stem)
+    row = st.kinematics[st.kinematics["pos"] == chosen_position(st)].iloc[0]
+    seen = set()
+    for tab_id, kind, col in (("tab-vplan", "omega", "w_"), ("tab-aplan", "eps", "e_")):
+        tab = _block(sec, tab_id)
+        reads = tab.data[tab.data["kind"] == kind]
+        assert len(reads), (stem, tab_id)
+        for r in reads.itertuples():
+            link = r.link
+            _, _, seg, rq = r.name.split(":")
+            # the segment is one of the link's own (l between two of its points)
+            pts = st.mechanism.link(link).points
+            assert any(a + b == rq for a in pts for b in pts if a != b), (r.name, list(pts))
+            assert r.mm >= MIN_MM and abs(r.mm / READ_MM - round(r.mm / READ_MM)) < 1e-9
+            assert r.analytic == pytest.approx(abs(row[col + link]), rel=1e-12)
+            assert r.delta == pytest.approx(abs(r.graphic - r.analytic) / r.analytic * 100, rel=1e-9)
+            seen.add((kind, link))
+        assert ("ω" if kind == "omega" else "ε") in plain(tab.caption)
+    assert {k for k, _ in seen} == {"omega", "eps"}
+
+
+def test_rocking_cylinder_epsilon_discrepancy_is_stated_with_its_short_segment():
+    """ε₃ is read off a^τ_KC, about 5 mm long: its discrepancy (over 5 %) is the largest of the
+    acceleration table, the text says so and gives the segment's error in mm against its exact
+    length (|ε₃|·l_CK/μ_a), not «наибольшее расхождение … 0,93 %»."""
+    from reportgen.report.document import Paragraph
+    from reportgen.style.numbers import fmt, fmt_pct
+    st = _study("rocking_cylinder")
+    sec = _kinematics("rocking_cylinder")
+    tab = _block(sec, "tab-aplan").data
+    eps = tab[tab["kind"] == "eps"]
+    worst = tab.loc[tab["delta"].idxmax()]
+    assert worst["kind"] == "eps" and worst["delta"] > 5.0
+    text = plain(next(b.html for b in blocks(sec) if isinstance(b, Paragraph) and "Наибольшее" in b.html))
+    assert f"по ускорениям {plain(fmt_pct(worst['delta'] / 100))}" in text
+    assert "ограничена чертежом" in text
+    assert plain(fmt(worst["mm"], digits=1)) + "\u00a0мм" in text
+    assert plain(fmt(abs(worst["mm"] - worst["mm_exact"]), digits=2)) + "\u00a0мм" in text
+    assert len(eps) >= 1
+
+
+def test_no_drawing_limit_remark_when_every_discrepancy_is_allowed():
+    """ws000's plans agree within 5 %: no remark on the drawing's accuracy."""
+    from reportgen.report.document import Paragraph
+    sec = _kinematics("ws000_six_bar")
+    for id_ in ("tab-vplan", "tab-aplan"):
+        assert _block(sec, id_).data["delta"].max() <= 5.0
+    assert "ограничена чертежом" not in " ".join(b.html for b in blocks(sec) if isinstance(b, Paragraph))
