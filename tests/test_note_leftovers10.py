@@ -92,3 +92,35 @@ def test_no_drawing_limit_remark_when_every_discrepancy_is_allowed():
     for id_ in ("tab-vplan", "tab-aplan"):
         assert _block(sec, id_).data["delta"].max() <= 5.0
     assert "ограничена чертежом" not in " ".join(b.html for b in blocks(sec) if isinstance(b, Paragraph))
+
+
+# ------------------------------------------------------------------ the quick-return sentence fits the machine
+def _resistance_by_stroke(st):
+    """−∫ min(ΣM, 0) dφ over the crank angles where the output moves one way and the other
+    (split by the sign of the output's analog, not by the extreme positions)."""
+    import numpy as np
+    from reportgen.analysis.plans import output_quantity
+    cyc = st.dynamics.cycle
+    q = cyc["q"].to_numpy()
+    m = np.minimum(sum(cyc["M_" + ld.name].to_numpy() for ld in st.dynamics.loads.loads if ld.kind != "weight"), 0)
+    out = output_quantity(st)[0]
+    v = np.gradient(st.cycle[out].to_numpy(), st.cycle["q"].to_numpy())
+    v = np.interp(q, st.cycle["q"].to_numpy(), v)
+    dq = np.gradient(q)
+    return float(-(m * dq)[v > 0].sum()), float(-(m * dq)[v <= 0].sum())
+
+
+@pytest.mark.parametrize("stem,idle", [("articulated_compressor", False), ("ws000_six_bar", True)])
+def test_quick_return_sentence_calls_a_loaded_return_stroke_not_idle(stem, idle):
+    """A compressor's suction stroke has gas forces too: no «холостой» stroke and no cycle-time
+    claim; ws000's return stroke has no resistance: «холостой … сокращает время цикла» stays."""
+    from reportgen.report.document import Paragraph
+    st = _study(stem)
+    a, b = sorted(_resistance_by_stroke(st))
+    assert (a < 0.02 * b) == idle, (a, b)
+    text = plain(" ".join(p.html for p in blocks(_kinematics(stem)) if isinstance(p, Paragraph)
+                          and "Один ход выходного звена" in p.html))
+    assert "раза быстрее" in text
+    assert ("холостой" in text) == idle and ("время цикла" in text) == idle, text
+    if not idle:
+        assert "обратный выполняется" in text

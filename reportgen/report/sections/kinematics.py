@@ -87,13 +87,16 @@ def _strokes(study, s, exact: bool = True) -> tuple[float, float, float, float]:
 QUICK_RETURN_K = 1.05     # below it the strokes take practically the same time: no slow and fast stroke
 
 
-def _quick_return(fast: float, K: float, working: str | None = None, direction: int = 1) -> str:
+def _quick_return(fast: float, K: float, working: str | None = None, direction: int = 1, idle: bool = True) -> str:
     """Engineering reading of K > 1 (Артоболевский, гл. «Синтез»): the slow stroke is the working one.
     ``working`` — which stroke the case's loads resist (:func:`_working_stroke`): where it is the
     fast one the note says so and what to change: the crank turned the other way (``direction``:
     +1 counter-clockwise as given, −1 clockwise) goes through the same positions in the reverse
     order, so the output makes each stroke over the other arc of the crank's turn and the working
-    stroke becomes the slow one."""
+    stroke becomes the slow one. ``idle`` — whether the other stroke is idle (:func:`_return_idle`):
+    only then is the fast return said to shorten the cycle (at the working stroke's speed, the
+    productivity argument of a shaper); otherwise it is the return stroke (обратный), whose
+    resistance the case gives too (a compressor's suction stroke)."""
     if not K > QUICK_RETURN_K:
         return ""
     head = (f" Один ход выходного звена занимает {fmt(360 - fast, digits=1)}°, другой — {fmt(fast, digits=1)}° "
@@ -101,26 +104,30 @@ def _quick_return(fast: float, K: float, working: str | None = None, direction: 
     if working == "fast":
         other = "по часовой стрелке" if direction > 0 else "против часовой стрелки"
         return head + (f"силы сопротивления действуют на быстром ходе, т. е. при заданном направлении вращения "
-                       f"кривошипа рабочим оказался быстрый ход, хотя рабочим выгоднее назначать медленный (холостой "
-                       f"ход тогда выполняется в {fmt(K, digits=2)} раза быстрее). При обратном направлении вращения "
+                       f"кривошипа рабочим оказался быстрый ход, хотя рабочим выгоднее назначать медленный "
+                       f"({'холостой' if idle else 'обратный'} ход тогда выполняется в {fmt(K, digits=2)} раза быстрее). При обратном направлении вращения "
                        f"кривошипа механизм проходит те же положения в обратном порядке, и каждый ход выходного звена "
                        f"совершается за другую часть оборота: ход в направлении нынешнего быстрого становится "
                        f"медленным. Поэтому кривошип целесообразно вращать {other} (расчёты записки выполнены для "
                        f"заданного направления вращения).")
     lead = ("рабочий ход (на нём действуют силы сопротивления) — медленный" if working == "slow"
             else "рабочим назначается медленный ход")
-    return head + (f"{lead}, холостой выполняется в {fmt(K, digits=2)} раза быстрее, что сокращает время цикла.")
+    if not idle:
+        return head + f"{lead}, обратный выполняется в {fmt(K, digits=2)} раза быстрее."
+    return head + (f"{lead}, холостой выполняется в {fmt(K, digits=2)} раза быстрее, что при той же скорости "
+                   f"рабочего хода сокращает время цикла.")
 
 
-def _working_stroke(study) -> str | None:
-    """Which stroke of the output the case's loads resist: the work the resisting part of the
-    case's applied loads does on the stroke from the extreme position q₁ to q₂ and on the other
-    one, R = −∫ min(ΣM_i, 0) dφ over the stroke (M_i — the reduced moments of the case's
-    ``[loads]``, weights left out: a counterweight that rises on one stroke and falls on the
-    other is no technological resistance; a load that helps the motion, as the weight of a pump's
-    rod string on the down stroke, resists nothing).  "slow"/"fast" where one stroke takes at
-    least twice the other's resistance, None without [dynamics], for a longer cycle or a load on
-    both strokes alike."""
+IDLE_SHARE = 0.02     # a stroke with less than this share of the other stroke's resistance is idle (холостой)
+
+
+def _stroke_resistances(study) -> tuple[float, float, bool] | None:
+    """(resistance on the stroke from the extreme position q₁ to q₂, on the other stroke, whether
+    the first is the slow one): R = −∫ min(ΣM_i, 0) dφ over each stroke (M_i — the reduced moments
+    of the case's ``[loads]``, weights left out: a counterweight that rises on one stroke and falls
+    on the other is no technological resistance; a load that helps the motion, as the weight of a
+    pump's rod string on the down stroke, resists nothing). None without [dynamics] or for a
+    longer cycle."""
     sc = study.scalars
     if not study.root.has("dynamics") or "output_q1" not in sc:
         return None
@@ -137,10 +144,32 @@ def _working_stroke(study) -> str | None:
     q1, q2 = sorted((sc["output_q1"], sc["output_q2"]))
     a = float(np.interp(q1, q, R) - np.interp(q2, q, R))      # the stroke from q₁ to q₂ (≥ 0)
     b = float(R[0] - R[-1]) - a
+    return a, b, (q2 - q1) > period / 2
+
+
+def _working_stroke(study) -> str | None:
+    """Which stroke of the output the case's loads resist (:func:`_stroke_resistances`): "slow"/"fast"
+    where one stroke takes at least twice the other's resistance, None without [dynamics], for a
+    longer cycle or a load on both strokes alike."""
+    res = _stroke_resistances(study)
+    if res is None:
+        return None
+    a, b, slow_is_a = res
     if max(a, b) <= 0 or max(a, b) < 2 * max(min(a, b), 0.0):
         return None
-    slow_is_a = (q2 - q1) > period / 2
     return "slow" if (a > b) == slow_is_a else "fast"
+
+
+def _return_idle(study) -> bool:
+    """Whether the stroke other than the working one is idle (холостой): its resistance under
+    IDLE_SHARE of the working stroke's (a shaper's return; not a compressor's suction stroke, whose
+    gas forces resist too). True where the case gives no loads to tell (the textbook convention of
+    a working and an idle stroke)."""
+    res = _stroke_resistances(study)
+    if res is None or _working_stroke(study) is None:
+        return True
+    a, b, _ = res
+    return max(min(a, b), 0.0) < IDLE_SHARE * max(a, b)
 
 
 def _in_tables(ids: list[str]) -> str:
@@ -813,7 +842,8 @@ def _output_diagrams(s5: Section, study, out: tuple, fig_id: str, several: bool,
                      f"{_turn(q_max - study.grid.start)}°; угол перекрытия "
                      f"θ&nbsp;=&nbsp;{fmt(abs(180 - work), digits=1)}°, коэффициент изменения средней скорости "
                      f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}."
-                     + _quick_return(work, K, _working_stroke(study) if main else None, mech.driver.direction))
+                     + _quick_return(work, K, _working_stroke(study) if main else None, mech.driver.direction,
+                                     _return_idle(study) if main else True))
     s5.paragraph(origin)
     s5.figure(f"Кинематические диаграммы выходного звена: {title}" if several else
               "Кинематические диаграммы выходного звена", diag.svg, diag.width_mm, id=fig_id)
@@ -880,7 +910,7 @@ def _speed_lines(study) -> list[str]:
                 other = "по часовой стрелке" if d.direction > 0 else "против часовой стрелки"
                 out.append(f"При заданном направлении вращения {input_word(d, 'gen')} рабочий ход выходного звена — "
                            f"быстрый (подраздел {ref('sec-diagrams')}); при вращении {other} рабочим станет "
-                           f"медленный ход, а холостой будет выполняться в {fmt(sc['output_K'], digits=2)} раза "
+                           f"медленный ход, а {'холостой' if _return_idle(study) else 'обратный'} будет выполняться в {fmt(sc['output_K'], digits=2)} раза "
                            f"быстрее — такое направление вращения предпочтительнее.")
     pin = study.mechanism.crank_pin()
     col = "v_" + str(pin)
