@@ -124,3 +124,67 @@ def test_quick_return_sentence_calls_a_loaded_return_stroke_not_idle(stem, idle)
     assert ("холостой" in text) == idle and ("время цикла" in text) == idle, text
     if not idle:
         assert "обратный выполняется" in text
+
+
+# ------------------------------------------------------------------ the cylinder symbol
+def _patches_mm(ax):
+    """Every Polygon/Rectangle patch of the axes as its vertices in data coordinates."""
+    from matplotlib.patches import Polygon, Rectangle
+    out = []
+    for p in ax.patches:
+        if isinstance(p, (Polygon, Rectangle)):
+            v = p.get_transform().transform(p.get_path().vertices)
+            out.append((type(p).__name__, ax.transData.inverted().transform(v)))
+    return out
+
+
+@pytest.mark.parametrize("scene", ["scheme", "groups", "positions"])
+def test_rocking_cylinder_drawn_as_cylinder_with_piston_and_rod(scene, captured):
+    """symbol = "cylinder": no block at the rod's pin A; a body (4-corner polygon) as long as the
+    cylinder from its pivot C to its end K, and the rod drawn from A to the piston point P."""
+    import numpy as np
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.mechanism import AssurGroups, KinematicScheme, PositionsPlan
+    st = _study("rocking_cylinder")
+    mech = st.mechanism
+    j = next(j for j in mech.prismatic if j.links[0] != "0")
+    assert j.cylinder
+    lab = chosen_position(st)
+    row = st.kinematics[st.kinematics["pos"] == lab].iloc[0]
+    drawing = {"scheme": KinematicScheme(lab), "groups": AssurGroups(lab), "positions": PositionsPlan()}[scene]
+    captured.clear()
+    drawing.draw(st)
+    fig = captured[0]
+    P = lambda n: np.array([row[f"x_{n}"], row[f"y_{n}"]])
+    l_ck, l_ap = np.linalg.norm(P("C") - P("K")), np.linalg.norm(P("A") - P("P"))
+    found = False
+    for ax in fig.axes:          # the groups: one axes per group, each at its own scale
+        patches = _patches_mm(ax)
+        # no slider block anywhere (a Rectangle is how a block is drawn)
+        assert not any(kind == "Rectangle" for kind, _ in patches), patches
+        # a body: a 4-corner polygon with two equal long sides, and the rod: a line from the
+        # piston P to the pin A, in the ratio |AP| : |CK| to them
+        longs = [np.sort(np.linalg.norm(np.diff(v[:4], axis=0, append=v[:1]), axis=1))[2:] for kind, v in patches
+                 if kind == "Polygon" and len(v) in (4, 5)]
+        longs = [s_[1] for s_ in longs if abs(s_[1] - s_[0]) < 1e-9 * s_[1]]
+        lines = [np.column_stack(l.get_data()).astype(float) for l in ax.lines]
+        rods = [np.linalg.norm(l[1] - l[0]) for l in lines if len(l) == 2]
+        found |= any(abs(r * l_ck / L - l_ap) < 1e-6 * l_ap for L in longs for r in rods)
+    assert found, scene
+
+
+def test_cylinder_symbol_on_a_frame_guide_is_a_case_error(tmp_path):
+    """symbol = "cylinder" names a pair of two moving links; on the frame it is a CaseError with
+    the key, not a drawing of something else."""
+    from reportgen import load_case
+    from reportgen.errors import CaseError
+    text = (CASES / "slider_crank.toml").read_text(encoding="utf-8")
+    import re
+    m = re.search(r'(\[\[joints\]\]\s*\ntype = "P"[^\[]*)', text)
+    assert m, "slider_crank.toml has a prismatic pair"
+    bad = text.replace(m.group(1), m.group(1).rstrip() + '\nsymbol = "cylinder"\n\n', 1)
+    f = tmp_path / "bad.toml"
+    f.write_text(bad, encoding="utf-8")
+    with pytest.raises(CaseError) as e:
+        load_case(f).mechanism
+    assert "symbol" in str(e.value)

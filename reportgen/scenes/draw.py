@@ -217,7 +217,7 @@ def cylinder_parts(mech: Mechanism, row, j):
     u = (open_ - closed) / np.hypot(*(open_ - closed))
     # the rod's points on the axis (the slider's own frame: its points on the pair's line through j.point)
     rod_pts = [np.asarray(_point(row, p), float) for p in rod.points]
-    on_axis = [q for q in rod_pts if abs(float(np.cross(u, q - closed))) < 1e-6 * size]
+    on_axis = [q for q in rod_pts if abs(float(u[0] * (q - closed)[1] - u[1] * (q - closed)[0])) < 1e-6 * size]
     piston = min(on_axis or rod_pts, key=lambda q: float(np.dot(q - closed, u)))
     return closed, open_, u, piston, end
 
