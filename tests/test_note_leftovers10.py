@@ -188,3 +188,44 @@ def test_cylinder_symbol_on_a_frame_guide_is_a_case_error(tmp_path):
     with pytest.raises(CaseError) as e:
         load_case(f).mechanism
     assert "symbol" in str(e.value)
+
+
+# ------------------------------------------------------------------ the toggle's force amplification
+def test_knuckle_press_toggle_gain_is_the_crank_over_the_output_analog():
+    """The gain F·r/M of the coining force over its largest-force stretch equals, by the power
+    balance F·v_D = M·ω, the least of r/|y′_D| there (the output's analog, kinematics alone), to
+    the 0,1 % by which F may fall short of F_max on that stretch."""
+    import numpy as np
+    from reportgen.report.sections.dynamics import toggle_gain
+    st = _study("knuckle_press")
+    t = toggle_gain(st)
+    assert t is not None and t["load"].name == "Pч"
+    cyc = st.cycle
+    r = float(np.hypot(cyc["x_A"] - cyc["x_O"], cyc["y_A"] - cyc["y_O"]).iloc[0])
+    cols = {c: cyc[c].to_numpy() for c in cyc.columns}
+    Fx, Fy = t["load"].force(cols, st.dynamics.loads.phase({"q": cols["q"]}))
+    F = np.hypot(Fx, Fy)
+    zone = F >= 0.999 * F.max()
+    g_kin = float(np.min(r / np.abs(cols["vqy_D"][zone])))
+    # F within 0,1 % of F_max over the stretch: F_max·r/max(F·|y′|) lies between it and it/0,999
+    assert g_kin * (1 - 1e-9) <= t["gain"] <= g_kin / 0.999
+    assert t["gain"] > 5
+
+
+@pytest.mark.parametrize("stem,has", [("knuckle_press", True), ("ws000_six_bar", False),
+                                      ("articulated_compressor", False)])
+def test_toggle_remark_in_the_note_only_for_a_toggle(stem, has):
+    """The remark (dynamics §«Приведённые моменты сил» and the conclusion) for the knuckle press;
+    not for a shaper-like six-bar (gain under 1) nor a compressor (its gas force peaks only at the
+    dead centre, a spike, not a working stretch)."""
+    from reportgen.report.document import Paragraph
+    from reportgen.report.sections import dynamics as D
+    st = _study(stem)
+    sec = D.build(st)
+    text = plain(" ".join(b.html for b in blocks(sec) if isinstance(b, Paragraph)))
+    concl = plain(" ".join(D.conclusion_lines(st)))
+    assert ("выигрыш в силе" in text) == has and ("выигрыш в силе" in concl) == has
+    if has:
+        from reportgen.style.numbers import fmt
+        t = D.toggle_gain(st)
+        assert plain(fmt(t["gain"], sig=3)) in text and "&lt;" not in text and "&lt;" not in concl
