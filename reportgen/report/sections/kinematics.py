@@ -399,7 +399,7 @@ def build(study) -> Section:
                      f"{fmt_pct(atab['delta'].max() / 100)} (допускается до {fmt(PLAN_TOL_PCT, digits=0)}&nbsp;%)."
                      + _short_reads_text(vtab, vplan) + _short_reads_text(atab, aplan)
                      + _insets_text(vplan, "скоростей", "v", "м·с⁻¹/мм") + _insets_text(aplan, "ускорений", "a", "м·с⁻²/мм"))
-        units = lambda t, lin, ang, sym: lin + (f" ({sym} — {ang})" if (t["kind"] == ("omega" if sym == "ω" else "eps")).any() else "")
+        units = lambda t, lin, ang, sym: lin + (f" ({sym}\u00a0—\u00a0{ang})" if (t["kind"] == ("omega" if sym == "ω" else "eps")).any() else "")
         s4.table(f"Скорости по плану и аналитически (положение {pos_no(study, lab)}), {units(vtab, 'м/с', 'рад/с', 'ω')}",
                  cmp_cols, vtab, id="tab-vplan")
         s4.table(f"Ускорения по плану и аналитически (положение {pos_no(study, lab)}), {units(atab, 'м/с²', 'рад/с²', 'ε')}",
