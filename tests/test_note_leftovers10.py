@@ -229,3 +229,26 @@ def test_toggle_remark_in_the_note_only_for_a_toggle(stem, has):
         from reportgen.style.numbers import fmt
         t = D.toggle_gain(st)
         assert plain(fmt(t["gain"], sig=3)) in text and "&lt;" not in text and "&lt;" not in concl
+
+
+# ------------------------------------------------------------------ a flat plan keeps the portrait page
+def test_flat_velocity_plan_of_ws000_stays_on_the_portrait_page():
+    """ws000's velocity plan would be 194 × 47 mm on a landscape page of its own (under half its
+    height): it is drawn on the portrait page at its portrait scale, and every plan that does go
+    landscape fills at least LANDSCAPE_FILL of that page's height."""
+    import numpy as np
+    from reportgen.analysis.plans import velocity_plan
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.mechanism import LANDSCAPE_GAIN, LANDSCAPE_H
+    from reportgen.scenes.plans import LANDSCAPE_FILL, MARGIN_MM, PlanScene, page_scale, plan_scale
+    st = _study("ws000_six_bar")
+    lab = chosen_position(st)
+    row = st.kinematics[st.kinematics["pos"] == lab].iloc[0]
+    plan = velocity_plan(row, st.mechanism)
+    mu_p, mu_l = plan_scale(plan), plan_scale(plan, landscape=True)
+    assert mu_p >= LANDSCAPE_GAIN * mu_l            # the gain alone would take a landscape page
+    pts = np.array([[0.0, 0.0]] + [list(v) for v in plan.tips.values()])
+    assert np.ptp(pts[:, 1]) / mu_l < LANDSCAPE_FILL * (LANDSCAPE_H - 2 * MARGIN_MM)
+    assert page_scale(plan) == (mu_p, False)
+    d = PlanScene(lab, "velocity", landscape=True).draw(st)
+    assert not d.landscape and d.mu == mu_p
