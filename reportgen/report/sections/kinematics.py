@@ -399,11 +399,10 @@ def build(study) -> Section:
                      f"{fmt_pct(atab['delta'].max() / 100)} (допускается до {fmt(PLAN_TOL_PCT, digits=0)}&nbsp;%)."
                      + _short_reads_text(vtab, vplan) + _short_reads_text(atab, aplan)
                      + _insets_text(vplan, "скоростей", "v", "м·с⁻¹/мм") + _insets_text(aplan, "ускорений", "a", "м·с⁻²/мм"))
-        units = lambda t, lin, ang, sym: lin + (f" ({sym}\u00a0—\u00a0{ang})" if (t["kind"] == ("omega" if sym == "ω" else "eps")).any() else "")
-        s4.table(f"Скорости по плану и аналитически (положение {pos_no(study, lab)}), {units(vtab, 'м/с', 'рад/с', 'ω')}",
-                 cmp_cols, vtab, id="tab-vplan")
-        s4.table(f"Ускорения по плану и аналитически (положение {pos_no(study, lab)}), {units(atab, 'м/с²', 'рад/с²', 'ε')}",
-                 cmp_cols, atab, id="tab-aplan")
+        s4.table(f"Скорости по плану и аналитически (положение {pos_no(study, lab)}), "
+                 f"{_units_caption(vtab, 'omega', 'м/с', 'ω', 'рад/с')}", cmp_cols, vtab, id="tab-vplan")
+        s4.table(f"Ускорения по плану и аналитически (положение {pos_no(study, lab)}), "
+                 f"{_units_caption(atab, 'eps', 'м/с²', 'ε', 'рад/с²')}", cmp_cols, atab, id="tab-aplan")
 
     # ----- kinematic diagrams
     if not study.has_cycle:        # [grid] cycle = false: single positions, no diagrams over the cycle
@@ -766,11 +765,17 @@ def _with_reads(tab: pd.DataFrame, reads: list, kind: str) -> pd.DataFrame:
     return pd.concat([tab, pd.DataFrame(rows)], ignore_index=True) if rows else tab
 
 
+def _units_caption(tab: pd.DataFrame, kind: str, unit: str, sym: str, ang_unit: str) -> str:
+    """The units of a comparison table's caption: «м/с», and «(ω — рад/с)» when it holds read ω (ε)."""
+    has = "kind" in tab and bool((tab["kind"] == kind).any())
+    return unit + (f" ({sym}\u00a0—\u00a0{ang_unit})" if has else "")
+
+
 def _short_reads_text(tab: pd.DataFrame, drawing) -> str:
     """The sentence for the rows of a comparison table whose discrepancy exceeds PLAN_TOL_PCT: the
     segment each was read from is short, and its absolute error in mm (a few tenths — what laying
-    off and reading to READ_MM give) is a large share of it; the plan is at the scale at which its
-    longest segment fits the page, so the accuracy is that of the drawing. Empty when none exceeds."""
+    off and reading to READ_MM give) is a large share of it; the plan's scale is set by the page
+    (its longest segment named), so the accuracy is that of the drawing. Empty when none exceeds."""
     over = tab[tab["delta"] > PLAN_TOL_PCT] if not tab.empty else tab
     if over.empty:
         return ""
@@ -786,8 +791,8 @@ def _short_reads_text(tab: pd.DataFrame, drawing) -> str:
     # a str like the paragraph it ends (Markup + str would escape the paragraph's own markup)
     return str(Markup(" Больше допустимого расхождение ") + Markup("; ").join(parts)
                + Markup(" — ошибка построения по векторам, отложенным с точностью {}&nbsp;мм, для короткого отрезка "
-                        "велика в процентах, а план построен в наибольшем масштабе, при котором умещается на листе "
-                        "(его наибольший отрезок {} — {}&nbsp;мм): точность {} ограничена чертежом.").format(
+                        "велика в процентах, а масштаб плана выбран по размерам листа (его наибольший отрезок {} — "
+                        "{}&nbsp;мм): точность {} ограничена чертежом.").format(
                    fmt(READ_MM, digits=1), _vec_name(longest.name), fmt(longest.length / drawing.mu, digits=0),
                    "этого значения" if len(parts) == 1 else "этих значений"))
 
