@@ -399,10 +399,9 @@ def build(study) -> Section:
                      f"{fmt_pct(atab['delta'].max() / 100)} (допускается до {fmt(PLAN_TOL_PCT, digits=0)}&nbsp;%)."
                      + _short_reads_text(vtab, vplan) + _short_reads_text(atab, aplan)
                      + _insets_text(vplan, "скоростей", "v", "м·с⁻¹/мм") + _insets_text(aplan, "ускорений", "a", "м·с⁻²/мм"))
-        s4.table(f"Скорости по плану и аналитически (положение {pos_no(study, lab)}), "
-                 f"{_units_caption(vtab, 'omega', 'м/с', 'ω', 'рад/с')}", cmp_cols, vtab, id="tab-vplan")
-        s4.table(f"Ускорения по плану и аналитически (положение {pos_no(study, lab)}), "
-                 f"{_units_caption(atab, 'eps', 'м/с²', 'ε', 'рад/с²')}", cmp_cols, atab, id="tab-aplan")
+        # the rows of ω and ε carry their unit (рад/с, рад/с²) after their name, the caption the vectors' one
+        s4.table(f"Скорости по плану и аналитически (положение {pos_no(study, lab)}), м/с", cmp_cols, vtab, id="tab-vplan")
+        s4.table(f"Ускорения по плану и аналитически (положение {pos_no(study, lab)}), м/с²", cmp_cols, atab, id="tab-aplan")
 
     # ----- kinematic diagrams
     if not study.has_cycle:        # [grid] cycle = false: single positions, no diagrams over the cycle
@@ -651,10 +650,11 @@ def _read_symbol(name: str) -> Markup:
 
 def _vec_name(name: str) -> Markup:
     """V_BA → V<sub>BA</sub>; a^n_BA → a<sup>n</sup><sub>BA</sub>; a read ω or ε (:func:`_add_read`)
-    → ω₃ = V_KC/l_CK, ε₃ = a^τ_KC/l_CK."""
+    → «ω₃ = V_KC/l_CK, рад/с», «ε₃ = a^τ_KC/l_CK, рад/с²» (the unit of the row: the caption gives the vectors')."""
     if name.startswith(("omega:", "eps:")):
-        _, _, seg, rq = name.split(":")
-        return Markup("{} = {}/<i>l</i><sub>{}</sub>").format(_read_symbol(name), _vec_name(seg), rq)
+        kind, _, seg, rq = name.split(":")
+        return Markup("{} = {}/<i>l</i><sub>{}</sub>, {}").format(_read_symbol(name), _vec_name(seg), rq,
+                                                                  "рад/с" if kind == "omega" else "рад/с²")
     if "^" in name:
         head, rest = name.split("^", 1)
         sup_, _, idx = rest.partition("_")
@@ -763,12 +763,6 @@ def _with_reads(tab: pd.DataFrame, reads: list, kind: str) -> pd.DataFrame:
     """The comparison table of a plan with the ω (``kind`` "omega") or ε ("eps") read off it appended."""
     rows = [r for r in reads if r["kind"] == kind]
     return pd.concat([tab, pd.DataFrame(rows)], ignore_index=True) if rows else tab
-
-
-def _units_caption(tab: pd.DataFrame, kind: str, unit: str, sym: str, ang_unit: str) -> str:
-    """The units of a comparison table's caption: «м/с», and «(ω — рад/с)» when it holds read ω (ε)."""
-    has = "kind" in tab and bool((tab["kind"] == kind).any())
-    return unit + (f" ({sym}\u00a0—\u00a0{ang_unit})" if has else "")
 
 
 def _short_reads_text(tab: pd.DataFrame, drawing) -> str:
