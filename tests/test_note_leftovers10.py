@@ -253,3 +253,30 @@ def test_flat_velocity_plan_of_ws000_stays_on_the_portrait_page():
     assert page_scale(plan) == (mu_p, False)
     d = PlanScene(lab, "velocity", landscape=True).draw(st)
     assert not d.landscape and d.mu == mu_p
+
+
+# ------------------------------------------------------------------ the lever's arrowheads clear of other shafts
+def test_ws000_lever_heads_clear_of_other_arrows_shafts(captured):
+    """On ws000's Жуковский lever no arrowhead lies on another arrow's shaft (G₄'s head sat on
+    P_пс's): the head (HEAD_LEN_MM back from the tip) keeps HEAD_CLEAR_MM from the shaft of every
+    arrow drawn from another point, measured on the drawn figure."""
+    import numpy as np
+    from notehelpers import arrows_mm
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.forces import HEAD_CLEAR_MM, HEAD_LEN_MM, ZhukovskyLever, _seg_gap
+    st = _study("ws000_six_bar")
+    captured.clear()
+    ZhukovskyLever(chosen_position(st)).draw(st)
+    arrows = [(a, b) for a, b in arrows_mm(captured[0]) if np.hypot(*(b - a)) > HEAD_LEN_MM]
+    assert len(arrows) > 5
+    bad = []
+    for i, (a, b) in enumerate(arrows):
+        u = (b - a) / np.hypot(*(b - a))
+        for j, (c, d) in enumerate(arrows):
+            if i == j or np.hypot(*(a - c)) < 0.05:
+                continue
+            v = (d - c) / np.hypot(*(d - c))
+            g = _seg_gap(b - u * HEAD_LEN_MM, b, c, d - v * HEAD_LEN_MM)
+            if g < HEAD_CLEAR_MM - 0.05:
+                bad.append((i, j, round(g, 2)))
+    assert not bad, bad
