@@ -280,3 +280,25 @@ def test_ws000_lever_heads_clear_of_other_arrows_shafts(captured):
             if g < HEAD_CLEAR_MM - 0.05:
                 bad.append((i, j, round(g, 2)))
     assert not bad, bad
+
+
+# ------------------------------------------------------------------ a label may interrupt more thin lines
+def test_conveyor_S2_label_near_its_point_on_the_plan_of_positions(captured):
+    """The plan of positions of the conveyor: the thin lines of the other positions are many
+    round S₂; a label may interrupt up to MAX_BREAKS of them (ГОСТ 2.307), so S₂'s label sits
+    within 7 mm of its point (it was 12 mm off, beyond the bold lines)."""
+    import numpy as np
+    from reportgen.scenes.mechanism import PositionsPlan
+    st = _study("conveyor_four_bar")
+    captured.clear()
+    PositionsPlan().draw(st)
+    fig = captured[0]
+    ax = fig.axes[0]
+    row = st.kinematics.iloc[0]
+    r = fig.canvas.get_renderer()
+    px_mm = fig.dpi / 25.4
+    t = next(t for t in ax.texts if t.get_text() == "$S_{2}$")
+    bb = t.get_window_extent(r)
+    p = ax.transData.transform((row["x_S2"], row["y_S2"]))
+    gap = np.hypot(max(bb.x0 - p[0], 0, p[0] - bb.x1), max(bb.y0 - p[1], 0, p[1] - bb.y1)) / px_mm
+    assert gap < 7.0, gap
