@@ -261,8 +261,9 @@ def _clear_heads(lengths: dict, free: dict, mm: float) -> dict:
     per printed mm) with each head that lies on another arrow's shaft (closer than HEAD_CLEAR_MM:
     ws000's G₄ on the Жуковский lever, its head on P_пс's shaft) moved off it: the arrow made
     longer, 0,5 mm at a time up to 4 mm, else shorter down to MIN_ARROW_MM, at the first length
-    whose head clears every shaft and whose own shaft passes no other head (the lever's arrows
-    are not to scale: their points and directions give the moments). Unchanged where none does."""
+    whose head clears every shaft and whose own shaft passes no other head, the steps of a fan
+    (:func:`_staggered`) kept (the lever's arrows are not to scale: their points and directions
+    give the moments). Unchanged where none does."""
     out = dict(lengths)
 
     def parts(i: int, L: float):
@@ -272,10 +273,15 @@ def _clear_heads(lengths: dict, free: dict, mm: float) -> dict:
 
     def clear(i: int, L: float) -> bool:
         a, base, tip = parts(i, L)
+        u = np.asarray(free[i][1], float)
         for j, Lj in out.items():
             if j == i:
                 continue
             b, base_j, tip_j = parts(j, Lj)
+            # a fan of :func:`_staggered` (one point, nearly one direction) keeps its steps
+            if (np.hypot(*(a - b)) < 2.0 * mm and float(np.dot(u, free[j][1])) > math.cos(math.radians(FAN_DEG))
+                    and abs(L - Lj) < FAN_STEP_MM - 1e-9):
+                return False
             if (np.hypot(*(a - b)) > 1e-9 * mm and _seg_gap(base, tip, b, base_j) < HEAD_CLEAR_MM * mm
                     or np.hypot(*(a - b)) > 1e-9 * mm and _seg_gap(a, base, base_j, tip_j) < HEAD_CLEAR_MM * mm):
                 return False
