@@ -12,7 +12,7 @@ from ..errors import CaseError, did_you_mean
 from .model import FRAME, Driver, Joint, Link, Mechanism
 
 LINK_KEYS = ["name", "title", "points", "mass", "weight", "J_S", "com"]
-JOINT_KEYS = ["type", "links", "point", "guide", "slider", "line", "offset", "name"]
+JOINT_KEYS = ["type", "links", "point", "guide", "slider", "line", "offset", "name", "symbol"]
 DRIVER_KEYS = ["type", "link", "center", "phi0", "direction", "omega", "epsilon",
                "cylinder", "rod", "base", "end", "range", "speed", "acceleration"]
 
@@ -104,6 +104,9 @@ def build_mechanism(root: Node, names: Mapping[str, Q], g: float) -> Mechanism:
                 raise jn.error("links", "пара соединяет звено само с собой", expected="два разных звена")
             need_point(jn, "point", la, point)
             need_point(jn, "point", lb, point)
+            if jn.has("symbol"):
+                raise jn.error("symbol", "условное обозначение задаётся только для поступательной пары",
+                               expected="symbol в [[joints]] с type = \"P\"")
             name = jn.name("name", point, what="имя пары")
             joints.append(Joint("R", (a, b), point, name))
         else:
@@ -138,7 +141,14 @@ def build_mechanism(root: Node, names: Mapping[str, Q], g: float) -> Mechanism:
                 ang = line.quantity("angle", U.ANGLE, names, default=0.0)
             offset = jn.quantity("offset", U.LENGTH, names, default=0.0)
             name = jn.name("name", f"{slider.name}{guide.name}", what="имя пары")
-            joints.append(Joint("P", (guide.name, slider.name), point, name, lp, ang, offset))
+            # ГОСТ 2.770 symbol of the pair: a slider (block) on its guide, or a cylinder with its
+            # piston and rod (the guide the cylinder, the slider the rod: a rocking cylinder)
+            symbol = jn.string("symbol", "slider", choices=["slider", "cylinder"])
+            if symbol == "cylinder" and guide.is_frame:
+                raise jn.error("symbol", "цилиндром изображается пара двух подвижных звеньев (качающийся цилиндр)",
+                               expected="symbol = \"slider\" для ползуна на стойке")
+            joints.append(Joint("P", (guide.name, slider.name), point, name, lp, ang, offset,
+                                cylinder=symbol == "cylinder"))
 
     _check_shared_points(root, holders, joints)
     driver = _read_driver(root, names, by_name, joints, need_link, need_point)

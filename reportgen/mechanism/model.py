@@ -42,7 +42,9 @@ class Joint:
     For "P": ``links = (guide, slider)``, ``point`` is the slider's point that moves along the
     guide line, ``line_point``/``angle`` give the line in the guide's local frame (for the frame:
     global), ``offset`` is the signed distance of the slider point from the line (left of the
-    direction positive).  ``driving`` marks the actuator's own pair (cylinder–rod)."""
+    direction positive).  ``driving`` marks the actuator's own pair (cylinder–rod); ``cylinder``
+    a pair of two moving links drawn as a cylinder (the guide) with its piston and rod (the
+    slider), ГОСТ 2.770, instead of a block on a slotted link (case key ``symbol = "cylinder"``)."""
 
     kind: str
     links: tuple[str, str]
@@ -52,6 +54,7 @@ class Joint:
     angle: float = 0.0
     offset: float = 0.0
     driving: bool = False
+    cylinder: bool = False
 
 
 @dataclass

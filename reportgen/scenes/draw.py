@@ -190,6 +190,69 @@ def _slider_links(mech: Mechanism) -> dict[str, str]:
     return {j.links[1]: j.point for j in mech.prismatic}
 
 
+def _cylinder_links(mech: Mechanism) -> dict[str, object]:
+    """The cylinder and the rod of each pair drawn as a cylinder (``Joint.cylinder``) → the pair."""
+    out = {}
+    for j in mech.prismatic:
+        if j.cylinder:
+            out[j.links[0]] = out[j.links[1]] = j
+    return out
+
+
+def cylinder_parts(mech: Mechanism, row, j):
+    """The drawn parts of a cylinder–rod pair (ГОСТ 2.770 hydraulic/pneumatic cylinder): the body
+    from the cylinder's closed end to its open end (its points on the pair's line, the end nearer
+    the rod's pair point open), the piston (the rod's point on the line deepest in the body) and
+    the rod's outer end (the pair's point). None if the cylinder has fewer than two points on the
+    line (nothing to draw a body between)."""
+    guide, rod = mech.link(j.links[0]), mech.link(j.links[1])
+    (lx, ly), ux, uy = j.line_point, math.cos(j.angle), math.sin(j.angle)
+    size = max(math.hypot(x, y) for x, y in guide.points.values()) or 1.0
+    on = [p for p, (x, y) in guide.points.items() if abs((x - lx) * uy - (y - ly) * ux) < 1e-9 * size]
+    if len(on) < 2:
+        return None
+    a, b = (np.asarray(v, float) for v in _farthest([_point(row, p) for p in on]))
+    end = np.asarray(_point(row, j.point), float)
+    closed, open_ = (a, b) if np.hypot(*(end - a)) > np.hypot(*(end - b)) else (b, a)
+    u = (open_ - closed) / np.hypot(*(open_ - closed))
+    # the rod's points on the axis (the slider's own frame: its points on the pair's line through j.point)
+    rod_pts = [np.asarray(_point(row, p), float) for p in rod.points]
+    on_axis = [q for q in rod_pts if abs(float(u[0] * (q - closed)[1] - u[1] * (q - closed)[0])) < 1e-6 * size]
+    piston = min(on_axis or rod_pts, key=lambda q: float(np.dot(q - closed, u)))
+    return closed, open_, u, piston, end
+
+
+def _draw_cylinder_part(cv: Canvas, mech: Mechanism, row, link, j, color, lw, alpha, zorder) -> bool:
+    """The cylinder (a rectangle of bore CYL_MM over its body) or the rod (a line from the piston
+    to its outer end, the piston a stroke across the bore); False if the pair has no body to draw."""
+    parts = cylinder_parts(mech, row, j)
+    if parts is None:
+        return False
+    closed, open_, u, piston, end = parts
+    n = np.array([-u[1], u[0]])
+    w = cv.mm(CYL_MM) / 2
+    if link.name == j.links[0]:
+        poly = Polygon([closed + n * w, open_ + n * w, open_ - n * w, closed - n * w], closed=True,
+                       facecolor="white", edgecolor=color, lw=lw, alpha=alpha, zorder=zorder - 0.4)
+        cv.ax.add_patch(poly)
+    else:
+        cv.ax.plot([piston[0], end[0]], [piston[1], end[1]], color=color, lw=lw * 1.3, alpha=alpha,
+                   zorder=zorder - 0.2, solid_capstyle="butt")
+        p0, p1 = piston + n * w * 0.8, piston - n * w * 0.8
+        cv.ax.plot([p0[0], p1[0]], [p0[1], p1[1]], color=color, lw=lw * 1.6, alpha=alpha, zorder=zorder - 0.2,
+                   solid_capstyle="butt")
+    return True
+
+
+def _cylinder_number_at(mech: Mechanism, row, link, j):
+    """Where a cylinder's or a rod's number goes, and the normal: the middle of the body, or of the
+    rod's part outside it."""
+    closed, open_, u, piston, end = cylinder_parts(mech, row, j)
+    mid = (closed + open_) / 2 if link.name == j.links[0] else (
+        (open_ + end) / 2 if float(np.dot(end - open_, u)) > 0 else (piston + end) / 2)
+    return mid, (-u[1], u[0])
+
+
 def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, labels=True,
                    numbers=True, alpha=1.0, zorder=2, com=True, supports=True, only=None, guides=True,
                    tint=True) -> None:
@@ -199,6 +262,7 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
     ax = cv.ax
     sliders = _slider_links(mech)
     d = mech.driver
+    cyl = {n: j for n, j in _cylinder_links(mech).items() if cylinder_parts(mech, row, j) is not None}
     for link in mech.moving:
         if only is not None and link.name not in only:
             continue
@@ -206,6 +270,8 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
         phi = float(row[f"phi_{link.name}"])
         if d.kind == "actuator" and link.name in (d.link, d.rod):
             _draw_actuator_part(cv, mech, row, link, color, lw, alpha, zorder)
+        elif link.name in cyl:
+            _draw_cylinder_part(cv, mech, row, link, cyl[link.name], color, lw, alpha, zorder)
         elif link.name in sliders:
             x, y = _point(row, sliders[link.name])
             _block(cv, x, y, phi, color, lw, alpha, zorder)
@@ -234,6 +300,10 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
             (mx, my), (nx, ny) = _actuator_part_middle(mech, row, link.name)
             cv.labels.add(mx, my, link.name, prefer=(nx, ny), color=color, fontsize=9,
                           gap_mm=NUMBER_GAP_MM)
+        elif numbers and link.name in cyl:
+            (mx, my), (nx, ny) = _cylinder_number_at(mech, row, link, cyl[link.name])
+            cv.labels.add(mx, my, link.name, prefer=(nx, ny), color=color, fontsize=9,
+                          gap_mm=NUMBER_GAP_MM, reach_mm=CYL_MM / 2 if link.name == cyl[link.name].links[0] else 0.0)
         elif numbers and len(pts) >= 1 and link.name not in sliders:
             a, b = (bars[0] if (bars := _slotted_bars(mech, row, link)) else
                     _farthest(pts) if len(pts) >= 2 else (pts[0], pts[0]))
@@ -267,7 +337,7 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
                                     zorder=zorder + 1))
     if labels:
         placed = set()
-        blocks = {sliders[n] for n in sliders if not (d.kind == "actuator" and n in (d.link, d.rod))}
+        blocks = {sliders[n] for n in sliders if not (d.kind == "actuator" and n in (d.link, d.rod)) and n not in cyl}
         for link in mech.links:
             if only is not None and link.name not in only:
                 continue
@@ -384,6 +454,7 @@ def _hull(pts):
 
 BLOCK_MM = (9.0, 5.5)                          # a slider's block, printed length × width
 BLOCK_REACH_MM = math.hypot(*BLOCK_MM) / 2     # from its point to a corner
+CYL_MM = BLOCK_MM[1]                           # a cylinder's bore as drawn (a block's width), mm
 
 
 def _block(cv: Canvas, x, y, phi, color, lw, alpha, zorder):

@@ -236,6 +236,65 @@ def _staggered(lengths: dict, free: dict, near: float) -> dict:
     return out
 
 
+HEAD_CLEAR_MM = 1.0         # an arrow's head kept this far from every other arrow's shaft
+HEAD_LEN_MM = 2.7           # the printed length of an arrowhead of draw.arrow (head_mm = 2,2)
+
+
+def _seg_gap(p0, p1, q0, q1) -> float:
+    """The least distance between the segments p0–p1 and q0–q1 (0 where they cross)."""
+    def d(p, a, b):
+        v = b - a
+        t = min(max(float(np.dot(p - a, v) / max(float(np.dot(v, v)), 1e-300)), 0.0), 1.0)
+        return float(np.hypot(*(p - a - t * v)))
+    r, s_ = p1 - p0, q1 - q0
+    den = float(r[0] * s_[1] - r[1] * s_[0])
+    if abs(den) > 1e-300:
+        t = float((q0 - p0)[0] * s_[1] - (q0 - p0)[1] * s_[0]) / den
+        u = float((q0 - p0)[0] * r[1] - (q0 - p0)[1] * r[0]) / den
+        if 0.0 <= t <= 1.0 and 0.0 <= u <= 1.0:
+            return 0.0
+    return min(d(p0, q0, q1), d(p1, q0, q1), d(q0, p0, p1), d(q1, p0, p1))
+
+
+def _clear_heads(lengths: dict, free: dict, mm: float) -> dict:
+    """The arrows' lengths (mm, by key; ``free`` as for :func:`_staggered`, ``mm`` — data units
+    per printed mm) with each head that lies on another arrow's shaft (closer than HEAD_CLEAR_MM:
+    ws000's G₄ on the Жуковский lever, its head on P_пс's shaft) moved off it: the arrow made
+    longer, 0,5 mm at a time up to 4 mm, else shorter down to MIN_ARROW_MM, at the first length
+    whose head clears every shaft and whose own shaft passes no other head, the steps of a fan
+    (:func:`_staggered`) kept (the lever's arrows are not to scale: their points and directions
+    give the moments). Unchanged where none does."""
+    out = dict(lengths)
+
+    def parts(i: int, L: float):
+        at, u = np.asarray(free[i][0], float), np.asarray(free[i][1], float)
+        tip = at + u * L * mm
+        return at, tip - u * min(HEAD_LEN_MM, L) * mm, tip       # start, base of the head, tip
+
+    def clear(i: int, L: float) -> bool:
+        a, base, tip = parts(i, L)
+        u = np.asarray(free[i][1], float)
+        for j, Lj in out.items():
+            if j == i:
+                continue
+            b, base_j, tip_j = parts(j, Lj)
+            # a fan of :func:`_staggered` (one point, nearly one direction) keeps its steps
+            if (np.hypot(*(a - b)) < 2.0 * mm and float(np.dot(u, free[j][1])) > math.cos(math.radians(FAN_DEG))
+                    and abs(L - Lj) < FAN_STEP_MM - 1e-9):
+                return False
+            if (np.hypot(*(a - b)) > 1e-9 * mm and _seg_gap(base, tip, b, base_j) < HEAD_CLEAR_MM * mm
+                    or np.hypot(*(a - b)) > 1e-9 * mm and _seg_gap(a, base, base_j, tip_j) < HEAD_CLEAR_MM * mm):
+                return False
+        return True
+
+    for i in sorted(out):
+        if clear(i, out[i]):
+            continue
+        tries = [out[i] + 0.5 * k for k in range(1, 9)] + [out[i] - 0.5 * k for k in range(1, int(2 * (out[i] - MIN_ARROW_MM)) + 1)]
+        out[i] = next((L for L in tries if clear(i, L)), out[i])
+    return out
+
+
 MOMENT_LABEL_GAP_MM = 1.5   # clearance of a moment's label from every other label
 
 
@@ -1145,7 +1204,7 @@ class ZhukovskyLever:
                                  if np.hypot(*(p - ins.centre)) <= ins.radius), p), F / n)
         # by magnitude (at least MIN_ARROW_MM: a shorter one is all head), staggered where several
         # leave one image in nearly one direction (ws000's G₃ and M′Φ₂ at b, M″Φ₄ and G₅ at h)
-        drawn = _staggered(drawn, free, cv.mm(2.0))
+        drawn = _clear_heads(_staggered(drawn, free, cv.mm(2.0)), free, cv.mm(1.0))
         for j, (lab, p, F, is_bal) in enumerate(order):
             if j not in drawn:
                 continue

@@ -72,7 +72,7 @@ ANCHOR_CLEAR_MM = 0.5    # what a label keeps clear of the point another label n
 SAME_POINT_MM = 0.5      # anchors nearer than this are one point (their labels share it)
 LINE_TOL_MM = 0.3        # check_figure: a line within this of a label's glyph box edge only touches it
 BREAK_MM = 2.5           # what interrupting a thin line (``breakable``) under a label costs, mm of distance
-MAX_BREAKS = 3           # thin lines a label may interrupt at most
+MAX_BREAKS = 6           # thin lines a label may interrupt at most
 BREAK_PAD_MM = 0.4       # the gap of an interrupted line round the label's box
 
 

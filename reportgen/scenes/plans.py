@@ -81,11 +81,21 @@ def plan_scale(plan: Plan, landscape: bool = False) -> float:
     return max(nice_scale(np.ptp(pts[:, 0]), w), nice_scale(np.ptp(pts[:, 1]), h))
 
 
+LANDSCAPE_FILL = 0.5      # a landscape page of its own is taken only by a plan this tall at least (share of its height)
+
+
 def page_scale(plan: Plan) -> tuple[float, bool]:
     """(μ, landscape): the plan goes onto a landscape page when that enlarges it at least
-    LANDSCAPE_GAIN times (a wide, flat plan), as the plan of positions does."""
+    LANDSCAPE_GAIN times (a wide, flat plan), as the plan of positions does — unless it would
+    fill less than LANDSCAPE_FILL of that page's height even so (a flat strip on a page of its
+    own, mostly empty): then it stays on the portrait page, with the text, at its portrait scale."""
     mu, mu_l = plan_scale(plan), plan_scale(plan, landscape=True)
-    return (mu_l, True) if mu >= LANDSCAPE_GAIN * mu_l else (mu, False)
+    if mu < LANDSCAPE_GAIN * mu_l:
+        return mu, False
+    pts = np.array([[0.0, 0.0]] + [list(v) for v in plan.tips.values()])
+    if np.ptp(pts[:, 1]) / mu_l < LANDSCAPE_FILL * (LANDSCAPE_H - 2 * MARGIN_MM):
+        return mu, False
+    return mu_l, True
 
 
 class PlanScene:

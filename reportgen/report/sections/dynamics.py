@@ -515,6 +515,67 @@ def _moments(sec, study, d, tab, lab, row, kv, lead) -> None:
     s.paragraph(f"Приведённые моменты по положениям — в таблице {ref(ids[0])}, их графики — на рисунке "
                 f"{ref('fig-dyn-M')}.")
     s.figure("Приведённые моменты сил", fig.svg, fig.width_mm, id="fig-dyn-M")
+    toggle = toggle_gain(study)
+    if toggle is not None:
+        s.paragraph(str(_toggle_text(toggle)))
+
+
+TOGGLE_GAIN = 3.0         # a force this many times the crank pin's tangential force balancing it: the toggle effect
+TOGGLE_ZONE = 0.005       # the share of the cycle the force keeps its largest value at least (not a spike at a dead point)
+
+
+def toggle_gain(study) -> dict | None:
+    """The force amplification of a mechanism whose output nears a dead (toggle) position while a
+    working force is at its largest (a knuckle press, a jaw crusher). Over the crank angles where
+    a resisting force F of the case's loads is within 0,1 % of its largest value F_max (at least
+    TOGGLE_ZONE of the cycle), its reduced moment M (the power balance F·v = M·ω, eq. of §3.3,
+    Артоболевский гл. «Силовой расчёт») is at most M_max; the tangential force at the crank pin
+    that balances F there is F_t = M_max/r (r — the crank's length) and the gain F_max/F_t =
+    F_max·r/M_max — the least over that stretch: it grows without bound towards the dead position,
+    where the output's analog is zero. None for a mechanism without a crank or without such a force
+    (gain under TOGGLE_GAIN)."""
+    mech = study.mechanism
+    d = study.dynamics
+    if mech.driver.kind != "crank":
+        return None
+    cyc = study.cycle
+    pin, cen = mech.crank_pin(), mech.driver.center
+    r = float(np.hypot(cyc[f"x_{pin}"] - cyc[f"x_{cen}"], cyc[f"y_{pin}"] - cyc[f"y_{cen}"]).iloc[0])
+    cols = {c: cyc[c].to_numpy() for c in cyc.columns}
+    ph = d.loads.phase({"q": cols["q"]})
+    best = None
+    for ld in d.loads.loads:
+        if ld.kind != "force" or ld.name in d.idle_loads:
+            continue
+        Fx, Fy = ld.force(cols, ph)
+        F = np.hypot(Fx, Fy)
+        M = d.cycle["M_" + ld.name].to_numpy()
+        n = min(len(F), len(M))
+        F, M = F[:n], M[:n]
+        if not F.max() > 0:
+            continue
+        zone = F >= 0.999 * F.max()
+        if zone.mean() < TOGGLE_ZONE or (M[zone] > 0).any():      # a spike, or a force that drives
+            continue
+        M_max = float(np.abs(M[zone]).max())
+        gain = float(F.max()) * r / M_max if M_max > 0 else math.inf
+        if math.isfinite(gain) and gain >= TOGGLE_GAIN and (best is None or gain > best["gain"]):
+            best = dict(load=ld, F=float(F.max()), M=M_max, r=r, gain=gain, pin=pin, centre=cen)
+    return best
+
+
+def _toggle_text(t: dict) -> str:
+    """The engineering remark on the toggle effect (:func:`toggle_gain`)."""
+    name = Markup(html_label(t["load"].name))     # escaped by html_label
+    return Markup(
+        "Наибольшее значение силы {0} ({1}&nbsp;кН) приходится на положения, близкие к мёртвому положению "
+        "механизма (эффект колена): приведённый к кривошипу момент этой силы там не превышает {2}&nbsp;Н·м, "
+        "уравновешивающая её окружная сила на пальце кривошипа <i>F</i><sub>t</sub>&nbsp;=&nbsp;<i>M</i>/<i>l</i><sub>{3}{4}</sub>"
+        "&nbsp;=&nbsp;{5}&nbsp;кН, т.&nbsp;е. механизм даёт выигрыш в силе не менее чем в {6} раза. К мёртвому положению "
+        "аналог скорости выходного звена стремится к нулю и выигрыш неограниченно растёт; на деле его ограничивают "
+        "упругие деформации звеньев, зазоры и трение в шарнирах, поэтому звенья и опоры рассчитывают на полную "
+        "силу {0}.").format(name, fmt(t["F"] / 1e3, sig=4), fmt(t["M"], sig=4), t["centre"], t["pin"],
+                             fmt(t["M"] / t["r"] / 1e3, sig=3), fmt(t["gain"], sig=3))
 
 
 def _works(sec, study, d, tab, lead) -> None:
@@ -892,6 +953,12 @@ def conclusion_lines(study) -> list[str]:
                + "относительно точного решения метод Мерцалова даёт отклонение "
                f"{fmt(r.dev_mertsalov_pct, digits=3, sign=True)}&nbsp;%, метод Виттенбауэра "
                f"{fmt(r.dev_wittenbauer_pct, digits=3, sign=True)}&nbsp;%.")
+    toggle = toggle_gain(study)
+    if toggle is not None:
+        out.append(str(Markup("Вблизи мёртвого положения механизм даёт выигрыш в силе не менее чем в {} раза: сила {} "
+                              "в {}&nbsp;кН уравновешивается там моментом на кривошипе не более {}&nbsp;Н·м.").format(
+            fmt(toggle["gain"], sig=3), Markup(html_label(toggle["load"].name)), fmt(toggle["F"] / 1e3, sig=4),
+            fmt(toggle["M"], sig=4))))
     out += _delta_judgement(st)
     fw = r.flywheel
     if fw.needed:

@@ -87,13 +87,16 @@ def _strokes(study, s, exact: bool = True) -> tuple[float, float, float, float]:
 QUICK_RETURN_K = 1.05     # below it the strokes take practically the same time: no slow and fast stroke
 
 
-def _quick_return(fast: float, K: float, working: str | None = None, direction: int = 1) -> str:
+def _quick_return(fast: float, K: float, working: str | None = None, direction: int = 1, idle: bool = True) -> str:
     """Engineering reading of K > 1 (Артоболевский, гл. «Синтез»): the slow stroke is the working one.
     ``working`` — which stroke the case's loads resist (:func:`_working_stroke`): where it is the
     fast one the note says so and what to change: the crank turned the other way (``direction``:
     +1 counter-clockwise as given, −1 clockwise) goes through the same positions in the reverse
     order, so the output makes each stroke over the other arc of the crank's turn and the working
-    stroke becomes the slow one."""
+    stroke becomes the slow one. ``idle`` — whether the other stroke is idle (:func:`_return_idle`):
+    only then is the fast return said to shorten the cycle (at the working stroke's speed, the
+    productivity argument of a shaper); otherwise it is the return stroke (обратный), whose
+    resistance the case gives too (a compressor's suction stroke)."""
     if not K > QUICK_RETURN_K:
         return ""
     head = (f" Один ход выходного звена занимает {fmt(360 - fast, digits=1)}°, другой — {fmt(fast, digits=1)}° "
@@ -101,26 +104,30 @@ def _quick_return(fast: float, K: float, working: str | None = None, direction: 
     if working == "fast":
         other = "по часовой стрелке" if direction > 0 else "против часовой стрелки"
         return head + (f"силы сопротивления действуют на быстром ходе, т. е. при заданном направлении вращения "
-                       f"кривошипа рабочим оказался быстрый ход, хотя рабочим выгоднее назначать медленный (холостой "
-                       f"ход тогда выполняется в {fmt(K, digits=2)} раза быстрее). При обратном направлении вращения "
+                       f"кривошипа рабочим оказался быстрый ход, хотя рабочим выгоднее назначать медленный "
+                       f"({'холостой' if idle else 'обратный'} ход тогда выполняется в {fmt(K, digits=2)} раза быстрее). При обратном направлении вращения "
                        f"кривошипа механизм проходит те же положения в обратном порядке, и каждый ход выходного звена "
                        f"совершается за другую часть оборота: ход в направлении нынешнего быстрого становится "
                        f"медленным. Поэтому кривошип целесообразно вращать {other} (расчёты записки выполнены для "
                        f"заданного направления вращения).")
     lead = ("рабочий ход (на нём действуют силы сопротивления) — медленный" if working == "slow"
             else "рабочим назначается медленный ход")
-    return head + (f"{lead}, холостой выполняется в {fmt(K, digits=2)} раза быстрее, что сокращает время цикла.")
+    if not idle:
+        return head + f"{lead}, обратный выполняется в {fmt(K, digits=2)} раза быстрее."
+    return head + (f"{lead}, холостой выполняется в {fmt(K, digits=2)} раза быстрее, что при той же скорости "
+                   f"рабочего хода сокращает время цикла.")
 
 
-def _working_stroke(study) -> str | None:
-    """Which stroke of the output the case's loads resist: the work the resisting part of the
-    case's applied loads does on the stroke from the extreme position q₁ to q₂ and on the other
-    one, R = −∫ min(ΣM_i, 0) dφ over the stroke (M_i — the reduced moments of the case's
-    ``[loads]``, weights left out: a counterweight that rises on one stroke and falls on the
-    other is no technological resistance; a load that helps the motion, as the weight of a pump's
-    rod string on the down stroke, resists nothing).  "slow"/"fast" where one stroke takes at
-    least twice the other's resistance, None without [dynamics], for a longer cycle or a load on
-    both strokes alike."""
+IDLE_SHARE = 0.02     # a stroke with less than this share of the other stroke's resistance is idle (холостой)
+
+
+def _stroke_resistances(study) -> tuple[float, float, bool] | None:
+    """(resistance on the stroke from the extreme position q₁ to q₂, on the other stroke, whether
+    the first is the slow one): R = −∫ min(ΣM_i, 0) dφ over each stroke (M_i — the reduced moments
+    of the case's ``[loads]``, weights left out: a counterweight that rises on one stroke and falls
+    on the other is no technological resistance; a load that helps the motion, as the weight of a
+    pump's rod string on the down stroke, resists nothing). None without [dynamics] or for a
+    longer cycle."""
     sc = study.scalars
     if not study.root.has("dynamics") or "output_q1" not in sc:
         return None
@@ -137,10 +144,32 @@ def _working_stroke(study) -> str | None:
     q1, q2 = sorted((sc["output_q1"], sc["output_q2"]))
     a = float(np.interp(q1, q, R) - np.interp(q2, q, R))      # the stroke from q₁ to q₂ (≥ 0)
     b = float(R[0] - R[-1]) - a
+    return a, b, (q2 - q1) > period / 2
+
+
+def _working_stroke(study) -> str | None:
+    """Which stroke of the output the case's loads resist (:func:`_stroke_resistances`): "slow"/"fast"
+    where one stroke takes at least twice the other's resistance, None without [dynamics], for a
+    longer cycle or a load on both strokes alike."""
+    res = _stroke_resistances(study)
+    if res is None:
+        return None
+    a, b, slow_is_a = res
     if max(a, b) <= 0 or max(a, b) < 2 * max(min(a, b), 0.0):
         return None
-    slow_is_a = (q2 - q1) > period / 2
     return "slow" if (a > b) == slow_is_a else "fast"
+
+
+def _return_idle(study) -> bool:
+    """Whether the stroke other than the working one is idle (холостой): its resistance under
+    IDLE_SHARE of the working stroke's (a shaper's return; not a compressor's suction stroke, whose
+    gas forces resist too). True where the case gives no loads to tell (the textbook convention of
+    a working and an idle stroke)."""
+    res = _stroke_resistances(study)
+    if res is None or _working_stroke(study) is None:
+        return True
+    a, b, _ = res
+    return max(min(a, b), 0.0) < IDLE_SHARE * max(a, b)
 
 
 def _in_tables(ids: list[str]) -> str:
@@ -331,7 +360,9 @@ def build(study) -> Section:
         # (the values the acceleration plan is drawn from and §(ω = V/l) prints), not the analytic ones;
         # those ω and V_r are derived between the velocity and the acceleration equations
         vrow = read_velocities(row, study, vplan.mu)
-        ws, es = _plan_formulas(s4, study, row, vrow, vplan, aplan)
+        reads = []
+        ws, es = _plan_formulas(s4, study, row, vrow, vplan, aplan, reads)
+        vtab, atab = _with_reads(_once(vplan.table), reads, "omega"), _with_reads(_once(aplan.table), reads, "eps")
         # each plan follows the text that reads it (ГОСТ 7.32: a figure after its first mention), so
         # the text after a plan on a landscape page of its own can fill the page before it
         vectors.add_velocities(s4, study, vrow)
@@ -355,7 +386,8 @@ def build(study) -> Section:
             s4.paragraph(f"План ускорений построен на рисунке {ref('fig-aplan')}.")
         s4.figure(f"План ускорений для положения {pos_no(study, lab)} (μ<sub>a</sub> = {mu_text(aplan.mu)} м·с⁻²/мм)",
                   aplan.svg, aplan.width_mm, id="fig-aplan", landscape=aplan.landscape)
-        cmp_cols = [Column("name", "Вектор", fmt=_vec_name), Column("mm", "Длина на плане", "мм", digits=1),
+        cmp_cols = [Column("name", "Величина" if reads else "Вектор", fmt=_vec_name),
+                    Column("mm", "Длина на плане", "мм", digits=1),
                     Column("graphic", "По плану", None, sig=4), Column("analytic", "Аналитически", None, sig=4),
                     Column("delta", "Расхождение", "%", digits=2)]
         s4.paragraph(f"Планы построены графически: известные векторы отложены отрезками, округлёнными до "
@@ -363,11 +395,13 @@ def build(study) -> Section:
                      f"отрезки построенных планов измерены с той же точностью (отрезки короче "
                      f"{fmt(MIN_MM, digits=0)}&nbsp;мм не сравниваются); сравнение с "
                      f"аналитическим решением — в таблицах {ref('tab-vplan')} и {ref('tab-aplan')}. Наибольшее "
-                     f"расхождение: по скоростям {fmt_pct(vplan.table['delta'].max() / 100)}, по ускорениям "
-                     f"{fmt_pct(aplan.table['delta'].max() / 100)} (допускается до 5&nbsp;%)."
+                     f"расхождение: по скоростям {fmt_pct(vtab['delta'].max() / 100)}, по ускорениям "
+                     f"{fmt_pct(atab['delta'].max() / 100)} (допускается до {fmt(PLAN_TOL_PCT, digits=0)}&nbsp;%)."
+                     + _short_reads_text(vtab, vplan) + _short_reads_text(atab, aplan)
                      + _insets_text(vplan, "скоростей", "v", "м·с⁻¹/мм") + _insets_text(aplan, "ускорений", "a", "м·с⁻²/мм"))
-        s4.table(f"Скорости по плану и аналитически (положение {pos_no(study, lab)}), м/с", cmp_cols, _once(vplan.table), id="tab-vplan")
-        s4.table(f"Ускорения по плану и аналитически (положение {pos_no(study, lab)}), м/с²", cmp_cols, _once(aplan.table), id="tab-aplan")
+        # the rows of ω and ε carry their unit (рад/с, рад/с²) after their name, the caption the vectors' one
+        s4.table(f"Скорости по плану и аналитически (положение {pos_no(study, lab)}), м/с", cmp_cols, vtab, id="tab-vplan")
+        s4.table(f"Ускорения по плану и аналитически (положение {pos_no(study, lab)}), м/с²", cmp_cols, atab, id="tab-aplan")
 
     # ----- kinematic diagrams
     if not study.has_cycle:        # [grid] cycle = false: single positions, no diagrams over the cycle
@@ -608,8 +642,19 @@ def _insets_text(drawing, what: str, sym: str, unit: str) -> str:
             f"{what_el} {', '.join(parts[:-1]) + ' и ' + parts[-1] if len(parts) > 1 else parts[0]}.")
 
 
+def _read_symbol(name: str) -> Markup:
+    """ω₃ or ε₃ of a read row's name (:func:`_add_read`)."""
+    kind, link = name.split(":")[:2]
+    return Markup("{}<sub>{}</sub>").format("ω" if kind == "omega" else "ε", link)
+
+
 def _vec_name(name: str) -> Markup:
-    """V_BA → V<sub>BA</sub>; a^n_BA → a<sup>n</sup><sub>BA</sub>."""
+    """V_BA → V<sub>BA</sub>; a^n_BA → a<sup>n</sup><sub>BA</sub>; a read ω or ε (:func:`_add_read`)
+    → «ω₃ = V_KC/l_CK, рад/с», «ε₃ = a^τ_KC/l_CK, рад/с²» (the unit of the row: the caption gives the vectors')."""
+    if name.startswith(("omega:", "eps:")):
+        kind, _, seg, rq = name.split(":")
+        return Markup("{} = {}/<i>l</i><sub>{}</sub>, {}").format(_read_symbol(name), _vec_name(seg), rq,
+                                                                  "рад/с" if kind == "omega" else "рад/с²")
     if "^" in name:
         head, rest = name.split("^", 1)
         sup_, _, idx = rest.partition("_")
@@ -618,10 +663,14 @@ def _vec_name(name: str) -> Markup:
     return Markup("<i>{}</i><sub>{}</sub>").format(head, idx)
 
 
-def _plan_formulas(sec: Section, study, row, vrow, vplan, aplan) -> tuple[list[Formula], list[Formula]]:
+def _plan_formulas(sec: Section, study, row, vrow, vplan, aplan,
+                   reads: list | None = None) -> tuple[list[Formula], list[Formula]]:
     """The paragraph on the kinds of vector equations, and the formulas with numbers at the chosen
     position: (ω of the links and the stones' relative velocities V_r read off the velocity plan
-    — ``vrow``, what the acceleration equations use —, ε of the links read off the acceleration plan)."""
+    — ``vrow``, what the acceleration equations use —, ε of the links read off the acceleration plan).
+    ``reads`` (if given) gets one row per ω and ε so found, in the form of :func:`scenes.plans.measure`'s
+    table (kind "omega"/"eps", the segment read and its length, the link's length), for the
+    comparison tables: ω = V/l and ε = a^τ/l against the analytic ω, ε of the kinematics table."""
     mech = study.mechanism
     d = mech.driver
     # the crank's V_A = ω₁·l_OA and a_A = ω₁²·l_OA are written with the vector equations (vectors.add_velocities, add_accelerations),
@@ -670,6 +719,7 @@ def _plan_formulas(sec: Section, study, row, vrow, vplan, aplan) -> tuple[list[F
                           rf"\frac{{{tex_num(v_read, sig=4)}}}{{{tex_num(lq, digits=4)}}}",
                           tex_num(v_read / lq, sig=4, unit="рад/с")))
         w_read[link.name] = v_read / lq
+        _add_read(reads, "omega", link.name, s0, v_read, vplan.mu, lq, row[f"w_{link.name}"], q_, r_)
         tn = aseg.get(f"a^τ_{q_}{r_}") or (constructed()[1].get(f"a^τ_{q_}{r_}") if full else None)
         if tn is not None:
             a_read = drawn(tn.length, aplan.mu)
@@ -677,6 +727,7 @@ def _plan_formulas(sec: Section, study, row, vrow, vplan, aplan) -> tuple[list[F
                               rf"\frac{{{tex_num(a_read, sig=4)}}}{{{tex_num(lq, digits=4)}}}",
                               tex_num(a_read / lq, sig=4, unit="рад/с²")))
             e_read[link.name] = a_read / lq
+            _add_read(reads, "eps", link.name, tn, a_read, aplan.mu, lq, row[f"e_{link.name}"], q_, r_)
     for s_, g_ in twins.items():
         if g_ in w_read:
             fs.append(Formula(rf"\omega_{{{s_}}} = \omega_{{{g_}}}", None, tex_num(w_read[g_], sig=4, unit="рад/с")))
@@ -703,6 +754,53 @@ def _plan_formulas(sec: Section, study, row, vrow, vplan, aplan) -> tuple[list[F
     sec.paragraph("Скорости и ускорения определены построением планов по векторным уравнениям групп Ассура ("
                   + "; ".join(kinds) + ").")
     return fs, es
+
+
+PLAN_TOL_PCT = 5.0      # the discrepancy a graphical plan is allowed against the analytic solution, %
+
+
+def _with_reads(tab: pd.DataFrame, reads: list, kind: str) -> pd.DataFrame:
+    """The comparison table of a plan with the ω (``kind`` "omega") or ε ("eps") read off it appended."""
+    rows = [r for r in reads if r["kind"] == kind]
+    return pd.concat([tab, pd.DataFrame(rows)], ignore_index=True) if rows else tab
+
+
+def _short_reads_text(tab: pd.DataFrame, drawing) -> str:
+    """The sentence for the rows of a comparison table whose discrepancy exceeds PLAN_TOL_PCT: the
+    segment each was read from is short, and its absolute error in mm (a few tenths — what laying
+    off and reading to READ_MM give) is a large share of it; the plan's scale is set by the page
+    (its longest segment named), so the accuracy is that of the drawing. Empty when none exceeds."""
+    over = tab[tab["delta"] > PLAN_TOL_PCT] if not tab.empty else tab
+    if over.empty:
+        return ""
+    longest = max(drawing.plan.segments, key=lambda s_: s_.length)
+    parts = []
+    for r in over.itertuples():
+        seg = r.seg if isinstance(getattr(r, "seg", None), str) else r.name
+        exact_mm = r.mm_exact if r.kind in ("omega", "eps") else r.analytic / drawing.mu
+        parts.append(Markup("{} ({}): отрезок {} длиной {}&nbsp;мм отличается от точной длины {}&nbsp;мм на {}&nbsp;мм").format(
+            _read_symbol(r.name) if r.kind in ("omega", "eps") else _vec_name(r.name),
+            fmt_pct(r.delta / 100), _vec_name(seg), fmt(r.mm, digits=1), fmt(exact_mm, digits=2),
+            fmt(abs(r.mm - exact_mm), digits=2)))
+    # a str like the paragraph it ends (Markup + str would escape the paragraph's own markup)
+    return str(Markup(" Больше допустимого расхождение ") + Markup("; ").join(parts)
+               + Markup(" — ошибка построения по векторам, отложенным с точностью {}&nbsp;мм, для короткого отрезка "
+                        "велика в процентах, а масштаб плана выбран по размерам листа (его наибольший отрезок {} — "
+                        "{}&nbsp;мм): точность {} ограничена чертежом.").format(
+                   fmt(READ_MM, digits=1), _vec_name(longest.name), fmt(longest.length / drawing.mu, digits=0),
+                   "этого значения" if len(parts) == 1 else "этих значений"))
+
+
+def _add_read(reads: list | None, kind: str, link: str, seg, value: float, mu: float, l: float,
+              analytic: float, q: str, r: str) -> None:
+    """One ω = V_QR/l_RQ or ε = a^τ_QR/l_RQ read off a plan as a row of the comparison table, when
+    its segment is long enough to be compared (MIN_MM, the rule the tables state)."""
+    if reads is None or seg.length / mu < MIN_MM or abs(analytic) < 1e-12:
+        return
+    graph = value / l
+    reads.append(dict(name=f"{kind}:{link}:{seg.name}:{r}{q}", kind=kind, link=link, seg=seg.name,
+                      mm=round(seg.length / mu / READ_MM) * READ_MM, mm_exact=abs(analytic) * l / mu,
+                      analytic=abs(analytic), graphic=graph, delta=abs(graph - abs(analytic)) / abs(analytic) * 100.0))
 
 
 def _output_diagrams(s5: Section, study, out: tuple, fig_id: str, several: bool, main: bool) -> None:
@@ -743,7 +841,8 @@ def _output_diagrams(s5: Section, study, out: tuple, fig_id: str, several: bool,
                      f"{_turn(q_max - study.grid.start)}°; угол перекрытия "
                      f"θ&nbsp;=&nbsp;{fmt(abs(180 - work), digits=1)}°, коэффициент изменения средней скорости "
                      f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}."
-                     + _quick_return(work, K, _working_stroke(study) if main else None, mech.driver.direction))
+                     + _quick_return(work, K, _working_stroke(study) if main else None, mech.driver.direction,
+                                     _return_idle(study) if main else True))
     s5.paragraph(origin)
     s5.figure(f"Кинематические диаграммы выходного звена: {title}" if several else
               "Кинематические диаграммы выходного звена", diag.svg, diag.width_mm, id=fig_id)
@@ -810,7 +909,7 @@ def _speed_lines(study) -> list[str]:
                 other = "по часовой стрелке" if d.direction > 0 else "против часовой стрелки"
                 out.append(f"При заданном направлении вращения {input_word(d, 'gen')} рабочий ход выходного звена — "
                            f"быстрый (подраздел {ref('sec-diagrams')}); при вращении {other} рабочим станет "
-                           f"медленный ход, а холостой будет выполняться в {fmt(sc['output_K'], digits=2)} раза "
+                           f"медленный ход, а {'холостой' if _return_idle(study) else 'обратный'} будет выполняться в {fmt(sc['output_K'], digits=2)} раза "
                            f"быстрее — такое направление вращения предпочтительнее.")
     pin = study.mechanism.crank_pin()
     col = "v_" + str(pin)
