@@ -337,6 +337,13 @@ class Cam:
                         best = (v, r)
         return best
 
+    def analog_max(self, ph: Phase, order: int) -> float:
+        """Exact max |s′| (order 1) or |s″| (order 2) over a phase: the end values and the roots
+        of the next derivative by :meth:`phase_extreme` (a sampled maximum misses a peak between
+        grid points, e.g. the kink of f′ at x₁ of an asymmetric parabolic law)."""
+        return max(self.phase_extreme(ph, lambda p, sd: sg * self._at(p, sd)[order],
+                                      lambda p, sd: sg * self._at(p, sd)[order + 1])[0] for sg in (1.0, -1.0))
+
     # ------------------------------------------------------------------ synthesis
     @property
     def rise(self) -> Phase:

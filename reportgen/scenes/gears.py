@@ -12,7 +12,7 @@ from matplotlib.path import Path
 
 from ..core import gears as G
 from ..style import mplstyle
-from .draw import GREY, INK, Canvas
+from .draw import GREY, INK, Canvas, gost_scale
 from .labels import LabelPlacer, label_contours, place_on_chart
 
 __all__ = ["tooth_outline", "ring_outline", "MeshDrawing", "mesh_drawing", "internal_mesh_drawing", "rack_drawing", "sliding_diagram",
@@ -94,6 +94,14 @@ def _circle_poly(cx, cy, r, n=3600):
     return cx + r * np.cos(t), cy + r * np.sin(t)
 
 
+def _gost_canvas(xs, ys, avail_w: float, avail_h: float, margin_mm: float, page_w: float = 165.0) -> Canvas:
+    """The canvas of a drawing in millimetres of the part at the largest ГОСТ 2.302 scale (2,5:1,
+    1:1, 1:2 …) that fits, so that the note can write the scale as ГОСТ does (not μ = 1,5)."""
+    avail_w = min(avail_w, page_w - 2 * margin_mm)
+    mu = 1000.0 * max(gost_scale(np.ptp(xs) / 1000.0, avail_w), gost_scale(np.ptp(ys) / 1000.0, avail_h))
+    return Canvas(min(xs), max(xs), min(ys), max(ys), mu, margin_mm, max_w=page_w)
+
+
 def mesh_drawing(gears) -> MeshDrawing:
     """External pair: O₁ below, O₂ above, the pitch point P between them; gear 1 drives
     counterclockwise.  The active part B₁B₂ is where the tip circles (drawn as polygons)
@@ -116,7 +124,7 @@ def mesh_drawing(gears) -> MeshDrawing:
     xmin, xmax = -half, half
     ymin = min(r_w1 - 1.25 * half, float(g.df1) / 2 - 0.5 * m)
     ymax = max(r_w1 + 1.05 * half, aw - float(g.df2) / 2 + 0.5 * m)
-    cv = Canvas.fit([xmin, xmax], [ymin, ymax], avail_w=160, avail_h=200, margin_mm=4)
+    cv = _gost_canvas([xmin, xmax], [ymin, ymax], avail_w=160, avail_h=200, margin_mm=4)
     ax = cv.ax
     for xo, yo, col in ((x1o, y1o, RED), (x2o, y2o, BLUE)):
         ax.fill(xo, yo, color=col, alpha=0.10, lw=0)
@@ -195,7 +203,7 @@ def internal_mesh_drawing(gears) -> MeshDrawing:
     xmin, xmax = -half, half
     ymin = min(r_w1 - 1.3 * half, float(g.df1) / 2 - 0.5 * m)
     ymax = rf2 - aw + 0.8 * m
-    cv = Canvas.fit([xmin, xmax], [ymin, ymax], avail_w=160, avail_h=200, margin_mm=4)
+    cv = _gost_canvas([xmin, xmax], [ymin, ymax], avail_w=160, avail_h=200, margin_mm=4)
     ax = cv.ax
     ax.fill(x1o, y1o, color=RED, alpha=0.10, lw=0)
     ax.plot(x1o, y1o, color=INK, lw=1.0)

@@ -14,6 +14,7 @@ from ...scenes.cam import (FlatRockerSize, LawDiagrams, PhasePortrait, PressureA
                            follower_positions)
 from ...style.numbers import fmt, tex_num
 from .common import as_written
+from ..russian import plural
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 
@@ -161,12 +162,10 @@ def _laws(sec, study, cam) -> None:
     fac, unit = (1.0, "") if rocker else (1000.0, "мм")
     for ph, title in ((cam.rise, "удалении"), (cam.ret, "возвращении")):
         beta = ph.length
-        g = [ph.start + i * beta / 2000 for i in range(2001)]
-        v = cam.law(g)
-        s1 = max(abs(v[1])) * fac
-        s2 = max(abs(v[2])) * fac
+        s1 = cam.analog_max(ph, 1) * fac
+        s2 = cam.analog_max(ph, 2) * fac
         hh = cam.h * fac if not rocker else cam.h
-        txt = (f"На {title} — закон {_law_name(ph)}")
+        txt = (f"Закон движения на {title} — {_law_name(ph)}")
         if ph.law in NORM_TEX and not (ph.law in ("sine", "parabolic") and ph.nu != 1):
             txt += f": {_im(NORM_TEX[ph.law])}"
         elif ph.law in ("sine", "parabolic"):
@@ -205,16 +204,16 @@ def _laws(sec, study, cam) -> None:
              id="fig-cam-laws")
     if cam.omega is not None:
         w = cam.omega
-        g = cam.grid
-        v = cam.law(g)
-        vm, am = max(abs(v[1])) * w, max(abs(v[2])) * w * w
+        v1m = max(cam.analog_max(ph, 1) for ph in (cam.rise, cam.ret))
+        v2m = max(cam.analog_max(ph, 2) for ph in (cam.rise, cam.ret))
+        vm, am = v1m * w, v2m * w * w
         vu, au = ("рад/с", "рад/с²") if rocker else ("м/с", "м/с²")
         s.paragraph("Истинные " + ("угловые скорость и ускорение коромысла" if rocker else
                                    "скорость и ускорение толкателя") + " при ω&nbsp;=&nbsp;const:")
         s.formula(Formula(r"v_{max} = \omega\,|s^{\prime}|_{max}" if not rocker else r"\omega_{2,max} = \omega\,|\psi^{\prime}|_{max}",
-                          rf"{_t(w)} \cdot {_t(max(abs(v[1])), sig=4)}", _t(vm, sig=4, unit=vu)),
+                          rf"{_t(w)} \cdot {_t(v1m, sig=4)}", _t(vm, sig=4, unit=vu)),
                   Formula(r"a_{max} = \omega^2 |s^{\prime\prime}|_{max}" if not rocker else r"\varepsilon_{2,max} = \omega^2 |\psi^{\prime\prime}|_{max}",
-                          rf"{_t(w)}^2 \cdot {_t(max(abs(v[2])), sig=4)}", _t(am, sig=4, unit=au)))
+                          rf"{_t(w)}^2 \cdot {_t(v2m, sig=4)}", _t(am, sig=4, unit=au)))
 
 
 def _size(sec, study, cam) -> None:
@@ -434,8 +433,8 @@ def _pressure(sec, study, cam) -> None:
         s.figure("Угол давления за цикл", fig.svg, fig.width_mm, id="fig-cam-theta")
         return
     s.paragraph(f"Угол давления на всём цикле построен на рисунке {ref('fig-cam-theta')}. Наибольшие значения: "
-                f"на удалении ϑ<sub>max</sub>&nbsp;=&nbsp;{_deg(t1, 3)} при [ϑ<sub>у</sub>]&nbsp;=&nbsp;{_deg(cam.rise.allowed)}, "
-                f"на возвращении |ϑ|<sub>max</sub>&nbsp;=&nbsp;{_deg(t2, 3)} при [ϑ<sub>в</sub>]&nbsp;=&nbsp;{_deg(cam.ret.allowed)}. "
+                f"на удалении ϑ<sub>max</sub>&nbsp;=&nbsp;{_deg(t1)} при [ϑ<sub>у</sub>]&nbsp;=&nbsp;{_deg(cam.rise.allowed)}, "
+                f"на возвращении |ϑ|<sub>max</sub>&nbsp;=&nbsp;{_deg(t2)} при [ϑ<sub>в</sub>]&nbsp;=&nbsp;{_deg(cam.ret.allowed)}. "
                 + ("Угол давления нигде не превышает допустимого."
                    if t1 <= cam.rise.allowed + 1e-9 and t2 <= cam.ret.allowed + 1e-9
                    else "<b>Угол давления превышает допустимый</b>: размеры механизма нужно увеличить."))
@@ -450,10 +449,7 @@ def _profile(sec, study, cam) -> None:
                 + ("Профиль — огибающая положений тарелки; координаты точек касания в системе кулачка:"
                    if cam.contact == "flat" else "Координаты центрового (теоретического) профиля в системе кулачка:"))
     if cam.follower == "translating" and cam.contact != "flat":
-        s.formula(Formula(r"x = e\cos\varphi + (s_0 + s)\sin\varphi,\quad y = -e\sin\varphi + (s_0 + s)\cos\varphi",
-                          label="eq-cam-profile"))
-        if cam.k < 0:
-            s.paragraph("(при вращении по часовой стрелке знаки при sin φ меняются на противоположные).")
+        s.formula(Formula(_inversion_tex(cam, "e", "s_0"), label="eq-cam-profile"))
     elif cam.flat_rocker:
         s.formula(Formula(r"\overline{OK} = \overline{OA} + \mu\,\overline{r} - d\,\overline{u},\qquad "
                           r"\overline{r}_K = R(-\varphi)\,\overline{OK}", label="eq-cam-profile",
@@ -462,8 +458,7 @@ def _profile(sec, study, cam) -> None:
         s.paragraph("Профиль — точная огибающая положений тарелки (не ломаная): точки касания найдены в замкнутом виде "
                     f"по формуле {ref('eq-cam-flat-mu')}, радиус кривизны — по формуле {ref('eq-cam-flat-rho')}.")
     elif cam.contact == "flat":
-        s.formula(Formula(r"x = s^{\prime}\cos\varphi + (r_0 + s)\sin\varphi,\quad y = -s^{\prime}\sin\varphi + (r_0 + s)\cos\varphi",
-                          label="eq-cam-profile"))
+        s.formula(Formula(_inversion_tex(cam, r"s^{\prime}", "r_0"), label="eq-cam-profile"))
         s.paragraph("Точка касания смещена по тарелке на s′ от оси толкателя, радиус-вектор профиля "
                     f"{_im(R_TEX)}, радиус кривизны ρ&nbsp;=&nbsp;r<sub>0</sub>&nbsp;+&nbsp;s&nbsp;+&nbsp;s″.")
     else:
@@ -481,6 +476,10 @@ def _profile(sec, study, cam) -> None:
                        + (" (условие выполнено)." if cam.roller < rc else " (<b>условие не выполнено</b>).")))
         s.paragraph("Рабочий (действительный) профиль — эквидистанта центрового, отстоящая от него на r<sub>р</sub> "
                     "по нормали: " + str(_im(r"\overline{r} = \overline{r}_C - r_р\,\overline{n}")) + ".")
+    elif cam.contact == "knife":
+        s.paragraph("У толкателя с острием рабочий профиль совпадает с центровым. Радиус кривизны профиля "
+                    "ρ = |r′|³/(r′ × r″) вычислен по точным производным; наименьший радиус кривизны выпуклой "
+                    f"части ρ<sub>min</sub>&nbsp;=&nbsp;{_mm(cam.rho_min_centre)}.")
     fig = ProfileDrawing()
     d = fig.draw(study)
     pos = ", ".join(f"{i}&nbsp;— φ&nbsp;=&nbsp;{_deg(p, 1)}" for i, p in enumerate(follower_positions(cam)))
@@ -506,9 +505,20 @@ def _profile(sec, study, cam) -> None:
         cols.append(Column("theta", "ϑ", "град", digits=2))
     s.table("Координаты профиля кулачка", cols, df, id="tab-cam-coords",
             note="x<sub>C</sub>, y<sub>C</sub> — центровой профиль; x, y, r — рабочий профиль; ρ — радиус кривизны "
-                 "рабочего профиля (отрицательный — вогнутый участок)." if cam.contact != "flat" else
+                 "рабочего профиля (отрицательный — вогнутый участок)." if cam.contact == "roller" else
+            "x<sub>C</sub>, y<sub>C</sub>, r — профиль кулачка (центровой и рабочий профили совпадают); ρ — радиус "
+            "кривизны профиля (отрицательный — вогнутый участок)." if cam.contact == "knife" else
             "x, y — точки касания тарелки с профилем; r — радиус-вектор профиля; ρ — радиус кривизны профиля"
             + ("; ϑ — угол давления." if cam.flat_rocker and cam.face_offset > 0 else "."))
+
+
+def _inversion_tex(cam, lateral: str, base: str) -> str:
+    """x, y of the translating follower's point (lateral, base + s) turned back by −φ into the cam
+    frame, C = R(−kφ)(k·lateral, base + s), written for this cam's sense of rotation (k = ±1):
+    x = k[lateral·cos φ + (base + s) sin φ], y = −lateral·sin φ + (base + s) cos φ."""
+    x = rf"{lateral}\cos\varphi + ({base} + s)\sin\varphi"
+    x = x if cam.k > 0 else rf"-{lateral}\cos\varphi - ({base} + s)\sin\varphi"
+    return rf"x = {x},\quad y = -{lateral}\sin\varphi + ({base} + s)\cos\varphi"
 
 
 def conclusion_lines(study) -> list[str]:
@@ -540,8 +550,23 @@ def conclusion_lines(study) -> list[str]:
     if cam.contact == "roller":
         out.append(f"Радиус ролика r<sub>р</sub>&nbsp;=&nbsp;{_mm(cam.roller)} при наименьшем радиусе кривизны "
                    f"центрового профиля {_mm(cam.rho_min_centre)}.")
-    hard = sum(1 for i in cam.impacts if i["kind"] == "hard")
-    soft = sum(1 for i in cam.impacts if i["kind"] == "soft")
-    out.append("Удары в кулачковом механизме: " + ("отсутствуют." if not (hard or soft) else
-               f"жёстких — {hard}, мягких — {soft}."))
+    if cam.contact == "knife":
+        out.append(f"Рабочий профиль совпадает с центровым; наименьший радиус кривизны выпуклой части профиля "
+                   f"ρ<sub>min</sub>&nbsp;=&nbsp;{_mm(cam.rho_min_centre)}.")
+    out.append(_impacts_sentence(cam))
     return out
+
+
+def _impacts_sentence(cam) -> str:
+    """The impacts in words with the cam angles where they occur: «жёстких ударов нет; мягкие удары —
+    в 3 положениях (φ = 140°, …)» (Артоболевский, §24: a jump of s′ — hard, of s″ — soft impact)."""
+    parts = []
+    for kind, adj, adj_gen in (("hard", "жёсткие", "жёстких"), ("soft", "мягкие", "мягких")):
+        phis = [i["phi"] for i in cam.impacts if i["kind"] == kind]
+        parts.append(f"{adj_gen} ударов нет" if not phis else
+                     f"{adj} удары — в {plural(len(phis), 'положении', 'положениях', 'положениях')} "
+                     f"(φ&nbsp;=&nbsp;" + ", ".join(_deg(p, 1) for p in phis) + ")")
+    if not cam.impacts:
+        return "Аналоги скорости и ускорения толкателя непрерывны: ударов в кулачковом механизме нет."
+    return "Удары в кулачковом механизме: " + "; ".join(parts) + "."
+
