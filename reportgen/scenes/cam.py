@@ -358,6 +358,7 @@ class ProfileDrawing:
                     xytext=(R * math.cos(a[-3]), R * math.sin(a[-3])),
                     arrowprops=dict(arrowstyle="-|>", color=INK, lw=0.8))
         cv.labels.add(R * math.cos(a[10]), R * math.sin(a[10]), "ω", prefer=(math.cos(a[10]), math.sin(a[10])))
+        self.followers, self.limits = fol, (ax.get_xlim(), ax.get_ylim())   # what is drawn and the sheet's window
         return Drawing(cv.svg(), cv.width_mm, self.mu)
 
     @staticmethod

@@ -354,9 +354,15 @@ def blocking_contour(gears):
     handles.append(ax.plot([], [], color=GREY, lw=1.0, label="$x_{min}$ (подрезание)")[0])
     if not geo.internal:
         ax.axhline(float(G.x_min_undercut(gears.z2, gears.rack)), color=GREY, lw=1.0)
+    if gears.a_w_required is not None:     # a required a_w: the shifts lie on x₁ + x₂ = x_Σ
+        xs = float(gears.xsum_required)
+        xx = np.array([float(X1.min()), float(X1.max())])
+        handles.append(ax.plot(xx, xs - xx, color=INK, lw=1.3, ls=(0, (8, 2, 1.5, 2)),
+                               label=f"$x_1 + x_2 = x_\\Sigma$ ($a_w$ = {gears.a_w_required:g} мм)".replace(".", ","))[0])
     ax.plot([gears.x1], [gears.x2], "o", ms=6, mfc="white", mec=INK, mew=1.5, zorder=6)
     chosen = LabelPlacer(ax, fontsize=9)        # beside the point, clear of the lines
-    chosen.add(gears.x1, gears.x2, f"выбрано\n({gears.x1:.2f}; {gears.x2:.2f})".replace(".", ","), prefer=(1, 1),
+    word = "выбрано" if gears.chosen else "задано"
+    chosen.add(gears.x1, gears.x2, f"{word}\n({gears.x1:.2f}; {gears.x2:.2f})".replace(".", ","), prefer=(1, 1),
                point=True)
     ax.set_xlabel("$x_1$")
     ax.set_ylabel("$x_2$")

@@ -296,7 +296,8 @@ def _contour(sec: Section, gr) -> None:
             "Заданная точка (<i>x</i><sub>1</sub>, <i>x</i><sub>2</sub>) показана на блокирующем контуре.")
     s.paragraph(f"Блокирующий контур передачи <i>z</i><sub>1</sub> = {gr.z1}, <i>z</i><sub>2</sub> = {gr.z2} "
                 f"приведён на рисунке {ref('fig-gears-contour')}. {rule}")
-    s.figure(f"Блокирующий контур <i>z</i><sub>1</sub> = {gr.z1}, <i>z</i><sub>2</sub> = {gr.z2} с выбранной точкой",
+    s.figure(f"Блокирующий контур <i>z</i><sub>1</sub> = {gr.z1}, <i>z</i><sub>2</sub> = {gr.z2} с "
+             f"{'выбранной' if gr.chosen else 'заданной'} точкой",
              S.blocking_contour(gr), 160, id="fig-gears-contour")
 
 
@@ -305,8 +306,8 @@ def _mesh(sec: Section, gr) -> None:
     md = S.internal_mesh_drawing(gr) if gr.internal else S.mesh_drawing(gr)
     g = gr.geo
     d = (md.eps_graph - float(g.eps)) / float(g.eps) * 100
-    s.paragraph(f"Зацепление построено в масштабе {gost_ratio(md.mu / 1000)} (μ<sub>l</sub> = {mu_text(md.mu)} мм/мм) "
-                f"(рисунок {ref('fig-gears-mesh')}); профили зубьев шестерни — эвольвенты с переходными кривыми, "
+    s.paragraph(f"Зацепление построено на рисунке {ref('fig-gears-mesh')} в масштабе {gost_ratio(md.mu / 1000)} "
+                f"(μ<sub>l</sub> = {mu_text(md.mu)} мм/мм); профили зубьев шестерни — эвольвенты с переходными кривыми, "
                 "огибаемыми скруглением головки рейки"
                 + ("; впадины колеса с внутренними зубьями ограничены эвольвентами от окружности вершин до "
                    "окружности впадин (переходная кривая долбяка не показана: долбяк в задании не задан)"
