@@ -297,3 +297,14 @@ def test_gear_conclusion_judges_the_pair(stem):
     t = gr.sliding_table
     for v in (t["lambda1"].iloc[0], t["lambda2"].iloc[-1]):
         assert fmt(abs(float(v)), digits=2) in text, (v, text)
+
+
+def test_introduction_of_a_one_section_note_agrees():
+    """«В пояснительной записке выполнены: синтез кулачкового механизма.» — a plural verb and a
+    colon before one item; one section is named as one section."""
+    from reportgen.report import assemble
+    from reportgen.report.sections import cam
+    st = _study("cam_translating_knife_trapezoid")
+    sec = _section("cam_translating_knife_trapezoid", cam)
+    text = " ".join(plain(p.html) for p in assemble._introduction(st, ["cam"], [sec]))
+    assert "выполнены:" not in text and f"выполнен раздел «{sec.title}»" in text

@@ -380,7 +380,8 @@ def _introduction(study, names, built) -> list:
         mech = ""
         method = (" Расчёты выполнены аналитически по точным формулам; графические построения выполнены в "
                   "масштабе и сопоставлены с аналитическими результатами.")
-    parts.append(Paragraph(f"В пояснительной записке выполнены: {what}.{mech}{method}"))
+    done = f"выполнен раздел «{built[0].title}»" if len(built) == 1 else f"выполнены: {what}"   # «выполнены: синтез …» of one
+    parts.append(Paragraph(f"В пояснительной записке {done}.{mech}{method}"))
     if "dynamics" in names:
         chain = SECTIONS["dynamics"][0].drive_chain(study)
         if chain:

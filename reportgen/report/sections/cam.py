@@ -100,10 +100,10 @@ def _law_name(ph) -> str:
 
 def _assignment(sec, cam) -> None:
     s = sec.subsection("Исходные данные", "sec-cam-data")
-    kind = "поступательным" if cam.follower == "translating" else "качающимся (коромыслом)"
+    kind = "поступательным толкателем" if cam.follower == "translating" else "качающимся толкателем (коромыслом)"
     contact = {"knife": "острием", "roller": "роликом", "flat": "плоской тарелкой"}[cam.contact]
     rot = "против хода часовой стрелки" if cam.k > 0 else "по ходу часовой стрелки"
-    s.paragraph(f"Проектируется кулачковый механизм с {kind} толкателем, контактирующим с кулачком "
+    s.paragraph(f"Проектируется кулачковый механизм с {kind}, контактирующим с кулачком "
                 f"{contact}. Кулачок вращается равномерно {rot}. Исходные данные приведены в таблице "
                 f"{ref('tab-cam-data')}.")
     rows = []
