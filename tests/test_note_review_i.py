@@ -308,3 +308,18 @@ def test_introduction_of_a_one_section_note_agrees():
     sec = _section("cam_translating_knife_trapezoid", cam)
     text = " ".join(plain(p.html) for p in assemble._introduction(st, ["cam"], [sec]))
     assert "выполнены:" not in text and f"выполнен раздел «{sec.title}»" in text
+
+
+@pytest.mark.parametrize("stem", GEARS)
+def test_mesh_marks_the_working_pressure_angle(stem):
+    """The mesh shows the common tangent t–t of the working circles at P and the angle α_w between
+    it and the line of action (the textbook's picture of the pair); it had neither."""
+    from reportgen.scenes import gears as S
+    gr = _study(stem).gears
+    md = S.internal_mesh_drawing(gr) if gr.internal else S.mesh_drawing(gr)
+    ax = md.fig.axes[0]
+    texts = [t.get_text() for t in ax.texts]
+    assert "$\\alpha_w$" in texts and texts.count("t") == 2
+    yP = float(gr.geo.dw1) / 2
+    assert any(len(ln.get_ydata()) == 2 and np.allclose(ln.get_ydata(), yP) and np.ptp(ln.get_xdata()) > 0
+               for ln in ax.lines)

@@ -102,6 +102,24 @@ def _gost_canvas(xs, ys, avail_w: float, avail_h: float, margin_mm: float, page_
     return Canvas(min(xs), max(xs), min(ys), max(ys), mu, margin_mm, max_w=page_w)
 
 
+def _working_angle(cv: Canvas, P, toward, alw: float, reach: float) -> None:
+    """The common tangent t–t of the working circles at the pitch point P and the working pressure
+    angle α_w between it and the line of action (Попов, Тимофеев, рис. 4.3), on the side of ``toward``."""
+    ax = cv.ax
+    d = np.asarray(toward, float) - np.asarray(P, float)
+    sx = 1.0 if d[0] >= 0 else -1.0
+    ax.plot([P[0] - reach, P[0] + reach], [P[1], P[1]], color=INK, lw=0.5)
+    cv.labels.add(P[0] - sx * reach, P[1], "t", prefer=(-sx, 0.6), fontsize=8)
+    cv.labels.add(P[0] + sx * reach, P[1], "t", prefer=(sx, -0.6), fontsize=8)
+    rad = 0.75 * reach
+    t = np.linspace(0.0, alw, 30)
+    up = 1.0 if d[1] >= 0 else -1.0
+    ax.plot(P[0] + sx * rad * np.cos(t), P[1] + up * rad * np.sin(t), color=INK, lw=0.6)
+    m = alw / 2
+    cv.labels.add(P[0] + sx * rad * math.cos(m), P[1] + up * rad * math.sin(m), "$\\alpha_w$",
+                  prefer=(sx * math.cos(m), up * math.sin(m)), fontsize=8)
+
+
 def mesh_drawing(gears) -> MeshDrawing:
     """External pair: O₁ below, O₂ above, the pitch point P between them; gear 1 drives
     counterclockwise.  The active part B₁B₂ is where the tip circles (drawn as polygons)
@@ -143,6 +161,7 @@ def mesh_drawing(gears) -> MeshDrawing:
             yl = c[1] + math.sqrt(r * r - xl * xl) * (1 if lower else -1)
             cv.labels.add(xl, yl, lab, prefer=(0, 1 if lower else -1), fontsize=7, color=GREY)
     ax.plot([N1[0], N2[0]], [N1[1], N2[1]], color=INK, lw=0.9)
+    _working_angle(cv, P, N2, alw, 0.6 * half)
     # active part: the tip circles (polygons) on N₁N₂
     tip2 = _circle_poly(O2[0], O2[1], float(g.da2) / 2)
     tip1 = _circle_poly(O1[0], O1[1], float(g.da1) / 2)
@@ -220,6 +239,7 @@ def internal_mesh_drawing(gears) -> MeshDrawing:
         ax.add_patch(Circle(tuple(c), r, fill=False, lw=0.6, ls=ls, color=GREY))
     far = N1 + (float(g.rho_a1) + 2 * m) * dirn
     ax.plot([N2[0], far[0]], [N2[1], far[1]], color=INK, lw=0.9)
+    _working_angle(cv, P, far, alw, 0.6 * half)
     t_b1 = segment_circle_hits(N2, far, *_circle_poly(O2[0], O2[1], ra2))
     t_b2 = segment_circle_hits(N1, far, *_circle_poly(O1[0], O1[1], ra1))
     B1 = N2 + t_b1[-1] * (far - N2) if t_b1.size else N1
