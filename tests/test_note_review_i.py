@@ -323,3 +323,16 @@ def test_mesh_marks_the_working_pressure_angle(stem):
     yP = float(gr.geo.dw1) / 2
     assert any(len(ln.get_ydata()) == 2 and np.allclose(ln.get_ydata(), yP) and np.ptp(ln.get_xdata()) > 0
                for ln in ax.lines)
+
+
+@pytest.mark.parametrize("stem", GEARS + ("ws001_gear_2013_4",))
+def test_geometry_table_referenced_and_inside_the_geometry(stem):
+    """The table of the wheels' sizes is referred to in the text (ГОСТ 7.32, 6.6.3) and stands in
+    «Геометрический расчёт передачи», not after the specific sliding."""
+    from reportgen.report.document import Paragraph, Section, Table
+    from reportgen.report.sections import gears
+    sec = _section(stem, gears)
+    home = next((c for c in sec.children if isinstance(c, Section) and c.id == "sec-gears-geo"), sec)
+    kids = home.children
+    i_tab = next(i for i, b in enumerate(kids) if isinstance(b, Table) and b.id == "tab-gears-geo")
+    assert any(isinstance(b, Paragraph) and "tab-gears-geo" in str(b.html) for b in kids[:i_tab])

@@ -60,13 +60,15 @@ def build(study) -> Section:
         f"модуль <i>m</i> = {fmt(gr.m)} мм. Расчёт геометрии ведётся по ГОСТ 16532-70.")
     if gr.inverse:
         _inverse(sec, gr)
+    # the geometry table goes where the geometry is computed (it stood after «Удельное скольжение»)
+    geo_sec = _geometry(sec, gr) if gr.geo is not None else sec
+    geo_sec.paragraph(f"Размеры колёс и зубьев сведены в таблицу {ref('tab-gears-geo')}.")
+    _table(geo_sec, gr)
     if gr.geo is not None:
-        _geometry(sec, gr)
         if gr.chosen or gr.node.has("x1"):
             _contour(sec, gr)
         _mesh(sec, gr)
         _sliding(sec, gr)
-    _table(sec, gr)
     if gr.geo is None or not gr.internal:
         _rack(sec, gr)
     return sec
@@ -115,7 +117,7 @@ def _inverse(sec: Section, gr) -> None:
                   rf"{{2\,\mathrm{{tg}}\,{_deg(al)}}}", _t(inv["x_span"], 4))
 
 
-def _geometry(sec: Section, gr) -> None:
+def _geometry(sec: Section, gr) -> Section:
     s = sec.subsection("Геометрический расчёт передачи", "sec-gears-geo")
     g, m, al = gr.geo, gr.m, gr.rack.alpha
     z1, z2, x1, x2 = gr.z1, gr.z2, gr.x1, gr.x2
@@ -176,6 +178,7 @@ def _geometry(sec: Section, gr) -> None:
     s.paragraph("Проверки качества зацепления:")
     s.paragraph("<ul>" + "".join(f"<li>{c}{'.' if i == len(checks) - 1 else ';'}</li>" for i, c in enumerate(checks))
                 + "</ul>")  # a list is no part of a <p>
+    return s
 
 
 def _given_centre_distance(s, gr, pm: str) -> None:
