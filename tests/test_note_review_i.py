@@ -336,3 +336,18 @@ def test_geometry_table_referenced_and_inside_the_geometry(stem):
     kids = home.children
     i_tab = next(i for i, b in enumerate(kids) if isinstance(b, Table) and b.id == "tab-gears-geo")
     assert any(isinstance(b, Paragraph) and "tab-gears-geo" in str(b.html) for b in kids[:i_tab])
+
+
+def test_flat_face_width_from_exact_extremes(tmp_path):
+    """b = s′max − s′min of a flat follower from the exact extremes: with a ν = 2 parabolic rise
+    (peak of s′ at x₁ = 2/3, between grid angles) and a cosine return the closed forms are
+    s′max = 2h/β_у and s′min = −(π/2)h/β_в."""
+    from reportgen.analysis.study import Study
+    p = tmp_path / "flat.toml"
+    p.write_text('[meta]\ntitle = "t"\n[cam]\nfollower = "translating"\ncontact = "flat"\nstroke = "20 mm"\n'
+                 'far_dwell = "20 deg"\n[cam.rise]\nangle = "101 deg"\nlaw = "parabolic"\nnu = 2\n'
+                 '[cam.return]\nangle = "97 deg"\nlaw = "cosine"\n', encoding="utf-8")
+    c = Study(p).cam
+    want = 0.02 * (2 / c.rise.length + (math.pi / 2) / c.ret.length)
+    assert c.face_width == pytest.approx(want, rel=1e-12)
+    assert c.scalars["cam_face_width"] == pytest.approx(want, rel=1e-12)

@@ -240,13 +240,12 @@ def _size(sec, study, cam) -> None:
             s.paragraph("В положениях жёсткого удара (φ&nbsp;=&nbsp;" + ", ".join(_deg(i["phi"], 1) for i in hard)
                         + ") аналог скорости терпит разрыв: точка касания перескакивает по тарелке, и профиль имеет "
                           "там прямолинейный участок или излом; условие выпуклости проверено между ними.")
-        g = cam.grid
-        v = cam.law(g)
+        lo, hi = cam.s1_extremes
         s.paragraph("Точка касания тарелки с кулачком смещена от оси толкателя на s′, поэтому ширина тарелки "
                     "должна быть не меньше")
         s.formula(Formula(r"b \ge s^{\prime}_{max} - s^{\prime}_{min}",
-                          rf"{_t(v[1].max() * 1000)} - \left({_t(v[1].min() * 1000)}\right)",
-                          _t((v[1].max() - v[1].min()) * 1000, unit="мм")))
+                          rf"{_t(hi * 1000)} - \left({_t(lo * 1000)}\right)",
+                          _t(cam.face_width * 1000, unit="мм")))
         return
     if cam.follower == "translating":
         s.paragraph("Угол давления ϑ — угол между нормалью к профилю в точке контакта и скоростью толкателя. "
