@@ -62,7 +62,7 @@ def build(study) -> Section:
         _inverse(sec, gr)
     # the geometry table goes where the geometry is computed (it stood after «Удельное скольжение»)
     geo_sec = _geometry(sec, gr) if gr.geo is not None else sec
-    geo_sec.paragraph(f"Размеры колёс и зубьев сведены в таблицу {ref('tab-gears-geo')}.")
+    geo_sec.paragraph(f"Размеры {'колёс' if gr.z2 else 'колеса'} и зубьев сведены в таблицу {ref('tab-gears-geo')}.")
     _table(geo_sec, gr)
     if gr.geo is not None:
         if gr.chosen or gr.node.has("x1"):
@@ -283,7 +283,7 @@ def _table(sec: Section, gr) -> None:
             Column("wheel1", "Колесо 1", fmt=_cell)]
     if gr.z2 is not None:
         cols.append(Column("wheel2", "Колесо 2", fmt=_cell))
-    sec.table("Геометрические параметры колёс", cols, df, id="tab-gears-geo")
+    sec.table(f"Геометрические параметры {'колёс' if gr.z2 else 'колеса'}", cols, df, id="tab-gears-geo")
 
 
 def _contour(sec: Section, gr) -> None:
