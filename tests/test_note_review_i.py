@@ -351,3 +351,15 @@ def test_flat_face_width_from_exact_extremes(tmp_path):
     want = 0.02 * (2 / c.rise.length + (math.pi / 2) / c.ret.length)
     assert c.face_width == pytest.approx(want, rel=1e-12)
     assert c.scalars["cam_face_width"] == pytest.approx(want, rel=1e-12)
+
+
+@pytest.mark.parametrize("x1, inside", [(0.5, True), (0.0, False)])
+def test_given_shifts_judged_against_the_contour(tmp_path, x1, inside):
+    """Given shifts: the text says whether the point lies inside the blocking contour (it only said
+    the point «показана»); x₁ = 0 with z₁ = 14 undercuts the pinion."""
+    from reportgen.analysis.study import Study
+    from reportgen.report.sections import gears
+    p = tmp_path / "g.toml"
+    p.write_text(f'[meta]\ntitle = "t"\n[gears]\nmodule = "5 mm"\nz1 = 14\nz2 = 25\nx1 = {x1}\nx2 = 0.1\n', encoding="utf-8")
+    text = " ".join(_paragraphs(gears.build(Study(p))))
+    assert ("лежит внутри контура" in text) is inside and ("вне контура" in text) is not inside

@@ -8,9 +8,11 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pandas as pd
 from markupsafe import Markup
 
+from ...analysis.gears import admissible
 from ...core import gears as G
 from ...scenes import gears as S
 from ...scenes.draw import gost_ratio, mu_text
@@ -296,7 +298,11 @@ def _contour(sec: Section, gr) -> None:
             f"{fmt(gr.s_a_min)}<i>m</i>, ε<sub>α</sub> ≥ {fmt(gr.eps_min)}) взята точка с наименьшим "
             "наибольшим удельным скольжением у ножек зубьев, т. е. с выравненным износом "
             "(λ<sub>1max</sub> ≈ λ<sub>2max</sub>)." if gr.chosen else
-            "Заданная точка (<i>x</i><sub>1</sub>, <i>x</i><sub>2</sub>) показана на блокирующем контуре.")
+            "Заданная точка (<i>x</i><sub>1</sub>, <i>x</i><sub>2</sub>) показана на блокирующем контуре; она лежит "
+            + ("внутри контура: подрезания, интерференции и заострения нет, ε<sub>α</sub> ≥ "
+               f"{fmt(gr.eps_min)}." if bool(np.all(admissible(gr.geo, gr.s_a_min, gr.eps_min))) else
+               "<b>вне контура</b>: одно из ограничений нарушено (см. проверки в разделе "
+               f"{ref('sec-gears-geo')})."))
     s.paragraph(f"Блокирующий контур передачи <i>z</i><sub>1</sub> = {gr.z1}, <i>z</i><sub>2</sub> = {gr.z2} "
                 f"приведён на рисунке {ref('fig-gears-contour')}. {rule}")
     s.figure(f"Блокирующий контур <i>z</i><sub>1</sub> = {gr.z1}, <i>z</i><sub>2</sub> = {gr.z2} с "
