@@ -540,20 +540,34 @@ def conclusion_lines(study) -> list[str]:
                    f"{_mm(cam.scalars['cam_face_width'])}.")
     elif cam.follower == "translating":
         out.append(f"Кулачковый механизм: по допустимым углам давления r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}, "
-                   f"e&nbsp;=&nbsp;{_mm(syn.e)}; наибольший угол давления {_deg(cam.theta_max[0], 2)} на удалении и "
-                   f"{_deg(cam.theta_max[1], 2)} на возвращении.")
+                   f"e&nbsp;=&nbsp;{_mm(syn.e)}; {_theta_phrase(cam)}.")
     else:
         out.append(f"Кулачковый механизм с коромыслом: a<sub>w</sub>&nbsp;=&nbsp;{_mm(syn.a_w)}, "
-                   f"ψ<sub>0</sub>&nbsp;=&nbsp;{_deg(syn.psi0)}, r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}; наибольший угол "
-                   f"давления {_deg(cam.theta_max[0], 2)} на удалении и {_deg(cam.theta_max[1], 2)} на возвращении.")
+                   f"ψ<sub>0</sub>&nbsp;=&nbsp;{_deg(syn.psi0)}, r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}; "
+                   f"{_theta_phrase(cam)}.")
     if cam.contact == "roller":
+        ok = cam.roller <= 0.7 * cam.rho_min_centre + 1e-12
         out.append(f"Радиус ролика r<sub>р</sub>&nbsp;=&nbsp;{_mm(cam.roller)} при наименьшем радиусе кривизны "
-                   f"центрового профиля {_mm(cam.rho_min_centre)}.")
+                   f"центрового профиля {_mm(cam.rho_min_centre)}: "
+                   + ("r<sub>р</sub>&nbsp;≤&nbsp;0,7ρ<sub>min</sub>, рабочий профиль без заострений и срезов."
+                      if ok else "r<sub>р</sub>&nbsp;&gt;&nbsp;0,7ρ<sub>min</sub> — <b>возможно заострение рабочего "
+                      "профиля</b>, радиус ролика нужно уменьшить."))
     if cam.contact == "knife":
         out.append(f"Рабочий профиль совпадает с центровым; наименьший радиус кривизны выпуклой части профиля "
                    f"ρ<sub>min</sub>&nbsp;=&nbsp;{_mm(cam.rho_min_centre)}.")
     out.append(_impacts_sentence(cam))
     return out
+
+
+def _theta_phrase(cam) -> str:
+    """«наибольший угол давления 30,00° на удалении и 40,00° на возвращении при допустимых 30,00° и
+    40,00° — не превышает допустимых» (the exact maxima of :attr:`Cam.theta_max`)."""
+    t1, t2 = cam.theta_max
+    a1, a2 = cam.rise.allowed, cam.ret.allowed
+    ok = t1 <= a1 + 1e-9 and t2 <= a2 + 1e-9
+    return (f"наибольший угол давления {_deg(t1)} на удалении и {_deg(t2)} на возвращении при допустимых "
+            f"{_deg(a1)} и {_deg(a2)} — " + ("не превышает допустимых" if ok else
+                                              "<b>превышает допустимый</b>: размеры нужно увеличить"))
 
 
 def _impacts_sentence(cam) -> str:
@@ -567,5 +581,8 @@ def _impacts_sentence(cam) -> str:
                      f"(φ&nbsp;=&nbsp;" + ", ".join(_deg(p, 1) for p in phis) + ")")
     if not cam.impacts:
         return "Аналоги скорости и ускорения толкателя непрерывны: ударов в кулачковом механизме нет."
-    return "Удары в кулачковом механизме: " + "; ".join(parts) + "."
+    # Попов, Тимофеев, гл. 6: laws with hard impacts only at low speeds, with soft ones at moderate speeds
+    use = (" Закон с жёсткими ударами допустим лишь при малой скорости кулачка." if any(i["kind"] == "hard" for i in cam.impacts)
+           else " Законы с мягкими ударами применяют при умеренной скорости кулачка.")
+    return "Удары в кулачковом механизме: " + "; ".join(parts) + "." + use
 
