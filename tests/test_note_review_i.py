@@ -363,3 +363,20 @@ def test_given_shifts_judged_against_the_contour(tmp_path, x1, inside):
     p.write_text(f'[meta]\ntitle = "t"\n[gears]\nmodule = "5 mm"\nz1 = 14\nz2 = 25\nx1 = {x1}\nx2 = 0.1\n', encoding="utf-8")
     text = " ".join(_paragraphs(gears.build(Study(p))))
     assert ("лежит внутри контура" in text) is inside and ("вне контура" in text) is not inside
+
+
+@pytest.mark.parametrize("stem", ("cam_translating_knife_trapezoid", "cam_rocker_roller_wide", "cam_translating_roller"))
+def test_cam_conclusion_judges_against_the_limits(stem):
+    """The conclusion compares ϑ_max with [ϑ] on both phases and, for a roller, r_р with 0,7ρ_min
+    (it printed the numbers alone)."""
+    from reportgen.report.sections import cam
+    from reportgen.style.numbers import fmt
+    st = _study(stem)
+    c = st.cam
+    text = plain(" ".join(cam.conclusion_lines(st)))
+    for a in (c.rise.allowed, c.ret.allowed):
+        assert "допустимых " in text and fmt(math.degrees(a), digits=2) + "°" in text
+    ok = all(t <= a + 1e-9 for t, a in zip(c.theta_max, (c.rise.allowed, c.ret.allowed)))
+    assert ("не превышает допустимых" in text) is ok
+    if c.contact == "roller":
+        assert ("0,7ρmin" in text.replace("\u00a0", "")) and (("≤" in text) is (c.roller <= 0.7 * c.rho_min_centre))
