@@ -261,7 +261,7 @@ class _RowValue(float):
 
     digits = 3
 
-    def __new__(cls, v, digits):
+    def __new__(cls, v, digits=3):   # the default lets pickle rebuild it (digits comes back in __dict__)
         obj = super().__new__(cls, v)
         obj.digits = digits
         return obj
