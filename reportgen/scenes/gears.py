@@ -13,7 +13,7 @@ from matplotlib.path import Path
 from ..core import gears as G
 from ..style import mplstyle
 from .draw import GREY, INK, Canvas, gost_scale
-from .labels import LabelPlacer, label_contours, place_on_chart
+from .labels import LabelPlacer, label_contours, line_problems, place_on_chart
 
 __all__ = ["tooth_outline", "ring_outline", "MeshDrawing", "mesh_drawing", "internal_mesh_drawing", "rack_drawing", "sliding_diagram",
            "blocking_contour", "segment_circle_hits"]
@@ -389,7 +389,15 @@ def blocking_contour(gears):
     ax.set_xlim(float(X1.min()), float(X1.max()))
     ax.set_ylim(float(X2.min()), float(X2.max()))
     legend = ax.legend(handles=handles, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncols=3)
-    place_on_chart(chosen, avoid=[legend])
+    placed = place_on_chart(chosen, avoid=[legend])
+    if line_problems(fig):       # no clear place for two lines among the isolines: the word alone
+        for t in placed:         # (the coordinates are in the text of the note)
+            if getattr(t, "leader", None) is not None:
+                t.leader.remove()
+            t.remove()
+        chosen = LabelPlacer(ax, fontsize=9)
+        chosen.add(gears.x1, gears.x2, word, prefer=(1, 1), point=True)
+        place_on_chart(chosen, avoid=[legend])
     # the isolines' values where no other line crosses them (ax.clabel's own places were crossed)
     label_contours(ax, cs, lambda v: f"ε={v:.1f}".replace(".", ","), fontsize=6)
     return fig
