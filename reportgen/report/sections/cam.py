@@ -577,7 +577,7 @@ def _impacts_sentence(cam) -> str:
     for kind, adj, adj_gen in (("hard", "жёсткие", "жёстких"), ("soft", "мягкие", "мягких")):
         phis = [i["phi"] for i in cam.impacts if i["kind"] == kind]
         parts.append(f"{adj_gen} ударов нет" if not phis else
-                     f"{adj} удары — в {plural(len(phis), 'положении', 'положениях', 'положениях')} "
+                     f"{adj} удары — в&nbsp;{plural(len(phis), 'положении', 'положениях', 'положениях')} "
                      f"(φ&nbsp;=&nbsp;" + ", ".join(_deg(p, 1) for p in phis) + ")")
     if not cam.impacts:
         return "Аналоги скорости и ускорения толкателя непрерывны: ударов в кулачковом механизме нет."
