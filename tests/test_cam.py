@@ -354,7 +354,7 @@ def test_note_section_text(case):
     assert ids[0] == "sec-cam-data" and ids[-1] == "sec-cam-profile"
     lines = " ".join(S.conclusion_lines(st))
     if st.cam.contact == "flat":
-        assert "40,00" in lines and "жёстких — 2" in lines
+        assert "40,00" in lines and "жёсткие удары — в&nbsp;2\u00a0положениях" in lines
     else:
         assert "28,62" in lines and "мягких" not in lines
 

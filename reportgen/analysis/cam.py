@@ -349,6 +349,29 @@ class Cam:
                         best = (v, r)
         return best
 
+    def analog_max(self, ph: Phase, order: int) -> float:
+        """Exact max |s′| (order 1) or |s″| (order 2) over a phase: the end values and the roots
+        of the next derivative by :meth:`phase_extreme` (a sampled maximum misses a peak between
+        grid points, e.g. the kink of f′ at x₁ of an asymmetric parabolic law)."""
+        return max(self.phase_extreme(ph, lambda p, sd: sg * self._at(p, sd)[order],
+                                      lambda p, sd: sg * self._at(p, sd)[order + 1])[0] for sg in (1.0, -1.0))
+
+    @property
+    def face_width(self) -> float:
+        """Flat translating follower: the least face width b = s′max − s′min, the contact point
+        being s′ off the follower's axis."""
+        lo, hi = self.s1_extremes
+        return hi - lo
+
+    @cached_property
+    def s1_extremes(self) -> tuple[float, float]:
+        """min and max of s′ over the cycle: exact extremes over both phases (0 at a dwell)."""
+        hi = max([0.0] + [self.phase_extreme(ph, lambda p, sd: self._at(p, sd)[1],
+                                             lambda p, sd: self._at(p, sd)[2])[0] for ph in (self.rise, self.ret)])
+        lo = min([0.0] + [-self.phase_extreme(ph, lambda p, sd: -self._at(p, sd)[1],
+                                              lambda p, sd: -self._at(p, sd)[2])[0] for ph in (self.rise, self.ret)])
+        return lo, hi
+
     # ------------------------------------------------------------------ synthesis
     @property
     def rise(self) -> Phase:
@@ -938,8 +961,7 @@ class Cam:
         if self.flat_rocker:
             pass
         elif self.contact == "flat":
-            s, s1 = self.law(self.grid)[:2]
-            out.update(cam_face_width=float(s1.max() - s1.min()), cam_rho_min=float(prof["rho"].min()),
+            out.update(cam_face_width=self.face_width, cam_rho_min=float(prof["rho"].min()),
                        cam_r0_min=self.flat_min[2])
         else:
             out.update(cam_rho_c_min=self.rho_min_centre)

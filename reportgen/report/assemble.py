@@ -388,7 +388,8 @@ def _introduction(study, names, built) -> list:
                   "масштабе и сопоставлены с аналитическими результатами.")
     rules = (f" Схемы выполнены условными графическими обозначениями по ГОСТ\u00a02.770 [{_cite('ГОСТ 2.770')}], "
              f"записка оформлена по ГОСТ\u00a07.32 [{_cite('ГОСТ 7.32')}].")
-    parts.append(Paragraph(f"В пояснительной записке выполнены: {what}.{mech}{method}{rules}"))
+    done = f"выполнен раздел «{built[0].title}»" if len(built) == 1 else f"выполнены: {what}"   # «выполнены: синтез …» of one
+    parts.append(Paragraph(f"В пояснительной записке {done}.{mech}{method}{rules}"))
     if "dynamics" in names:
         chain = SECTIONS["dynamics"][0].drive_chain(study)
         if chain:

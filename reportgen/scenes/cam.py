@@ -314,8 +314,11 @@ class ProfileDrawing:
         W, C = pr["W"], pr["C"]
         k = cam.k
         fol = [self._follower(cam, p, full=(i == 0)) for i, p in enumerate(follower_positions(cam))]
-        xs = np.concatenate([W[:, 0], C[:, 0]] + [f[:, 0] for seg in fol for f in seg["lines"]])
-        ys = np.concatenate([W[:, 1], C[:, 1]] + [f[:, 1] for seg in fol for f in seg["lines"]])
+        # the drawing's extent holds the rollers (and pivots) whole, not only their centres
+        rims = [np.asarray(c) + rad * np.array([[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]])
+                for seg in fol for c, rad in seg["circles"]]
+        xs = np.concatenate([W[:, 0], C[:, 0]] + [f[:, 0] for seg in fol for f in seg["lines"] + rims])
+        ys = np.concatenate([W[:, 1], C[:, 1]] + [f[:, 1] for seg in fol for f in seg["lines"] + rims])
         ext = max(xs.max() - xs.min(), ys.max() - ys.min())
         self.mu, self.scale = gost_scale(ext, 160)
         self.refused = None
@@ -355,6 +358,7 @@ class ProfileDrawing:
                     xytext=(R * math.cos(a[-3]), R * math.sin(a[-3])),
                     arrowprops=dict(arrowstyle="-|>", color=INK, lw=0.8))
         cv.labels.add(R * math.cos(a[10]), R * math.sin(a[10]), "ω", prefer=(math.cos(a[10]), math.sin(a[10])))
+        self.followers, self.limits = fol, (ax.get_xlim(), ax.get_ylim())   # what is drawn and the sheet's window
         return Drawing(cv.svg(), cv.width_mm, self.mu)
 
     @staticmethod

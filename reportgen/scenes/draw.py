@@ -83,7 +83,8 @@ def gost_ratio(mu_m_per_mm: float) -> str:
     k = mu_m_per_mm * 1000.0
     if k >= 1.0 - 1e-9:
         return "1:" + (f"{k:.1f}".replace(".", ",").rstrip("0").rstrip(",") if abs(k - round(k)) > 1e-9 else str(round(k)))
-    return f"{round(1 / k)}:1"
+    r = 1.0 / k     # an enlargement: 2:1, 2,5:1 (round() would print 2,5 as «2:1»)
+    return (str(round(r)) if abs(r - round(r)) < 1e-9 else f"{r:.1f}".replace(".", ",").rstrip("0").rstrip(",")) + ":1"
 
 
 def mu_text(mu: float) -> str:

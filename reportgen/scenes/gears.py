@@ -12,8 +12,8 @@ from matplotlib.path import Path
 
 from ..core import gears as G
 from ..style import mplstyle
-from .draw import GREY, INK, Canvas
-from .labels import LabelPlacer, label_contours, place_on_chart
+from .draw import GREY, INK, Canvas, gost_scale
+from .labels import LabelPlacer, label_contours, line_problems, place_on_chart
 
 __all__ = ["tooth_outline", "ring_outline", "MeshDrawing", "mesh_drawing", "internal_mesh_drawing", "rack_drawing", "sliding_diagram",
            "blocking_contour", "segment_circle_hits"]
@@ -94,6 +94,32 @@ def _circle_poly(cx, cy, r, n=3600):
     return cx + r * np.cos(t), cy + r * np.sin(t)
 
 
+def _gost_canvas(xs, ys, avail_w: float, avail_h: float, margin_mm: float, page_w: float = 165.0) -> Canvas:
+    """The canvas of a drawing in millimetres of the part at the largest ГОСТ 2.302 scale (2,5:1,
+    1:1, 1:2 …) that fits, so that the note can write the scale as ГОСТ does (not μ = 1,5)."""
+    avail_w = min(avail_w, page_w - 2 * margin_mm)
+    mu = 1000.0 * max(gost_scale(np.ptp(xs) / 1000.0, avail_w), gost_scale(np.ptp(ys) / 1000.0, avail_h))
+    return Canvas(min(xs), max(xs), min(ys), max(ys), mu, margin_mm, max_w=page_w)
+
+
+def _working_angle(cv: Canvas, P, toward, alw: float, reach: float) -> None:
+    """The common tangent t–t of the working circles at the pitch point P and the working pressure
+    angle α_w between it and the line of action (Попов, Тимофеев, рис. 4.3), on the side of ``toward``."""
+    ax = cv.ax
+    d = np.asarray(toward, float) - np.asarray(P, float)
+    sx = 1.0 if d[0] >= 0 else -1.0
+    ax.plot([P[0] - reach, P[0] + reach], [P[1], P[1]], color=INK, lw=0.5)
+    cv.labels.add(P[0] - sx * reach, P[1], "t", prefer=(-sx, 0.6), fontsize=8)
+    cv.labels.add(P[0] + sx * reach, P[1], "t", prefer=(sx, -0.6), fontsize=8)
+    rad = 0.75 * reach
+    t = np.linspace(0.0, alw, 30)
+    up = 1.0 if d[1] >= 0 else -1.0
+    ax.plot(P[0] + sx * rad * np.cos(t), P[1] + up * rad * np.sin(t), color=INK, lw=0.6)
+    m = alw / 2
+    cv.labels.add(P[0] + sx * rad * math.cos(m), P[1] + up * rad * math.sin(m), "$\\alpha_w$",
+                  prefer=(sx * math.cos(m), up * math.sin(m)), fontsize=8)
+
+
 def mesh_drawing(gears) -> MeshDrawing:
     """External pair: O₁ below, O₂ above, the pitch point P between them; gear 1 drives
     counterclockwise.  The active part B₁B₂ is where the tip circles (drawn as polygons)
@@ -116,7 +142,7 @@ def mesh_drawing(gears) -> MeshDrawing:
     xmin, xmax = -half, half
     ymin = min(r_w1 - 1.25 * half, float(g.df1) / 2 - 0.5 * m)
     ymax = max(r_w1 + 1.05 * half, aw - float(g.df2) / 2 + 0.5 * m)
-    cv = Canvas.fit([xmin, xmax], [ymin, ymax], avail_w=160, avail_h=200, margin_mm=4)
+    cv = _gost_canvas([xmin, xmax], [ymin, ymax], avail_w=160, avail_h=200, margin_mm=4)
     ax = cv.ax
     for xo, yo, col in ((x1o, y1o, RED), (x2o, y2o, BLUE)):
         ax.fill(xo, yo, color=col, alpha=0.10, lw=0)
@@ -135,6 +161,7 @@ def mesh_drawing(gears) -> MeshDrawing:
             yl = c[1] + math.sqrt(r * r - xl * xl) * (1 if lower else -1)
             cv.labels.add(xl, yl, lab, prefer=(0, 1 if lower else -1), fontsize=7, color=GREY)
     ax.plot([N1[0], N2[0]], [N1[1], N2[1]], color=INK, lw=0.9)
+    _working_angle(cv, P, N2, alw, 0.6 * half)
     # active part: the tip circles (polygons) on N₁N₂
     tip2 = _circle_poly(O2[0], O2[1], float(g.da2) / 2)
     tip1 = _circle_poly(O1[0], O1[1], float(g.da1) / 2)
@@ -195,7 +222,7 @@ def internal_mesh_drawing(gears) -> MeshDrawing:
     xmin, xmax = -half, half
     ymin = min(r_w1 - 1.3 * half, float(g.df1) / 2 - 0.5 * m)
     ymax = rf2 - aw + 0.8 * m
-    cv = Canvas.fit([xmin, xmax], [ymin, ymax], avail_w=160, avail_h=200, margin_mm=4)
+    cv = _gost_canvas([xmin, xmax], [ymin, ymax], avail_w=160, avail_h=200, margin_mm=4)
     ax = cv.ax
     ax.fill(x1o, y1o, color=RED, alpha=0.10, lw=0)
     ax.plot(x1o, y1o, color=INK, lw=1.0)
@@ -212,6 +239,7 @@ def internal_mesh_drawing(gears) -> MeshDrawing:
         ax.add_patch(Circle(tuple(c), r, fill=False, lw=0.6, ls=ls, color=GREY))
     far = N1 + (float(g.rho_a1) + 2 * m) * dirn
     ax.plot([N2[0], far[0]], [N2[1], far[1]], color=INK, lw=0.9)
+    _working_angle(cv, P, far, alw, 0.6 * half)
     t_b1 = segment_circle_hits(N2, far, *_circle_poly(O2[0], O2[1], ra2))
     t_b2 = segment_circle_hits(N1, far, *_circle_poly(O1[0], O1[1], ra1))
     B1 = N2 + t_b1[-1] * (far - N2) if t_b1.size else N1
@@ -346,16 +374,30 @@ def blocking_contour(gears):
     handles.append(ax.plot([], [], color=GREY, lw=1.0, label="$x_{min}$ (подрезание)")[0])
     if not geo.internal:
         ax.axhline(float(G.x_min_undercut(gears.z2, gears.rack)), color=GREY, lw=1.0)
+    if gears.a_w_required is not None:     # a required a_w: the shifts lie on x₁ + x₂ = x_Σ
+        xs = float(gears.xsum_required)
+        xx = np.array([float(X1.min()), float(X1.max())])
+        handles.append(ax.plot(xx, xs - xx, color=INK, lw=1.3, ls=(0, (8, 2, 1.5, 2)),
+                               label=f"$x_1 + x_2 = x_\\Sigma$ ($a_w$ = {gears.a_w_required:g} мм)".replace(".", ","))[0])
     ax.plot([gears.x1], [gears.x2], "o", ms=6, mfc="white", mec=INK, mew=1.5, zorder=6)
     chosen = LabelPlacer(ax, fontsize=9)        # beside the point, clear of the lines
-    chosen.add(gears.x1, gears.x2, f"выбрано\n({gears.x1:.2f}; {gears.x2:.2f})".replace(".", ","), prefer=(1, 1),
+    word = "выбрано" if gears.chosen else "задано"
+    chosen.add(gears.x1, gears.x2, f"{word}\n({gears.x1:.2f}; {gears.x2:.2f})".replace(".", ","), prefer=(1, 1),
                point=True)
     ax.set_xlabel("$x_1$")
     ax.set_ylabel("$x_2$")
     ax.set_xlim(float(X1.min()), float(X1.max()))
     ax.set_ylim(float(X2.min()), float(X2.max()))
     legend = ax.legend(handles=handles, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncols=3)
-    place_on_chart(chosen, avoid=[legend])
+    placed = place_on_chart(chosen, avoid=[legend])
+    if line_problems(fig):       # no clear place for two lines among the isolines: the word alone
+        for t in placed:         # (the coordinates are in the text of the note)
+            if getattr(t, "leader", None) is not None:
+                t.leader.remove()
+            t.remove()
+        chosen = LabelPlacer(ax, fontsize=9)
+        chosen.add(gears.x1, gears.x2, word, prefer=(1, 1), point=True)
+        place_on_chart(chosen, avoid=[legend])
     # the isolines' values where no other line crosses them (ax.clabel's own places were crossed)
     label_contours(ax, cs, lambda v: f"ε={v:.1f}".replace(".", ","), fontsize=6)
     return fig

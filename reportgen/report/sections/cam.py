@@ -14,6 +14,7 @@ from ...scenes.cam import (FlatRockerSize, LawDiagrams, PhasePortrait, PressureA
                            follower_positions)
 from ...style.numbers import fmt, tex_num
 from .common import as_written
+from ..russian import plural
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 
@@ -99,10 +100,10 @@ def _law_name(ph) -> str:
 
 def _assignment(sec, cam) -> None:
     s = sec.subsection("Исходные данные", "sec-cam-data")
-    kind = "поступательным" if cam.follower == "translating" else "качающимся (коромыслом)"
+    kind = "поступательным толкателем" if cam.follower == "translating" else "качающимся толкателем (коромыслом)"
     contact = {"knife": "острием", "roller": "роликом", "flat": "плоской тарелкой"}[cam.contact]
     rot = "против хода часовой стрелки" if cam.k > 0 else "по ходу часовой стрелки"
-    s.paragraph(f"Проектируется кулачковый механизм с {kind} толкателем, контактирующим с кулачком "
+    s.paragraph(f"Проектируется кулачковый механизм с {kind}, контактирующим с кулачком "
                 f"{contact}. Кулачок вращается равномерно {rot}. Исходные данные приведены в таблице "
                 f"{ref('tab-cam-data')}.")
     rows = []
@@ -161,12 +162,10 @@ def _laws(sec, study, cam) -> None:
     fac, unit = (1.0, "") if rocker else (1000.0, "мм")
     for ph, title in ((cam.rise, "удалении"), (cam.ret, "возвращении")):
         beta = ph.length
-        g = [ph.start + i * beta / 2000 for i in range(2001)]
-        v = cam.law(g)
-        s1 = max(abs(v[1])) * fac
-        s2 = max(abs(v[2])) * fac
+        s1 = cam.analog_max(ph, 1) * fac
+        s2 = cam.analog_max(ph, 2) * fac
         hh = cam.h * fac if not rocker else cam.h
-        txt = (f"На {title} — закон {_law_name(ph)}")
+        txt = (f"Закон движения на {title} — {_law_name(ph)}")
         if ph.law in NORM_TEX and not (ph.law in ("sine", "parabolic") and ph.nu != 1):
             txt += f": {_im(NORM_TEX[ph.law])}"
         elif ph.law in ("sine", "parabolic"):
@@ -205,16 +204,16 @@ def _laws(sec, study, cam) -> None:
              id="fig-cam-laws")
     if cam.omega is not None:
         w = cam.omega
-        g = cam.grid
-        v = cam.law(g)
-        vm, am = max(abs(v[1])) * w, max(abs(v[2])) * w * w
+        v1m = max(cam.analog_max(ph, 1) for ph in (cam.rise, cam.ret))
+        v2m = max(cam.analog_max(ph, 2) for ph in (cam.rise, cam.ret))
+        vm, am = v1m * w, v2m * w * w
         vu, au = ("рад/с", "рад/с²") if rocker else ("м/с", "м/с²")
         s.paragraph("Истинные " + ("угловые скорость и ускорение коромысла" if rocker else
                                    "скорость и ускорение толкателя") + " при ω&nbsp;=&nbsp;const:")
         s.formula(Formula(r"v_{max} = \omega\,|s^{\prime}|_{max}" if not rocker else r"\omega_{2,max} = \omega\,|\psi^{\prime}|_{max}",
-                          rf"{_t(w)} \cdot {_t(max(abs(v[1])), sig=4)}", _t(vm, sig=4, unit=vu)),
+                          rf"{_t(w)} \cdot {_t(v1m, sig=4)}", _t(vm, sig=4, unit=vu)),
                   Formula(r"a_{max} = \omega^2 |s^{\prime\prime}|_{max}" if not rocker else r"\varepsilon_{2,max} = \omega^2 |\psi^{\prime\prime}|_{max}",
-                          rf"{_t(w)}^2 \cdot {_t(max(abs(v[2])), sig=4)}", _t(am, sig=4, unit=au)))
+                          rf"{_t(w)}^2 \cdot {_t(v2m, sig=4)}", _t(am, sig=4, unit=au)))
 
 
 def _size(sec, study, cam) -> None:
@@ -241,13 +240,12 @@ def _size(sec, study, cam) -> None:
             s.paragraph("В положениях жёсткого удара (φ&nbsp;=&nbsp;" + ", ".join(_deg(i["phi"], 1) for i in hard)
                         + ") аналог скорости терпит разрыв: точка касания перескакивает по тарелке, и профиль имеет "
                           "там прямолинейный участок или излом; условие выпуклости проверено между ними.")
-        g = cam.grid
-        v = cam.law(g)
+        lo, hi = cam.s1_extremes
         s.paragraph("Точка касания тарелки с кулачком смещена от оси толкателя на s′, поэтому ширина тарелки "
                     "должна быть не меньше")
         s.formula(Formula(r"b \ge s^{\prime}_{max} - s^{\prime}_{min}",
-                          rf"{_t(v[1].max() * 1000)} - \left({_t(v[1].min() * 1000)}\right)",
-                          _t((v[1].max() - v[1].min()) * 1000, unit="мм")))
+                          rf"{_t(hi * 1000)} - \left({_t(lo * 1000)}\right)",
+                          _t(cam.face_width * 1000, unit="мм")))
         return
     if cam.follower == "translating":
         s.paragraph("Угол давления ϑ — угол между нормалью к профилю в точке контакта и скоростью толкателя. "
@@ -434,8 +432,8 @@ def _pressure(sec, study, cam) -> None:
         s.figure("Угол давления за цикл", fig.svg, fig.width_mm, id="fig-cam-theta")
         return
     s.paragraph(f"Угол давления на всём цикле построен на рисунке {ref('fig-cam-theta')}. Наибольшие значения: "
-                f"на удалении ϑ<sub>max</sub>&nbsp;=&nbsp;{_deg(t1, 3)} при [ϑ<sub>у</sub>]&nbsp;=&nbsp;{_deg(cam.rise.allowed)}, "
-                f"на возвращении |ϑ|<sub>max</sub>&nbsp;=&nbsp;{_deg(t2, 3)} при [ϑ<sub>в</sub>]&nbsp;=&nbsp;{_deg(cam.ret.allowed)}. "
+                f"на удалении ϑ<sub>max</sub>&nbsp;=&nbsp;{_deg(t1)} при [ϑ<sub>у</sub>]&nbsp;=&nbsp;{_deg(cam.rise.allowed)}, "
+                f"на возвращении |ϑ|<sub>max</sub>&nbsp;=&nbsp;{_deg(t2)} при [ϑ<sub>в</sub>]&nbsp;=&nbsp;{_deg(cam.ret.allowed)}. "
                 + ("Угол давления нигде не превышает допустимого."
                    if t1 <= cam.rise.allowed + 1e-9 and t2 <= cam.ret.allowed + 1e-9
                    else "<b>Угол давления превышает допустимый</b>: размеры механизма нужно увеличить."))
@@ -450,10 +448,7 @@ def _profile(sec, study, cam) -> None:
                 + ("Профиль — огибающая положений тарелки; координаты точек касания в системе кулачка:"
                    if cam.contact == "flat" else "Координаты центрового (теоретического) профиля в системе кулачка:"))
     if cam.follower == "translating" and cam.contact != "flat":
-        s.formula(Formula(r"x = e\cos\varphi + (s_0 + s)\sin\varphi,\quad y = -e\sin\varphi + (s_0 + s)\cos\varphi",
-                          label="eq-cam-profile"))
-        if cam.k < 0:
-            s.paragraph("(при вращении по часовой стрелке знаки при sin φ меняются на противоположные).")
+        s.formula(Formula(_inversion_tex(cam, "e", "s_0"), label="eq-cam-profile"))
     elif cam.flat_rocker:
         s.formula(Formula(r"\overline{OK} = \overline{OA} + \mu\,\overline{r} - d\,\overline{u},\qquad "
                           r"\overline{r}_K = R(-\varphi)\,\overline{OK}", label="eq-cam-profile",
@@ -462,8 +457,7 @@ def _profile(sec, study, cam) -> None:
         s.paragraph("Профиль — точная огибающая положений тарелки (не ломаная): точки касания найдены в замкнутом виде "
                     f"по формуле {ref('eq-cam-flat-mu')}, радиус кривизны — по формуле {ref('eq-cam-flat-rho')}.")
     elif cam.contact == "flat":
-        s.formula(Formula(r"x = s^{\prime}\cos\varphi + (r_0 + s)\sin\varphi,\quad y = -s^{\prime}\sin\varphi + (r_0 + s)\cos\varphi",
-                          label="eq-cam-profile"))
+        s.formula(Formula(_inversion_tex(cam, r"s^{\prime}", "r_0"), label="eq-cam-profile"))
         s.paragraph("Точка касания смещена по тарелке на s′ от оси толкателя, радиус-вектор профиля "
                     f"{_im(R_TEX)}, радиус кривизны ρ&nbsp;=&nbsp;r<sub>0</sub>&nbsp;+&nbsp;s&nbsp;+&nbsp;s″.")
     else:
@@ -481,6 +475,10 @@ def _profile(sec, study, cam) -> None:
                        + (" (условие выполнено)." if cam.roller < rc else " (<b>условие не выполнено</b>).")))
         s.paragraph("Рабочий (действительный) профиль — эквидистанта центрового, отстоящая от него на r<sub>р</sub> "
                     "по нормали: " + str(_im(r"\overline{r} = \overline{r}_C - r_р\,\overline{n}")) + ".")
+    elif cam.contact == "knife":
+        s.paragraph("У толкателя с острием рабочий профиль совпадает с центровым. Радиус кривизны профиля "
+                    "ρ = |r′|³/(r′ × r″) вычислен по точным производным; наименьший радиус кривизны выпуклой "
+                    f"части ρ<sub>min</sub>&nbsp;=&nbsp;{_mm(cam.rho_min_centre)}.")
     fig = ProfileDrawing()
     d = fig.draw(study)
     pos = ", ".join(f"{i}&nbsp;— φ&nbsp;=&nbsp;{_deg(p, 1)}" for i, p in enumerate(follower_positions(cam)))
@@ -506,9 +504,20 @@ def _profile(sec, study, cam) -> None:
         cols.append(Column("theta", "ϑ", "град", digits=2))
     s.table("Координаты профиля кулачка", cols, df, id="tab-cam-coords",
             note="x<sub>C</sub>, y<sub>C</sub> — центровой профиль; x, y, r — рабочий профиль; ρ — радиус кривизны "
-                 "рабочего профиля (отрицательный — вогнутый участок)." if cam.contact != "flat" else
+                 "рабочего профиля (отрицательный — вогнутый участок)." if cam.contact == "roller" else
+            "x<sub>C</sub>, y<sub>C</sub>, r — профиль кулачка (центровой и рабочий профили совпадают); ρ — радиус "
+            "кривизны профиля (отрицательный — вогнутый участок)." if cam.contact == "knife" else
             "x, y — точки касания тарелки с профилем; r — радиус-вектор профиля; ρ — радиус кривизны профиля"
             + ("; ϑ — угол давления." if cam.flat_rocker and cam.face_offset > 0 else "."))
+
+
+def _inversion_tex(cam, lateral: str, base: str) -> str:
+    """x, y of the translating follower's point (lateral, base + s) turned back by −φ into the cam
+    frame, C = R(−kφ)(k·lateral, base + s), written for this cam's sense of rotation (k = ±1):
+    x = k[lateral·cos φ + (base + s) sin φ], y = −lateral·sin φ + (base + s) cos φ."""
+    x = rf"{lateral}\cos\varphi + ({base} + s)\sin\varphi"
+    x = x if cam.k > 0 else rf"-{lateral}\cos\varphi - ({base} + s)\sin\varphi"
+    return rf"x = {x},\quad y = -{lateral}\sin\varphi + ({base} + s)\cos\varphi"
 
 
 def conclusion_lines(study) -> list[str]:
@@ -531,17 +540,49 @@ def conclusion_lines(study) -> list[str]:
                    f"{_mm(cam.scalars['cam_face_width'])}.")
     elif cam.follower == "translating":
         out.append(f"Кулачковый механизм: по допустимым углам давления r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}, "
-                   f"e&nbsp;=&nbsp;{_mm(syn.e)}; наибольший угол давления {_deg(cam.theta_max[0], 2)} на удалении и "
-                   f"{_deg(cam.theta_max[1], 2)} на возвращении.")
+                   f"e&nbsp;=&nbsp;{_mm(syn.e)}; {_theta_phrase(cam)}.")
     else:
         out.append(f"Кулачковый механизм с коромыслом: a<sub>w</sub>&nbsp;=&nbsp;{_mm(syn.a_w)}, "
-                   f"ψ<sub>0</sub>&nbsp;=&nbsp;{_deg(syn.psi0)}, r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}; наибольший угол "
-                   f"давления {_deg(cam.theta_max[0], 2)} на удалении и {_deg(cam.theta_max[1], 2)} на возвращении.")
+                   f"ψ<sub>0</sub>&nbsp;=&nbsp;{_deg(syn.psi0)}, r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}; "
+                   f"{_theta_phrase(cam)}.")
     if cam.contact == "roller":
+        ok = cam.roller <= 0.7 * cam.rho_min_centre + 1e-12
         out.append(f"Радиус ролика r<sub>р</sub>&nbsp;=&nbsp;{_mm(cam.roller)} при наименьшем радиусе кривизны "
-                   f"центрового профиля {_mm(cam.rho_min_centre)}.")
-    hard = sum(1 for i in cam.impacts if i["kind"] == "hard")
-    soft = sum(1 for i in cam.impacts if i["kind"] == "soft")
-    out.append("Удары в кулачковом механизме: " + ("отсутствуют." if not (hard or soft) else
-               f"жёстких — {hard}, мягких — {soft}."))
+                   f"центрового профиля {_mm(cam.rho_min_centre)}: "
+                   + ("r<sub>р</sub>&nbsp;≤&nbsp;0,7ρ<sub>min</sub>, рабочий профиль без заострений и срезов."
+                      if ok else "r<sub>р</sub>&nbsp;&gt;&nbsp;0,7ρ<sub>min</sub> — <b>возможно заострение рабочего "
+                      "профиля</b>, радиус ролика нужно уменьшить."))
+    if cam.contact == "knife":
+        out.append(f"Рабочий профиль совпадает с центровым; наименьший радиус кривизны выпуклой части профиля "
+                   f"ρ<sub>min</sub>&nbsp;=&nbsp;{_mm(cam.rho_min_centre)}.")
+    out.append(_impacts_sentence(cam))
     return out
+
+
+def _theta_phrase(cam) -> str:
+    """«наибольший угол давления 30,00° на удалении и 40,00° на возвращении при допустимых 30,00° и
+    40,00° — не превышает допустимых» (the exact maxima of :attr:`Cam.theta_max`)."""
+    t1, t2 = cam.theta_max
+    a1, a2 = cam.rise.allowed, cam.ret.allowed
+    ok = t1 <= a1 + 1e-9 and t2 <= a2 + 1e-9
+    return (f"наибольший угол давления {_deg(t1)} на удалении и {_deg(t2)} на возвращении при допустимых "
+            f"{_deg(a1)} и {_deg(a2)} — " + ("не превышает допустимых" if ok else
+                                              "<b>превышает допустимый</b>: размеры нужно увеличить"))
+
+
+def _impacts_sentence(cam) -> str:
+    """The impacts in words with the cam angles where they occur: «жёстких ударов нет; мягкие удары —
+    в 3 положениях (φ = 140°, …)» (Артоболевский, §24: a jump of s′ — hard, of s″ — soft impact)."""
+    parts = []
+    for kind, adj, adj_gen in (("hard", "жёсткие", "жёстких"), ("soft", "мягкие", "мягких")):
+        phis = [i["phi"] for i in cam.impacts if i["kind"] == kind]
+        parts.append(f"{adj_gen} ударов нет" if not phis else
+                     f"{adj} удары — в&nbsp;{plural(len(phis), 'положении', 'положениях', 'положениях')} "
+                     f"(φ&nbsp;=&nbsp;" + ", ".join(_deg(p, 1) for p in phis) + ")")
+    if not cam.impacts:
+        return "Аналоги скорости и ускорения толкателя непрерывны: ударов в кулачковом механизме нет."
+    # Попов, Тимофеев, гл. 6: laws with hard impacts only at low speeds, with soft ones at moderate speeds
+    use = (" Закон с жёсткими ударами допустим лишь при малой скорости кулачка." if any(i["kind"] == "hard" for i in cam.impacts)
+           else " Законы с мягкими ударами применяют при умеренной скорости кулачка.")
+    return "Удары в кулачковом механизме: " + "; ".join(parts) + "." + use
+

@@ -8,10 +8,14 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+import pandas as pd
 from markupsafe import Markup
 
+from ...analysis.gears import admissible
 from ...core import gears as G
 from ...scenes import gears as S
+from ...scenes.draw import gost_ratio, mu_text
 from ...style.numbers import fmt, tex_num
 from .common import as_written
 from ..document import Column, Formula, Section, ref
@@ -58,13 +62,15 @@ def build(study) -> Section:
         f"модуль <i>m</i> = {fmt(gr.m)} мм. Расчёт геометрии ведётся по ГОСТ 16532-70.")
     if gr.inverse:
         _inverse(sec, gr)
+    # the geometry table goes where the geometry is computed (it stood after «Удельное скольжение»)
+    geo_sec = _geometry(sec, gr) if gr.geo is not None else sec
+    geo_sec.paragraph(f"Размеры {'колёс' if gr.z2 else 'колеса'} и зубьев сведены в таблицу {ref('tab-gears-geo')}.")
+    _table(geo_sec, gr)
     if gr.geo is not None:
-        _geometry(sec, gr)
         if gr.chosen or gr.node.has("x1"):
             _contour(sec, gr)
         _mesh(sec, gr)
         _sliding(sec, gr)
-    _table(sec, gr)
     if gr.geo is None or not gr.internal:
         _rack(sec, gr)
     return sec
@@ -113,7 +119,7 @@ def _inverse(sec: Section, gr) -> None:
                   rf"{{2\,\mathrm{{tg}}\,{_deg(al)}}}", _t(inv["x_span"], 4))
 
 
-def _geometry(sec: Section, gr) -> None:
+def _geometry(sec: Section, gr) -> Section:
     s = sec.subsection("Геометрический расчёт передачи", "sec-gears-geo")
     g, m, al = gr.geo, gr.m, gr.rack.alpha
     z1, z2, x1, x2 = gr.z1, gr.z2, gr.x1, gr.x2
@@ -121,6 +127,8 @@ def _geometry(sec: Section, gr) -> None:
     s.paragraph(f"Передача {kind} зацепления: <i>z</i><sub>1</sub> = {z1}, <i>z</i><sub>2</sub> = {z2}, "
                 f"<i>x</i><sub>1</sub> = {fmt(x1, sig=3)}, <i>x</i><sub>2</sub> = {fmt(x2, sig=3)}.")
     pm = "-" if gr.internal else "+"
+    if gr.a_w_required is not None:
+        _given_centre_distance(s, gr, pm)
     s.formula(
         Formula(rf"\mathrm{{inv}}\,\alpha_w = \frac{{2(x_2 {pm} x_1)\,\mathrm{{tg}}\,\alpha}}{{z_2 {pm} z_1}} + \mathrm{{inv}}\,\alpha",
                 rf"\frac{{2({_t(x2, 3)} {pm} {_t(x1, 3)}) \cdot {_t(math.tan(al), 5)}}}{{{z2} {pm} {z1}}} + {_t(G.inv(al), 5)}",
@@ -135,10 +143,16 @@ def _geometry(sec: Section, gr) -> None:
         Formula(r"d_{a1} = d_1 + 2(h_a^* + x_1 - \Delta y)m",
                 rf"{_t(g.d1)} + 2({_t(gr.rack.ha)} + {_t(x1, 3)} - {_t(g.dy, 4)}) \cdot {_t(m)}",
                 rf"{_t(g.da1, 6)}\ \text{{мм}}"),
-        Formula(r"s_a = d_a\left(\frac{s}{d} + \mathrm{inv}\,\alpha - \mathrm{inv}\,\alpha_a\right),\ "
-                r"\cos\alpha_a = \frac{d_b}{d_a}", None,
-                rf"{_t(g.sa1, 4)};\ {_t(g.sa2, 4)}\ \text{{мм}}"),
+        *([] if gr.internal else [
+            Formula(r"d_{a2} = d_2 + 2(h_a^* + x_2 - \Delta y)m",
+                    rf"{_t(g.d2)} + 2({_t(gr.rack.ha)} + {_t(x2, 3)} - {_t(g.dy, 4)}) \cdot {_t(m)}",
+                    rf"{_t(g.da2, 6)}\ \text{{мм}}")]),
     )
+    s.paragraph("Толщина зуба на окружности вершин (α<sub>a</sub> — угол профиля на окружности вершин, "
+                "cos α<sub>a</sub> = <i>d</i><sub>b</sub>/<i>d</i><sub>a</sub>):")
+    s.formula(*[f for i, (z, da, db, sz, sa) in enumerate(((z1, g.da1, g.db1, g.s1, g.sa1), (z2, g.da2, g.db2, g.s2, g.sa2)), 1)
+                for f in _tip_thickness(i, m * z, float(da), float(db), float(sz), float(sa), al,
+                                        ring=gr.internal and i == 2)])
     sign = "-" if gr.internal else "+"
     s.formula(
         Formula(rf"\varepsilon_\alpha = \frac{{z_1(\mathrm{{tg}}\,\alpha_{{a1}} - \mathrm{{tg}}\,\alpha_w) {sign} "
@@ -164,7 +178,45 @@ def _geometry(sec: Section, gr) -> None:
     if gr.internal:
         _internal_checks(checks, gr, g)
     s.paragraph("Проверки качества зацепления:")
-    s.paragraph("<ul>" + "".join(f"<li>{c};</li>" for c in checks) + "</ul>")  # a list is no part of a <p>
+    s.paragraph("<ul>" + "".join(f"<li>{c}{'.' if i == len(checks) - 1 else ';'}</li>" for i, c in enumerate(checks))
+                + "</ul>")  # a list is no part of a <p>
+    return s
+
+
+def _given_centre_distance(s, gr, pm: str) -> None:
+    """A required centre distance a_w: the working angle from cos α_w = a cos α / a_w, then the sum of
+    the shifts x_Σ = (inv α_w − inv α)(z₂ ± z₁)/(2 tg α) (ГОСТ 16532-70, табл. 1, п. 3)."""
+    m, al, z1, z2 = gr.m, gr.rack.alpha, gr.z1, gr.z2
+    zs = z2 - z1 if gr.internal else z1 + z2
+    a = m * zs / 2
+    aw = gr.a_w_required
+    alw = math.acos(a * math.cos(al) / aw)
+    xs = G.xsum_from_centre_distance(m, z1, z2, al, aw, gr.internal)
+    s.paragraph(f"Задано межосевое расстояние <i>a</i><sub>w</sub> = {fmt(aw, sig=6)} мм; по нему находятся угол "
+                "зацепления и сумма коэффициентов смещения:")
+    s.formula(
+        Formula(r"\cos\alpha_w = \frac{a\cos\alpha}{a_w}",
+                rf"\frac{{{_t(a)} \cdot \cos{_deg(al)}}}{{{_t(aw, 6)}}}",
+                rf"{_t(math.cos(alw), 6)};\quad \alpha_w = {_deg(alw)}"),
+        Formula(rf"x_\Sigma = \frac{{(\mathrm{{inv}}\,\alpha_w - \mathrm{{inv}}\,\alpha)(z_2 {pm} z_1)}}{{2\,\mathrm{{tg}}\,\alpha}}",
+                rf"\frac{{({_t(G.inv(alw), 6)} - {_t(G.inv(al), 5)})({z2} {pm} {z1})}}{{2 \cdot {_t(math.tan(al), 5)}}}",
+                _t(xs, 4)))
+    s.paragraph(f"Сумма распределена между колёсами: <i>x</i><sub>1</sub> = {fmt(gr.x1, sig=3)}, "
+                f"<i>x</i><sub>2</sub> = <i>x</i><sub>Σ</sub> − <i>x</i><sub>1</sub> = {fmt(gr.x2, sig=3)} "
+                f"(раздел {ref('sec-gears-contour')}); проверка — по формулам ниже.")
+
+
+def _tip_thickness(i: int, d: float, da: float, db: float, s: float, sa: float, al: float, ring: bool = False) -> list:
+    """s_a = d_a(s/d + inv α − inv α_a), cos α_a = d_b/d_a, with this wheel's numbers; a ring's
+    (internal) tooth widens outwards: s_a = d_a(s/d − inv α + inv α_a)."""
+    ala = math.acos(db / da)
+    a, b = ("-", "+") if ring else ("+", "-")
+    return [Formula(rf"\cos\alpha_{{a{i}}} = \frac{{d_{{b{i}}}}}{{d_{{a{i}}}}}", rf"\frac{{{_t(db, 6)}}}{{{_t(da, 6)}}}",
+                    rf"{_t(math.cos(ala), 5)};\quad \alpha_{{a{i}}} = {_deg(ala)}"),
+            Formula(rf"s_{{a{i}}} = d_{{a{i}}}\left(\frac{{s_{i}}}{{d_{i}}} {a} \mathrm{{inv}}\,\alpha {b} "
+                    rf"\mathrm{{inv}}\,\alpha_{{a{i}}}\right)",
+                    rf"{_t(da, 6)}\left(\frac{{{_t(s, 5)}}}{{{_t(d, 5)}}} {a} {_t(G.inv(al), 5)} {b} {_t(G.inv(ala), 5)}\right)",
+                    rf"{_t(sa, 4)}\ \text{{мм}}")]
 
 
 def _internal_checks(checks: list, gr, g) -> None:
@@ -203,33 +255,58 @@ def _sym_html(sym: str) -> Markup:
     return out + Markup("<sub>{}</sub>").format(idx) if idx else out
 
 
+class _RowValue(float):
+    """A number of the geometry table with the decimals of its row: the table has a row per
+    quantity, so one number of decimals holds along a row (ГОСТ 7.32, 6.6.6), not down a column."""
+
+    digits = 3
+
+    def __new__(cls, v, digits=3):   # the default lets pickle rebuild it (digits comes back in __dict__)
+        obj = super().__new__(cls, v)
+        obj.digits = digits
+        return obj
+
+
+# counts are whole; lengths in mm to 0,001 mm; shift coefficients to 0,001
+_ROW_DIGITS = {"z": 0, "k": 0}
+
+
 def _cell(v) -> str:
-    """Whole numbers (z, k, round diameters) without trailing zeros, the rest to 6 digits."""
-    v = float(v)
-    return str(int(round(v))) if abs(v - round(v)) < 1e-9 else fmt(v, sig=6)
+    return fmt(float(v), digits=getattr(v, "digits", 3))
 
 
 def _table(sec: Section, gr) -> None:
     df = gr.wheel_rows()
     df = df.assign(label=[f"{n}, {u}" if u else n for n, u in zip(df["name"], df["unit"])])
+    for col in ("wheel1", "wheel2"):
+        df[col] = pd.Series([None if v is None or v != v else _RowValue(v, _ROW_DIGITS.get(k, 3))
+                             for k, v in zip(df["key"], df[col])], dtype=object, index=df.index)
     cols = [Column("label", "Параметр", fmt=str), Column("symbol", "Обозначение", fmt=_sym_html),
             Column("wheel1", "Колесо 1", fmt=_cell)]
     if gr.z2 is not None:
         cols.append(Column("wheel2", "Колесо 2", fmt=_cell))
-    sec.table("Геометрические параметры колёс", cols, df, id="tab-gears-geo")
+    sec.table(f"Геометрические параметры {'колёс' if gr.z2 else 'колеса'}", cols, df, id="tab-gears-geo")
 
 
 def _contour(sec: Section, gr) -> None:
     s = sec.subsection("Выбор коэффициентов смещения", "sec-gears-contour")
-    rule = ("Смещения выбраны программой по правилу: из точек сетки с шагом 0,01 внутри блокирующего "
+    where = ("на прямой <i>x</i><sub>1</sub> + <i>x</i><sub>2</sub> = <i>x</i><sub>Σ</sub> (заданное "
+             "<i>a</i><sub>w</sub>) с шагом 0,01 по <i>x</i><sub>1</sub>" if gr.a_w_required is not None else
+             "на сетке с шагом 0,01")
+    rule = (f"Смещения выбраны так: из точек {where} внутри блокирующего "
             "контура (нет подрезания, нет интерференции, <i>s</i><sub>a</sub> ≥ "
             f"{fmt(gr.s_a_min)}<i>m</i>, ε<sub>α</sub> ≥ {fmt(gr.eps_min)}) взята точка с наименьшим "
             "наибольшим удельным скольжением у ножек зубьев, т. е. с выравненным износом "
             "(λ<sub>1max</sub> ≈ λ<sub>2max</sub>)." if gr.chosen else
-            "Заданная точка (<i>x</i><sub>1</sub>, <i>x</i><sub>2</sub>) показана на блокирующем контуре.")
+            "Заданная точка (<i>x</i><sub>1</sub>, <i>x</i><sub>2</sub>) показана на блокирующем контуре; она лежит "
+            + ("внутри контура: подрезания, интерференции и заострения нет, ε<sub>α</sub> ≥ "
+               f"{fmt(gr.eps_min)}." if bool(np.all(admissible(gr.geo, gr.s_a_min, gr.eps_min))) else
+               "<b>вне контура</b>: одно из ограничений нарушено (см. проверки в разделе "
+               f"{ref('sec-gears-geo')})."))
     s.paragraph(f"Блокирующий контур передачи <i>z</i><sub>1</sub> = {gr.z1}, <i>z</i><sub>2</sub> = {gr.z2} "
                 f"приведён на рисунке {ref('fig-gears-contour')}. {rule}")
-    s.figure(f"Блокирующий контур <i>z</i><sub>1</sub> = {gr.z1}, <i>z</i><sub>2</sub> = {gr.z2} с выбранной точкой",
+    s.figure(f"Блокирующий контур <i>z</i><sub>1</sub> = {gr.z1}, <i>z</i><sub>2</sub> = {gr.z2} с "
+             f"{'выбранной' if gr.chosen else 'заданной'} точкой",
              S.blocking_contour(gr), 160, id="fig-gears-contour")
 
 
@@ -238,14 +315,14 @@ def _mesh(sec: Section, gr) -> None:
     md = S.internal_mesh_drawing(gr) if gr.internal else S.mesh_drawing(gr)
     g = gr.geo
     d = (md.eps_graph - float(g.eps)) / float(g.eps) * 100
-    s.paragraph(f"Зацепление построено в масштабе μ<sub>l</sub> = {fmt(md.mu / 1000, sig=3)} м/мм "
-                f"(рисунок {ref('fig-gears-mesh')}); профили зубьев шестерни — эвольвенты с переходными кривыми, "
+    s.paragraph(f"Зацепление построено на рисунке {ref('fig-gears-mesh')} в масштабе {gost_ratio(md.mu / 1000)} "
+                f"(μ<sub>l</sub> = {mu_text(md.mu)} мм/мм); профили зубьев шестерни — эвольвенты с переходными кривыми, "
                 "огибаемыми скруглением головки рейки"
                 + ("; впадины колеса с внутренними зубьями ограничены эвольвентами от окружности вершин до "
                    "окружности впадин (переходная кривая долбяка не показана: долбяк в задании не задан)"
                    if gr.internal else "")
                 + ". Активная часть линии зацепления B<sub>1</sub>B<sub>2</sub> ограничена окружностями вершин.")
-    s.figure("Картина эвольвентного зацепления", md.fig, md.width_mm, id="fig-gears-mesh")
+    s.figure(f"Картина эвольвентного зацепления (М {gost_ratio(md.mu / 1000)})", md.fig, md.width_mm, id="fig-gears-mesh")
     s.formula(r"\varepsilon_\alpha^{граф} = \frac{B_1B_2\,\mu_l}{p_b}",
               rf"\frac{{{_t(md.B1B2_mm, 4)} \cdot {_t(md.mu, 3)}}}{{{_t(g.pb, 5)}}}", _t(md.eps_graph, 4))
     s.paragraph(f"Расхождение графического и аналитического значений: {fmt(d, sig=2)} %.")
@@ -279,6 +356,38 @@ def _rack(sec: Section, gr) -> None:
     s.figure("Станочное зацепление колеса 1 с производящей рейкой", fig, w, id="fig-gears-rack")
 
 
+def _judgement(gr, g) -> list[str]:
+    """The quality of the designed pair in words (Попов, Тимофеев, гл. 4; ГОСТ 16532-70): undercut of
+    the pinion, the tips' thickness, the contact ratio against its allowed value and the wear of the
+    feet by the specific sliding at B₁ (λ₁) and B₂ (λ₂)."""
+    xm1 = float(G.x_min_undercut(gr.z1, gr.rack))
+    under = (f"подрезания зубьев шестерни нет (<i>x</i><sub>1</sub> = {fmt(gr.x1, sig=3)} ≥ <i>x</i><sub>1min</sub> = "
+             f"{fmt(xm1, sig=3)})" if gr.x1 >= xm1 - 1e-12 else
+             f"<b>зубья шестерни подрезаны</b> (<i>x</i><sub>1</sub> = {fmt(gr.x1, sig=3)} &lt; <i>x</i><sub>1min</sub> = "
+             f"{fmt(xm1, sig=3)}): смещение шестерни нужно увеличить")
+    sa = min(float(g.sa1), float(g.sa2))
+    sharp = (f"наименьшая толщина зуба на вершине {fmt(sa, sig=3)} мм = {fmt(sa / gr.m, sig=2)}<i>m</i> "
+             + ("— заострения нет" if sa >= gr.s_a_min * gr.m else "— <b>зуб заострён</b>"))
+    eps = float(g.eps)
+    if eps < gr.eps_min:
+        smooth = (f"<b>ε<sub>α</sub> = {fmt(eps, digits=3)} меньше допустимого {fmt(gr.eps_min, digits=3)}</b>: плавность "
+                  "зацепления не обеспечена, смещения нужно уменьшить")
+    else:
+        smooth = (f"ε<sub>α</sub> = {fmt(eps, digits=3)} ≥ {fmt(gr.eps_min, digits=3)}"
+                  + (" — плавность обеспечена с малым запасом (менее 5 %)" if eps < 1.05 * gr.eps_min else
+                     " — плавность обеспечена"))
+    out = ["Качество зацепления: " + "; ".join((under, sharp, smooth)) + "."]
+    t = gr.sliding_table
+    l1, l2 = abs(float(t["lambda1"].iloc[0])), abs(float(t["lambda2"].iloc[-1]))
+    big, small = max(l1, l2), min(l1, l2)
+    wear = ("износ ножек практически выровнен" if big <= 1.15 * small else
+            f"ножка {'шестерни' if l1 > l2 else 'колеса'} изнашивается быстрее; износ можно выровнять, "
+            "перераспределив смещения к изолинии λ<sub>1max</sub> = λ<sub>2max</sub> блокирующего контура")
+    out.append(f"Наибольшие удельные скольжения у ножек зубьев |λ<sub>1</sub>| = {fmt(l1, digits=2)} (точка "
+               f"B<sub>1</sub>) и |λ<sub>2</sub>| = {fmt(l2, digits=2)} (точка B<sub>2</sub>): {wear}.")
+    return out
+
+
 def conclusion_lines(study) -> list[str]:
     gr = study.gears
     out = []
@@ -288,6 +397,7 @@ def conclusion_lines(study) -> list[str]:
                    f"<i>m</i> = {fmt(gr.m)} мм, <i>x</i><sub>1</sub> = {fmt(gr.x1, sig=3)}, <i>x</i><sub>2</sub> = "
                    f"{fmt(gr.x2, sig=3)}: <i>a</i><sub>w</sub> = {fmt(float(g.a_w), sig=6)} мм, α<sub>w</sub> = "
                    f"{fmt(math.degrees(float(g.alpha_w)), sig=5)}°, ε<sub>α</sub> = {fmt(float(g.eps), sig=4)}.")
+        out += _judgement(gr, g)
     if "x_chord" in gr.inverse:
         out.append(f"По измерениям зубомером коэффициент смещения <i>x</i> = {fmt(gr.inverse['x_chord'], sig=3)}, "
                    f"делительная толщина зуба <i>s</i> = {fmt(gr.inverse['s_chord'], sig=4)} мм.")
