@@ -140,8 +140,10 @@ def test_train_intro_counts_moving_links(case):
 @pytest.mark.parametrize("case", TRAIN_CASES)
 def test_train_assignment_has_no_python_repr(case):
     from reportgen.report.sections import train as T
-    text = plain(T.given(_study(case)))
+    raw = str(T.given(_study(case)))
+    text = plain(raw)
     assert "{" not in text and "'" not in text, text
+    assert "&lt;" not in raw, raw            # markup of k per carrier not escaped into the text
 
 
 @pytest.mark.parametrize("case", NEW_TRAINS)

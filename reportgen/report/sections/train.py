@@ -92,8 +92,8 @@ def _selection(sec: Section, tr) -> None:
     chosen = ", ".join(f"<i>z</i><sub>{w}</sub>" for w in sel.unknown)
     s.paragraph(
         f"Числа зубьев {chosen} подбираются перебором под передаточное отношение "
-        f"<i>u</i><sub>{m.inp}{m.out}</sub> = {fmt(tr.opts['target'], sig=6)} (допуск "
-        f"{fmt(tr.opts['tolerance'] * 100, sig=3)} %) при числе сателлитов {ktext}. Передаточное "
+        f"<i>u</i><sub>{m.inp}{m.out}</sub> = {as_written(tr.opts['target'])} (допуск "
+        f"{as_written(tr.opts['tolerance'] * 100)} %) при числе сателлитов {ktext}. Передаточное "
         f"отношение как функция чисел зубьев — совместное решение уравнений Виллиса всех зацеплений "
         f"(подраздел {ref('sec-train-willis')}) по правилу Крамера:")
     s.formula(rf"u_{{{m.inp}\,{m.out}}} = \frac{{{poly_tex(sel.num, sel.order)}}}{{{poly_tex(sel.den, sel.order)}}}")
@@ -158,7 +158,7 @@ def _neighbour_formula(tr, h: str, ax: str, sv: float, r: float, kh: int) -> For
     ha = tr.selector.ha
     w = max(ws, key=lambda w: w.m * (w.z + 2 * ha))
     two_a = 2 * abs(y[ax] - y[m.members[h]]) / w.m
-    num = rf"\frac{{{w.z} + 2 \cdot {tex_num(ha, sig=3)}}}{{{_num(Fraction(two_a).limit_denominator(1000))}}}"
+    num = rf"\frac{{{w.z} + 2 \cdot {as_written(ha).replace(',', '{,}')}}}{{{_num(Fraction(two_a).limit_denominator(1000))}}}"
     rel = ">" if r < sv else r"\le"
     return Formula(rf"\sin\frac{{\pi}}{{{kh}}} = {tex_num(sv, sig=4)} {rel} "
                    rf"\frac{{z_{{{w.name}}} + 2h_a^*}}{{2a_w/m}}", num, tex_num(r, sig=4))
@@ -200,11 +200,11 @@ def _asm_tex(c0, p0, s0, cj, pj, sj, z, k) -> tuple[str, str]:
             rf"\frac{{{z[pj]} \cdot {z[c0]} {op} {z[p0]} \cdot {z[cj]}}}{{{k} \cdot {g}}}")
 
 
-def _k_text(k) -> str:
+def _k_text(k) -> Markup:
     """«<i>k</i> = 3» or, per carrier, «<i>k</i><sub>H1</sub> = 3, <i>k</i><sub>H2</sub> = 4»."""
     if isinstance(k, int):
-        return f"<i>k</i> = {k}"
-    return ", ".join(Markup("<i>k</i><sub>{}</sub> = {}").format(h, v) for h, v in k.items())
+        return Markup("<i>k</i> = {}").format(k)
+    return Markup(", ").join(Markup("<i>k</i><sub>{}</sub> = {}").format(h, v) for h, v in k.items())
 
 
 def _assembly_text(s: Section, tr, k) -> None:
@@ -337,7 +337,7 @@ def _willis(sec: Section, tr) -> None:
                     f"{fr.numerator}/{fr.denominator} = {fmt(tr.ratio, sig=7)}, расхождение "
                     f"{fmt((pr['u'] - tr.ratio) / tr.ratio * 100, sig=2)} %.")
     if tr.opts["target"] is not None:
-        s.paragraph(f"Отклонение от заданного <i>u</i> = {fmt(tr.opts['target'], sig=5)}: "
+        s.paragraph(f"Отклонение от заданного <i>u</i> = {as_written(tr.opts['target'])}: "
                     f"{_pct(tr.scalars['train_u_error_pct'])} %.")
 
 
@@ -382,7 +382,7 @@ def conclusion_lines(study) -> list[str]:
            + (f"{frac} = " if frac else "") + f"{fmt(tr.ratio, sig=7)} ({zs})."]
     if tr.candidates:
         acc = tr.candidates[0]
-        out.append(f"Числа зубьев подобраны перебором под <i>u</i> = {fmt(tr.opts['target'], sig=6)} (отклонение "
+        out.append(f"Числа зубьев подобраны перебором под <i>u</i> = {as_written(tr.opts['target'])} (отклонение "
                    f"{_pct(tr.scalars['train_u_error_pct'])} %) при {_k_text(tr.opts['planets'])}: выполнены условия "
                    f"соосности, сборки, соседства, отсутствия подрезания и интерференции; набор — наименьший "
                    f"по габариту (наибольший занимаемый колёсами диаметр {_size_text(tr, acc.size)}).")
@@ -394,7 +394,7 @@ def _size_text(tr, size: float) -> str:
     """The overall size in modules, and in mm when the wheels share one module: «59<i>m</i> = 147,5 мм»."""
     mods = {w.m for w in tr.model.wheels.values()}
     text = f"{_num(Fraction(size).limit_denominator(2))}<i>m</i>"
-    return text + (f" = {fmt(size * mods.pop(), sig=5)}&nbsp;мм" if len(mods) == 1 else "")
+    return text + (f" = {as_written(size * mods.pop())}&nbsp;мм" if len(mods) == 1 else "")
 
 
 def _judgement(tr) -> list[str]:
@@ -412,7 +412,7 @@ def _judgement(tr) -> list[str]:
             f"Точнее заданное отношение даёт набор {'/'.join(str(c.z[w]) for w in sel.unknown)} "
             f"(Δ<i>u</i> = {_pct((c.u - target) / target * 100)} %), но его габарит {_size_text(tr, c.size)} "
             f"больше на {fmt((c.size - acc.size) / acc.size * 100, digits=0)} %; отклонение принятого набора "
-            f"{_pct(tr.scalars['train_u_error_pct'])} % в пределах допуска {fmt(tr.opts['tolerance'] * 100, sig=3)} %, "
+            f"{_pct(tr.scalars['train_u_error_pct'])} % в пределах допуска {as_written(tr.opts['tolerance'] * 100)} %, "
             f"поэтому принят меньший механизм.")
     k = tr.opts["planets"]
     z = {w.name: w.z for w in tr.model.wheels.values()}
