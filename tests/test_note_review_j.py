@@ -326,3 +326,15 @@ def test_construction_shows_crank_extremes(case):
         end = pts[("C" if st.synthesis.kind == "slider_crank" else "B") + t[1]]
         cross = (x - o[0]) * (end[1] - o[1]) - (y - o[1]) * (end[0] - o[0])
         assert abs(cross) < 1e-9
+
+
+@pytest.mark.parametrize("case", ["synth_crank_rocker_screen", "synth_shaper"])
+def test_synthesis_chapter_comes_first(case):
+    """The synthesis finds the sizes the structure and the kinematics use: its chapter is the first
+    one, and the assignment does not call the sizes given."""
+    from reportgen.report import assemble as A
+    st = _study(case)
+    names = A.chosen_sections(st, None)
+    assert names[0] == "synthesis" and "structure" in names and "kinematics" in names
+    lead = A._assignment(st, names)[0].html
+    assert "размерам механизма" not in lead and lead.index("синтез") < lead.index("структурный")
