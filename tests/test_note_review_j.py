@@ -338,3 +338,20 @@ def test_synthesis_chapter_comes_first(case):
     assert names[0] == "synthesis" and "structure" in names and "kinematics" in names
     lead = A._assignment(st, names)[0].html
     assert "размерам механизма" not in lead and lead.index("синтез") < lead.index("структурный")
+
+
+@pytest.mark.parametrize("case", MU_CASES)
+def test_synthesis_conclusion_transmission_remedy(case):
+    """Below [μ] the conclusion gives the remedy of the synthesis chapter (the best datum and the
+    μ_min it reaches, or that K must come down); at or above it, no such sentence."""
+    from reportgen.report.sections import synthesis as S
+    from reportgen.style.numbers import fmt
+    st = _study(case)
+    tr = st.synthesis.transmission
+    text = plain(" ".join(S.conclusion_lines(st)))
+    low = math.degrees(tr["mu_min"]) < S.MU_ALLOWED
+    assert ("меньше допускаемого" in text) == low
+    if low:
+        assert f"до {fmt(math.degrees(tr['best_mu']), digits=1)}°" in text
+        assert ("нужно уменьшить" in text) == (math.degrees(tr["best_mu"]) < S.MU_ALLOWED)
+    assert " ." not in text

@@ -260,9 +260,10 @@ def _transmission(sec, kind, x, v, tr) -> None:
     else:
         text += (f"λ&nbsp;=&nbsp;{fmt(bv['lam'], sig=3)} (a&nbsp;=&nbsp;{fmt(bv['a'], sig=3)}&nbsp;м, "
                  f"b&nbsp;=&nbsp;{fmt(bv['b'], sig=3)}&nbsp;м, e&nbsp;=&nbsp;{fmt(bv['e'], sig=3)}&nbsp;м)")
-    text += (": это положение центра кривошипа и рекомендуется принять." if bm >= MU_ALLOWED else
-             f"; и этого мало, поэтому условие μ ≥ {fmt(MU_ALLOWED, digits=0)}° требует уменьшить K или "
-             f"{'размах ψ' if kind == 'crank_rocker' else 'ход H относительно размеров'}.")
+    text += ((": это положение центра кривошипа и рекомендуется принять." if kind == "crank_rocker" else
+              ": эти размеры и рекомендуется принять.") if bm >= MU_ALLOWED else
+             f"; и этого мало, поэтому условие μ ≥ {fmt(MU_ALLOWED, digits=0)}° требует уменьшить "
+             f"{'K или размах ψ' if kind == 'crank_rocker' else 'K (при заданных K и H угол μ зависит только от λ)'}.")
     sec.paragraph(text)
 
 
@@ -292,7 +293,19 @@ def conclusion_lines(study) -> list[str]:
         s = (f"Синтез кулисного механизма: a&nbsp;=&nbsp;{fmt(v['a'], sig=4)}&nbsp;м, "
              f"l<sub>CD</sub>&nbsp;=&nbsp;{fmt(v['l'], sig=4)}&nbsp;м.")
     else:
-        s = (f"Синтез ({SY.TITLES[sy.kind]}, K&nbsp;=&nbsp;{fmt(sy.inputs['K'], sig=4)}): кривошип "
-             f"a&nbsp;=&nbsp;{fmt(v['a'], sig=4)}&nbsp;м, шатун b&nbsp;=&nbsp;{fmt(v['b'], sig=4)}&nbsp;м "
-             f"(вариант {v['variant']} из {len(sy.variants)}).")
+        s = (f"Синтез ({SY.TITLES[sy.kind]}, K&nbsp;=&nbsp;{as_written(sy.inputs['K'])}): кривошип "
+             f"a&nbsp;=&nbsp;{fmt(v['a'], sig=4)}&nbsp;м, шатун b&nbsp;=&nbsp;{fmt(v['b'], sig=4)}&nbsp;м"
+             + (f" (вариант {v['variant']} из {len(sy.variants)})." if len(sy.variants) > 1 else "."))
+    tr = sy.transmission
+    if tr is not None and math.degrees(tr["mu_min"]) < MU_ALLOWED and tr["best_mu"] > tr["mu_min"]:
+        bv = tr["best"]
+        datum = (f"межосевое расстояние d&nbsp;=&nbsp;{fmt(bv['d'], sig=3)}&nbsp;м" if sy.kind == "crank_rocker"
+                 else f"λ&nbsp;=&nbsp;{fmt(bv['lam'], sig=3)}")
+        s += (f" Наименьший угол передачи синтезированного механизма {fmt(math.degrees(tr['mu_min']), digits=1)}° "
+              f"меньше допускаемого {fmt(MU_ALLOWED, digits=0)}°; при тех же K и "
+              f"{'размахе' if sy.kind == 'crank_rocker' else 'ходе'} его можно поднять до "
+              f"{fmt(math.degrees(tr['best_mu']), digits=1)}°, приняв {datum} (раздел {ref('sec-synthesis')})"
+              + ("." if math.degrees(tr["best_mu"]) >= MU_ALLOWED else
+                 f", но не до {fmt(MU_ALLOWED, digits=0)}°: нужно уменьшить "
+                 f"{'K или размах ψ' if sy.kind == 'crank_rocker' else 'K'}."))
     return [s]
