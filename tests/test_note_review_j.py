@@ -355,3 +355,16 @@ def test_synthesis_conclusion_transmission_remedy(case):
         assert f"до {fmt(math.degrees(tr['best_mu']), digits=1)}°" in text
         assert ("нужно уменьшить" in text) == (math.degrees(tr["best_mu"]) < S.MU_ALLOWED)
     assert " ." not in text
+
+
+@pytest.mark.parametrize("case", SYNTH_CASES)
+def test_slotted_lever_has_no_coupler_sentence(case):
+    """A slotted lever has no coupler between the crank and the lever: its extreme positions are
+    where the crank stands perpendicular to the lever, not «кривошип и шатун на одной прямой»."""
+    from reportgen.report.sections import synthesis as S
+    st = _study(case)
+    text = plain(paragraph_text(S.build(st)))
+    if st.synthesis.kind == "slotted_lever":
+        assert "кривошип и шатун" not in text and "кривошип перпендикулярен ей" in text
+    else:
+        assert "кривошип и шатун располагаются на одной прямой" in text
