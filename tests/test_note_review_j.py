@@ -368,3 +368,27 @@ def test_slotted_lever_has_no_coupler_sentence(case):
         assert "кривошип и шатун" not in text and "кривошип перпендикулярен ей" in text
     else:
         assert "кривошип и шатун располагаются на одной прямой" in text
+
+
+@pytest.mark.parametrize("case", TRAIN_CASES)
+def test_whole_train_willis_form(case):
+    """Where the train is one carrier H (the output) over a fixed central wheel b, the chapter
+    writes u_aH^(b) = 1 − u_ab^(H); u_ab^(H) is checked against the train solved again by Willis
+    with the carrier held instead of b (an independent solution of the mesh equations)."""
+    from reportgen.analysis.train import willis
+    from reportgen.report.sections import train as T
+    st = _study(case)
+    tr = st.train
+    w = T.whole_train_willis(tr)
+    m = tr.model
+    carriers = {h for h in m.axes.values() if h != "0"}
+    h = next(iter(carriers))
+    if not (len(carriers) == 1 and len(m.fixed) == 1 and m.out == h
+            and m.members[m.inp] == m.members[h] == m.members[m.fixed[0]]):
+        assert w is None
+        return
+    a, b, h, u = w
+    om = willis(m, fixed=(h,), inp=a)
+    assert abs(float(u) - 1.0 / om[b]) < 1e-9 * abs(float(u))
+    forms = [f for f in _formulas(T.build(st)) if f.symbolic.startswith(rf"u_{{{a}\,{h}}}^{{({b})}}")]
+    assert len(forms) == 1

@@ -279,8 +279,7 @@ def _check(sec, study, sy) -> None:
     given = (lambda z: as_written(math.degrees(z)) + "°") if angular else (lambda z: as_written(z) + "&nbsp;м")
     dev = max(abs(chk["stroke"] - target) / abs(target), abs(chk["K"] - sy.inputs["K"]) / sy.inputs["K"]) * 100
     sec.paragraph(
-        f"Проверка. Механизм с найденными размерами рассчитан кинематическим анализом (раздел "
-        f"{ref('sec-kinematics')}); крайние положения "
+        f"Проверка. Механизм с найденными размерами рассчитан кинематическим анализом; крайние положения "
         f"выходного звена ({escape(chk['title'])}) — положения, где его аналог скорости обращается в нуль. "
         f"Получены {what} {show(chk['stroke'])} (задан {given(target)}) и K&nbsp;=&nbsp;{fmt(chk['K'], sig=6)} "
         f"(задан {as_written(sy.inputs['K'])}); расхождение "

@@ -330,6 +330,7 @@ def _willis(sec: Section, tr) -> None:
         .replace("неподвижные звенья", "неподвижных звеньях")))
     s.formula(rf"u_{{{m.inp}\,{m.out}}} = \frac{{\omega_{{{m.inp}}}}}{{\omega_{{{m.out}}}}}", frac,
               tex_num(tr.ratio, sig=7))
+    _willis_whole(s, tr)
     pr = tr.opts.get("printed", {})
     if "u" in pr:
         s.paragraph(f"В опубликованном решении напечатано <i>u</i> = {fmt(pr['u'], sig=6)}: там перемножены "
@@ -339,6 +340,44 @@ def _willis(sec: Section, tr) -> None:
     if tr.opts["target"] is not None:
         s.paragraph(f"Отклонение от заданного <i>u</i> = {as_written(tr.opts['target'])}: "
                     f"{_pct(tr.scalars['train_u_error_pct'])} %.")
+
+
+def whole_train_willis(tr) -> tuple[str, str, str, Fraction] | None:
+    """The textbook form for a train with one carrier H as the output, one fixed central member
+    b and a central input a: u_aH^(b) = 1 − u_ab^(H), u_ab^(H) = (ω_a − ω_H)/(ω_b − ω_H) the ratio
+    of the train with the carrier held (Артоболевский [1], Попов, Тимофеев [2]).  Returns (a, b,
+    H, u_ab^(H) exact) or None when the train is not of that shape."""
+    m = tr.model
+    carriers = {h for h in m.axes.values() if h != FRAME}
+    if len(carriers) != 1 or len(m.fixed) != 1:
+        return None
+    h, b, a = next(iter(carriers)), m.fixed[0], m.inp
+    if m.out != h or m.axes.get(m.members[h]) != FRAME or a == h:
+        return None
+    if m.members[a] != m.members[h] or m.members[b] != m.members[h]:
+        return None
+    return a, b, h, 1 - tr.ratio_fraction
+
+
+def _willis_whole(s: Section, tr) -> None:
+    w = whole_train_willis(tr)
+    if w is None:
+        return
+    a, b, h, u = w
+
+    def frac(q: Fraction) -> str:
+        return rf"\frac{{{abs(q.numerator)}}}{{{q.denominator}}}" if q.denominator != 1 else str(abs(q.numerator))
+
+    sign = "-" if u < 0 else ""
+    s.paragraph(Markup("Тот же результат по формуле Виллиса для механизма в целом: при остановленном водиле {} "
+                       "механизм становится рядовым, его передаточное отношение от {} к {} — произведение "
+                       "отношений зацеплений со знаками, а при остановленном колесе {}:").format(h, a, b, b))
+    s.formula(Formula(rf"u_{{{a}\,{b}}}^{{({h})}} = \frac{{\omega_{{{a}}} - \omega_{{{h}}}}}{{\omega_{{{b}}} - \omega_{{{h}}}}}",
+                      rf"{sign}{frac(u)}", tex_num(float(u), sig=7)),
+              Formula(rf"u_{{{a}\,{h}}}^{{({b})}} = 1 - u_{{{a}\,{b}}}^{{({h})}}",
+                      rf"1 {'+' if u < 0 else '-'} {frac(u)}",
+                      (rf"\frac{{{tr.ratio_fraction.numerator}}}{{{tr.ratio_fraction.denominator}}} = " if
+                       tr.ratio_fraction.denominator != 1 else "") + tex_num(tr.ratio, sig=7)))
 
 
 def _picture(sec: Section, tr) -> None:
