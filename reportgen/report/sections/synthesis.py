@@ -74,6 +74,11 @@ def _w(x) -> str:
     return as_written(x).replace(",", "{,}")
 
 
+def _g(x: dict, key: str, value: float) -> str:
+    """A datum in a substituted formula: as written when it is a given input, else to 5 digits."""
+    return _w(x[key]) if key in x else _t(value)
+
+
 def _t(x, sig=5) -> str:
     return tex_num(x, sig=sig)
 
@@ -110,10 +115,10 @@ def _construction(sec, study, kind, x, v) -> None:
     if kind == "slotted_lever":
         sec.paragraph("В крайних положениях кулиса касается окружности, описываемой концом кривошипа, "
                       "поэтому угол размаха кулисы равен θ, а кривошип перпендикулярен кулисе:")
-        sec.formula(r"a = d \sin\frac{\theta}{2}", rf"{_t(v['d'])} \cdot \sin {_t(math.degrees(th2))}^{{\circ}}",
+        sec.formula(r"a = d \sin\frac{\theta}{2}", rf"{_g(x, 'd', v['d'])} \cdot \sin {_t(math.degrees(th2))}^{{\circ}}",
                     tex_num(v["a"], sig=5, unit="м"), label="eq-syn-a")
         sec.formula(r"l_{CD} = \frac{H}{2 \sin(\theta/2)}",
-                    rf"\frac{{{_t(v['H'])}}}{{2 \sin {_t(math.degrees(th2))}^{{\circ}}}}",
+                    rf"\frac{{{_g(x, 'H', v['H'])}}}{{2 \sin {_t(math.degrees(th2))}^{{\circ}}}}",
                     tex_num(v["l"], sig=5, unit="м"), label="eq-syn-l")
     else:
         P = "C" if kind == "slider_crank" else "B"
@@ -133,14 +138,14 @@ def _construction(sec, study, kind, x, v) -> None:
             sec.paragraph("По теореме косинусов для треугольника OC₁C₂ (стороны b − a, b + a, H, угол θ при O) "
                           "и λ&nbsp;=&nbsp;a/b:")
             sec.formula(r"b = \frac{H}{\sqrt{2(1 + \lambda^2) - 2(1 - \lambda^2)\cos\theta}}",
-                        rf"\frac{{{_t(x['H'])}}}{{\sqrt{{2(1 + {_w(x['lam'])}^2) - 2(1 - "
+                        rf"\frac{{{_w(x['H'])}}}{{\sqrt{{2(1 + {_w(x['lam'])}^2) - 2(1 - "
                         rf"{_w(x['lam'])}^2)\cos {_t(math.degrees(v['theta']))}^{{\circ}}}}}}",
                         tex_num(v["b"], sig=5, unit="м"), label="eq-syn-b-lam")
             sec.formula(r"a = \lambda b", rf"{_w(x['lam'])} \cdot {_t(v['b'])}",
                         tex_num(v["a"], sig=5, unit="м"), label="eq-syn-a-lam")
             sec.formula(r"e = \frac{(b^2 - a^2)\sin\theta}{H}",
                         rf"\frac{{({_t(v['b'])}^2 - {_t(v['a'])}^2)\sin {_t(math.degrees(v['theta']))}^{{\circ}}}}"
-                        rf"{{{_t(x['H'])}}}", tex_num(v["e"], sig=5, unit="м"), label="eq-syn-e")
+                        rf"{{{_w(x['H'])}}}", tex_num(v["e"], sig=5, unit="м"), label="eq-syn-e")
             sec.paragraph("Те же длины по построению (расстояния от O до крайних положений ползуна):")
         far = math.hypot(v.get("x_far", v.get("x_C2", 0)) - v["x_O"], v.get("y_far", 0.0) - v["y_O"])
         near = math.hypot(v.get("x_near", v.get("x_C1", 0)) - v["x_O"], v.get("y_near", 0.0) - v["y_O"])
@@ -161,16 +166,17 @@ def _construction(sec, study, kind, x, v) -> None:
 def _chord(sec, kind, v, P) -> None:
     """The chord of the extreme positions and the θ-circle's radius with numbers."""
     if kind == "slider_crank":
-        sec.paragraph(f"Хорда |C₁C₂|&nbsp;=&nbsp;H&nbsp;=&nbsp;{fmt(v['H'], sig=5)}&nbsp;м, радиус окружности:")
+        sec.paragraph(f"Хорда |C₁C₂|&nbsp;=&nbsp;H&nbsp;=&nbsp;{as_written(v['H'])}&nbsp;м, радиус окружности:")
         chord = v["H"]
     else:
         chord = math.hypot(v["x_B2"] - v["x_B1"], v["y_B2"] - v["y_B1"])
         sec.formula(r"|B_1B_2| = 2 l_{CB} \sin\frac{\psi}{2}",
-                    rf"2 \cdot {_t(v['c'])} \cdot \sin {_t(math.degrees(v['psi'] / 2))}^{{\circ}}",
+                    rf"2 \cdot {_w(v['c'])} \cdot \sin {_t(math.degrees(v['psi'] / 2))}^{{\circ}}",
                     tex_num(chord, sig=5, unit="м"), label="eq-syn-chord")
     th = v["theta"]
     if th > 1e-9:
-        sec.formula(_R.replace("B", P), rf"\frac{{{_t(chord)}}}{{2 \sin {_t(math.degrees(th))}^{{\circ}}}}",
+        shown = _w(chord) if kind == "slider_crank" else _t(chord)
+        sec.formula(_R.replace("B", P), rf"\frac{{{shown}}}{{2 \sin {_t(math.degrees(th))}^{{\circ}}}}",
                     tex_num(chord / (2 * math.sin(th)), sig=5, unit="м"), label="eq-syn-R")
 
 
