@@ -199,7 +199,7 @@ def _variants(sec, kind, v, vs, tr) -> None:
         if kind == "slider_crank":
             sec.paragraph(f"Задача имеет единственное решение: кривошип a&nbsp;=&nbsp;{fmt(v['a'], sig=5)}&nbsp;м, "
                           f"шатун b&nbsp;=&nbsp;{fmt(v['b'], sig=5)}&nbsp;м, смещение e&nbsp;=&nbsp;"
-                          f"{fmt(v['e'], sig=5)}&nbsp;м (λ&nbsp;=&nbsp;{fmt(v['lam'], sig=4)}).")
+                          f"{fmt(v['e'], sig=5)}&nbsp;м (λ&nbsp;=&nbsp;{as_written(round(v['lam'], 10))}).")
         else:
             sec.paragraph(f"Задача имеет единственное решение: кривошип a&nbsp;=&nbsp;{fmt(v['a'], sig=5)}&nbsp;м, "
                           f"шатун b&nbsp;=&nbsp;{fmt(v['b'], sig=5)}&nbsp;м.")
@@ -247,9 +247,9 @@ def _transmission(sec, kind, x, v, tr) -> None:
     else:
         sec.paragraph("Угол передачи μ между шатуном и нормалью к направляющей наименьший, когда кривошип "
                       "перпендикулярен направляющей со стороны смещения [2]:")
-        sec.formula(r"\cos\mu_{min} = \frac{a + e}{b}",
+        sec.formula(r"\cos\mu_{\min} = \frac{a + e}{b}",
                     rf"\frac{{{_t(v['a'])} + {_t(abs(v['e']))}}}{{{_t(v['b'])}}}",
-                    rf"{tex_num((v['a'] + abs(v['e'])) / v['b'], sig=4)};\ \mu_{{min}} = "
+                    rf"{tex_num((v['a'] + abs(v['e'])) / v['b'], sig=4)};\ \mu_{{\min}} = "
                     rf"{tex_num(mu, digits=1)}^{{\circ}}")
         change = "отношение λ&nbsp;=&nbsp;a/b"
     if mu >= MU_ALLOWED:
