@@ -102,7 +102,7 @@ def build(study) -> Section:
                 rf"180^{{\circ}} \cdot \frac{{{_w(x['K'])} - 1}}{{{_w(x['K'])} + 1}}",
                 tex_num(math.degrees(th), sig=5) + r"^{\circ}", label="eq-syn-theta")
     _construction(sec, study, kind, x, v)
-    _variants(sec, kind, v, vs, sy.transmission)
+    _variants(sec, kind, x, v, vs, sy.transmission)
     _transmission(sec, kind, x, v, sy.transmission)
     _check(sec, study, sy)
     return sec
@@ -192,14 +192,14 @@ def _locus_ru(kind, x) -> str:
     return f"прямой y&nbsp;=&nbsp;{fmt(x['o1_y'], sig=4)}&nbsp;м"
 
 
-def _variants(sec, kind, v, vs, tr) -> None:
+def _variants(sec, kind, x, v, vs, tr) -> None:
     if kind == "slotted_lever":
         return
     if len(vs) == 1:
         if kind == "slider_crank":
             sec.paragraph(f"Задача имеет единственное решение: кривошип a&nbsp;=&nbsp;{fmt(v['a'], sig=5)}&nbsp;м, "
                           f"шатун b&nbsp;=&nbsp;{fmt(v['b'], sig=5)}&nbsp;м, смещение e&nbsp;=&nbsp;"
-                          f"{fmt(v['e'], sig=5)}&nbsp;м (λ&nbsp;=&nbsp;{as_written(round(v['lam'], 10))}).")
+                          f"{fmt(v['e'], sig=5)}&nbsp;м (λ&nbsp;=&nbsp;{_val('lam', x['lam']) if 'lam' in x else fmt(v['lam'], sig=4)}).")
         else:
             sec.paragraph(f"Задача имеет единственное решение: кривошип a&nbsp;=&nbsp;{fmt(v['a'], sig=5)}&nbsp;м, "
                           f"шатун b&nbsp;=&nbsp;{fmt(v['b'], sig=5)}&nbsp;м.")
