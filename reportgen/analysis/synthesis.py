@@ -190,6 +190,49 @@ class Synthesis:
             out.update(check_stroke=chk["stroke"], check_K=chk["K"], check_q1=chk["q1"], check_q2=chk["q2"])
         return out
 
+    @cached_property
+    def transmission(self) -> dict | None:
+        """Least transmission angle of every variant (closed form, ``transmission_min``) and the
+        best one the free datum of the problem allows at the same K and stroke or swing: the
+        centre distance d = |OC| of a crank-rocker (any locus of O), λ = a/b of a slider-crank.
+        None for the other kinds.  The best value: a log grid of the datum refined by a bounded
+        scalar search around the grid's best point."""
+        kind, x = self.kind, self.inputs
+        if kind not in ("crank_rocker", "slider_crank"):
+            return None
+        from scipy.optimize import minimize_scalar
+
+        from ..core import synthesis as core
+
+        mus = [core.transmission_min(kind, v) for v in self.variants]
+        if kind == "crank_rocker":
+            lo, hi, name = 0.05 * x["c"], 20.0 * x["c"], "d"
+
+            def solve(p):
+                return core.crank_rocker(x["K"], x["psi"], x["c"], d=p)
+        else:
+            lo, hi, name = 0.01, 0.99, "lam"
+
+            def solve(p):
+                return core.slider_crank(x["K"], x["H"], lam=p)
+
+        def best(p) -> tuple[float, dict | None]:
+            vs = solve(p)
+            if not vs:
+                return -1.0, None
+            v = max(vs, key=lambda w: core.transmission_min(kind, w))
+            return core.transmission_min(kind, v), v
+
+        grid = np.geomspace(lo, hi, 241)
+        vals = [best(p)[0] for p in grid]
+        i = int(np.argmax(vals))
+        res = minimize_scalar(lambda p: -best(p)[0], bounds=(grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]),
+                              method="bounded", options={"xatol": 1e-10 * hi})
+        p = float(res.x) if -res.fun >= vals[i] else float(grid[i])
+        mu_best, v_best = best(p)
+        return {"mu": mus, "mu_min": mus[self.solved[3]], "param": name, "best_value": p,
+                "best_mu": mu_best, "best": v_best}
+
     def target_stroke(self) -> float:
         """The stroke (m) or swing (rad) the synthesis was asked for: a crank-rocker's swing ψ; a
         slotted lever's swing when the lever is the output, the stroke H of its end when a slider

@@ -77,6 +77,18 @@ class TrainModel:
                 raise ValueError("carrier cycle")
         return d
 
+    def central_axis(self) -> str:
+        """The train's central axis (y = 0 of the scheme): the frame axis a carrier turns about
+        (the axis of the central wheels of a planetary stage), else the default axis «O», else the
+        first frame axis.  A parallel frame axis of a simple stage (a motor pinion) is placed off
+        it, so that the scheme is symmetric about the planetary stage's axis, not the pinion's."""
+        frame_axes = [a for a, h in self.axes.items() if h == FRAME]
+        carriers = {h for h in self.axes.values() if h != FRAME}
+        for a in frame_axes:
+            if any(self.members.get(c) == a for c in carriers):
+                return a
+        return "O" if "O" in frame_axes else frame_axes[0]
+
     def carries(self, member: str, axis: str) -> bool:
         """Does the axis stand still in the member (carried by it, or its rotation axis with the
         same host)?"""
@@ -146,7 +158,7 @@ def _dist_terms(model: TrainModel, a: str, b: str) -> dict[str, float]:
 
 def place_axes(model: TrainModel, loops: list | None = None,
                forms: dict | None = None) -> tuple[dict[str, float], list[tuple[str, str, float]]]:
-    """Axis positions on the scheme's line (breadth-first from the frame's first axis): a
+    """Axis positions on the scheme's line (breadth-first from the central axis): a
     deeper axis is placed above its partner.  Returns positions and the coaxiality residuals
     (mesh, |Δy| − a) of meshes closing a loop.  With ``loops`` given, it receives for every closing
     mesh the coaxiality equation as two linear forms in the tooth numbers (mm per tooth):
@@ -158,9 +170,9 @@ def place_axes(model: TrainModel, loops: list | None = None,
         if wa.m != wb.m:
             raise ValueError(f"mesh {a}-{b}: different modules")
         return wa.m * (abs(wa.z - wb.z) if (wa.internal or wb.internal) else wa.z + wb.z) / 2
-    frame_axes = [a for a, h in model.axes.items() if h == FRAME]
-    y = {frame_axes[0]: 0.0}
-    sym: dict[str, dict[str, float]] = {frame_axes[0]: {}}
+    centre = model.central_axis()
+    y = {centre: 0.0}
+    sym: dict[str, dict[str, float]] = {centre: {}}
     resid = []
     changed = True
     done = set()
@@ -312,9 +324,8 @@ def solve_coaxial(model: TrainModel) -> list[tuple[str, str, float, int]]:
 
 
 def _placed(model: TrainModel, axis: str) -> bool:
-    """Is the axis placed by a mesh of known wheels (or is it the frame's first axis)?"""
-    frame_axes = [a for a, h in model.axes.items() if h == FRAME]
-    if axis == frame_axes[0]:
+    """Is the axis placed by a mesh of known wheels (or is it the central axis)?"""
+    if axis == model.central_axis():
         return True
     return any(model.wheels[a].z and model.wheels[b].z and axis in (model.wheels[a].centre, model.wheels[b].centre)
                for a, b in model.meshes)

@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 
 __all__ = ["theta_of_K", "K_of_theta", "theta_circles", "crank_from_extremes", "crank_rocker",
-           "slider_crank", "slotted_lever", "six_bar"]
+           "slider_crank", "slotted_lever", "six_bar", "transmission_min"]
 
 _EPS = 1e-12
 
@@ -234,3 +234,26 @@ def six_bar(K: float, H: float, l3: float, l4: float, *, path_y: float, o1_y: fl
     for v in vs:
         v.update(l3=l3, l4=l4, H=H, path_y=path_y, x_C1=v["x_B1"] + dx, x_C2=v["x_B2"] + dx)
     return vs
+
+
+def transmission_min(kind: str, v: dict) -> float | None:
+    """Least transmission angle μ_min (rad) of a synthesised crank-rocker or slider-crank, in
+    closed form (Попов С. А., Тимофеев Г. А., «Курсовое проектирование по ТММ», § 2.2).
+
+    Crank-rocker OABC (a, b, c = |CB|, d = |OC|): μ is the angle between the coupler AB and the
+    rocker CB, cos μ = (b² + c² − |AC|²)/(2bc); it is extreme where the crank lies on the line of
+    centres, |AC| = d ∓ a, so μ_min = min over both of min(μ, 180° − μ).  Offset slider-crank
+    (a, b, offset e): μ is the angle between the coupler and the normal to the guide,
+    cos μ = |y_A|/b; it is least where the crank stands perpendicular to the guide on the side
+    that adds to the offset, cos μ_min = (a + |e|)/b.  Other kinds: None (a slotted lever's stone
+    presses along the normal to the slot, μ = 90°)."""
+    if kind == "crank_rocker":
+        a, b, c, d = v["a"], v["b"], v["c"], v["d"]
+        out = []
+        for s in (d - a, d + a):
+            g = math.acos(max(-1.0, min(1.0, (b * b + c * c - s * s) / (2 * b * c))))
+            out.append(min(g, math.pi - g))
+        return min(out)
+    if kind == "slider_crank":
+        return math.acos(max(-1.0, min(1.0, (v["a"] + abs(v["e"])) / v["b"])))
+    return None

@@ -40,6 +40,8 @@ SECTIONS: dict[str, tuple] = {
 for _kind in KINDS:
     _mod = importlib.import_module(f"{__package__}.sections.{_kind.name}")
     SECTIONS[_kind.name] = (_mod, _mod.present)
+# the synthesis finds the sizes the linkage's analysis uses: its chapter comes first
+SECTIONS = {"synthesis": SECTIONS.pop("synthesis"), **SECTIONS}
 ORDER = list(SECTIONS)
 
 REFERENCES = [
@@ -167,7 +169,8 @@ _WEIGHT = {"dynamics": 4, "kinematics": 4, "forces": 3, "structure": 1}
 
 def _assignment(study, names) -> list:
     tasks = _assignment_tasks(study, names)
-    lead = "По заданной схеме и размерам механизма: " if study.has_linkage else "Требуется: "
+    lead = ("Требуется: " if not study.has_linkage else "По заданной схеме механизма и исходным данным: "
+            if "synthesis" in names else "По заданной схеме и размерам механизма: ")
     out = [Paragraph(lead + "; ".join(tasks) + ".")] if tasks else []
     out += _given_parameters(study)
     if study.has_linkage:

@@ -160,12 +160,23 @@ class SynthesisConstruction:
 
     # ---------------------------------------------------------------- common parts
     @staticmethod
-    def _crank(cv, v, far, near, o):
-        """Chosen variant: O–far (a + b), O–near (b − a), the crank circle, θ at O."""
+    def _crank(cv, v, far, near, o, names=None):
+        """Chosen variant: O–far (a + b), O–near (b − a), the crank circle, θ at O; with
+        ``names`` (the A labels of the far and the near extreme) both extreme positions of the
+        crank OA drawn bold: A on O→far (extended dyad) and on the far side of O from the
+        near extreme (folded dyad, O between A and B)."""
         _seg(cv, o, far, lw=1.0)
         _seg(cv, o, near, lw=1.0)
         cv.ax.add_patch(Circle(o, v["a"], fill=False, ls="--", lw=0.8, ec=INK))
         _angle(cv, o, far, near, "θ", r_mm=14)
+        if names is None:
+            return
+        for p, sg, name in ((far, 1.0, names[0]), (near, -1.0, names[1])):
+            d = math.hypot(p[0] - o[0], p[1] - o[1])
+            a = (o[0] + sg * v["a"] * (p[0] - o[0]) / d, o[1] + sg * v["a"] * (p[1] - o[1]) / d)
+            _seg(cv, o, a, lw=2.0)
+            _seg(cv, a, p, lw=1.0)
+            _pt(cv, a, name, dx=-sg * 4, dy=-sg * 4)
 
     @staticmethod
     def _circles(cv, b1, b2, theta, centres):
@@ -205,7 +216,10 @@ class SynthesisConstruction:
             if w["variant"] != v["variant"]:
                 _pt(cv, (w["x_O"], w["y_O"]), f"O({w['variant']})", filled=False, color=GREY)
         o = (v["x_O"], v["y_O"])
-        self._crank(cv, v, (v["x_far"], v["y_far"]), (v["x_near"], v["y_near"]), o)
+        far = (v["x_far"], v["y_far"])
+        i_far = 0 if math.hypot(far[0] - b1[0], far[1] - b1[1]) < math.hypot(far[0] - b2[0], far[1] - b2[1]) else 1
+        sub = [lab[0][-1], lab[1][-1]]
+        self._crank(cv, v, far, (v["x_near"], v["y_near"]), o, names=("A" + sub[i_far], "A" + sub[1 - i_far]))
         _pt(cv, c0, rocker, dx=1.5, dy=-4)
         _pt(cv, b1, lab[0], dx=-5, dy=1.5)
         _pt(cv, b2, lab[1])
@@ -231,7 +245,7 @@ class SynthesisConstruction:
         o = (v["x_O"], v["y_O"])
         _seg(cv, (min(0.0, c1[0]) - cv.mm(6), 0.0), (c2[0] + cv.mm(6), 0.0), lw=0.8, ls="-.")
         self._circles(cv, c1, c2, v["theta"], [o])
-        self._crank(cv, v, c2, c1, o)
+        self._crank(cv, v, c2, c1, o, names=("A₂", "A₁"))
         _seg(cv, o, (o[0], 0.0), lw=0.6, ls="--", color=GREY)
         cv.labels.add(o[0], o[1] / 2, "e", prefer=(-1, 0), fontsize=_FS)
         _pt(cv, c1, "C₁", dx=-2, dy=2)

@@ -99,13 +99,23 @@ def _name(member: str) -> str:
     return tex_point(member) if re.fullmatch(r"[A-Za-z]+\d+", member) else member
 
 
+def _images(m, y, axis) -> tuple[int, ...]:
+    """Images of an element on ``axis``: an axis carried by a carrier (a satellite's) off the
+    central axis is drawn at y and mirrored at −y (the k satellites shown by two, as in the
+    textbooks); an axis on the frame has one image: a parallel shaft of a simple stage off the
+    central axis is a single shaft, not mirrored."""
+    if abs(y[axis]) <= 1e-9 or m.depth(axis) == 0:
+        return (1,)
+    return (1, -1)
+
+
 def _scheme(ax, m, y, col, colors, dx, labels):
-    """The scheme in the plane of the axes: every element off the central axis (y = 0) is drawn
-    at y and mirrored at −y; labels on the upper image only."""
+    """The scheme in the plane of the axes: every element on a carried axis off the central axis
+    (y = 0) is drawn at y and mirrored at −y (``_images``); labels on the upper image only."""
     tick = 0.15 * dx
     for name, wh in m.wheels.items():
         x, r, c = col[name] * dx, wh.m * wh.z / 2, colors[wh.member]
-        for s in ((1, -1) if abs(y[wh.centre]) > 1e-9 else (1,)):
+        for s in _images(m, y, wh.centre):
             yc = s * y[wh.centre]
             if wh.internal:
                 for sg in (1, -1):
@@ -125,7 +135,7 @@ def _scheme(ax, m, y, col, colors, dx, labels):
         c = colors[mem]
         carried = [a for a, h in m.axes.items() if h == mem]
         xs = [col[n] * dx for n, wh in m.wheels.items() if wh.member == mem and wh.centre == axis]
-        sides = (1, -1) if abs(y[axis]) > 1e-9 else (1,)
+        sides = _images(m, y, axis)
         if carried:
             x0 = -(0.7 + 0.35 * order.index(mem)) * dx
             for a in carried:
@@ -145,8 +155,11 @@ def _scheme(ax, m, y, col, colors, dx, labels):
             ws = [wh for wh in m.wheels.values() if wh.member == mem]
             for wh in ws:
                 xf, r = col[wh.name] * dx, wh.m * wh.z / 2
-                for s in (1, -1):
-                    yf = s * (abs(y[wh.centre]) + r)
+                yw = y[wh.centre]
+                rims = (r, -r) if abs(yw) <= 1e-9 else [s * yw + math.copysign(r, s * yw)
+                                                          for s in _images(m, y, wh.centre)]
+                for yf in rims:
+                    s = 1 if yf > 0 else -1
                     ax.plot([xf + 0.05 * dx, xf + 0.65 * dx], [yf] * 2, color=INK, lw=1.0)
                     for k in range(4):
                         x1 = xf + 0.05 * dx + 0.15 * dx * k

@@ -14,9 +14,10 @@ from markupsafe import Markup, escape
 from ...case import synthesis as SY
 from ...scenes.synthesis import SynthesisConstruction
 from ...style.numbers import fmt, tex_num
-from ..document import Column, Section, ref
+from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import plural
+from .common import as_written
 
 NEEDS = ("synthesis",)
 TASK = "выполнить синтез рычажного механизма по коэффициенту изменения средней скорости выходного звена"
@@ -49,12 +50,33 @@ def present(study) -> bool:
 
 
 def _val(k: str, x: float) -> str:
+    """A given datum of the synthesis as the case writes it (K = 1,25, ψ = 50°, 0,35 м)."""
     dim = SY.dim_of(k)
     if dim == SY.U.ANGLE:
-        return fmt(math.degrees(x), sig=5) + "°"
+        return as_written(math.degrees(x)) + "°"
     if dim == SY.U.LENGTH:
-        return fmt(x, sig=5) + "&nbsp;м"
-    return fmt(x, sig=5)
+        return as_written(x) + "&nbsp;м"
+    return as_written(x)
+
+
+MU_ALLOWED = 40.0           # [μ], degrees: the least transmission angle allowed (Попов, Тимофеев [2])
+
+
+def given(study) -> str:
+    """The synthesis data in one sentence for the assignment page."""
+    sy = study.synthesis
+    parts = ", ".join(f"{_INPUT_RU[k][1]} {_INPUT_RU[k][0]}&nbsp;=&nbsp;{_val(k, v)}" for k, v in sy.inputs.items())
+    return f"Синтез: {SY.TITLES[sy.kind]}; {parts}."
+
+
+def _w(x) -> str:
+    """A given value as written, for TeX (the decimal comma braced)."""
+    return as_written(x).replace(",", "{,}")
+
+
+def _g(x: dict, key: str, value: float) -> str:
+    """A datum in a substituted formula: as written when it is a given input, else to 5 digits."""
+    return _w(x[key]) if key in x else _t(value)
 
 
 def _t(x, sig=5) -> str:
@@ -72,14 +94,16 @@ def build(study) -> Section:
     sec.table("Исходные данные синтеза", [Column("sym", "Обозначение", fmt=Markup), Column("name", "Величина"),
                                           Column("val", "Значение", fmt=Markup)], pd.DataFrame(rows), id="tab-syn-in")
     th = v["theta"]
+    where = ("в крайних положениях кулисы кривошип перпендикулярен ей" if kind == "slotted_lever" else
+             "в крайних положениях выходного звена кривошип и шатун располагаются на одной прямой")
     sec.paragraph("За время рабочего хода кривошип поворачивается на угол 180°&nbsp;+&nbsp;θ, за время холостого "
-                  "хода — на 180°&nbsp;−&nbsp;θ; в крайних положениях выходного звена кривошип и шатун "
-                  "располагаются на одной прямой. Угол θ между этими положениями кривошипа:")
+                  f"хода — на 180°&nbsp;−&nbsp;θ; {where}. Угол θ между этими положениями кривошипа:")
     sec.formula(r"\theta = 180^{\circ} \frac{K - 1}{K + 1}",
-                rf"180^{{\circ}} \cdot \frac{{{_t(x['K'])} - 1}}{{{_t(x['K'])} + 1}}",
+                rf"180^{{\circ}} \cdot \frac{{{_w(x['K'])} - 1}}{{{_w(x['K'])} + 1}}",
                 tex_num(math.degrees(th), sig=5) + r"^{\circ}", label="eq-syn-theta")
     _construction(sec, study, kind, x, v)
-    _variants(sec, kind, v, vs)
+    _variants(sec, kind, x, v, vs, sy.transmission)
+    _transmission(sec, kind, x, v, sy.transmission)
     _check(sec, study, sy)
     return sec
 
@@ -91,10 +115,10 @@ def _construction(sec, study, kind, x, v) -> None:
     if kind == "slotted_lever":
         sec.paragraph("В крайних положениях кулиса касается окружности, описываемой концом кривошипа, "
                       "поэтому угол размаха кулисы равен θ, а кривошип перпендикулярен кулисе:")
-        sec.formula(r"a = d \sin\frac{\theta}{2}", rf"{_t(v['d'])} \cdot \sin {_t(math.degrees(th2))}^{{\circ}}",
+        sec.formula(r"a = d \sin\frac{\theta}{2}", rf"{_g(x, 'd', v['d'])} \cdot \sin {_t(math.degrees(th2))}^{{\circ}}",
                     tex_num(v["a"], sig=5, unit="м"), label="eq-syn-a")
         sec.formula(r"l_{CD} = \frac{H}{2 \sin(\theta/2)}",
-                    rf"\frac{{{_t(v['H'])}}}{{2 \sin {_t(math.degrees(th2))}^{{\circ}}}}",
+                    rf"\frac{{{_g(x, 'H', v['H'])}}}{{2 \sin {_t(math.degrees(th2))}^{{\circ}}}}",
                     tex_num(v["l"], sig=5, unit="м"), label="eq-syn-l")
     else:
         P = "C" if kind == "slider_crank" else "B"
@@ -103,9 +127,26 @@ def _construction(sec, study, kind, x, v) -> None:
             f"Построены крайние положения {ends}; центр вращения кривошипа O видит хорду между ними под углом θ, "
             "т.&nbsp;е. лежит на окружности, для которой эта хорда стягивает вписанный угол θ: её радиус "
             f"{inline_math(_R.replace('B', P))}, центр — на серединном перпендикуляре к хорде "
-            f"на расстоянии {inline_math(_RC)} от неё. Центр O находится пересечением этой окружности "
-            "с заданным геометрическим местом: " + _locus_ru(kind, x) + ". В крайних положениях "
-            f"{inline_math(f'|O{P}_{{дальн}}| = b + a')}, {inline_math(f'|O{P}_{{ближн}}| = b - a')}, откуда")
+            f"на расстоянии {inline_math(_RC)} от неё:")
+        _chord(sec, kind, v, P)
+        sec.paragraph(
+            "Центр O находится пересечением этой окружности с заданным геометрическим местом: "
+            + _locus_ru(kind, x) + ". В крайних положениях "
+            f"{inline_math(f'|O{P}_{{дальн}}| = b + a')}, {inline_math(f'|O{P}_{{ближн}}| = b - a')}"
+            + (":" if kind == "slider_crank" and "lam" in x else ", откуда"))
+        if kind == "slider_crank" and "lam" in x:
+            sec.paragraph("По теореме косинусов для треугольника OC₁C₂ (стороны b − a, b + a, H, угол θ при O) "
+                          "и λ&nbsp;=&nbsp;a/b:")
+            sec.formula(r"b = \frac{H}{\sqrt{2(1 + \lambda^2) - 2(1 - \lambda^2)\cos\theta}}",
+                        rf"\frac{{{_w(x['H'])}}}{{\sqrt{{2(1 + {_w(x['lam'])}^2) - 2(1 - "
+                        rf"{_w(x['lam'])}^2)\cos {_t(math.degrees(v['theta']))}^{{\circ}}}}}}",
+                        tex_num(v["b"], sig=5, unit="м"), label="eq-syn-b-lam")
+            sec.formula(r"a = \lambda b", rf"{_w(x['lam'])} \cdot {_t(v['b'])}",
+                        tex_num(v["a"], sig=5, unit="м"), label="eq-syn-a-lam")
+            sec.formula(r"e = \frac{(b^2 - a^2)\sin\theta}{H}",
+                        rf"\frac{{({_t(v['b'])}^2 - {_t(v['a'])}^2)\sin {_t(math.degrees(v['theta']))}^{{\circ}}}}"
+                        rf"{{{_w(x['H'])}}}", tex_num(v["e"], sig=5, unit="м"), label="eq-syn-e")
+            sec.paragraph("Те же длины по построению (расстояния от O до крайних положений ползуна):")
         far = math.hypot(v.get("x_far", v.get("x_C2", 0)) - v["x_O"], v.get("y_far", 0.0) - v["y_O"])
         near = math.hypot(v.get("x_near", v.get("x_C1", 0)) - v["x_O"], v.get("y_near", 0.0) - v["y_O"])
         sec.formula(rf"a = \frac{{|O{P}_{{дальн}}| - |O{P}_{{ближн}}|}}{{2}}", rf"\frac{{{_t(far)} - {_t(near)}}}{{2}}",
@@ -122,6 +163,23 @@ def _construction(sec, study, kind, x, v) -> None:
                   f"(рисунок {ref('fig-syn')}); длины найдены аналитически, без измерений на чертеже.")
 
 
+def _chord(sec, kind, v, P) -> None:
+    """The chord of the extreme positions and the θ-circle's radius with numbers."""
+    if kind == "slider_crank":
+        sec.paragraph(f"Хорда |C₁C₂|&nbsp;=&nbsp;H&nbsp;=&nbsp;{as_written(v['H'])}&nbsp;м, радиус окружности:")
+        chord = v["H"]
+    else:
+        chord = math.hypot(v["x_B2"] - v["x_B1"], v["y_B2"] - v["y_B1"])
+        sec.formula(r"|B_1B_2| = 2 l_{CB} \sin\frac{\psi}{2}",
+                    rf"2 \cdot {_w(v['c'])} \cdot \sin {_t(math.degrees(v['psi'] / 2))}^{{\circ}}",
+                    tex_num(chord, sig=5, unit="м"), label="eq-syn-chord")
+    th = v["theta"]
+    if th > 1e-9:
+        shown = _w(chord) if kind == "slider_crank" else _t(chord)
+        sec.formula(_R.replace("B", P), rf"\frac{{{shown}}}{{2 \sin {_t(math.degrees(th))}^{{\circ}}}}",
+                    tex_num(chord / (2 * math.sin(th)), sig=5, unit="м"), label="eq-syn-R")
+
+
 def _locus_ru(kind, x) -> str:
     if kind == "slider_crank":
         return f"прямой, параллельной направляющей, на расстоянии e&nbsp;=&nbsp;{fmt(x.get('e', 0.0), sig=4)}&nbsp;м" \
@@ -134,17 +192,86 @@ def _locus_ru(kind, x) -> str:
     return f"прямой y&nbsp;=&nbsp;{fmt(x['o1_y'], sig=4)}&nbsp;м"
 
 
-def _variants(sec, kind, v, vs) -> None:
+def _variants(sec, kind, x, v, vs, tr) -> None:
     if kind == "slotted_lever":
         return
+    if len(vs) == 1:
+        if kind == "slider_crank":
+            sec.paragraph(f"Задача имеет единственное решение: кривошип a&nbsp;=&nbsp;{fmt(v['a'], sig=5)}&nbsp;м, "
+                          f"шатун b&nbsp;=&nbsp;{fmt(v['b'], sig=5)}&nbsp;м, смещение e&nbsp;=&nbsp;"
+                          f"{fmt(v['e'], sig=5)}&nbsp;м (λ&nbsp;=&nbsp;{_val('lam', x['lam']) if 'lam' in x else fmt(v['lam'], sig=4)}).")
+        else:
+            sec.paragraph(f"Задача имеет единственное решение: кривошип a&nbsp;=&nbsp;{fmt(v['a'], sig=5)}&nbsp;м, "
+                          f"шатун b&nbsp;=&nbsp;{fmt(v['b'], sig=5)}&nbsp;м.")
+        return
+    why = ""
+    if tr is not None:
+        mu = tr["mu"]
+        best = max(mu)
+        if mu[v["variant"] - 1] >= best - 1e-9 and min(mu) < best - math.radians(0.05):
+            why = " — у него наибольший наименьший угол передачи"
     sec.paragraph(f"Задача имеет {plural(len(vs), 'вариант', 'варианта', 'вариантов')} решения (таблица {ref('tab-syn-var')}); "
-                  f"варианты, симметричные относительно оси, дают одинаковые длины. Принят вариант {v['variant']}.")
+                  f"варианты, симметричные относительно оси, дают одинаковые длины. Принят вариант {v['variant']}{why}.")
     df = pd.DataFrame(vs)
     df["mark"] = ["принят" if w == v["variant"] else "" for w in df["variant"]]
-    sec.table("Варианты решения", [Column("variant", "№", sig=None, digits=0), Column("a", "<i>a</i>", "м", sig=5),
-                                   Column("b", "<i>b</i>", "м", sig=5), Column("x_O", "<i>x</i><sub>O</sub>", "м", sig=5),
-                                   Column("y_O", "<i>y</i><sub>O</sub>", "м", sig=5), Column("mark", "")],
-              df, id="tab-syn-var")
+    cols = [Column("variant", "№", sig=None, digits=0), Column("a", "<i>a</i>", "м", sig=5),
+            Column("b", "<i>b</i>", "м", sig=5), Column("x_O", "<i>x</i><sub>O</sub>", "м", sig=5),
+            Column("y_O", "<i>y</i><sub>O</sub>", "м", sig=5)]
+    if tr is not None:
+        df["mu"] = [math.degrees(m) for m in tr["mu"]]
+        cols.append(Column("mu", "μ<sub>min</sub>", "°", digits=1, sig=None))
+    sec.table("Варианты решения", cols + [Column("mark", "")], df, id="tab-syn-var")
+
+
+def _transmission(sec, kind, x, v, tr) -> None:
+    """The least transmission angle of the accepted variant in closed form with numbers, against
+    [μ] = 40°; when it is short, the best the free datum gives at the same K and stroke."""
+    if tr is None:
+        return
+    mu = math.degrees(tr["mu_min"])
+    if kind == "crank_rocker":
+        sec.paragraph("Угол передачи μ между шатуном AB и коромыслом CB наименьший или наибольший, когда "
+                      "кривошип лежит на линии центров OC, |AC|&nbsp;=&nbsp;d&nbsp;∓&nbsp;a [2]; расстояние между "
+                      f"центрами вращения кривошипа и коромысла d&nbsp;=&nbsp;|OC|&nbsp;=&nbsp;{fmt(v['d'], sig=5)}&nbsp;м:")
+        forms = [Formula(r"\cos\mu_{1,2} = \frac{b^2 + l_{CB}^2 - (d \mp a)^2}{2 b\, l_{CB}}")]
+        for i, s_ in ((1, v["d"] - v["a"]), (2, v["d"] + v["a"])):
+            cg = (v["b"] ** 2 + v["c"] ** 2 - s_ * s_) / (2 * v["b"] * v["c"])
+            forms.append(Formula(rf"\cos\mu_{i}", rf"\frac{{{_t(v['b'], 4)}^2 + {_t(v['c'], 4)}^2 - {_t(s_, 4)}^2}}"
+                                 rf"{{2 \cdot {_t(v['b'], 4)} \cdot {_t(v['c'], 4)}}}",
+                                 rf"{tex_num(cg, sig=4)},\quad \mu_{i} = "
+                                 rf"{tex_num(math.degrees(math.acos(max(-1.0, min(1.0, cg)))), digits=1)}^{{\circ}}"))
+        sec.formula(*forms)
+        sec.paragraph(f"Наименьший угол передачи (угол больше 90° заменяется смежным) μ<sub>min</sub>&nbsp;=&nbsp;"
+                      f"{fmt(mu, digits=1)}°.")
+        change = "межосевое расстояние"
+    else:
+        sec.paragraph("Угол передачи μ между шатуном и нормалью к направляющей наименьший, когда кривошип "
+                      "перпендикулярен направляющей со стороны смещения [2]:")
+        sec.formula(r"\cos\mu_{\min} = \frac{a + e}{b}",
+                    rf"\frac{{{_t(v['a'])} + {_t(abs(v['e']))}}}{{{_t(v['b'])}}}",
+                    rf"{tex_num((v['a'] + abs(v['e'])) / v['b'], sig=4)};\ \mu_{{\min}} = "
+                    rf"{tex_num(mu, digits=1)}^{{\circ}}")
+        change = "отношение λ&nbsp;=&nbsp;a/b"
+    if mu >= MU_ALLOWED:
+        sec.paragraph(f"μ<sub>min</sub>&nbsp;=&nbsp;{fmt(mu, digits=1)}° ≥ [μ]&nbsp;=&nbsp;{fmt(MU_ALLOWED, digits=0)}°: "
+                      "условие передачи движения выполнено.")
+        return
+    bm, bv = math.degrees(tr["best_mu"]), tr["best"]
+    text = (f"μ<sub>min</sub>&nbsp;=&nbsp;{fmt(mu, digits=1)}° &lt; [μ]&nbsp;=&nbsp;{fmt(MU_ALLOWED, digits=0)}°: "
+            f"механизм с такими размерами работает с большими реакциями в парах и опасностью заклинивания. "
+            f"При тех же K и {'ψ, l<sub>CB</sub>' if kind == 'crank_rocker' else 'H'} свободно только "
+            f"{change}; наибольший μ<sub>min</sub>&nbsp;=&nbsp;{fmt(bm, digits=1)}° получается при ")
+    if kind == "crank_rocker":
+        text += (f"d&nbsp;=&nbsp;{fmt(bv['d'], sig=3)}&nbsp;м (a&nbsp;=&nbsp;{fmt(bv['a'], sig=3)}&nbsp;м, "
+                 f"b&nbsp;=&nbsp;{fmt(bv['b'], sig=3)}&nbsp;м)")
+    else:
+        text += (f"λ&nbsp;=&nbsp;{fmt(bv['lam'], sig=3)} (a&nbsp;=&nbsp;{fmt(bv['a'], sig=3)}&nbsp;м, "
+                 f"b&nbsp;=&nbsp;{fmt(bv['b'], sig=3)}&nbsp;м, e&nbsp;=&nbsp;{fmt(bv['e'], sig=3)}&nbsp;м)")
+    text += ((": это положение центра кривошипа и рекомендуется принять." if kind == "crank_rocker" else
+              ": эти размеры и рекомендуется принять.") if bm >= MU_ALLOWED else
+             f"; и этого мало, поэтому условие μ ≥ {fmt(MU_ALLOWED, digits=0)}° требует уменьшить "
+             f"{'K или размах ψ' if kind == 'crank_rocker' else 'K (при заданных K и H угол μ зависит только от λ)'}.")
+    sec.paragraph(text)
 
 
 def _check(sec, study, sy) -> None:
@@ -154,12 +281,15 @@ def _check(sec, study, sy) -> None:
     angular = chk["column"].startswith("phi_")
     target = sy.target_stroke()
     what = "размах" if angular else "ход"
-    show = (lambda z: fmt(math.degrees(z), sig=10) + "°") if angular else (lambda z: fmt(z, sig=10) + "&nbsp;м")
+    show = (lambda z: fmt(math.degrees(z), sig=6) + "°") if angular else (lambda z: fmt(z, sig=6) + "&nbsp;м")
+    given = (lambda z: as_written(math.degrees(z)) + "°") if angular else (lambda z: as_written(z) + "&nbsp;м")
+    dev = max(abs(chk["stroke"] - target) / abs(target), abs(chk["K"] - sy.inputs["K"]) / sy.inputs["K"]) * 100
     sec.paragraph(
-        f"Проверка. Механизм с найденными размерами рассчитан по общей программе кинематического анализа; "
-        f"крайние положения выходного звена ({escape(chk['title'])}) найдены как корни первой передаточной "
-        f"функции (методом Брента, точно). Получены {what} {show(chk['stroke'])} (задан {show(target)}) и "
-        f"K&nbsp;=&nbsp;{fmt(chk['K'], sig=10)} (задан {fmt(sy.inputs['K'], sig=10)}): синтез выполнен точно.")
+        f"Проверка. Механизм с найденными размерами рассчитан кинематическим анализом; крайние положения "
+        f"выходного звена ({escape(chk['title'])}) — положения, где его аналог скорости обращается в нуль. "
+        f"Получены {what} {show(chk['stroke'])} (задан {given(target)}) и K&nbsp;=&nbsp;{fmt(chk['K'], sig=6)} "
+        f"(задан {as_written(sy.inputs['K'])}); расхождение "
+        + ("менее 10<sup>−6</sup>&nbsp;%" if dev < 1e-6 else f"{fmt(dev, sig=2)}&nbsp;%") + ": синтез выполнен верно.")
 
 
 def conclusion_lines(study) -> list[str]:
@@ -169,7 +299,19 @@ def conclusion_lines(study) -> list[str]:
         s = (f"Синтез кулисного механизма: a&nbsp;=&nbsp;{fmt(v['a'], sig=4)}&nbsp;м, "
              f"l<sub>CD</sub>&nbsp;=&nbsp;{fmt(v['l'], sig=4)}&nbsp;м.")
     else:
-        s = (f"Синтез ({SY.TITLES[sy.kind]}, K&nbsp;=&nbsp;{fmt(sy.inputs['K'], sig=4)}): кривошип "
-             f"a&nbsp;=&nbsp;{fmt(v['a'], sig=4)}&nbsp;м, шатун b&nbsp;=&nbsp;{fmt(v['b'], sig=4)}&nbsp;м "
-             f"(вариант {v['variant']} из {len(sy.variants)}).")
+        s = (f"Синтез ({SY.TITLES[sy.kind]}, K&nbsp;=&nbsp;{as_written(sy.inputs['K'])}): кривошип "
+             f"a&nbsp;=&nbsp;{fmt(v['a'], sig=4)}&nbsp;м, шатун b&nbsp;=&nbsp;{fmt(v['b'], sig=4)}&nbsp;м"
+             + (f" (вариант {v['variant']} из {len(sy.variants)})." if len(sy.variants) > 1 else "."))
+    tr = sy.transmission
+    if tr is not None and math.degrees(tr["mu_min"]) < MU_ALLOWED and tr["best_mu"] > tr["mu_min"]:
+        bv = tr["best"]
+        datum = (f"межосевое расстояние d&nbsp;=&nbsp;{fmt(bv['d'], sig=3)}&nbsp;м" if sy.kind == "crank_rocker"
+                 else f"λ&nbsp;=&nbsp;{fmt(bv['lam'], sig=3)}")
+        s += (f" Наименьший угол передачи синтезированного механизма {fmt(math.degrees(tr['mu_min']), digits=1)}° "
+              f"меньше допускаемого {fmt(MU_ALLOWED, digits=0)}°; при тех же K и "
+              f"{'размахе' if sy.kind == 'crank_rocker' else 'ходе'} его можно поднять до "
+              f"{fmt(math.degrees(tr['best_mu']), digits=1)}°, приняв {datum} (раздел {ref('sec-synthesis')})"
+              + ("." if math.degrees(tr["best_mu"]) >= MU_ALLOWED else
+                 f", но не до {fmt(MU_ALLOWED, digits=0)}°: нужно уменьшить "
+                 f"{'K или размах ψ' if sy.kind == 'crank_rocker' else 'K'}."))
     return [s]

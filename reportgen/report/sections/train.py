@@ -6,12 +6,13 @@ picture and the plan of angular velocities, the graphical ratio against Willis i
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 
 import pandas as pd
 from markupsafe import Markup
 
 from ...analysis.train import FRAME
-from ...analysis.train_select import k_of, poly_tex
+from ...analysis.train_select import assembly, k_of, poly_tex
 from ...scenes.train import stage_plans, train_picture
 from ...style.numbers import fmt, tex_num
 from .common import as_written
@@ -40,25 +41,36 @@ def given(study) -> str:
     """The planetary train's data in one sentence for the assignment page."""
     tr = study.train
     m = tr.model
-    text = (f"Планетарный механизм: входное звено {m.inp}, выходное {m.out}, неподвижное "
-            f"{', '.join(m.fixed) or '—'}")
+    text = Markup("Планетарный механизм: входное звено {}, выходное {}, {}").format(
+        m.inp, m.out, _fixed_text(m.fixed))
     if tr.candidates:
-        text += (f"; передаточное отношение <i>u</i>&nbsp;=&nbsp;{as_written(tr.opts['target'])}, число сателлитов "
-                 f"<i>k</i>&nbsp;=&nbsp;{tr.opts['planets']}; числа зубьев подбираются")
+        text += Markup("; передаточное отношение <i>u</i>&nbsp;=&nbsp;{}, число сателлитов {}; числа зубьев "
+                       "подбираются").format(as_written(tr.opts['target']), _k_text(tr.opts['planets']))
     else:
         text += "; числа зубьев колёс заданы"
     return text + "."
+
+
+def _fixed_text(fixed) -> Markup:
+    """«неподвижное звено 3» / «неподвижные звенья 3, 6» / «неподвижных звеньев нет»."""
+    if not fixed:
+        return Markup("неподвижных звеньев нет")
+    return Markup("{} {}").format("неподвижное звено" if len(fixed) == 1 else "неподвижные звенья",
+                                  ", ".join(fixed))
 
 
 def build(study) -> Section:
     tr = study.train
     m = tr.model
     sec = Section("Синтез планетарного механизма", "sec-train")
-    fixed = ", ".join(m.fixed) or "нет"
-    sec.paragraph(f"Входное звено — {m.inp}, выходное — {m.out}, неподвижные звенья: {fixed}. "
-                  f"Механизм состоит из {plural(len(m.wheels), 'колеса', 'колёс', 'колёс')} и "
-                  f"{plural(len(m.members), 'подвижного звена', 'подвижных звеньев', 'подвижных звеньев')}; "
-                  f"зацеплений {len(m.meshes)}.")
+    moving = [n for n in m.members if n not in m.fixed]
+    k = tr.opts["planets"]
+    many = any(k_of(k, h) > 1 for h in set(m.axes.values()) if h != FRAME)
+    sec.paragraph(Markup("Входное звено — {}, выходное — {}, {}. Механизм состоит из {} и {}{}; {}.").format(
+        m.inp, m.out, _fixed_text(m.fixed), plural(len(m.wheels), "колеса", "колёс", "колёс"),
+        plural(len(moving), "подвижного звена", "подвижных звеньев", "подвижных звеньев"),
+        " (одинаковые сателлиты водила считаются одним звеном)" if many else "",
+        plural(len(m.meshes), "зацепление", "зацепления", "зацеплений")))
     if tr.candidates:
         _selection(sec, tr)
     _wheels(sec, tr)
@@ -80,8 +92,8 @@ def _selection(sec: Section, tr) -> None:
     chosen = ", ".join(f"<i>z</i><sub>{w}</sub>" for w in sel.unknown)
     s.paragraph(
         f"Числа зубьев {chosen} подбираются перебором под передаточное отношение "
-        f"<i>u</i><sub>{m.inp}{m.out}</sub> = {fmt(tr.opts['target'], sig=6)} (допуск "
-        f"{fmt(tr.opts['tolerance'] * 100, sig=3)} %) при числе сателлитов {ktext}. Передаточное "
+        f"<i>u</i><sub>{m.inp}{m.out}</sub> = {as_written(tr.opts['target'])} (допуск "
+        f"{as_written(tr.opts['tolerance'] * 100)} %) при числе сателлитов {ktext}. Передаточное "
         f"отношение как функция чисел зубьев — совместное решение уравнений Виллиса всех зацеплений "
         f"(подраздел {ref('sec-train-willis')}) по правилу Крамера:")
     s.formula(rf"u_{{{m.inp}\,{m.out}}} = \frac{{{poly_tex(sel.num, sel.order)}}}{{{poly_tex(sel.den, sel.order)}}}")
@@ -132,10 +144,24 @@ def _selection(sec: Section, tr) -> None:
             sym, num = _asm_tex(c0, p0, s0, cj, pj, sj, z, k_of(k, pl.carrier))
             forms.append(Formula(sym, num, _frac_tex(q)))
     for h, ax, sv, r, ok in acc.neighbours:
-        forms.append(Formula(rf"\sin\frac{{\pi}}{{{k_of(k, h)}}} = {tex_num(sv, sig=4)} > "
-                             rf"\frac{{z_с + 2h_a^*}}{{2a_w/m}} = {tex_num(r, sig=4)}"))
+        forms.append(_neighbour_formula(tr, h, ax, sv, r, k_of(k, h)))
     s.formula(*forms)
     s.paragraph("Все условия выполнены; по принятым числам зубьев ниже построены схема и планы скоростей.")
+
+
+def _neighbour_formula(tr, h: str, ax: str, sv: float, r: float, kh: int) -> Formula:
+    """The neighbourhood condition of the satellites on axis ``ax`` of carrier ``h`` with the
+    numbers substituted: sin(π/k) > (z_с + 2h_a*)/(2a_w/m), z_с the satellite's largest wheel
+    (by tip diameter), a_w the radius of its axis (Попов, Тимофеев [2])."""
+    m, y = tr.model, tr.positions
+    ws = [w for w in m.wheels.values() if w.centre == ax]
+    ha = tr.selector.ha
+    w = max(ws, key=lambda w: w.m * (w.z + 2 * ha))
+    two_a = 2 * abs(y[ax] - y[m.members[h]]) / w.m
+    num = rf"\frac{{{w.z} + 2 \cdot {as_written(ha).replace(',', '{,}')}}}{{{_num(Fraction(two_a).limit_denominator(1000))}}}"
+    rel = ">" if r < sv else r"\le"
+    return Formula(rf"\sin\frac{{\pi}}{{{kh}}} = {tex_num(sv, sig=4)} {rel} "
+                   rf"\frac{{z_{{{w.name}}} + 2h_a^*}}{{2a_w/m}}", num, tex_num(r, sig=4))
 
 
 def _affine(c0, cf: dict, order: list) -> str:
@@ -174,11 +200,11 @@ def _asm_tex(c0, p0, s0, cj, pj, sj, z, k) -> tuple[str, str]:
             rf"\frac{{{z[pj]} \cdot {z[c0]} {op} {z[p0]} \cdot {z[cj]}}}{{{k} \cdot {g}}}")
 
 
-def _k_text(k) -> str:
+def _k_text(k) -> Markup:
     """«<i>k</i> = 3» or, per carrier, «<i>k</i><sub>H1</sub> = 3, <i>k</i><sub>H2</sub> = 4»."""
     if isinstance(k, int):
-        return f"<i>k</i> = {k}"
-    return ", ".join(Markup("<i>k</i><sub>{}</sub> = {}").format(h, v) for h, v in k.items())
+        return Markup("<i>k</i> = {}").format(k)
+    return Markup(", ").join(Markup("<i>k</i><sub>{}</sub> = {}").format(h, v) for h, v in k.items())
 
 
 def _assembly_text(s: Section, tr, k) -> None:
@@ -281,8 +307,11 @@ def _printed_coaxiality(sec: Section, tr) -> None:
 def _willis(sec: Section, tr) -> None:
     s = sec.subsection("Передаточное отношение по формуле Виллиса", "sec-train-willis")
     m = tr.model
-    s.paragraph("Для каждого зацепления движение обращается относительно звена, на котором неподвижны оси "
-                "обоих колёс (водила); внешнее зацепление даёт знак «−», внутреннее «+»:")
+    frame = [m.mesh_carrier(a, b) == FRAME for a, b in m.meshes]
+    held = ("водила" if not any(frame) else "стойки" if all(frame)
+            else "водила; у колёс с неподвижными осями — стойки, и отношение угловых скоростей прямое")
+    s.paragraph(f"Для каждого зацепления движение обращается относительно звена, на котором неподвижны оси "
+                f"обоих колёс ({held}); внешнее зацепление даёт знак «−», внутреннее «+»:")
     forms = []
     for a, b in m.meshes:
         wa, wb = m.wheels[a], m.wheels[b]
@@ -296,9 +325,12 @@ def _willis(sec: Section, tr) -> None:
     s.formula(*forms)
     fr = tr.ratio_fraction
     frac = rf"\frac{{{fr.numerator}}}{{{fr.denominator}}}" if fr.denominator != 1 else str(fr.numerator)
-    s.paragraph(f"Совместное решение при ω<sub>{m.inp}</sub> = 1 и неподвижных звеньях ({', '.join(m.fixed)}) даёт:")
+    s.paragraph(Markup("Совместное решение при ω<sub>{}</sub> = 1 и {} даёт:").format(
+        m.inp, _fixed_text(m.fixed).replace("неподвижное звено", "неподвижном звене")
+        .replace("неподвижные звенья", "неподвижных звеньях")))
     s.formula(rf"u_{{{m.inp}\,{m.out}}} = \frac{{\omega_{{{m.inp}}}}}{{\omega_{{{m.out}}}}}", frac,
               tex_num(tr.ratio, sig=7))
+    _willis_whole(s, tr)
     pr = tr.opts.get("printed", {})
     if "u" in pr:
         s.paragraph(f"В опубликованном решении напечатано <i>u</i> = {fmt(pr['u'], sig=6)}: там перемножены "
@@ -306,8 +338,46 @@ def _willis(sec: Section, tr) -> None:
                     f"{fr.numerator}/{fr.denominator} = {fmt(tr.ratio, sig=7)}, расхождение "
                     f"{fmt((pr['u'] - tr.ratio) / tr.ratio * 100, sig=2)} %.")
     if tr.opts["target"] is not None:
-        s.paragraph(f"Отклонение от заданного <i>u</i> = {fmt(tr.opts['target'], sig=5)}: "
+        s.paragraph(f"Отклонение от заданного <i>u</i> = {as_written(tr.opts['target'])}: "
                     f"{_pct(tr.scalars['train_u_error_pct'])} %.")
+
+
+def whole_train_willis(tr) -> tuple[str, str, str, Fraction] | None:
+    """The textbook form for a train with one carrier H as the output, one fixed central member
+    b and a central input a: u_aH^(b) = 1 − u_ab^(H), u_ab^(H) = (ω_a − ω_H)/(ω_b − ω_H) the ratio
+    of the train with the carrier held (Артоболевский [1], Попов, Тимофеев [2]).  Returns (a, b,
+    H, u_ab^(H) exact) or None when the train is not of that shape."""
+    m = tr.model
+    carriers = {h for h in m.axes.values() if h != FRAME}
+    if len(carriers) != 1 or len(m.fixed) != 1:
+        return None
+    h, b, a = next(iter(carriers)), m.fixed[0], m.inp
+    if m.out != h or m.axes.get(m.members[h]) != FRAME or a == h:
+        return None
+    if m.members[a] != m.members[h] or m.members[b] != m.members[h]:
+        return None
+    return a, b, h, 1 - tr.ratio_fraction
+
+
+def _willis_whole(s: Section, tr) -> None:
+    w = whole_train_willis(tr)
+    if w is None:
+        return
+    a, b, h, u = w
+
+    def frac(q: Fraction) -> str:
+        return rf"\frac{{{abs(q.numerator)}}}{{{q.denominator}}}" if q.denominator != 1 else str(abs(q.numerator))
+
+    sign = "-" if u < 0 else ""
+    s.paragraph(Markup("Тот же результат по формуле Виллиса для механизма в целом: при остановленном водиле {} "
+                       "механизм становится рядовым, его передаточное отношение от {} к {} — произведение "
+                       "отношений зацеплений со знаками, а при остановленном колесе {}:").format(h, a, b, b))
+    s.formula(Formula(rf"u_{{{a}\,{b}}}^{{({h})}} = \frac{{\omega_{{{a}}} - \omega_{{{h}}}}}{{\omega_{{{b}}} - \omega_{{{h}}}}}",
+                      rf"{sign}{frac(u)}", tex_num(float(u), sig=7)),
+              Formula(rf"u_{{{a}\,{h}}}^{{({b})}} = 1 - u_{{{a}\,{b}}}^{{({h})}}",
+                      rf"1 {'+' if u < 0 else '-'} {frac(u)}",
+                      (rf"\frac{{{tr.ratio_fraction.numerator}}}{{{tr.ratio_fraction.denominator}}} = " if
+                       tr.ratio_fraction.denominator != 1 else "") + tex_num(tr.ratio, sig=7)))
 
 
 def _picture(sec: Section, tr) -> None:
@@ -346,11 +416,63 @@ def conclusion_lines(study) -> list[str]:
     m = tr.model
     fr = tr.ratio_fraction
     zs = ", ".join(f"z<sub>{w.name}</sub> = {w.z}" for w in m.wheels.values())
+    frac = f"{fr.numerator}/{fr.denominator}".replace("-", "−") if fr.denominator != 1 else None
     out = [f"Передаточное отношение планетарного механизма <i>u</i><sub>{m.inp}{m.out}</sub> = "
-           f"{fr.numerator}/{fr.denominator} = {fmt(tr.ratio, sig=7)} ({zs})."]
+           + (f"{frac} = " if frac else "") + f"{fmt(tr.ratio, sig=7)} ({zs})."]
     if tr.candidates:
-        out.append(f"Числа зубьев подобраны перебором под <i>u</i> = {fmt(tr.opts['target'], sig=6)} (отклонение "
+        acc = tr.candidates[0]
+        out.append(f"Числа зубьев подобраны перебором под <i>u</i> = {as_written(tr.opts['target'])} (отклонение "
                    f"{_pct(tr.scalars['train_u_error_pct'])} %) при {_k_text(tr.opts['planets'])}: выполнены условия "
                    f"соосности, сборки, соседства, отсутствия подрезания и интерференции; набор — наименьший "
-                   f"по габариту (наибольший занимаемый колёсами диаметр {fmt(tr.candidates[0].size, sig=4)}<i>m</i>).")
+                   f"по габариту (наибольший занимаемый колёсами диаметр {_size_text(tr, acc.size)}).")
+        out += _judgement(tr)
+    return out
+
+
+def _size_text(tr, size: float) -> str:
+    """The overall size in modules, and in mm when the wheels share one module: «59<i>m</i> = 147,5 мм»."""
+    mods = {w.m for w in tr.model.wheels.values()}
+    text = f"{_num(Fraction(size).limit_denominator(2))}<i>m</i>"
+    return text + (f" = {as_written(size * mods.pop())}&nbsp;мм" if len(mods) == 1 else "")
+
+
+def _judgement(tr) -> list[str]:
+    """Engineering judgement on the selection: a suitable set nearer the target ratio at a larger
+    size (the price of accuracy), and what the neighbourhood condition leaves for one satellite
+    more (sin(π/(k + 1)) against the same (z_с + 2h_a*)/(2a_w/m))."""
+    acc, target = tr.candidates[0], tr.opts["target"]
+    out = []
+    err = abs(acc.u - target)
+    better = [c for c in tr.candidates[1:] if c.ok and abs(c.u - target) < err - 1e-12 * abs(target)]
+    if better:
+        c = min(better, key=lambda c: (abs(c.u - target), c.size))
+        sel = tr.selector
+        out.append(
+            f"Точнее заданное отношение даёт набор {'/'.join(str(c.z[w]) for w in sel.unknown)} "
+            f"(Δ<i>u</i> = {_pct((c.u - target) / target * 100)} %), но его габарит {_size_text(tr, c.size)} "
+            f"больше на {fmt((c.size - acc.size) / acc.size * 100, digits=0)} %; отклонение принятого набора "
+            f"{_pct(tr.scalars['train_u_error_pct'])} % в пределах допуска {as_written(tr.opts['tolerance'] * 100)} %, "
+            f"поэтому принят меньший механизм.")
+    k = tr.opts["planets"]
+    z = {w.name: w.z for w in tr.model.wheels.values()}
+    for h, ax, sv, r, ok in acc.neighbours:
+        kh = k_of(k, h)
+        nxt = math.sin(math.pi / (kh + 1))
+        who = Markup(" водила {}").format(h) if not isinstance(k, int) else ""
+        one = plural(kh + 1, "сателлит", "сателлита", "сателлитов")
+        if nxt <= r:
+            out.append(f"Число сателлитов{who} <i>k</i> = {kh} — наибольшее при этих колёсах: для {one} "
+                       f"не выполняется условие соседства (sin(π/{kh + 1}) = {fmt(nxt, sig=3)} ≤ {fmt(r, sig=3)}).")
+            continue
+        asm = [assembly(pl, z, {h: kh + 1}) for pl in tr.selector.planets if pl.carrier == h]
+        if all(a is not False for a, _ in asm):
+            out.append(f"Условие соседства выполнено с запасом: при тех же числах зубьев можно поставить {one}{who} "
+                       f"(sin(π/{kh + 1}) = {fmt(nxt, sig=3)} &gt; {fmt(r, sig=3)}, условие сборки при "
+                       f"<i>k</i> = {kh + 1} выполнено) и снизить нагрузку на зуб сателлита в "
+                       f"{fmt((kh + 1) / kh, sig=3)} раза.")
+        else:
+            q = "; ".join(_asm_value(a, qs) for a, qs in asm)
+            out.append(f"Соседство допускает и {one}{who} (sin(π/{kh + 1}) = {fmt(nxt, sig=3)} &gt; "
+                       f"{fmt(r, sig=3)}), но при <i>k</i> = {kh + 1} не выполнено условие сборки ({q} — не "
+                       f"целое): для большего числа сателлитов нужен другой набор чисел зубьев.")
     return out
