@@ -286,7 +286,7 @@ def _model(sec: Section, study, d) -> None:
         lrows.append({"name": ld.name, "what": Markup(ld.title).striptags(),
                       "where": (Markup("{}, звено {}").format(Markup(html_point(escape(ld.point))), ld.link)
                                 if ld.point else Markup("звено {}").format(ld.link)),
-                      "law": _law(ld, _slide_names(study))})
+                      "law": _law(ld, _slide_names(study), param_symbols(study))})
     if lrows:
         s.paragraph(f"Внешние нагрузки машины перечислены в таблице {ref('tab-dyn-loads')}. Силы тяжести "
                     f"вычислены при <i>g</i>&nbsp;=&nbsp;{fmt_given(d.loads.g)}&nbsp;м/с².")
@@ -304,7 +304,8 @@ def _model(sec: Section, study, d) -> None:
         for ld in d.loads.loads:
             for p in ld.pieces:
                 if ld.name in drawn and p.table is not None:
-                    a = str(expr_html(_slides_as_named(p.of.text, _slide_names(study)))) if p.of is not None else "φ"
+                    a = (str(expr_html(_slides_as_named(p.of.text, _slide_names(study)), param_symbols(study)))
+                         if p.of is not None else "φ")
                     if ld.name not in args.setdefault(a, []):
                         args[a].append(ld.name)
         xs = "; ".join(f"<i>x</i> = {a}" + (f" ({', '.join(html_label(n) for n in ns)})" if len(args) > 1 else "")
@@ -368,7 +369,14 @@ def _slides_as_named(text: str, names: dict[str, str]) -> str:
 MAX_BREAKS = 12      # more switching angles than this are counted, not listed
 
 
-def _law(ld, names: dict[str, str] | None = None) -> Markup:
+def param_symbols(study) -> dict[str, Markup]:
+    """The symbols the case gives its parameters (``[parameters]`` ``symbol``, safe HTML), for the
+    expressions the note writes out (a table's argument «x = s<sub>B</sub> − s<sub>н</sub>»)."""
+    texts = getattr(study.spec, "parameter_texts", None)
+    return {k: sym for k, (_, sym) in texts().items() if sym} if texts else {}
+
+
+def _law(ld, names: dict[str, str] | None = None, symbols: dict[str, Markup] | None = None) -> Markup:
     """Russian description of a load law (escaped HTML with no-break spaces): expressions and
     conditions in textbook symbols, parameters by their values (:func:`condition_html`); the
     displacement in a prismatic pair named as the tables name it (``names``, :func:`_slide_names`)."""
@@ -384,7 +392,8 @@ def _law(ld, names: dict[str, str] | None = None) -> Markup:
         unit, k = law_units(ld, p)
         if p.table is not None:
             parts.append(Markup("{}таблица {} от {}, {}…{}\u00a0{}").format(
-                head, plural(len(p.table.x), "точка", "точки", "точек"), expr_html(_slides_as_named(p.of.text, names)),
+                head, plural(len(p.table.x), "точка", "точки", "точек"),
+                expr_html(_slides_as_named(p.of.text, names), symbols),
                 fmt(p.table.y.min() / k, sig=3), fmt(p.table.y.max() / k, sig=3), unit))
         else:
             parts.append(head + f"{fmt(p.const / k, sig=4)}\u00a0{unit}")

@@ -1,9 +1,11 @@
 """Section «Структурный анализ механизма»."""
 from __future__ import annotations
 
+import numpy as np
 import pandas as pd
 from markupsafe import Markup, escape
 
+from ...mechanism.structure import MOTION
 from ...mechanism.structure import decomposition as _decomposition
 from ...scenes.draw import gost_ratio, mu_text
 from ...scenes.mechanism import AssurGroups, KinematicScheme
@@ -19,6 +21,28 @@ def _ends(links: str) -> tuple[str, str]:
     """The two link numbers of «3–4»."""
     a, _, b = links.partition("–")
     return a, b
+
+
+def turns_fully(study, link: str) -> bool:
+    """Whether ``link`` makes whole turns over the cycle: its angle, unwrapped, grows by a
+    multiple of 2π (a crank is a link hinged to the frame that makes a full turn, Артоболевский [1],
+    гл. 1): the driven crank of a double-crank linkage, Whitworth's rotating slotted lever.  The
+    structure alone (mechanism layer, before any position is solved) calls every link hinged to
+    the frame other than the input a rocker."""
+    col = f"phi_{link}"
+    if not study.has_cycle or col not in study.cycle:
+        return False
+    p = np.unwrap(study.cycle[col].to_numpy(dtype=float))
+    return bool(abs(p[-1] - p[0]) > 1.9 * np.pi)
+
+
+def link_motion(study, link: str) -> str:
+    """The kind of motion of ``link`` for the note: the structure's, except a link hinged to the
+    frame that turns fully (:func:`turns_fully`) rotates («вращательное»), it does not swing."""
+    motion = study.structure.link_motion[link]
+    if motion == MOTION["rocker"] and turns_fully(study, link):
+        return "вращательное (кривошип, вращающаяся кулиса)"
+    return motion
 
 
 def _compound_hinges(mech) -> list[tuple[str, list[str], list[str]]]:
@@ -61,7 +85,7 @@ def build(study) -> Section:
     s1 = sec.subsection("Звенья и кинематические пары", "sec-links-pairs")
     # the kind of motion; its parenthesised generic name («коромысло, кулиса») only for an untitled link
     ldf = pd.DataFrame([{"n": l.name, "title": l.title or "—",
-                         "motion": st.link_motion[l.name].split(" (")[0] if l.title else st.link_motion[l.name]}
+                         "motion": link_motion(study, l.name).split(" (")[0] if l.title else link_motion(study, l.name)}
                         for l in links])
     s1.paragraph(f"Звенья механизма и виды их движения перечислены в таблице {ref('tab-links')}, "
                  f"кинематические пары — в таблице {ref('tab-pairs')}.")
