@@ -317,22 +317,34 @@ def _model(sec: Section, study, d) -> None:
 
 def law_breaks(d) -> np.ndarray:
     """The switching points of the dynamics (``d.breaks``) at which some given load (not a weight)
-    is non-zero on at least one side: a table's corner crossed while the load's condition holds
-    it at zero (a press's coining diagram passed again on the way up) changes no law a student
-    can see. The integrals still use every switching point."""
+    changes its own law while it is non-zero on at least one side: a table's corner crossed while
+    the load's condition holds it at zero (a press's coining diagram passed again on the way up, a
+    pump's delivery diagram on the suction stroke) changes no law a student can see, though
+    another load acts there. The integrals still use every switching point."""
     b = np.asarray(d.breaks, dtype=float)
     if b.size == 0:
         return b
+    n = b.size
     dq = 1e-7 * d.loads.cycle_length
     cols = d.ev(np.concatenate([b - dq, b + dq]))
     ph = d.loads.phase(cols)
-    live = np.zeros(2 * b.size, dtype=bool)
+    at = np.mod(b - d.loads.cycle_start, d.loads.cycle_length)
+    live = np.zeros(n, dtype=bool)
     for ld in d.loads.loads:
         if ld.kind == "weight":
             continue
+        acts = np.zeros(2 * n, dtype=bool)
         for c in ld.components(cols, ph):
-            live |= np.abs(np.broadcast_to(np.asarray(c, dtype=float), live.shape)) > 0.0
-    return b[live[:b.size] | live[b.size:]]
+            acts |= np.abs(np.broadcast_to(np.asarray(c, dtype=float), acts.shape)) > 0.0
+        own = np.zeros(n, dtype=bool)          # the point is one of this load's own switching points
+        for f, fph in ld.switching_functions():
+            g = np.asarray(f(cols), dtype=float) >= 0
+            on = np.ones(n, dtype=bool) if fph is None else (at >= fph[0] - 2 * dq) & (at <= fph[1] + 2 * dq)
+            own |= (g[:n] != g[n:]) & on
+        for p in ld.phase_breaks():
+            own |= np.abs(at - p) <= 2 * dq
+        live |= own & (acts[:n] | acts[n:])
+    return b[live]
 
 
 def _breaks_text(study, breaks) -> str:

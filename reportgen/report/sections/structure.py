@@ -45,6 +45,14 @@ def link_motion(study, link: str) -> str:
     return motion
 
 
+def _indexed(name: str) -> Markup:
+    """A revolute pair's designation with the digits ending a point's name as its index, as the
+    formulas and drawings write the point (O1 → O<sub>1</sub>); a name of digits only («12») as it is."""
+    head = name.rstrip("0123456789")
+    tail = name[len(head):]
+    return Markup("{}<sub>{}</sub>").format(head, tail) if head and tail else Markup(escape(name))
+
+
 def _compound_hinges(mech) -> list[tuple[str, list[str], list[str]]]:
     """Сложные шарниры: a point where three or more links are joined by revolute pairs, k links
     making k − 1 pairs (Артоболевский [1], гл. 2): (point, its links, its pairs «1–2»)."""
@@ -98,7 +106,7 @@ def build(study) -> Section:
     prism = [r.point for r in pdf.itertuples() if r.kind.startswith("поступательная")]
     pdf["name"] = [(pair_label(r.point, "П", *_ends(r.links), prism.count(r.point) > 1) if r.point != "—"
                     else f"{r.links} (П)") if r.kind.startswith("поступательная")
-                   else r.name for r in pdf.itertuples()]
+                   else _indexed(r.name) for r in pdf.itertuples()]
     s1.table("Кинематические пары", [Column("name", "Обозначение", fmt=Markup), Column("links", "Звенья"),
                                      Column("kind", "Вид пары"), Column("klass", "Класс"),
                                      Column("level", "Низшая/высшая")], pdf, id="tab-pairs")
