@@ -223,3 +223,19 @@ def test_drag_link_acceleration_plan_has_no_run_together_index(captured):
     texts = [t.get_text() for fig in captured for ax in fig.axes for t in ax.texts]
     ns = [t for t in texts if t.startswith("$n_")]
     assert ns and not any(re.search(r"[A-Z]\d", t) for t in ns), ns
+
+
+# ------------------------------------------------------------------ the flywheel's shaft in the assignment
+@pytest.mark.parametrize("stem", ["inclined_feeder", "crank_press_motor_shaft", "course_project", "ws000_six_bar"])
+def test_assignment_gives_the_flywheel_shaft_ratio(stem):
+    """§3.6 puts the flywheel on a shaft u times faster than the crank: the assignment, which lists
+    the given dynamic data, gives that u (by the drive chain where the case has one)."""
+    from reportgen.report.sections.dynamics import given
+    st = _study(stem)
+    u = st.dynamics.settings.ratio
+    text = plain(given(st)).replace("\u00a0", " ")
+    shown = re.findall(r"u = (?:ωм/ω1 = |[\d,·]+ = )?([\d,]+)", text)
+    if u == 1.0:
+        assert not shown, text
+    else:
+        assert shown and float(shown[-1].replace(",", ".")) == pytest.approx(u), text

@@ -182,8 +182,12 @@ def given(study) -> str:
     work = [ld for ld in study.dynamics.loads.loads if ld.kind != "weight"]
     if work:
         text += "; нагрузки: " + ", ".join(inline_html(ld.title or ld.name) for ld in work)
-    text += "."
     chain = drive_chain(study)
+    if not chain and st.ratio != 1.0:
+        # the given shaft of the flywheel (no drive stages in the case to name it by)
+        text += (f"; маховик устанавливается на другом валу, передаточное отношение от него к кривошипу "
+                 f"u&nbsp;=&nbsp;ω<sub>м</sub>/ω<sub>1</sub>&nbsp;=&nbsp;{_ratio(st.ratio)}")
+    text += "."
     return text + (" " + chain if chain else "")
 
 
