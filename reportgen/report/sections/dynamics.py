@@ -186,7 +186,7 @@ def given(study) -> str:
     if not chain and st.ratio != 1.0:
         # the given shaft of the flywheel (no drive stages in the case to name it by)
         text += (f"; маховик устанавливается на другом валу, передаточное отношение от него к кривошипу "
-                 f"u&nbsp;=&nbsp;ω<sub>м</sub>/ω<sub>1</sub>&nbsp;=&nbsp;{_ratio(st.ratio)}")
+                 f"<span class=\"nowrap\">u&nbsp;=&nbsp;ω<sub>м</sub>/ω<sub>1</sub>&nbsp;=&nbsp;{_ratio(st.ratio)}</span>")
     text += "."
     return text + (" " + chain if chain else "")
 
