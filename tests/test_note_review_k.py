@@ -116,7 +116,11 @@ def test_low_transmission_advice_fits_the_mechanism(stem):
         sentence = next(s for s in text.split("Наименьший угол передачи ")[1:] if f"({','.join(links)})" in s)
         assert ("крайних положениях" not in sentence) == crank, sentence
         if crank:
-            assert "полный оборот" in sentence
+            # where the angle is least: the link the group hangs on (not a later one) and the frame in line
+            before = {l for g in st.structure.groups[:[set(g.links) >= set(links) for g in st.structure.groups].index(True)]
+                      for l in g.links}
+            m = re.search(r"когда звено (\w+) и стойка лежат на одной прямой", sentence)
+            assert "полный оборот" in sentence and m and m.group(1) in before, sentence
 
 
 # ------------------------------------------------------------------ parameters' symbols

@@ -69,6 +69,20 @@ def _turning_link(study, key: str) -> str | None:
     return None
 
 
+def _attached_to(study, key: str) -> str:
+    """«звено 1»: the moving link the dyad of a flag ``mu_2_3`` is attached to (besides the frame),
+    or «звено, к которому присоединена группа» where there are several."""
+    links = set(key[3:].split("_"))
+    before: set[str] = set()            # the links of the groups attached before this one
+    for g in study.structure.groups:
+        if links & set(g.links):
+            break
+        before |= set(g.links)
+    other = {l for j in study.mechanism.joints if len(links & set(j.links)) == 1
+             for l in j.links if l in before}
+    return f"звено {other.pop()}" if len(other) == 1 else "звено, к которому присоединена группа,"
+
+
 def _flag_where(study, key: str) -> str:
     """«в группе (4,5)», or «в начальном механизме (1,2,3)» where the flagged dyad lies in an
     actuator's initial mechanism (chapter 1 calls it so, not a group)."""
@@ -894,8 +908,8 @@ def conclusion_lines(study) -> list[str]:
         note = (" — меньше допускаемого 40°: в этих положениях растут реакции в парах группы и опасно "
                 "заклинивание. " + (
                     f"Звено {crank} группы совершает полный оборот (ведомый кривошип), крайних положений у "
-                    "него нет: угол передачи наименьший, когда звено, к которому присоединена группа, и "
-                    "стойка вытянуты в одну линию. Увеличить его можно, уменьшив расстояние между опорами "
+                    f"него нет: угол передачи наименьший, когда {_attached_to(study, c)} и "
+                    "стойка лежат на одной прямой. Увеличить его можно, уменьшив расстояние между опорами "
                     "по сравнению с длинами кривошипов или приблизив угол между шатуном и ведомым "
                     "кривошипом в этих положениях к прямому подбором их длин (повторить расчёт с "
                     "ограничением μ ≥ 40°)" if crank else
