@@ -261,10 +261,12 @@ _FUNCS_RU = {"sin": "sin", "cos": "cos", "tan": "tg", "cot": "ctg", "asin": "arc
              "abs": "abs", "sinh": "sh", "cosh": "ch", "tanh": "th"}
 
 
-def expr_html(text: str) -> Markup:
+def expr_html(text: str, symbols: dict[str, Markup] | None = None) -> Markup:
     """A case expression in textbook notation (escaped HTML): "phi_6 = phi_P6" → φ<sub>6</sub> =
     φ<sub>P6</sub>, "y_56 = 0.2 m" → <i>y</i><sub>56</sub> = 0,2 м; ``*`` → ·, ``>=`` → ≥, a power
-    ``r^2`` → <i>r</i><sup>2</sup>, functions upright in Russian notation (cos, tg, arctg, √)."""
+    ``r^2`` → <i>r</i><sup>2</sup>, functions upright in Russian notation (cos, tg, arctg, √).
+    ``symbols``: a parameter's own symbol given by the case (``symbol`` of ``[parameters]``, safe
+    HTML) written instead of the one read from its name (S_LOW → <i>s</i><sub>н</sub>, not S<sub>LOW</sub>)."""
     out = []
     prev_number = pending = power = False
     for num, ident, op, space in _EXPR_TOKEN.findall(text):
@@ -290,7 +292,7 @@ def expr_html(text: str) -> Markup:
         elif ident in _FUNCS_RU:
             piece = Markup(_FUNCS_RU[ident])
         elif ident:
-            piece = param_symbol(ident)
+            piece = symbols[ident] if symbols and ident in symbols else param_symbol(ident)
         else:
             piece = escape(_OPS.get(op, {"*": "·", "-": "−"}.get(op, op)))
         if power:

@@ -13,6 +13,7 @@ place is circled and drawn again k times larger in a free place of the drawing, 
 keeps LABEL_GAP_MM from the others (:func:`find_insets`)."""
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -49,15 +50,28 @@ class PlanDrawing:
     insets: list = None       # the enlarged views: :class:`Inset` each
 
 
+_POINT_NAMES = re.compile(r"[A-Z][0-9]*")
+
+
+def _pair_index(index: str) -> str:
+    """The index of n_BO2 in mathtext with each point's own digits as its index (n_{BO₂}, as the
+    formulas write a^n_{BO₂}), not «BO2» read as one word; an index not made of capital letters
+    each with its digits (a pair «34») as it is."""
+    parts = _POINT_NAMES.findall(index)
+    if not parts or "".join(parts) != index or not any(len(p) > 1 for p in parts):
+        return index
+    return "".join(p[0] + (f"_{{{p[1:]}}}" if len(p) > 1 else "") for p in parts)
+
+
 def tip_label(lab: str, plan: Plan, kind: str) -> str:
     """Plan point in textbook notation (mathtext): a, b, s₂ on the velocity plan; a′, b′, s′₂ on
     the acceleration plan; n_BA, k for the ends of the normal and Coriolis components. The image
     of a point named P on the velocity plan (and the Жуковский lever) is p with its link's number,
     p₂: a bare p is the pole."""
     if lab.startswith("n") and lab not in plan.point_of_tip:
-        return "$n_{" + lab[1:] + "}$"
+        return "$n_{" + _pair_index(lab[1:]) + "}$"
     if lab.startswith("k") and lab not in plan.point_of_tip:
-        return "$k_{" + lab[1:] + "}$"
+        return "$k_{" + _pair_index(lab[1:]) + "}$"
     if lab not in plan.point_of_tip or plan.point_of_tip[lab] != lab:
         # the guide's point under the slider: b₃ (lower-case point, guide link as index)
         p = plan.point_of_tip.get(lab, lab[0])

@@ -176,8 +176,12 @@ def given(study) -> str:
     work = [ld for ld in study.dynamics.loads.loads if ld.kind != "weight"]
     if work:
         text += "; нагрузки: " + ", ".join(inline_html(ld.title or ld.name) for ld in work)
-    text += "."
     chain = drive_chain(study)
+    if not chain and st.ratio != 1.0:
+        # the given shaft of the flywheel (no drive stages in the case to name it by)
+        text += (f"; маховик устанавливается на другом валу, передаточное отношение от него к кривошипу "
+                 f"<span class=\"nowrap\">u&nbsp;=&nbsp;ω<sub>м</sub>/ω<sub>1</sub>&nbsp;=&nbsp;{_ratio(st.ratio)}</span>")
+    text += "."
     return text + (" " + chain if chain else "")
 
 
@@ -280,7 +284,7 @@ def _model(sec: Section, study, d) -> None:
         lrows.append({"name": ld.name, "what": Markup(ld.title).striptags(),
                       "where": (Markup("{}, звено {}").format(Markup(html_point(escape(ld.point))), ld.link)
                                 if ld.point else Markup("звено {}").format(ld.link)),
-                      "law": _law(ld, _slide_names(study))})
+                      "law": _law(ld, _slide_names(study), param_symbols(study))})
     if lrows:
         s.paragraph(f"Внешние нагрузки машины перечислены в таблице {ref('tab-dyn-loads')}. Силы тяжести "
                     f"вычислены при <i>g</i>&nbsp;=&nbsp;{fmt_given(d.loads.g)}&nbsp;м/с².")
@@ -298,7 +302,8 @@ def _model(sec: Section, study, d) -> None:
         for ld in d.loads.loads:
             for p in ld.pieces:
                 if ld.name in drawn and p.table is not None:
-                    a = str(expr_html(_slides_as_named(p.of.text, _slide_names(study)))) if p.of is not None else "φ"
+                    a = (str(expr_html(_slides_as_named(p.of.text, _slide_names(study)), param_symbols(study)))
+                         if p.of is not None else "φ")
                     if ld.name not in args.setdefault(a, []):
                         args[a].append(ld.name)
         xs = "; ".join(f"<i>x</i> = {a}" + (f" ({', '.join(html_label(n) for n in ns)})" if len(args) > 1 else "")
@@ -310,22 +315,34 @@ def _model(sec: Section, study, d) -> None:
 
 def law_breaks(d) -> np.ndarray:
     """The switching points of the dynamics (``d.breaks``) at which some given load (not a weight)
-    is non-zero on at least one side: a table's corner crossed while the load's condition holds
-    it at zero (a press's coining diagram passed again on the way up) changes no law a student
-    can see. The integrals still use every switching point."""
+    changes its own law while it is non-zero on at least one side: a table's corner crossed while
+    the load's condition holds it at zero (a press's coining diagram passed again on the way up, a
+    pump's delivery diagram on the suction stroke) changes no law a student can see, though
+    another load acts there. The integrals still use every switching point."""
     b = np.asarray(d.breaks, dtype=float)
     if b.size == 0:
         return b
+    n = b.size
     dq = 1e-7 * d.loads.cycle_length
     cols = d.ev(np.concatenate([b - dq, b + dq]))
     ph = d.loads.phase(cols)
-    live = np.zeros(2 * b.size, dtype=bool)
+    at = np.mod(b - d.loads.cycle_start, d.loads.cycle_length)
+    live = np.zeros(n, dtype=bool)
     for ld in d.loads.loads:
         if ld.kind == "weight":
             continue
+        acts = np.zeros(2 * n, dtype=bool)
         for c in ld.components(cols, ph):
-            live |= np.abs(np.broadcast_to(np.asarray(c, dtype=float), live.shape)) > 0.0
-    return b[live[:b.size] | live[b.size:]]
+            acts |= np.abs(np.broadcast_to(np.asarray(c, dtype=float), acts.shape)) > 0.0
+        own = np.zeros(n, dtype=bool)          # the point is one of this load's own switching points
+        for f, fph in ld.switching_functions():
+            g = np.asarray(f(cols), dtype=float) >= 0
+            on = np.ones(n, dtype=bool) if fph is None else (at >= fph[0] - 2 * dq) & (at <= fph[1] + 2 * dq)
+            own |= (g[:n] != g[n:]) & on
+        for p in ld.phase_breaks():
+            own |= np.abs(at - p) <= 2 * dq
+        live |= own & (acts[:n] | acts[n:])
+    return b[live]
 
 
 def _breaks_text(study, breaks) -> str:
@@ -362,7 +379,14 @@ def _slides_as_named(text: str, names: dict[str, str]) -> str:
 MAX_BREAKS = 12      # more switching angles than this are counted, not listed
 
 
-def _law(ld, names: dict[str, str] | None = None) -> Markup:
+def param_symbols(study) -> dict[str, Markup]:
+    """The symbols the case gives its parameters (``[parameters]`` ``symbol``, safe HTML), for the
+    expressions the note writes out (a table's argument «x = s<sub>B</sub> − s<sub>н</sub>»)."""
+    texts = getattr(study.spec, "parameter_texts", None)
+    return {k: sym for k, (_, sym) in texts().items() if sym} if texts else {}
+
+
+def _law(ld, names: dict[str, str] | None = None, symbols: dict[str, Markup] | None = None) -> Markup:
     """Russian description of a load law (escaped HTML with no-break spaces): expressions and
     conditions in textbook symbols, parameters by their values (:func:`condition_html`); the
     displacement in a prismatic pair named as the tables name it (``names``, :func:`_slide_names`)."""
@@ -378,7 +402,8 @@ def _law(ld, names: dict[str, str] | None = None) -> Markup:
         unit, k = law_units(ld, p)
         if p.table is not None:
             parts.append(Markup("{}таблица {} от {}, {}…{}\u00a0{}").format(
-                head, plural(len(p.table.x), "точка", "точки", "точек"), expr_html(_slides_as_named(p.of.text, names)),
+                head, plural(len(p.table.x), "точка", "точки", "точек"),
+                expr_html(_slides_as_named(p.of.text, names), symbols),
                 fmt(p.table.y.min() / k, sig=3), fmt(p.table.y.max() / k, sig=3), unit))
         else:
             parts.append(head + f"{fmt(p.const / k, sig=4)}\u00a0{unit}")

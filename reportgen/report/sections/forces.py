@@ -755,8 +755,14 @@ def _balance(sec: Section, study, f, lab: str) -> None:
         cols.append(Column("M_d_dyn", sub("M", "дв") + " (динамика)", "Н·м", **nd))
         cols.append(Column("M_bal_linkage", sub("M", "ур") + " без маховика", "Н·м", **nd))
     dyn_check = "M_bal_dyn" in f.table
+    # M_д and ε of the dynamics are along the crank's rotation, the table's moments ccw-positive:
+    # for a crank turning clockwise the column is −(M_д − J_I ε), so that its sign is the table's
+    cw = study.mechanism.driver.direction < 0
+    dyn_head = sub("M", "д") + " − " + sub("J", "I") + "ε"
+    if cw:
+        dyn_head = "−(" + dyn_head + ")"
     if dyn_check:
-        cols.append(Column("M_bal_dyn", sub("M", "д") + " − " + sub("J", "I") + "ε (динамика)", "Н·м", **nd))
+        cols.append(Column("M_bal_dyn", dyn_head + " (динамика)", "Н·м", **nd))
     chunked_tables(s, "Уравновешивающий момент и его проверки" if rot else "Усилие гидроцилиндра и его проверки",
                    f.table, cols, _lead(study), "tab-frc-checks")
     text = ("Аналитически три способа (по группам, по балансу мощностей, по рычагу Жуковского) дают одно и то же "
@@ -773,11 +779,12 @@ def _balance(sec: Section, study, f, lab: str) -> None:
         text += (f" Уравновешивающий момент переменен по положениям: силы инерции звеньев вычислены по истинному "
                  f"закону движения ω(φ), ε(φ), момент сил инерции маховика к кривошипу не прикладывается. По "
                  f"уравнению движения машины он равен движущему моменту за вычетом момента, идущего на разгон "
-                 f"первой группы звеньев: {sub('M', 'ур')}(φ)&nbsp;=&nbsp;{sub('M', 'д')}&nbsp;−&nbsp;"
-                 f"{sub('J', 'I')}·ε(φ), где {sub('M', 'д')}&nbsp;=&nbsp;{fmt(abs(dyn.scalars['M_d']), sig=5)}"
+                 f"первой группы звеньев: {sub('M', 'ур')}(φ)&nbsp;=&nbsp;{'−(' if cw else ''}{sub('M', 'д')}&nbsp;−&nbsp;"
+                 f"{sub('J', 'I')}·ε(φ){')' if cw else ''}, где {sub('M', 'д')}&nbsp;=&nbsp;{fmt(abs(dyn.scalars['M_d']), sig=5)}"
                  f"&nbsp;Н·м, {sub('J', 'I')}&nbsp;=&nbsp;{fmt(J, sig=5)}&nbsp;кг·м² (без кривошипа)"
-                 + ("; моменты в таблице — со знаком (против часовой стрелки — плюс), кривошип вращается по "
-                    "часовой стрелке, поэтому движущий момент отрицателен. " if study.mechanism.driver.direction < 0
+                 + ("; движущий момент и угловое ускорение ε(φ) звена приведения считаются положительными в "
+                    "направлении вращения кривошипа, моменты в таблице — со знаком (против часовой стрелки — "
+                    "плюс), кривошип вращается по часовой стрелке, отсюда знак «−». " if cw
                     else ". ") +
                  "Значения двух расчётов совпадают (последний столбец таблицы).")
     s.paragraph(text)

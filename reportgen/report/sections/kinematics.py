@@ -56,6 +56,33 @@ def _flag_group(study, key: str) -> str:
     return "(" + ",".join(key[3:].split("_")) + ")"
 
 
+def _turning_link(study, key: str) -> str | None:
+    """The link of the dyad of a transmission-angle flag ``mu_2_3`` hinged to the frame that makes
+    whole turns (a double-crank linkage's driven crank), or None: the advice on a low angle for
+    a rocker (its extreme positions) does not apply to it."""
+    from .structure import turns_fully
+    mech = study.mechanism
+    for link in key[3:].split("_"):
+        hinged = any(j.kind == "R" and FRAME in j.links and link in j.links for j in mech.joints)
+        if hinged and turns_fully(study, link):
+            return link
+    return None
+
+
+def _attached_to(study, key: str) -> str:
+    """«звено 1»: the moving link the dyad of a flag ``mu_2_3`` is attached to (besides the frame),
+    or «звено, к которому присоединена группа» where there are several."""
+    links = set(key[3:].split("_"))
+    before: set[str] = set()            # the links of the groups attached before this one
+    for g in study.structure.groups:
+        if links & set(g.links):
+            break
+        before |= set(g.links)
+    other = {l for j in study.mechanism.joints if len(links & set(j.links)) == 1
+             for l in j.links if l in before}
+    return f"звено {other.pop()}" if len(other) == 1 else "звено, к которому присоединена группа,"
+
+
 def _flag_where(study, key: str) -> str:
     """«в группе (4,5)», or «в начальном механизме (1,2,3)» where the flagged dyad lies in an
     actuator's initial mechanism (chapter 1 calls it so, not a group)."""
@@ -444,7 +471,7 @@ def build(study) -> Section:
         s5.table("Наименьшие углы передачи движения", [
             Column("g", "Группа"), Column("mu", "μ<sub>min</sub>", "град", fmt=_deg1),
             Column("q", qhead + " (μ<sub>min</sub>)", qunit,
-                   fmt=(lambda x: "—" if x is None or x != x else (_deg1(x) if rotary else fmt(x, digits=3))))],
+                   fmt=(lambda x: "—" if x is None or x != x else (_turn1(x) if rotary else fmt(x, digits=3))))],
             mdf, id="tab-mu", note=guide_note or None)
     return sec
 
@@ -552,6 +579,13 @@ def _deg1(x) -> str:
     """An angle to 0,1° (the transmission angle and the crank angle, as the conclusion and the
     position tables print them)."""
     return _deg(x, 1)
+
+
+def _turn1(deg: float) -> str:
+    """A crank angle already in degrees from the cycle's start (:func:`q_degrees`) to 0,1°, in
+    [0°, 360°) as the position tables count it (not through :func:`_deg1`, which takes radians)."""
+    v = float(deg) % 360.0
+    return fmt(0.0 if round(v, 1) >= 360.0 else v, digits=1)
 
 
 def swing_strokes_text(study) -> str:
@@ -962,19 +996,32 @@ def conclusion_lines(study) -> list[str]:
     out += _speed_verdict(study)
     out += _speed_lines(study)
     fine = []       # groups whose μ_min ≥ 40°: one sentence for all of them, not one each
+    low = []        # groups below 40°
     for c, v in study.flags.items():
         mu = math.degrees(v["min"])
         if mu >= 40:
             fine.append(f"{_flag_where(study, c)} {fmt(mu, digits=1)}°")
             continue
+        low.append(c)
+        crank = _turning_link(study, c)
         note = (" — меньше допускаемого 40°: в этих положениях растут реакции в парах группы и опасно "
-                "заклинивание. Угол передачи можно увеличить, удлинив шатун группы или сместив опору "
-                "выходного звена так, чтобы в крайних положениях шатун был ближе к перпендикуляру к "
-                "выходному звену (повторить синтез с ограничением μ ≥ 40°)")
+                "заклинивание. " + (
+                    f"Звено {crank} группы совершает полный оборот (ведомый кривошип), крайних положений у "
+                    f"него нет: угол передачи наименьший, когда {_attached_to(study, c)} и "
+                    "стойка лежат на одной прямой. Увеличить его можно, уменьшив расстояние между опорами "
+                    "по сравнению с длинами кривошипов или приблизив угол между шатуном и ведомым "
+                    "кривошипом в этих положениях к прямому подбором их длин (повторить расчёт с "
+                    "ограничением μ ≥ 40°)" if crank else
+                    "Угол передачи можно увеличить, удлинив шатун группы или сместив опору выходного звена "
+                    "так, чтобы в крайних положениях шатун был ближе к перпендикуляру к выходному звену "
+                    "(повторить синтез с ограничением μ ≥ 40°)"))
         out.append(f"Наименьший угол передачи {_flag_where(study, c)} — {fmt(mu, digits=1)}°{note}.")
     if fine:
+        # «работоспособен» only of a mechanism no group of which is below 40°
         out.append(("Наименьший угол передачи (" if len(fine) == 1 else "Наименьшие углы передачи (")
-                   + ", ".join(fine) + ") не меньше допускаемого 40°, механизм работоспособен без заклинивания.")
+                   + ", ".join(fine) + ") не меньше допускаемого 40°"
+                   + (", механизм работоспособен без заклинивания." if not low else
+                      f"; {'в этой группе' if len(fine) == 1 else 'в этих группах'} заклинивания нет."))
     for g, fl in study.guide_flags.items():
         if fl["singular"]:
             pivot, pin = fl["points"]

@@ -1,9 +1,11 @@
 """Section «Структурный анализ механизма»."""
 from __future__ import annotations
 
+import numpy as np
 import pandas as pd
 from markupsafe import Markup, escape
 
+from ...mechanism.structure import MOTION
 from ...mechanism.structure import decomposition as _decomposition
 from ...scenes.draw import gost_ratio, mu_text
 from ...scenes.mechanism import AssurGroups, KinematicScheme
@@ -19,6 +21,36 @@ def _ends(links: str) -> tuple[str, str]:
     """The two link numbers of «3–4»."""
     a, _, b = links.partition("–")
     return a, b
+
+
+def turns_fully(study, link: str) -> bool:
+    """Whether ``link`` makes whole turns over the cycle: its angle, unwrapped, grows by a
+    multiple of 2π (a crank is a link hinged to the frame that makes a full turn, Артоболевский [1],
+    гл. 1): the driven crank of a double-crank linkage, Whitworth's rotating slotted lever.  The
+    structure alone (mechanism layer, before any position is solved) calls every link hinged to
+    the frame other than the input a rocker."""
+    col = f"phi_{link}"
+    if not study.has_cycle or col not in study.cycle:
+        return False
+    p = np.unwrap(study.cycle[col].to_numpy(dtype=float))
+    return bool(abs(p[-1] - p[0]) > 1.9 * np.pi)
+
+
+def link_motion(study, link: str) -> str:
+    """The kind of motion of ``link`` for the note: the structure's, except a link hinged to the
+    frame that turns fully (:func:`turns_fully`) rotates («вращательное»), it does not swing."""
+    motion = study.structure.link_motion[link]
+    if motion == MOTION["rocker"] and turns_fully(study, link):
+        return "вращательное (кривошип, вращающаяся кулиса)"
+    return motion
+
+
+def _indexed(name: str) -> Markup:
+    """A revolute pair's designation with the digits ending a point's name as its index, as the
+    formulas and drawings write the point (O1 → O<sub>1</sub>); a name of digits only («12») as it is."""
+    head = name.rstrip("0123456789")
+    tail = name[len(head):]
+    return Markup("{}<sub>{}</sub>").format(head, tail) if head and tail else Markup(escape(name))
 
 
 def _compound_hinges(mech) -> list[tuple[str, list[str], list[str]]]:
@@ -61,7 +93,7 @@ def build(study) -> Section:
     s1 = sec.subsection("Звенья и кинематические пары", "sec-links-pairs")
     # the kind of motion; its parenthesised generic name («коромысло, кулиса») only for an untitled link
     ldf = pd.DataFrame([{"n": l.name, "title": l.title or "—",
-                         "motion": st.link_motion[l.name].split(" (")[0] if l.title else st.link_motion[l.name]}
+                         "motion": link_motion(study, l.name).split(" (")[0] if l.title else link_motion(study, l.name)}
                         for l in links])
     s1.paragraph(f"Звенья механизма и виды их движения перечислены в таблице {ref('tab-links')}, "
                  f"кинематические пары — в таблице {ref('tab-pairs')}.")
@@ -74,7 +106,7 @@ def build(study) -> Section:
     prism = [r.point for r in pdf.itertuples() if r.kind.startswith("поступательная")]
     pdf["name"] = [(pair_label(r.point, "П", *_ends(r.links), prism.count(r.point) > 1) if r.point != "—"
                     else f"{r.links} (П)") if r.kind.startswith("поступательная")
-                   else r.name for r in pdf.itertuples()]
+                   else _indexed(r.name) for r in pdf.itertuples()]
     s1.table("Кинематические пары", [Column("name", "Обозначение", fmt=Markup), Column("links", "Звенья"),
                                      Column("kind", "Вид пары"), Column("klass", "Класс"),
                                      Column("level", "Низшая/высшая")], pdf, id="tab-pairs")
