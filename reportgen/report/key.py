@@ -22,7 +22,9 @@ from ..registry import KINDS
 from ..style.numbers import fmt
 from .assemble import REFERENCES, _given_parameters, _linkage_data
 from .document import Column, Report, Section, ref
+from .key_names import convert, entry
 from .russian import position_names
+from .sections.common import q_degrees
 
 CHECK_COLS = [Column("what", "Проверка", fmt=Markup), Column("value", "Наибольшее расхождение"),
               Column("verdict", "Вывод")]
@@ -61,17 +63,65 @@ def _given(study) -> Section:
     return sec
 
 
-def _scalar_rows(scalars: dict) -> pd.DataFrame:
-    rows = []
-    for k, v in scalars.items():
-        if isinstance(v, (bool, np.bool_)):
-            rows.append({"key": k, "value": "да" if v else "нет"})
-        elif isinstance(v, (int, float, np.integer, np.floating)):
-            x = float(v)
-            rows.append({"key": k, "value": fmt(x, sig=6) if math.isfinite(x) else "—"})
-        elif isinstance(v, str):
-            rows.append({"key": k, "value": v})
-    return pd.DataFrame(rows)
+RESULT_COLS = [Column("name", "Величина", fmt=Markup), Column("sym", "Обозначение", fmt=Markup),
+               Column("value", "Значение", fmt=Markup), Column("unit", "Единица"),
+               Column("where", "Где (положение)", fmt=Markup)]
+
+
+def value_text(e, value, study=None, kind: str = "") -> tuple[str, str] | None:
+    """The cell text of a scalar by its glossary entry and its unit; None when a switch has a
+    value the glossary does not say in words."""
+    if isinstance(value, (bool, np.bool_)):
+        return (e.words[0] if value else e.words[1]), ""
+    if isinstance(value, str):
+        words = e.words.get(value) if isinstance(e.words, dict) else None
+        return (words, "") if words else None
+    x = float(value)
+    if not math.isfinite(x):
+        return "—", ""
+    x, unit = convert(e, x, study, kind)
+    return fmt(x, digits=e.digits, sig=e.sig), unit
+
+
+def where_text(study, kind: str, q: float) -> str:
+    """«φ = 193,8°» (a crank's angle from the cycle's start, as the note prints it) or
+    «S = 0,420 м» (an actuator's stroke) where an extreme occurs."""
+    if kind == "dynamics":
+        return f"φ&nbsp;=&nbsp;{fmt(math.degrees(float(q) - study.dynamics.settings.cycle_start), digits=2)}°"
+    if study.mechanism.driver.rotary:
+        return f"φ&nbsp;=&nbsp;{fmt(q_degrees(study, q), digits=1)}°"
+    return f"<i>S</i>&nbsp;=&nbsp;{fmt(q, digits=3)}&nbsp;м"
+
+
+def result_rows(study, kind: str, scalars: dict) -> dict[str, list[dict]]:
+    """The rows of the results of one task by the groups of the glossary (``key_names``), in the
+    order of the scalars; a position goes into the row of its extreme, a value equal to the one it
+    repeats (``same_as``) is left out, a key without an entry is left out (the glossary test
+    covers every case)."""
+    groups: dict[str, list[dict]] = {}
+    for key, value in scalars.items():
+        e = entry(kind, key)
+        if e is None or e.position:
+            continue
+        if e.same_as is not None and e.same_as in scalars and _same(value, scalars[e.same_as]):
+            continue
+        if isinstance(e.words, dict) and e.words.get(value) == "":
+            continue                  # a switch whose value another row already says
+        cell = value_text(e, value, study, kind)
+        if cell is None:
+            continue
+        where = e.where and scalars.get(e.where)
+        groups.setdefault(e.group, []).append({
+            "name": Markup(e.name), "sym": Markup(e.sym), "value": Markup(cell[0]), "unit": cell[1],
+            "where": Markup(where_text(study, kind, where)) if where is not None and where is not False else ""})
+    return groups
+
+
+def _same(a, b) -> bool:
+    try:
+        return abs(float(a) - float(b)) <= 1e-9 * max(abs(float(a)), abs(float(b)), 1e-300)
+    except (TypeError, ValueError):
+        return a == b
 
 
 def _results(study) -> Section:
@@ -89,20 +139,24 @@ def _results(study) -> Section:
             s.paragraph("Дополнительные положения в записке пронумерованы: " + ", ".join(extra) + ".")
         flags = [(n[3:], fl) for n, fl in study.flags.items()]
         if flags:
-            rows = [{"g": "(" + g.replace("_", ", ") + ")", "min": math.degrees(fl["min"]), "low": "да" if fl["low"] else "нет"} for g, fl in flags]
+            rows = [{"g": "(" + g.replace("_", ", ") + ")", "min": math.degrees(fl["min"]),
+                     "where": Markup(where_text(study, "kinematics", fl["q_min"])),
+                     "low": "ниже 40° — мал" if fl["low"] else "не ниже 40°"} for g, fl in flags]
             s.table("Наименьшие углы передачи по группам", [
                 Column("g", "Группа"), Column("min", "μ<sub>min</sub>", "град", digits=1),
-                Column("low", "Меньше 40°")], pd.DataFrame(rows), id="key-mu")
+                Column("where", "Где (положение)", fmt=Markup), Column("low", "Оценка")],
+                pd.DataFrame(rows), id="key-mu")
     for kind in KINDS:
         if kind.name not in study.tasks():
             continue
-        a = study.analysis(kind.name)
-        df = _scalar_rows(a.scalars)
-        if len(df):
-            s = sec.subsection(kind.title, f"key-{kind.name}")
-            s.table(f"Ключевые величины: {kind.title.lower()}", [Column("key", "Величина (имя в программе)"),
-                                                                 Column("value", "Значение")],
-                    df, id=f"key-tab-{kind.name}")
+        groups = result_rows(study, kind.name, study.analysis(kind.name).scalars)
+        if not groups:
+            continue
+        s = sec.subsection(kind.title, f"key-{kind.name}")
+        for n, (group, rows) in enumerate(groups.items()):
+            cols = RESULT_COLS if any(r["where"] for r in rows) else RESULT_COLS[:-1]
+            caption = f"{kind.title}: {group[0].lower() + group[1:]}" if group else kind.title
+            s.table(caption, cols, pd.DataFrame(rows), id=f"key-tab-{kind.name}" + (f"-{n}" if n else ""))
     return sec
 
 
