@@ -22,7 +22,7 @@ from ..registry import KINDS
 from ..style.numbers import fmt
 from .assemble import REFERENCES, _given_parameters, _linkage_data
 from .document import Column, Report, Section, ref
-from .key_names import convert, entry
+from .key_names import convert, entry, shown
 from .russian import position_names
 from .sections.common import q_degrees
 
@@ -111,8 +111,9 @@ def result_rows(study, kind: str, scalars: dict) -> dict[str, list[dict]]:
         if cell is None:
             continue
         where = e.where and scalars.get(e.where)
+        name, sym = shown(e, study, kind)
         groups.setdefault(e.group, []).append({
-            "name": Markup(e.name), "sym": Markup(e.sym), "value": Markup(cell[0]), "unit": cell[1],
+            "name": Markup(name), "sym": Markup(sym), "value": Markup(cell[0]), "unit": cell[1],
             "where": Markup(where_text(study, kind, where)) if where is not None and where is not False else ""})
     return groups
 

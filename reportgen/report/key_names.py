@@ -34,6 +34,7 @@ class Entry:
     words: tuple | dict | None = None   # bool → (true, false); str → {value: words, "" — no row}
     same_as: str | None = None   # shown only when it differs from this key's value
     position: bool = False       # the position of another key's extreme (shown in its row)
+    swing: tuple | None = None   # (name, symbol) when a "stroke" is a swing (a rocker's angle)
 
 
 def _e(name, sym="", unit="", **kw) -> Entry:
@@ -191,7 +192,8 @@ _PAIR = re.compile(r"(q_)?R_([^_]+)_([^_]+)_max")
 _MM = dict(unit="мм", conv="mm", sig=4)
 _ANG = dict(unit="°", conv="deg", sig=4)
 CAM = {
-    "cam_stroke": _e("Ход толкателя (угол размаха коромысла)", _i("h") + " (ψ<sub>max</sub>)", conv="stroke", sig=4),
+    "cam_stroke": _e("Ход толкателя", _i("h"), conv="stroke", sig=4,
+                     swing=("Угол размаха коромысла", "ψ<sub>max</sub>")),
     "cam_r0": _e("Радиус основной шайбы (центрового профиля)", _i("r", "0"), **_MM),
     "cam_r0_min": _e("Наименьший радиус основной шайбы по условию выпуклости профиля", _i("r", "0 min"), **_MM),
     "cam_r0_approx": _e("Радиус основной шайбы приближённым способом", _i("r", "0"), **_MM),
@@ -311,7 +313,8 @@ SYNTHESIS = {
     "syn_phi_near": _e("Угол кривошипа в крайнем положении со сложенным шатуном", "φ<sub>2</sub>", **_ANG),
     "syn_phi_right": _e("Угол кривошипа в правом крайнем положении кулисы", "φ<sub>пр</sub>", **_ANG),
     "syn_phi_left": _e("Угол кривошипа в левом крайнем положении кулисы", "φ<sub>л</sub>", **_ANG),
-    "check_stroke": _e("Проверка по механизму: ход (размах) выходного звена", _i("H") + " (ψ)", conv="stroke", sig=6),
+    "check_stroke": _e("Проверка по механизму: ход выходного звена", _i("H"), conv="stroke", sig=6,
+                       swing=("Проверка по механизму: угол размаха выходного звена", "ψ")),
     "check_K": _e("Проверка по механизму: коэффициент изменения средней скорости", _i("K"), sig=6),
     "check_q1": _e("Проверка по механизму: угол кривошипа в первом крайнем положении", "φ<sub>1</sub>", **_ANG),
     "check_q2": _e("Проверка по механизму: угол кривошипа во втором крайнем положении", "φ<sub>2</sub>", **_ANG),
@@ -406,6 +409,13 @@ def convert(e: Entry, value: float, study=None, kind: str = "") -> tuple[float, 
         angular = _angular_stroke(study, kind)
         return (math.degrees(value), "°") if angular else ((value * 1000.0, "мм") if kind == "cam" else (value, "м"))
     return value, e.unit
+
+
+def shown(e: Entry, study=None, kind: str = "") -> tuple[str, str]:
+    """The name and symbol of ``e`` for this case (a swing instead of a stroke)."""
+    if e.swing is not None and _angular_stroke(study, kind):
+        return e.swing
+    return e.name, e.sym
 
 
 def _angular_stroke(study, kind: str) -> bool:
