@@ -130,8 +130,10 @@ def test_units_and_position_in_the_row(ws002):
     assert re.search(r"\bН\b", r56[0]) and re.search(r"S\s*=\s*0,664\s*м", r56[0]), r56[0]
     p = [r for r in rows if "Давление в гидросистеме" in r][0]
     assert "17,50" in p and "МПа" in p                     # the note's 17,5 MPa, not 1,75·10⁷ Па
-    sw = [r for r in rows if "Вид силового расчёта" in r][0]
-    assert "статический" in sw and "static" not in sw
+    # a switch is said in words, in a sentence before the tables
+    assert re.search(r"Вид силового расчёта:\s+статический \(без сил инерции\)\.", ws002[0])
+    assert "Требуемое давление выше давления в гидросистеме: да — превышено." in ws002[0]
+    assert not any("Вид силового расчёта" in r for r in rows)
 
 
 def test_rotary_extreme_at_crank_angle(every_scalar):

@@ -93,11 +93,14 @@ def where_text(study, kind: str, q: float) -> str:
     return f"<i>S</i>&nbsp;=&nbsp;{fmt(q, digits=3)}&nbsp;м"
 
 
+SAID = "said in words"     # the group of the switches and yes/no values: a sentence, not a table row
+
+
 def result_rows(study, kind: str, scalars: dict) -> dict[str, list[dict]]:
     """The rows of the results of one task by the groups of the glossary (``key_names``), in the
     order of the scalars; a position goes into the row of its extreme, a value equal to the one it
     repeats (``same_as``) is left out, a key without an entry is left out (the glossary test
-    covers every case)."""
+    covers every case); switches and yes/no values go to the group :data:`SAID`."""
     groups: dict[str, list[dict]] = {}
     for key, value in scalars.items():
         e = entry(kind, key)
@@ -112,7 +115,8 @@ def result_rows(study, kind: str, scalars: dict) -> dict[str, list[dict]]:
             continue
         where = e.where and scalars.get(e.where)
         name, sym = shown(e, study, kind)
-        groups.setdefault(e.group, []).append({
+        said = isinstance(value, (str, bool, np.bool_))
+        groups.setdefault(SAID if said else e.group, []).append({
             "name": Markup(name), "sym": Markup(sym), "value": Markup(cell[0]), "unit": cell[1],
             "where": Markup(where_text(study, kind, where)) if where is not None and where is not False else ""})
     return groups
@@ -154,6 +158,9 @@ def _results(study) -> Section:
         if not groups:
             continue
         s = sec.subsection(kind.title, f"key-{kind.name}")
+        said = groups.pop(SAID, [])
+        if said:
+            s.paragraph(Markup(" ").join(Markup("{}: {}.").format(r["name"], r["value"]) for r in said))
         for n, (group, rows) in enumerate(groups.items()):
             cols = RESULT_COLS if any(r["where"] for r in rows) else RESULT_COLS[:-1]
             caption = f"{kind.title}: {group[0].lower() + group[1:]}" if group else kind.title
