@@ -150,3 +150,14 @@ def test_rotary_extreme_at_crank_angle(every_scalar):
     rows = [r for g in result_rows(st, "dynamics", sc).values() for r in g]
     w = [r for r in rows if str(r["name"]) == "Наибольшая угловая скорость звена приведения"][0]
     assert w["unit"] == "рад/с" and re.fullmatch(r"φ&nbsp;=&nbsp;\d+,\d\d°", str(w["where"])), w
+
+
+def test_chosen_method_not_repeated(every_scalar):
+    by = {(case, kind): (sc, st) for case, kind, sc, st in every_scalar}
+    sc, st = by[("ws000_six_bar", "dynamics")]
+    assert sc["method"] == "mertsalov"
+    names = [str(r["name"]) for g in result_rows(st, "dynamics", sc).values() for r in g]
+    assert "Требуемый момент инерции первой группы звеньев" in names
+    assert not any(n.startswith("Момент инерции первой группы по Мерцалову") for n in names)
+    assert any(n.startswith("Момент инерции первой группы точно") for n in names)
+    assert len(names) == len(set(names))

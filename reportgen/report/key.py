@@ -108,6 +108,8 @@ def result_rows(study, kind: str, scalars: dict) -> dict[str, list[dict]]:
             continue
         if e.same_as is not None and e.same_as in scalars and _same(value, scalars[e.same_as]):
             continue
+        if e.hide_if is not None and scalars.get(e.hide_if[0]) == e.hide_if[1]:
+            continue                  # the chosen method's value: the row of the result itself
         if isinstance(e.words, dict) and e.words.get(value) == "":
             continue                  # a switch whose value another row already says
         cell = value_text(e, value, study, kind)

@@ -33,6 +33,7 @@ class Entry:
     group: str = ""              # heading of the table the row goes to (in the kind's order)
     words: tuple | dict | None = None   # bool → (true, false); str → {value: words, "" — no row}
     same_as: str | None = None   # shown only when it differs from this key's value
+    hide_if: tuple | None = None # (key, value): no row when that scalar has that value (the chosen method)
     position: bool = False       # the position of another key's extreme (shown in its row)
     swing: tuple | None = None   # (name, symbol) when a "stroke" is a swing (a rocker's angle)
 
@@ -128,10 +129,9 @@ DYNAMICS = {
 }
 for _m, _w in _MNAME.items():
     DYNAMICS[f"J_I_{_m}"] = _e(f"Момент инерции первой группы {_w}", _i("J", "I"), "кг·м²", group=_DG2,
-                               same_as="J_I" if _m == "exact" else None)
+                               hide_if=("method", _m))
     DYNAMICS[f"delta_achieved_{_m}"] = _e(f"Коэффициент неравномерности при точном движении с " + _i("J", "I")
-                                          + f" {_w}", "δ<sub>факт</sub>", sig=5, group=_DG2,
-                                          same_as="delta_achieved" if _m == "exact" else None)
+                                          + f" {_w}", "δ<sub>факт</sub>", sig=5, group=_DG2, hide_if=("method", _m))
     if _m != "exact":
         DYNAMICS[f"dev_{_m}_pct"] = _e(f"Отклонение " + _i("J", "I") + f" {_w} от точного", "Δ" + _i("J", "I"),
                                        "%", sig=3, group=_DG2)
