@@ -26,7 +26,7 @@ from .key_names import convert, entry, shown
 from .russian import position_names
 from .sections.common import q_degrees
 
-CHECK_COLS = [Column("what", "Проверка", fmt=Markup), Column("value", "Наибольшее расхождение"),
+CHECK_COLS = [Column("what", "Проверка", fmt=Markup), Column("value", "Расхождение", fmt=Markup),
               Column("verdict", "Вывод")]
 
 
@@ -236,8 +236,11 @@ def _checks(study) -> Section:
             rows.append({"what": "Баланс энергии за цикл: A<sub>д</sub> + A<sub>с</sub> = 0",
                          "value": fmt(abs(A) / scale, sig=2), "verdict": _verdict(abs(A) / scale, 1e-9)})
         dl = abs(sc["delta_achieved"] - sc["delta"]) / sc["delta"]
-        rows.append({"what": "Коэффициент неравномерности при точном движении и заданный",
-                     "value": fmt(dl, sig=2), "verdict": "—"})
+        exact = sc.get("method") == "exact"
+        rows.append({"what": Markup("Коэффициент неравномерности δ при точном движении с принятым "
+                                    "<i>J</i><sub>I</sub> и заданный (относительное отличие)"),
+                     "value": fmt(dl, sig=2),
+                     "verdict": _verdict(dl, 1e-6) if exact else "метод приближённый"})
     if rows:
         df = pd.DataFrame(rows)
         sec.table("Независимые проверки", CHECK_COLS, df, id="key-checks-tab")
@@ -305,10 +308,11 @@ def _errors(study) -> Section | None:
     the worksheet's formula for the carrier's largest load)."""
     items = []
     if "dynamics" in study.tasks() and study.dynamics.settings.printed:
+        from .sections.dynamics import _as_printed
         pr = study.dynamics.printed
         for _, r in pr[~pr["within"]].iterrows():
-            items.append(f"{r['title'] or r['key']}: напечатано {r['printed']}, точное значение "
-                         f"{fmt(r['computed'], sig=6)}.")
+            items.append(f"{r['title'] or r['key']}: напечатано {_as_printed(r['printed'], r['value'])}, "
+                         f"точное значение {fmt(r['computed'], sig=6)}.")
     if "forces" in study.tasks():
         f = study.forces
         if f.settings.carrier is not None and "Gmax_carrier_as_printed" in f.table:

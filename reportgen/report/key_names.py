@@ -119,11 +119,12 @@ DYNAMICS = {
                             group=_DG3),
     "omega_min_inverse": _e("Наименьшая угловая скорость при заданном маховике", "ω<sub>min</sub>", "рад/с",
                             group=_DG3),
-    "fw_ratio": _e("Передаточное отношение от вала маховика к кривошипу", _i("u"), sig=4, group=_DG5),
+    "fw_ratio": _e("Передаточное отношение от вала маховика к кривошипу", _i("u"), sig=4, group=_DG5,
+                   hide_if=("fw_ratio", 1.0)),           # the flywheel on the crank: nothing to add
     "J_fly_shaft": _e("Момент инерции маховика на валу двигателя", _i("J", "доп") + "/" + _i("u") + "²", "кг·м²",
-                      group=_DG5),
-    "omega_max_shaft": _e("Наибольшая угловая скорость вала маховика", "ω<sub>max</sub>", "рад/с", group=_DG5),
-    "omega_min_shaft": _e("Наименьшая угловая скорость вала маховика", "ω<sub>min</sub>", "рад/с", group=_DG5),
+                      group=_DG5, hide_if=("fw_ratio", 1.0)),
+    "omega_max_shaft": _e("Наибольшая угловая скорость вала маховика", "ω<sub>max</sub>", "рад/с", group=_DG5, hide_if=("fw_ratio", 1.0)),
+    "omega_min_shaft": _e("Наименьшая угловая скорость вала маховика", "ω<sub>min</sub>", "рад/с", group=_DG5, hide_if=("fw_ratio", 1.0)),
     "q_dT_max": _pos(), "q_dT_min": _pos(), "q_dT_I_max": _pos(), "q_dT_I_min": _pos(),
     "q_omega_max": _pos(), "q_omega_min": _pos(),
 }
