@@ -27,7 +27,7 @@ from .russian import position_names
 from .sections.common import q_degrees
 
 CHECK_COLS = [Column("what", "Проверка", fmt=Markup), Column("value", "Расхождение", fmt=Markup),
-              Column("verdict", "Вывод")]
+              Column("verdict", "Вывод", fmt=Markup)]
 
 
 def build_key(study, options: dict | None = None) -> Report:
@@ -188,8 +188,9 @@ def _groups_text(rows: list[dict]) -> str:
     return "; ".join(parts)
 
 
-def _verdict(x: float, tol: float) -> str:
-    return "выполнена" if x <= tol else "НЕ выполнена"
+def _verdict(x: float, tol: float) -> Markup:
+    """«выполнена» / «НЕ выполнена», never hyphenated in a narrow column."""
+    return Markup('<span class="nowrap">{}</span>').format("выполнена" if x <= tol else "НЕ выполнена")
 
 
 def loop_closure(study) -> float:
