@@ -192,7 +192,7 @@ _PAIR = re.compile(r"(q_)?R_([^_]+)_([^_]+)_max")
 
 # ---------------------------------------------------------------------------- cam
 _MM = dict(unit="мм", conv="mm", sig=4)
-_ANG = dict(unit="°", conv="deg", sig=4)
+_ANG = dict(unit="°", conv="deg", sig=None, digits=2)     # degrees to 0,01° (a zero stays 0,00)
 CAM = {
     "cam_stroke": _e("Ход толкателя", _i("h"), conv="stroke", sig=4,
                      swing=("Угол размаха коромысла", "ψ<sub>max</sub>")),
