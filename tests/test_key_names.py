@@ -161,3 +161,13 @@ def test_chosen_method_not_repeated(every_scalar):
     assert not any(n.startswith("Момент инерции первой группы по Мерцалову") for n in names)
     assert any(n.startswith("Момент инерции первой группы точно") for n in names)
     assert len(names) == len(set(names))
+
+
+def test_output_link_in_words_and_units(every_scalar):
+    by = {(case, kind): st for case, kind, _, st in every_scalar}
+    st = by[("ws000_six_bar", "dynamics")]
+    out = {k: v for k, v in st.scalars.items() if entry("kinematics", k) is not None}
+    rows = {str(r["name"]): r for g in result_rows(st, "kinematics", out).values() for r in g}
+    assert rows["Ход выходного звена"]["unit"] == "м"
+    assert rows["Средняя скорость рабочего хода"]["unit"] == "м/с"
+    assert rows["Угол кривошипа в первом крайнем положении выходного звена"]["value"] == "193,8"

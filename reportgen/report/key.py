@@ -153,6 +153,9 @@ def _results(study) -> Section:
                 Column("g", "Группа"), Column("min", "μ<sub>min</sub>", "град", digits=1),
                 Column("where", "Где (положение)", fmt=Markup), Column("low", "Оценка")],
                 pd.DataFrame(rows), id="key-mu")
+        out = {k: v for k, v in study.scalars.items() if entry("kinematics", k) is not None}
+        for rows in result_rows(study, "kinematics", out).values():
+            s.table("Выходное звено", RESULT_COLS[:-1], pd.DataFrame(rows), id="key-output")
     for kind in KINDS:
         if kind.name not in study.tasks():
             continue

@@ -376,9 +376,32 @@ GOVERNOR = {
                               sig=4),
 }
 
+# ---------------------------------------------------------------------------- the linkage's output link
+# (Study.scalars; the structure numbers, the transmission angles and the fitted parameters are shown
+# elsewhere in the key, so only these keys make the table)
+_CQ = dict(unit="°", conv="q", sig=None, digits=1)
+KINEMATICS = {
+    "swing": _e("Угол размаха входного коромысла", "ψ<sub>1</sub>", **_ANG),
+    "output_stroke": _e("Ход выходного звена", _i("H"), conv="stroke", sig=5,
+                        swing=("Угол размаха выходного звена", "ψ")),
+    "output_path": _e("Путь выходного звена за ход", _i("s"), conv="stroke", sig=5,
+                      swing=("Угол поворота выходного звена за ход", "Σ|Δψ|")),
+    "output_K": _e("Коэффициент изменения средней скорости выходного звена", _i("K"), sig=4),
+    "output_q1": _e("Угол кривошипа в первом крайнем положении выходного звена", "φ<sub>1</sub>", **_CQ),
+    "output_q2": _e("Угол кривошипа во втором крайнем положении выходного звена", "φ<sub>2</sub>", **_CQ),
+    "output_v_work": _e("Средняя скорость рабочего хода", _i("v", "р.х"), conv="speed", sig=4),
+    "output_v_return": _e("Средняя скорость обратного хода", _i("v", "х.х"), conv="speed", sig=4),
+    "output_reversals": _e("Число остановок выходного звена внутри хода", "", **_INT),
+    "t_stroke": _e("Время прямого хода", _i("t", "пр"), "с", sig=4),
+    "t_return": _e("Время обратного хода", _i("t", "обр"), "с", sig=4),
+    "t_cycle": _e("Время цикла", _i("t", "ц"), "с", sig=4),
+}
+_REVERSAL = re.compile(r"output_q_reversal_(\d+)")
+
 GLOSSARY: dict[str, dict[str, Entry]] = {
     "dynamics": DYNAMICS, "forces": FORCES, "cam": CAM, "gears": GEARS, "train": TRAIN, "machine": MACHINE,
     "motion": MOTION, "synthesis": SYNTHESIS, "dof": DOF, "cross": CROSS, "governor": GOVERNOR,
+    "kinematics": KINEMATICS,
 }
 
 
@@ -388,6 +411,9 @@ def entry(kind: str, key: str) -> Entry | None:
     e = GLOSSARY.get(kind, {}).get(key)
     if e is not None:
         return e
+    r = _REVERSAL.fullmatch(key) if kind == "kinematics" else None
+    if r is not None:
+        return _e(f"Угол входного звена при остановке выходного № {r.group(1)}", "φ", **_CQ)
     m = _PAIR.fullmatch(key) if kind == "forces" else None
     if m is None:
         return None
@@ -410,6 +436,11 @@ def convert(e: Entry, value: float, study=None, kind: str = "") -> tuple[float, 
     if e.conv == "stroke":
         angular = _angular_stroke(study, kind)
         return (math.degrees(value), "°") if angular else ((value * 1000.0, "мм") if kind == "cam" else (value, "м"))
+    if e.conv == "speed":
+        return value, ("рад/с" if _angular_stroke(study, kind) else "м/с")
+    if e.conv == "q":
+        from .sections.common import q_degrees
+        return q_degrees(study, value), e.unit
     return value, e.unit
 
 
@@ -424,5 +455,7 @@ def _angular_stroke(study, kind: str) -> bool:
     """Whether a stroke is a swing (rad): a rocking cam follower, an output link that turns."""
     if kind == "cam":
         return study.cam.follower == "rocker"
+    if kind == "kinematics":
+        return str(study.scalars.get("output", "")).startswith("phi_")
     chk = study.synthesis.check or {}
     return str(chk.get("column", "")).startswith("phi_")
