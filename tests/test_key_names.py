@@ -171,3 +171,13 @@ def test_output_link_in_words_and_units(every_scalar):
     assert rows["Ход выходного звена"]["unit"] == "м"
     assert rows["Средняя скорость рабочего хода"]["unit"] == "м/с"
     assert rows["Угол кривошипа в первом крайнем положении выходного звена"]["value"] == "193,8"
+
+
+def test_tasks_without_linkage_have_checks(every_scalar):
+    from reportgen.report.key import _second_formulations
+    by = {case: st for case, _, _, st in every_scalar}
+    for case, needle in (("gear_pair_shifted", "ε<sub>α</sub>"), ("train_3k_select", "Виллиса"),
+                         ("synth_crank_rocker", "Синтез")):
+        rows = _second_formulations(by[case])
+        assert len(rows) == 1 and needle in str(rows[0]["what"]), case
+        assert "выполнена" in str(rows[0]["verdict"]) and "НЕ" not in str(rows[0]["verdict"]), case

@@ -245,12 +245,42 @@ def _checks(study) -> Section:
                                     "<i>J</i><sub>I</sub> и заданный (относительное отличие)"),
                      "value": fmt(dl, sig=2),
                      "verdict": _verdict(dl, 1e-6) if exact else "метод приближённый"})
+    rows += _second_formulations(study)
     if rows:
         df = pd.DataFrame(rows)
         sec.table("Независимые проверки", CHECK_COLS, df, id="key-checks-tab")
     else:
         sec.paragraph("Проверок для этого варианта нет.")
     return sec
+
+
+def _second_formulations(study) -> list[dict]:
+    """Checks of the tasks without a linkage by a second formulation of the same result: ε_α by
+    the angles of the active profile and by the length of the active line of action (Фролов [3]);
+    the train's ratio by Willis's formula and by the velocities at the poles of the meshes; the
+    synthesised linkage's K and stroke measured on the mechanism against the given ones."""
+    tasks, rows = study.tasks(), []
+
+    def rel(a, b):
+        return abs(float(a) - float(b)) / max(abs(float(b)), 1e-300)
+    if "gears" in tasks:
+        sc = study.gears.scalars
+        if "gears_eps_alpha_line" in sc:
+            d = rel(sc["gears_eps_alpha_line"], sc["gears_eps_alpha"])
+            rows.append({"what": Markup("Коэффициент перекрытия ε<sub>α</sub> по углам профиля и по длине активной "
+                                        "линии зацепления"), "value": fmt(d, sig=2), "verdict": _verdict(d, 1e-9)})
+    if "train" in tasks:
+        d = float(study.train.scalars["train_u_discrepancy_pct"])
+        rows.append({"what": "Передаточное отношение по формуле Виллиса и по скоростям в полюсах зацеплений",
+                     "value": f"{fmt(d, sig=2)} %", "verdict": _verdict(abs(d), 1e-7)})
+    if "synthesis" in tasks:
+        sc = study.synthesis.scalars
+        if "check_K" in sc and "syn_K" in sc:
+            d = max(rel(sc["check_K"], sc["syn_K"]), rel(sc["check_stroke"], study.synthesis.target_stroke()))
+            rows.append({"what": "Синтез: коэффициент K и ход (размах) выходного звена, измеренные на механизме, "
+                                 "и заданные",
+                         "value": fmt(d, sig=2), "verdict": _verdict(d, 1e-8)})
+    return rows
 
 
 def _printed(study) -> Section | None:
