@@ -24,7 +24,7 @@ from .assemble import REFERENCES, _given_parameters, _linkage_data
 from .document import Column, Report, Section, ref
 from .key_names import convert, entry, shown
 from .russian import position_names
-from .sections.common import q_degrees
+from .sections.common import as_written, q_degrees
 
 CHECK_COLS = [Column("what", "Проверка", fmt=Markup), Column("value", "Расхождение", fmt=Markup),
               Column("verdict", "Вывод", fmt=Markup)]
@@ -80,7 +80,7 @@ def value_text(e, value, study=None, kind: str = "") -> tuple[str, str] | None:
     if not math.isfinite(x):
         return "—", ""
     x, unit = convert(e, x, study, kind)
-    return fmt(x, digits=e.digits, sig=e.sig), unit
+    return (as_written(x) if e.given else fmt(x, digits=e.digits, sig=e.sig)), unit
 
 
 def where_text(study, kind: str, q: float) -> str:

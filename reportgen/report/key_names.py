@@ -36,6 +36,7 @@ class Entry:
     hide_if: tuple | None = None # (key, value): no row when that scalar has that value (the chosen method)
     position: bool = False       # the position of another key's extreme (shown in its row)
     swing: tuple | None = None   # (name, symbol) when a "stroke" is a swing (a rocker's angle)
+    given: bool = False          # a value of the case: printed as the case writes it (0,11, not 0,1100)
 
 
 def _e(name, sym="", unit="", **kw) -> Entry:
@@ -63,7 +64,7 @@ _MNAME = {"exact": "точно", "mertsalov": "по Мерцалову", "witten
 DYNAMICS = {
     "cycle_length": _e("Длина цикла", "Φ", "°", conv="deg", digits=0, group=_DG1),
     "omega_m": _e("Средняя угловая скорость звена приведения (задана)", "ω<sub>ср</sub>", "рад/с", group=_DG1),
-    "delta": _e("Коэффициент неравномерности хода (задан)", "δ", sig=4, group=_DG1),
+    "delta": _e("Коэффициент неравномерности хода (задан)", "δ", sig=4, group=_DG1, given=True),
     "n_switching": _e("Число точек переключения нагрузок за цикл", "", sig=None, digits=0, group=_DG1),
     "balance": _e("Постоянный приведённый момент", "", group=_DG1,
                   words={"drive": "движущий (момент сопротивления задан)",
@@ -92,7 +93,7 @@ DYNAMICS = {
     "wittenbauer_L": _e("Отрезок до точки L касательной на оси Δ" + _i("T") + " (Виттенбауэр)", _i("OL"), "Дж",
                         group=_DG2),
     "wittenbauer_KL": _e("Отрезок KL на оси Δ" + _i("T") + " (Виттенбауэр)", _i("KL"), "Дж", group=_DG2),
-    "J_O": _e("Заданный приведённый момент инерции вращающихся масс", _i("J", "O"), "кг·м²", group=_DG2),
+    "J_O": _e("Заданный приведённый момент инерции вращающихся масс", _i("J", "O"), "кг·м²", group=_DG2, given=True),
     "J_crank": _e("Момент инерции кривошипа", _i("J", "кр"), "кг·м²", group=_DG2),
     "J_I_const": _e("Постоянная часть момента инерции первой группы", _i("J", "I,0"), "кг·м²", group=_DG2),
     "method": _e("Метод расчёта маховика", "", group=_DG2, words=_METHODS),
@@ -109,7 +110,7 @@ DYNAMICS = {
                           same_as="omega_max", group=_DG3),
     "omega_min_exact": _e("Наименьшая угловая скорость при точном движении", "ω<sub>min</sub>", "рад/с",
                           same_as="omega_min", group=_DG3),
-    "fw_v_limit": _e("Допускаемая окружная скорость обода", "[" + _i("v") + "]", "м/с", sig=3, group=_DG4),
+    "fw_v_limit": _e("Допускаемая окружная скорость обода", "[" + _i("v") + "]", "м/с", sig=3, group=_DG4, given=True),
     "fw_v_exceeds": _e("Окружная скорость обода выше допускаемой", "", group=_DG4,
                        words=("да — превышена", "нет")),
     "J_fly_given": _e("Заданный момент инерции маховика (обратная задача)", _i("J", "доп"), "кг·м²", group=_DG3),
@@ -174,9 +175,9 @@ FORCES = {
     "dev_M_bal_dyn_max": _e("Относительное отличие " + _i("M", "ур") + " от " + _i("M", "д") + " − "
                             + _i("J", "I") + "ε динамики, наибольшее", "", sig=2, group=_FG1),
     "A_piston": _e("Площадь поршня", _i("A", "п"), "м²", sig=4, group=_FG3),
-    "act_count": _e("Число гидроцилиндров", _i("k"), sig=None, digits=0, group=_FG3),
-    "act_efficiency": _e("КПД гидроцилиндра", "η", sig=3, group=_FG3),
-    "p_system": _e("Давление в гидросистеме", _i("p"), "МПа", conv="MPa", sig=4, group=_FG3),
+    "act_count": _e("Число гидроцилиндров", _i("k"), sig=None, digits=0, group=_FG3, given=True),
+    "act_efficiency": _e("КПД гидроцилиндра", "η", sig=3, group=_FG3, given=True),
+    "p_system": _e("Давление в гидросистеме", _i("p"), "МПа", conv="MPa", sig=4, group=_FG3, given=True),
     "F_cyl_max": _e("Наибольшее усилие гидроцилиндров при этом давлении", _i("F", "ц max"), "Н", group=_FG3),
     "p_act_max": _e("Наибольшее требуемое давление в гидроцилиндрах", _i("p", "max"), "МПа", conv="MPa", sig=4,
                     where="q_p_act_max", group=_FG3),
@@ -207,10 +208,10 @@ CAM = {
     "cam_a_w_approx": _e("Межосевое расстояние приближённым способом", _i("a", "w"), **_MM),
     "cam_arm": _e("Длина коромысла", _i("l"), **_MM),
     "cam_psi0": _e("Начальный угол коромысла", "ψ<sub>0</sub>", **_ANG),
-    "cam_roller": _e("Радиус ролика", _i("r", "р"), **_MM),
+    "cam_roller": _e("Радиус ролика", _i("r", "р"), **_MM, given=True),
     "cam_rho_c_min": _e("Наименьший радиус кривизны центрового профиля", "ρ<sub>ц min</sub>", **_MM),
     "cam_rho_min": _e("Наименьший радиус кривизны рабочего профиля", "ρ<sub>min</sub>", **_MM),
-    "cam_face_offset": _e("Смещение тарелки от оси качания коромысла", _i("d"), **_MM),
+    "cam_face_offset": _e("Смещение тарелки от оси качания коромысла", _i("d"), **_MM, given=True),
     "cam_face_min": _e("Наименьшее расстояние точки касания вдоль тарелки", "μ<sub>min</sub>", **_MM),
     "cam_face_max": _e("Наибольшее расстояние точки касания вдоль тарелки", "μ<sub>max</sub>", **_MM),
     "cam_face_width": _e("Ширина (рабочая длина) тарелки", _i("b"), **_MM),
@@ -224,9 +225,9 @@ CAM = {
 _GMM = dict(unit="мм", sig=5)
 _YESNO = ("есть", "нет")
 GEARS = {
-    "gears_m": _e("Модуль", _i("m"), **_GMM),
-    "gears_x1": _e("Коэффициент смещения шестерни", _i("x", "1"), sig=3),
-    "gears_x2": _e("Коэффициент смещения колеса", _i("x", "2"), sig=3),
+    "gears_m": _e("Модуль", _i("m"), **_GMM, given=True),
+    "gears_x1": _e("Коэффициент смещения шестерни", _i("x", "1"), sig=3, given=True),
+    "gears_x2": _e("Коэффициент смещения колеса", _i("x", "2"), sig=3, given=True),
     "gears_alpha_w_deg": _e("Угол зацепления", "α<sub>w</sub>", "°", sig=5),
     "gears_a": _e("Делительное межосевое расстояние", _i("a"), **_GMM),
     "gears_a_w": _e("Межосевое расстояние", _i("a", "w"), **_GMM),
@@ -256,7 +257,7 @@ TRAIN = {
     "train_u_direct": _e("Передаточное отношение по скоростям в полюсах зацеплений", _i("u"), sig=5,
                          same_as="train_u"),
     "train_u_discrepancy_pct": _e("Расхождение двух способов", "", "%", sig=2),
-    "train_u_target": _e("Заданное передаточное отношение", _i("u", "зад"), sig=5),
+    "train_u_target": _e("Заданное передаточное отношение", _i("u", "зад"), sig=5, given=True),
     "train_u_error_pct": _e("Отклонение от заданного", "", "%", sig=2),
 }
 
@@ -267,7 +268,7 @@ MACHINE = {
     "machine_power": _e("Средняя мощность", _i("P"), "Вт", sig=5),
     "machine_M_mean": _e("Средний движущий момент", _i("M", "д"), "Н·м", sig=5),
     "machine_dE": _e("Наибольшая избыточная работа (перепад кинетической энергии)", "Δ" + _i("E", "нб"), "Дж"),
-    "machine_delta": _e("Коэффициент неравномерности хода", "δ", sig=4),
+    "machine_delta": _e("Коэффициент неравномерности хода", "δ", sig=4, given=True),
     "machine_omega_m": _e("Средняя угловая скорость", "ω<sub>ср</sub>", "рад/с"),
     "machine_omega_max": _e("Наибольшая угловая скорость", "ω<sub>max</sub>", "рад/с"),
     "machine_omega_min": _e("Наименьшая угловая скорость", "ω<sub>min</sub>", "рад/с"),
@@ -291,7 +292,7 @@ MOTION = {
 # ---------------------------------------------------------------------------- synthesis
 _SM = dict(unit="м", sig=5)
 SYNTHESIS = {
-    "syn_K": _e("Коэффициент изменения средней скорости выходного звена", _i("K"), sig=4),
+    "syn_K": _e("Коэффициент изменения средней скорости выходного звена", _i("K"), sig=4, given=True),
     "syn_theta": _e("Угол перекрытия θ = 180°(" + _i("K") + " − 1)/(" + _i("K") + " + 1)", "θ", **_ANG),
     "syn_theta_check": _e("Угол, под которым из центра кривошипа видны крайние положения (проверка θ)", "θ",
                           same_as="syn_theta", **_ANG),
