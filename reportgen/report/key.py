@@ -22,10 +22,12 @@ from ..registry import KINDS
 from ..style.numbers import fmt
 from .assemble import REFERENCES, _given_parameters, _linkage_data
 from .document import Column, Report, Section, ref
+from .key_names import convert, entry, shown
 from .russian import position_names
+from .sections.common import as_written, q_degrees
 
-CHECK_COLS = [Column("what", "Проверка", fmt=Markup), Column("value", "Наибольшее расхождение"),
-              Column("verdict", "Вывод")]
+CHECK_COLS = [Column("what", "Проверка", fmt=Markup), Column("value", "Расхождение", fmt=Markup),
+              Column("verdict", "Вывод", fmt=Markup)]
 
 
 def build_key(study, options: dict | None = None) -> Report:
@@ -61,17 +63,72 @@ def _given(study) -> Section:
     return sec
 
 
-def _scalar_rows(scalars: dict) -> pd.DataFrame:
-    rows = []
-    for k, v in scalars.items():
-        if isinstance(v, (bool, np.bool_)):
-            rows.append({"key": k, "value": "да" if v else "нет"})
-        elif isinstance(v, (int, float, np.integer, np.floating)):
-            x = float(v)
-            rows.append({"key": k, "value": fmt(x, sig=6) if math.isfinite(x) else "—"})
-        elif isinstance(v, str):
-            rows.append({"key": k, "value": v})
-    return pd.DataFrame(rows)
+RESULT_COLS = [Column("name", "Величина", fmt=Markup), Column("sym", "Обозначение", fmt=Markup),
+               Column("value", "Значение", fmt=Markup), Column("unit", "Единица"),
+               Column("where", "Где (положение)", fmt=Markup)]
+
+
+def value_text(e, value, study=None, kind: str = "") -> tuple[str, str] | None:
+    """The cell text of a scalar by its glossary entry and its unit; None when a switch has a
+    value the glossary does not say in words."""
+    if isinstance(value, (bool, np.bool_)):
+        return (e.words[0] if value else e.words[1]), ""
+    if isinstance(value, str):
+        words = e.words.get(value) if isinstance(e.words, dict) else None
+        return (words, "") if words else None
+    x = float(value)
+    if not math.isfinite(x):
+        return "—", ""
+    x, unit = convert(e, x, study, kind)
+    return (as_written(x) if e.given else fmt(x, digits=e.digits, sig=e.sig)), unit
+
+
+def where_text(study, kind: str, q: float) -> str:
+    """«φ = 193,8°» (a crank's angle from the cycle's start, as the note prints it) or
+    «S = 0,420 м» (an actuator's stroke) where an extreme occurs."""
+    if kind == "dynamics":
+        return f"φ&nbsp;=&nbsp;{fmt(math.degrees(float(q) - study.dynamics.settings.cycle_start), digits=2)}°"
+    if study.mechanism.driver.rotary:
+        return f"φ&nbsp;=&nbsp;{fmt(q_degrees(study, q), digits=1)}°"
+    return f"<i>S</i>&nbsp;=&nbsp;{fmt(q, digits=3)}&nbsp;м"
+
+
+SAID = "said in words"     # the group of the switches and yes/no values: a sentence, not a table row
+
+
+def result_rows(study, kind: str, scalars: dict) -> dict[str, list[dict]]:
+    """The rows of the results of one task by the groups of the glossary (``key_names``), in the
+    order of the scalars; a position goes into the row of its extreme, a value equal to the one it
+    repeats (``same_as``) is left out, a key without an entry is left out (the glossary test
+    covers every case); switches and yes/no values go to the group :data:`SAID`."""
+    groups: dict[str, list[dict]] = {}
+    for key, value in scalars.items():
+        e = entry(kind, key)
+        if e is None or e.position:
+            continue
+        if e.same_as is not None and e.same_as in scalars and _same(value, scalars[e.same_as]):
+            continue
+        if e.hide_if is not None and scalars.get(e.hide_if[0]) == e.hide_if[1]:
+            continue                  # the chosen method's value: the row of the result itself
+        if isinstance(e.words, dict) and e.words.get(value) == "":
+            continue                  # a switch whose value another row already says
+        cell = value_text(e, value, study, kind)
+        if cell is None:
+            continue
+        where = e.where and scalars.get(e.where)
+        name, sym = shown(e, study, kind)
+        said = isinstance(value, (str, bool, np.bool_))
+        groups.setdefault(SAID if said else e.group, []).append({
+            "name": Markup(name), "sym": Markup(sym), "value": Markup(cell[0]), "unit": cell[1],
+            "where": Markup(where_text(study, kind, where)) if where is not None and where is not False else ""})
+    return groups
+
+
+def _same(a, b) -> bool:
+    try:
+        return abs(float(a) - float(b)) <= 1e-9 * max(abs(float(a)), abs(float(b)), 1e-300)
+    except (TypeError, ValueError):
+        return a == b
 
 
 def _results(study) -> Section:
@@ -89,20 +146,30 @@ def _results(study) -> Section:
             s.paragraph("Дополнительные положения в записке пронумерованы: " + ", ".join(extra) + ".")
         flags = [(n[3:], fl) for n, fl in study.flags.items()]
         if flags:
-            rows = [{"g": "(" + g.replace("_", ", ") + ")", "min": math.degrees(fl["min"]), "low": "да" if fl["low"] else "нет"} for g, fl in flags]
+            rows = [{"g": "(" + g.replace("_", ", ") + ")", "min": math.degrees(fl["min"]),
+                     "where": Markup(where_text(study, "kinematics", fl["q_min"])),
+                     "low": "ниже 40° — мал" if fl["low"] else "не ниже 40°"} for g, fl in flags]
             s.table("Наименьшие углы передачи по группам", [
                 Column("g", "Группа"), Column("min", "μ<sub>min</sub>", "град", digits=1),
-                Column("low", "Меньше 40°")], pd.DataFrame(rows), id="key-mu")
+                Column("where", "Где (положение)", fmt=Markup), Column("low", "Оценка")],
+                pd.DataFrame(rows), id="key-mu")
+        out = {k: v for k, v in study.scalars.items() if entry("kinematics", k) is not None}
+        for rows in result_rows(study, "kinematics", out).values():
+            s.table("Выходное звено", RESULT_COLS[:-1], pd.DataFrame(rows), id="key-output")
     for kind in KINDS:
         if kind.name not in study.tasks():
             continue
-        a = study.analysis(kind.name)
-        df = _scalar_rows(a.scalars)
-        if len(df):
-            s = sec.subsection(kind.title, f"key-{kind.name}")
-            s.table(f"Ключевые величины: {kind.title.lower()}", [Column("key", "Величина (имя в программе)"),
-                                                                 Column("value", "Значение")],
-                    df, id=f"key-tab-{kind.name}")
+        groups = result_rows(study, kind.name, study.analysis(kind.name).scalars)
+        if not groups:
+            continue
+        s = sec.subsection(kind.title, f"key-{kind.name}")
+        said = groups.pop(SAID, [])
+        if said:
+            s.paragraph(Markup(" ").join(Markup("{}: {}.").format(r["name"], r["value"]) for r in said))
+        for n, (group, rows) in enumerate(groups.items()):
+            cols = RESULT_COLS if any(r["where"] for r in rows) else RESULT_COLS[:-1]
+            caption = f"{kind.title}: {group[0].lower() + group[1:]}" if group else kind.title
+            s.table(caption, cols, pd.DataFrame(rows), id=f"key-tab-{kind.name}" + (f"-{n}" if n else ""))
     return sec
 
 
@@ -124,8 +191,9 @@ def _groups_text(rows: list[dict]) -> str:
     return "; ".join(parts)
 
 
-def _verdict(x: float, tol: float) -> str:
-    return "выполнена" if x <= tol else "НЕ выполнена"
+def _verdict(x: float, tol: float) -> Markup:
+    """«выполнена» / «НЕ выполнена», never hyphenated in a narrow column."""
+    return Markup('<span class="nowrap">{}</span>').format("выполнена" if x <= tol else "НЕ выполнена")
 
 
 def loop_closure(study) -> float:
@@ -172,14 +240,47 @@ def _checks(study) -> Section:
             rows.append({"what": "Баланс энергии за цикл: A<sub>д</sub> + A<sub>с</sub> = 0",
                          "value": fmt(abs(A) / scale, sig=2), "verdict": _verdict(abs(A) / scale, 1e-9)})
         dl = abs(sc["delta_achieved"] - sc["delta"]) / sc["delta"]
-        rows.append({"what": "Коэффициент неравномерности при точном движении и заданный",
-                     "value": fmt(dl, sig=2), "verdict": "—"})
+        exact = sc.get("method") == "exact"
+        rows.append({"what": Markup("Коэффициент неравномерности δ при точном движении с принятым "
+                                    "<i>J</i><sub>I</sub> и заданный (относительное отличие)"),
+                     "value": fmt(dl, sig=2),
+                     "verdict": _verdict(dl, 1e-6) if exact else "метод приближённый"})
+    rows += _second_formulations(study)
     if rows:
         df = pd.DataFrame(rows)
         sec.table("Независимые проверки", CHECK_COLS, df, id="key-checks-tab")
     else:
         sec.paragraph("Проверок для этого варианта нет.")
     return sec
+
+
+def _second_formulations(study) -> list[dict]:
+    """Checks of the tasks without a linkage by a second formulation of the same result: ε_α by
+    the angles of the active profile and by the length of the active line of action (Фролов [3]);
+    the train's ratio by Willis's formula and by the velocities at the poles of the meshes; the
+    synthesised linkage's K and stroke measured on the mechanism against the given ones."""
+    tasks, rows = study.tasks(), []
+
+    def rel(a, b):
+        return abs(float(a) - float(b)) / max(abs(float(b)), 1e-300)
+    if "gears" in tasks:
+        sc = study.gears.scalars
+        if "gears_eps_alpha_line" in sc:
+            d = rel(sc["gears_eps_alpha_line"], sc["gears_eps_alpha"])
+            rows.append({"what": Markup("Коэффициент перекрытия ε<sub>α</sub> по углам профиля и по длине активной "
+                                        "линии зацепления"), "value": fmt(d, sig=2), "verdict": _verdict(d, 1e-9)})
+    if "train" in tasks:
+        d = float(study.train.scalars["train_u_discrepancy_pct"])
+        rows.append({"what": "Передаточное отношение по формуле Виллиса и по скоростям в полюсах зацеплений",
+                     "value": f"{fmt(d, sig=2)} %", "verdict": _verdict(abs(d), 1e-7)})
+    if "synthesis" in tasks:
+        sc = study.synthesis.scalars
+        if "check_K" in sc and "syn_K" in sc:
+            d = max(rel(sc["check_K"], sc["syn_K"]), rel(sc["check_stroke"], study.synthesis.target_stroke()))
+            rows.append({"what": "Синтез: коэффициент K и ход (размах) выходного звена, измеренные на механизме, "
+                                 "и заданные",
+                         "value": fmt(d, sig=2), "verdict": _verdict(d, 1e-8)})
+    return rows
 
 
 def _printed(study) -> Section | None:
@@ -241,10 +342,11 @@ def _errors(study) -> Section | None:
     the worksheet's formula for the carrier's largest load)."""
     items = []
     if "dynamics" in study.tasks() and study.dynamics.settings.printed:
+        from .sections.dynamics import _as_printed
         pr = study.dynamics.printed
         for _, r in pr[~pr["within"]].iterrows():
-            items.append(f"{r['title'] or r['key']}: напечатано {r['printed']}, точное значение "
-                         f"{fmt(r['computed'], sig=6)}.")
+            items.append(f"{r['title'] or r['key']}: напечатано {_as_printed(r['printed'], r['value'])}, "
+                         f"точное значение {fmt(r['computed'], sig=6)}.")
     if "forces" in study.tasks():
         f = study.forces
         if f.settings.carrier is not None and "Gmax_carrier_as_printed" in f.table:

@@ -758,10 +758,13 @@ def printed_block(s, pr: pd.DataFrame) -> None:
     df = pr.copy()
     df["name"] = [Markup(t) if t else k for t, k in zip(df["title"], df["key"])]
     df["ok"] = ["да" if w else "нет" for w in df["within"]]
+    # each exact value to two digits more than printed, so the row compares digit by digit
+    df["exact"] = [fmt(c, sig=_printed_sig(t) + 2, exp_from=1e9) for t, c in zip(df["printed"], df["computed"])]
+    df["rel"] = [fmt(100 * (v - c) / c, sig=2) if c else "—" for v, c in zip(df["value"], df["computed"])]
     df["printed"] = [_as_printed(t, v) for t, v in zip(df["printed"], df["value"])]
     s.table("Сравнение с напечатанными значениями", [
         Column("name", "Величина", fmt=Markup), Column("printed", "Напечатано"),
-        Column("computed", "Вычислено", None, sig=7), Column("diff", "Разность", None, sig=3),
+        Column("exact", "Вычислено", fmt=str), Column("rel", "Отклонение", "%", fmt=str),
         Column("ok", "Совпадает")], df, id="tab-dyn-printed",
         highlight_rows=[int(i) for i in np.flatnonzero(~pr["within"].to_numpy())])
     for _, r in bad.iterrows():
@@ -771,11 +774,15 @@ def printed_block(s, pr: pd.DataFrame) -> None:
                            f"{fmt(r['computed'], sig=6)}. ") + Markup(note))
 
 
+def _printed_sig(text: str) -> int:
+    """Significant digits of a number as printed: "-6.1e3" → 2, "0.375" → 3."""
+    mant = str(text).lower().split("e")[0].lstrip("+-−")
+    return len(mant.replace(".", "").replace(",", "").lstrip("0") or "0")
+
+
 def _as_printed(text: str, value: float) -> str:
     """A printed number in the report's style with its printed digits: "-6.1e3" → "−6,1·10³"."""
-    mant = text.lower().split("e")[0].lstrip("+-−")
-    digits = mant.replace(".", "").replace(",", "").lstrip("0") or "0"
-    return fmt(value, sig=len(digits), exp_from=1e3 if "e" in text.lower() else 1e6)
+    return fmt(value, sig=_printed_sig(text), exp_from=1e3 if "e" in str(text).lower() else 1e6)
 
 
 def _dimensions(sec, study, d) -> None:
