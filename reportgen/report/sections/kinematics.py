@@ -819,7 +819,7 @@ def _short_reads_text(tab: pd.DataFrame, drawing) -> str:
     # a str like the paragraph it ends (Markup + str would escape the paragraph's own markup)
     return str(Markup(" Больше допустимого расхождение ") + Markup("; ").join(parts)
                + Markup(" — ошибка построения по векторам, отложенным с точностью {}&nbsp;мм, для короткого отрезка "
-                        "велика в процентах, а масштаб плана выбран по размерам листа (его наибольший отрезок {} — "
+                        "велика в процентах, а масштаб плана выбран по размерам страницы (его наибольший отрезок {} — "
                         "{}&nbsp;мм): точность {} ограничена чертежом.").format(
                    fmt(READ_MM, digits=1), _vec_name(longest.name), fmt(longest.length / drawing.mu, digits=0),
                    "этого значения" if len(parts) == 1 else "этих значений"))

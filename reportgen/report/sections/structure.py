@@ -28,12 +28,17 @@ def turns_fully(study, link: str) -> bool:
     multiple of 2π (a crank is a link hinged to the frame that makes a full turn, Артоболевский [1],
     гл. 1): the driven crank of a double-crank linkage, Whitworth's rotating slotted lever.  The
     structure alone (mechanism layer, before any position is solved) calls every link hinged to
-    the frame other than the input a rocker."""
+    the frame other than the input a rocker. Read from the report positions (the kinematics the
+    section needs anyway, never the cycle curves): a periodic input's positions cover one turn,
+    so the steps of the link's angle between neighbouring positions, each taken in (−π, π] and
+    closed from the last position back to the first, add up to a multiple of 2π."""
+    kin = study.kinematics
     col = f"phi_{link}"
-    if not study.has_cycle or col not in study.cycle:
+    if not study.mechanism.driver.periodic or col not in kin or len(kin) < 3:
         return False
-    p = np.unwrap(study.cycle[col].to_numpy(dtype=float))
-    return bool(abs(p[-1] - p[0]) > 1.9 * np.pi)
+    ang = kin.sort_values("q")[col].to_numpy(dtype=float)
+    steps = np.angle(np.exp(1j * np.diff(np.append(ang, ang[0]))))
+    return bool(abs(steps.sum()) > np.pi)
 
 
 def link_motion(study, link: str) -> str:
