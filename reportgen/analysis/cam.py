@@ -311,9 +311,14 @@ class Cam:
         if len(uniq) > 1 and uniq[-1] > 2 * math.pi - 1e-12:
             uniq.pop()
         out = []
+        # one-sided limits a hair off the break: the kernel finds the piece of a law by comparing the
+        # relative angle x = (φ − φ_start)/β with the knots, and x recomputed from φ = φ_start + x₁β
+        # may land one ulp past an interior knot (the parabolic law's x₁ = 1/2 read as the right
+        # piece from both sides, its middle soft impact lost); 1e-12 rad changes s″ by s‴·1e-12
+        eps = 1e-12
         for p in uniq:
-            right = self._at(p, 1)
-            left = self._at(p if p > 0 else 2 * math.pi, -1)
+            right = self._at(p + eps, 1)
+            left = self._at((p if p > 0 else 2 * math.pi) - eps, -1)
             d1, d2 = right[1] - left[1], right[2] - left[2]
             scale1 = self.h / min(ph.length for ph in self.phases if ph.law)
             if abs(d1) > 1e-9 * scale1:
@@ -896,6 +901,34 @@ class Cam:
 
     def tables(self) -> dict[str, pd.DataFrame]:
         return {"cam": _finite(self.cycle_table(self.grid)), "cam_profile": self.profile_table()}
+
+    @cached_property
+    def required_size(self) -> dict | None:
+        """The least size that keeps the pressure angle within the allowed values when the case gives
+        the sizes (synthesis replaced by a check) and they fail it: a translating follower with its
+        given e — s₀ = max(M₁ − e/tg[ϑ_у], M₂ + e/tg[ϑ_в]) by the exact tangent points, r₀ = √(s₀² + e²);
+        a rocker — the centre nearest to B₀ in the region the rays allow (the synthesis the given
+        a_w, ψ₀ replaced: r₀ least, Артоболевский §25); along the ray of a given ψ₀ alone the admissible
+        a_w may not exist (a longer a_w mends the rise and breaks the return).  None when the sizes are chosen or the check passes."""
+        syn = self.synthesis
+        if syn.governing != "fixed" or self.contact == "flat" or self.flat_rocker:
+            return None
+        t1, t2 = self.theta_max
+        if t1 <= self.rise.allowed + 1e-9 and t2 <= self.ret.allowed + 1e-9:
+            return None
+        if self.follower == "translating":
+            ta, tb = math.tan(self.rise.allowed), math.tan(self.ret.allowed)
+            e = syn.e
+            f1 = lambda p, sd: self._at(p, sd)[1] / ta - self._at(p, sd)[0]          # noqa: E731
+            d1 = lambda p, sd: self._at(p, sd)[2] / ta - self._at(p, sd)[1]          # noqa: E731
+            f2 = lambda p, sd: -self._at(p, sd)[1] / tb - self._at(p, sd)[0]         # noqa: E731
+            d2 = lambda p, sd: -self._at(p, sd)[2] / tb - self._at(p, sd)[1]         # noqa: E731
+            s0 = max(self.phase_extreme(self.rise, f1, d1)[0] - e / ta, self.phase_extreme(self.ret, f2, d2)[0] + e / tb)
+            return {"r0": math.hypot(s0, e), "e": e}
+        L = self.arm
+        O = self.synth_generic(np.array([L, 0.0]), L)
+        return {"a_w": float(np.hypot(*O)), "psi0": math.atan2(-O[1], O[0]),
+                "r0": float(np.hypot(*(np.array([L, 0.0]) - O)))}
 
     @cached_property
     def theta_max(self) -> tuple[float, float]:

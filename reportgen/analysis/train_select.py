@@ -167,29 +167,35 @@ def poly_eval(p: Poly, z: dict):
     return acc
 
 
-def poly_tex(p: Poly, order: list[str]) -> str:
+def poly_tex(p: Poly, order: list[str], z: dict | None = None) -> str:
     """«z_{1} z_{2'} + z_{2} z_{3}»: terms by the wheels' order, positive ones first; a monomial
-    factor common to all terms of a sum is written in front: «z_{2} z_{4} (z_{1} + z_{3})»."""
+    factor common to all terms of a sum is written in front: «z_{2} z_{4} (z_{1} + z_{3})».  With
+    ``z`` the numbers of teeth stand for the letters («70 · 49 − 50 · 71»): the formula with
+    numbers substituted."""
     common = {}
     if len(p) > 1:
         names = set.intersection(*(set(dict(m)) for m in p))
         common = {w: min(dict(m)[w] for m in p) for w in names}
     if common:
         rest = {tuple((w, e - common.get(w, 0)) for w, e in m if e - common.get(w, 0)): c for m, c in p.items()}
-        return _terms({tuple(sorted(common.items())): 1}, order) + r"\,(" + _terms(rest, order) + ")"
-    return _terms(p, order)
+        return (_terms({tuple(sorted(common.items())): 1}, order, z) + (r" \cdot (" if z else r"\,(")
+                + _terms(rest, order, z) + ")")
+    return _terms(p, order, z)
 
 
-def _terms(p: Poly, order: list[str]) -> str:
+def _terms(p: Poly, order: list[str], z: dict | None = None) -> str:
     def key(item):
         mono, c = item
         return (c < 0, [order.index(w) for w, _ in sorted(mono, key=lambda we: order.index(we[0]))])
     out = ""
     for mono, c in sorted(p.items(), key=key):
-        body = r"\,".join(rf"z_{{{w}}}" + (f"^{{{e}}}" if e > 1 else "")
-                          for w, e in sorted(mono, key=lambda we: order.index(we[0])))
+        mono = sorted(mono, key=lambda we: order.index(we[0]))
+        if z is None:
+            body = r"\,".join(rf"z_{{{w}}}" + (f"^{{{e}}}" if e > 1 else "") for w, e in mono)
+        else:
+            body = r" \cdot ".join(f"{z[w]}" + (f"^{{{e}}}" if e > 1 else "") for w, e in mono)
         k = abs(c)
-        txt = (str(k) if k != 1 or not body else "") + body
+        txt = (str(k) if k != 1 or not body else "") + (r" \cdot " if z is not None and k != 1 and body else "") + body
         out += (" - " if c < 0 else (" + " if out else "")) + txt
     return out or "0"
 

@@ -24,6 +24,7 @@ from .russian import genitive, param_parts, param_symbol, param_title, plural
 from .safety import validate_report
 from .sections import kinematics as sec_kin
 from .sections import structure as sec_struct
+from .sections import synthesis
 from .sections.common import as_written, swing_text, value_with_unit
 
 
@@ -229,7 +230,8 @@ def _given_parameters(study) -> list:
         text = given if isinstance(given, str) else ""
         if text and not _literal(text):     # computed from other parameters: 4 significant digits
             v = float(f"{v:.4g}")
-        rows.append({"title": title or _link_length_title(study, name) or param_title(name, unit),
+        rows.append({"title": (title or _link_length_title(study, name) or synthesis.input_title(study, name)
+                               or param_title(name, unit)),
                      "name": symbol or param_symbol(name), "value": v,
                      "unit": unit, "given": text[:60] if _imperial(text) else ""})
     if rows:

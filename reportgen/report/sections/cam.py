@@ -12,8 +12,8 @@ from ...analysis.cam import LAWS
 from ...core import cams as K
 from ...scenes.cam import (FlatRockerSize, LawDiagrams, PhasePortrait, PressureAngleGraph, ProfileDrawing,
                            follower_positions)
-from ...style.numbers import fmt, tex_num
-from .common import as_written
+from ...style.numbers import fmt, fmt_given, tex_num
+from .common import as_written, tex_given
 from ..russian import plural
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
@@ -47,21 +47,31 @@ def given(study) -> str:
     kind = "поступательным" if cam.follower == "translating" else "качающимся"
     contact = {"knife": "острием", "roller": "роликом", "flat": "плоской тарелкой"}[cam.contact]
     stroke = (f"ход толкателя h&nbsp;=&nbsp;{as_written(round(cam.h * 1000, 6))}&nbsp;мм" if cam.follower == "translating"
-              else f"угол размаха коромысла ψ<sub>max</sub>&nbsp;=&nbsp;{_deg(cam.h)}, длина {_mm(cam.arm)}")
+              else f"угол размаха коромысла ψ<sub>max</sub>&nbsp;=&nbsp;{_dg(cam.h)}, длина {_mg(cam.arm)}")
     names = {K.RISE: "удаления", K.DWELL_HIGH: "дальнего стояния", K.RETURN: "возвращения",
              K.DWELL_LOW: "ближнего стояния"}
-    angles = ", ".join(f"{names[ph.kind]} {_deg(ph.length, 0)}" for ph in cam.phases)
+    angles = ", ".join(f"{names[ph.kind]} {_dg(ph.length)}" for ph in cam.phases)
     text = (f"Кулачковый механизм с {kind} толкателем и {contact}: {stroke}; фазовые углы {angles}; "
             f"законы движения толкателя: на удалении — {_law_name(cam.rise)}, на возвращении — {_law_name(cam.ret)}")
     if cam.contact != "flat":
-        text += (f"; допустимые углы давления {_deg(cam.rise.allowed, 0)} и {_deg(cam.ret.allowed, 0)}")
+        text += (f"; допустимые углы давления {_dg(cam.rise.allowed)} и {_dg(cam.ret.allowed)}")
     if cam.omega is not None:
-        text += f"; частота вращения кулачка {fmt(cam.omega * 30 / math.pi, sig=4)}&nbsp;об/мин"
+        text += f"; частота вращения кулачка {fmt_given(cam.omega * 30 / math.pi)}&nbsp;об/мин"
     return text + "."
 
 
 def _mm(x, sig=4) -> str:
     return fmt(x * 1000, sig=sig, unit="мм")
+
+
+def _mg(x) -> str:
+    """A given length as the case writes it, in mm (18 мм, not 18,00 мм)."""
+    return as_written(round(x * 1000, 6)) + "&nbsp;мм"
+
+
+def _dg(x) -> str:
+    """A given angle as the case writes it (100°, 22,5°; not 100,00°, nor 22,5° rounded to 22°)."""
+    return as_written(round(math.degrees(x), 6)) + "°"
 
 
 def _deg(x, digits=2) -> str:
@@ -92,9 +102,9 @@ def build(study) -> Section:
 def _law_name(ph) -> str:
     name = LAWS[ph.law][0]
     if ph.law in ("sine", "parabolic") and ph.nu != 1:
-        name += f", несимметричный (ν&nbsp;=&nbsp;{fmt(ph.nu, sig=4)})"
+        name += f", несимметричный (ν&nbsp;=&nbsp;{as_written(ph.nu)})"
     if ph.law == "trapezoidal":
-        name += f" (доля участков нарастания {fmt(ph.ramp, sig=3)})"
+        name += f" (доля участков нарастания {as_written(ph.ramp)})"
     return name
 
 
@@ -108,38 +118,38 @@ def _assignment(sec, cam) -> None:
                 f"{ref('tab-cam-data')}.")
     rows = []
     if cam.follower == "translating":
-        rows.append(("Ход толкателя", "h", _mm(cam.h)))
+        rows.append(("Ход толкателя", "h", _mg(cam.h)))
     else:
-        rows.append(("Угол размаха коромысла", "ψ<sub>max</sub>", _deg(cam.h)))
+        rows.append(("Угол размаха коромысла", "ψ<sub>max</sub>", _dg(cam.h)))
         if cam.flat_rocker:
-            rows.append(("Смещение плоскости тарелки от оси качания", "d", _mm(cam.face_offset)))
+            rows.append(("Смещение плоскости тарелки от оси качания", "d", _mg(cam.face_offset)))
         else:
-            rows.append(("Длина коромысла", "l", _mm(cam.arm)))
+            rows.append(("Длина коромысла", "l", _mg(cam.arm)))
     if cam.omega is not None:
-        rows.append(("Угловая скорость кулачка", "ω", fmt(cam.omega, sig=4, unit="рад/с")
-                     + f" ({fmt(cam.omega * 30 / math.pi, sig=4)} об/мин)"))
+        rows.append(("Угловая скорость кулачка", "ω", f"{fmt_given(cam.omega)}&nbsp;рад/с"
+                     + f" ({fmt_given(cam.omega * 30 / math.pi)}&nbsp;об/мин)"))
     names = {K.RISE: ("Угол удаления", "φ<sub>у</sub>"), K.DWELL_HIGH: ("Угол дальнего стояния", "φ<sub>дс</sub>"),
              K.RETURN: ("Угол возвращения", "φ<sub>в</sub>"), K.DWELL_LOW: ("Угол ближнего стояния", "φ<sub>бс</sub>")}
     for ph in cam.phases:
-        rows.append((*names[ph.kind], _deg(ph.length)))
+        rows.append((*names[ph.kind], _dg(ph.length)))
     rows.append(("Закон движения на удалении", "—", _law_name(cam.rise)))
     rows.append(("Закон движения на возвращении", "—", _law_name(cam.ret)))
     if cam.contact != "flat" or (cam.flat_rocker and cam.face_offset > 0):
         for ph, nm, sym in ((cam.rise, "удалении", "у"), (cam.ret, "возвращении", "в")):
             if ph.allowed > 0:
-                rows.append((f"Допустимый угол давления на {nm}", f"[ϑ<sub>{sym}</sub>]", _deg(ph.allowed)))
+                rows.append((f"Допустимый угол давления на {nm}", f"[ϑ<sub>{sym}</sub>]", _dg(ph.allowed)))
     if cam.contact == "flat":
-        rows.append(("Наименьший радиус кривизны профиля", "ρ<sub>min</sub>", _mm(cam.rho_min)))
+        rows.append(("Наименьший радиус кривизны профиля", "ρ<sub>min</sub>", _mg(cam.rho_min)))
     if cam.r0_fixed is not None:
-        rows.append(("Заданный радиус основной шайбы", "r<sub>0</sub>", _mm(cam.r0_fixed)))
+        rows.append(("Заданный радиус основной шайбы", "r<sub>0</sub>", _mg(cam.r0_fixed)))
     if cam.e_fixed is not None:
-        rows.append(("Заданный эксцентриситет", "e", _mm(cam.e_fixed)))
+        rows.append(("Заданный эксцентриситет", "e", _mg(cam.e_fixed)))
     if cam.aw_fixed is not None:
-        rows.append(("Заданное межосевое расстояние", "a<sub>w</sub>", _mm(cam.aw_fixed)))
+        rows.append(("Заданное межосевое расстояние", "a<sub>w</sub>", _mg(cam.aw_fixed)))
     if cam.psi0_fixed is not None:
-        rows.append(("Заданный начальный угол коромысла", "ψ<sub>0</sub>", _deg(cam.psi0_fixed)))
+        rows.append(("Заданный начальный угол коромысла", "ψ<sub>0</sub>", _dg(cam.psi0_fixed)))
     if cam.roller_fixed is not None:
-        rows.append(("Радиус ролика", "r<sub>р</sub>", _mm(cam.roller_fixed)))
+        rows.append(("Радиус ролика", "r<sub>р</sub>", _mg(cam.roller_fixed)))
     s.table("Исходные данные для синтеза кулачкового механизма",
             [Column("a", "Величина"), Column("b", "Обозначение", fmt=Markup), Column("c", "Значение", fmt=Markup)],
             pd.DataFrame(rows, columns=["a", "b", "c"]), id="tab-cam-data")
@@ -170,7 +180,7 @@ def _laws(sec, study, cam) -> None:
             txt += f": {_im(NORM_TEX[ph.law])}"
         elif ph.law in ("sine", "parabolic"):
             txt += (f"; точка перегиба при {_im(X1_TEX)}&nbsp;=&nbsp;{fmt(ph.x1, sig=4)}")
-        s.paragraph(txt + f". Угол фазы β&nbsp;=&nbsp;{_deg(beta)}&nbsp;=&nbsp;{fmt(beta, sig=5)}&nbsp;рад. "
+        s.paragraph(txt + f". Угол фазы β&nbsp;=&nbsp;{_dg(beta)}&nbsp;=&nbsp;{fmt(beta, sig=5)}&nbsp;рад. "
                     "Наибольшие значения аналогов:")
         u = r"\ \text{мм}" if not rocker else ""
         fs = [Formula(rf"|{S}^{{\prime}}|_{{max}}", rf"{_t(hh)}{u} \cdot {_t(s1 * beta / hh, sig=5)} / {_t(beta, sig=5)}",
@@ -265,10 +275,13 @@ def _size(sec, study, cam) -> None:
             v = cam._at(p)
             s.paragraph(f"Касание на {'удалении' if nm == 'у' else 'возвращении'}: φ&nbsp;=&nbsp;{_deg(p, 3)}, "
                         f"s&nbsp;=&nbsp;{_mm(v[0])}, s′&nbsp;=&nbsp;{_mm(v[1])}, s″&nbsp;=&nbsp;{_mm(v[2])}.")
-        gov = {"rise": "луч удаления", "return": "луч возвращения",
-               "both": "точка пересечения лучей удаления и возвращения", "fixed": "заданные размеры"}[syn.governing]
-        s.paragraph(f"Наименьший радиус r<sub>0</sub> даёт ближайшая к точке B<sub>0</sub> точка допустимой области "
-                    f"({gov}), рисунок {ref('fig-cam-portrait')}:")
+        if syn.governing == "fixed":
+            s.paragraph(_fixed_sizes(cam, "радиус основной шайбы и эксцентриситет"))
+        else:
+            gov = {"rise": "луч удаления", "return": "луч возвращения",
+                   "both": "точка пересечения лучей удаления и возвращения"}[syn.governing]
+            s.paragraph(f"Наименьший радиус r<sub>0</sub> даёт ближайшая к точке B<sub>0</sub> точка допустимой "
+                        f"области ({gov}), рисунок {ref('fig-cam-portrait')}:")
         s.formula(Formula("e", None, _t(syn.e * 1000, unit="мм")),
                   Formula("s_0", None, _t(syn.s0 * 1000, unit="мм")),
                   Formula(r"r_0 = \sqrt{s_0^2 + e^2}", rf"\sqrt{{{_t(syn.s0 * 1000)}^2 + {_t(syn.e * 1000)}^2}}",
@@ -285,14 +298,22 @@ def _size(sec, study, cam) -> None:
                           r"{\overline{OB}\cdot\overline{u}} \le \operatorname{tg}[\vartheta]",
                           where=[(r"\overline{r}, \overline{u}", "единичные векторы вдоль коромысла и по скорости точки B"),
                                  ("l", "длина коромысла, мм")], label="eq-cam-theta-rocker"))
-        s.paragraph("Определяющие лучи касаются портрета; точки касания найдены из условия стационарности "
-                    f"ограничения по углу поворота кулачка, центр O выбран как ближайшая к B<sub>0</sub> точка "
-                    f"допустимой области (рисунок {ref('fig-cam-portrait')}):")
-        s.formula(Formula("a_w", None, _t(syn.a_w * 1000, unit="мм")),
-                  Formula(r"\psi_0", None, _t(math.degrees(syn.psi0), sig=5, unit="°")),
+        fixed = syn.governing == "fixed"
+        if fixed:
+            s.paragraph("Определяющие лучи касаются портрета; точки касания найдены из условия стационарности "
+                        "ограничения по углу поворота кулачка. "
+                        + _fixed_sizes(cam, "межосевое расстояние и начальный угол коромысла"))
+        else:
+            s.paragraph("Определяющие лучи касаются портрета; точки касания найдены из условия стационарности "
+                        f"ограничения по углу поворота кулачка, центр O выбран как ближайшая к B<sub>0</sub> точка "
+                        f"допустимой области (рисунок {ref('fig-cam-portrait')}):")
+        aw = tex_given(round(syn.a_w * 1000, 6)) if fixed else _t(syn.a_w * 1000)
+        p0 = tex_given(round(math.degrees(syn.psi0), 6)) if fixed else _t(math.degrees(syn.psi0), sig=5)
+        l_ = tex_given(round(cam.arm * 1000, 6))
+        s.formula(*([] if fixed else [Formula("a_w", None, _t(syn.a_w * 1000, unit="мм")),
+                                      Formula(r"\psi_0", None, _t(math.degrees(syn.psi0), sig=5, unit="°"))]),
                   Formula(r"r_0 = \sqrt{a_w^2 + l^2 - 2 a_w l \cos\psi_0}",
-                          rf"\sqrt{{{_t(syn.a_w * 1000)}^2 + {_t(cam.arm * 1000)}^2 - 2 \cdot {_t(syn.a_w * 1000)}"
-                          rf" \cdot {_t(cam.arm * 1000)} \cos {_t(math.degrees(syn.psi0), sig=5)}^\circ}}",
+                          rf"\sqrt{{{aw}^2 + {l_}^2 - 2 \cdot {aw} \cdot {l_} \cos {p0}^\circ}}",
                           _t(syn.r0 * 1000, unit="мм")))
         s.paragraph(f"Точки касания: на удалении φ&nbsp;=&nbsp;{_deg(syn.phi_rise, 3)}, на возвращении "
                     f"φ&nbsp;=&nbsp;{_deg(syn.phi_return, 3)}.")
@@ -305,6 +326,30 @@ def _size(sec, study, cam) -> None:
     fig = sc.draw(study)
     s.figure(f"Фазовый портрет, определяющие лучи и область допустимого расположения центра кулачка "
              f"(μ&nbsp;=&nbsp;{fmt(fig.mu * 1000, sig=3)}&nbsp;мм/мм)", fig.svg, fig.width_mm, id="fig-cam-portrait")
+
+
+def _fixed_sizes(cam, what: str) -> str:
+    """The given sizes of a cam checked, not chosen: where their centre O lies with respect to the
+    region the rays allow (the pressure-angle check of the next subsection says by how much)."""
+    inside = cam.required_size is None
+    return (f"Размеры заданы ({what}), поэтому синтез заменяется проверкой: центр O, построенный по ним "
+            f"(рисунок {ref('fig-cam-portrait')}), лежит "
+            + ("внутри допустимой области." if inside else "<b>вне допустимой области</b> — угол давления "
+               "превысит допустимый (подраздел " + ref("sec-cam-theta") + ")."))
+
+
+def _required_words(cam) -> str:
+    """What the sizes must become when the given ones fail the pressure-angle check, with numbers."""
+    req = cam.required_size
+    if req is None:
+        return "размеры механизма нужно увеличить"
+    if cam.follower == "translating":
+        return (f"при заданном e&nbsp;=&nbsp;{_mm(req['e'])} радиус основной шайбы нужно увеличить до "
+                f"r<sub>0</sub>&nbsp;≥&nbsp;{_mm(req['r0'])} (заданный {_mg(cam.synthesis.r0)})")
+    return (f"нужно принять наименьшие по допустимым углам давления размеры a<sub>w</sub>&nbsp;=&nbsp;"
+            f"{_mm(req['a_w'])}, ψ<sub>0</sub>&nbsp;=&nbsp;{_deg(req['psi0'])}, r<sub>0</sub>&nbsp;=&nbsp;{_mm(req['r0'])} "
+            f"вместо заданных {_mg(cam.synthesis.a_w)}, {_dg(cam.synthesis.psi0)} (r<sub>0</sub>&nbsp;=&nbsp;"
+            f"{_mm(cam.synthesis.r0)})")
 
 
 def _q_tex(cam) -> str:
@@ -436,7 +481,7 @@ def _pressure(sec, study, cam) -> None:
                 f"на возвращении |ϑ|<sub>max</sub>&nbsp;=&nbsp;{_deg(t2)} при [ϑ<sub>в</sub>]&nbsp;=&nbsp;{_deg(cam.ret.allowed)}. "
                 + ("Угол давления нигде не превышает допустимого."
                    if t1 <= cam.rise.allowed + 1e-9 and t2 <= cam.ret.allowed + 1e-9
-                   else "<b>Угол давления превышает допустимый</b>: размеры механизма нужно увеличить."))
+                   else f"<b>Угол давления превышает допустимый</b>: {_required_words(cam)}."))
     fig = PressureAngleGraph().draw(study)
     s.figure("Угол давления за цикл и допустимые значения", fig.svg, fig.width_mm, id="fig-cam-theta")
 
@@ -539,11 +584,15 @@ def conclusion_lines(study) -> list[str]:
                    f"(по выпуклости профиля требуется не менее {_mm(cam.flat_min[2])}), ширина тарелки не менее "
                    f"{_mm(cam.scalars['cam_face_width'])}.")
     elif cam.follower == "translating":
-        out.append(f"Кулачковый механизм: по допустимым углам давления r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}, "
-                   f"e&nbsp;=&nbsp;{_mm(syn.e)}; {_theta_phrase(cam)}.")
+        fixed = syn.governing == "fixed"
+        out.append(("Кулачковый механизм: заданы r<sub>0</sub>&nbsp;=&nbsp;" + _mg(syn.r0) if fixed else
+                    f"Кулачковый механизм: по допустимым углам давления r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}")
+                   + f", e&nbsp;=&nbsp;{_mg(syn.e) if fixed else _mm(syn.e)}; {_theta_phrase(cam)}.")
     else:
-        out.append(f"Кулачковый механизм с коромыслом: a<sub>w</sub>&nbsp;=&nbsp;{_mm(syn.a_w)}, "
-                   f"ψ<sub>0</sub>&nbsp;=&nbsp;{_deg(syn.psi0)}, r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}; "
+        fixed = syn.governing == "fixed"
+        out.append(f"Кулачковый механизм с коромыслом: {'заданы ' if fixed else ''}a<sub>w</sub>&nbsp;=&nbsp;"
+                   f"{_mg(syn.a_w) if fixed else _mm(syn.a_w)}, ψ<sub>0</sub>&nbsp;=&nbsp;"
+                   f"{_dg(syn.psi0) if fixed else _deg(syn.psi0)}, r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}; "
                    f"{_theta_phrase(cam)}.")
     if cam.contact == "roller":
         ok = cam.roller <= 0.7 * cam.rho_min_centre + 1e-12
@@ -567,7 +616,7 @@ def _theta_phrase(cam) -> str:
     ok = t1 <= a1 + 1e-9 and t2 <= a2 + 1e-9
     return (f"наибольший угол давления {_deg(t1)} на удалении и {_deg(t2)} на возвращении при допустимых "
             f"{_deg(a1)} и {_deg(a2)} — " + ("не превышает допустимых" if ok else
-                                              "<b>превышает допустимый</b>: размеры нужно увеличить"))
+                                              f"<b>превышает допустимый</b>: {_required_words(cam)}"))
 
 
 def _impacts_sentence(cam) -> str:

@@ -138,6 +138,11 @@ def as_written(x) -> str:
                exp_from=1e10 if "e" not in t else 1e6)
 
 
+def tex_given(x) -> str:
+    """A given value as written, for a TeX formula (the decimal comma braced): 3.5 → «3{,}5»."""
+    return as_written(x).replace(",", "{,}")
+
+
 def pair_label(point: str, mark: str, a: str, b: str, clash: bool) -> str:
     """The designation of a pair in the note's tables: «D (П)» by its point and kind mark; where
     two pairs would read the same (a stone and a slider at one point D), the point carries the

@@ -16,8 +16,8 @@ from ...analysis.gears import admissible
 from ...core import gears as G
 from ...scenes import gears as S
 from ...scenes.draw import gost_ratio, mu_text
-from ...style.numbers import fmt, tex_num
-from .common import as_written
+from ...style.numbers import fmt, fmt_given, tex_num
+from .common import as_written, tex_given
 from ..document import Column, Formula, Section, ref
 
 NEEDS = ("gears",)
@@ -33,6 +33,36 @@ def _t(x, sig=5, digits=None) -> str:
     return tex_num(float(x), sig=sig, digits=digits)
 
 
+def _w(x) -> str:
+    """A datum of the case (module, h_a*) in a formula as written: 3,5, not 3,5000."""
+    return tex_given(x)
+
+
+def _adeg(rad) -> str:
+    """The given profile angle α in a formula as written (25°, not 25,0000°)."""
+    return tex_given(round(math.degrees(float(rad)), 6)) + r"^{\circ}"
+
+
+# ГОСТ 13755-81: the standard basic rack of involute gears
+GOST_RACK = {"alpha": 20.0, "ha": 1.0, "c": 0.25, "rho_f": 0.38}
+
+
+def contour_words(rack) -> str:
+    """The basic rack in words: «исходный контур по ГОСТ 13755-81 (α = 20°, …)» when it is the
+    standard one, otherwise its data and what departs from the standard (α = 25° is not ГОСТ 13755-81's
+    contour, whose α = 20°, h_a* = 1, c* = 0,25, ρ_f* = 0,38)."""
+    vals = {"alpha": round(math.degrees(rack.alpha), 6), "ha": rack.ha, "c": rack.c, "rho_f": rack.rho_f}
+    sym = {"alpha": "α", "ha": "<i>h</i><sub>a</sub><sup>*</sup>", "c": "<i>c</i><sup>*</sup>",
+           "rho_f": "ρ<sub>f</sub><sup>*</sup>"}
+    unit = {"alpha": "°"}
+    data = ", ".join(f"{sym[k]}&nbsp;=&nbsp;{as_written(v)}{unit.get(k, '')}" for k, v in vals.items())
+    off = [k for k, v in vals.items() if abs(v - GOST_RACK[k]) > 1e-9]
+    if not off:
+        return f"исходным контуром по ГОСТ&nbsp;13755-81: {data}"
+    std = ", ".join(f"{sym[k]}&nbsp;=&nbsp;{as_written(GOST_RACK[k])}{unit.get(k, '')}" for k in off)
+    return f"исходным контуром {data} (нестандартный: по ГОСТ&nbsp;13755-81 {std})"
+
+
 def _deg(rad) -> str:
     return tex_num(math.degrees(float(rad)), digits=4) + r"^{\circ}"
 
@@ -45,9 +75,9 @@ def given(study) -> str:
     if gr.z2:
         text += (f", <i>z</i><sub>2</sub>&nbsp;=&nbsp;{gr.z2} (передаточное отношение "
                  f"<i>u</i><sub>12</sub>&nbsp;=&nbsp;{as_written(round(gr.z2 / gr.z1, 4))})")
-    text += f"; исходный контур по ГОСТ&nbsp;13755-81 (α&nbsp;=&nbsp;{as_written(round(math.degrees(gr.rack.alpha), 6))}°)"
+    text += "; колёса нарезаются инструментом реечного типа с " + contour_words(gr.rack)
     if gr.omega1 is not None:
-        text += f"; частота вращения шестерни {fmt(gr.omega1 * 30 / math.pi, sig=4)}&nbsp;об/мин"
+        text += f"; частота вращения шестерни {fmt_given(gr.omega1 * 30 / math.pi)}&nbsp;об/мин"
     return text + "."
 
 
@@ -56,10 +86,8 @@ def build(study) -> Section:
     sec = Section("Синтез эвольвентного зубчатого зацепления", "sec-gears")
     al = gr.rack.alpha
     sec.paragraph(
-        f"Колёса нарезаются инструментом реечного типа с исходным контуром по ГОСТ 13755-81: "
-        f"α = {fmt(math.degrees(al), sig=4)}°, <i>h</i><sub>a</sub><sup>*</sup> = {fmt(gr.rack.ha)}, "
-        f"<i>c</i><sup>*</sup> = {fmt(gr.rack.c)}, ρ<sub>f</sub><sup>*</sup> = {fmt(gr.rack.rho_f)}; "
-        f"модуль <i>m</i> = {fmt(gr.m)} мм. Расчёт геометрии ведётся по ГОСТ 16532-70.")
+        f"Колёса нарезаются инструментом реечного типа с {contour_words(gr.rack)}; "
+        f"модуль <i>m</i>&nbsp;=&nbsp;{as_written(gr.m)}&nbsp;мм. Расчёт геометрии ведётся по ГОСТ 16532-70.")
     if gr.inverse:
         _inverse(sec, gr)
     # the geometry table goes where the geometry is computed (it stood after «Удельное скольжение»)
@@ -94,13 +122,13 @@ def _inverse(sec: Section, gr) -> None:
                     rf"{_t(math.tan(inv['psi']), 5)};\quad \psi_y = {_t(inv['psi'], 5)}\ \text{{рад}}"),
             Formula(r"d_y = \sqrt{\bar s_y^2 + (d_a - 2\bar h_{ay})^2}", None, rf"{_t(inv['d_y'], 7)}\ \text{{мм}}"),
             Formula(r"\cos\alpha_y = \frac{d\cos\alpha}{d_y}",
-                    rf"\frac{{{_t(d)} \cdot \cos {_deg(al)}}}{{{_t(inv['d_y'], 7)}}}",
+                    rf"\frac{{{_t(d)} \cdot \cos {_adeg(al)}}}{{{_t(inv['d_y'], 7)}}}",
                     rf"{_t(math.cos(inv['alpha_y']), 5)};\quad \alpha_y = {_deg(inv['alpha_y'])}"),
             Formula(r"s = d(\psi_y + \mathrm{inv}\,\alpha_y - \mathrm{inv}\,\alpha)",
                     rf"{_t(d)}({_t(inv['psi'], 5)} + {_t(G.inv(inv['alpha_y']), 5)} - {_t(G.inv(al), 5)})",
                     rf"{_t(inv['s_chord'], 5)}\ \text{{мм}}"),
             Formula(r"x = \frac{s - \pi m/2}{2m\,\mathrm{tg}\,\alpha}",
-                    rf"\frac{{{_t(inv['s_chord'], 5)} - \pi \cdot {_t(m)}/2}}{{2 \cdot {_t(m)} \cdot \mathrm{{tg}}\,{_deg(al)}}}",
+                    rf"\frac{{{_t(inv['s_chord'], 5)} - \pi \cdot {_w(m)}/2}}{{2 \cdot {_w(m)} \cdot \mathrm{{tg}}\,{_adeg(al)}}}",
                     rf"{_t(inv['x_chord'], 4)}"))
         pr = gr.printed
         if pr:
@@ -115,8 +143,8 @@ def _inverse(sec: Section, gr) -> None:
                         "совпадают после округления.")
     if "x_span" in inv:
         s.formula(r"x = \frac{W/(m\cos\alpha) - \pi(k - 0{,}5) - z\,\mathrm{inv}\,\alpha}{2\,\mathrm{tg}\,\alpha}",
-                  rf"\frac{{{_t(me.span)}/({_t(m)}\cos{_deg(al)}) - \pi({me.k} - 0{{,}}5) - {me.z} \cdot {_t(G.inv(al), 5)}}}"
-                  rf"{{2\,\mathrm{{tg}}\,{_deg(al)}}}", _t(inv["x_span"], 4))
+                  rf"\frac{{{_t(me.span)}/({_w(m)}\cos{_adeg(al)}) - \pi({me.k} - 0{{,}}5) - {me.z} \cdot {_t(G.inv(al), 5)}}}"
+                  rf"{{2\,\mathrm{{tg}}\,{_adeg(al)}}}", _t(inv["x_span"], 4))
 
 
 def _geometry(sec: Section, gr) -> Section:
@@ -134,18 +162,18 @@ def _geometry(sec: Section, gr) -> Section:
                 rf"\frac{{2({_t(x2, 3)} {pm} {_t(x1, 3)}) \cdot {_t(math.tan(al), 5)}}}{{{z2} {pm} {z1}}} + {_t(G.inv(al), 5)}",
                 _t(G.inv(g.alpha_w), 6)),
         Formula(r"\alpha_w", None, _deg(g.alpha_w)),
-        Formula(rf"a = \frac{{m(z_2 {pm} z_1)}}{{2}}", rf"\frac{{{_t(m)}({z2} {pm} {z1})}}{{2}}", rf"{_t(g.a)}\ \text{{мм}}"),
-        Formula(r"a_w = \frac{a\cos\alpha}{\cos\alpha_w}", rf"\frac{{{_t(g.a)} \cdot \cos{_deg(al)}}}{{\cos{_deg(g.alpha_w)}}}",
+        Formula(rf"a = \frac{{m(z_2 {pm} z_1)}}{{2}}", rf"\frac{{{_w(m)}({z2} {pm} {z1})}}{{2}}", rf"{_t(g.a)}\ \text{{мм}}"),
+        Formula(r"a_w = \frac{a\cos\alpha}{\cos\alpha_w}", rf"\frac{{{_t(g.a)} \cdot \cos{_adeg(al)}}}{{\cos{_deg(g.alpha_w)}}}",
                 rf"{_t(g.a_w, 6)}\ \text{{мм}}"),
         Formula(r"y = \frac{a_w - a}{m}", None, _t(g.y, 4)),
         Formula(r"\Delta y = x_1 + x_2 - y", None, _t(g.dy, 4)) if not gr.internal else
         Formula(r"\Delta y", None, "0"),
         Formula(r"d_{a1} = d_1 + 2(h_a^* + x_1 - \Delta y)m",
-                rf"{_t(g.d1)} + 2({_t(gr.rack.ha)} + {_t(x1, 3)} - {_t(g.dy, 4)}) \cdot {_t(m)}",
+                rf"{_t(g.d1)} + 2({_w(gr.rack.ha)} + {_t(x1, 3)} - {_t(g.dy, 4)}) \cdot {_w(m)}",
                 rf"{_t(g.da1, 6)}\ \text{{мм}}"),
         *([] if gr.internal else [
             Formula(r"d_{a2} = d_2 + 2(h_a^* + x_2 - \Delta y)m",
-                    rf"{_t(g.d2)} + 2({_t(gr.rack.ha)} + {_t(x2, 3)} - {_t(g.dy, 4)}) \cdot {_t(m)}",
+                    rf"{_t(g.d2)} + 2({_w(gr.rack.ha)} + {_t(x2, 3)} - {_t(g.dy, 4)}) \cdot {_w(m)}",
                     rf"{_t(g.da2, 6)}\ \text{{мм}}")]),
     )
     s.paragraph("Толщина зуба на окружности вершин (α<sub>a</sub> — угол профиля на окружности вершин, "
@@ -167,7 +195,7 @@ def _geometry(sec: Section, gr) -> Section:
     for i, sa in ((1, g.sa1), (2, g.sa2)):
         okk = float(sa) >= gr.s_a_min * m
         checks.append(f"заострение: <i>s</i><sub>a{i}</sub> = {fmt(float(sa), sig=4)} мм "
-                      f"{'≥' if okk else '<'} {fmt(gr.s_a_min)}<i>m</i> = {fmt(gr.s_a_min * m, sig=4)} мм")
+                      f"{'≥' if okk else '<'} {as_written(gr.s_a_min)}<i>m</i> = {fmt(gr.s_a_min * m, sig=4)} мм")
     okε = float(g.eps) >= gr.eps_min
     checks.append(f"плавность: ε<sub>α</sub> = {fmt(float(g.eps), sig=4)} {'≥' if okε else '<'} {fmt(gr.eps_min)}")
     interf = float(g.rho_p1) < float(g.rho_l1) or (not gr.internal and float(g.rho_p2) < float(g.rho_l2))
@@ -196,7 +224,7 @@ def _given_centre_distance(s, gr, pm: str) -> None:
                 "зацепления и сумма коэффициентов смещения:")
     s.formula(
         Formula(r"\cos\alpha_w = \frac{a\cos\alpha}{a_w}",
-                rf"\frac{{{_t(a)} \cdot \cos{_deg(al)}}}{{{_t(aw, 6)}}}",
+                rf"\frac{{{_t(a)} \cdot \cos{_adeg(al)}}}{{{_t(aw, 6)}}}",
                 rf"{_t(math.cos(alw), 6)};\quad \alpha_w = {_deg(alw)}"),
         Formula(rf"x_\Sigma = \frac{{(\mathrm{{inv}}\,\alpha_w - \mathrm{{inv}}\,\alpha)(z_2 {pm} z_1)}}{{2\,\mathrm{{tg}}\,\alpha}}",
                 rf"\frac{{({_t(G.inv(alw), 6)} - {_t(G.inv(al), 5)})({z2} {pm} {z1})}}{{2 \cdot {_t(math.tan(al), 5)}}}",
@@ -295,9 +323,12 @@ def _contour(sec: Section, gr) -> None:
              "на сетке с шагом 0,01")
     rule = (f"Смещения выбраны так: из точек {where} внутри блокирующего "
             "контура (нет подрезания, нет интерференции, <i>s</i><sub>a</sub> ≥ "
-            f"{fmt(gr.s_a_min)}<i>m</i>, ε<sub>α</sub> ≥ {fmt(gr.eps_min)}) взята точка с наименьшим "
+            f"{as_written(gr.s_a_min)}<i>m</i>, ε<sub>α</sub> ≥ {fmt(gr.eps_min)}) взята точка с наименьшим "
             "наибольшим удельным скольжением у ножек зубьев, т. е. с выравненным износом "
-            "(λ<sub>1max</sub> ≈ λ<sub>2max</sub>)." if gr.chosen else
+            + ("(λ<sub>1max</sub> ≈ λ<sub>2max</sub>)." if _wear_equal(gr) else
+               "там, где это позволяет контур: изолиния λ<sub>1max</sub> = λ<sub>2max</sub> проходит вне "
+               f"допустимой области, и выбранная точка лежит на границе контура ({_binding(gr)}).")
+            if gr.chosen else
             "Заданная точка (<i>x</i><sub>1</sub>, <i>x</i><sub>2</sub>) показана на блокирующем контуре; она лежит "
             + ("внутри контура: подрезания, интерференции и заострения нет, ε<sub>α</sub> ≥ "
                f"{fmt(gr.eps_min)}." if bool(np.all(admissible(gr.geo, gr.s_a_min, gr.eps_min))) else
@@ -356,6 +387,38 @@ def _rack(sec: Section, gr) -> None:
     s.figure("Станочное зацепление колеса 1 с производящей рейкой", fig, w, id="fig-gears-rack")
 
 
+def _foot_sliding(gr) -> tuple[float, float]:
+    """|λ₁| at B₁ and |λ₂| at B₂: the greatest specific sliding at the feet of the teeth."""
+    t = gr.sliding_table
+    return abs(float(t["lambda1"].iloc[0])), abs(float(t["lambda2"].iloc[-1]))
+
+
+def _wear_equal(gr) -> bool:
+    """The wear of the feet counts as equalised when the greater λ at the feet exceeds the smaller
+    by at most 15 %."""
+    l1, l2 = _foot_sliding(gr)
+    return max(l1, l2) <= 1.15 * min(l1, l2)
+
+
+def _binding(gr) -> str:
+    """The limits of the blocking contour the chosen point stands on, in words with numbers: those
+    whose margin is within about one step of the 0,01 grid (ε_α, s_a, undercut, interference)."""
+    g, m = gr.geo, gr.m
+    out = []
+    if float(g.eps) - gr.eps_min < 0.02:
+        out.append(f"ε<sub>α</sub> = {fmt(float(g.eps))} ≈ {fmt(gr.eps_min)}")
+    for i, sa in ((1, float(g.sa1)), (2, float(g.sa2))):
+        if sa - gr.s_a_min * m < 0.02 * m:
+            out.append(f"<i>s</i><sub>a{i}</sub> = {fmt(sa, sig=4)} мм ≈ {as_written(gr.s_a_min)}<i>m</i>")
+    for i, (z, x) in enumerate(((gr.z1, gr.x1), (gr.z2, gr.x2)), 1):
+        if (i == 1 or not gr.internal) and x - float(G.x_min_undercut(z, gr.rack)) < 0.015:
+            out.append(f"<i>x</i><sub>{i}</sub> ≈ <i>x</i><sub>{i}min</sub> — граница подрезания")
+    for i, (rp, rl) in enumerate(((g.rho_p1, g.rho_l1), (g.rho_p2, g.rho_l2)), 1):
+        if (i == 1 or not gr.internal) and float(rp) - float(rl) < 0.02 * m:
+            out.append(f"ρ<sub>p{i}</sub> ≈ ρ<sub>l{i}</sub> — граница интерференции")
+    return "; ".join(out) or "ограничения контура"
+
+
 def _judgement(gr, g) -> list[str]:
     """The quality of the designed pair in words (Попов, Тимофеев, гл. 4; ГОСТ 16532-70): undercut of
     the pinion, the tips' thickness, the contact ratio against its allowed value and the wear of the
@@ -377,11 +440,13 @@ def _judgement(gr, g) -> list[str]:
                   + (" — плавность обеспечена с малым запасом (менее 5 %)" if eps < 1.05 * gr.eps_min else
                      " — плавность обеспечена"))
     out = ["Качество зацепления: " + "; ".join((under, sharp, smooth)) + "."]
-    t = gr.sliding_table
-    l1, l2 = abs(float(t["lambda1"].iloc[0])), abs(float(t["lambda2"].iloc[-1]))
-    big, small = max(l1, l2), min(l1, l2)
-    wear = ("износ ножек практически выровнен" if big <= 1.15 * small else
-            f"ножка {'шестерни' if l1 > l2 else 'колеса'} изнашивается быстрее; износ можно выровнять, "
+    l1, l2 = _foot_sliding(gr)
+    faster = f"ножка {'шестерни' if l1 > l2 else 'колеса'} изнашивается быстрее; "
+    wear = ("износ ножек практически выровнен" if _wear_equal(gr) else
+            faster + "выровнять износ в пределах блокирующего контура нельзя: выбранная точка лежит на его "
+            f"границе ({_binding(gr)}), изолиния λ<sub>1max</sub> = λ<sub>2max</sub> — вне допустимой области"
+            if gr.chosen else
+            faster + "износ можно выровнять, "
             "перераспределив смещения к изолинии λ<sub>1max</sub> = λ<sub>2max</sub> блокирующего контура")
     out.append(f"Наибольшие удельные скольжения у ножек зубьев |λ<sub>1</sub>| = {fmt(l1, digits=2)} (точка "
                f"B<sub>1</sub>) и |λ<sub>2</sub>| = {fmt(l2, digits=2)} (точка B<sub>2</sub>): {wear}.")

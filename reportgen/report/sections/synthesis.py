@@ -31,7 +31,7 @@ _INPUT_RU = {"K": ("K", "коэффициент изменения средне�
              "path_y": ("y<sub>C</sub>", "расстояние от опоры коромысла до траектории ползуна"),
              "o1_d": ("d", "расстояние от центра кривошипа до опоры коромысла"),
              "o1_path_dist": ("h", "расстояние от центра кривошипа до траектории ползуна"),
-             "side": ("±", "сторона ползуна")}
+             "side": ("—", "положение ползуна относительно точки B")}
 
 
 _R = r"R = \frac{|B_1B_2|}{2\sin\theta}"
@@ -50,7 +50,10 @@ def present(study) -> bool:
 
 
 def _val(k: str, x: float) -> str:
-    """A given datum of the synthesis as the case writes it (K = 1,25, ψ = 50°, 0,35 м)."""
+    """A given datum of the synthesis as the case writes it (K = 1,25, ψ = 50°, 0,35 м); the
+    slider's side of a six-bar in words (a sign is no quantity of a student's note)."""
+    if k == "side":
+        return "левее" if x < 0 else "правее"
     dim = SY.dim_of(k)
     if dim == SY.U.ANGLE:
         return as_written(math.degrees(x)) + "°"
@@ -65,8 +68,20 @@ MU_ALLOWED = 40.0           # [μ], degrees: the least transmission angle allowe
 def given(study) -> str:
     """The synthesis data in one sentence for the assignment page."""
     sy = study.synthesis
-    parts = ", ".join(f"{_INPUT_RU[k][1]} {_INPUT_RU[k][0]}&nbsp;=&nbsp;{_val(k, v)}" for k, v in sy.inputs.items())
+    parts = ", ".join(f"ползун {_val(k, v)} точки B" if k == "side" else
+                      f"{_INPUT_RU[k][1]} {_INPUT_RU[k][0]}&nbsp;=&nbsp;{_val(k, v)}" for k, v in sy.inputs.items())
     return f"Синтез: {SY.TITLES[sy.kind]}; {parts}."
+
+
+def input_title(study, name: str) -> str | None:
+    """The Russian name of a case parameter that is given as an input of the synthesis
+    («d = "d"» → «расстояние от центра кривошипа до опоры коромысла»), for the assignment's table
+    of given data, where a bare letter would be guessed (d → «диаметр»); None otherwise."""
+    if not study.root.has("synthesis"):
+        return None
+    raw = study.root.table("synthesis").data
+    return next((_INPUT_RU[k][1] for k, v in raw.items()
+                 if k in _INPUT_RU and k != "side" and isinstance(v, str) and v.strip() == name), None)
 
 
 def _w(x) -> str:
@@ -153,11 +168,6 @@ def _construction(sec, study, kind, x, v) -> None:
                     tex_num(v["a"], sig=5, unit="м"), label="eq-syn-a")
         sec.formula(rf"b = \frac{{|O{P}_{{дальн}}| + |O{P}_{{ближн}}|}}{{2}}", rf"\frac{{{_t(far)} + {_t(near)}}}{{2}}",
                     tex_num(v["b"], sig=5, unit="м"), label="eq-syn-b")
-        if kind == "six_bar":
-            sec.paragraph("Звено 3 перпендикулярно траектории ползуна в середине хода, поэтому крайние положения "
-                          "коромысла симметричны, а ход ползуна равен хорде дуги точки B: "
-                          f"{inline_math(_H6)}, откуда "
-                          f"ψ&nbsp;=&nbsp;{fmt(math.degrees(v['psi']), sig=5)}°.")
     sec.figure("Построение при синтезе механизма", d.svg, d.width_mm, id="fig-syn")
     sec.paragraph(f"Построение выполнено в масштабе {mu}&nbsp;=&nbsp;{fmt(d.mu, sig=3)}&nbsp;м/мм "
                   f"(рисунок {ref('fig-syn')}); длины найдены аналитически, без измерений на чертеже.")
@@ -167,6 +177,16 @@ def _chord(sec, kind, v, P) -> None:
     """The chord of the extreme positions and the θ-circle's radius with numbers."""
     if kind == "slider_crank":
         sec.paragraph(f"Хорда |C₁C₂|&nbsp;=&nbsp;H&nbsp;=&nbsp;{as_written(v['H'])}&nbsp;м, радиус окружности:")
+        chord = v["H"]
+    elif kind == "six_bar":
+        # the swing is found from the stroke before the chord uses it (H = 2 l₃ sin(ψ/2))
+        sec.paragraph("Звено 3 перпендикулярно траектории ползуна в середине хода, поэтому крайние положения "
+                      "коромысла симметричны, а ход ползуна равен хорде дуги точки B: "
+                      f"{inline_math(_H6)}, |B₁B₂|&nbsp;=&nbsp;H&nbsp;=&nbsp;{as_written(v['H'])}&nbsp;м. "
+                      "Размах коромысла:")
+        sec.formula(r"\psi = 2\arcsin\frac{H}{2 l_3}", rf"2\arcsin\frac{{{_w(v['H'])}}}{{2 \cdot {_w(v['l3'])}}}",
+                    tex_num(math.degrees(v["psi"]), sig=5) + r"^{\circ}", label="eq-syn-psi6")
+        sec.paragraph("Радиус окружности:")
         chord = v["H"]
     else:
         chord = math.hypot(v["x_B2"] - v["x_B1"], v["y_B2"] - v["y_B1"])

@@ -135,8 +135,11 @@ def _selection(sec: Section, tr) -> None:
     s.paragraph("Проверка принятого набора (" + ", ".join(f"<i>z</i><sub>{w}</sub> = {acc.z[w]}" for w in sel.unknown)
                 + "):")
     fr = acc.u_exact
-    forms = [Formula(rf"u_{{{m.inp}\,{m.out}}} = \frac{{{fr.numerator}}}{{{fr.denominator}}}" if fr.denominator != 1
-                     else rf"u_{{{m.inp}\,{m.out}}} = {fr.numerator}", result=tex_num(float(fr), sig=7))]
+    # the ratio with the numbers of teeth substituted into the closed form (1.1), then as a fraction
+    forms = [Formula(rf"u_{{{m.inp}\,{m.out}}}",
+                     rf"\frac{{{poly_tex(sel.num, sel.order, z)}}}{{{poly_tex(sel.den, sel.order, z)}}}",
+                     (rf"\frac{{{fr.numerator}}}{{{fr.denominator}}} = " if fr.denominator != 1 else "")
+                     + tex_num(float(fr), sig=7))]
     for (_, p, c) in sel.equations:
         forms.append(Formula(rf"{_form(p, sel.order)} = {_form(c, sel.order)}", rf"{_value(p, z)} = {_value(c, z)}"))
     for pl, (_, ok, qs) in zip(sel.planets, acc.assembly):
@@ -193,6 +196,10 @@ def _asm_tex(c0, p0, s0, cj, pj, sj, z, k) -> tuple[str, str]:
     if a < 0:
         a, b = -a, -b
     op = "+" if b > 0 else "-"
+    # a difference is written larger term first, so that it reads as the whole number it is (the
+    # quantity's sign does not matter, the table prints its modulus): 3550 − 3430, not 3430 − 3550
+    if op == "-" and (z[c0] < z[cj] if p0 == pj else z[pj] * z[c0] < z[p0] * z[cj]):
+        c0, cj, p0, pj = cj, c0, pj, p0
     if p0 == pj:
         return (rf"\frac{{z_{{{c0}}} {op} z_{{{cj}}}}}{{k}}", rf"\frac{{{z[c0]} {op} {z[cj]}}}{{{k}}}")
     g = math.gcd(z[p0], z[pj])
