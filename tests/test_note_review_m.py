@@ -213,3 +213,31 @@ def test_six_bar_swing_found_before_the_chord_uses_it(stem):
     assert i < j
     v = _study(stem).synthesis.chosen
     assert abs(float(fs[i].result.split("^")[0].replace("{,}", ".")) - math.degrees(v["psi"])) < 1e-3
+
+
+@pytest.mark.parametrize("stem", ("cam_rocker_roller_small", "cam_translating_roller_offset"))
+def test_modulus_keeps_its_subscript_on_the_line(stem):
+    """«|ϑ|» and its «max» were split across lines (a line may break after «|», Unicode class BA)."""
+    from reportgen.report.document import Paragraph
+    from reportgen.report.sections import cam
+    html = " ".join(b.html for b in blocks(_section(stem, cam)) if isinstance(b, Paragraph))
+    bars = re.findall(r'(.{0,22})\|ϑ\|<sub>', html)
+    assert bars and all(b.endswith('<span class="nobr">') for b in bars), bars
+
+
+@pytest.mark.parametrize("stem", ("train_2kh_external_select", "train_3k_select"))
+def test_large_stage_ratio_read_on_a_farther_horizontal(stem):
+    """u_H1 = −28,6 in one stage: at a common polar distance the segment of wheel 1 was 4,5 mm against
+    135,5 mm, read to 0,5 mm — 5,3 % off.  A short segment is read f polar distances away."""
+    from reportgen.report.sections import train
+    from reportgen.scenes.train import SHORT_MM, stage_plans
+    tr = _study(stem).train
+    st = stage_plans(tr)
+    assert abs(st.u_graph / tr.ratio - 1) < 0.01, (st.stages, st.depths)
+    for (a, b, sa, sb), (fa, fb) in zip(st.stages, st.depths):
+        assert min(abs(sa), abs(sb)) >= SHORT_MM
+        assert (sa / fa) / (sb / fb) == pytest.approx(tr.w_willis[a] / tr.w_willis[b], rel=0.02)
+    assert any(f > 1 for fs in st.depths for f in fs)
+    ps = _paragraphs(_section(stem, train))
+    assert any("полюсному расстоянию" in p for p in ps)
+    assert any("/f_{" in f.symbolic for f in _formulas(_section(stem, train)))

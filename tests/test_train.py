@@ -154,9 +154,10 @@ def test_graphical_ratio_by_stages_and_labels(case):
     tr = load_case(Path(__file__).resolve().parents[1] / "cases" / f"{case}.toml").train
     st = stage_plans(tr)
     assert abs(st.u_graph - tr.ratio) / abs(tr.ratio) < 0.02
-    for a, b, sa, sb in st.stages:
+    for (a, b, sa, sb), (fa, fb) in zip(st.stages, st.depths):
+        # a short segment is read f polar distances from the pole (session 11): (0a)/f_a : (0b)/f_b
         assert sa % READ_MM == 0 and sb % READ_MM == 0 and max(abs(sa), abs(sb)) >= 50
-        assert sa / sb == pytest.approx(tr.w_willis[a] / tr.w_willis[b], rel=0.02)
+        assert (sa / fa) / (sb / fb) == pytest.approx(tr.w_willis[a] / tr.w_willis[b], rel=0.02)
     pic = train_picture(tr)
     for fig in (pic.fig, st.fig):
         titles = [a.title for a in fig.axes if a.title.get_text()]

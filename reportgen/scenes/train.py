@@ -34,11 +34,17 @@ class TrainPicture:
     mu_l: float            # mm of the mechanism per mm of the paper (scheme)
 
 
+SHORT_MM = 20.0           # a segment shorter than this is read on a horizontal farther from the pole
+DEPTH_MAX = 8              # … at most this many polar distances away
+POLE_MM = 12.0             # polar distance of the plans' first horizontal, mm
+
+
 @dataclass
 class StagePlans:
     fig: object
     stages: list           # (member a, member b, segment a, segment b) in mm read to 0,5 mm
     u_graph: float         # product of the stage ratios
+    depths: list = None    # per stage (f_a, f_b): the segment is read at f·h from the pole (h = POLE_MM)
 
 
 def _columns(model):
@@ -251,34 +257,58 @@ def stage_plans(train) -> StagePlans:
     """The graphical ratio stage by stage: along the chain of members ordered by |ω|
     (``ratio_chain``) every pair of neighbours gets its own plan of angular velocities, the two
     rays from the pole parallel to the members' velocity lines, drawn at the scale that makes the
-    segments span PLAN_MM; the segments are read to READ_MM and u = Π (0a)/(0b)."""
+    segments span PLAN_MM; the segments are read to READ_MM.  A ray whose segment would be shorter
+    than SHORT_MM (a stage of a large ratio: 4,5 mm against 135,5 mm reads to ±11 %) is cut by a
+    second horizontal f polar distances from the pole (f ≤ DEPTH_MAX, the segment grows f times):
+    a segment is proportional to ω times the polar distance, so u = Π ((0a)/f_a)/((0b)/f_b)."""
     m = train.model
     w = train.w_willis
     chain = ratio_chain(w, m.inp, m.out)
-    n = len(chain) - 1
-    row = 24.0
-    fig = mplstyle.figure(170, row * n + 4, layout=None)
-    colors = {nm: COLORS[i % len(COLORS)] for i, nm in enumerate(m.members)}
-    stages, u = [], 1.0
-    h = 12.0
-    for i, (a, b) in enumerate(zip(chain, chain[1:])):
+    h = POLE_MM
+    plans = []
+    for a, b in zip(chain, chain[1:]):
         lo, hi = min(0.0, w[a], w[b]), max(0.0, w[a], w[b])
         k = PLAN_MM / (hi - lo)
-        sa, sb = (round(k * w[x] / READ_MM) * READ_MM for x in (a, b))
+        f = {x: (min(DEPTH_MAX, max(1, int(0.5 * PLAN_MM // abs(k * w[x]))))
+                 if 0 < abs(k * w[x]) < SHORT_MM else 1) for x in (a, b)}
+        span = max(0.0, *(f[x] * k * w[x] for x in (a, b))) - min(0.0, *(f[x] * k * w[x] for x in (a, b)))
+        k *= min(1.0, PLAN_MM / span)               # the lengthened segment keeps the plan on the page
+        seg = {x: round(f[x] * k * w[x] / READ_MM) * READ_MM for x in (a, b)}
+        lo = min(0.0, seg[a], seg[b]) / k           # the leftmost end, in the units of ω
+        plans.append((a, b, k, lo, f, seg))
+    rows = [24.0 + (max(p[4].values()) - 1) * h for p in plans]
+    total = sum(rows) + 4
+    fig = mplstyle.figure(170, total, layout=None)
+    colors = {nm: COLORS[i % len(COLORS)] for i, nm in enumerate(m.members)}
+    stages, depths, u, top = [], [], 1.0, 0.0
+    for i, ((a, b, k, lo, f, seg), row) in enumerate(zip(plans, rows)):
+        top += row
+        deep = (max(f.values()) - 1) * h
         x0 = 16.0 - k * lo                          # foot of the pole, mm from the left edge
-        ax = fig.add_axes((0.0, 1 - (i + 1) * row / (row * n + 4), 1.0, row / (row * n + 4)))
+        ax = fig.add_axes((0.0, 1 - top / total, 1.0, row / total))
         ax.set_xlim(0, 170)
-        ax.set_ylim(-9, row - 9)
+        ax.set_ylim(-9 - deep, row - 9 - deep)
         ax.axis("off")
-        ax.plot([x0 + min(0, sa, sb) - 4, x0 + max(0, sa, sb) + 4], [0, 0], color=INK, lw=0.8)
+        ax.plot([x0 + min(0, seg[a] / f[a], seg[b] / f[b]) - 4, x0 + max(0, seg[a] / f[a], seg[b] / f[b]) + 4],
+                [0, 0], color=INK, lw=0.8)       # the first horizontal, h from the pole
         ax.plot([x0], [h], "o", ms=3, color=INK)
         texts = [ax.annotate(f"P, ступень {i + 1}: звенья {a} и {b}", (x0, h), xytext=(4, 1),
                              textcoords="offset points", fontsize=8)]
-        for nm, sg in ((a, sa), (b, sb)):
-            ax.plot([x0, x0 + sg], [h, 0], color=colors[nm], lw=1.2)
-            texts.append(ax.annotate(f"{nm}: {fmt(sg, digits=1)} мм", (x0 + sg, 0), xytext=(0, -9),
+        if deep:
+            ax.plot([x0, x0], [h, -deep], color=INK, lw=0.5, ls=(0, (4, 2)))
+            texts.append(ax.annotate(f"h = {fmt(h, digits=0)} мм", (x0, h / 2), xytext=(3, 0),
+                                     textcoords="offset points", fontsize=7, ha="left", va="center"))
+        for nm, sg in ((a, seg[a]), (b, seg[b])):
+            y = h - f[nm] * h
+            ax.plot([x0, x0 + sg], [h, y], color=colors[nm], lw=1.2)
+            if f[nm] > 1:               # the farther horizontal and its polar distance
+                ax.plot([x0 + min(0, sg) - 4, x0 + max(0, sg) + 4], [y, y], color=INK, lw=0.8)
+                texts.append(ax.annotate(f"{f[nm]}h = {fmt(f[nm] * h, digits=0)} мм", (x0, y / 2), xytext=(3, 0),
+                                         textcoords="offset points", fontsize=7, ha="left", va="center"))
+            texts.append(ax.annotate(f"{nm}: {fmt(sg, digits=1)} мм", (x0 + sg, y), xytext=(0, -9),
                                      textcoords="offset points", fontsize=8, color=colors[nm], ha="center"))
         declutter(fig, texts)
-        stages.append((a, b, sa, sb))
-        u *= sa / sb
-    return StagePlans(fig, stages, u)
+        stages.append((a, b, seg[a], seg[b]))
+        depths.append((f[a], f[b]))
+        u *= (seg[a] / f[a]) / (seg[b] / f[b])
+    return StagePlans(fig, stages, u, depths)

@@ -478,7 +478,7 @@ def _pressure(sec, study, cam) -> None:
         return
     s.paragraph(f"Угол давления на всём цикле построен на рисунке {ref('fig-cam-theta')}. Наибольшие значения: "
                 f"на удалении ϑ<sub>max</sub>&nbsp;=&nbsp;{_deg(t1)} при [ϑ<sub>у</sub>]&nbsp;=&nbsp;{_deg(cam.rise.allowed)}, "
-                f"на возвращении |ϑ|<sub>max</sub>&nbsp;=&nbsp;{_deg(t2)} при [ϑ<sub>в</sub>]&nbsp;=&nbsp;{_deg(cam.ret.allowed)}. "
+                f"на возвращении <span class=\"nobr\">|ϑ|<sub>max</sub></span>&nbsp;=&nbsp;{_deg(t2)} при [ϑ<sub>в</sub>]&nbsp;=&nbsp;{_deg(cam.ret.allowed)}. "
                 + ("Угол давления нигде не превышает допустимого."
                    if t1 <= cam.rise.allowed + 1e-9 and t2 <= cam.ret.allowed + 1e-9
                    else f"<b>Угол давления превышает допустимый</b>: {_required_words(cam)}."))

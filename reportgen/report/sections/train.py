@@ -9,11 +9,11 @@ import math
 from fractions import Fraction
 
 import pandas as pd
-from markupsafe import Markup
+from markupsafe import Markup, escape
 
 from ...analysis.train import FRAME
 from ...analysis.train_select import assembly, k_of, poly_tex
-from ...scenes.train import stage_plans, train_picture
+from ...scenes.train import POLE_MM, SHORT_MM, stage_plans, train_picture
 from ...style.numbers import fmt, tex_num
 from .common import as_written
 from ..russian import plural
@@ -405,10 +405,23 @@ def _picture(sec: Section, tr) -> None:
         f"модулю угловой скорости ({' → '.join(a for a, *_ in st.stages)} → {m.out}), и для каждой пары "
         f"соседних звеньев построен свой план угловых скоростей в своём масштабе (рисунок "
         f"{ref('fig-train-stages')}); искомое отношение равно произведению отношений ступеней.")
+    far = [(x, fx) for (a, b, *_), fs in zip(st.stages, st.depths) for x, fx in zip((a, b), fs) if fx > 1]
+    if far:
+        s.paragraph(
+            "Отрезок, который на горизонтали, удалённой от полюса на <i>h</i>&nbsp;=&nbsp;"
+            f"{fmt(POLE_MM, digits=0)}&nbsp;мм, вышел бы короче {fmt(SHORT_MM, digits=0)}&nbsp;мм, отсекается на "
+            "горизонтали, удалённой в <i>f</i> раз дальше (" + ", ".join(
+                f"звено {escape(x)}: <i>f</i>&nbsp;=&nbsp;{fx}" for x, fx in far) + "): отрезки пропорциональны угловой "
+            "скорости и полюсному расстоянию, поэтому каждый отрезок делится на своё <i>f</i>, а короткий отрезок "
+            "читается с той же точностью 0,5&nbsp;мм, но в <i>f</i> раз длиннее.")
     s.figure("Планы угловых скоростей по ступеням", st.fig, 170, id="fig-train-stages")
     forms = [Formula(rf"u_{{{a}\,{b}}} = \frac{{(0{a})}}{{(0{b})}}",
                      rf"\frac{{{tex_num(sa, digits=1)}}}{{{tex_num(sb, digits=1)}}}", tex_num(sa / sb, sig=5))
-             for a, b, sa, sb in st.stages]
+             if fa == fb == 1 else
+             Formula(rf"u_{{{a}\,{b}}} = \frac{{(0{a})/f_{{{a}}}}}{{(0{b})/f_{{{b}}}}}",
+                     rf"\frac{{{tex_num(sa, digits=1)}/{fa}}}{{{tex_num(sb, digits=1)}/{fb}}}",
+                     tex_num((sa / fa) / (sb / fb), sig=5))
+             for (a, b, sa, sb), (fa, fb) in zip(st.stages, st.depths)]
     s.formula(*forms)
     prod = r" \cdot ".join(rf"u_{{{a}\,{b}}}" for a, b, *_ in st.stages)
     s.formula(rf"u^{{граф}}_{{{m.inp}\,{m.out}}} = {prod}", tex_num(st.u_graph, sig=5))
