@@ -100,6 +100,8 @@ def test_cam_given_data_as_written():
         assert want in vals, (want, vals)
     assert not any(re.search(r"\d,0+(°| мм)", v) for v in vals), vals
     assert any("Угол фазы β = 100° =" in p for p in _paragraphs(_section(stem, cam)))
+    smax = [f for f in _formulas(_section(stem, cam)) if f.symbolic.startswith("|s^")]
+    assert smax and all(f.substituted.startswith(r"18\ \text{мм}") for f in smax), [f.substituted for f in smax]
 
 
 def test_given_rocker_sizes_are_checked_and_the_passing_sizes_given():

@@ -183,10 +183,11 @@ def _laws(sec, study, cam) -> None:
         s.paragraph(txt + f". Угол фазы β&nbsp;=&nbsp;{_dg(beta)}&nbsp;=&nbsp;{fmt(beta, sig=5)}&nbsp;рад. "
                     "Наибольшие значения аналогов:")
         u = r"\ \text{мм}" if not rocker else ""
-        fs = [Formula(rf"|{S}^{{\prime}}|_{{max}}", rf"{_t(hh)}{u} \cdot {_t(s1 * beta / hh, sig=5)} / {_t(beta, sig=5)}",
+        hw = _t(hh) if rocker else tex_given(round(hh, 6))     # the stroke as given; ψ_max in rad is computed
+        fs = [Formula(rf"|{S}^{{\prime}}|_{{max}}", rf"{hw}{u} \cdot {_t(s1 * beta / hh, sig=5)} / {_t(beta, sig=5)}",
                       _t(s1, sig=4) + u),
               Formula(rf"|{S}^{{\prime\prime}}|_{{max}}",
-                      rf"{_t(hh)}{u} \cdot {_t(s2 * beta * beta / hh, sig=5)} / {_t(beta, sig=5)}^2",
+                      rf"{hw}{u} \cdot {_t(s2 * beta * beta / hh, sig=5)} / {_t(beta, sig=5)}^2",
                       _t(s2, sig=4) + u)]
         if ph.law == "uniform":
             fs = fs[:1]
