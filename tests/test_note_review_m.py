@@ -29,10 +29,8 @@ from fractions import Fraction
 
 import pytest
 
-from conftest import CASES
 from notehelpers import blocks, plain
-
-_STUDIES: dict = {}
+from test_note_review_i import _formulas, _section, _study   # the session-10 review's cached builders
 
 
 def _pl(html) -> str:
@@ -40,28 +38,9 @@ def _pl(html) -> str:
     return plain(html).replace("\xa0", " ")
 
 
-def _study(stem):
-    from reportgen import load_case
-    if stem not in _STUDIES:
-        _STUDIES[stem] = load_case(CASES / f"{stem}.toml")
-    return _STUDIES[stem]
-
-
-def _section(stem, module):
-    key = (stem, module.__name__)
-    if key not in _STUDIES:
-        _STUDIES[key] = module.build(_study(stem))
-    return _STUDIES[key]
-
-
 def _paragraphs(sec) -> list[str]:
     from reportgen.report.document import Paragraph
     return [_pl(b.html) for b in blocks(sec) if isinstance(b, Paragraph)]
-
-
-def _formulas(sec) -> list:
-    from reportgen.report.document import FormulaBlock
-    return [f for b in blocks(sec) if isinstance(b, FormulaBlock) for f in b.formulas]
 
 
 def _tex_eval(tex: str) -> Fraction:
