@@ -62,3 +62,40 @@ def test_lever_translating_link_one_label(hacksaw, captured):
     lv = ZhukovskyLever(chosen_position(hacksaw), landscape=True).draw(hacksaw)
     assert not lv.insets, [i.tips for i in lv.insets]
     assert "$b$, $s_{3}$, $t$" in _texts(captured[-1])
+
+
+@pytest.fixture(scope="module")
+def rocker_slider():
+    from reportgen import load_case
+    return load_case(CASES / "rocker_slider_lever.toml")
+
+
+def _group_notes(study, links):
+    import re
+    from reportgen.analysis.plans import read_velocities
+    from reportgen.report.sections import vectors
+    from reportgen.report.sections.common import chosen_position
+    k = study.kinematics
+    row = k[k["pos"] == chosen_position(study)].iloc[0]
+    vrow = read_velocities(row, study, 0.01)
+    g = next(g for g in study.structure.groups if tuple(g.links) == links)
+    vf, vn, af, an = vectors.group_equations(study, vrow, g)
+    plain = lambda xs: [re.sub("<[^>]+>", "", str(x)) for x in xs]  # noqa: E731
+    return [f.symbolic for f in vf], plain(vn), [f.symbolic for f in af], plain(an), vrow
+
+
+def test_slider_on_rocker_guide_known_from_earlier_group(rocker_slider):
+    """ВВП group (4,5) whose slider moves along the rocker 3 of the four-bar solved before it: the
+    velocity of the rocker's point under the slider is known (ω₃·l_CE about the rocker's fixed
+    pivot C, with numbers), only V_E5E3 is found by the construction. It was written
+    V̄_E3 = V̄_B + V̄_E3B «— величины находятся построением», as if ω₃ were unknown."""
+    vf, vn, af, an, vrow = _group_notes(rocker_slider, ("4", "5"))
+    note = next(n for n in vn if "совпадающей" in n)
+    assert "величины находятся построением" not in note, note
+    assert "известна" in note and "рассчитано с группой (2,3)" in note, note
+    l_ce = np.hypot(vrow["x_E"] - vrow["x_C"], vrow["y_E"] - vrow["y_C"])
+    from reportgen.style.numbers import fmt
+    assert fmt(abs(vrow["w_3"]) * l_ce, sig=4) in note, note
+    acc = next(n for n in an if "под ползуном" in n)
+    assert "E3C" in acc and "E3B" not in acc and "теореме подобия" in acc, acc
+    assert any(r"\bar{a}^{k}_{E_{5}E_{3}}" in f for f in af), af
