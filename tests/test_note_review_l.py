@@ -99,3 +99,18 @@ def test_slider_on_rocker_guide_known_from_earlier_group(rocker_slider):
     acc = next(n for n in an if "под ползуном" in n)
     assert "E3C" in acc and "E3B" not in acc and "теореме подобия" in acc, acc
     assert any(r"\bar{a}^{k}_{E_{5}E_{3}}" in f for f in af), af
+
+
+def test_low_angle_advice_for_slider_on_moving_guide(rocker_slider):
+    """μ_min = 33,6° in the ВВП group (4,5) whose slider runs on the rocker: the advice spoke of
+    «удлинив шатун группы … шатун ближе к перпендикуляру к выходному звену» — the group has no
+    шатун, and μ of a slider dyad is largest where the link hinged to the slider lies ALONG the
+    guide (μ = 90° − the angle between DE and the guide, checked over the cycle here)."""
+    from reportgen.report.sections.kinematics import conclusion_lines
+    cyc = rocker_slider.cycle
+    between = np.degrees(np.abs(cyc["phi_4"] - cyc["phi_3"])) % 180
+    between = np.minimum(between, 180 - between)
+    assert np.allclose(np.degrees(cyc["mu_4_5"]), 90 - between, atol=1e-6)
+    line = next(x for x in conclusion_lines(rocker_slider) if "группе (4,5)" in x and "меньше допускаемого" in x)
+    assert "шатун" not in line, line
+    assert "звено 4 было ближе к направлению направляющей звена 3" in line and "его опоры" in line, line

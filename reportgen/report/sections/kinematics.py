@@ -83,6 +83,34 @@ def _attached_to(study, key: str) -> str:
     return f"звено {other.pop()}" if len(other) == 1 else "звено, к которому присоединена группа,"
 
 
+def _slider_advice(study, key: str) -> str | None:
+    """How to raise a low transmission angle of a dyad with a slider (ВВП, flag ``mu_4_5``): the
+    guide's force on the slider is normal to the guide and the slider's pin moves ⊥ the link hinged
+    to it, so μ is largest where that link lies along the guide (Артоболевский [1], угол давления):
+    on a fixed guide a longer rod or a smaller offset; on a moving guide (a slider on a rocker) the
+    length of the link or the place of its pivot. None for a dyad without a slider."""
+    mech = study.mechanism
+    links = set(key[3:].split("_"))
+    for j in mech.prismatic:
+        guide, slider = j.links
+        if slider not in links:
+            continue
+        rod = next((o for jt in mech.joints if jt.kind == "R" and slider in jt.links
+                    for o in jt.links if o != slider and o in links), None)
+        if rod is None:
+            return None
+        if guide == FRAME:
+            return (f"Угол передачи можно увеличить, удлинив звено {rod} (уменьшив отношение длины кривошипа "
+                    f"к его длине) или уменьшив смещение направляющей ползуна {slider}: звено {rod} тогда "
+                    "ближе к направлению направляющей (повторить синтез с ограничением μ ≥ 40°)")
+        pivot = any(FRAME in jt.links and rod in jt.links for jt in mech.joints)
+        return (f"Угол передачи можно увеличить, изменив длину звена {rod} или положение "
+                f"{'его опоры' if pivot else 'его шарниров'} так, чтобы в этих положениях звено {rod} было ближе "
+                f"к направлению направляющей звена {guide}, по которой скользит ползун {slider} (повторить "
+                "синтез с ограничением μ ≥ 40°)")
+    return None
+
+
 def _flag_where(study, key: str) -> str:
     """«в группе (4,5)», or «в начальном механизме (1,2,3)» where the flagged dyad lies in an
     actuator's initial mechanism (chapter 1 calls it so, not a group)."""
@@ -1011,7 +1039,7 @@ def conclusion_lines(study) -> list[str]:
                     "стойка лежат на одной прямой. Увеличить его можно, уменьшив расстояние между опорами "
                     "по сравнению с длинами кривошипов или приблизив угол между шатуном и ведомым "
                     "кривошипом в этих положениях к прямому подбором их длин (повторить расчёт с "
-                    "ограничением μ ≥ 40°)" if crank else
+                    "ограничением μ ≥ 40°)" if crank else _slider_advice(study, c) or
                     "Угол передачи можно увеличить, удлинив шатун группы или сместив опору выходного звена "
                     "так, чтобы в крайних положениях шатун был ближе к перпендикуляру к выходному звену "
                     "(повторить синтез с ограничением μ ≥ 40°)"))
