@@ -114,3 +114,20 @@ def test_low_angle_advice_for_slider_on_moving_guide(rocker_slider):
     line = next(x for x in conclusion_lines(rocker_slider) if "группе (4,5)" in x and "меньше допускаемого" in x)
     assert "шатун" not in line, line
     assert "звено 4 было ближе к направлению направляющей звена 3" in line and "его опоры" in line, line
+
+
+@pytest.mark.parametrize("case, same", [("power_hacksaw", {"S3", "T"}), ("yoke_pump", {"S3", "P"})])
+def test_translating_link_not_repeated_in_motion_tables(case, same):
+    """The saw frame (and the pump's yoke) translates: V, a of B, S₃, T are one value; the analog,
+    velocity and acceleration tables printed three identical columns (x′_B = x′_S3 = x′_T, tables
+    2.6–2.8, 3.9–3.10). Now one point per translating link and a sentence saying why."""
+    from reportgen import load_case
+    from reportgen.report.sections.kinematics import build
+    from notehelpers import blocks
+    from reportgen.report.document import Paragraph, Table
+    study = load_case(CASES / f"{case}.toml")
+    sec = build(study)
+    heads = {c.key for b in blocks(sec) if isinstance(b, Table) for c in b.columns}
+    assert not {f"{k}_{p}" for k in ("vqx", "v", "a") for p in same} & heads
+    text = " ".join(b.html for b in blocks(sec) if isinstance(b, Paragraph))
+    assert "движется поступательно: скорости и ускорения всех его точек равны" in text
