@@ -126,7 +126,15 @@ def velocity_plan(row: pd.Series, mech: Mechanism) -> Plan:
     return _finish(plan, fixed, "V")
 
 
-def acceleration_plan(row: pd.Series, mech: Mechanism) -> Plan:
+def acceleration_plan(row: pd.Series, mech: Mechanism, normal=None) -> Plan:
+    """The acceleration plan of a row: a^n = −ω²·r and a^τ of every point about its link's
+    reference point, Coriolis and relative terms of every slider on a moving guide. ``normal(link,
+    r)`` gives the input link's normal component as :func:`construct_acceleration` laid it off
+    (ω₁²·l_OA to 0,5 mm): the crank pin's acceleration is drawn from its two known components, so
+    its tangential component is the one laid off — none for a uniformly turning crank (ε₁ = 0),
+    not a stub left by rounding aⁿ_AO. The other links' normal components are drawn at their
+    computed length (an enlarged view shows a short one as it is); their tangential components
+    close on the points the construction found."""
     plan, fixed = _start("acceleration", row, mech)
     for link in mech.moving:
         ref = _reference(mech, link)
@@ -135,7 +143,8 @@ def acceleration_plan(row: pd.Series, mech: Mechanism) -> Plan:
             if p == ref:
                 continue
             r = _vec(row, "", p) - _vec(row, "", ref)
-            an = -w * w * r
+            given = normal is not None and mech.driver.rotary and link.name == mech.driver.link
+            an = normal(link.name, r) if given else -w * w * r
             lab = f"n{p}{ref}"
             plan.tips[lab] = plan.tips[ref] + an
             _seg(plan, ref, lab, "normal", f"a^n_{p}{ref}", link.name)
@@ -514,4 +523,4 @@ def construct_acceleration(row: pd.Series, vrow: pd.Series, omegas: dict[str, fl
     for c in vrow.index:
         if c.startswith(("vx_", "vy_")):
             arow[c] = vrow[c]
-    return arow, acceleration_plan(arow, mech)
+    return arow, acceleration_plan(arow, mech, normal=lambda link, r: terms("normal", link, r))

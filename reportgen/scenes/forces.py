@@ -26,7 +26,7 @@ from ..style import mplstyle
 from ..style.numbers import fmt, shared_decimals
 from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow, draw_mechanism, gost_scale, nice_scale
 from .mechanism import LANDSCAPE_GAIN, LANDSCAPE_H, LANDSCAPE_W, Drawing
-from .plans import INSET_MARKS, PlanScene, find_insets, tip_label
+from .plans import INSET_MARKS, SAME_MM, PlanScene, coincident, find_insets, joint_label
 
 BLUE = "#1f4e9c"
 RED = "#b2182b"
@@ -1177,10 +1177,10 @@ class ZhukovskyLever:
         hidden = {lab for i in insets for lab in i.tips}
         if "p" not in hidden:
             cv.labels.add(0.0, 0.0, "$p$", prefer=(-1, -1), fontsize=10)
-        for lab, v in rot.items():
-            if lab not in plan.point_of_tip or np.hypot(*v) < 1e-12 or lab in hidden:
-                continue
-            cv.labels.add(v[0], v[1], tip_label(lab, plan, "velocity"), prefer=v, fontsize=10, color=GREY)
+        shown = [lab for lab, v in rot.items() if lab in plan.point_of_tip and np.hypot(*v) >= 1e-12 and lab not in hidden]
+        for lab, group in coincident(rot, shown, cv.mm(SAME_MM)).items():
+            v = rot[lab]
+            cv.labels.add(v[0], v[1], joint_label(group, plan, "velocity"), prefer=v, fontsize=10, color=GREY)
         for n, ins in enumerate(insets):
             ins.mark = INSET_MARKS[n % len(INSET_MARKS)]
             PlanScene(self.label, "velocity")._draw_inset(cv, lever_plan, ins, "$p$")

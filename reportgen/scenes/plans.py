@@ -87,6 +87,29 @@ def tip_label(lab: str, plan: Plan, kind: str) -> str:
     return "$" + head.lower() + ("′" if kind == "acceleration" else "") + (f"_{{{tail}}}" if tail else "") + "$"
 
 
+SAME_MM = 0.05            # plan points closer than this are one point of the drawing (one label)
+
+
+def coincident(tips: dict, labs, tol: float) -> dict[str, list[str]]:
+    """The points of ``labs`` that lie at one place (``tips``: label → vector, closer than ``tol``):
+    each group under its first point (plan order), the others absent. The images of all points of
+    a translating link coincide (b, s₃, t of a saw frame): a student writes them at one point,
+    «b, s₃, t»; no enlarged view can tell them apart."""
+    out: dict[str, list[str]] = {}
+    for lab in labs:
+        head = next((h for h in out if np.hypot(*(tips[h] - tips[lab])) < tol), None)
+        if head is None:
+            out[lab] = [lab]
+        else:
+            out[head].append(lab)
+    return out
+
+
+def joint_label(group: list[str], plan: Plan, kind: str) -> str:
+    """One label for the coincident points of ``group``: «b, s₃, t»."""
+    return ", ".join(tip_label(lab, plan, kind) for lab in group)
+
+
 def plan_scale(plan: Plan, landscape: bool = False) -> float:
     """The round scale μ at which the plan fits the space (1; 1,5; 2; 2,5; 4; 5·10ᵏ per mm) of a
     portrait page, or of a landscape one."""
@@ -188,11 +211,11 @@ class PlanScene:
         pole = "$p$" if self.kind == "velocity" else r"$\pi$"
         if "p" not in hidden:
             cv.labels.add(0.0, 0.0, pole, prefer=(-1, -1), fontsize=11)
-        for lab, v in plan.tips.items():
-            if lab in hidden or not self._labelled(plan, lab, cv.mm(2.0)):
-                continue
+        shown = [lab for lab in plan.tips if lab not in hidden and self._labelled(plan, lab, cv.mm(2.0))]
+        for lab, group in coincident(plan.tips, shown, cv.mm(SAME_MM)).items():
+            v = plan.tips[lab]
             d = np.hypot(*v)
-            cv.labels.add(v[0], v[1], tip_label(lab, plan, self.kind), prefer=(v[0], v[1]) if d > 1e-12 else (1, 1),
+            cv.labels.add(v[0], v[1], joint_label(group, plan, self.kind), prefer=(v[0], v[1]) if d > 1e-12 else (1, 1),
                           fontsize=10)
         for n, ins in enumerate(insets):
             ins.mark = INSET_MARKS[n % len(INSET_MARKS)]
@@ -234,11 +257,10 @@ class PlanScene:
             o = to_view(np.zeros(2))
             ax.plot([o[0]], [o[1]], marker="o", ms=3, color=INK)
             cv.labels.add(o[0], o[1], pole, prefer=(-1, -1), fontsize=11)
-        for lab in ins.tips:
-            if lab == "p" or not self._labelled(plan, lab, cv.mm(2.0) / k):
-                continue
+        shown = [lab for lab in ins.tips if lab != "p" and self._labelled(plan, lab, cv.mm(2.0) / k)]
+        for lab, group in coincident(plan.tips, shown, cv.mm(SAME_MM) / k).items():
             v = to_view(plan.tips[lab])
-            cv.labels.add(v[0], v[1], tip_label(lab, plan, self.kind), prefer=v - ins.at, fontsize=10)
+            cv.labels.add(v[0], v[1], joint_label(group, plan, self.kind), prefer=v - ins.at, fontsize=10)
         view_marks(cv, c, r, ins.at, r * k, ins.mark, f"{ins.mark} (×{ins.k:g})".replace(".", ","))
 
 
@@ -320,7 +342,8 @@ def _crowded(plan: Plan, mu: float) -> list[np.ndarray]:
     names = [n for n in pos if n == "p" or PlanScene._labelled(plan, n, 2.0 * mu)]
     for i, m in enumerate(names):
         for n in names[i + 1:]:
-            if np.hypot(*(pos[m] - pos[n])) < CROWD_MM:
+            # points at one place share one label (:func:`coincident`): they crowd nothing
+            if SAME_MM <= np.hypot(*(pos[m] - pos[n])) < CROWD_MM:
                 hot |= {m, n}
     clusters: list[set] = []
     for h in sorted(hot):

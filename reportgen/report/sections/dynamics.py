@@ -26,6 +26,7 @@ from ..formulas import inline_math
 from ..russian import condition_html, expr_html, plural
 from .common import (as_written, chosen_position, chunked_tables, html_point, sub, tex_point, pos_fmt,
                      pos_no)
+from .kinematics import motion_points
 
 NEEDS = ("kinematics", "cycle", "dynamics")
 
@@ -895,13 +896,7 @@ def _motion(sec, study, d, tab, mot, lab, row, lead) -> None:
     s.figure("Угловая скорость и угловое ускорение звена приведения", fig.svg, fig.width_mm, id="fig-dyn-w")
     # true motion
     mech = study.mechanism
-    fixed = set(mech.link("0").points)
-    pts, seen = [], set()
-    for l in mech.moving:
-        for p in l.points:
-            if p not in fixed and p not in seen:
-                seen.add(p)
-                pts.append(p)
+    pts, _ = motion_points(study)      # a translating link by one point (§ 2.2 says so)
     links = [l.name for l in mech.moving if l.name != mech.driver.link
              and float(np.abs(study.cycle["wq_" + l.name]).max()) > 1e-12]
     s.paragraph("Истинные скорости и ускорения точек и звеньев вычислены с найденными ω(φ) и ε(φ): "

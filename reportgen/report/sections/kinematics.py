@@ -20,7 +20,7 @@ from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import expr_html
 from . import vectors
-from .common import (chosen_position, chunked_tables, input_word, pos_fmt, pos_no, q_degrees, q_header, sub,
+from .common import (chosen_position, chunked_tables, html_point, input_word, pos_fmt, pos_no, q_degrees, q_header, sub,
                      swing_text, tex_point)
 
 NEEDS = ("kinematics", "cycle")
@@ -35,6 +35,30 @@ def _moving_points(study) -> list[str]:
                 seen.add(p)
                 out.append(p)
     return out
+
+
+def motion_points(study) -> tuple[list[str], str]:
+    """The moving points of the velocity and acceleration tables and the sentence that says which
+    are left out: all points of a link that only translates (a saw frame: B, its centre of mass S₃,
+    the blade T) have one velocity and one acceleration (Артоболевский [1], поступательное
+    движение), so the link is represented by its first joint, not by identical columns."""
+    mech = study.mechanism
+    cyc = study.cycle if study.has_cycle else study.kinematics
+    joints = {j.point for j in mech.joints}
+    pts, lines = _moving_points(study), []
+    for l in mech.moving:
+        own = [p for p in l.points if p in pts]
+        if len(own) < 2 or float(np.abs(cyc["wq_" + l.name]).max()) > 1e-12:
+            continue
+        ref = next((p for p in own if p in joints), own[0])
+        same = [p for p in own if p != ref]
+        pts = [p for p in pts if p not in same]
+        lines.append(f"звено {l.name} движется поступательно: скорости и ускорения всех его точек равны "
+                     f"скоростям и ускорениям точки {html_point(ref)}, поэтому "
+                     f"{'точка' if len(same) == 1 else 'точки'} {', '.join(html_point(p) for p in same)} в "
+                     "таблицы скоростей и ускорений не " + ("включена" if len(same) == 1 else "включены"))
+    text = "; ".join(lines)
+    return pts, (text[0].upper() + text[1:] + ".") if text else ""
 
 
 def _links(study):
@@ -81,6 +105,34 @@ def _attached_to(study, key: str) -> str:
     other = {l for j in study.mechanism.joints if len(links & set(j.links)) == 1
              for l in j.links if l in before}
     return f"звено {other.pop()}" if len(other) == 1 else "звено, к которому присоединена группа,"
+
+
+def _slider_advice(study, key: str) -> str | None:
+    """How to raise a low transmission angle of a dyad with a slider (ВВП, flag ``mu_4_5``): the
+    guide's force on the slider is normal to the guide and the slider's pin moves ⊥ the link hinged
+    to it, so μ is largest where that link lies along the guide (Артоболевский [1], угол давления):
+    on a fixed guide a longer rod or a smaller offset; on a moving guide (a slider on a rocker) the
+    length of the link or the place of its pivot. None for a dyad without a slider."""
+    mech = study.mechanism
+    links = set(key[3:].split("_"))
+    for j in mech.prismatic:
+        guide, slider = j.links
+        if slider not in links:
+            continue
+        rod = next((o for jt in mech.joints if jt.kind == "R" and slider in jt.links
+                    for o in jt.links if o != slider and o in links), None)
+        if rod is None:
+            return None
+        if guide == FRAME:
+            return (f"Угол передачи можно увеличить, удлинив звено {rod} (уменьшив отношение длины кривошипа "
+                    f"к его длине) или уменьшив смещение направляющей ползуна {slider}: звено {rod} тогда "
+                    "ближе к направлению направляющей (повторить синтез с ограничением μ ≥ 40°)")
+        pivot = any(FRAME in jt.links and rod in jt.links for jt in mech.joints)
+        return (f"Угол передачи можно увеличить, изменив длину звена {rod} или положение "
+                f"{'его опоры' if pivot else 'его шарниров'} так, чтобы в этих положениях звено {rod} было ближе "
+                f"к направлению направляющей звена {guide}, по которой скользит ползун {slider} (повторить "
+                "синтез с ограничением μ ≥ 40°)")
+    return None
 
 
 def _flag_where(study, key: str) -> str:
@@ -343,8 +395,11 @@ def build(study) -> Section:
     else:
         s2.paragraph("Все звенья механизма, кроме ведущего, движутся поступательно: их угловые скорости "
                      "и ускорения равны нулю.")
+    pts_v, same_text = motion_points(study)
+    if same_text:
+        s2.paragraph(same_text)
     vcols = []
-    for p in pts:
+    for p in pts_v:
         vcols += [Column(f"vqx_{p}", f"<i>x′</i><sub>{p}</sub>", u_x, digits=4),
                   Column(f"vqy_{p}", f"<i>y′</i><sub>{p}</sub>", u_x, digits=4)]
     vcols, zero = zero_columns(k, vcols)
@@ -366,13 +421,13 @@ def build(study) -> Section:
             # «ω₁ = 15,000 рад/с» read badly
             s3.paragraph(f"Угловая скорость {'кривошипа' if study.has_cycle else 'ведущего звена'} постоянна: "
                          f"{w1_m}&nbsp;=&nbsp;{fmt_given(w1)}&nbsp;рад/с.")
-        tv = [Column(f"v_{p}", sub("V", p), "м/с", digits=3) for p in pts]
+        tv = [Column(f"v_{p}", sub("V", p), "м/с", digits=3) for p in pts_v]
         tv += [Column(f"w_{l.name}", sub("ω", l.name), "рад/с", digits=3) for l in _links(study)
                if not (rotary and l.name == mech.driver.link)]
         chunked_tables(s3, "Скорости точек и угловые скорости звеньев", k, tv, lead, "tab-v")
         if mech.driver.swing:
             _return_velocities(s3, study, lead)
-        ta = [Column(f"a_{p}", sub("a", p), "м/с²", sig=4) for p in pts]
+        ta = [Column(f"a_{p}", sub("a", p), "м/с²", sig=4) for p in pts_v]
         ta += [Column(f"e_{l.name}", sub("ε", l.name), "рад/с²", sig=4) for l in _links(study)
                if not (rotary and l.name == mech.driver.link)]
         chunked_tables(s3, "Ускорения точек и угловые ускорения звеньев", k, ta, lead, "tab-a")
@@ -1011,7 +1066,7 @@ def conclusion_lines(study) -> list[str]:
                     "стойка лежат на одной прямой. Увеличить его можно, уменьшив расстояние между опорами "
                     "по сравнению с длинами кривошипов или приблизив угол между шатуном и ведомым "
                     "кривошипом в этих положениях к прямому подбором их длин (повторить расчёт с "
-                    "ограничением μ ≥ 40°)" if crank else
+                    "ограничением μ ≥ 40°)" if crank else _slider_advice(study, c) or
                     "Угол передачи можно увеличить, удлинив шатун группы или сместив опору выходного звена "
                     "так, чтобы в крайних положениях шатун был ближе к перпендикуляру к выходному звену "
                     "(повторить синтез с ограничением μ ≥ 40°)"))

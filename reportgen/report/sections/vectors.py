@@ -153,6 +153,13 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
             continue
         vf.append(Formula(rf"\bar{{V}}_{{{Ps}}} = \bar{{V}}_{{{Pg}}} + \bar{{V}}_{{{Ps}{Pg}}}"))
         gref = _attach(mech, mech.link(guide), links | {guide})
+        # a guide solved with an earlier group (a slider on the rocker of a four-bar): its ω and ε
+        # are known, the point under the slider is found about the guide's fixed pivot if it has one
+        earlier = next((h for h in study.structure.groups if guide in h.links and h is not g), None) \
+            if guide not in g.links else None
+        pivot = next((p for p in mech.link(guide).points if p in mech.link(FRAME).points), None)
+        if earlier is not None and pivot is not None:
+            gref = pivot
         G = tex_point(gref)
         if float(study.cycle["wq_" + guide].abs().max()) < 1e-12:      # a guide moving in translation
             G = tex_point(next((o.point for o in mech.prismatic if guide in o.links and o is not j), gref))
@@ -174,23 +181,38 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
             v_pin = Markup("{} — известна: шарнир {} соединяет звено {} со звеном {}; ").format(
                 _m(rf"\bar{{V}}_{{{Ps}}} = \bar{{V}}_{{{Pp}}}"), _m(P), slider, pin)
             a_pin = Markup("{} — известно; ").format(_m(rf"\bar{{a}}_{{{Ps}}} = \bar{{a}}_{{{Pp}}}"))
-        vn.append(v_pin + Markup("{} — скорость точки звена {}, совпадающей в данный момент с точкой {} звена {}: "
-                         "{}, {}; {} направляющей звена {} — величины находятся построением").format(
-            _m(rf"\bar{{V}}_{{{Pg}}}"), guide, _m(P), slider, _m(rf"\bar{{V}}_{{{Pg}}} = \bar{{V}}_{{{G}}} + \bar{{V}}_{{{Pg}{G}}}"),
-            _m(rf"\bar{{V}}_{{{Pg}{G}}} \;\perp\; {G}{P}"), _m(rf"\bar{{V}}_{{{Ps}{Pg}}} \;\parallel"), guide))
+        wg = abs(float(row.get(f"w_{guide}", 0.0)))
+        lg = _len(row, j.point, gref)
+        base = "" if gref in mech.link(FRAME).points else rf"\bar{{V}}_{{{G}}} + "
+        if earlier is None:
+            vn.append(v_pin + Markup("{} — скорость точки звена {}, совпадающей в данный момент с точкой {} звена {}: "
+                             "{}, {}; {} направляющей звена {} — величины находятся построением").format(
+                _m(rf"\bar{{V}}_{{{Pg}}}"), guide, _m(P), slider, _m(rf"\bar{{V}}_{{{Pg}}} = {base}\bar{{V}}_{{{Pg}{G}}}"),
+                _m(rf"\bar{{V}}_{{{Pg}{G}}} \;\perp\; {G}{P}"), _m(rf"\bar{{V}}_{{{Ps}{Pg}}} \;\parallel"), guide))
+        else:
+            vn.append(v_pin + Markup("{} — скорость точки звена {}, совпадающей в данный момент с точкой {} звена {}, "
+                             "известна (звено {} рассчитано с группой ({})): {}, {}, {}; {} направляющей звена {} — "
+                             "величина находится построением").format(
+                _m(rf"\bar{{V}}_{{{Pg}}}"), guide, _m(P), slider, guide, ",".join(earlier.links),
+                _m(rf"\bar{{V}}_{{{Pg}}} = {base}\bar{{V}}_{{{Pg}{G}}}"), _m(rf"\bar{{V}}_{{{Pg}{G}}} \;\perp\; {G}{P}"),
+                _m(rf"V_{{{Pg}{G}}} = \omega_{{{_ang(guide)}}} l_{{{G}{P}}} = {tex_num(wg, sig=4)} \cdot {tex_num(lg, sig=4)} = "
+                   rf"{tex_num(wg * lg, sig=4, unit='м/с')}"),
+                _m(rf"\bar{{V}}_{{{Ps}{Pg}}} \;\parallel"), guide))
         af.append(Formula(rf"\bar{{a}}_{{{Ps}}} = \bar{{a}}_{{{Pg}}} + \bar{{a}}^{{k}}_{{{Ps}{Pg}}} + "
                           rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}}"))
-        wg = abs(float(row.get(f"w_{guide}", 0.0)))
         vr = abs(float(row.get(f"vs_{j.name}", 0.0)))
-        lg = _len(row, j.point, gref)
-        an.append(a_pin + Markup("{}: {}, {} (направлено от точки {} к точке {}), {}").format(
-            _m(rf"\bar{{a}}_{{{Pg}}} = \bar{{a}}_{{{G}}} + \bar{{a}}^{{n}}_{{{Pg}{G}}} + \bar{{a}}^{{\tau}}_{{{Pg}{G}}}"),
+        base = "" if gref in mech.link(FRAME).points else rf"\bar{{a}}_{{{G}}} + "
+        tau = Markup("") if earlier is None else Markup(", {} — по найденному {}: точка {} плана — по теореме подобия").format(
+            _m(rf"a^{{\tau}}_{{{Pg}{G}}} = \varepsilon_{{{_ang(guide)}}} l_{{{G}{P}}}"),
+            _m(rf"\varepsilon_{{{_ang(guide)}}}"), _m(rf"{P.lower()}'_{{{guide}}}"))
+        an.append(a_pin + Markup("{}: {}, {} (направлено от точки {} к точке {}), {}{}").format(
+            _m(rf"\bar{{a}}_{{{Pg}}} = {base}\bar{{a}}^{{n}}_{{{Pg}{G}}} + \bar{{a}}^{{\tau}}_{{{Pg}{G}}}"),
             (Markup("ускорение точки звена {} под ползуном").format(guide) if is_stone(mech, j) else
              Markup("ускорение точки звена {}, совпадающей в данный момент с точкой {} звена {}").format(
                  guide, _m(P), slider)),
             _m(rf"a^{{n}}_{{{Pg}{G}}} = \omega_{{{_ang(guide)}}}^{{2}} l_{{{G}{P}}} = {tex_num(wg, sig=4)}^{{2}} \cdot "
                rf"{tex_num(lg, sig=4)} = {tex_num(wg * wg * lg, sig=4, unit='м/с²')}"), _m(P), _m(G),
-            _m(rf"\bar{{a}}^{{\tau}}_{{{Pg}{G}}} \;\perp\; {G}{P}")))
+            _m(rf"\bar{{a}}^{{\tau}}_{{{Pg}{G}}} \;\perp\; {G}{P}"), tau))
         an.append(Markup("{} — кориолисово ускорение (направляющая вращается), направление — вектор "
                          "относительной скорости {}, повёрнутый на 90° в сторону вращения звена {}; {} "
                          "— величина находится построением").format(
