@@ -189,3 +189,33 @@ def test_export_and_the_report_modules_import_no_scipy_optimize(tmp_path):
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip().splitlines()[-1] == "[]"
     assert (tmp_path / "cycle.csv").exists()
+
+
+def test_text_layout_reads_each_font_once_and_lays_out_as_matplotlib():
+    """``Text._get_layout`` finds a text's font files and reads their height tables once per font
+    (``style.fontheights``), not for every tick label at every layout pass; the boxes and the
+    figure's SVG are those of matplotlib's own lookups."""
+    from matplotlib import text as mtext
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    mplstyle.apply_style()
+    kept, get_font = mtext.fontManager, mtext.get_font
+    assert hasattr(kept, "_manager") and hasattr(get_font, "__wrapped__")     # installed by the style
+    fig = mplstyle.figure(100, 60)
+    ax = fig.add_subplot()
+    texts = [ax.text(0.1 * i, 0.5, f"{i},5", fontsize=9, rotation=15 * i) for i in range(8)]
+    FigureCanvasAgg(fig)
+    renderer = fig.canvas.get_renderer()
+    before = kept.searches
+    boxes = [t._get_layout(renderer)[0].bounds for t in texts]
+    assert kept.searches - before <= 1                     # one size, one family: one search at most
+    svg = mplstyle.to_svg(_chart())
+    try:
+        mtext.fontManager, mtext.get_font = kept._manager, get_font.__wrapped__     # matplotlib's own
+        assert [t._get_layout(renderer)[0].bounds for t in texts] == boxes
+        assert mplstyle.to_svg(_chart()) == svg
+    finally:
+        mtext.fontManager, mtext.get_font = kept, get_font
+    searches = kept.searches
+    mplstyle.to_svg(_chart())
+    assert kept.searches == searches                       # a figure of known fonts searches nothing
