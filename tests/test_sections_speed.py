@@ -53,7 +53,7 @@ def test_mixed_mode_renderer_extents_are_the_svg_renderers():
 
 def _clear_slim_caches():
     from reportgen.style import svgslim
-    for fn in (svgslim._transform, svgslim._parsed, svgslim._placed):
+    for fn in (svgslim._transform, svgslim._parsed, svgslim._placed, svgslim._compact):
         fn.cache_clear()
 
 
@@ -72,14 +72,16 @@ def test_slim_with_its_caches_writes_what_it_writes_without():
     assert svgslim._placed.cache_info().currsize > 0
     warm = svgslim.slim(raw)
     assert svgslim._placed.cache_info().hits > 0
-    placed, parsed, transform = svgslim._placed, svgslim._parsed, svgslim._transform
+    assert svgslim._compact.cache_info().hits > 0        # a tick mark's path compacted once
+    placed, parsed, transform, compact = svgslim._placed, svgslim._parsed, svgslim._transform, svgslim._compact
     try:
         svgslim._placed = lambda d, m: svgslim._write_path(svgslim._parse_path(d), m)
         svgslim._parsed = svgslim._parse_path
         svgslim._transform = transform.__wrapped__
+        svgslim._compact = compact.__wrapped__
         plain = svgslim.slim(raw)
     finally:
-        svgslim._placed, svgslim._parsed, svgslim._transform = placed, parsed, transform
+        svgslim._placed, svgslim._parsed, svgslim._transform, svgslim._compact = placed, parsed, transform, compact
     assert cold == warm == plain
     assert b"<use" not in plain
 
@@ -189,3 +191,70 @@ def test_export_and_the_report_modules_import_no_scipy_optimize(tmp_path):
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip().splitlines()[-1] == "[]"
     assert (tmp_path / "cycle.csv").exists()
+
+
+def test_text_layout_reads_each_font_once_and_lays_out_as_matplotlib():
+    """``Text._get_layout`` finds a text's font files and reads their height tables once per font
+    (``style.fontheights``), not for every tick label at every layout pass; the boxes and the
+    figure's SVG are those of matplotlib's own lookups."""
+    from matplotlib import text as mtext
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    mplstyle.apply_style()
+    kept, get_font = mtext.fontManager, mtext.get_font
+    assert hasattr(kept, "_manager") and hasattr(get_font, "__wrapped__")     # installed by the style
+    fig = mplstyle.figure(100, 60)
+    ax = fig.add_subplot()
+    texts = [ax.text(0.1 * i, 0.5, f"{i},5", fontsize=9, rotation=15 * i) for i in range(8)]
+    FigureCanvasAgg(fig)
+    renderer = fig.canvas.get_renderer()
+    before = kept.searches
+    boxes = [t._get_layout(renderer)[0].bounds for t in texts]
+    assert kept.searches - before <= 1                     # one size, one family: one search at most
+    svg = mplstyle.to_svg(_chart())
+    try:
+        mtext.fontManager, mtext.get_font = kept._manager, get_font.__wrapped__     # matplotlib's own
+        assert [t._get_layout(renderer)[0].bounds for t in texts] == boxes
+        assert mplstyle.to_svg(_chart()) == svg
+    finally:
+        mtext.fontManager, mtext.get_font = kept, get_font
+    searches = kept.searches
+    mplstyle.to_svg(_chart())
+    assert kept.searches == searches                       # a figure of known fonts searches nothing
+
+
+def test_label_placer_reads_the_axes_and_figure_boxes_once():
+    """The label placer tests every candidate place against where a label may lie (inside the
+    axes and the figure) read once per placing, not per candidate (each ``Bbox.x0`` is a method
+    call); the labels land where the per-candidate reading put them."""
+    from matplotlib.transforms import Bbox
+
+    from reportgen.scenes.labels import LabelPlacer
+
+    def placed(counting):
+        fig = mplstyle.figure(80, 60, layout=None)
+        ax = fig.add_axes((0.1, 0.1, 0.8, 0.8))
+        ax.set_xlim(0, 10)
+        ax.set_ylim(0, 10)
+        for i in range(6):
+            ax.plot([0, 10], [i * 2, 10 - i], lw=0.8)
+        placer = LabelPlacer(ax)
+        for i in range(12):
+            placer.add(1 + (i * 7) % 9, 1 + (i * 5) % 9, f"$B_{{{i}}}$", point=True)
+        reads = []
+        if counting:
+            extent = ax.get_window_extent
+
+            class Counted(Bbox):
+                @property
+                def x0(self):
+                    reads.append(1)
+                    return super().x0
+
+            ax.get_window_extent = lambda *a, **k: Counted(extent(*a, **k).get_points())
+        texts = placer.place()
+        return [t.get_position() for t in texts], len(reads)
+
+    where, reads = placed(True)
+    assert reads <= 2
+    assert where == placed(False)[0]

@@ -512,9 +512,16 @@ class LabelPlacer:
         # the axes' limits and place do not change while the labels are placed: one inverse
         inv = ax.transData.inverted()
         figbox = fig.bbox
+        # where a label's box may lie: inside the axes and the figure, 1 px in (read once: each
+        # ``Bbox.x0`` is a method call)
+        in_x0, in_x1 = max(frame.x0, figbox.x0) + 1, min(frame.x1, figbox.x1) - 1
+        in_y0, in_y1 = max(frame.y0, figbox.y0) + 1, min(frame.y1, figbox.y1) - 1
         px_mm = fig.dpi / 25.4
         placed = [(_Box(b.x0, b.y0, b.x1, b.y1), 0.0) for b in self.avoid_boxes]      # (box, clearance in px)
         hard = self.gap_mm * px_mm      # the placer's least gap between any two labels (a must)
+        # the placed boxes as the hard test reads them (:func:`_overlap` with the gap ``hard``, its
+        # sums of a placed box's and the gap done once): x0, y0, x1 + hard, y1 + hard
+        hard_rows = [(o.x0, o.y0, o.x1 + hard, o.y1 + hard) for o, _ in placed]
         tol = (LINE_TOL_MM - 0.1) * px_mm + PAD_PX     # the box as check_figure reads it, less 0,1 mm
         out = []
         anchors = self.ax.transData.transform(np.array([(o.x, o.y) for o in self.items]).reshape(-1, 2))
@@ -536,17 +543,22 @@ class LabelPlacer:
             reach = RADII_MM[-1] * px_mm + size * math.sqrt(2) + clear
             others = anchors[(dist > SAME_POINT_MM * px_mm) & (dist < reach)].tolist()
             best = None
+            # the placed boxes with this label's clearance from each (max(gap, g)) added once
+            soft_rows = [(o.x0, o.y0, o.x1, o.y1, max(gap, g)) for o, g in placed]
             for k, (cx, cy) in enumerate(self._candidates(it, px_mm)):
                 r_mm = math.hypot(cx, cy) / px_mm
                 clean = best is not None and best[0][:4] == (False, False, False, 0)
                 if clean and r_mm >= best[0][4]:
                     break       # a clean place found: none farther out can be nearer by its score
                 bb = extent.at_px(ax0[0] + cx, ax0[1] + cy, inv)
-                inside = (bb.x0 >= max(frame.x0, figbox.x0) + 1 and bb.x1 <= min(frame.x1, figbox.x1) - 1
-                          and bb.y0 >= max(frame.y0, figbox.y0) + 1 and bb.y1 <= min(frame.y1, figbox.y1) - 1)
-                if not inside or any(_overlap(bb, o, hard) for o, _ in placed):
+                x0, y0, x1, y1 = bb.x0, bb.y0, bb.x1, bb.y1
+                if not (x0 >= in_x0 and x1 <= in_x1 and y0 >= in_y0 and y1 <= in_y1):
+                    continue        # not inside the axes and the figure
+                x1h, y1h = x1 + hard, y1 + hard
+                if any(x0 < ox1 and ox0 < x1h and y0 < oy1 and oy0 < y1h for ox0, oy0, ox1, oy1 in hard_rows):
                     continue
-                crowded = (any(_overlap(bb, o, max(gap, g)) for o, g in placed)
+                crowded = (any(x0 < ox1 + gg and ox0 < x1 + gg and y0 < oy1 + gg and oy0 < y1 + gg
+                               for ox0, oy0, ox1, oy1, gg in soft_rows)
                            or any(bb.x0 - clear < x < bb.x1 + clear and bb.y0 - clear < y < bb.y1 + clear
                                   for x, y in others))
                 # nearer another named point than its own (by the margin): reads as that point's
@@ -605,6 +617,7 @@ class LabelPlacer:
                 # no free place: the lines under the label are broken by a white halo round its glyphs
                 t.set_path_effects([patheffects.withStroke(linewidth=HALO_PT, foreground="white")])
             placed.append((bb, gap))
+            hard_rows.append((bb.x0, bb.y0, bb.x1 + hard, bb.y1 + hard))
             if brk and not cost[0]:        # the thin lines under it interrupted
                 if breaker is None:
                     breaker = _Thin(thin)

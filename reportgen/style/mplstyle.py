@@ -30,6 +30,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import ScalarFormatter
 
 from . import fonts, svgslim
+from .fontheights import share_font_heights
 from .numbers import mpl_formatter
 
 __all__ = ["MM", "style_rc", "apply_style", "style", "figure", "localize_axes", "to_svg"]
@@ -134,6 +135,7 @@ def apply_style() -> None:
     matplotlib.rcParams.update(style_rc())
     share_mathtext()
     share_svg_text_metrics()
+    share_font_heights()
 
 
 MATHTEXT_CACHE = 4096  # parsed mathtext strings kept by a process (ws000's four sections: about 170)

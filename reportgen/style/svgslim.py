@@ -185,6 +185,7 @@ _AROUND_COMMAND = re.compile(r"\s*([A-Za-z])\s*")
 _SPACES = re.compile(r"\s+")
 
 
+@functools.lru_cache(maxsize=4096)
 def _compact(d: str) -> str:
     """Path data without the blanks around command letters (the numbers as they are)."""
     return _AROUND_COMMAND.sub(r"\1", _SPACES.sub(" ", d)).strip()
