@@ -1600,12 +1600,21 @@ def _text_units(blocks, later: set) -> list[tuple]:
     table with the paragraph announcing it, a formula with its «где» lines. Stops at anything
     else (a heading, a figure). ``later``: the elements (by ``id()``) that go on further (a
     block not whole)."""
+    return _units_and_stop(blocks, later)[0]
+
+
+def _units_and_stop(blocks, later: set) -> tuple[list[tuple], int | None]:
+    """``(units, stop)``: the units of :func:`_text_units` and the index in ``blocks`` of the
+    block they stopped at (a heading, a figure: nothing after it is read), ``None`` when they
+    took every block."""
     units: list[list] = []
     lead = intro = False
-    for el, tag, cls, h, *where in blocks:
+    stop = None
+    for at, (el, tag, cls, h, *where) in enumerate(blocks):
         end = where[0] if where else None
         if (tag == "p" and "where-note" in cls) or (tag == "table" and "where" in cls):
             if not units:
+                stop = at
                 break
             units[-1][0] += 1
             units[-1][1] += h
@@ -1629,11 +1638,12 @@ def _text_units(blocks, later: set) -> list[tuple]:
             lead = tag == "p" and "lead" in cls
             intro = tag == "p"
         else:
+            stop = at
             break
         units[-1][3] = units[-1][3] and id(el) not in later
     if lead:
         units.pop()  # a paragraph announcing a table that is not there
-    return [tuple(u) for u in units]
+    return [tuple(u) for u in units], stop
 
 
 def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = None) -> dict[str, list[int]]:
@@ -1667,7 +1677,8 @@ def _figure_fix_at(document, i: int, bottoms: list, splits: dict) -> tuple[str |
     an entry stands at the top of page ``i`` after a page less than half full (the rule decides
     it: ``entry`` is ``{}`` when neither drawing it smaller nor moving text fits), else
     ``(None, {})``; third, ``(page, y)`` up to which the decision read the layout after the figure
-    (the end of the last block it weighed). What decides it: the page before, the figure, and the
+    (the end of the last block it weighed, or of the block its text stopped at: a heading, a
+    figure, the rest of its own caption on the next page). What decides it: the page before, the figure, and the
     blocks after it in its section on pages ``i`` to ``i +`` :data:`FIGURE_LOOKAHEAD` (and which
     of them go on further)."""
     page, before = document.pages[i], document.pages[i - 1]
@@ -1702,7 +1713,8 @@ def _figure_fix_at(document, i: int, bottoms: list, splits: dict) -> tuple[str |
     if parent is None:
         return fid, {}, (i, 0.0)
     line = float(fig.style["font_size"]) * 1.5
-    units = _text_units(*_blocks_after(document, i, fig, parent))
+    blocks, later = _blocks_after(document, i, fig, parent)
+    units, stop = _units_and_stop(blocks, later)
     moved, used = 0, 0.0
     k = 0
     while k < len(units) and units[k][3] and used + units[k][1] <= room - FIGURE_SLACK:
@@ -1716,8 +1728,10 @@ def _figure_fix_at(document, i: int, bottoms: list, splits: dict) -> tuple[str |
         # orphans and widows of the break); a landscape figure has a page of its own
         if breakable and whole and (land or (h - (room - used)) + rest + h_img + 3 * line <= height):
             moved += n
-    # (every block read when the text ran out before the room did: up to where _blocks_after looked)
-    read = read if k < len(units) and read is not None else (min(len(document.pages), i + FIGURE_LOOKAHEAD + 2), 0.0)
+    if k >= len(units) or read is None:
+        # the text ran out before the room did: read up to the block it stopped at (a heading, a
+        # figure: its tag read, nothing after it), else every block up to where _blocks_after looked
+        read = blocks[stop][4] if stop is not None else (min(len(document.pages), i + FIGURE_LOOKAHEAD + 2), 0.0)
     return fid, ({FIGURE_KEY + fid: [moved, 1000]} if moved else {}), read
 
 
