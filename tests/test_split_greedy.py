@@ -256,7 +256,24 @@ def test_neighbours_guess_is_not_held_back_at_a_figure_it_can_prove():
     got, passes = _fast(part, neighbour)
     assert got.get("figure:fig-frc-lever", [0])[0] > 0  # text moved before the landscape lever
     assert got == _reference(part)
-    assert passes <= 4
+    assert passes <= 3  # 4 before session 11: see the test below
+
+
+def test_table_after_text_moved_before_a_landscape_figure_is_guessed_where_it_will_start():
+    """Class variant 02's forces part, on the layout of the second pass from variant 01's split
+    points: the Жуковский lever's figure (landscape, a page of its own) takes six blocks before
+    it, and the table of checks, which starts under them on the page after the figure and is cut
+    there by 01's entry, will start that page six blocks higher, whole. Its stale entry used to
+    be kept for the next layout, checked there and dropped (a pass of its own: 4 passes); now
+    it is guessed on its row model started that much higher (render._shifted_guesses): none."""
+    neighbour, _passes = _fast(_Part(_class_note("0.300 m", "1.400 m", "0.85 m"), FULL_FORCES))
+    part = _Part(_class_note("0.303 m", "1.410 m", "0.87 m"), FULL_FORCES)
+    splits = {**neighbour, "tab-frc-comp-2": [4]}
+    assert splits.get("tab-frc-checks") == [4]
+    doc = part.lay(splits)
+    new = render._settle_step(doc, splits, {})
+    assert new["figure:fig-frc-lever"][0] > 0  # the text moved before the figure in this pass
+    assert "tab-frc-checks" not in new  # and the table after it guessed whole
 
 
 def test_guessed_figure_entry_after_a_landscape_page_is_dropped_in_one_pass():

@@ -1819,7 +1819,7 @@ def _uniform(values: list, pages) -> float | None:
 
 def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float | None,
                    tops: list, bottoms: list, cur: list[int] | None, before: tuple | None,
-                   min_rows: int = MIN_PART_ROWS) -> tuple[str, list[int] | None, bool]:
+                   min_rows: int = MIN_PART_ROWS, shift: float = 0.0) -> tuple[str, list[int] | None, bool]:
     """Whether the entry ``cur`` of a table is the one the canonical passes give, read from ONE
     layout made with it: ``("ok", None, True)``, ``("fix", entry, same_end)`` (the canonical entry,
     when it is another; ``same_end``: the table would end where it ends here, so the layout after
@@ -1845,7 +1845,11 @@ def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float
     place within :data:`SIM_EPS`), then the passes from none are run on it with
     :func:`_table_step` (the same rules, an only table changing). Unknown when a quantity is
     missing, the model does not match, or a row ends within :data:`SIM_MARGIN` of a page bottom
-    in a modelled layout (too close to say which page WeasyPrint gives it)."""
+    in a modelled layout (too close to say which page WeasyPrint gives it).
+
+    ``shift``: the passes are run with the table starting that much higher on its page than
+    here (a table not started on a new page), which makes the answer a *guess* of its entry for
+    a layout where the blocks above it on its page are gone (:func:`_shifted_guesses`)."""
     unknown = ("unknown", None, False)
     n = max(where) + 1
     if set(where) != set(range(n)) or set(rb) != set(range(n)) or table_top is None:
@@ -1900,6 +1904,10 @@ def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float
         return _why(unknown, "model does not match")
     sim_bottoms = [bottom] * (n + 3)
     entry = None
+    if shift:
+        if lead or y0 - shift - head < top - SIM_EPS:
+            return _why(unknown, "shifted start not modelled")
+        y0 -= shift
     if lead:
         # unsplit, the table starts under the block before it: that block's border bottom, then
         # the larger of the adjoining margins (its own bottom ones, the table's top one)
@@ -2132,6 +2140,46 @@ def _figure_verdict(document, page: int, key: str, cur: list[int], bottoms: list
     return ("ok", None) if want == cur else ("fix", want)
 
 
+def _shifted_guesses(document, page: int, key: str, entry, rows: dict, boxes: dict,
+                     table_tops: dict, tops: list, bottoms: list, splits: dict,
+                     min_rows: int = MIN_PART_ROWS) -> dict[str, list[int] | None]:
+    """Guesses of the entries of the tables after a landscape figure (``key``, on page ``page``)
+    just given text moved before it (``entry`` ``[n, 1000]``), for the next layout: the figure
+    has a page of its own (forced breaks before and after it), so the blocks after the moved
+    ones start the page after it as they stand here, only higher by where the first of them
+    starts here. Each table with an entry starting on that page after them gets the entry its
+    own passes give on the model of :func:`_table_verdict` started that much higher (``None``:
+    it needs none). Without this its stale entry cost a pass of its own (checked, found
+    wrong, dropped). A guess: the passes end only where :func:`_settle_step` proves it."""
+    n = entry[0] if entry and len(entry) == 2 and entry[1] == 1000 else 0
+    if not n or page + 1 >= len(document.pages):
+        return {}
+    flow, fig = _figure_box(document, page, key)
+    parent = _parent_of(flow, fig) if fig is not None else None
+    if parent is None or "landscape" not in (fig.element.get("class") or ""):
+        return {}
+    blocks = _section_blocks(document, parent.element)
+    at = next((k for k, b in enumerate(blocks) if b[0] is fig.element), None)
+    if at is None or at + n + 1 >= len(blocks) or tops[page + 1] is None:
+        return {}
+    nxt = page + 1
+    if any(b[4][0] != nxt or b[5][0] != nxt for b in blocks[at + 1:at + n + 1]) or blocks[at + n + 1][4][0] != nxt:
+        return {}  # the moved blocks not all on the page after the figure
+    start = blocks[at + n + 1][4][1]
+    shift = start - tops[nxt]
+    out: dict[str, list[int] | None] = {}
+    for tid, where in rows.items():
+        cur = _norm(tid, splits.get(tid))
+        rb = boxes.get(tid, {})
+        if not cur or 0 in cur or where.get(0) != nxt or 0 not in rb or rb[0][0] < start - SPLIT_EPS:
+            continue
+        verdict, want, _same = _table_verdict(where, rb, table_tops.get(tid), tops, bottoms, cur, None,
+                                              min_rows, shift)
+        if verdict == "fix":
+            out[tid] = want
+    return out
+
+
 def _entries_before(points, idx: int, splits: dict, end: tuple) -> list[str]:
     """The points after ``points[idx]`` with an entry that start before ``end`` (page, y)."""
     return [k for p, y, k in points[idx + 1:] if (p, y) < tuple(end) and _norm(k, splits.get(k))]
@@ -2164,8 +2212,10 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
     the point is set back to none (with the later entries before the end of what its rule
     reads held back, restored once it is decided), so that the next layout is. The later
     points are then guessed from this layout where they have no entry (a table spanning pages
-    cut where its pages start, a figure by its rule): the first pass of a note guesses every
-    decision at once, and a guess costs at most the pass that finds it wrong.
+    cut where its pages start, a figure by its rule; the tables after a landscape figure given
+    text moved before it, entry or not, where they will start: :func:`_shifted_guesses`): the
+    first pass of a note guesses every decision at once, and a guess costs at most the pass
+    that finds it wrong.
 
     ``state`` is kept between the passes of one layout (plain data: it crosses processes)."""
     proven = state.setdefault("proven", {})
@@ -2196,20 +2246,31 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
             held[k] = new.pop(k)
         state["held_for"] = key
 
-    def finish(idx: int, guess: bool):
-        """Drop what was proved after ``idx``, guess the later points, return the next entries."""
+    def finish(idx: int, guess: bool, guessed: dict | None = None):
+        """Drop what was proved after ``idx``, guess the later points (``guessed``: entries already
+        guessed for some of them, none meaning none), return the next entries."""
         later = {k for _p, _y, k in points[idx + 1:]}
+        for k, v in (guessed or {}).items():
+            if k in later and k not in held:
+                put(k, v)
         for k in later:
             proven.pop(k, None)
         state["clean_none"] = [k for k in state.get("clean_none", ()) if k not in later]
         if guess:
+            guessed = dict(guessed or {})
             for p, _y, k in points[idx + 1:]:
-                if _norm(k, new.get(k)) or k in held:
+                if _norm(k, new.get(k)) or k in held or k in guessed:
                     continue
                 if k.startswith(FIGURE_KEY):
                     fid, fix, _read = _figure_fix_at(document, p, bottoms, new) if p else (None, {}, None)
                     if fix and FIGURE_KEY + fid == k:
                         new.update(fix)
+                        shifted = _shifted_guesses(document, p, k, fix[k], rows, boxes, table_tops, tops,
+                                                   bottoms, new, min_rows)
+                        for t, v in shifted.items():
+                            if t in later and t not in held:
+                                put(t, v)
+                        guessed.update(shifted)
                 else:
                     cut = _table_step(rows[k], boxes.get(k, {}), bottoms, (), False, min_rows)
                     if cut:
@@ -2260,7 +2321,8 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
                     held.clear()
                     acted = changed = True
             if acted:
-                return finish(idx, True)
+                return finish(idx, True, _shifted_guesses(document, page, key, decided, rows, boxes, table_tops,
+                                                          tops, bottoms, new, min_rows) if decided else None)
             continue
         where, rb = rows[key], boxes.get(key, {})
         if cur is None:
