@@ -1600,12 +1600,21 @@ def _text_units(blocks, later: set) -> list[tuple]:
     table with the paragraph announcing it, a formula with its «где» lines. Stops at anything
     else (a heading, a figure). ``later``: the elements (by ``id()``) that go on further (a
     block not whole)."""
+    return _units_and_stop(blocks, later)[0]
+
+
+def _units_and_stop(blocks, later: set) -> tuple[list[tuple], int | None]:
+    """``(units, stop)``: the units of :func:`_text_units` and the index in ``blocks`` of the
+    block they stopped at (a heading, a figure: nothing after it is read), ``None`` when they
+    took every block."""
     units: list[list] = []
     lead = intro = False
-    for el, tag, cls, h, *where in blocks:
+    stop = None
+    for at, (el, tag, cls, h, *where) in enumerate(blocks):
         end = where[0] if where else None
         if (tag == "p" and "where-note" in cls) or (tag == "table" and "where" in cls):
             if not units:
+                stop = at
                 break
             units[-1][0] += 1
             units[-1][1] += h
@@ -1629,11 +1638,12 @@ def _text_units(blocks, later: set) -> list[tuple]:
             lead = tag == "p" and "lead" in cls
             intro = tag == "p"
         else:
+            stop = at
             break
         units[-1][3] = units[-1][3] and id(el) not in later
     if lead:
         units.pop()  # a paragraph announcing a table that is not there
-    return [tuple(u) for u in units]
+    return [tuple(u) for u in units], stop
 
 
 def _figure_fixes(document, splits: dict[str, list[int]], upto: int | None = None) -> dict[str, list[int]]:
@@ -1667,7 +1677,8 @@ def _figure_fix_at(document, i: int, bottoms: list, splits: dict) -> tuple[str |
     an entry stands at the top of page ``i`` after a page less than half full (the rule decides
     it: ``entry`` is ``{}`` when neither drawing it smaller nor moving text fits), else
     ``(None, {})``; third, ``(page, y)`` up to which the decision read the layout after the figure
-    (the end of the last block it weighed). What decides it: the page before, the figure, and the
+    (the end of the last block it weighed, or of the block its text stopped at: a heading, a
+    figure, the rest of its own caption on the next page). What decides it: the page before, the figure, and the
     blocks after it in its section on pages ``i`` to ``i +`` :data:`FIGURE_LOOKAHEAD` (and which
     of them go on further)."""
     page, before = document.pages[i], document.pages[i - 1]
@@ -1702,7 +1713,8 @@ def _figure_fix_at(document, i: int, bottoms: list, splits: dict) -> tuple[str |
     if parent is None:
         return fid, {}, (i, 0.0)
     line = float(fig.style["font_size"]) * 1.5
-    units = _text_units(*_blocks_after(document, i, fig, parent))
+    blocks, later = _blocks_after(document, i, fig, parent)
+    units, stop = _units_and_stop(blocks, later)
     moved, used = 0, 0.0
     k = 0
     while k < len(units) and units[k][3] and used + units[k][1] <= room - FIGURE_SLACK:
@@ -1716,8 +1728,10 @@ def _figure_fix_at(document, i: int, bottoms: list, splits: dict) -> tuple[str |
         # orphans and widows of the break); a landscape figure has a page of its own
         if breakable and whole and (land or (h - (room - used)) + rest + h_img + 3 * line <= height):
             moved += n
-    # (every block read when the text ran out before the room did: up to where _blocks_after looked)
-    read = read if k < len(units) and read is not None else (min(len(document.pages), i + FIGURE_LOOKAHEAD + 2), 0.0)
+    if k >= len(units) or read is None:
+        # the text ran out before the room did: read up to the block it stopped at (a heading, a
+        # figure: its tag read, nothing after it), else every block up to where _blocks_after looked
+        read = blocks[stop][4] if stop is not None else (min(len(document.pages), i + FIGURE_LOOKAHEAD + 2), 0.0)
     return fid, ({FIGURE_KEY + fid: [moved, 1000]} if moved else {}), read
 
 
@@ -1805,7 +1819,7 @@ def _uniform(values: list, pages) -> float | None:
 
 def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float | None,
                    tops: list, bottoms: list, cur: list[int] | None, before: tuple | None,
-                   min_rows: int = MIN_PART_ROWS) -> tuple[str, list[int] | None, bool]:
+                   min_rows: int = MIN_PART_ROWS, shift: float = 0.0) -> tuple[str, list[int] | None, bool]:
     """Whether the entry ``cur`` of a table is the one the canonical passes give, read from ONE
     layout made with it: ``("ok", None, True)``, ``("fix", entry, same_end)`` (the canonical entry,
     when it is another; ``same_end``: the table would end where it ends here, so the layout after
@@ -1831,7 +1845,11 @@ def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float
     place within :data:`SIM_EPS`), then the passes from none are run on it with
     :func:`_table_step` (the same rules, an only table changing). Unknown when a quantity is
     missing, the model does not match, or a row ends within :data:`SIM_MARGIN` of a page bottom
-    in a modelled layout (too close to say which page WeasyPrint gives it)."""
+    in a modelled layout (too close to say which page WeasyPrint gives it).
+
+    ``shift``: the passes are run with the table starting that much higher on its page than
+    here (a table not started on a new page), which makes the answer a *guess* of its entry for
+    a layout where the blocks above it on its page are gone (:func:`_shifted_guesses`)."""
     unknown = ("unknown", None, False)
     n = max(where) + 1
     if set(where) != set(range(n)) or set(rb) != set(range(n)) or table_top is None:
@@ -1886,6 +1904,10 @@ def _table_verdict(where: dict[int, int], rb: dict[int, tuple], table_top: float
         return _why(unknown, "model does not match")
     sim_bottoms = [bottom] * (n + 3)
     entry = None
+    if shift:
+        if lead or y0 - shift - head < top - SIM_EPS:
+            return _why(unknown, "shifted start not modelled")
+        y0 -= shift
     if lead:
         # unsplit, the table starts under the block before it: that block's border bottom, then
         # the larger of the adjoining margins (its own bottom ones, the table's top one)
@@ -2118,6 +2140,46 @@ def _figure_verdict(document, page: int, key: str, cur: list[int], bottoms: list
     return ("ok", None) if want == cur else ("fix", want)
 
 
+def _shifted_guesses(document, page: int, key: str, entry, rows: dict, boxes: dict,
+                     table_tops: dict, tops: list, bottoms: list, splits: dict,
+                     min_rows: int = MIN_PART_ROWS) -> dict[str, list[int] | None]:
+    """Guesses of the entries of the tables after a landscape figure (``key``, on page ``page``)
+    just given text moved before it (``entry`` ``[n, 1000]``), for the next layout: the figure
+    has a page of its own (forced breaks before and after it), so the blocks after the moved
+    ones start the page after it as they stand here, only higher by where the first of them
+    starts here. Each table with an entry starting on that page after them gets the entry its
+    own passes give on the model of :func:`_table_verdict` started that much higher (``None``:
+    it needs none). Without this its stale entry cost a pass of its own (checked, found
+    wrong, dropped). A guess: the passes end only where :func:`_settle_step` proves it."""
+    n = entry[0] if entry and len(entry) == 2 and entry[1] == 1000 else 0
+    if not n or page + 1 >= len(document.pages):
+        return {}
+    flow, fig = _figure_box(document, page, key)
+    parent = _parent_of(flow, fig) if fig is not None else None
+    if parent is None or "landscape" not in (fig.element.get("class") or ""):
+        return {}
+    blocks = _section_blocks(document, parent.element)
+    at = next((k for k, b in enumerate(blocks) if b[0] is fig.element), None)
+    if at is None or at + n + 1 >= len(blocks) or tops[page + 1] is None:
+        return {}
+    nxt = page + 1
+    if any(b[4][0] != nxt or b[5][0] != nxt for b in blocks[at + 1:at + n + 1]) or blocks[at + n + 1][4][0] != nxt:
+        return {}  # the moved blocks not all on the page after the figure
+    start = blocks[at + n + 1][4][1]
+    shift = start - tops[nxt]
+    out: dict[str, list[int] | None] = {}
+    for tid, where in rows.items():
+        cur = _norm(tid, splits.get(tid))
+        rb = boxes.get(tid, {})
+        if not cur or 0 in cur or where.get(0) != nxt or 0 not in rb or rb[0][0] < start - SPLIT_EPS:
+            continue
+        verdict, want, _same = _table_verdict(where, rb, table_tops.get(tid), tops, bottoms, cur, None,
+                                              min_rows, shift)
+        if verdict == "fix":
+            out[tid] = want
+    return out
+
+
 def _entries_before(points, idx: int, splits: dict, end: tuple) -> list[str]:
     """The points after ``points[idx]`` with an entry that start before ``end`` (page, y)."""
     return [k for p, y, k in points[idx + 1:] if (p, y) < tuple(end) and _norm(k, splits.get(k))]
@@ -2150,8 +2212,10 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
     the point is set back to none (with the later entries before the end of what its rule
     reads held back, restored once it is decided), so that the next layout is. The later
     points are then guessed from this layout where they have no entry (a table spanning pages
-    cut where its pages start, a figure by its rule): the first pass of a note guesses every
-    decision at once, and a guess costs at most the pass that finds it wrong.
+    cut where its pages start, a figure by its rule; the tables after a landscape figure given
+    text moved before it, entry or not, where they will start: :func:`_shifted_guesses`): the
+    first pass of a note guesses every decision at once, and a guess costs at most the pass
+    that finds it wrong.
 
     ``state`` is kept between the passes of one layout (plain data: it crosses processes)."""
     proven = state.setdefault("proven", {})
@@ -2182,20 +2246,31 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
             held[k] = new.pop(k)
         state["held_for"] = key
 
-    def finish(idx: int, guess: bool):
-        """Drop what was proved after ``idx``, guess the later points, return the next entries."""
+    def finish(idx: int, guess: bool, guessed: dict | None = None):
+        """Drop what was proved after ``idx``, guess the later points (``guessed``: entries already
+        guessed for some of them, none meaning none), return the next entries."""
         later = {k for _p, _y, k in points[idx + 1:]}
+        for k, v in (guessed or {}).items():
+            if k in later and k not in held:
+                put(k, v)
         for k in later:
             proven.pop(k, None)
         state["clean_none"] = [k for k in state.get("clean_none", ()) if k not in later]
         if guess:
+            guessed = dict(guessed or {})
             for p, _y, k in points[idx + 1:]:
-                if _norm(k, new.get(k)) or k in held:
+                if _norm(k, new.get(k)) or k in held or k in guessed:
                     continue
                 if k.startswith(FIGURE_KEY):
                     fid, fix, _read = _figure_fix_at(document, p, bottoms, new) if p else (None, {}, None)
                     if fix and FIGURE_KEY + fid == k:
                         new.update(fix)
+                        shifted = _shifted_guesses(document, p, k, fix[k], rows, boxes, table_tops, tops,
+                                                   bottoms, new, min_rows)
+                        for t, v in shifted.items():
+                            if t in later and t not in held:
+                                put(t, v)
+                        guessed.update(shifted)
                 else:
                     cut = _table_step(rows[k], boxes.get(k, {}), bottoms, (), False, min_rows)
                     if cut:
@@ -2246,7 +2321,8 @@ def _settle_step(document, splits: dict[str, list[int]], state: dict,
                     held.clear()
                     acted = changed = True
             if acted:
-                return finish(idx, True)
+                return finish(idx, True, _shifted_guesses(document, page, key, decided, rows, boxes, table_tops,
+                                                          tops, bottoms, new, min_rows) if decided else None)
             continue
         where, rb = rows[key], boxes.get(key, {})
         if cur is None:
