@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import contextlib
 
-__all__ = ["cell_borders", "nowrap_widths"]
+__all__ = ["cell_borders", "nowrap_widths", "text_layouts"]
 
 _ORDER = (2, 3, 1, 0)  # bottom, left, right, top: WeasyPrint's order of the sides
 
@@ -168,3 +168,108 @@ def nowrap_widths():
         yield
     finally:
         preferred.split_first_line = general
+
+
+
+_FONT = ("direction", "font_language_override", "lang", "font_style", "font_stretch", "font_weight", "font_size",
+         "font_variant_caps", "font_kerning", "font_variant_ligatures", "font_variant_position",
+         "font_variant_numeric", "font_variant_alternates", "font_variant_east_asian", "font_feature_settings")
+
+
+def _text_setting(style, contexts: dict) -> tuple:
+    """What ``Layout.setup`` makes for ``style``: the Pango context (font map, no glyph position
+    rounding, base direction, language — one per direction and language, in ``contexts``), the
+    language, the font description and the OpenType feature string (or ``None``), each made
+    as WeasyPrint's ``setup`` makes it."""
+    from weasyprint.text.constants import LST_TO_ISO, PANGO_DIRECTION
+    from weasyprint.text.ffi import ffi, gobject, pango, unicode_to_char_p
+    from weasyprint.text.fonts import font_features, get_font_description
+
+    if style["font_language_override"] != "normal":
+        override = style["font_language_override"]
+        lang = LST_TO_ISO.get(override.lower(), override)
+    else:
+        lang = style["lang"] or None
+    kept = contexts.get((style["direction"], lang))
+    if kept is None:
+        context = ffi.gc(pango.pango_font_map_create_context(style.font_config.font_map), gobject.g_object_unref)
+        pango.pango_context_set_round_glyph_positions(context, False)
+        pango.pango_context_set_base_dir(context, PANGO_DIRECTION[style["direction"]])
+        if lang is None:
+            language = pango.pango_language_get_default()
+        else:
+            lang_p, _ = unicode_to_char_p(lang)
+            language = pango.pango_language_from_string(lang_p)
+            pango.pango_context_set_language(context, language)
+        kept = contexts[style["direction"], lang] = (context, language)
+    features = font_features(
+        style["font_kerning"], style["font_variant_ligatures"], style["font_variant_position"],
+        style["font_variant_caps"], style["font_variant_numeric"], style["font_variant_alternates"],
+        style["font_variant_east_asian"], style["font_feature_settings"])
+    features = ",".join(f"{key} {value}" for key, value in features.items()).encode() if features else None
+    return (*kept, get_font_description(style), features)
+
+
+def _layout_setup(general):
+    """``weasyprint.text.line_break.Layout.setup`` — which makes, for every piece of text laid
+    out and again when it is drawn, a new Pango context (font map, rounding, base direction,
+    language), a new font description and the font's feature string — with all three made
+    once per font configuration, direction, language and font (family, style, stretch,
+    weight, size, variants, features): Pango copies the description into the layout and only
+    reads the context's settings, which no one changes after they are made, so the glyphs and
+    their positions are the same. A style with font variations or a text decoration (which
+    reads the font metrics from the context) goes to WeasyPrint's own ``setup``."""
+    from weasyprint.text.ffi import ffi, gobject, pango
+
+    def setup(self, style):
+        if style["font_variation_settings"] != "normal" or style["text_decoration_line"] != "none":
+            return general(self, style)
+        font_config = style.font_config
+        settings = font_config.__dict__.get("_reportgen_text")
+        if settings is None:
+            settings = font_config.__dict__["_reportgen_text"] = ({}, {})  # settings, contexts
+        key = (tuple(style["font_family"]), *[style[name] for name in _FONT])
+        try:
+            kept = settings[0].get(key)
+        except TypeError:  # an unhashable value
+            return general(self, style)
+        if kept is None:
+            kept = settings[0][key] = _text_setting(style, settings[1])
+        context, language, description, features = kept
+        self.style = style
+        self.first_line_direction = 0
+        self.language = language
+        self.layout = ffi.gc(pango.pango_layout_new(context), gobject.g_object_unref)
+        pango.pango_layout_set_auto_dir(self.layout, False)
+        pango.pango_layout_set_font_description(self.layout, description)
+        self.ascent = None
+        self.underline_position = None
+        self.strikethrough_position = None
+        if features is not None:
+            # as WeasyPrint: one attribute per feature string, kept by the font configuration
+            attr = font_config.font_features.setdefault(features, pango.pango_attr_font_features_new(features))
+            attr_list = pango.pango_attr_list_new()
+            pango.pango_attr_list_insert(attr_list, attr)
+            pango.pango_layout_set_attributes(self.layout, attr_list)
+
+    return setup
+
+
+@contextlib.contextmanager
+def text_layouts():
+    """While a document is laid out or written: ``Layout.setup`` by :func:`_layout_setup`
+    (a Pango context and a font description made once, not per piece of text)."""
+    from weasyprint.text.line_break import Layout
+
+    general = Layout.setup
+    if getattr(general, "_reportgen", False):
+        yield
+        return
+    fast = _layout_setup(general)
+    fast._reportgen = True
+    Layout.setup = fast
+    try:
+        yield
+    finally:
+        Layout.setup = general
+
