@@ -459,3 +459,33 @@ def test_text_layouts_same_bytes_on_other_text_styles():
             Layout.setup = general
     assert fast == own
     assert fallbacks and all(fallbacks), fallbacks  # only the underline and the variations went to WeasyPrint
+
+
+def test_line_struts_once_per_style_same_bytes(report, tmp_path, monkeypatch):
+    """The inline layout asks for the strut of a style (``strut``: line height and baseline)
+    once per line box and inline box; ``wpfast.line_struts`` answers again from memory for the
+    same style object: most calls never reach WeasyPrint's ``strut``, and the note is the same
+    bytes as with WeasyPrint answering each."""
+    import contextlib
+
+    from reportgen.report import wpfast
+
+    asked, computed = [], []
+    real = wpfast._struts
+
+    def counting(general):
+        def counted(style):
+            computed.append(1)
+            return general(style)
+        fast = real(counted)
+
+        def strut(style):
+            asked.append(1)
+            return fast(style)
+        return strut
+
+    monkeypatch.setattr(wpfast, "_struts", counting)
+    fast = render.write_pdf(report, tmp_path / "fast.pdf", jobs=1).read_bytes()
+    assert len(asked) > 500 and len(computed) < len(asked) / 4, (len(asked), len(computed))
+    monkeypatch.setattr(wpfast, "line_struts", contextlib.nullcontext)
+    assert render.write_pdf(report, tmp_path / "weasyprint.pdf", jobs=1).read_bytes() == fast

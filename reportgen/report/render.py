@@ -2351,8 +2351,9 @@ def _html_class():
                 shared = _shared_sheets(self, font_config)
                 if shared:
                     options["stylesheets"] = [*(options.get("stylesheets") or []), *shared]
-                # a number cell's min- and max-content width measured once; one Pango context per font map
-                with wpfast.nowrap_widths(), wpfast.text_layouts():
+                # a number cell's min- and max-content width measured once; Pango settings made once per
+                # font; a style's strut computed once
+                with wpfast.nowrap_widths(), wpfast.text_layouts(), wpfast.line_struts():
                     return super().render(font_config, counter_style, color_profiles, **options)
 
         _HTML_CLASS = _HTML
