@@ -416,6 +416,7 @@ def test_text_layouts_share_pango_context_same_bytes(report, tmp_path, monkeypat
         return setup
 
     layouts: list = []
+    render._font_config().__dict__.pop("_reportgen_text", None)  # made by earlier tests of this process
     monkeypatch.setattr(wpfast, "_text_setting", counting_setting)
     monkeypatch.setattr(wpfast, "_layout_setup", counting_setup)
     fast = render.write_pdf(report, tmp_path / "fast.pdf", jobs=1).read_bytes()
