@@ -22,36 +22,11 @@ import collections
 import contextlib
 import os
 import sys
-import tempfile
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
-
-
-def _parts(case: str) -> dict[int, str]:
-    from reportgen.analysis.study import Study
-    from reportgen.report import parallel, render
-    from reportgen.report.assemble import build_report
-
-    report = build_report(Study(ROOT / case))
-    htmls: dict[int, str] = {}
-    original = parallel.lay_out_part
-
-    def keep(task):
-        htmls[task.index] = task.html
-        return original(task)
-
-    parallel.lay_out_part = keep
-    try:
-        with tempfile.TemporaryDirectory() as d:
-            for _ in range(2):  # the second with the split points known
-                htmls.clear()
-                render.write_pdf(report, Path(d) / "note.pdf", jobs=1)
-    finally:
-        parallel.lay_out_part = original
-    return htmls
 
 
 def _write_all(htmls) -> dict[int, bytes]:
@@ -87,7 +62,9 @@ def main(argv: list[str]) -> None:
 
     from reportgen.report import wpfast
 
-    htmls = _parts(a.case)
+    from bench_pdf_parts import part_htmls
+
+    htmls = part_htmls(a.case)
     setups: collections.Counter = collections.Counter()
     struts: collections.Counter = collections.Counter()
     by_id: dict = {}

@@ -98,6 +98,22 @@ def _draw_border(stream, box, general):
 
 
 @contextlib.contextmanager
+def _replaced(owner, name: str, make):
+    """``owner.name`` replaced by ``make(original)`` until exit; a nested use keeps the
+    outermost replacement (marked ``_reportgen``)."""
+    general = getattr(owner, name)
+    if getattr(general, "_reportgen", False):
+        yield
+        return
+    fast = make(general)
+    fast._reportgen = True
+    setattr(owner, name, fast)
+    try:
+        yield
+    finally:
+        setattr(owner, name, general)
+
+
 def cell_borders():
     """While a document is written (``write_pdf``): the borders of table cells drawn by
     :func:`_draw_border`, the same operators as WeasyPrint's. WeasyPrint's drawing module
@@ -105,20 +121,7 @@ def cell_borders():
     back on exit (nested uses keep the outermost)."""
     from weasyprint import draw
 
-    general = draw.draw_border
-    if getattr(general, "_reportgen", False):
-        yield
-        return
-
-    def fast(stream, box):
-        return _draw_border(stream, box, general)
-
-    fast._reportgen = True
-    draw.draw_border = fast
-    try:
-        yield
-    finally:
-        draw.draw_border = general
+    return _replaced(draw, "draw_border", lambda general: lambda stream, box: _draw_border(stream, box, general))
 
 
 def _line_widths(general):
@@ -150,25 +153,13 @@ def _line_widths(general):
     return split
 
 
-@contextlib.contextmanager
 def nowrap_widths():
     """While a document is laid out (``render``): the min- and max-content widths of a text
     that does not wrap measured once (:func:`_line_widths`) instead of twice; the widths, so
     the layout and the PDF, are the same."""
     from weasyprint.layout import preferred
 
-    general = preferred.split_first_line
-    if getattr(general, "_reportgen", False):
-        yield
-        return
-    fast = _line_widths(general)
-    fast._reportgen = True
-    preferred.split_first_line = fast
-    try:
-        yield
-    finally:
-        preferred.split_first_line = general
-
+    return _replaced(preferred, "split_first_line", _line_widths)
 
 
 _FONT = ("direction", "font_language_override", "lang", "font_style", "font_stretch", "font_weight", "font_size",
@@ -255,24 +246,12 @@ def _layout_setup(general):
     return setup
 
 
-@contextlib.contextmanager
 def text_layouts():
     """While a document is laid out or written: ``Layout.setup`` by :func:`_layout_setup`
     (a Pango context and a font description made once, not per piece of text)."""
     from weasyprint.text.line_break import Layout
 
-    general = Layout.setup
-    if getattr(general, "_reportgen", False):
-        yield
-        return
-    fast = _layout_setup(general)
-    fast._reportgen = True
-    Layout.setup = fast
-    try:
-        yield
-    finally:
-        Layout.setup = general
-
+    return _replaced(Layout, "setup", _layout_setup)
 
 
 def _struts(general):
@@ -297,7 +276,6 @@ def _struts(general):
     return strut
 
 
-@contextlib.contextmanager
 def line_struts():
     """While a document is laid out: ``strut`` by :func:`_struts` where the inline layout calls
     it (``weasyprint.layout.inline`` binds the name at import). Its calls while computed values
@@ -305,14 +283,4 @@ def line_struts():
     to WeasyPrint."""
     from weasyprint.layout import inline
 
-    general = inline.strut
-    if getattr(general, "_reportgen", False):
-        yield
-        return
-    fast = _struts(general)
-    fast._reportgen = True
-    inline.strut = fast
-    try:
-        yield
-    finally:
-        inline.strut = general
+    return _replaced(inline, "strut", _struts)
