@@ -19,7 +19,6 @@ import os
 import random
 import statistics
 import sys
-import tempfile
 import time
 from pathlib import Path
 
@@ -30,28 +29,13 @@ RULE = "table.tbl { font-variant-numeric: tabular-nums; }"
 
 
 def main(argv: list[str]) -> None:
-    from reportgen.analysis.study import Study
+    from bench_pdf_parts import part_htmls
+
     from reportgen.report import parallel, render
-    from reportgen.report.assemble import build_report
 
     n = int(argv[0]) if argv else 5
     rule = argv[1] if len(argv) > 1 else RULE
-    report = build_report(Study(ROOT / "cases/ws000_six_bar.toml"))
-    htmls: dict[int, str] = {}
-    original = parallel.lay_out_part
-
-    def keep(task):
-        htmls[task.index] = task.html
-        return original(task)
-
-    parallel.lay_out_part = keep
-    try:
-        with tempfile.TemporaryDirectory() as d:
-            for _ in range(2):  # the second with the split points known
-                htmls.clear()
-                render.write_pdf(report, Path(d) / "note.pdf", jobs=1)
-    finally:
-        parallel.lay_out_part = original
+    htmls = part_htmls("cases/ws000_six_bar.toml")
     heavy = sorted(htmls, key=lambda i: -htmls[i].count("<td"))[:3]
     variants = {"as is": {i: htmls[i] for i in heavy}, "with the rule": {}}
     for i in heavy:

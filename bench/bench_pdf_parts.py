@@ -28,6 +28,32 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 
+def part_htmls(case: str = "cases/ws000_six_bar.toml") -> dict[int, str]:
+    """The print HTML of every document of ``case``'s note as the workers of ``write_pdf`` get it
+    (the second write in this process: the split points known), by task index."""
+    from reportgen.analysis.study import Study
+    from reportgen.report import parallel, render
+    from reportgen.report.assemble import build_report
+
+    report = build_report(Study(ROOT / case))
+    htmls: dict[int, str] = {}
+    original = parallel.lay_out_part
+
+    def keep(task):
+        htmls[task.index] = task.html
+        return original(task)
+
+    parallel.lay_out_part = keep
+    try:
+        with tempfile.TemporaryDirectory() as d:
+            for _ in range(2):  # the second with the split points known
+                htmls.clear()
+                render.write_pdf(report, Path(d) / "note.pdf", jobs=1)
+    finally:
+        parallel.lay_out_part = original
+    return htmls
+
+
 def main(argv: list[str]) -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--runs", type=int, default=3)

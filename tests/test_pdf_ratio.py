@@ -385,3 +385,108 @@ def test_nowrap_widths_measured_once_same_bytes(report, tmp_path, monkeypatch):
     assert sum(len(c) for c in reused) > 100  # calls answered from the memo (never reaching WeasyPrint)
     monkeypatch.setattr(wpfast, "nowrap_widths", contextlib.nullcontext)
     assert render.write_pdf(report, tmp_path / "weasyprint.pdf", jobs=1).read_bytes() == fast
+
+
+def test_text_layouts_share_pango_context_same_bytes(report, tmp_path, monkeypatch):
+    """Every piece of text laid out or drawn gets its Pango layout from a context, a font
+    description and a feature string made once per font (``wpfast.text_layouts``), not a new
+    context and description each: thousands of layouts are set up without WeasyPrint's own
+    ``setup``, only a few settings are made, and the note is the same bytes as with
+    WeasyPrint's ``setup`` for every layout."""
+    import contextlib
+
+    from reportgen.report import wpfast
+
+    made, general_calls = [], []
+    real_setting, real_setup = wpfast._text_setting, wpfast._layout_setup
+
+    def counting_setting(style, contexts):
+        made.append(1)
+        return real_setting(style, contexts)
+
+    def counting_setup(general):
+        def counted(self, style):
+            general_calls.append(1)
+            return general(self, style)
+        fast = real_setup(counted)
+
+        def setup(self, style):
+            layouts.append(1)
+            return fast(self, style)
+        return setup
+
+    layouts: list = []
+    render._font_config().__dict__.pop("_reportgen_text", None)  # made by earlier tests of this process
+    monkeypatch.setattr(wpfast, "_text_setting", counting_setting)
+    monkeypatch.setattr(wpfast, "_layout_setup", counting_setup)
+    fast = render.write_pdf(report, tmp_path / "fast.pdf", jobs=1).read_bytes()
+    assert len(layouts) > 1000 and not general_calls, (len(layouts), len(general_calls))
+    assert 0 < len(made) < len(layouts) / 20, (len(made), len(layouts))
+    monkeypatch.setattr(wpfast, "text_layouts", contextlib.nullcontext)
+    assert render.write_pdf(report, tmp_path / "weasyprint.pdf", jobs=1).read_bytes() == fast
+
+
+def test_text_layouts_same_bytes_on_other_text_styles():
+    """Text the note never has — another language and a language override, small caps,
+    kerning and ligatures switched off, a feature setting, right to left, an underline and
+    font variations (these two left to WeasyPrint's ``setup``) — is the same bytes with
+    ``wpfast.text_layouts`` as without it, and the two left to WeasyPrint are counted there."""
+    from weasyprint.text.line_break import Layout
+
+    from reportgen.report import wpfast
+
+    html = ('<html lang="ru"><body><p>Обычный текст и 1,234 м/с</p><p lang="en">English text, fi ffl</p>'
+            '<p style="font-language-override: \'TRK\'">Türkçe</p><p style="font-variant: small-caps">Капитель</p>'
+            '<p style="font-kerning: none; font-variant-ligatures: none">AV To fi</p>'
+            '<p style="font-feature-settings: \'onum\' 1">0123456789</p><p dir="rtl">שלום abc</p>'
+            '<p style="text-decoration: underline">подчёркнуто</p>'
+            '<p style="font-variation-settings: \'wght\' 500">вариации</p>'
+            '<table><tr><td style="white-space: nowrap">12,5</td><td>текст ячейки</td></tr></table></body></html>')
+    general = Layout.setup
+    fallbacks = []
+
+    def counted(self, style):
+        fallbacks.append(style["text_decoration_line"] != "none" or style["font_variation_settings"] != "normal")
+        return general(self, style)
+
+    with render._fixed_font_timestamp():
+        from weasyprint import HTML  # WeasyPrint's own class: its render does not set the fast setup up
+        own = HTML(string=html).render(font_config=render._font_config()).write_pdf()
+        Layout.setup = counted
+        try:
+            with wpfast.text_layouts():
+                fast = HTML(string=html).render(font_config=render._font_config()).write_pdf()
+        finally:
+            Layout.setup = general
+    assert fast == own
+    assert fallbacks and all(fallbacks), fallbacks  # only the underline and the variations went to WeasyPrint
+
+
+def test_line_struts_once_per_style_same_bytes(report, tmp_path, monkeypatch):
+    """The inline layout asks for the strut of a style (``strut``: line height and baseline)
+    once per line box and inline box; ``wpfast.line_struts`` answers again from memory for the
+    same style object: most calls never reach WeasyPrint's ``strut``, and the note is the same
+    bytes as with WeasyPrint answering each."""
+    import contextlib
+
+    from reportgen.report import wpfast
+
+    asked, computed = [], []
+    real = wpfast._struts
+
+    def counting(general):
+        def counted(style):
+            computed.append(1)
+            return general(style)
+        fast = real(counted)
+
+        def strut(style):
+            asked.append(1)
+            return fast(style)
+        return strut
+
+    monkeypatch.setattr(wpfast, "_struts", counting)
+    fast = render.write_pdf(report, tmp_path / "fast.pdf", jobs=1).read_bytes()
+    assert len(asked) > 500 and len(computed) < len(asked) / 4, (len(asked), len(computed))
+    monkeypatch.setattr(wpfast, "line_struts", contextlib.nullcontext)
+    assert render.write_pdf(report, tmp_path / "weasyprint.pdf", jobs=1).read_bytes() == fast

@@ -2427,7 +2427,9 @@ def _html_class():
                 shared = _shared_sheets(self, font_config)
                 if shared:
                     options["stylesheets"] = [*(options.get("stylesheets") or []), *shared]
-                with wpfast.nowrap_widths():  # a number cell's min- and max-content width measured once
+                # a number cell's min- and max-content width measured once; Pango settings made once per
+                # font; a style's strut computed once
+                with wpfast.nowrap_widths(), wpfast.text_layouts(), wpfast.line_struts():
                     return super().render(font_config, counter_style, color_profiles, **options)
 
         _HTML_CLASS = _HTML
@@ -2589,8 +2591,8 @@ def write_pdf(report: Report, path, *, jobs: int | None = None) -> Path:
         return _finish_parts(job, path)
     document, stats = _layout(report, _font_config())
     t0 = time.perf_counter()
-    from .wpfast import cell_borders
-    with _fixed_font_timestamp(), cell_borders():
+    from .wpfast import cell_borders, text_layouts
+    with _fixed_font_timestamp(), cell_borders(), text_layouts():
         pdf = document.write_pdf()
     stats.seconds_pdf = time.perf_counter() - t0
     last_stats = stats
