@@ -186,3 +186,48 @@ def test_no_f_string_without_placeholders():
                     and not any(isinstance(v, ast.FormattedValue) for v in n.values):
                 bad.append(f"{p.relative_to(ROOT)}:{n.lineno}")
     assert not bad, bad
+
+
+# ------------------------------------------------------------------ forces: one sign convention for ε
+def _tex_value(tex: str) -> float:
+    """The value of a substituted TeX product such as «-0{,}006075 \\cdot \\left({-1{,}022}\\right)»."""
+    t = re.sub(r"\\ \\text\{[^}]*\}", "", tex)
+    t = (t.replace("{,}", ".").replace(r"\left(", "(").replace(r"\right)", ")").replace(r"\cdot", "*")
+         .replace(r"\,", "").replace("{", "(").replace("}", ")"))
+    return float(eval(t, {"__builtins__": {}}))         # digits, signs, products and parentheses only
+
+
+@pytest.mark.parametrize("stem", ["inclined_feeder", "ws000_six_bar"])
+def test_inertia_moments_substitute_the_tables_signed_epsilon(stem):
+    """The feeder (a clockwise crank) printed ε₁ = 1,022 in «M_Φ1 = J_S1 ε₁ = 0,006075 · 1,022»
+    while its Table 4.1 gives ε₁ = −1,02 (counter-clockwise positive, as the plans): the
+    formula M_Φk = −J_Sk·ε_k is now written with the table's signed ε_k and gives the table's
+    signed M_Φk, and the flywheel's M_Φ1 = −J_I·ε₁ the load applied to the crank."""
+    from reportgen.report.document import FormulaBlock
+    from reportgen.report.sections import forces as F
+    st = _study(stem)
+    sec = F.build(st)
+    tab = next(b for b in blocks(sec) if getattr(b, "id", None) == "tab-frc-inertia").data
+    table = {str(r.n): (r.e, r.MPhi) for r in tab.itertuples()}
+    checked = 0
+    for b in blocks(sec):
+        if not isinstance(b, FormulaBlock):
+            continue
+        for f in b.formulas:
+            m = re.match(r"M_\{\\Phi (\w+)\} = ", f.symbolic)
+            if not m or not f.substituted or "R_" in f.symbolic:
+                continue
+            assert re.match(r"M_\{\\Phi \w+\} = -", f.symbolic), f.symbolic       # M_Φk = −J·ε_k
+            got, res = _tex_value(f.substituted), _tex_value(f.result)
+            assert got == pytest.approx(res, rel=2e-3), (f.substituted, f.result)
+            link = m.group(1)
+            if link in table and "J_I" not in f.symbolic:
+                e, M = table[link]
+                eps = _tex_value(re.split(r"\\cdot", f.substituted)[1])
+                assert eps == pytest.approx(e, rel=1e-3), (link, f.substituted, e)
+                assert res == pytest.approx(M, rel=1e-3), (link, f.result, M)
+            checked += 1
+    assert checked >= 2
+    if st.mechanism.driver.direction < 0:
+        text = " ".join(plain(b.html) for b in blocks(sec) if hasattr(b, "html"))
+        assert "против часовой стрелки — плюс" in text
