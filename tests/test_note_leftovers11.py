@@ -231,3 +231,23 @@ def test_inertia_moments_substitute_the_tables_signed_epsilon(stem):
     if st.mechanism.driver.direction < 0:
         text = " ".join(plain(b.html) for b in blocks(sec) if hasattr(b, "html"))
         assert "против часовой стрелки — плюс" in text
+
+
+# ------------------------------------------------------------------ table parts: an overflowing part
+def test_overflowing_part_moves_its_cut_up_instead_of_dropping_it():
+    """The course_project's answer key (fresh cache): Table 2.3 cut at row 5 ran its row 4 onto
+    the next page; the rule took the room under that row (at the top of the next page) for a
+    cut made too early and dropped the cut, the whole table gave row 5 again, and the passes
+    alternated until MAX_PASSES, leaving the part across two pages with its full caption
+    repeated. An overflowing part's cut moves up to the overflowing row."""
+    from reportgen.report.render import _table_step
+    n = 9
+    where = {r: 0 if r < 4 else 1 for r in range(n)}
+    boxes = {r: (600.0 + 40 * r, 640.0 + 40 * r) for r in range(4)}
+    boxes.update({r: (40.0 * (r - 4), 40.0 * (r - 3)) for r in range(4, n)})
+    bottoms = [760.0, 760.0]
+    assert _table_step(where, boxes, bottoms, [5]) == [4]
+    # a part that ends on its own page with most of the page empty under it is still cut too early
+    where2 = {r: 0 if r < 5 else 1 for r in range(n)}
+    boxes2 = {r: (40.0 * r, 40.0 * (r + 1)) for r in range(n)}
+    assert _table_step(where2, boxes2, bottoms, [5]) == []
