@@ -251,3 +251,22 @@ def test_overflowing_part_moves_its_cut_up_instead_of_dropping_it():
     where2 = {r: 0 if r < 5 else 1 for r in range(n)}
     boxes2 = {r: (40.0 * r, 40.0 * (r + 1)) for r in range(n)}
     assert _table_step(where2, boxes2, bottoms, [5]) == []
+
+
+# ------------------------------------------------------------------ plan of positions: extreme positions
+@pytest.mark.parametrize("stem", ["drag_link_shaper", "ws000_six_bar"])
+def test_plan_of_positions_marks_every_joint_of_the_extreme_positions(stem, monkeypatch):
+    """The drag-link shaper's plan drew both extreme positions of the whole mechanism in bold
+    lines but named only the crank pin's and the ram's points (A′, A″, D′, D″): B′, B″, C′, C″
+    were unlabelled bold lines. Every moving joint of an extreme position carries its mark."""
+    from reportgen.mechanism.model import FRAME
+    from reportgen.scenes.mechanism import PositionsPlan, _marked
+    st = _study(stem)
+    seen = _labels(monkeypatch)
+    PositionsPlan().draw(st)
+    mech = st.mechanism
+    fixed = set(mech.link(FRAME).points)
+    joints = {j.point for j in mech.joints if j.point not in fixed}
+    assert len(joints) >= 3
+    missing = [_marked(p, m) for p in sorted(joints) for m in "′″" if _marked(p, m) not in seen]
+    assert not missing, (missing, seen)
