@@ -7,7 +7,6 @@
 * pyflakes: unused imports, an f-string without placeholders.
 """
 import ast
-import math
 import re
 import tomllib
 from pathlib import Path
@@ -15,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from conftest import CASES
-from notehelpers import blocks, plain
+from notehelpers import blocks, plain, record_labels
 
 ROOT = Path(__file__).resolve().parents[1]
 _STUDIES: dict = {}
@@ -36,19 +35,6 @@ def _synthesis_stems():
             if "type" in tomllib.load(f).get("synthesis", {}):
                 out.append(p.stem)
     return sorted(out)
-
-
-def _labels(monkeypatch):
-    """Record every text a scene hands to the label placer."""
-    from reportgen.scenes.labels import LabelPlacer
-    seen = []
-    orig = LabelPlacer.add
-
-    def add(self, x, y, text, prefer=None, **kw):
-        seen.append(text)
-        return orig(self, x, y, text, prefer=prefer, **kw)
-    monkeypatch.setattr(LabelPlacer, "add", add)
-    return seen
 
 
 # ------------------------------------------------------------------ synthesis: decimals
@@ -108,7 +94,7 @@ def test_synthesis_drawing_names_variant_centres_with_subscripts(stem, monkeypat
     the chosen centre is O₁ and the others O₁′, O₁″, O₁‴. Every name on the drawing is unique."""
     from reportgen.scenes.synthesis import SynthesisConstruction
     st = _study(stem)
-    seen = _labels(monkeypatch)
+    seen = record_labels(monkeypatch)
     SynthesisConstruction().draw(st)
     assert not [t for t in seen if "(" in t], seen
     centres = [t for t in seen if t.startswith("O")]
@@ -262,7 +248,7 @@ def test_plan_of_positions_marks_every_joint_of_the_extreme_positions(stem, monk
     from reportgen.mechanism.model import FRAME
     from reportgen.scenes.mechanism import PositionsPlan, _marked
     st = _study(stem)
-    seen = _labels(monkeypatch)
+    seen = record_labels(monkeypatch)
     PositionsPlan().draw(st)
     mech = st.mechanism
     fixed = set(mech.link(FRAME).points)

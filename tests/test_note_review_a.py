@@ -9,7 +9,7 @@ import pytest
 
 from conftest import CASES
 from reportgen.report.document import Paragraph, Section
-from notehelpers import blocks as _blocks, paragraph_text as _text
+from notehelpers import blocks as _blocks, paragraph_text as _text, record_labels
 
 
 @pytest.fixture(scope="module")
@@ -19,16 +19,7 @@ def slider():
 
 
 def _labels(monkeypatch):
-    """Record every text a scene hands to the label placer."""
-    from reportgen.scenes.labels import LabelPlacer
-    seen = []
-    orig = LabelPlacer.add
-
-    def add(self, x, y, text, prefer=None, **kw):
-        seen.append(text)
-        return orig(self, x, y, text, prefer=prefer, **kw)
-    monkeypatch.setattr(LabelPlacer, "add", add)
-    return seen
+    return record_labels(monkeypatch)
 
 
 # ------------------------------------------------------------------ plan of positions
