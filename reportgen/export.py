@@ -13,6 +13,7 @@ from typing import Iterable
 import numpy as np
 import pandas as pd
 
+from .analysis.link_motion import link_motion
 from .analysis.study import Study
 from .errors import CaseError
 
@@ -107,10 +108,11 @@ def _linkage_tables(study: Study) -> dict[str, pd.DataFrame]:
 
 
 def _structure_tables(study: Study) -> dict[str, pd.DataFrame]:
-    """Links, pairs and Assur groups (no kinematics solved)."""
+    """Links, pairs and Assur groups; a link's motion as the note's table of links states it
+    (a frame-hinged link that turns fully is a crank, :mod:`reportgen.analysis.link_motion`)."""
     st = study.structure
     return {
-        "links": pd.DataFrame([{"link": l.name, "title": l.title, "motion": st.link_motion[l.name],
+        "links": pd.DataFrame([{"link": l.name, "title": l.title, "motion": link_motion(study, l.name),
                                 "mass": l.mass, "weight": l.weight, "J_S": l.J_S, "com": l.com}
                                for l in study.mechanism.moving]),
         "pairs": pd.DataFrame(st.pairs),

@@ -27,6 +27,19 @@ def paragraph_text(sec) -> str:
     return " ".join(b.html for b in blocks(sec) if isinstance(b, Paragraph))
 
 
+def record_labels(monkeypatch) -> list[str]:
+    """Record every text a scene hands to the label placer (in the order handed)."""
+    from reportgen.scenes.labels import LabelPlacer
+    seen: list[str] = []
+    orig = LabelPlacer.add
+
+    def add(self, x, y, text, prefer=None, **kw):
+        seen.append(text)
+        return orig(self, x, y, text, prefer=prefer, **kw)
+    monkeypatch.setattr(LabelPlacer, "add", add)
+    return seen
+
+
 def arrows_mm(fig) -> list[tuple[np.ndarray, np.ndarray]]:
     """Every arrow of the figure's first axes as a segment in printed millimetres."""
     from matplotlib.patches import FancyArrowPatch

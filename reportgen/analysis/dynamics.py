@@ -45,7 +45,7 @@ from ..case.reader import Node
 from ..case.text import inline_html
 from ..errors import CaseError, did_you_mean
 from .flywheel import DynamicModel, DynamicsResult, exact, flywheel_dims, solve_dynamics
-from .loads import (ColumnEvaluator, Loads, LoadWorks, Table1D, com_point, cycle_of, read_loads,
+from .loads import (ColumnEvaluator, Loads, LoadWorks, Table1D, com_point, cycle_of,
                     read_table, switching_points)
 from .study import frame_of, true_motion
 
@@ -413,8 +413,9 @@ class Dynamics:
         if isinstance(s.drive, Table1D):
             tab = s.drive
 
-            def Mdrive(q, tab=tab):
+            def table_drive(q, tab=tab):
                 return tab(np.mod(np.asarray(q, dtype=float) - a, Phi))
+            Mdrive = table_drive
         elif s.drive is not None:
             Mdrive = float(s.drive)
         self._Mdrive = Mdrive

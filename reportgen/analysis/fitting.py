@@ -14,8 +14,7 @@ from typing import Callable
 
 import numpy as np
 
-from ..case import units as U
-from ..case.expr import Q, evaluate
+from ..case.expr import evaluate
 from ..case.reader import Node
 from ..errors import AssemblyError, CaseError
 

@@ -563,7 +563,7 @@ class Forces:
         true velocities and accelerations of every point among the columns (for the drawings),
         else only of the centres of mass."""
         q = np.ascontiguousarray(np.atleast_1d(np.asarray(q, dtype=float)))
-        mech, model = self.mech, self.model
+        model = self.model
         base = self.ev(q)
         w, e = self.motion_law(q)
         # the true velocities and accelerations beside the evaluator's columns (which stay

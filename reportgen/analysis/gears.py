@@ -20,7 +20,6 @@ import pandas as pd
 
 from ..case import units as U
 from ..core import gears as G
-from ..errors import CaseError
 
 __all__ = ["Gears", "blocking_grid", "choose_shifts"]
 

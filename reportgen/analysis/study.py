@@ -10,7 +10,7 @@ from __future__ import annotations
 import importlib
 import math
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property, lru_cache
 from pathlib import Path
 from collections.abc import MutableMapping

@@ -10,8 +10,6 @@ cycle), by the signed loop areas of the turning-moment diagram above/below the m
 """
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 __all__ = ["fluctuation_from_loops", "fluctuation_from_table", "speeds", "flywheel_J", "inverse_delta"]

@@ -240,7 +240,6 @@ def integrate(f: ArrayFunc, a: float, b: float, breaks: Iterable[float] | None =
     if a == b:
         return QuadResult(0.0, 0.0, 0.0, 0, 0, True)
     n = max(1, int(n_start))
-    n_seg = len(_segment_edges(a, b, breaks)) - 1
     lo, hi = _panels(a, b, breaks, n)
     s, s_abs = _panel_sums(f, lo, hi, order, with_abs=True)
     prev = float(np.sum(s))

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from itertools import combinations
 
 from ..errors import StructureError
-from .model import FRAME, Joint, Mechanism
+from .model import FRAME, Mechanism
 
 # Russian names of the five kinds of class II groups (external – internal – external pair)
 DYAD_KINDS = {"RRR": "ВВВ", "RRP": "ВВП", "RPR": "ВПВ", "PRP": "ПВП", "RPP": "ВПП"}

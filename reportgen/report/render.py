@@ -1432,10 +1432,16 @@ def _premature_cut(cuts: list[int], where: dict[int, int], boxes: dict[int, tupl
     """Index in ``cuts`` of the first split point that leaves a page largely empty: the
     part before it ends on a page with room for at least a quarter of the page (and for
     ``min_rows + 1`` of its rows) under its last row. Such a cut was decided while the
-    table started lower (an earlier table has since moved)."""
+    table started lower (an earlier table has since moved). A part that runs onto the next page
+    (its first and last rows on different pages) is not cut too early but too late: the room
+    under its last row, at the top of the next page, is the overflow's, which moves the cut up
+    (:func:`_table_step`); dropping the cut instead would make the whole table give it again."""
     for k, c in enumerate(cuts):
         last = c - 1
         if last not in where or last not in boxes:
+            continue
+        first = cuts[k - 1] if k else 0
+        if first in where and where[first] != where[last]:
             continue
         page = where[last]
         bottom = bottoms[page] if page < len(bottoms) else None

@@ -316,7 +316,6 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
             x, y = _point(row, sliders[link.name])
             cv.labels.add(x, y, link.name, prefer=(0.7, 0.7), color=color, fontsize=9, gap_mm=NUMBER_GAP_MM,
                           reach_mm=BLOCK_REACH_MM)
-    fixed = mech.link(FRAME).points
     for j in mech.joints:
         if only is not None and not set(j.links) & set(only):
             continue

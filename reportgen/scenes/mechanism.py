@@ -157,8 +157,17 @@ class PositionsPlan:
             radii = {mech.driver.center: r} if mech.driver.rotary else {}
             mechanism_centre_lines(cv, mech, rows[0], spans=spans, radii=radii)
         first_mark = len(cv.labels.items)
+        # every joint of a turning link in the extreme positions marked (B′, C′ …, as a textbook
+        # plan), not only the output's and the crank's: their lines are drawn as boldly as the main
+        # ones; a link in translation is left to its output point (its marks would only pile up
+        # along its own line, as a yoke's K′, P′)
+        fixed = set(mech.link(FRAME).points)
+        motion = study.structure.link_motion
+        turning = {l for l in motion if not motion[l].startswith("поступательное")}
+        marked = dict.fromkeys([out, tip] + [j.point for j in mech.joints if j.point not in fixed
+                                             and set(j.links) & turning])
         for mark, row in zip(("′", "″"), ext):
-            for p in dict.fromkeys([out, tip]):
+            for p in marked:
                 if view is None or p != view.tip:       # the numbered point's marks in its view
                     cv.labels.add(float(row[f"x_{p}"]), float(row[f"y_{p}"]), _marked(p, mark), fontsize=10,
                                   point=True)

@@ -12,7 +12,7 @@ from matplotlib.patches import Arc, Circle
 
 from ..core import synthesis as S
 from ..mechanism.model import FRAME
-from .draw import GREY, INK, Canvas, _block, centre_line
+from .draw import GREY, INK, SUBSCRIPT, Canvas, _block, centre_line
 from .mechanism import Drawing
 
 _FS = 9
@@ -21,6 +21,18 @@ _FS = 9
 def _pt(cv: Canvas, p, name: str, dx=1.5, dy=1.5, filled=True, color=INK):
     cv.ax.add_patch(Circle(p, cv.mm(0.9), fc=color if filled else "white", ec=color, lw=0.9, zorder=5))
     cv.labels.add(*p, name, prefer=(dx, dy), point=True, fontsize=_FS, color=color)     # placed by cv.svg()
+
+
+def _variant_centres(vs, chosen: int, taken: str) -> dict[int, str]:
+    """The crank centres of the solution variants as the textbook marks them: O₁, O₂, … (the
+    variant's number as a subscript, the numbering of the note's table of variants). Where that
+    would repeat a name of the drawing (the six-bar's rocker pivot O₂), the chosen centre is O₁,
+    as the crank centre beside the rocker's O₂, and the others O₁′, O₁″, O₁‴ in their order."""
+    names = {w["variant"]: "O" + str(w["variant"]).translate(SUBSCRIPT) for w in vs}
+    if taken not in names.values():
+        return names
+    others = [n for n in sorted(names) if n != chosen]
+    return {chosen: "O₁", **{n: "O₁" + "′″‴"[i] for i, n in enumerate(others)}}
 
 
 def _seg(cv: Canvas, p, q, lw=1.4, ls="-", color=INK, z=3):
@@ -212,9 +224,10 @@ class SynthesisConstruction:
         _angle(cv, c0, b1, b2, "ψ", r_mm=8)
         self._circles(cv, b1, b2, v["theta"], [(w["x_O"], w["y_O"]) for w in vs])
         self._locus(cv, vs)
+        names = _variant_centres(vs, v["variant"], rocker)
         for w in vs:
             if w["variant"] != v["variant"]:
-                _pt(cv, (w["x_O"], w["y_O"]), f"O({w['variant']})", filled=False, color=GREY)
+                _pt(cv, (w["x_O"], w["y_O"]), names[w["variant"]], filled=False, color=GREY)
         o = (v["x_O"], v["y_O"])
         far = (v["x_far"], v["y_far"])
         i_far = 0 if math.hypot(far[0] - b1[0], far[1] - b1[1]) < math.hypot(far[0] - b2[0], far[1] - b2[1]) else 1
@@ -223,7 +236,7 @@ class SynthesisConstruction:
         _pt(cv, c0, rocker, dx=1.5, dy=-4)
         _pt(cv, b1, lab[0], dx=-5, dy=1.5)
         _pt(cv, b2, lab[1])
-        _pt(cv, o, f"O({v['variant']})", dx=1.5, dy=-4)
+        _pt(cv, o, names[v["variant"]], dx=1.5, dy=-4)
 
     def _six_bar(self, cv, v, vs):
         self._crank_rocker(cv, v, vs, rocker="O₂", lab=("B₀", "B₁"))

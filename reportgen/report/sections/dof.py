@@ -45,7 +45,7 @@ def build(study) -> Section:
     rows = [{"pair": nm, "links": f"{i}–{j}", "type": {"R": "вращательная (p₅)", "P": "поступательная (p₅)",
                                                         "H": "высшая (p₄)"}[t]}
             for nm, (i, j, t) in zip(d.names, d.pairs)]
-    sec.paragraph(f"Подвижные звенья: " + ", ".join(Markup("{} — {}").format(k, nm) for k, nm in enumerate(d.links)
+    sec.paragraph("Подвижные звенья: " + ", ".join(Markup("{} — {}").format(k, nm) for k, nm in enumerate(d.links)
                                                     if k) + f"; кинематические пары — в таблице {ref('tab-dof-pairs')}.")
     sec.table("Кинематические пары механизма", [Column("pair", "Пара"), Column("links", "Звенья"),
                                                 Column("type", "Вид")], pd.DataFrame(rows), id="tab-dof-pairs")

@@ -231,10 +231,14 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
     where = f"φ&nbsp;=&nbsp;{fmt(q, digits=1)}°" if f.rotary else f"S&nbsp;=&nbsp;{fmt(q, digits=3)}&nbsp;м"
     inertial = [(name, m, J, S) for name, m, J, S in f.inertial]
     if inertial:
+        cw = f.rotary and mech.driver.direction < 0
         s.paragraph(f"Силы инерции звеньев приводятся к главному вектору, приложенному в центре масс, и "
                     f"главному моменту (положение {pos_no(study, lab)}, {where}"
                     + (f", ω&nbsp;=&nbsp;{fmt(row['omega'], sig=4)}&nbsp;рад/с, ε&nbsp;=&nbsp;"
-                       f"{fmt(row['eps'], sig=4)}&nbsp;рад/с²" if f.rotary else "") + "):")
+                       f"{fmt(row['eps'], sig=4)}&nbsp;рад/с²" if f.rotary else "")
+                    + (" в направлении вращения кривошипа, т.&nbsp;е. по часовой стрелке; угловые ускорения "
+                       "звеньев ε<sub>k</sub> и моменты M<sub>Φk</sub> в формулах и таблице — со знаком, против "
+                       "часовой стрелки — плюс" if cw else "") + "):")
         fs = [Formula(r"\Phi_k = -m_k a_{S_k}", where=[(r"m_k", "масса звена k, кг"),
                                                         (r"a_{S_k}", "ускорение его центра масс, м/с²")],
                       label="eq-frc-Phi"),
@@ -246,9 +250,10 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
                 fs.append(Formula(rf"\Phi_{{{name}}} = m_{{{name}}} a_{{{tex_point(S)}}}",
                                   rf"{_t(m)} \cdot {_t(row['aS_' + name])}", _t(row["Phi_" + name], unit="Н")))
             if J:
-                fs.append(Formula(rf"M_{{\Phi {name}}} = J_{{S{name}}} \varepsilon_{{{name}}}",
-                                  rf"{_t(J)} \cdot {_t(abs(row['eps_' + name]))}",
-                                  _t(abs(row["MPhi_" + name]), unit="Н·м")))
+                # signed, as eq. (MPhi) and the table: ε_k and M_Φk counter-clockwise positive
+                fs.append(Formula(rf"M_{{\Phi {name}}} = -J_{{S{name}}} \varepsilon_{{{name}}}",
+                                  rf"-{_t(J)} \cdot {_t(row['eps_' + name])}",
+                                  _t(row["MPhi_" + name], unit="Н·м")))
         if f.settings.flywheel:
             dyn = study.dynamics
             J1 = dyn.result.J_I - dyn.J_crank
@@ -257,8 +262,12 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
             # crank's own J_1 when the case gives it); factors to 5 digits so that they multiply
             # to the printed product
             J1_tex = rf"(J_I - J_{{{c}}})" if dyn.J_crank else "J_I"
-            fs.append(Formula(rf"M_{{\Phi {c}}} = {J1_tex} \varepsilon_{{{c}}}",
-                              rf"{_t(J1, sig=5)} \cdot {_t(abs(row['eps']), sig=5)}", _t(abs(row["MPhi_fly"]), unit="Н·м")))
+            # the crank's ε_1 counter-clockwise positive: the machine's ε (along the rotation) times
+            # the direction of rotation
+            eps_c = row["eps"] * mech.driver.direction
+            fs.append(Formula(rf"M_{{\Phi {c}}} = -{J1_tex} \varepsilon_{{{c}}}",
+                              rf"-{_t(J1, sig=5)} \cdot {_t(eps_c, sig=5)}",
+                              _t(row["MPhi_fly"], unit="Н·м")))
         s.formula(*fs)
         if f.settings.flywheel:
             less = " за вычетом момента инерции самого кривошипа" if study.dynamics.J_crank else ""

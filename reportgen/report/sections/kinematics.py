@@ -84,7 +84,7 @@ def _turning_link(study, key: str) -> str | None:
     """The link of the dyad of a transmission-angle flag ``mu_2_3`` hinged to the frame that makes
     whole turns (a double-crank linkage's driven crank), or None: the advice on a low angle for
     a rocker (its extreme positions) does not apply to it."""
-    from .structure import turns_fully
+    from ...analysis.link_motion import turns_fully
     mech = study.mechanism
     for link in key[3:].split("_"):
         hinged = any(j.kind == "R" and FRAME in j.links and link in j.links for j in mech.joints)

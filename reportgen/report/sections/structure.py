@@ -1,11 +1,10 @@
 """Section «Структурный анализ механизма»."""
 from __future__ import annotations
 
-import numpy as np
 import pandas as pd
 from markupsafe import Markup, escape
 
-from ...mechanism.structure import MOTION
+from ...analysis.link_motion import link_motion
 from ...mechanism.structure import decomposition as _decomposition
 from ...scenes.draw import gost_ratio, mu_text
 from ...scenes.mechanism import AssurGroups, KinematicScheme
@@ -21,33 +20,6 @@ def _ends(links: str) -> tuple[str, str]:
     """The two link numbers of «3–4»."""
     a, _, b = links.partition("–")
     return a, b
-
-
-def turns_fully(study, link: str) -> bool:
-    """Whether ``link`` makes whole turns over the cycle: its angle, unwrapped, grows by a
-    multiple of 2π (a crank is a link hinged to the frame that makes a full turn, Артоболевский [1],
-    гл. 1): the driven crank of a double-crank linkage, Whitworth's rotating slotted lever.  The
-    structure alone (mechanism layer, before any position is solved) calls every link hinged to
-    the frame other than the input a rocker. Read from the report positions (the kinematics the
-    section needs anyway, never the cycle curves): a periodic input's positions cover one turn,
-    so the steps of the link's angle between neighbouring positions, each taken in (−π, π] and
-    closed from the last position back to the first, add up to a multiple of 2π."""
-    kin = study.kinematics
-    col = f"phi_{link}"
-    if not study.mechanism.driver.periodic or col not in kin or len(kin) < 3:
-        return False
-    ang = kin.sort_values("q")[col].to_numpy(dtype=float)
-    steps = np.angle(np.exp(1j * np.diff(np.append(ang, ang[0]))))
-    return bool(abs(steps.sum()) > np.pi)
-
-
-def link_motion(study, link: str) -> str:
-    """The kind of motion of ``link`` for the note: the structure's, except a link hinged to the
-    frame that turns fully (:func:`turns_fully`) rotates («вращательное»), it does not swing."""
-    motion = study.structure.link_motion[link]
-    if motion == MOTION["rocker"] and turns_fully(study, link):
-        return "вращательное (кривошип, вращающаяся кулиса)"
-    return motion
 
 
 def _indexed(name: str) -> Markup:

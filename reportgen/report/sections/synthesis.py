@@ -89,6 +89,11 @@ def _w(x) -> str:
     return as_written(x).replace(",", "{,}")
 
 
+def _datum(x: dict, key: str, value: float) -> str:
+    """A datum in the text: as written when it is a given input (d = 0,6 м), else to 5 digits."""
+    return as_written(x[key]) if key in x else fmt(value, sig=5)
+
+
 def _g(x: dict, key: str, value: float) -> str:
     """A datum in a substituted formula: as written when it is a given input, else to 5 digits."""
     return _w(x[key]) if key in x else _t(value)
@@ -96,6 +101,12 @@ def _g(x: dict, key: str, value: float) -> str:
 
 def _t(x, sig=5) -> str:
     return tex_num(x, sig=sig)
+
+
+def _deg(rad: float) -> str:
+    """An angle of the construction (θ, θ/2, ψ/2) in degrees for TeX, to 0,001° without padding
+    zeros: θ = 180°·(1,25 − 1)/(1,25 + 1) is «20°», not «20,000°»; 16,364°, 8,182°."""
+    return as_written(round(math.degrees(rad), 3)).replace(",", "{,}")
 
 
 def build(study) -> Section:
@@ -115,7 +126,7 @@ def build(study) -> Section:
                   f"хода — на 180°&nbsp;−&nbsp;θ; {where}. Угол θ между этими положениями кривошипа:")
     sec.formula(r"\theta = 180^{\circ} \frac{K - 1}{K + 1}",
                 rf"180^{{\circ}} \cdot \frac{{{_w(x['K'])} - 1}}{{{_w(x['K'])} + 1}}",
-                tex_num(math.degrees(th), sig=5) + r"^{\circ}", label="eq-syn-theta")
+                _deg(th) + r"^{\circ}", label="eq-syn-theta")
     _construction(sec, study, kind, x, v)
     _variants(sec, kind, x, v, vs, sy.transmission)
     _transmission(sec, kind, x, v, sy.transmission)
@@ -130,10 +141,10 @@ def _construction(sec, study, kind, x, v) -> None:
     if kind == "slotted_lever":
         sec.paragraph("В крайних положениях кулиса касается окружности, описываемой концом кривошипа, "
                       "поэтому угол размаха кулисы равен θ, а кривошип перпендикулярен кулисе:")
-        sec.formula(r"a = d \sin\frac{\theta}{2}", rf"{_g(x, 'd', v['d'])} \cdot \sin {_t(math.degrees(th2))}^{{\circ}}",
+        sec.formula(r"a = d \sin\frac{\theta}{2}", rf"{_g(x, 'd', v['d'])} \cdot \sin {_deg(th2)}^{{\circ}}",
                     tex_num(v["a"], sig=5, unit="м"), label="eq-syn-a")
         sec.formula(r"l_{CD} = \frac{H}{2 \sin(\theta/2)}",
-                    rf"\frac{{{_g(x, 'H', v['H'])}}}{{2 \sin {_t(math.degrees(th2))}^{{\circ}}}}",
+                    rf"\frac{{{_g(x, 'H', v['H'])}}}{{2 \sin {_deg(th2)}^{{\circ}}}}",
                     tex_num(v["l"], sig=5, unit="м"), label="eq-syn-l")
     else:
         P = "C" if kind == "slider_crank" else "B"
@@ -154,12 +165,12 @@ def _construction(sec, study, kind, x, v) -> None:
                           "и λ&nbsp;=&nbsp;a/b:")
             sec.formula(r"b = \frac{H}{\sqrt{2(1 + \lambda^2) - 2(1 - \lambda^2)\cos\theta}}",
                         rf"\frac{{{_w(x['H'])}}}{{\sqrt{{2(1 + {_w(x['lam'])}^2) - 2(1 - "
-                        rf"{_w(x['lam'])}^2)\cos {_t(math.degrees(v['theta']))}^{{\circ}}}}}}",
+                        rf"{_w(x['lam'])}^2)\cos {_deg(v['theta'])}^{{\circ}}}}}}",
                         tex_num(v["b"], sig=5, unit="м"), label="eq-syn-b-lam")
             sec.formula(r"a = \lambda b", rf"{_w(x['lam'])} \cdot {_t(v['b'])}",
                         tex_num(v["a"], sig=5, unit="м"), label="eq-syn-a-lam")
             sec.formula(r"e = \frac{(b^2 - a^2)\sin\theta}{H}",
-                        rf"\frac{{({_t(v['b'])}^2 - {_t(v['a'])}^2)\sin {_t(math.degrees(v['theta']))}^{{\circ}}}}"
+                        rf"\frac{{({_t(v['b'])}^2 - {_t(v['a'])}^2)\sin {_deg(v['theta'])}^{{\circ}}}}"
                         rf"{{{_w(x['H'])}}}", tex_num(v["e"], sig=5, unit="м"), label="eq-syn-e")
             sec.paragraph("Те же длины по построению (расстояния от O до крайних положений ползуна):")
         far = math.hypot(v.get("x_far", v.get("x_C2", 0)) - v["x_O"], v.get("y_far", 0.0) - v["y_O"])
@@ -191,25 +202,25 @@ def _chord(sec, kind, v, P) -> None:
     else:
         chord = math.hypot(v["x_B2"] - v["x_B1"], v["y_B2"] - v["y_B1"])
         sec.formula(r"|B_1B_2| = 2 l_{CB} \sin\frac{\psi}{2}",
-                    rf"2 \cdot {_w(v['c'])} \cdot \sin {_t(math.degrees(v['psi'] / 2))}^{{\circ}}",
+                    rf"2 \cdot {_w(v['c'])} \cdot \sin {_deg(v['psi'] / 2)}^{{\circ}}",
                     tex_num(chord, sig=5, unit="м"), label="eq-syn-chord")
     th = v["theta"]
     if th > 1e-9:
         shown = _w(chord) if kind == "slider_crank" else _t(chord)
-        sec.formula(_R.replace("B", P), rf"\frac{{{shown}}}{{2 \sin {_t(math.degrees(th))}^{{\circ}}}}",
+        sec.formula(_R.replace("B", P), rf"\frac{{{shown}}}{{2 \sin {_deg(th)}^{{\circ}}}}",
                     tex_num(chord / (2 * math.sin(th)), sig=5, unit="м"), label="eq-syn-R")
 
 
 def _locus_ru(kind, x) -> str:
     if kind == "slider_crank":
-        return f"прямой, параллельной направляющей, на расстоянии e&nbsp;=&nbsp;{fmt(x.get('e', 0.0), sig=4)}&nbsp;м" \
+        return f"прямой, параллельной направляющей, на расстоянии e&nbsp;=&nbsp;{as_written(x['e'])}&nbsp;м" \
             if "e" in x else "условием λ = a/b (решение в замкнутом виде по теореме косинусов для треугольника OC₁C₂)"
     if "d" in x or "o1_d" in x:
-        return f"окружностью радиуса d&nbsp;=&nbsp;{fmt(x.get('d', x.get('o1_d')), sig=4)}&nbsp;м вокруг опоры коромысла"
+        return f"окружностью радиуса d&nbsp;=&nbsp;{as_written(x.get('d', x.get('o1_d')))}&nbsp;м вокруг опоры коромысла"
     if "o1_path_dist" in x:
-        return (f"прямыми, параллельными траектории ползуна, на расстоянии h&nbsp;=&nbsp;{fmt(x['o1_path_dist'], sig=4)}"
+        return (f"прямыми, параллельными траектории ползуна, на расстоянии h&nbsp;=&nbsp;{as_written(x['o1_path_dist'])}"
                 "&nbsp;м от неё (по обе стороны)")
-    return f"прямой y&nbsp;=&nbsp;{fmt(x['o1_y'], sig=4)}&nbsp;м"
+    return f"прямой y&nbsp;=&nbsp;{as_written(x['o1_y'])}&nbsp;м"
 
 
 def _variants(sec, kind, x, v, vs, tr) -> None:
@@ -219,7 +230,7 @@ def _variants(sec, kind, x, v, vs, tr) -> None:
         if kind == "slider_crank":
             sec.paragraph(f"Задача имеет единственное решение: кривошип a&nbsp;=&nbsp;{fmt(v['a'], sig=5)}&nbsp;м, "
                           f"шатун b&nbsp;=&nbsp;{fmt(v['b'], sig=5)}&nbsp;м, смещение e&nbsp;=&nbsp;"
-                          f"{fmt(v['e'], sig=5)}&nbsp;м (λ&nbsp;=&nbsp;{_val('lam', x['lam']) if 'lam' in x else fmt(v['lam'], sig=4)}).")
+                          f"{_datum(x, 'e', v['e'])}&nbsp;м (λ&nbsp;=&nbsp;{_val('lam', x['lam']) if 'lam' in x else fmt(v['lam'], sig=4)}).")
         else:
             sec.paragraph(f"Задача имеет единственное решение: кривошип a&nbsp;=&nbsp;{fmt(v['a'], sig=5)}&nbsp;м, "
                           f"шатун b&nbsp;=&nbsp;{fmt(v['b'], sig=5)}&nbsp;м.")
@@ -252,7 +263,7 @@ def _transmission(sec, kind, x, v, tr) -> None:
     if kind == "crank_rocker":
         sec.paragraph("Угол передачи μ между шатуном AB и коромыслом CB наименьший или наибольший, когда "
                       "кривошип лежит на линии центров OC, |AC|&nbsp;=&nbsp;d&nbsp;∓&nbsp;a [2]; расстояние между "
-                      f"центрами вращения кривошипа и коромысла d&nbsp;=&nbsp;|OC|&nbsp;=&nbsp;{fmt(v['d'], sig=5)}&nbsp;м:")
+                      f"центрами вращения кривошипа и коромысла d&nbsp;=&nbsp;|OC|&nbsp;=&nbsp;{_datum(x, 'd', v['d'])}&nbsp;м:")
         forms = [Formula(r"\cos\mu_{1,2} = \frac{b^2 + l_{CB}^2 - (d \mp a)^2}{2 b\, l_{CB}}")]
         for i, s_ in ((1, v["d"] - v["a"]), (2, v["d"] + v["a"])):
             cg = (v["b"] ** 2 + v["c"] ** 2 - s_ * s_) / (2 * v["b"] * v["c"])
@@ -301,15 +312,27 @@ def _check(sec, study, sy) -> None:
     angular = chk["column"].startswith("phi_")
     target = sy.target_stroke()
     what = "размах" if angular else "ход"
-    show = (lambda z: fmt(math.degrees(z), sig=6) + "°") if angular else (lambda z: fmt(z, sig=6) + "&nbsp;м")
-    given = (lambda z: as_written(math.degrees(z)) + "°") if angular else (lambda z: as_written(z) + "&nbsp;м")
+    deg = math.degrees if angular else (lambda z: z)
+    unit = "°" if angular else "&nbsp;м"
     dev = max(abs(chk["stroke"] - target) / abs(target), abs(chk["K"] - sy.inputs["K"]) / sy.inputs["K"]) * 100
     sec.paragraph(
         f"Проверка. Механизм с найденными размерами рассчитан кинематическим анализом; крайние положения "
         f"выходного звена ({escape(chk['title'])}) — положения, где его аналог скорости обращается в нуль. "
-        f"Получены {what} {show(chk['stroke'])} (задан {given(target)}) и K&nbsp;=&nbsp;{fmt(chk['K'], sig=6)} "
+        f"Получены {what} {_like(deg(chk['stroke']), deg(target))}{unit} (задан {as_written(deg(target))}{unit}) и "
+        f"K&nbsp;=&nbsp;{_like(chk['K'], sy.inputs['K'])} "
         f"(задан {as_written(sy.inputs['K'])}); расхождение "
         + ("менее 10<sup>−6</sup>&nbsp;%" if dev < 1e-6 else f"{fmt(dev, sig=2)}&nbsp;%") + ": синтез выполнен верно.")
+
+
+def _like(value: float, given: float) -> str:
+    """A checked value to the given's own decimals when it agrees with it to a twentieth of the
+    last digit (размах 50° at ψ = 50°, not 50,0000°), else to four significant digits, so that a
+    discrepancy shows."""
+    written = as_written(given)
+    decimals = len(written.split(",")[1]) if "," in written else 0
+    if abs(value - given) < 0.05 * 10.0 ** -decimals:
+        return fmt(value, digits=decimals, sig=None)
+    return fmt(value, sig=4)
 
 
 def conclusion_lines(study) -> list[str]:
