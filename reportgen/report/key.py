@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import importlib
 import math
+import re
 
 import numpy as np
 import pandas as pd
@@ -51,13 +52,42 @@ def build_key(study, options: dict | None = None) -> Report:
         sections.append(errors)
     intro = []
     return Report(meta=meta, assignment=[], introduction=intro, sections=sections, conclusion=[],
-                  references=REFERENCES, options=opts)
+                  references=REFERENCES if _cites(sections) else [], options=opts)
+
+
+_CITATION = re.compile(r"(?<![\w\]])\[[1-9]\d*(?:[,–]\s*\d+)*(?:,\s*с\.[^\]]*)?\]")
+
+
+def _cites(sections) -> bool:
+    """Whether any paragraph, caption or cell text of the key cites a source as [n] (ГОСТ 7.32:
+    the list of sources holds what the text cites; the key usually cites nothing, and a page of
+    six uncited sources is only noise to the teacher)."""
+    def texts(node):
+        for attr in ("title", "html", "caption", "note"):
+            v = getattr(node, attr, None)
+            if isinstance(v, str):
+                yield v
+        data = getattr(node, "data", None)
+        if isinstance(data, pd.DataFrame):
+            for col in data.columns:
+                yield from (v for v in data[col] if isinstance(v, str))
+        for ch in getattr(node, "children", []) or []:
+            yield from texts(ch)
+    return any(_CITATION.search(t) for s in sections for t in texts(s))
 
 
 def _given(study) -> Section:
     sec = Section("Исходные данные", "key-given")
     for block in _given_parameters(study) + (_linkage_data(study) if study.has_linkage else []):
         sec.add(block)
+    # the data of every task as the assignment page of the note states them (a cam's phases and
+    # laws, a gear pair's m and z, a train's scheme, the dynamics' δ and loads): most of a case
+    # without a linkage is given there, not in its parameters
+    for kind in KINDS:
+        if kind.name in study.tasks():
+            given = getattr(importlib.import_module(f".sections.{kind.name}", __package__), "given", None)
+            if given is not None:
+                sec.paragraph(given(study))
     if not sec.children:
         sec.paragraph("Параметров в файле варианта нет.")
     return sec
@@ -156,6 +186,7 @@ def _results(study) -> Section:
         out = {k: v for k, v in study.scalars.items() if entry("kinematics", k) is not None}
         for rows in result_rows(study, "kinematics", out).values():
             s.table("Выходное звено", RESULT_COLS[:-1], pd.DataFrame(rows), id="key-output")
+        by_position_tables(s, study)
     for kind in KINDS:
         if kind.name not in study.tasks():
             continue
@@ -170,7 +201,92 @@ def _results(study) -> Section:
             cols = RESULT_COLS if any(r["where"] for r in rows) else RESULT_COLS[:-1]
             caption = f"{kind.title}: {group[0].lower() + group[1:]}" if group else kind.title
             s.table(caption, cols, pd.DataFrame(rows), id=f"key-tab-{kind.name}" + (f"-{n}" if n else ""))
+        if kind.name == "forces":
+            balance_by_position(s, study)
     return sec
+
+
+def _deg(x) -> str:
+    """A link's angle in degrees in [0°, 360°), as the note's table of angles prints it."""
+    v = math.degrees(float(x)) % 360.0
+    return fmt(0.0 if round(v, 2) >= 360.0 else v, digits=2)
+
+
+def _output_columns(study, coord: str) -> list[Column]:
+    """The output's displacement and, when ω₁ (or the actuator's rate) is given, its true velocity
+    and acceleration, named as in the note's tables (s_H by the slider's point, φ₃, x_E)."""
+    from .sections.common import sub
+    mech, k = study.mechanism, study.kinematics
+    pre, _, name = coord.partition("_")
+    known = mech.driver.omega is not None
+    if pre == "s":
+        pts = [j.point for j in mech.prismatic]
+        j = next(j for j in mech.prismatic if j.name == name)
+        idx = j.point if pts.count(j.point) == 1 else j.name
+        cols = [Column(coord, sub("s", idx), "м", digits=4)]
+        if known:
+            cols += [Column(f"vs_{name}", sub("V", idx), "м/с", digits=3),
+                     Column(f"as_{name}", sub("a", idx), "м/с²", sig=4)]
+    elif pre == "phi":
+        cols = [Column(coord, sub("φ", name), "град", fmt=_deg)]
+        if known:
+            cols += [Column(f"w_{name}", sub("ω", name), "рад/с", digits=3),
+                     Column(f"e_{name}", sub("ε", name), "рад/с²", sig=4)]
+    else:
+        cols = [Column(coord, sub(pre, name), "м", digits=4)]
+        if known:
+            cols += [Column(f"v{pre}_{name}", f"<i>V</i><sub>{name}{pre}</sub>", "м/с", digits=3),
+                     Column(f"a{pre}_{name}", f"<i>a</i><sub>{name}{pre}</sub>", "м/с²", sig=4)]
+    return [c for c in cols if c.key in k.columns]
+
+
+def by_position_tables(sec: Section, study) -> None:
+    """The values a student computes position by position (the plans of velocities and
+    accelerations): the output's displacement, velocity and acceleration and the angular velocity
+    and acceleration of every turning link, by the note's position numbers — the row the teacher
+    compares with a student's table.  Wide tables are split as in the note."""
+    from .sections.common import chunked_tables, position_lead, sub
+    from .sections.kinematics import _links
+    from ..analysis.plans import parallel_outputs
+    k = study.kinematics
+    cols: list[Column] = []
+    for coord, *_ in parallel_outputs(study):
+        cols += [c for c in _output_columns(study, coord) if c.key not in {x.key for x in cols}]
+    if study.mechanism.driver.omega is not None:
+        shown = {c.key for c in cols}
+        d = study.mechanism.driver
+        for l in _links(study):
+            if d.rotary and l.name == d.link:
+                continue
+            for c in (Column(f"w_{l.name}", sub("ω", l.name), "рад/с", digits=3),
+                      Column(f"e_{l.name}", sub("ε", l.name), "рад/с²", sig=4)):
+                if c.key not in k.columns or c.key in shown:
+                    continue
+                # a link turning with another (a slot's stone and its lever): one column «ω₂ = ω₃»
+                twin = next((x for x in cols if x.key[:2] == c.key[:2] and x.key[2:] != c.key[2:]
+                             and np.allclose(k[x.key], k[c.key], rtol=1e-12, atol=1e-12)), None)
+                if twin is not None:
+                    twin.header = f"{twin.header}&nbsp;=&nbsp;{c.header}"
+                else:
+                    cols.append(c)
+    if not cols:
+        return
+    sec.paragraph("Значения по положениям (номера положений — как в записке):")
+    chunked_tables(sec, "Выходное звено и угловые скорости и ускорения звеньев по положениям"
+                   if len(cols) > 3 else "Выходное звено по положениям", k, cols, position_lead(study), "key-by-pos")
+
+
+def balance_by_position(sec: Section, study) -> None:
+    """The balancing moment (a crank) or the actuator's force over the positions of the force
+    analysis, by the note's position numbers."""
+    from .sections.common import position_lead, sub
+    f = study.forces
+    main = ("M_bal", sub("M", "ур"), "Н·м") if f.rotary else ("F_act", "<i>F</i>", "Н")
+    if main[0] not in f.table:
+        return
+    col = Column(main[0], main[1], main[2], sig=5)
+    sec.table("Уравновешивающий момент по положениям" if f.rotary else "Усилие гидроцилиндра по положениям",
+              position_lead(study) + [col], f.table, id="key-bal-by-pos")
 
 
 def _groups_text(rows: list[dict]) -> str:
@@ -263,6 +379,16 @@ def _second_formulations(study) -> list[dict]:
 
     def rel(a, b):
         return abs(float(a) - float(b)) / max(abs(float(b)), 1e-300)
+    if "cam" in tasks:
+        cam = study.cam
+        key = "cam_rho_min" if cam.contact == "flat" else "cam_rho_c_min"
+        if key in cam.scalars:
+            d = rel(cam_rho_by_points(cam), cam.scalars[key])
+            rows.append({"what": Markup("Наименьший радиус кривизны " + ("рабочего" if cam.contact == "flat" else
+                                                                        "центрового") +
+                                        " профиля: по формуле и по окружностям через три соседние точки профиля "
+                                        "(через 0,02°)"),
+                         "value": fmt(d, sig=2), "verdict": _verdict(d, 1e-3)})
     if "gears" in tasks:
         sc = study.gears.scalars
         if "gears_eps_alpha_line" in sc:
@@ -281,6 +407,31 @@ def _second_formulations(study) -> list[dict]:
                                  "и заданные",
                          "value": fmt(d, sig=2), "verdict": _verdict(d, 1e-8)})
     return rows
+
+
+def cam_rho_by_points(cam, step_deg: float = 0.02) -> float:
+    """The least radius of curvature of the convex parts of the cam's profile (the centre profile;
+    the working one of a flat follower) from its points alone: the circle through three
+    neighbouring points C₁, C₂, C₃ has the curvature κ = 2 (C₂ − C₁)×(C₃ − C₂)/(|C₂ − C₁| |C₃ − C₂|
+    |C₃ − C₁|) (the circumscribed circle of a triangle, R = abc/4S); ρ = −k/κ with the sign of the
+    analytic formula ρ = −k|C′|³/(C′×C″) (> 0 convex).  The profile is sampled every ``step_deg``
+    inside each smooth piece of the cycle (phases, knots, inflections), so no triple straddles a
+    kink of the law.  An independent formulation of the key's ρ_min, which the analysis finds
+    from the derivatives C′, C″ of the inversion."""
+    pts = "W" if cam.contact == "flat" else "C"
+    ends = sorted({x for ph in cam.phases for x in (cam.breaks(ph) if ph.law else (ph.start, ph.start + ph.length))})
+    best = math.inf
+    for a, b in zip(ends[:-1], ends[1:]):
+        n = max(3, int(math.ceil((b - a) / math.radians(step_deg))) + 1)
+        P = cam.profile(np.linspace(a, b, n))[pts]
+        d1, d2, d3 = P[1:-1] - P[:-2], P[2:] - P[1:-1], P[2:] - P[:-2]
+        cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rho = -cam.k * np.hypot(*d1.T) * np.hypot(*d2.T) * np.hypot(*d3.T) / (2 * cross)
+        convex = rho[np.isfinite(rho) & (rho > 0)]
+        if convex.size:
+            best = min(best, float(convex.min()))
+    return best
 
 
 def _printed(study) -> Section | None:

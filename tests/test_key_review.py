@@ -1,0 +1,115 @@
+"""The answer key read as the teacher who grades a class with it (issue 9, item 5; session 11):
+the given data of every task, the values a student computes by the note's position numbers, a
+check by a second formulation for a cam, no list of sources the key never cites."""
+from __future__ import annotations
+
+import html
+import re
+
+import numpy as np
+import pytest
+
+from conftest import CASES
+from reportgen import load_case
+from reportgen.report.document import Section
+from reportgen.report.key import _cites, _second_formulations, build_key, cam_rho_by_points
+from reportgen.report.render import render_html
+
+
+def _load(stem):
+    return load_case(CASES / f"{stem}.toml")
+
+
+def _text(h: str) -> str:
+    return re.sub(r"\s+", " ", html.unescape(re.sub(r"<[^>]+>", " ", h)))
+
+
+def _tables(report) -> dict:
+    out = {}
+
+    def walk(node):
+        for ch in getattr(node, "children", []) or []:
+            if getattr(ch, "columns", None) is not None and getattr(ch, "id", None):
+                out[ch.id] = ch
+            walk(ch)
+    for s in report.sections:
+        walk(s)
+    return out
+
+
+@pytest.fixture(scope="module")
+def ws004():
+    return _load("ws004_slotted_lever")
+
+
+@pytest.fixture(scope="module")
+def slider():
+    return _load("slider_crank")
+
+
+def test_key_lists_sources_only_when_cited(ws004):
+    # was: six sources on a page of their own, none cited in the key
+    key = build_key(ws004)
+    assert key.references == []
+    assert "СПИСОК ИСПОЛЬЗОВАННЫХ ИСТОЧНИКОВ" not in render_html(key, for_print=False)
+    sec = Section("x", "x")
+    sec.paragraph("по формуле [3, с.&nbsp;120]")
+    assert _cites([sec])
+    sec2 = Section("y", "y")
+    sec2.paragraph("массив a[0] и [v] — не ссылки")
+    assert not _cites([sec2])
+
+
+@pytest.mark.parametrize("stem, needles", [
+    ("cam_rocker_roller", ["Кулачковый механизм", "фазовые углы", "допустимые углы давления"]),
+    ("gear_pair_shifted", ["Зубчатая передача", "модуль"]),
+    ("train_2kh_four_planets", ["Планетарный механизм", "сателлитов"]),
+])
+def test_key_gives_the_data_of_every_task(stem, needles):
+    # was: «Параметров в файле варианта нет.» — false for a cam, a gear pair, a train
+    text = _text(render_html(build_key(_load(stem)), for_print=False))
+    given = text[text.rfind("1 Исходные данные"):text.find("2 Основные результаты", text.rfind("1 Исходные данные"))]
+    assert "Параметров в файле варианта нет" not in given
+    for n in needles:
+        assert n in given, (n, given[:300])
+
+
+def test_key_values_by_position(slider, ws004):
+    # was: extremes only, by crank angle; a student's table row could not be checked
+    tabs = _tables(build_key(slider))
+    tab = tabs["key-by-pos"]
+    keys = [c.key for c in tab.columns]
+    assert keys[:2] == ["pos", "q_deg"] and {"s_30", "vs_30", "as_30", "w_2", "e_2"} <= set(keys)
+    k = slider.kinematics
+    assert list(tab.data["pos"]) == list(k["pos"])
+    col = next(c for c in tab.columns if c.key == "vs_30")
+    assert [col.format(v) for v in tab.data["vs_30"]] == [col.format(v) for v in k["vs_30"]]
+    assert "w_1" not in keys                     # the crank's ω₁ is given, not a result
+    # a stone turning with its slotted lever: one column ω₂ = ω₃, not two equal ones
+    tabs = _tables(build_key(ws004))
+    cols = [c for t, tab in tabs.items() if t.startswith("key-by-pos") for c in tab.columns]
+    heads = [c.header for c in cols]
+    assert any(re.fullmatch(r"<i>ω</i><sub>2</sub>&nbsp;=&nbsp;<i>ω</i><sub>3</sub>", h) for h in heads), heads
+    assert not any(c.key == "w_3" for c in cols)
+
+
+def test_key_balance_by_position():
+    st = _load("ws002_tractor_hitch")
+    tab = _tables(build_key(st))["key-bal-by-pos"]
+    assert [c.key for c in tab.columns] == ["pos", "q", "F_act"]
+    assert np.allclose(tab.data["F_act"].to_numpy(float), st.forces.table["F_act"].to_numpy(float))
+
+
+@pytest.mark.parametrize("stem", ["cam_rocker_roller", "cam_translating_knife_trapezoid", "cam_rocker_flat"])
+def test_cam_checked_by_a_second_formulation(stem):
+    # was: «Проверок для этого варианта нет.» for every cam
+    st = _load(stem)
+    rows = _second_formulations(st)
+    row = [r for r in rows if "радиус кривизны" in str(r["what"])]
+    assert len(row) == 1 and "НЕ" not in str(row[0]["verdict"]), rows
+    cam = st.cam
+    key = "cam_rho_min" if cam.contact == "flat" else "cam_rho_c_min"
+    by_points = cam_rho_by_points(cam)
+    assert abs(by_points - cam.scalars[key]) / cam.scalars[key] < 1e-3
+    # the points alone: a coarser sampling moves the value, so it is not the analytic one re-read
+    assert cam_rho_by_points(cam, step_deg=2.0) != pytest.approx(by_points, rel=1e-9, abs=0)
