@@ -113,3 +113,11 @@ def test_cam_checked_by_a_second_formulation(stem):
     assert abs(by_points - cam.scalars[key]) / cam.scalars[key] < 1e-3
     # the points alone: a coarser sampling moves the value, so it is not the analytic one re-read
     assert cam_rho_by_points(cam, step_deg=2.0) != pytest.approx(by_points, rel=1e-9, abs=0)
+
+
+def test_reference_punctuation_never_begins_a_line():
+    # was: the HTML note in Chromium broke «Мусатов [и др.] | ; под ред.» (a line begun by «;»)
+    from reportgen.report.assemble import REFERENCES
+    for r in REFERENCES:
+        assert not re.search(r" [:/;—] ", r), r
+        assert re.search("\u00a0— ", r) and "\u00a0: " in r, r
