@@ -121,3 +121,17 @@ def test_reference_punctuation_never_begins_a_line():
     for r in REFERENCES:
         assert not re.search(r" [:/;—] ", r), r
         assert re.search("\u00a0— ", r) and "\u00a0: " in r, r
+
+
+def test_key_says_whose_variant_it_is(slider):
+    # was: page 1 of every key of a class held only «СОДЕРЖАНИЕ»: thirty keys printed together
+    # could not be told apart
+    report = build_key(slider)
+    report.meta.update(variant="07", student="Иванов <b>И.</b> И.", group="МТ-21")
+    text = render_html(report, for_print=True)
+    head = text[text.index('class="key-head"'):text.index('id="toc"')]
+    assert "КЛЮЧ К ВАРИАНТУ 07" in head and "Иванов &lt;b&gt;И.&lt;/b&gt; И." in head and "МТ-21" in head
+    assert slider.meta.get("topic") and "«" + slider.meta["topic"] in html.unescape(head)
+    assert report.options["section_new_page"] is False
+    from reportgen.report.assemble import build_report
+    assert "key-head" not in render_html(build_report(slider, ["structure"]), for_print=False)

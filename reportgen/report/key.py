@@ -34,10 +34,15 @@ CHECK_COLS = [Column("what", "Проверка", fmt=Markup), Column("value", "�
 def build_key(study, options: dict | None = None) -> Report:
     """The answer key of ``study`` as a Report (no title page, no assignment page)."""
     meta = dict(study.meta)
+    # the heading above the contents (templates/key_head.html.j2) says whose variant this is
+    meta["key_of"] = meta.get("topic") or ""
     meta["topic"] = "Ключ к варианту (для преподавателя)"
     opts = dict(study.root.table("report").raw("options", {}) or {})
     opts.update(options or {})
-    opts.update(title_page=False, assignment_page=False)
+    # the teacher's reference, not a ГОСТ 7.32 document: no title page, and the sections run on
+    # (a class's keys are printed together: a section of three lines on a page of its own wasted
+    # paper thirty times)
+    opts.update(title_page=False, assignment_page=False, section_new_page=False)
     sections = [_given(study), _results(study), _checks(study)]
     printed = _printed(study)
     if printed is not None:
