@@ -135,3 +135,15 @@ def test_key_says_whose_variant_it_is(slider):
     assert report.options["section_new_page"] is False
     from reportgen.report.assemble import build_report
     assert "key-head" not in render_html(build_report(slider, ["structure"]), for_print=False)
+
+
+def test_extreme_at_a_report_position_named_by_its_number():
+    # was: «S = 0,420 м» only; the student's tables are by position numbers
+    from reportgen.report.key import position_at, result_rows
+    st = _load("ws002_tractor_hitch")
+    rows = {html.unescape(re.sub(r"<[^>]+>", "", str(r["name"]))): html.unescape(re.sub(r"<[^>]+>", "", str(r["where"])))
+            for g in result_rows(st, "forces", st.forces.scalars).values() for r in g}
+    assert re.fullmatch(r"S\s=\s0,420\sм \(положение\s0\)", rows["Наибольшая реакция в паре 0–1"])
+    assert "положение" not in rows["Наибольшая реакция в паре 5–6"]       # S = 0,664 м: between positions
+    k = st.kinematics
+    assert position_at(st, float(k["q"].iloc[3])) == "3" and position_at(st, float(k["q"].iloc[3]) + 1e-4) is None

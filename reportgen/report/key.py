@@ -25,7 +25,7 @@ from .assemble import REFERENCES, _given_parameters, _linkage_data
 from .document import Column, Report, Section, ref
 from .key_names import convert, entry, shown
 from .russian import position_names
-from .sections.common import as_written, q_degrees
+from .sections.common import as_written, pos_fmt, q_degrees
 
 CHECK_COLS = [Column("what", "Проверка", fmt=Markup), Column("value", "Расхождение", fmt=Markup),
               Column("verdict", "Вывод", fmt=Markup)]
@@ -123,9 +123,22 @@ def where_text(study, kind: str, q: float) -> str:
     «S = 0,420 м» (an actuator's stroke) where an extreme occurs."""
     if kind == "dynamics":
         return f"φ&nbsp;=&nbsp;{fmt(math.degrees(float(q) - study.dynamics.settings.cycle_start), digits=2)}°"
+    no = position_at(study, q)
+    tail = f" (положение&nbsp;{no})" if no is not None else ""
     if study.mechanism.driver.rotary:
-        return f"φ&nbsp;=&nbsp;{fmt(q_degrees(study, q), digits=1)}°"
-    return f"<i>S</i>&nbsp;=&nbsp;{fmt(q, digits=3)}&nbsp;м"
+        return f"φ&nbsp;=&nbsp;{fmt(q_degrees(study, q), digits=1)}°" + tail
+    return f"<i>S</i>&nbsp;=&nbsp;{fmt(q, digits=3)}&nbsp;м" + tail
+
+
+def position_at(study, q: float) -> str | None:
+    """The note's number of the report position at the input coordinate ``q`` (a crank's angle
+    modulo a turn), None when the extreme lies between positions."""
+    k = study.kinematics
+    d = k["q"].to_numpy(float) - float(q)
+    if study.mechanism.driver.rotary and not study.mechanism.driver.swing:
+        d = (d + math.pi) % (2 * math.pi) - math.pi
+    hit = np.flatnonzero(np.abs(d) <= 1e-9 * max(1.0, abs(float(q))))
+    return pos_fmt(study)(k["pos"].iloc[hit[0]]) if hit.size else None
 
 
 SAID = "said in words"     # the group of the switches and yes/no values: a sentence, not a table row
