@@ -147,3 +147,12 @@ def test_extreme_at_a_report_position_named_by_its_number():
     assert "положение" not in rows["Наибольшая реакция в паре 5–6"]       # S = 0,664 м: between positions
     k = st.kinematics
     assert position_at(st, float(k["q"].iloc[3])) == "3" and position_at(st, float(k["q"].iloc[3]) + 1e-4) is None
+
+
+def test_balance_by_position_with_the_linkage_moment_when_a_flywheel_is_on_the_crank():
+    # ws000 «as printed»: M_ур = M_д at every position; the key also gives the linkage's own M_ур
+    st = _load("ws000_six_bar")
+    tab = _tables(build_key(st))["key-bal-by-pos"]
+    keys = [c.key for c in tab.columns]
+    assert keys == ["pos", "q_deg", "M_bal", "M_bal_linkage"]
+    assert np.ptp(tab.data["M_bal_linkage"].to_numpy(float)) > 1000 > np.ptp(tab.data["M_bal"].to_numpy(float))

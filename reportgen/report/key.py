@@ -302,9 +302,13 @@ def balance_by_position(sec: Section, study) -> None:
     main = ("M_bal", sub("M", "ур"), "Н·м") if f.rotary else ("F_act", "<i>F</i>", "Н")
     if main[0] not in f.table:
         return
-    col = Column(main[0], main[1], main[2], sig=5)
+    cols = [Column(main[0], main[1], main[2], sig=5)]
+    if f.settings.flywheel and "M_bal_linkage" in f.table:
+        # the flywheel's inertia moment on the crank makes M_ур constant; the moment of the linkage
+        # alone is the one a student finds group by group (the note's «M_ур без маховика»)
+        cols.append(Column("M_bal_linkage", sub("M", "ур") + " без маховика", "Н·м", sig=5))
     sec.table("Уравновешивающий момент по положениям" if f.rotary else "Усилие гидроцилиндра по положениям",
-              position_lead(study) + [col], f.table, id="key-bal-by-pos")
+              position_lead(study) + cols, f.table, id="key-bal-by-pos")
 
 
 def _groups_text(rows: list[dict]) -> str:
