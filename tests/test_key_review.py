@@ -156,3 +156,11 @@ def test_balance_by_position_with_the_linkage_moment_when_a_flywheel_is_on_the_c
     keys = [c.key for c in tab.columns]
     assert keys == ["pos", "q_deg", "M_bal", "M_bal_linkage"]
     assert np.ptp(tab.data["M_bal_linkage"].to_numpy(float)) > 1000 > np.ptp(tab.data["M_bal"].to_numpy(float))
+
+
+def test_position_in_a_narrow_column_is_not_hyphenated():
+    # was: «S = 0,420 м (положе-|ние 0)» in the «Где» column of the PDF
+    from reportgen.report.key import where_text
+    st = _load("ws002_tractor_hitch")
+    w = where_text(st, "forces", float(st.kinematics["q"].iloc[0]))
+    assert '<span class="nowrap">(положение&nbsp;0)</span>' in w

@@ -124,7 +124,7 @@ def where_text(study, kind: str, q: float) -> str:
     if kind == "dynamics":
         return f"φ&nbsp;=&nbsp;{fmt(math.degrees(float(q) - study.dynamics.settings.cycle_start), digits=2)}°"
     no = position_at(study, q)
-    tail = f" (положение&nbsp;{no})" if no is not None else ""
+    tail = f' <span class="nowrap">(положение&nbsp;{no})</span>' if no is not None else ""   # never «(положе-|ние 0)»
     if study.mechanism.driver.rotary:
         return f"φ&nbsp;=&nbsp;{fmt(q_degrees(study, q), digits=1)}°" + tail
     return f"<i>S</i>&nbsp;=&nbsp;{fmt(q, digits=3)}&nbsp;м" + tail
