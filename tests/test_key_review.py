@@ -164,3 +164,13 @@ def test_position_in_a_narrow_column_is_not_hyphenated():
     st = _load("ws002_tractor_hitch")
     w = where_text(st, "forces", float(st.kinematics["q"].iloc[0]))
     assert '<span class="nowrap">(положение&nbsp;0)</span>' in w
+
+
+def test_key_of_a_case_without_a_variant_number():
+    # was: a bare «КЛЮЧ К ВАРИАНТУ» with no number (a cam case gives none)
+    st = _load("cam_rocker_roller")
+    report = build_key(st)
+    report.meta.pop("variant", None)
+    text = render_html(report, for_print=False)
+    head = text[text.index('class="key-head"'):text.index('id="toc"')]
+    assert "КЛЮЧ К ЗАДАНИЮ" in head and "КЛЮЧ К ВАРИАНТУ" not in head
