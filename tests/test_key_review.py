@@ -174,3 +174,21 @@ def test_key_of_a_case_without_a_variant_number():
     text = render_html(report, for_print=False)
     head = text[text.index('class="key-head"'):text.index('id="toc"')]
     assert "КЛЮЧ К ЗАДАНИЮ" in head and "КЛЮЧ К ВАРИАНТУ" not in head
+
+
+def test_kinematics_checked_by_differences_of_positions(slider):
+    # was: a linkage's key checked the positions (loop closure) and nothing of its velocities
+    # and accelerations when the case has no force analysis (ws004)
+    from reportgen.report.key import analog_differences
+    dv, da = analog_differences(slider)
+    assert dv < 1e-5 and da < 1e-5
+    text = _text(render_html(build_key(slider), for_print=False))
+    assert "Аналоги скоростей точек: из систем групп и по разностям координат" in text
+    assert "НЕ выполнена" not in text
+    cyc = slider.cycle
+    saved = cyc["vqx_B"].copy()
+    try:                                  # a wrong analog at one point of the cycle is found
+        cyc.loc[cyc.index[100], "vqx_B"] *= 1.01
+        assert analog_differences(slider)[0] > 1e-3
+    finally:
+        cyc["vqx_B"] = saved

@@ -349,6 +349,35 @@ def loop_closure(study) -> float:
     return worst
 
 
+def analog_differences(study) -> tuple[float, float]:
+    """Largest relative difference over the cycle between the analogs of the points' velocities
+    (accelerations) from the groups' linear systems and the central differences of the points'
+    coordinates (of those velocity analogs) over the cycle's grid of the input coordinate:
+    x′ ≈ (x_{i+1} − x_{i−1})/(q_{i+1} − q_{i−1}), x″ likewise from x′ (error O(Δq²)), each
+    referred to the largest |x′| (|x″|) of the point over the cycle.  A second formulation of the
+    velocity and acceleration analogs from the positions alone."""
+    cyc = study.cycle
+    q = cyc["q"].to_numpy(float)
+    dq = q[2:] - q[:-2]
+    worst_v = worst_a = 0.0
+    for p in {pt for link in study.mechanism.moving for pt in link.points}:
+        for ax in ("x", "y"):
+            cols = (f"{ax}_{p}", f"vq{ax}_{p}", f"aq{ax}_{p}")
+            if not all(c in cyc for c in cols):
+                continue
+            x, v, a = (cyc[c].to_numpy(float) for c in cols)
+            for f, df, worst in ((x, v, "v"), (v, a, "a")):
+                scale = float(np.max(np.abs(df)))
+                if scale <= 1e-12:
+                    continue
+                d = float(np.max(np.abs((f[2:] - f[:-2]) / dq - df[1:-1]))) / scale
+                if worst == "v":
+                    worst_v = max(worst_v, d)
+                else:
+                    worst_a = max(worst_a, d)
+    return worst_v, worst_a
+
+
 def _checks(study) -> Section:
     sec = Section("Проверки", "key-checks")
     rows = []
@@ -356,6 +385,12 @@ def _checks(study) -> Section:
         err = loop_closure(study)
         rows.append({"what": "Замыкание контуров: расстояния между точками каждого звена за цикл",
                      "value": f"{fmt(err, sig=2)} м", "verdict": _verdict(err, 1e-9)})
+        if study.has_cycle:
+            dv, da = analog_differences(study)
+            rows.append({"what": "Аналоги скоростей точек: из систем групп и по разностям координат за цикл",
+                         "value": fmt(dv, sig=2), "verdict": _verdict(dv, 1e-4)})
+            rows.append({"what": "Аналоги ускорений точек: из систем групп и по разностям аналогов скоростей",
+                         "value": fmt(da, sig=2), "verdict": _verdict(da, 1e-4)})
     tasks = study.tasks()
     if "forces" in tasks:
         sc = study.forces.scalars
