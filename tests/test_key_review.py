@@ -192,3 +192,17 @@ def test_kinematics_checked_by_differences_of_positions(slider):
         assert analog_differences(slider)[0] > 1e-3
     finally:
         cyc["vqx_B"] = saved
+
+
+def test_actuator_key_speaks_of_the_force_not_a_balancing_moment(ws004):
+    # was: ws002 (a hydraulic cylinder drives it) «Силовой анализ: уравновешивающий момент и проверки»,
+    # «Расхождение M_ур по группам Ассура и по рычагу Жуковского»
+    st = _load("ws002_tractor_hitch")
+    text = _text(render_html(build_key(st), for_print=False))
+    res = text[text.index("2.2 Силовой анализ", text.index("СОДЕРЖАНИЕ") + 200):text.index("3 Проверки", text.index("СОДЕРЖАНИЕ") + 200)]
+    assert "уравновешивающий момент" not in res.lower() and "M ур" not in res, res[:400]
+    assert "Силовой анализ: усилие гидроцилиндра и проверки" in res
+    assert "Расхождение усилия гидроцилиндра F по группам Ассура" in res
+    # a crank's key keeps its balancing moment
+    from reportgen.report.key_names import group_title
+    assert group_title("Уравновешивающий момент и проверки", ws004, "forces") == "Уравновешивающий момент и проверки"

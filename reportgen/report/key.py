@@ -23,7 +23,7 @@ from ..registry import KINDS
 from ..style.numbers import fmt
 from .assemble import REFERENCES, _given_parameters, _linkage_data
 from .document import Column, Report, Section, ref
-from .key_names import convert, entry, shown
+from .key_names import convert, entry, group_title, shown
 from .russian import position_names
 from .sections.common import as_written, pos_fmt, q_degrees
 
@@ -217,7 +217,8 @@ def _results(study) -> Section:
             s.paragraph(Markup(" ").join(Markup("{}: {}.").format(r["name"], r["value"]) for r in said))
         for n, (group, rows) in enumerate(groups.items()):
             cols = RESULT_COLS if any(r["where"] for r in rows) else RESULT_COLS[:-1]
-            caption = f"{kind.title}: {group[0].lower() + group[1:]}" if group else kind.title
+            head = group_title(group, study, kind.name)
+            caption = f"{kind.title}: {head[0].lower() + head[1:]}" if head else kind.title
             s.table(caption, cols, pd.DataFrame(rows), id=f"key-tab-{kind.name}" + (f"-{n}" if n else ""))
         if kind.name == "forces":
             balance_by_position(s, study)
