@@ -206,3 +206,13 @@ def test_actuator_key_speaks_of_the_force_not_a_balancing_moment(ws004):
     # a crank's key keeps its balancing moment
     from reportgen.report.key_names import group_title
     assert group_title("Уравновешивающий момент и проверки", ws004, "forces") == "Уравновешивающий момент и проверки"
+
+
+def test_key_of_a_case_without_a_cycle():
+    # was: `build --key` of a case computed at given positions only (cycle = false) raised
+    # «в варианте не рассчитывается цикл механизма» from the transmission-angle table
+    st = _load("four_bar_positions")
+    assert not st.has_cycle
+    text = _text(render_html(build_key(st), for_print=False))
+    assert "точками каждого звена в заданных положениях" in text and "Наименьшие углы передачи" not in text
+    assert "по разностям координат" not in text          # no cycle to differentiate over

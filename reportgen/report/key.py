@@ -192,7 +192,9 @@ def _results(study) -> Section:
         extra = [f"{lab} → {num}" for lab, num in names.items() if lab != num]
         if extra:
             s.paragraph("Дополнительные положения в записке пронумерованы: " + ", ".join(extra) + ".")
-        flags = [(n[3:], fl) for n, fl in study.flags.items()]
+        # the least transmission angles are found over the cycle: none for a case computed at its
+        # given positions only (``cycle = false``), whose key failed here
+        flags = [(n[3:], fl) for n, fl in study.flags.items()] if study.has_cycle else []
         if flags:
             rows = [{"g": "(" + g.replace("_", ", ") + ")", "min": math.degrees(fl["min"]),
                      "where": Markup(where_text(study, "kinematics", fl["q_min"])),
@@ -338,7 +340,7 @@ def _verdict(x: float, tol: float) -> Markup:
 def loop_closure(study) -> float:
     """Largest change over the cycle of a distance between two points of one link, m (rigidity
     of every link = closure of every vector loop; 0 up to round-off for a correct solution)."""
-    cyc = study.cycle
+    cyc = study.cycle if study.has_cycle else study.kinematics    # (no cycle: the given positions)
     worst = 0.0
     for link in study.mechanism.moving:
         pts = [p for p in link.points if f"x_{p}" in cyc]
@@ -384,7 +386,8 @@ def _checks(study) -> Section:
     rows = []
     if study.has_linkage:
         err = loop_closure(study)
-        rows.append({"what": "Замыкание контуров: расстояния между точками каждого звена за цикл",
+        rows.append({"what": "Замыкание контуров: расстояния между точками каждого звена "
+                             + ("за цикл" if study.has_cycle else "в заданных положениях"),
                      "value": f"{fmt(err, sig=2)} м", "verdict": _verdict(err, 1e-9)})
         if study.has_cycle:
             dv, da = analog_differences(study)
