@@ -64,7 +64,10 @@ REFERENCES = [
 
 def _typeset(entry: str) -> str:
     """Non-breaking spaces in a reference (ГОСТ 7.0.100 entry): between initials and before the
-    surname («И.\u00a0И.\u00a0Артоболевский»), in «640\u00a0с.» and «ГОСТ\u00a02.770»."""
+    surname («И.\u00a0И.\u00a0Артоболевский»), in «640\u00a0с.» and «ГОСТ\u00a02.770»; and before the
+    prescribed punctuation of the entry's areas and elements (« : », « / », « ; », « — »), which
+    never begins a line (a browser's narrow column broke «[и др.] | ; под ред.»)."""
+    entry = re.sub(r" ([:/;—])(?= )", "\u00a0\\1", entry)
     entry = re.sub(r"\b([А-ЯЁA-Z]\.) (?=[А-ЯЁA-Z])", "\\1\u00a0", entry)
     entry = re.sub(r"(\d+) с\.", "\\1\u00a0с.", entry)
     return re.sub(r"ГОСТ (\d)", "ГОСТ\u00a0\\1", entry)

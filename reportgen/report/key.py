@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import importlib
 import math
+import re
 
 import numpy as np
 import pandas as pd
@@ -22,9 +23,9 @@ from ..registry import KINDS
 from ..style.numbers import fmt
 from .assemble import REFERENCES, _given_parameters, _linkage_data
 from .document import Column, Report, Section, ref
-from .key_names import convert, entry, shown
+from .key_names import convert, entry, group_title, shown
 from .russian import position_names
-from .sections.common import as_written, q_degrees
+from .sections.common import as_written, pos_fmt, q_degrees
 
 CHECK_COLS = [Column("what", "Проверка", fmt=Markup), Column("value", "Расхождение", fmt=Markup),
               Column("verdict", "Вывод", fmt=Markup)]
@@ -33,10 +34,15 @@ CHECK_COLS = [Column("what", "Проверка", fmt=Markup), Column("value", "�
 def build_key(study, options: dict | None = None) -> Report:
     """The answer key of ``study`` as a Report (no title page, no assignment page)."""
     meta = dict(study.meta)
+    # the heading above the contents (templates/key_head.html.j2) says whose variant this is
+    meta["key_of"] = meta.get("topic") or ""
     meta["topic"] = "Ключ к варианту (для преподавателя)"
     opts = dict(study.root.table("report").raw("options", {}) or {})
     opts.update(options or {})
-    opts.update(title_page=False, assignment_page=False)
+    # the teacher's reference, not a ГОСТ 7.32 document: no title page, and the sections run on
+    # (a class's keys are printed together: a section of three lines on a page of its own wasted
+    # paper thirty times)
+    opts.update(title_page=False, assignment_page=False, section_new_page=False)
     sections = [_given(study), _results(study), _checks(study)]
     printed = _printed(study)
     if printed is not None:
@@ -51,13 +57,42 @@ def build_key(study, options: dict | None = None) -> Report:
         sections.append(errors)
     intro = []
     return Report(meta=meta, assignment=[], introduction=intro, sections=sections, conclusion=[],
-                  references=REFERENCES, options=opts)
+                  references=REFERENCES if _cites(sections) else [], options=opts)
+
+
+_CITATION = re.compile(r"(?<![\w\]])\[[1-9]\d*(?:[,–]\s*\d+)*(?:,\s*с\.[^\]]*)?\]")
+
+
+def _cites(sections) -> bool:
+    """Whether any paragraph, caption or cell text of the key cites a source as [n] (ГОСТ 7.32:
+    the list of sources holds what the text cites; the key usually cites nothing, and a page of
+    six uncited sources is only noise to the teacher)."""
+    def texts(node):
+        for attr in ("title", "html", "caption", "note"):
+            v = getattr(node, attr, None)
+            if isinstance(v, str):
+                yield v
+        data = getattr(node, "data", None)
+        if isinstance(data, pd.DataFrame):
+            for col in data.columns:
+                yield from (v for v in data[col] if isinstance(v, str))
+        for ch in getattr(node, "children", []) or []:
+            yield from texts(ch)
+    return any(_CITATION.search(t) for s in sections for t in texts(s))
 
 
 def _given(study) -> Section:
     sec = Section("Исходные данные", "key-given")
     for block in _given_parameters(study) + (_linkage_data(study) if study.has_linkage else []):
         sec.add(block)
+    # the data of every task as the assignment page of the note states them (a cam's phases and
+    # laws, a gear pair's m and z, a train's scheme, the dynamics' δ and loads): most of a case
+    # without a linkage is given there, not in its parameters
+    for kind in KINDS:
+        if kind.name in study.tasks():
+            given = getattr(importlib.import_module(f".sections.{kind.name}", __package__), "given", None)
+            if given is not None:
+                sec.paragraph(given(study))
     if not sec.children:
         sec.paragraph("Параметров в файле варианта нет.")
     return sec
@@ -88,9 +123,22 @@ def where_text(study, kind: str, q: float) -> str:
     «S = 0,420 м» (an actuator's stroke) where an extreme occurs."""
     if kind == "dynamics":
         return f"φ&nbsp;=&nbsp;{fmt(math.degrees(float(q) - study.dynamics.settings.cycle_start), digits=2)}°"
+    no = position_at(study, q)
+    tail = f' <span class="nowrap">(положение&nbsp;{no})</span>' if no is not None else ""   # never «(положе-|ние 0)»
     if study.mechanism.driver.rotary:
-        return f"φ&nbsp;=&nbsp;{fmt(q_degrees(study, q), digits=1)}°"
-    return f"<i>S</i>&nbsp;=&nbsp;{fmt(q, digits=3)}&nbsp;м"
+        return f"φ&nbsp;=&nbsp;{fmt(q_degrees(study, q), digits=1)}°" + tail
+    return f"<i>S</i>&nbsp;=&nbsp;{fmt(q, digits=3)}&nbsp;м" + tail
+
+
+def position_at(study, q: float) -> str | None:
+    """The note's number of the report position at the input coordinate ``q`` (a crank's angle
+    modulo a turn), None when the extreme lies between positions."""
+    k = study.kinematics
+    d = k["q"].to_numpy(float) - float(q)
+    if study.mechanism.driver.rotary and not study.mechanism.driver.swing:
+        d = (d + math.pi) % (2 * math.pi) - math.pi
+    hit = np.flatnonzero(np.abs(d) <= 1e-9 * max(1.0, abs(float(q))))
+    return pos_fmt(study)(k["pos"].iloc[hit[0]]) if hit.size else None
 
 
 SAID = "said in words"     # the group of the switches and yes/no values: a sentence, not a table row
@@ -144,7 +192,9 @@ def _results(study) -> Section:
         extra = [f"{lab} → {num}" for lab, num in names.items() if lab != num]
         if extra:
             s.paragraph("Дополнительные положения в записке пронумерованы: " + ", ".join(extra) + ".")
-        flags = [(n[3:], fl) for n, fl in study.flags.items()]
+        # the least transmission angles are found over the cycle: none for a case computed at its
+        # given positions only (``cycle = false``), whose key failed here
+        flags = [(n[3:], fl) for n, fl in study.flags.items()] if study.has_cycle else []
         if flags:
             rows = [{"g": "(" + g.replace("_", ", ") + ")", "min": math.degrees(fl["min"]),
                      "where": Markup(where_text(study, "kinematics", fl["q_min"])),
@@ -156,6 +206,7 @@ def _results(study) -> Section:
         out = {k: v for k, v in study.scalars.items() if entry("kinematics", k) is not None}
         for rows in result_rows(study, "kinematics", out).values():
             s.table("Выходное звено", RESULT_COLS[:-1], pd.DataFrame(rows), id="key-output")
+        by_position_tables(s, study)
     for kind in KINDS:
         if kind.name not in study.tasks():
             continue
@@ -168,9 +219,99 @@ def _results(study) -> Section:
             s.paragraph(Markup(" ").join(Markup("{}: {}.").format(r["name"], r["value"]) for r in said))
         for n, (group, rows) in enumerate(groups.items()):
             cols = RESULT_COLS if any(r["where"] for r in rows) else RESULT_COLS[:-1]
-            caption = f"{kind.title}: {group[0].lower() + group[1:]}" if group else kind.title
+            head = group_title(group, study, kind.name)
+            caption = f"{kind.title}: {head[0].lower() + head[1:]}" if head else kind.title
             s.table(caption, cols, pd.DataFrame(rows), id=f"key-tab-{kind.name}" + (f"-{n}" if n else ""))
+        if kind.name == "forces":
+            balance_by_position(s, study)
     return sec
+
+
+def _deg(x) -> str:
+    """A link's angle in degrees in [0°, 360°), as the note's table of angles prints it."""
+    v = math.degrees(float(x)) % 360.0
+    return fmt(0.0 if round(v, 2) >= 360.0 else v, digits=2)
+
+
+def _output_columns(study, coord: str) -> list[Column]:
+    """The output's displacement and, when ω₁ (or the actuator's rate) is given, its true velocity
+    and acceleration, named as in the note's tables (s_H by the slider's point, φ₃, x_E)."""
+    from .sections.common import sub
+    mech, k = study.mechanism, study.kinematics
+    pre, _, name = coord.partition("_")
+    known = mech.driver.omega is not None
+    if pre == "s":
+        pts = [j.point for j in mech.prismatic]
+        j = next(j for j in mech.prismatic if j.name == name)
+        idx = j.point if pts.count(j.point) == 1 else j.name
+        cols = [Column(coord, sub("s", idx), "м", digits=4)]
+        if known:
+            cols += [Column(f"vs_{name}", sub("V", idx), "м/с", digits=3),
+                     Column(f"as_{name}", sub("a", idx), "м/с²", sig=4)]
+    elif pre == "phi":
+        cols = [Column(coord, sub("φ", name), "град", fmt=_deg)]
+        if known:
+            cols += [Column(f"w_{name}", sub("ω", name), "рад/с", digits=3),
+                     Column(f"e_{name}", sub("ε", name), "рад/с²", sig=4)]
+    else:
+        cols = [Column(coord, sub(pre, name), "м", digits=4)]
+        if known:
+            cols += [Column(f"v{pre}_{name}", f"<i>V</i><sub>{name}{pre}</sub>", "м/с", digits=3),
+                     Column(f"a{pre}_{name}", f"<i>a</i><sub>{name}{pre}</sub>", "м/с²", sig=4)]
+    return [c for c in cols if c.key in k.columns]
+
+
+def by_position_tables(sec: Section, study) -> None:
+    """The values a student computes position by position (the plans of velocities and
+    accelerations): the output's displacement, velocity and acceleration and the angular velocity
+    and acceleration of every turning link, by the note's position numbers — the row the teacher
+    compares with a student's table.  Wide tables are split as in the note."""
+    from .sections.common import chunked_tables, position_lead, sub
+    from .sections.kinematics import _links
+    from ..analysis.plans import parallel_outputs
+    k = study.kinematics
+    cols: list[Column] = []
+    for coord, *_ in parallel_outputs(study):
+        cols += [c for c in _output_columns(study, coord) if c.key not in {x.key for x in cols}]
+    if study.mechanism.driver.omega is not None:
+        shown = {c.key for c in cols}
+        d = study.mechanism.driver
+        for l in _links(study):
+            if d.rotary and l.name == d.link:
+                continue
+            for c in (Column(f"w_{l.name}", sub("ω", l.name), "рад/с", digits=3),
+                      Column(f"e_{l.name}", sub("ε", l.name), "рад/с²", sig=4)):
+                if c.key not in k.columns or c.key in shown:
+                    continue
+                # a link turning with another (a slot's stone and its lever): one column «ω₂ = ω₃»
+                twin = next((x for x in cols if x.key[:2] == c.key[:2] and x.key[2:] != c.key[2:]
+                             and np.allclose(k[x.key], k[c.key], rtol=1e-12, atol=1e-12)), None)
+                if twin is not None:
+                    twin.header = f"{twin.header}&nbsp;=&nbsp;{c.header}"
+                else:
+                    cols.append(c)
+    if not cols:
+        return
+    sec.paragraph("Значения по положениям (номера положений — как в записке):")
+    chunked_tables(sec, "Выходное звено и угловые скорости и ускорения звеньев по положениям"
+                   if len(cols) > 3 else "Выходное звено по положениям", k, cols, position_lead(study), "key-by-pos")
+
+
+def balance_by_position(sec: Section, study) -> None:
+    """The balancing moment (a crank) or the actuator's force over the positions of the force
+    analysis, by the note's position numbers."""
+    from .sections.common import position_lead, sub
+    f = study.forces
+    main = ("M_bal", sub("M", "ур"), "Н·м") if f.rotary else ("F_act", "<i>F</i>", "Н")
+    if main[0] not in f.table:
+        return
+    cols = [Column(main[0], main[1], main[2], sig=5)]
+    if f.settings.flywheel and "M_bal_linkage" in f.table:
+        # the flywheel's inertia moment on the crank makes M_ур constant; the moment of the linkage
+        # alone is the one a student finds group by group (the note's «M_ур без маховика»)
+        cols.append(Column("M_bal_linkage", sub("M", "ур") + " без маховика", "Н·м", sig=5))
+    sec.table("Уравновешивающий момент по положениям" if f.rotary else "Усилие гидроцилиндра по положениям",
+              position_lead(study) + cols, f.table, id="key-bal-by-pos")
 
 
 def _groups_text(rows: list[dict]) -> str:
@@ -199,7 +340,7 @@ def _verdict(x: float, tol: float) -> Markup:
 def loop_closure(study) -> float:
     """Largest change over the cycle of a distance between two points of one link, m (rigidity
     of every link = closure of every vector loop; 0 up to round-off for a correct solution)."""
-    cyc = study.cycle
+    cyc = study.cycle if study.has_cycle else study.kinematics    # (no cycle: the given positions)
     worst = 0.0
     for link in study.mechanism.moving:
         pts = [p for p in link.points if f"x_{p}" in cyc]
@@ -211,13 +352,49 @@ def loop_closure(study) -> float:
     return worst
 
 
+def analog_differences(study) -> tuple[float, float]:
+    """Largest relative difference over the cycle between the analogs of the points' velocities
+    (accelerations) from the groups' linear systems and the central differences of the points'
+    coordinates (of those velocity analogs) over the cycle's grid of the input coordinate:
+    x′ ≈ (x_{i+1} − x_{i−1})/(q_{i+1} − q_{i−1}), x″ likewise from x′ (error O(Δq²)), each
+    referred to the largest |x′| (|x″|) of the point over the cycle.  A second formulation of the
+    velocity and acceleration analogs from the positions alone."""
+    cyc = study.cycle
+    q = cyc["q"].to_numpy(float)
+    dq = q[2:] - q[:-2]
+    worst_v = worst_a = 0.0
+    for p in {pt for link in study.mechanism.moving for pt in link.points}:
+        for ax in ("x", "y"):
+            cols = (f"{ax}_{p}", f"vq{ax}_{p}", f"aq{ax}_{p}")
+            if not all(c in cyc for c in cols):
+                continue
+            x, v, a = (cyc[c].to_numpy(float) for c in cols)
+            for f, df, worst in ((x, v, "v"), (v, a, "a")):
+                scale = float(np.max(np.abs(df)))
+                if scale <= 1e-12:
+                    continue
+                d = float(np.max(np.abs((f[2:] - f[:-2]) / dq - df[1:-1]))) / scale
+                if worst == "v":
+                    worst_v = max(worst_v, d)
+                else:
+                    worst_a = max(worst_a, d)
+    return worst_v, worst_a
+
+
 def _checks(study) -> Section:
     sec = Section("Проверки", "key-checks")
     rows = []
     if study.has_linkage:
         err = loop_closure(study)
-        rows.append({"what": "Замыкание контуров: расстояния между точками каждого звена за цикл",
+        rows.append({"what": "Замыкание контуров: расстояния между точками каждого звена "
+                             + ("за цикл" if study.has_cycle else "в заданных положениях"),
                      "value": f"{fmt(err, sig=2)} м", "verdict": _verdict(err, 1e-9)})
+        if study.has_cycle:
+            dv, da = analog_differences(study)
+            rows.append({"what": "Аналоги скоростей точек: из систем групп и по разностям координат за цикл",
+                         "value": fmt(dv, sig=2), "verdict": _verdict(dv, 1e-4)})
+            rows.append({"what": "Аналоги ускорений точек: из систем групп и по разностям аналогов скоростей",
+                         "value": fmt(da, sig=2), "verdict": _verdict(da, 1e-4)})
     tasks = study.tasks()
     if "forces" in tasks:
         sc = study.forces.scalars
@@ -263,6 +440,16 @@ def _second_formulations(study) -> list[dict]:
 
     def rel(a, b):
         return abs(float(a) - float(b)) / max(abs(float(b)), 1e-300)
+    if "cam" in tasks:
+        cam = study.cam
+        key = "cam_rho_min" if cam.contact == "flat" else "cam_rho_c_min"
+        if key in cam.scalars:
+            d = rel(cam_rho_by_points(cam), cam.scalars[key])
+            rows.append({"what": Markup("Наименьший радиус кривизны " + ("рабочего" if cam.contact == "flat" else
+                                                                        "центрового") +
+                                        " профиля: по формуле и по окружностям через три соседние точки профиля "
+                                        "(через 0,02°)"),
+                         "value": fmt(d, sig=2), "verdict": _verdict(d, 1e-3)})
     if "gears" in tasks:
         sc = study.gears.scalars
         if "gears_eps_alpha_line" in sc:
@@ -281,6 +468,31 @@ def _second_formulations(study) -> list[dict]:
                                  "и заданные",
                          "value": fmt(d, sig=2), "verdict": _verdict(d, 1e-8)})
     return rows
+
+
+def cam_rho_by_points(cam, step_deg: float = 0.02) -> float:
+    """The least radius of curvature of the convex parts of the cam's profile (the centre profile;
+    the working one of a flat follower) from its points alone: the circle through three
+    neighbouring points C₁, C₂, C₃ has the curvature κ = 2 (C₂ − C₁)×(C₃ − C₂)/(|C₂ − C₁| |C₃ − C₂|
+    |C₃ − C₁|) (the circumscribed circle of a triangle, R = abc/4S); ρ = −k/κ with the sign of the
+    analytic formula ρ = −k|C′|³/(C′×C″) (> 0 convex).  The profile is sampled every ``step_deg``
+    inside each smooth piece of the cycle (phases, knots, inflections), so no triple straddles a
+    kink of the law.  An independent formulation of the key's ρ_min, which the analysis finds
+    from the derivatives C′, C″ of the inversion."""
+    pts = "W" if cam.contact == "flat" else "C"
+    ends = sorted({x for ph in cam.phases for x in (cam.breaks(ph) if ph.law else (ph.start, ph.start + ph.length))})
+    best = math.inf
+    for a, b in zip(ends[:-1], ends[1:]):
+        n = max(3, int(math.ceil((b - a) / math.radians(step_deg))) + 1)
+        P = cam.profile(np.linspace(a, b, n))[pts]
+        d1, d2, d3 = P[1:-1] - P[:-2], P[2:] - P[1:-1], P[2:] - P[:-2]
+        cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rho = -cam.k * np.hypot(*d1.T) * np.hypot(*d2.T) * np.hypot(*d3.T) / (2 * cross)
+        convex = rho[np.isfinite(rho) & (rho > 0)]
+        if convex.size:
+            best = min(best, float(convex.min()))
+    return best
 
 
 def _printed(study) -> Section | None:

@@ -37,6 +37,7 @@ class Entry:
     position: bool = False       # the position of another key's extreme (shown in its row)
     swing: tuple | None = None   # (name, symbol) when a "stroke" is a swing (a rocker's angle)
     given: bool = False          # a value of the case: printed as the case writes it (0,11, not 0,1100)
+    actuator: tuple | None = None  # (name, symbol) when the input is an actuator's length (F, not M_ур)
 
 
 def _e(name, sym="", unit="", **kw) -> Entry:
@@ -168,7 +169,9 @@ FORCES = {
     "F_act_absmax": _e("Наибольшее по модулю усилие гидроцилиндра", "|" + _i("F", "ц") + "|<sub>max</sub>", "Н",
                        where="q_F_act_absmax", group=_FG1),
     "dev_zhukovsky_max_pct": _e("Расхождение " + _i("M", "ур") + " по группам Ассура и по рычагу Жуковского, "
-                                "наибольшее", "Δ<sub>Ж</sub>", "%", sig=2, group=_FG1),
+                                "наибольшее", "Δ<sub>Ж</sub>", "%", sig=2, group=_FG1,
+                                actuator=("Расхождение усилия гидроцилиндра " + _i("F") + " по группам Ассура и по "
+                                          "рычагу Жуковского, наибольшее", "Δ<sub>Ж</sub>")),
     "dev_power_max": _e("Относительная невязка баланса мощностей, наибольшая", "Δ" + _i("N"), sig=2, group=_FG1),
     "dev_M_bal_M_d_max": _e("Относительное отличие " + _i("M", "ур") + " от движущего момента "
                             + _i("M", "д") + ", наибольшее", "", sig=2, group=_FG1),
@@ -446,10 +449,28 @@ def convert(e: Entry, value: float, study=None, kind: str = "") -> tuple[float, 
 
 
 def shown(e: Entry, study=None, kind: str = "") -> tuple[str, str]:
-    """The name and symbol of ``e`` for this case (a swing instead of a stroke)."""
+    """The name and symbol of ``e`` for this case (a swing instead of a stroke; the actuator's
+    force instead of the balancing moment)."""
     if e.swing is not None and _angular_stroke(study, kind):
         return e.swing
+    if e.actuator is not None and _actuated(study, kind):
+        return e.actuator
     return e.name, e.sym
+
+
+# the heading of a group of the force analysis when the input is an actuator (as the note's table
+# «Усилие гидроцилиндра и его проверки»): there is no balancing moment to speak of
+_ACTUATOR_GROUPS = {_FG1: "Усилие гидроцилиндра и проверки"}
+
+
+def group_title(group: str, study=None, kind: str = "") -> str:
+    """The heading of a results table of ``kind`` for this case."""
+    return _ACTUATOR_GROUPS.get(group, group) if _actuated(study, kind) else group
+
+
+def _actuated(study, kind: str) -> bool:
+    """Whether the force analysis of ``study`` balances an actuator's force (no crank moment)."""
+    return kind == "forces" and study is not None and study.has_linkage and not study.mechanism.driver.rotary
 
 
 def _angular_stroke(study, kind: str) -> bool:

@@ -56,6 +56,12 @@ def pos_fmt(study):
     return lambda lab: names.get(str(lab), str(lab))
 
 
+def position_lead(study) -> list[Column]:
+    """The lead columns of a table by positions: «№» (the position's number) and φ (or S)."""
+    qkey, qhead, qunit, qfmt = q_header(study)
+    return [Column("pos", "№", fmt=pos_fmt(study)), Column(qkey, qhead, qunit, **qfmt)]
+
+
 def input_word(driver, case: str = "nom") -> str:
     """The rotating input link in a Russian case: «кривошип» or, for an input link swung over a
     range, «входное коромысло» (nom, gen, dat)."""
