@@ -27,27 +27,23 @@ def timed(name, fn):
         try: return fn(*a, **k)
         finally: acc[name] += time.process_time() - c
     return w
-mplstyle.to_svg = timed("to_svg", mplstyle.to_svg)
-mf.Figure.savefig = timed("savefig", mf.Figure.savefig)
-svgslim.slim = timed("slim", svgslim.slim)
 import matplotlib.layout_engine as le
-le.ConstrainedLayoutEngine.execute = timed("constrained", le.ConstrainedLayoutEngine.execute)
-from reportgen.scenes import labels
-labels.LabelPlacer.place = timed("label_place", labels.LabelPlacer.place)
-import matplotlib.axis as ma, matplotlib.text as mt, matplotlib.lines as ml, matplotlib.legend as mleg, matplotlib.axes as maxes, matplotlib.ticker as mtick
-ma.Axis._update_ticks = timed("update_ticks", ma.Axis._update_ticks)
-ma.Axis.get_tightbbox = timed("axis_tightbbox", ma.Axis.get_tightbbox)
-ma.Axis.draw = timed("axis_draw", ma.Axis.draw)
-ma.Axis.get_major_ticks = timed("get_major_ticks", ma.Axis.get_major_ticks)
-mt.Text._get_layout = timed("text_layout", mt.Text._get_layout)
-mt.Text.draw = timed("text_draw", mt.Text.draw)
-ml.Line2D.draw = timed("line_draw", ml.Line2D.draw)
-mleg.Legend.draw = timed("legend_draw", mleg.Legend.draw)
-maxes.Axes.__init__ = timed("axes_init", maxes.Axes.__init__)
-from reportgen.style import numbers as NN
+import matplotlib.axis as ma, matplotlib.text as mt, matplotlib.lines as ml, matplotlib.legend as mleg
+import matplotlib.axes as maxes
 import matplotlib.backends.backend_svg as bsvg
-bsvg.RendererSVG.draw_path = timed("svg_draw_path", bsvg.RendererSVG.draw_path)
-bsvg.RendererSVG.draw_text = timed("svg_draw_text", bsvg.RendererSVG.draw_text)
+from reportgen.scenes import labels
+# (stage name, owner, attribute): every stage timed the same way
+STAGES = [
+    ("to_svg", mplstyle, "to_svg"), ("savefig", mf.Figure, "savefig"), ("slim", svgslim, "slim"),
+    ("constrained", le.ConstrainedLayoutEngine, "execute"), ("label_place", labels.LabelPlacer, "place"),
+    ("update_ticks", ma.Axis, "_update_ticks"), ("axis_tightbbox", ma.Axis, "get_tightbbox"),
+    ("axis_draw", ma.Axis, "draw"), ("get_major_ticks", ma.Axis, "get_major_ticks"),
+    ("text_layout", mt.Text, "_get_layout"), ("text_draw", mt.Text, "draw"), ("line_draw", ml.Line2D, "draw"),
+    ("legend_draw", mleg.Legend, "draw"), ("axes_init", maxes.Axes, "__init__"),
+    ("svg_draw_path", bsvg.RendererSVG, "draw_path"), ("svg_draw_text", bsvg.RendererSVG, "draw_text"),
+]
+for label, owner, attr in STAGES:
+    setattr(owner, attr, timed(label, getattr(owner, attr)))
 import reportgen.report.render as RR
 for nm in ("_typography", "_fill_refs", "_fix_text"):
     if hasattr(RR, nm): setattr(RR, nm, timed(nm, getattr(RR, nm)))
