@@ -71,7 +71,7 @@ def tables(study: Study, at: Iterable[float] | None = None) -> dict[str, pd.Data
     cycle is analysed there; a task column of ``at`` that needs the cycle, dynamics, solves it)."""
     out: dict[str, pd.DataFrame] = {}
     if at is not None and study.has_linkage:
-        out.update(_structure_tables(study))
+        out.update(_structure_tables(study, solved=False))
         out.update(study.extra_tables(positions_only=True))
         out["at"] = _at_table(study, list(at))
         return out
@@ -107,12 +107,17 @@ def _linkage_tables(study: Study) -> dict[str, pd.DataFrame]:
     return out
 
 
-def _structure_tables(study: Study) -> dict[str, pd.DataFrame]:
+def _structure_tables(study: Study, solved: bool = True) -> dict[str, pd.DataFrame]:
     """Links, pairs and Assur groups; a link's motion as the note's table of links states it
-    (a frame-hinged link that turns fully is a crank, :mod:`reportgen.analysis.link_motion`)."""
+    (a frame-hinged link that turns fully is a crank, :mod:`reportgen.analysis.link_motion`).
+    ``solved=False`` (``export --at``): the report positions are not solved, so a link's motion
+    is the structure's (a mechanism analysed at single positions may not assemble over the cycle)."""
     st = study.structure
+
+    def motion(name: str) -> str:
+        return link_motion(study, name) if solved else st.link_motion[name]
     return {
-        "links": pd.DataFrame([{"link": l.name, "title": l.title, "motion": link_motion(study, l.name),
+        "links": pd.DataFrame([{"link": l.name, "title": l.title, "motion": motion(l.name),
                                 "mass": l.mass, "weight": l.weight, "J_S": l.J_S, "com": l.com}
                                for l in study.mechanism.moving]),
         "pairs": pd.DataFrame(st.pairs),
