@@ -253,6 +253,19 @@ def train_picture(train) -> TrainPicture:
     return TrainPicture(fig, seg, 1.0)
 
 
+def _free_side(seg: dict, f: dict) -> int:
+    """The side of the pole's vertical (+1 right, −1 left) where the label of the polar distance h
+    (set halfway between the pole and the first horizontal) is clear of the rays: a ray from the pole
+    to the end of a segment ``sg`` read f polar distances down passes halfway down the first polar
+    distance at ``sg/(2f)`` from the vertical; the label goes where the nearest ray is farthest."""
+    room = {1: float("inf"), -1: float("inf")}
+    for nm, sg in seg.items():
+        if sg:
+            side = 1 if sg > 0 else -1
+            room[side] = min(room[side], abs(sg) / (2 * f[nm]))
+    return 1 if room[1] >= room[-1] else -1
+
+
 def stage_plans(train) -> StagePlans:
     """The graphical ratio stage by stage: along the chain of members ordered by |ω|
     (``ratio_chain``) every pair of neighbours gets its own plan of angular velocities, the two
@@ -296,8 +309,10 @@ def stage_plans(train) -> StagePlans:
                              textcoords="offset points", fontsize=8)]
         if deep:
             ax.plot([x0, x0], [h, -deep], color=INK, lw=0.5, ls=(0, (4, 2)))
-            texts.append(ax.annotate(f"h = {fmt(h, digits=0)} мм", (x0, h / 2), xytext=(3, 0),
-                                     textcoords="offset points", fontsize=7, ha="left", va="center"))
+            side = _free_side(seg, f)
+            texts.append(ax.annotate(f"h = {fmt(h, digits=0)} мм", (x0, h / 2), xytext=(3 * side, 0),
+                                     textcoords="offset points", fontsize=7,
+                                     ha="left" if side > 0 else "right", va="center"))
         for nm, sg in ((a, seg[a]), (b, seg[b])):
             y = h - f[nm] * h
             ax.plot([x0, x0 + sg], [h, y], color=colors[nm], lw=1.2)

@@ -26,7 +26,7 @@ from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import plural
 from .kinematics import _insets_text, _zero_note, zero_columns
-from .common import (chosen_position, chunked_tables, input_word, pos_fmt, pos_no, position_lead, q_degrees, q_header,
+from .common import (chosen_position, chunked_tables, input_word, pos_no, position_lead, q_degrees, q_header,
                      html_point, sub, tex_point)
 
 NEEDS = ("kinematics", "cycle", "forces")

@@ -196,7 +196,7 @@ def _chord(sec, kind, v, P) -> None:
                       f"{inline_math(_H6)}, |B₁B₂|&nbsp;=&nbsp;H&nbsp;=&nbsp;{as_written(v['H'])}&nbsp;м. "
                       "Размах коромысла:")
         sec.formula(r"\psi = 2\arcsin\frac{H}{2 l_3}", rf"2\arcsin\frac{{{_w(v['H'])}}}{{2 \cdot {_w(v['l3'])}}}",
-                    tex_num(math.degrees(v["psi"]), sig=5) + r"^{\circ}", label="eq-syn-psi6")
+                    _deg(v["psi"]) + r"^{\circ}", label="eq-syn-psi6")
         sec.paragraph("Радиус окружности:")
         chord = v["H"]
     else:
