@@ -1,0 +1,160 @@
+"""Code health of the package, read from its source (ast), nothing run.
+
+The import direction of DESIGN.md «What flows through it»: core ← mechanism ← analysis ← scenes ←
+report ← cli.  Every import of every module (top-level, inside a function, under TYPE_CHECKING, and
+``importlib.import_module`` with a static prefix) must point to its own unit or to a lower layer.
+"""
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+from conftest import ROOT
+
+PKG = ROOT / "reportgen"
+
+# Lowest first.  A unit (sub-package or top-level module of reportgen) may import only units of a
+# lower row; units of one row do not import each other.
+LAYERS: tuple[tuple[str, ...], ...] = (
+    ("errors", "registry"),   # the one error type; the task kinds as pure data
+    ("core", "style"),        # numba kernels; number format, plot style, font metrics
+    ("case",),                # the case file read into SI values
+    ("mechanism",),           # links, joints, Assur groups
+    ("analysis",),            # the Study and its task analyses
+    ("scenes",),              # drawings of the Study
+    ("report",),              # the note, the answer key, HTML and PDF
+    ("export", "warmup"),     # CSV exports; the numba/font warm-up
+    ("sheets",),              # drawing sheets A1
+    ("batch",),               # many variants
+    ("cli",),                 # the command line
+)
+RANK = {unit: i for i, row in enumerate(LAYERS) for unit in row}
+
+
+def _module_name(path: Path) -> str:
+    parts = path.relative_to(ROOT).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _package_of(path: Path) -> str:
+    name = _module_name(path)
+    return name if path.name == "__init__.py" else name.rpartition(".")[0]
+
+
+def _resolve(package: str, level: int, module: str | None) -> str:
+    """The absolute name of ``from <level dots><module> import …`` written in ``package``."""
+    if not level:
+        return module or ""
+    base = package.split(".")
+    base = base[: len(base) - level + 1]
+    return ".".join(base + ([module] if module else []))
+
+
+def _static_prefix(node: ast.expr) -> str | None:
+    """The text of a module-name argument up to its first formatted field, with ``{__package__}``
+    kept as a marker; None when the argument is not a string literal or an f-string."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, str):
+        return node.value
+    if isinstance(node, ast.JoinedStr):
+        out = []
+        for v in node.values:
+            if isinstance(v, ast.Constant):
+                out.append(v.value)
+            elif isinstance(v.value, ast.Name) and v.value.id == "__package__" and not out:
+                out.append("{__package__}")
+            else:
+                break
+        return "".join(out)
+    return None
+
+
+def imported_modules(source: str, package: str) -> list[tuple[int, str]]:
+    """(line, absolute module name) of every import in ``source`` of a module in ``package``."""
+    found: list[tuple[int, str]] = []
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.Import):
+            found += [(node.lineno, a.name) for a in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            base = _resolve(package, node.level, node.module)
+            if node.module:
+                found.append((node.lineno, base))
+            else:    # from . import x: each name may be a module
+                found += [(node.lineno, f"{base}.{a.name}") for a in node.names]
+        elif (isinstance(node, ast.Call) and node.args
+              and isinstance(node.func, ast.Attribute) and node.func.attr == "import_module"):
+            text = _static_prefix(node.args[0])
+            if text is None:
+                continue
+            if text.startswith("{__package__}"):
+                text = package + text[len("{__package__}"):]
+            elif text.startswith(".") and len(node.args) > 1 and getattr(node.args[1], "id", "") == "__package__":
+                dots = len(text) - len(text.lstrip("."))
+                text = _resolve(package, dots, text.lstrip(".") or None)
+            found.append((node.lineno, text.rstrip(".")))
+    return found
+
+
+def _unit(module: str) -> str | None:
+    parts = module.split(".")
+    if parts[0] != "reportgen":
+        return None
+    return parts[1] if len(parts) > 1 else "reportgen"
+
+
+def layer_violations(path: Path, source: str | None = None) -> list[str]:
+    """Imports in the module at ``path`` that point to a unit of the same or a higher row of LAYERS."""
+    own = _unit(_module_name(path))
+    if own == "reportgen":      # the package's own __init__: a lazy facade over the Study (PEP 562)
+        return []
+    if source is None:
+        source = path.read_text(encoding="utf-8")
+    bad = []
+    for line, target in imported_modules(source, _package_of(path)):
+        unit = _unit(target)
+        if unit is None or unit == own:
+            continue
+        if unit not in RANK or RANK[unit] >= RANK[own]:
+            bad.append(f"{path.relative_to(ROOT)}:{line} ({own}) imports {target} ({unit})")
+    return bad
+
+
+def _units_on_disk() -> set[str]:
+    return {p.stem if p.is_file() else p.name for p in PKG.iterdir()
+            if (p.is_file() and p.suffix == ".py" and p.stem != "__init__")
+            or (p.is_dir() and (p / "__init__.py").exists())}
+
+
+def test_every_unit_has_a_layer():
+    """A new sub-package or top-level module must be placed in LAYERS before it may import anything."""
+    assert _units_on_disk() - set(RANK) == set()
+    assert set(RANK) - _units_on_disk() == set(), "LAYERS names a unit that is gone"
+
+
+def test_imports_point_down_the_layers():
+    bad = [v for path in sorted(PKG.rglob("*.py")) for v in layer_violations(path)]
+    assert bad == []
+
+
+@pytest.mark.parametrize("where, source", [
+    ("core/kinematics.py", "from ..analysis import study\n"),
+    ("core/kinematics.py", "def f():\n    from reportgen.report import render\n"),
+    ("analysis/cam.py", "import reportgen.scenes.cam\n"),
+    ("scenes/cam.py", "from .. import report\n"),
+    ("core/cams.py", "from ..style import numbers\n"),          # same row: core and style
+    ("mechanism/build.py", "import importlib\nimportlib.import_module(f'reportgen.analysis.{m}')\n"),
+    ("analysis/study.py", "import importlib\nimportlib.import_module(f'{__package__}.x', 'reportgen.report.x')\n"
+                          "importlib.import_module('..report.key', __package__)\n"),
+])
+def test_the_checker_sees_an_upward_import(where, source):
+    assert layer_violations(PKG / where, source)
+
+
+@pytest.mark.parametrize("where, source", [
+    ("report/key.py", "import importlib\nimportlib.import_module(f'.sections.{k}', __package__)\n"),
+    ("analysis/study.py", "import importlib\nimportlib.import_module(f'{__package__}.{module}')\n"),
+    ("scenes/cam.py", "from ..core import cams\nfrom ..analysis.cam import Cam\nimport numpy\n"),
+])
+def test_the_checker_lets_downward_imports_pass(where, source):
+    assert layer_violations(PKG / where, source) == []
