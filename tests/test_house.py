@@ -158,3 +158,30 @@ def test_the_checker_sees_an_upward_import(where, source):
 ])
 def test_the_checker_lets_downward_imports_pass(where, source):
     assert layer_violations(PKG / where, source) == []
+
+
+def test_dense_solvers_share_their_pivoting_and_agree_with_numpy():
+    """core/linalg.py: solve_dense and lu_factor/lu_solve (one pivot search, one row norm, one back
+    substitution) solve the same systems as numpy, and flag a singular one with 0.0."""
+    import numpy as np
+
+    from reportgen.core.linalg import lu_factor, lu_solve, solve_dense
+
+    rng = np.random.default_rng(12)
+    for n in (2, 3, 6, 9):
+        a = rng.normal(size=(n, n))
+        a[0, :] *= 1e-3                     # a small first pivot: rows must be interchanged
+        b = rng.normal(size=n)
+        x = np.linalg.solve(a, b)
+        a1, b1 = a.copy(), b.copy()
+        q1 = solve_dense(a1, b1, n, 0.0)
+        a2, b2, perm = a.copy(), b.copy(), np.zeros(n, np.int64)
+        q2 = lu_factor(a2, n, perm)
+        lu_solve(a2, perm, b2, n)
+        assert q1 > 0.0 and abs(q1 - q2) <= 1e-12 * q1
+        assert np.allclose(b1, x, rtol=1e-10, atol=1e-12) and np.allclose(b2, x, rtol=1e-10, atol=1e-12)
+        assert perm[0] != 0
+    sing = np.array([[1.0, 2.0], [2.0, 4.0]])
+    assert solve_dense(sing.copy(), np.ones(2), 2, 1e-12) == 0.0
+    assert lu_factor(sing.copy(), 2, np.zeros(2, np.int64)) == 0.0
+    assert solve_dense(np.zeros((3, 3)), np.ones(3), 3, 0.0) == 0.0
