@@ -318,6 +318,20 @@ def _moment_arc(cv: Canvas, x, y, M, label, color=INK, r_mm=5.0, k: int = 0):
                   gap_mm=MOMENT_LABEL_GAP_MM)
 
 
+def _moment_arcs(cv: Canvas, moments, mech, ref, cols):
+    """The non-zero moments of a drawing, each at its link's centre of mass (else its reference
+    point); a second moment at one point drawn on a ring further out (M_ур in red)."""
+    placed: dict[str, int] = {}
+    for m in moments:
+        if abs(m["M"]) < 1e-12:
+            continue
+        S = mech.link(m["link"]).com or ref[m["link"]]
+        k = placed.get(S, 0)
+        placed[S] = k + 1
+        _moment_arc(cv, cols["x_" + S], cols["y_" + S], m["M"], m["label"],
+                    RED if m["label"] == "Mур" else INK, r_mm=5.0 + 3.5 * k, k=k)
+
+
 class GroupForces:
     """One Assur group taken apart at a report position: the links to scale μ_l with the loads
     and reactions as arrows (arrows not to scale), and beside it the force polygon of the group
@@ -478,15 +492,7 @@ class GroupForces:
             scheme.append((a0, a1))
             arrow(ax, a0[0], a0[1], a1[0], a1[1], color=color, lw=1.2, zorder=6)
             cv.labels.add(lx, ly, math_label(v.label), prefer=pref, fontsize=10, color=color)
-        placed: dict[str, int] = {}
-        for m in moments:
-            if abs(m["M"]) < 1e-12:
-                continue
-            S = mech.link(m["link"]).com or f.model.ref[m["link"]]
-            k_ = placed.get(S, 0)
-            placed[S] = k_ + 1
-            _moment_arc(cv, cols["x_" + S], cols["y_" + S], m["M"], m["label"],
-                        RED if m["label"] == "Mур" else INK, r_mm=5.0 + 3.5 * k_, k=k_)
+        _moment_arcs(cv, moments, mech, f.model.ref, cols)
         # polygon: a side lying back along an earlier one (R₀₁ = −R₂₁ of a crank loaded by one
         # force) drawn beside it, joined by thin lines
         sides = _inset_sides(poly, cv.mm(OFFSET_MM), cv.mm(NEAR_MM))
@@ -798,15 +804,7 @@ class LoadedScheme:
             color = INK if ld["kind"] in ("G", "Phi") else RED
             arrow(cv.ax, at[0], at[1], tip[0], tip[1], color=color, lw=1.2, zorder=6)
             cv.labels.add(tip[0], tip[1], math_label(load_label(ld)), prefer=tuple(F), fontsize=10, color=color)
-        placed: dict[str, int] = {}
-        for m in moments:
-            if abs(m["M"]) < 1e-12:
-                continue
-            S = mech.link(m["link"]).com or f.model.ref[m["link"]]
-            k_ = placed.get(S, 0)
-            placed[S] = k_ + 1
-            _moment_arc(cv, cols["x_" + S], cols["y_" + S], m["M"], m["label"],
-                        RED if m["label"] == "Mур" else INK, r_mm=5.0 + 3.5 * k_, k=k_)
+        _moment_arcs(cv, moments, mech, f.model.ref, cols)
         return Drawing(cv.svg(), cv.width_mm, cv.mu)
 
 
