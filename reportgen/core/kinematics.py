@@ -93,6 +93,16 @@ def _pri(jf, j, q):
 
 
 @njit(cache=True, error_model="numpy")
+def _place(pose, b, th, Px, Py, px, py):
+    """Pose of body b turned by θ so that its local point p lies at the global point P:
+    r = P − A(θ)·p (A: the rotation matrix)."""
+    pose[b, 2] = th
+    ux, uy = _rot(th, px, py)
+    pose[b, 0] = Px - ux
+    pose[b, 1] = Py - uy
+
+
+@njit(cache=True, error_model="numpy")
 def _glob(pose, b, px, py):
     ux, uy = _rot(pose[b, 2], px, py)
     return pose[b, 0] + ux, pose[b, 1] + uy
@@ -328,14 +338,8 @@ def _solve_rrr(jf, jb, a, b, jA, jB, jC, sigma, q, pose):
     By = Ay + x * ey + sigma * h * ex
     ta = np.arctan2(By - Ay, Bx - Ax) - np.arctan2(pbay - pay, pbax - pax)
     tb = np.arctan2(By - Cy, Bx - Cx) - np.arctan2(pbby - pcy, pbbx - pcx)
-    pose[a, 2] = ta
-    ux, uy = _rot(ta, pax, pay)
-    pose[a, 0] = Ax - ux
-    pose[a, 1] = Ay - uy
-    pose[b, 2] = tb
-    ux, uy = _rot(tb, pcx, pcy)
-    pose[b, 0] = Cx - ux
-    pose[b, 1] = Cy - uy
+    _place(pose, a, ta, Ax, Ay, pax, pay)
+    _place(pose, b, tb, Cx, Cy, pcx, pcy)
     # sine of the angle between the two links at the inner joint (transmission quality)
     sinmu = ((Bx - Ax) * (By - Cy) - (By - Ay) * (Bx - Cx)) / (La * Lb) if La * Lb > 0 else 0.0
     return F_OK, 0.0, sinmu
@@ -401,10 +405,7 @@ def _solve_rrp(jf, jb, a, b, jA, jB, jP, sigma, q, pose):
     Bx = pose[b, 0] + bx
     By = pose[b, 1] + by
     ta = np.arctan2(By - Ay, Bx - Ax) - np.arctan2(pbay - pay, pbax - pax)
-    pose[a, 2] = ta
-    vx, vy = _rot(ta, pax, pay)
-    pose[a, 0] = Ax - vx
-    pose[a, 1] = Ay - vy
+    _place(pose, a, ta, Ax, Ay, pax, pay)
     sinmu = sigma * root / La if La > 0 else 0.0
     return F_OK, 0.0, sinmu
 
@@ -442,14 +443,8 @@ def _solve_rpr(jf, jb, a, b, jA, jP, jC, sigma, q, pose):
     psi = np.arctan2(wy, wx)
     tg = psi - beta + sigma * np.arccos(c)
     ts = tg + al
-    pose[G, 2] = tg
-    ux, uy = _rot(tg, pgx, pgy)
-    pose[G, 0] = PGx - ux
-    pose[G, 1] = PGy - uy
-    pose[S, 2] = ts
-    ux, uy = _rot(ts, psx, psy)
-    pose[S, 0] = PSx - ux
-    pose[S, 1] = PSy - uy
+    _place(pose, G, tg, PGx, PGy, pgx, pgy)
+    _place(pose, S, ts, PSx, PSy, psx, psy)
     return F_OK, 0.0, sigma * np.sqrt(max(0.0, 1.0 - c * c))
 
 
@@ -466,11 +461,8 @@ def _solve_crank(jt, jb, jf, gjoint, g, nj, body, q, pose):
     bj = jb[jd, 1]
     off = jf[jd, 0] + jf[jd, 1] * q
     th = pose[bi, 2] + off if bj == body else pose[bj, 2] - off
-    pose[body, 2] = th
     px, py, gx, gy = _pivot(jf, jb, jr, body, q, pose)
-    ux, uy = _rot(th, px, py)
-    pose[body, 0] = gx - ux
-    pose[body, 1] = gy - uy
+    _place(pose, body, th, gx, gy, px, py)
     return F_OK, 0.0, 1.0
 
 
