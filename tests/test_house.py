@@ -185,3 +185,29 @@ def test_dense_solvers_share_their_pivoting_and_agree_with_numpy():
     assert solve_dense(sing.copy(), np.ones(2), 2, 1e-12) == 0.0
     assert lu_factor(sing.copy(), 2, np.zeros(2, np.int64)) == 0.0
     assert solve_dense(np.zeros((3, 3)), np.ones(3), 3, 0.0) == 0.0
+
+
+def test_quantity_operators_coerce_once_both_ways():
+    """case/expr.py: every arithmetic operator of Q and its reflected twin (``2 * q``, ``1 / q``,
+    ``2 ** q``) take a plain number as dimensionless and leave anything else to Python."""
+    from reportgen.case.expr import Q
+    from reportgen.case.units import DIMENSIONLESS, LENGTH
+    from reportgen.errors import CaseError
+
+    L = Q(2.0, LENGTH)
+    one = Q(4.0, DIMENSIONLESS)
+    assert (3 * L).value == 6.0 and (3 * L).dim == LENGTH
+    assert (L * 3).value == 6.0
+    assert (1 / L).dim == tuple(-d for d in LENGTH) and (1 / L).value == 0.5
+    assert (10 - one).value == 6.0 and (one - 10).value == -6.0
+    assert (1 + one).value == 5.0 and (2 ** Q(3.0, DIMENSIONLESS)).value == 8.0
+    assert (one ** 0.5).value == 2.0
+    assert Q.__rmul__.__name__ == "__rmul__" and Q.__add__.__name__ == "__add__"
+    with pytest.raises(TypeError):
+        L + "1 m"
+    with pytest.raises(TypeError):
+        "1 m" * L
+    with pytest.raises(CaseError):
+        1 + L                     # a dimensionless number added to a length
+    with pytest.raises(CaseError):
+        L / Q(0.0, DIMENSIONLESS)

@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 import re
 from fractions import Fraction
-from functools import lru_cache
+from functools import lru_cache, wraps
 from typing import Any, Callable, Mapping
 
 import numpy as np
@@ -71,6 +71,26 @@ def _scalar_bad(result, *inputs) -> bool:
     if math.isfinite(r):
         return False
     return all(np.ndim(x) == 0 and math.isfinite(float(x)) for x in inputs)
+
+
+def _coerced(method: Callable) -> Callable:
+    """An arithmetic operator of :class:`Q` taking the other operand as a Q (a plain number or
+    array is dimensionless); NotImplemented for anything else, so that Python tries the other side."""
+    @wraps(method)
+    def op(self, other: Any):
+        o = Q._coerce(other)
+        if o is NotImplemented:
+            return NotImplemented
+        return method(self, o)
+    return op
+
+
+def _reflected(name: str) -> Callable:
+    """The reflected operator (``2 * q``): the other operand made a Q, then its ``name`` with self."""
+    def op(self, o: "Q"):
+        return getattr(o, name)(self)
+    op.__name__ = op.__qualname__ = name[:2] + "r" + name[2:]
+    return _coerced(op)
 
 
 class Q:
@@ -142,64 +162,38 @@ class Q:
             raise CaseError(f"несовместимые единицы: {dim_name(self.dim)} {op} {dim_name(other.dim)}",
                             hint=hint)
 
-    def __add__(self, other: Any) -> "Q":
-        o = Q._coerce(other)
-        if o is NotImplemented:
-            return NotImplemented
+    @_coerced
+    def __add__(self, o: "Q") -> "Q":
         self._check_same(o, "+")
         return Q(self.value + o.value, _sum_dim(self.dim, o.dim))
 
-    def __radd__(self, other: Any) -> "Q":
-        o = Q._coerce(other)
-        if o is NotImplemented:
-            return NotImplemented
-        return o.__add__(self)
+    __radd__ = _reflected("__add__")
 
-    def __sub__(self, other: Any) -> "Q":
-        o = Q._coerce(other)
-        if o is NotImplemented:
-            return NotImplemented
+    @_coerced
+    def __sub__(self, o: "Q") -> "Q":
         self._check_same(o, "−")
         return Q(self.value - o.value, _sum_dim(self.dim, o.dim))
 
-    def __rsub__(self, other: Any) -> "Q":
-        o = Q._coerce(other)
-        if o is NotImplemented:
-            return NotImplemented
-        return o.__sub__(self)
+    __rsub__ = _reflected("__sub__")
 
-    def __mul__(self, other: Any) -> "Q":
-        o = Q._coerce(other)
-        if o is NotImplemented:
-            return NotImplemented
+    @_coerced
+    def __mul__(self, o: "Q") -> "Q":
         return Q(self.value * o.value, dim_mul(self.dim, o.dim))
 
-    def __rmul__(self, other: Any) -> "Q":
-        o = Q._coerce(other)
-        if o is NotImplemented:
-            return NotImplemented
-        return o.__mul__(self)
+    __rmul__ = _reflected("__mul__")
 
-    def __truediv__(self, other: Any) -> "Q":
-        o = Q._coerce(other)
-        if o is NotImplemented:
-            return NotImplemented
+    @_coerced
+    def __truediv__(self, o: "Q") -> "Q":
         with np.errstate(divide="ignore", invalid="ignore"):
             v = np.true_divide(self.value, o.value)
         if _scalar_bad(v, self.value, o.value):
             raise CaseError("деление на ноль")
         return Q(v, dim_div(self.dim, o.dim))
 
-    def __rtruediv__(self, other: Any) -> "Q":
-        o = Q._coerce(other)
-        if o is NotImplemented:
-            return NotImplemented
-        return o.__truediv__(self)
+    __rtruediv__ = _reflected("__truediv__")
 
-    def __pow__(self, other: Any) -> "Q":
-        o = Q._coerce(other)
-        if o is NotImplemented:
-            return NotImplemented
+    @_coerced
+    def __pow__(self, o: "Q") -> "Q":
         if not _is_angle_like(o.dim):
             raise CaseError(f"показатель степени должен быть безразмерным, а не «{dim_name(o.dim)}»")
         if self.dim == DIMENSIONLESS:
@@ -231,11 +225,7 @@ class Q:
             raise CaseError(f"не удалось возвести {_fmt(self.value)} в степень {_fmt(x)}")
         return Q(v, tuple(new))  # type: ignore[arg-type]
 
-    def __rpow__(self, other: Any) -> "Q":
-        o = Q._coerce(other)
-        if o is NotImplemented:
-            return NotImplemented
-        return o.__pow__(self)
+    __rpow__ = _reflected("__pow__")
 
     def __neg__(self) -> "Q":
         return Q(-self.value, self.dim)
@@ -597,21 +587,20 @@ class _Parser:
             left = ("cmp", t.val, left, right, t.pos)
         return left
 
-    def additive(self) -> tuple:
-        left = self.term()
-        while self.is_op("+", "-"):
+    def _left_assoc(self, operand, ops) -> tuple:
+        """operand (op operand)*, grouped from the left: a − b − c = (a − b) − c."""
+        left = operand()
+        while self.is_op(*ops):
             t = self.take()
-            right = self.term()
+            right = operand()
             left = ("bin", t.val, left, right, t.pos)
         return left
 
+    def additive(self) -> tuple:
+        return self._left_assoc(self.term, ("+", "-"))
+
     def term(self) -> tuple:
-        left = self.unary()
-        while self.is_op("*", "/"):
-            t = self.take()
-            right = self.unary()
-            left = ("bin", t.val, left, right, t.pos)
-        return left
+        return self._left_assoc(self.unary, ("*", "/"))
 
     def unary(self) -> tuple:
         if self.is_op("-"):
