@@ -79,6 +79,31 @@ def _coincident(row, mech: Mechanism, guide: str, p: str):
     return v, a
 
 
+def _relative_points(mech: Mechanism):
+    """(link, its reference point R, another point Q of it) for every moving link: the relative
+    vectors V_QR, aⁿ_QR, a^τ_QR of the plans."""
+    for link in mech.moving:
+        ref = _reference(mech, link)
+        for p in link.points:
+            if p != ref:
+                yield link, ref, p
+
+
+def _guide_points(plan: Plan, row, mech: Mechanism, accel: bool = False):
+    """For every prismatic joint on a moving guide: the joint, the guide, the slider, the label of
+    the tip of the guide's point under the slider (set on the plan to that point's velocity, or
+    acceleration when ``accel``) and the velocity of that point."""
+    for j in mech.prismatic:
+        guide, slider = j.links
+        if guide == FRAME:
+            continue
+        v, a = _coincident(row, mech, guide, j.point)
+        lab = f"{j.point}{guide}"
+        plan.tips[lab] = a if accel else v
+        plan.point_of_tip[lab] = j.point
+        yield j, guide, slider, lab, v
+
+
 def _start(kind: str, row, mech: Mechanism) -> tuple[Plan, set]:
     """A plan with the absolute vectors of all points (fixed points at the pole)."""
     plan = Plan(kind)
@@ -108,20 +133,9 @@ def _finish(plan: Plan, fixed: set, prefix: str) -> Plan:
 
 def velocity_plan(row: pd.Series, mech: Mechanism) -> Plan:
     plan, fixed = _start("velocity", row, mech)
-    for link in mech.moving:
-        ref = _reference(mech, link)
-        for p in link.points:
-            if p == ref:
-                continue
-            _seg(plan, ref, p, "rel", f"V_{p}{ref}", link.name)
-    for j in mech.prismatic:
-        guide, slider = j.links
-        if guide == FRAME:
-            continue
-        v, _ = _coincident(row, mech, guide, j.point)
-        lab = f"{j.point}{guide}"
-        plan.tips[lab] = v
-        plan.point_of_tip[lab] = j.point
+    for link, ref, p in _relative_points(mech):
+        _seg(plan, ref, p, "rel", f"V_{p}{ref}", link.name)
+    for j, guide, slider, lab, _ in _guide_points(plan, row, mech):
         _seg(plan, lab, j.point, "slide", f"V_{j.point}{slider}{j.point}{guide}", slider)
     return _finish(plan, fixed, "V")
 
@@ -136,31 +150,20 @@ def acceleration_plan(row: pd.Series, mech: Mechanism, normal=None) -> Plan:
     computed length (an enlarged view shows a short one as it is); their tangential components
     close on the points the construction found."""
     plan, fixed = _start("acceleration", row, mech)
-    for link in mech.moving:
-        ref = _reference(mech, link)
+    for link, ref, p in _relative_points(mech):
         w = row["w_" + link.name]
-        for p in link.points:
-            if p == ref:
-                continue
-            r = _vec(row, "", p) - _vec(row, "", ref)
-            given = normal is not None and mech.driver.rotary and link.name == mech.driver.link
-            an = normal(link.name, r) if given else -w * w * r
-            lab = f"n{p}{ref}"
-            plan.tips[lab] = plan.tips[ref] + an
-            _seg(plan, ref, lab, "normal", f"a^n_{p}{ref}", link.name)
-            _seg(plan, lab, p, "tangential", f"a^τ_{p}{ref}", link.name)
-    for j in mech.prismatic:
-        guide, slider = j.links
-        if guide == FRAME:
-            continue
-        v_g, a_g = _coincident(row, mech, guide, j.point)
-        lab = f"{j.point}{guide}"
-        plan.tips[lab] = a_g
-        plan.point_of_tip[lab] = j.point
+        r = _vec(row, "", p) - _vec(row, "", ref)
+        given = normal is not None and mech.driver.rotary and link.name == mech.driver.link
+        an = normal(link.name, r) if given else -w * w * r
+        lab = f"n{p}{ref}"
+        plan.tips[lab] = plan.tips[ref] + an
+        _seg(plan, ref, lab, "normal", f"a^n_{p}{ref}", link.name)
+        _seg(plan, lab, p, "tangential", f"a^τ_{p}{ref}", link.name)
+    for j, guide, slider, lab, v_g in _guide_points(plan, row, mech, accel=True):
         v_rel = _vec(row, "v", j.point) - v_g
         ak = 2.0 * row["w_" + guide] * _rot90(v_rel)
         klab = f"k{j.point}"
-        plan.tips[klab] = a_g + ak
+        plan.tips[klab] = plan.tips[lab] + ak
         _seg(plan, lab, klab, "coriolis", f"a^k_{j.point}{slider}{j.point}{guide}", slider)
         _seg(plan, klab, j.point, "slide", f"a^r_{j.point}{slider}{j.point}{guide}", slider)
     return _finish(plan, fixed, "a")
