@@ -82,6 +82,29 @@ def analog_paths(case: str, repeat: int) -> tuple[float, float]:
     return (min(best[0]) if L.tape(model) is not None else float("inf")), min(best[1])
 
 
+def stage_times(s, clock=time.process_time, tables: bool = True) -> dict[str, float]:
+    """Time by ``clock`` of each stage of the fresh Study ``s``: the model, the kinematics at the
+    report positions, the cycle table, every task (its scalars, and its export tables when
+    ``tables``), and the total."""
+    out = {}
+    t0 = clock()
+    s.model
+    out["model"] = clock() - t0
+    for name in ("kinematics", "cycle"):
+        t = clock()
+        getattr(s, name)
+        out[name] = clock() - t
+    for name in s.tasks():
+        t = clock()
+        a = s.analysis(name)
+        if tables:
+            a.tables()
+        a.scalars
+        out[name] = clock() - t
+    out["total"] = clock() - t0
+    return out
+
+
 def analysis_stages(case: str, tables: bool = True) -> tuple[dict[str, float], int, int]:
     """CPU time of each stage of a fresh Study, the number of kernel calls and positions.
 
@@ -105,23 +128,7 @@ def analysis_stages(case: str, tables: bool = True) -> tuple[dict[str, float], i
 
     L.run_kernel = counted
     try:
-        s = Study(ROOT / case)
-        out = {}
-        t0 = time.process_time()
-        s.model
-        out["model"] = time.process_time() - t0
-        for name in ("kinematics", "cycle"):
-            t = time.process_time()
-            getattr(s, name)
-            out[name] = time.process_time() - t
-        for name in s.tasks():
-            t = time.process_time()
-            a = s.analysis(name)
-            if tables:
-                a.tables()
-            a.scalars
-            out[name] = time.process_time() - t
-        out["total"] = time.process_time() - t0
+        out = stage_times(Study(ROOT / case), time.process_time, tables)
         out["kernel"] = calls[2]
     finally:
         L.run_kernel = orig

@@ -31,25 +31,10 @@ def median_time(fn, repeat: int, clock=time.perf_counter) -> float:
 
 
 def stages(case: str) -> dict[str, float]:
-    """Time of each analysis stage of a fresh Study (warm process)."""
+    """Wall time of each analysis stage of a fresh Study (warm process)."""
+    from bench_analysis import stage_times
     from reportgen.analysis.study import Study
-    s = Study(ROOT / case)
-    out = {}
-    t0 = time.perf_counter()
-    s.model
-    out["model"] = time.perf_counter() - t0
-    for name in ("kinematics", "cycle"):
-        t = time.perf_counter()
-        getattr(s, name)
-        out[name] = time.perf_counter() - t
-    for name in s.tasks():
-        t = time.perf_counter()
-        a = s.analysis(name)
-        a.tables()
-        a.scalars
-        out[name] = time.perf_counter() - t
-    out["total"] = time.perf_counter() - t0
-    return out
+    return stage_times(Study(ROOT / case), time.perf_counter)
 
 
 def main(argv=None) -> None:
