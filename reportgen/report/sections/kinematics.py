@@ -804,17 +804,13 @@ def _plan_formulas(sec: Section, study, row, vrow, vplan, aplan,
         # the segment as measured on the drawing (to READ_MM, as in the table «по плану» and as
         # the acceleration plan's normal terms use it: plans.measured_omegas), not the construction
         v_read = drawn(s0.length, vplan.mu)
-        fs.append(Formula(rf"\omega_{{{link.name}}} = \frac{{V_{{{Q}{R}}}}}{{l_{{{R}{Q}}}}}",
-                          rf"\frac{{{tex_num(v_read, sig=4)}}}{{{tex_num(lq, digits=4)}}}",
-                          tex_num(v_read / lq, sig=4, unit="рад/с")))
+        fs.append(_rate_formula(r"\omega", "V", "рад/с", link.name, Q, R, v_read, lq))
         w_read[link.name] = v_read / lq
         _add_read(reads, "omega", link.name, s0, v_read, vplan.mu, lq, row[f"w_{link.name}"], q_, r_)
         tn = aseg.get(f"a^τ_{q_}{r_}") or (constructed()[1].get(f"a^τ_{q_}{r_}") if full else None)
         if tn is not None:
             a_read = drawn(tn.length, aplan.mu)
-            es.append(Formula(rf"\varepsilon_{{{link.name}}} = \frac{{a^{{\tau}}_{{{Q}{R}}}}}{{l_{{{R}{Q}}}}}",
-                              rf"\frac{{{tex_num(a_read, sig=4)}}}{{{tex_num(lq, digits=4)}}}",
-                              tex_num(a_read / lq, sig=4, unit="рад/с²")))
+            es.append(_rate_formula(r"\varepsilon", r"a^{\tau}", "рад/с²", link.name, Q, R, a_read, lq))
             e_read[link.name] = a_read / lq
             _add_read(reads, "eps", link.name, tn, a_read, aplan.mu, lq, row[f"e_{link.name}"], q_, r_)
     for s_, g_ in twins.items():
@@ -878,6 +874,15 @@ def _short_reads_text(tab: pd.DataFrame, drawing) -> str:
                         "{}&nbsp;мм): точность {} ограничена чертежом.").format(
                    fmt(READ_MM, digits=1), _vec_name(longest.name), fmt(longest.length / drawing.mu, digits=0),
                    "этого значения" if len(parts) == 1 else "этих значений"))
+
+
+def _rate_formula(rate: str, vector: str, unit: str, link: str, Q: str, R: str, value: float,
+                  l: float) -> Formula:
+    """ω_k = V_QR/l_RQ or ε_k = a^τ_QR/l_RQ with the segment read off the plan (``value``) and
+    the link's length (Артоболевский, гл. 3: the relative vector over the distance)."""
+    return Formula(rf"{rate}_{{{link}}} = \frac{{{vector}_{{{Q}{R}}}}}{{l_{{{R}{Q}}}}}",
+                   rf"\frac{{{tex_num(value, sig=4)}}}{{{tex_num(l, digits=4)}}}",
+                   tex_num(value / l, sig=4, unit=unit))
 
 
 def _add_read(reads: list | None, kind: str, link: str, seg, value: float, mu: float, l: float,
