@@ -33,6 +33,22 @@ def _xaxis(ax, study):
     ax.set_xlabel("φ, град")
 
 
+def _cycle_axes(study, height_mm: float):
+    """The cycle table of the dynamics, its φ in degrees from the cycle's start, and a figure
+    160 mm wide with one axes for curves over the cycle."""
+    cyc = study.dynamics.cycle
+    fig = mplstyle.figure(160, height_mm)
+    return cyc, _x(study, cyc["q"]), fig, fig.add_subplot()
+
+
+def _cycle_drawing(fig, ax, study, ylabel: str, ncols: int = 1) -> Drawing:
+    """The curves over the cycle finished: the φ axis, the value axis' label, the legend."""
+    _xaxis(ax, study)
+    ax.set_ylabel(ylabel)
+    ax.legend(ncols=ncols, fontsize=9, loc="best")
+    return Drawing(mplstyle.to_svg(fig), 160, 0.0)
+
+
 def _marks(ax, study, col):
     """Report positions as points on a curve."""
     t = study.dynamics.table
@@ -126,19 +142,12 @@ class InertiaCurves:
     needs = _NEEDS
 
     def draw(self, study) -> Drawing:
-        d = study.dynamics
-        cyc = d.cycle
-        x = _x(study, cyc["q"])
-        fig = mplstyle.figure(160, 85)
-        ax = fig.add_subplot()
+        cyc, x, fig, ax = _cycle_axes(study, 85)
         ax.plot(x, cyc["J_II"], lw=1.8, color=INK, label="$J_{II}$")
-        for il in d.model.links:
+        for il in study.dynamics.model.links:
             ax.plot(x, cyc["J_II_" + il.name], lw=1.0, label=f"звено {il.name}")
         _marks(ax, study, "J_II")
-        _xaxis(ax, study)
-        ax.set_ylabel("$J_{II}$, кг·м²")
-        ax.legend(ncols=4, fontsize=9, loc="best")
-        return Drawing(mplstyle.to_svg(fig), 160, 0.0)
+        return _cycle_drawing(fig, ax, study, "$J_{II}$, кг·м²", ncols=4)
 
 
 class MomentCurves:
@@ -148,10 +157,7 @@ class MomentCurves:
 
     def draw(self, study) -> Drawing:
         d = study.dynamics
-        cyc = d.cycle
-        x = _x(study, cyc["q"])
-        fig = mplstyle.figure(160, 95)
-        ax = fig.add_subplot()
+        cyc, x, fig, ax = _cycle_axes(study, 95)
         names = ["M_" + n for n in d.loads.names if n not in d.idle_loads]
         for c in names:
             ax.plot(x, cyc[c], lw=0.9, label=load_label(c[2:]))
@@ -159,10 +165,7 @@ class MomentCurves:
         ax.plot(x, cyc["M_d"], lw=1.6, ls="--", color=INK, label="$M_{д}$")
         ax.plot(x, cyc["M_sum"], lw=1.0, ls=":", color=INK, label="$M_{\\Sigma}$")
         ax.axhline(0, color="0.3", lw=0.6)
-        _xaxis(ax, study)
-        ax.set_ylabel("$M_{пр}$, Н·м")
-        ax.legend(ncols=4, fontsize=9, loc="best")
-        return Drawing(mplstyle.to_svg(fig), 160, 0.0)
+        return _cycle_drawing(fig, ax, study, "$M_{пр}$, Н·м", ncols=4)
 
 
 class WorkCurves:
@@ -171,18 +174,12 @@ class WorkCurves:
     needs = _NEEDS
 
     def draw(self, study) -> Drawing:
-        cyc = study.dynamics.cycle
-        x = _x(study, cyc["q"])
-        fig = mplstyle.figure(160, 85)
-        ax = fig.add_subplot()
+        cyc, x, fig, ax = _cycle_axes(study, 85)
         ax.plot(x, cyc["A_c"], lw=1.4, color=INK, label="$A_{с}$")
         ax.plot(x, cyc["A_d"], lw=1.4, ls="--", color=INK, label="$A_{д}$")
         ax.plot(x, cyc["A_sum"], lw=1.4, label="$A_{\\Sigma} = \\Delta T$")
         ax.axhline(0, color="0.3", lw=0.6)
-        _xaxis(ax, study)
-        ax.set_ylabel("$A$, Дж")
-        ax.legend(fontsize=9, loc="best")
-        return Drawing(mplstyle.to_svg(fig), 160, 0.0)
+        return _cycle_drawing(fig, ax, study, "$A$, Дж")
 
 
 class EnergyCurves:
@@ -191,12 +188,8 @@ class EnergyCurves:
     needs = _NEEDS
 
     def draw(self, study) -> Drawing:
-        d = study.dynamics
-        cyc = d.cycle
-        sc = d.scalars
-        x = _x(study, cyc["q"])
-        fig = mplstyle.figure(160, 90)
-        ax = fig.add_subplot()
+        sc = study.dynamics.scalars
+        cyc, x, fig, ax = _cycle_axes(study, 90)
         ax.plot(x, cyc["A_sum"], lw=1.2, ls="--", color=INK, label="$\\Delta T = A_{\\Sigma}$")
         ax.plot(x, cyc["T_II"], lw=1.0, label="$T_{II} = J_{II}\\,\\omega_{ср}^2/2$")
         ax.plot(x, cyc["dT_I"], lw=1.6, color=INK, label="$\\Delta T_{I} = \\Delta T - T_{II}$")
