@@ -15,22 +15,42 @@ LINK_KEYS = ["name", "title", "points", "mass", "weight", "J_S", "com"]
 JOINT_KEYS = ["type", "links", "point", "guide", "slider", "line", "offset", "name", "symbol"]
 DRIVER_KEYS = ["type", "link", "center", "phi0", "direction", "omega", "epsilon",
                "cylinder", "rod", "base", "end", "range", "speed", "acceleration"]
+Holders = dict[str, list[tuple[str, str]]]   # point name -> [(link, where it is defined)]
 
 
 def build_mechanism(root: Node, names: Mapping[str, Q], g: float) -> Mechanism:
     """Read [frame], [[links]], [[joints]], [driver] and [sketch] of a case."""
+    frame, holders = _read_frame(root, names)
+    qdim = U.LENGTH if root.table("driver").raw("type") == "actuator" else U.ANGLE
+    links, deferred = _read_links(root, names, g, qdim, holders)
+    index = _LinkIndex([frame] + links)
+    joints = [_read_joint(jn, names, index) for jn in root.tables("joints")]
+    _check_shared_points(root, holders, joints)
+    driver = _read_driver(root, names, index, joints)
+    mech = Mechanism([frame] + links, joints, driver, deferred=deferred)
+    _read_sketch(root, names, mech)
+    return mech
+
+
+def _read_frame(root: Node, names: Mapping[str, Q]) -> tuple[Link, Holders]:
+    """The frame (link "0") with its points from ``[frame] points``."""
     frame_node = root.table("frame")
     frame_node.check_keys(["points"])
     frame = Link(FRAME, "стойка")
     pts = frame_node.table("points")
-    holders: dict[str, list[tuple[str, str]]] = {}  # point name -> [(link, where it is defined)]
+    holders: Holders = {}
     for pname, v in pts.data.items():
         pname = check_name(pname, file=pts.file, key=pts.key(str(pname)), what="имя точки")
         frame.points[pname] = pts.vector(pname, v, U.LENGTH, names)
         holders[pname] = [(FRAME, f"[frame] points.{pname} (стойка)")]
-    links = [frame]
+    return frame, holders
+
+
+def _read_links(root: Node, names: Mapping[str, Q], g: float, qdim, holders: Holders) -> tuple[list[Link], list]:
+    """The moving links of ``[[links]]`` (their points, mass, weight G = m·g, J_S, centre of mass)
+    and the points deferred to assembly (``{offset, from, at}``: placed at a position of q)."""
+    links: list[Link] = []
     deferred = []
-    qdim = U.LENGTH if root.table("driver").raw("type") == "actuator" else U.ANGLE
     seen = {FRAME}
     for ln in root.tables("links"):
         ln.check_keys(LINK_KEYS, required=["name", "points"])
@@ -71,93 +91,100 @@ def build_mechanism(root: Node, names: Mapping[str, Q], g: float) -> Mechanism:
                            expected="имя одной из точек звена: " + ", ".join(link.points),
                            hint=did_you_mean(link.com, list(link.points)))
         links.append(link)
-    if len(links) < 2:
+    if not links:
         raise root.error("links", "не описано ни одного подвижного звена", expected="[[links]] …")
-    by_name = {l.name: l for l in links}
+    return links, deferred
 
-    def need_link(node: Node, key: str, name: str) -> Link:
-        if name not in by_name:
+
+class _LinkIndex:
+    """The links by name (the frame "0" first), for the pairs and the driver that name them."""
+
+    def __init__(self, links: list[Link]):
+        self.by_name = {l.name: l for l in links}
+
+    def link(self, node: Node, key: str, name: str) -> Link:
+        if name not in self.by_name:
             raise node.error(key, f"нет звена «{name}»", expected="имя звена из [[links]] или \"0\" (стойка)",
-                             hint=did_you_mean(name, list(by_name)))
-        return by_name[name]
+                             hint=did_you_mean(name, list(self.by_name)))
+        return self.by_name[name]
 
-    def need_point(node: Node, key: str, link: Link, p: str) -> None:
+    @staticmethod
+    def point(node: Node, key: str, link: Link, p: str) -> None:
         if p not in link.points:
             where = "стойки" if link.is_frame else f"звена «{link.name}»"
             raise node.error(key, f"точка «{p}» не задана у {where}",
                              expected="одна из точек: " + ", ".join(link.points),
                              hint=did_you_mean(p, list(link.points)))
 
-    joints: list[Joint] = []
-    for jn in root.tables("joints"):
-        jn.check_keys(JOINT_KEYS, required=["type", "point"])
-        kind = jn.string("type", required=True, choices=["R", "P"])
-        point = jn.string("point", required=True)
-        if kind == "R":
-            pair = jn.raw("links")
-            if not (isinstance(pair, list) and len(pair) == 2):
-                raise jn.error("links", "для вращательной пары нужны два звена",
-                               expected="links = [\"1\", \"2\"]", got=repr(pair))
-            a, b = (str(x) for x in pair)
-            la, lb = need_link(jn, "links", a), need_link(jn, "links", b)
-            if a == b:
-                raise jn.error("links", "пара соединяет звено само с собой", expected="два разных звена")
-            need_point(jn, "point", la, point)
-            need_point(jn, "point", lb, point)
-            if jn.has("symbol"):
-                raise jn.error("symbol", "условное обозначение задаётся только для поступательной пары",
-                               expected="symbol в [[joints]] с type = \"P\"")
-            name = jn.name("name", point, what="имя пары")
-            joints.append(Joint("R", (a, b), point, name))
-        else:
-            for k in ("guide", "slider", "line"):
-                if not jn.has(k):
-                    raise jn.error(k, f"для поступательной пары нужен ключ «{k}»",
-                                   expected="guide = \"0\", slider = \"5\", line = { through = [0, \"Y_H\"], angle = \"0 deg\" }")
-            guide = need_link(jn, "guide", jn.string("guide"))
-            slider = need_link(jn, "slider", jn.string("slider"))
-            need_point(jn, "point", slider, point)
-            line = jn.table("line")
-            if line.has("from"):
-                line.check_keys(["from", "to"], required=["from", "to"])
-                p1, p2 = line.string("from"), line.string("to")
-                need_point(line, "from", guide, p1)
-                need_point(line, "to", guide, p2)
-                (x1, y1), (x2, y2) = guide.points[p1], guide.points[p2]
-                if math.hypot(x2 - x1, y2 - y1) == 0:
-                    raise line.error(None, "точки направляющей совпадают", expected="две разные точки")
-                lp, ang = (x1, y1), math.atan2(y2 - y1, x2 - x1)
-            else:
-                line.check_keys(["through", "angle"], required=["through"])
-                thr = line.raw("through")
-                if isinstance(thr, str) and thr in guide.points:
-                    lp = guide.points[thr]
-                elif isinstance(thr, str):
-                    raise line.error("through", f"точка «{thr}» не задана у звена «{guide.name}»",
-                                     expected="имя точки направляющего звена или координаты [x, y]",
-                                     hint=did_you_mean(thr, list(guide.points)))
-                else:
-                    lp = line.vector("through", thr, U.LENGTH, names)
-                ang = line.quantity("angle", U.ANGLE, names, default=0.0)
-            offset = jn.quantity("offset", U.LENGTH, names, default=0.0)
-            name = jn.name("name", f"{slider.name}{guide.name}", what="имя пары")
-            # ГОСТ 2.770 symbol of the pair: a slider (block) on its guide, or a cylinder with its
-            # piston and rod (the guide the cylinder, the slider the rod: a rocking cylinder)
-            symbol = jn.string("symbol", "slider", choices=["slider", "cylinder"])
-            if symbol == "cylinder" and guide.is_frame:
-                raise jn.error("symbol", "цилиндром изображается пара двух подвижных звеньев (качающийся цилиндр)",
-                               expected="symbol = \"slider\" для ползуна на стойке")
-            joints.append(Joint("P", (guide.name, slider.name), point, name, lp, ang, offset,
-                                cylinder=symbol == "cylinder"))
 
-    _check_shared_points(root, holders, joints)
-    driver = _read_driver(root, names, by_name, joints, need_link, need_point)
-    mech = Mechanism(links, joints, driver, deferred=deferred)
-    _read_sketch(root, names, mech)
-    return mech
+def _read_joint(jn: Node, names: Mapping[str, Q], index: _LinkIndex) -> Joint:
+    """One pair of ``[[joints]]``: a revolute (R) joining two links at a point, or a prismatic
+    (P): the slider's point on a guide line (through two points of the guide, or through a point
+    at an angle), with its offset and its ГОСТ 2.770 symbol."""
+    jn.check_keys(JOINT_KEYS, required=["type", "point"])
+    kind = jn.string("type", required=True, choices=["R", "P"])
+    point = jn.string("point", required=True)
+    if kind == "R":
+        pair = jn.raw("links")
+        if not (isinstance(pair, list) and len(pair) == 2):
+            raise jn.error("links", "для вращательной пары нужны два звена",
+                           expected="links = [\"1\", \"2\"]", got=repr(pair))
+        a, b = (str(x) for x in pair)
+        la, lb = index.link(jn, "links", a), index.link(jn, "links", b)
+        if a == b:
+            raise jn.error("links", "пара соединяет звено само с собой", expected="два разных звена")
+        index.point(jn, "point", la, point)
+        index.point(jn, "point", lb, point)
+        if jn.has("symbol"):
+            raise jn.error("symbol", "условное обозначение задаётся только для поступательной пары",
+                           expected="symbol в [[joints]] с type = \"P\"")
+        name = jn.name("name", point, what="имя пары")
+        return Joint("R", (a, b), point, name)
+    for k in ("guide", "slider", "line"):
+        if not jn.has(k):
+            raise jn.error(k, f"для поступательной пары нужен ключ «{k}»",
+                           expected="guide = \"0\", slider = \"5\", line = { through = [0, \"Y_H\"], angle = \"0 deg\" }")
+    guide = index.link(jn, "guide", jn.string("guide"))
+    slider = index.link(jn, "slider", jn.string("slider"))
+    index.point(jn, "point", slider, point)
+    lp, ang = _guide_line(jn.table("line"), names, guide, index)
+    offset = jn.quantity("offset", U.LENGTH, names, default=0.0)
+    name = jn.name("name", f"{slider.name}{guide.name}", what="имя пары")
+    # ГОСТ 2.770 symbol of the pair: a slider (block) on its guide, or a cylinder with its
+    # piston and rod (the guide the cylinder, the slider the rod: a rocking cylinder)
+    symbol = jn.string("symbol", "slider", choices=["slider", "cylinder"])
+    if symbol == "cylinder" and guide.is_frame:
+        raise jn.error("symbol", "цилиндром изображается пара двух подвижных звеньев (качающийся цилиндр)",
+                       expected="symbol = \"slider\" для ползуна на стойке")
+    return Joint("P", (guide.name, slider.name), point, name, lp, ang, offset, cylinder=symbol == "cylinder")
 
 
-def _check_shared_points(root: Node, holders: dict[str, list[tuple[str, str]]], joints: list[Joint]) -> None:
+def _guide_line(line: Node, names: Mapping[str, Q], guide: Link, index: _LinkIndex) -> tuple[tuple, float]:
+    """A prismatic pair's guide line in the guide's frame: a point of it and its angle, from
+    ``{from, to}`` (two points of the guide) or ``{through, angle}``."""
+    if line.has("from"):
+        line.check_keys(["from", "to"], required=["from", "to"])
+        p1, p2 = line.string("from"), line.string("to")
+        index.point(line, "from", guide, p1)
+        index.point(line, "to", guide, p2)
+        (x1, y1), (x2, y2) = guide.points[p1], guide.points[p2]
+        if math.hypot(x2 - x1, y2 - y1) == 0:
+            raise line.error(None, "точки направляющей совпадают", expected="две разные точки")
+        return (x1, y1), math.atan2(y2 - y1, x2 - x1)
+    line.check_keys(["through", "angle"], required=["through"])
+    thr = line.raw("through")
+    if isinstance(thr, str) and thr in guide.points:
+        lp = guide.points[thr]
+    elif isinstance(thr, str):
+        raise line.error("through", f"точка «{thr}» не задана у звена «{guide.name}»",
+                         expected="имя точки направляющего звена или координаты [x, y]",
+                         hint=did_you_mean(thr, list(guide.points)))
+    else:
+        lp = line.vector("through", thr, U.LENGTH, names)
+    return lp, line.quantity("angle", U.ANGLE, names, default=0.0)
+
+
+def _check_shared_points(root: Node, holders: Holders, joints: list[Joint]) -> None:
     """A point name held by several links (the frame included) is one point of the mechanism
     only where those links are joined at it: every holder must be connected to the others by
     pairs ([[joints]]) at that very point. Otherwise two different points share a name — e.g. a
@@ -190,12 +217,14 @@ def _check_shared_points(root: Node, holders: dict[str, list[tuple[str, str]]], 
                                      "соединяется парой [[joints]] с point = \"" + p + "\"")
 
 
-def _read_driver(root, names, by_name, joints, need_link, need_point) -> Driver:
+def _read_driver(root: Node, names: Mapping[str, Q], index: _LinkIndex, joints: list[Joint]) -> Driver:
+    """The input link of ``[driver]``: a crank or a rocker turning about its centre, or an actuator
+    (cylinder and rod) whose length is the generalised coordinate."""
     dn = root.table("driver", required=True)
     dn.check_keys(DRIVER_KEYS, required=["type"])
     kind = dn.string("type", required=True, choices=["crank", "rocker", "actuator"])
     if kind in ("crank", "rocker"):
-        link = need_link(dn, "link", dn.string("link", required=True))
+        link = index.link(dn, "link", dn.string("link", required=True))
         center = dn.string("center")
         if center is None:
             cands = [j.point for j in joints if j.kind == "R" and link.name in j.links and FRAME in j.links]
@@ -203,7 +232,7 @@ def _read_driver(root, names, by_name, joints, need_link, need_point) -> Driver:
                 raise dn.error("center", "не удалось определить ось кривошипа",
                                expected="center = \"O\": точка вращательной пары кривошипа со стойкой")
             center = cands[0]
-        need_point(dn, "center", link, center)
+        index.point(dn, "center", link, center)
         direction = dn.string("direction", "ccw", choices=["ccw", "cw"])
         q_range = _swing_range(dn, names) if kind == "rocker" else None
         if kind == "rocker" and dn.has("epsilon"):
@@ -221,12 +250,12 @@ def _read_driver(root, names, by_name, joints, need_link, need_point) -> Driver:
         if not dn.has(k):
             raise dn.error(k, f"для гидроцилиндра нужен ключ «{k}»",
                            expected="cylinder, rod, base, end, range = [\"S_min\", \"S_max\"]")
-    cyl = need_link(dn, "cylinder", dn.string("cylinder"))
-    rod = need_link(dn, "rod", dn.string("rod"))
+    cyl = index.link(dn, "cylinder", dn.string("cylinder"))
+    rod = index.link(dn, "rod", dn.string("rod"))
     base = dn.string("base")
     end = dn.string("end")
-    need_point(dn, "base", cyl, base)
-    need_point(dn, "end", rod, end)
+    index.point(dn, "base", cyl, base)
+    index.point(dn, "end", rod, end)
     if cyl.points[base] != (0.0, 0.0) or rod.points[end] != (0.0, 0.0):
         raise dn.error("base", "оси гидроцилиндра: начало локальной системы цилиндра должно быть в точке base, штока — в точке end",
                        expected=f"{base} = [0, 0] у звена «{cyl.name}» и {end} = [0, 0] у звена «{rod.name}»")
