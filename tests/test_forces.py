@@ -31,8 +31,7 @@ from hypothesis import strategies as st
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from test_kinematics_properties import (_solve, four_bar, scotch_yoke, shaper, six_bar,  # noqa: E402
-                                        slider_crank, slotted_lever)
+from test_kinematics_properties import _solve, property_tests  # noqa: E402
 from reportgen.analysis.study import Study  # noqa: E402
 from reportgen.case.load import CaseSpec  # noqa: E402
 from reportgen.errors import AssemblyError  # noqa: E402
@@ -247,12 +246,7 @@ def _property(strategy):
     return test
 
 
-test_rrr_crank_rocker = _property(four_bar())
-test_rrp_offset_slider_crank = _property(slider_crank())
-test_rpr_slotted_lever = _property(slotted_lever())
-test_prp_shaper_ram = _property(shaper())
-test_rpp_scotch_yoke = _property(scotch_yoke())
-test_six_bar_rrr_rrp = _property(six_bar())
+globals().update(property_tests(_property))     # test_rrr_crank_rocker … test_six_bar_rrr_rrp
 
 
 @SETTINGS

@@ -387,17 +387,27 @@ def _property(strategy):
     return test
 
 
-test_rrr_crank_rocker = _property(four_bar())
-test_rrp_offset_slider_crank = _property(slider_crank())
-test_rpr_slotted_lever = _property(slotted_lever())
-test_prp_shaper_ram = _property(shaper())
-test_rpp_scotch_yoke = _property(scotch_yoke())
-test_six_bar_rrr_rrp = _property(six_bar())
+# the mechanism families of the property tests (here and in test_forces.py): the name of the
+# test, the strategy, the dyad kinds its random cases must decompose into
+FAMILIES = {
+    "rrr_crank_rocker": (four_bar, ["RRR"]),
+    "rrp_offset_slider_crank": (slider_crank, ["RRP"]),
+    "rpr_slotted_lever": (slotted_lever, ["RPR"]),
+    "prp_shaper_ram": (shaper, ["RPR", "PRP"]),
+    "rpp_scotch_yoke": (scotch_yoke, ["RPP"]),
+    "six_bar_rrr_rrp": (six_bar, ["RRR", "RRP"]),
+}
 
 
-@pytest.mark.parametrize("strategy, kinds", [
-    (four_bar(), ["RRR"]), (slider_crank(), ["RRP"]), (slotted_lever(), ["RPR"]),
-    (shaper(), ["RPR", "PRP"]), (scotch_yoke(), ["RPP"]), (six_bar(), ["RRR", "RRP"])])
+def property_tests(make) -> dict:
+    """One property test per family: ``test_<name>`` = ``make(<its strategy>)``."""
+    return {f"test_{name}": make(strategy()) for name, (strategy, _) in FAMILIES.items()}
+
+
+globals().update(property_tests(_property))     # test_rrr_crank_rocker … test_six_bar_rrr_rrp
+
+
+@pytest.mark.parametrize("strategy, kinds", [(strategy(), kinds) for strategy, kinds in FAMILIES.values()])
 def test_strategies_produce_the_intended_groups(strategy, kinds):
     """The random cases really decompose into the dyad kinds they are meant to exercise."""
     seen = []
