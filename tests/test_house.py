@@ -211,3 +211,27 @@ def test_quantity_operators_coerce_once_both_ways():
         1 + L                     # a dimensionless number added to a length
     with pytest.raises(CaseError):
         L / Q(0.0, DIMENSIONLESS)
+
+
+def _public_without_docstring(root: Path) -> list[str]:
+    out = []
+
+    def visit(node, where: str, prefix: str = "") -> None:
+        for n in node.body:
+            if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)) and not n.name.startswith("_"):
+                if ast.get_docstring(n) is None:
+                    out.append(f"{where}:{n.lineno} {prefix}{n.name}")
+                if isinstance(n, ast.ClassDef):
+                    visit(n, where, prefix + n.name + ".")
+
+    for path in sorted(root.rglob("*.py")):
+        visit(ast.parse(path.read_text(encoding="utf-8")), str(path.relative_to(ROOT)))
+    return out
+
+
+@pytest.mark.parametrize("package", ["core", "analysis"])
+def test_public_functions_of_the_computing_layers_have_docstrings(package):
+    """DESIGN.md: «flat topic modules of pure, documented functions (each docstring names the
+    formula and the source it comes from)» — every public function, method and class of core/ and
+    analysis/ says what it computes."""
+    assert _public_without_docstring(PKG / package) == []

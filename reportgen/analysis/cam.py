@@ -70,6 +70,9 @@ PHASE_RU = {K.RISE: "удаление", K.DWELL_HIGH: "дальнее стоян
 
 @dataclass
 class Phase:
+    """One phase of the cam's cycle (удаление, дальнее стояние, возвращение, ближнее стояние): its
+    kind, start and length in cam angle, the law of the follower's motion, the acceleration ratio
+    ν = a₂/a₁, the ramp and the allowed pressure angle [ϑ] (domain.md § 1.6)."""
     kind: int
     start: float
     length: float
@@ -81,11 +84,17 @@ class Phase:
 
     @property
     def x1(self) -> float:
+        """The share of the phase before the law's inflection: f₁/β = ν/(1 + ν) for the acceleration
+        ratio ν = a₂/a₁ (domain.md § 1.6, asymmetric laws)."""
         return self.nu / (1.0 + self.nu)
 
 
 @dataclass
 class Synthesis:
+    """The cam's size found by the synthesis: r₀; for a translating follower the offset e and s₀ (r₀
+    = √(s₀² + e²)); for a rocker the centre distance a_w and the initial angle ψ₀; the cam centre
+    in the synthesis frame and the tangent points that govern it (Артоболевский § 25; domain.md §
+    1.6)."""
     r0: float
     e: float = 0.0          # translating: signed offset (tg ϑ = (s′ − e)/(s₀ + s))
     s0: float = 0.0
@@ -380,10 +389,12 @@ class Cam:
     # ------------------------------------------------------------------ synthesis
     @property
     def rise(self) -> Phase:
+        """The rise phase (удаление)."""
         return self.phases[0]
 
     @property
     def ret(self) -> Phase:
+        """The return phase (возвращение, сближение)."""
         return self.phases[2]
 
     def _geom(self, phi: float, side: int, O) -> dict:
@@ -440,6 +451,9 @@ class Cam:
 
     @cached_property
     def synthesis(self) -> Synthesis:
+        """The least cam size by the allowed pressure angle (the phase portrait s(s′) and its
+        tangent rays, domain.md § 1.6), or by convexity ρ = r₀ + s + s″ > 0 for a flat-faced
+        follower; the size given by the case when it gives one."""
         if self.flat_rocker:
             return self._synth_flat_rocker()
         if self.contact == "flat":
@@ -866,6 +880,8 @@ class Cam:
 
     @cached_property
     def grid(self) -> np.ndarray:
+        """Cam angles of the cycle tables: the step GRID_STEP over 0…2π with every break of the laws
+        added (the ends of the phases and the law's own breaks)."""
         pts = [np.arange(0.0, 2 * math.pi, self.GRID_STEP), [2 * math.pi]]
         for ph in self.phases:
             if ph.law:
@@ -874,6 +890,8 @@ class Cam:
 
     # ------------------------------------------------------------------ results
     def cycle_table(self, phi) -> pd.DataFrame:
+        """The follower's law at the cam angles ``phi``: s and its analogs s′, s″, s‴; with ω given
+        the true v = s′ω, a = s″ω², j = s‴ω³ (domain.md § 1.6); and the pressure angle ϑ."""
         s, s1, s2, s3 = self.law(phi)
         d = {"phi": phi, "phi_deg": np.degrees(phi), "s": s, "s1": s1, "s2": s2, "s3": s3}
         if self.omega is not None:
@@ -890,6 +908,10 @@ class Cam:
         return np.unique(np.round(np.array(pts), 12))
 
     def profile_table(self, phi=None) -> pd.DataFrame:
+        """The profile at the cam angles ``phi`` (the table's angles by default), by inversion: the
+        centre profile C (a roller's centre) with its radius of curvature, the working profile W
+        (the equidistant at r_p, or the flat face's envelope), their polar radii and the pressure
+        angle (domain.md § 1.6)."""
         phi = self.table_phi if phi is None else phi
         p = self.profile(phi)
         d = {"phi": phi, "phi_deg": np.degrees(phi), "s": p["s"]}
@@ -900,6 +922,8 @@ class Cam:
         return _finite(pd.DataFrame(d))
 
     def tables(self) -> dict[str, pd.DataFrame]:
+        """Export tables: ``cam`` (the law over the cycle grid) and ``cam_profile`` (the profile's
+        coordinates)."""
         return {"cam": _finite(self.cycle_table(self.grid)), "cam_profile": self.profile_table()}
 
     @cached_property
@@ -974,6 +998,10 @@ class Cam:
 
     @cached_property
     def scalars(self) -> dict[str, Any]:
+        """Named results ``cam_*``: r₀, the stroke, e and s₀ (and the approximate synthesis beside
+        them) or a_w and ψ₀, the face of a flat follower, the greatest pressure angles on the rise
+        and on the return, the least radius of curvature, the roller, and the counts of hard and
+        soft impacts (domain.md § 1.6)."""
         syn = self.synthesis
         out = {"cam_r0": syn.r0, "cam_stroke": self.h}
         if self.follower == "translating" and self.contact != "flat":

@@ -39,10 +39,15 @@ class Cross(PrintedResults):
         self.r = CX.solve(**self.inputs)
 
     def results(self) -> dict:
+        """The named results of the crosshead mechanism: the speeds of its velocity plan, ω₃ = ω₅, the
+        distances O₁C and O₂C, and with a moment M given the force reduced to the input link by
+        equal powers F_пр = M·|ω₅|/V_A (report/sections/cross.py)."""
         keys = (*SPEEDS, "w3", "w5", "l_O1C", "l_O2C") + (("F_red",) if self.inputs["M"] else ())
         return {k: abs(self.r[k]) for k in keys}
 
     def tables(self) -> dict[str, pd.DataFrame]:
+        """Export table ``cross_velocities``: each vector of the velocity plan (V₁, V_B3, V_B3B2,
+        V_C3, V_C5, V_C4) by its components and modulus."""
         r = self.r
         rows = [{"vector": k, "vx": r[k][0], "vy": r[k][1], "v": float((r[k] @ r[k]) ** 0.5)}
                 for k in ("v1", "vB3", "vB3B2", "vC3", "vC5", "vC4")]

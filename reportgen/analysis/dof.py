@@ -159,6 +159,9 @@ class Dof(PrintedResults):
                 "n_after": a["n"], "p5_after": a["p5"], "p4_after": a["p4"], "W_after": a["W"]}
 
     def results(self) -> dict:
+        """Chebyshev's count W = 3n − 2p₅ − p₄ with its terms (the passive q and the true W) before
+        and after replacing the higher pairs, and, with ``[dof.zero_speed]``, how many positions
+        stop the output (roots of its first analog) with the first one's q, s, angle OML and OM."""
         out = self._counts()
         z = self.zero
         if z is not None:
@@ -171,13 +174,17 @@ class Dof(PrintedResults):
     # ``export --at``: the counts and the pairs; the zero-speed positions are searched over the
     # whole range of the input link (its cycle), so they are left out there
     def position_scalars(self) -> dict:
+        """The counts of Chebyshev's formula as named scalars ``dof_*``."""
         return {f"{self.PREFIX}_{k}": float(v) for k, v in self._counts().items()}
 
     def position_tables(self) -> dict[str, pd.DataFrame]:
+        """Export table ``dof_pairs``: each kinematic pair with its two links and its class."""
         return {"dof_pairs": pd.DataFrame([{"pair": nm, "i": i, "j": j, "type": t}
                                            for nm, (i, j, t) in zip(self.names, self.pairs)])}
 
     def tables(self) -> dict[str, pd.DataFrame]:
+        """Export tables: ``dof_pairs`` and, when computed, ``dof_zero`` (the positions where the
+        output stops)."""
         out = self.position_tables()
         if self.zero is not None:
             out["dof_zero"] = self.zero

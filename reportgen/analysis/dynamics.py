@@ -328,6 +328,8 @@ class ReducedModel:
         return J, dJ
 
     def parts(self, cols) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+        """The contribution of each link to J_II and dJ_II/dφ: m(X′² + Y′²) + J_S φ′² and its
+        derivative (domain.md § 1.5), at the columns ``cols``."""
         return {il.name: self.link_inertia(il, cols) for il in self.links}
 
     def J_crank(self) -> float:
@@ -353,9 +355,13 @@ class ReducedModel:
         return J2, dJ2
 
     def J2(self, q) -> np.ndarray:
+        """J_II(q) = Σ [m_i (X′²_Si + Y′²_Si) + J_Si φ′_i²] of the links of variable inertia (group
+        II; domain.md § 1.5)."""
         return self._sums(q)[0].copy()
 
     def dJ2(self, q) -> np.ndarray:
+        """dJ_II/dq = Σ [2m_i (X′_Si X″_Si + Y′_Si Y″_Si) + 2J_Si φ′_i φ″_i], the term ½J′ω² of the
+        equation of motion J ε + ½J′ω² = M (domain.md § 1.5)."""
         return self._sums(q)[1].copy()
 
     def works(self, nodes: np.ndarray, breaks: np.ndarray) -> LoadWorks:
@@ -470,6 +476,8 @@ class Dynamics:
     # -------------------------------------------------------------------------- evaluation
     @property
     def balance(self) -> str:
+        """``[dynamics] balance``: "drive" (a working machine, M_дв = −A_c/Φ over the cycle Φ) or
+        "resistance" (an engine, M_c = −A_дв/Φ)."""
         return self.settings.balance
 
     def _const_moment(self, q) -> np.ndarray:
@@ -572,6 +580,7 @@ class Dynamics:
         return [n for n in self.loads.names if float(np.max(np.abs(cyc["M_" + n]))) <= 1e-12 * scale]
 
     def row(self, label: str) -> pd.Series:
+        """The row of the report position ``label`` in the dynamics table."""
         t = self.table
         return t[t["pos"] == label].iloc[0]
 

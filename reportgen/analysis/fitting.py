@@ -21,6 +21,8 @@ from ..errors import AssemblyError, CaseError
 
 @dataclass
 class FitResult:
+    """One dimension fitted by ``[[fit]]``: its value, the condition it satisfies, at which
+    position, the residual left and the iterations it took."""
     name: str
     value: float
     condition: str
@@ -31,6 +33,7 @@ class FitResult:
 
 
 def split_condition(node: Node) -> tuple[str, str]:
+    """The two sides of a fit condition «expression = value» of ``[[fit]]``."""
     text = node.string("condition", required=True)
     if text.count("=") != 1:
         raise node.error("condition", "условие подбора должно иметь вид «выражение = значение»",
@@ -81,6 +84,8 @@ def solve_fit(node: Node, name: str, guess: float, residual: Callable[[float], f
 
 
 def evaluate_condition(lhs: str, rhs: str, names: dict, node: Node) -> float:
+    """The residual lhs − rhs of a fit condition, both sides evaluated with the case's names (the
+    right side in the left side's unit); the root finder drives it to zero."""
     try:
         a = evaluate(lhs, names)
         b = evaluate(rhs, names, expected=a.dim)

@@ -84,7 +84,8 @@ class ClosedWork(Protocol):
     values: np.ndarray
     rest: ArrayFunc | None
 
-    def partial(self, i: np.ndarray, x: np.ndarray) -> np.ndarray: ...
+    def partial(self, i: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """∫ from nodes[i] to x of the closed-form moment, for each x inside its node interval i."""
 _EPS = np.finfo(float).eps
 # works on node intervals away from breaks by the Gauss–Lobatto rule of this order (its end
 # points are the nodes, where the kinematics is the solved cycle grid); 0 — Gauss–Legendre on
@@ -364,9 +365,12 @@ class DynamicModel:
         return self._memo("M_sum", x, f)
 
     def J2(self, x) -> np.ndarray:
+        """J_II(φ) at any φ (reduced into the cycle), memoised by the array of angles (domain.md §
+        1.5)."""
         return self._memo("J2", x, lambda x: self._call(self._J2, self._reduce(x)[0]))
 
     def dJ2(self, x) -> np.ndarray:
+        """dJ_II/dφ at any φ (reduced into the cycle), memoised by the array of angles."""
         return self._memo("dJ2", x, lambda x: self._call(self._dJ2, self._reduce(x)[0]))
 
     def wrap(self, x) -> np.ndarray:
@@ -977,6 +981,8 @@ class MertsalovResult:
     model: DynamicModel = field(repr=False)
 
     def omega_at(self, phi) -> np.ndarray:
+        """ω(φ) ≈ ω_ср + (ΔT_I − ΔT_I,mid)/(ω_ср J_I) with ΔT_I = A_Σ − J_II ω_ср²/2 (Мерцалов;
+        domain.md § 1.5), exact on the cycle grid."""
         if _on_grid(self, phi):
             return self.omega.copy()
         m = self.model
@@ -985,6 +991,8 @@ class MertsalovResult:
         return self.omega_m + (dT - mid) / (self.omega_m * self.J_I)
 
     def eps_at(self, phi) -> np.ndarray:
+        """ε(φ) from the equation of motion: ε = M_Σ/J − ω² J′_II/(2J), J = J_I + J_II (domain.md §
+        1.5), with ω of :meth:`omega_at`."""
         if _on_grid(self, phi):
             return self.eps.copy()
         m = self.model
@@ -1082,9 +1090,13 @@ class WittenbauerResult(_EnergyIntegral):
     model: DynamicModel = field(repr=False)
 
     def upper_tangent(self, J) -> np.ndarray:
+        """ΔT on the tangent of slope ω_max²/2 through K: ΔT = K + J·ω_max²/2 (the energy–mass
+        diagram, domain.md § 1.5)."""
         return self.K + self.slope_max * np.asarray(J, dtype=float)
 
     def lower_tangent(self, J) -> np.ndarray:
+        """ΔT on the tangent of slope ω_min²/2 through L: ΔT = L + J·ω_min²/2 (the energy–mass
+        diagram, domain.md § 1.5)."""
         return self.L + self.slope_min * np.asarray(J, dtype=float)
 
 
@@ -1189,6 +1201,8 @@ class FlywheelDims:
 
     @property
     def any_exceeds(self) -> bool:
+        """Whether a rim or disc flywheel (empirical or exact dimensions) exceeds the allowed rim
+        speed ωD/2 (about 30 m/s for cast iron, domain.md § 1.5)."""
         return any(x.v_exceeds for x in (self.rim, self.disk, self.disk_physical,
                                           self.rim_physical))
 

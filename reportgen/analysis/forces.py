@@ -93,10 +93,13 @@ class ActuatorData:
 
     @property
     def area(self) -> float:
+        """The piston's area A = πD²/4."""
         return 0.25 * math.pi * self.diameter ** 2
 
     @property
     def F_max(self) -> float:
+        """The greatest force of the cylinders F_max = k·p·η·A (k cylinders, pressure p, efficiency
+        η)."""
         return self.count * self.pressure * self.efficiency * self.area
 
 
@@ -132,6 +135,10 @@ class CarrierData:
 
 @dataclass(frozen=True)
 class ForceSettings:
+    """``[forces]`` (and ``[carrier]``) as read: static or kinetostatic analysis, the law of motion
+    (constant ω, the dynamics' ω(φ), or static), the flywheel's inertia included, the orientation
+    of the reactions in the report's table, the actuator's, the capacity's and the carrier's
+    data."""
     mode: str                         # "kinetostatic" | "static"
     motion: str                       # "constant" | "dynamics" | "static"
     flywheel: bool
@@ -266,6 +273,8 @@ class Pair:
 
     @property
     def n(self) -> int:
+        """The pair's unknowns: a revolute or a prismatic pair 2 (R_x, R_y or N, M_p), an actuator 3
+        (F, N, M_p), the driving moment 1 (as core.kinetostatics.n_unknowns)."""
         return 1 if self.kind == KS.K_MOM else (3 if self.kind == KS.K_ACT else 2)
 
 
@@ -282,6 +291,9 @@ class ForceGroup:
 
 @dataclass
 class ForceModel:
+    """The force model of a linkage: its links (the frame first), the pairs with their unknowns'
+    offsets, the groups in the order of solution (the last attached first, domain.md § 1.4) and
+    the reference point of each link."""
     links: list[str]                      # index 0 = frame
     pairs: list[Pair]
     groups: list[ForceGroup]              # in the order of solution (last attached first)
@@ -354,6 +366,7 @@ class LoadItem:
 
     @property
     def is_force(self) -> bool:
+        """Whether the load is a force (else a moment)."""
         return self.M is None
 
 
@@ -376,6 +389,7 @@ class Solution:
     quality: np.ndarray
 
     def index(self, label: str) -> int:
+        """The index of the report position ``label`` in the solution."""
         return self.labels.index(label)
 
 
@@ -518,6 +532,8 @@ class Forces:
     # ---------------------------------------------------------------------------- motion
     @property
     def rotary(self) -> bool:
+        """Whether the input link turns (a crank or a rocker, the balancing moment M_ур) rather than
+        an actuator (the balancing force)."""
         return self.mech.driver.rotary
 
     def motion_law(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -630,10 +646,13 @@ class Forces:
 
     @cached_property
     def solution(self) -> Solution:
+        """The kinetostatic solution at the report positions."""
         return self.solve(self.positions, self.labels)
 
     @cached_property
     def cycle_solution(self) -> Solution:
+        """The kinetostatic solution over the cycle grid (the diagrams and the extremes of the
+        reactions)."""
         return self.solve(self.grid, all_points=False)
 
     # ---------------------------------------------------------------------------- columns
@@ -823,6 +842,7 @@ class Forces:
         return self.frame(self.cycle_solution)
 
     def row(self, label: str) -> pd.Series:
+        """The row of the report position ``label`` in the forces table."""
         t = self.table
         return t[t["pos"] == label].iloc[0]
 

@@ -176,6 +176,8 @@ class Gears:
     # ------------------------------------------------------------------ results
     @cached_property
     def xsum_required(self):
+        """x₁ + x₂ for a given centre distance a_w: inv α_w = 2(x₁ + x₂) tg α/(z₁ ± z₂) + inv α with
+        cos α_w = a cos α/a_w (ГОСТ 16532-70; domain.md § 1.7); None when the case gives no a_w."""
         if self.a_w_required is None:
             return None
         if self.z2 is None:
@@ -208,6 +210,8 @@ class Gears:
 
     @cached_property
     def geo(self) -> G.PairGeometry | None:
+        """The pair's geometry by ГОСТ 16532-70 табл. 1 (core.gears.pair_geometry), checked: a
+        finite ε_α and positive tip thicknesses s_a; None for a single wheel."""
         if self.z2 is None:
             return None
         geo = G.pair_geometry(self.m, self.z1, self.z2, self.x1, self.x2, self.rack, self.internal)
@@ -218,6 +222,8 @@ class Gears:
 
     @cached_property
     def grid(self):
+        """The blocking contour's grid over (x₁, x₂) in steps of 0,01 (Болотовский, Кудрявцев;
+        domain.md § 1.7)."""
         lo, hi = self.x_range
         return blocking_grid(self.m, self.z1, self.z2, self.rack, self.internal, lo, hi, 0.01)
 
@@ -264,6 +270,9 @@ class Gears:
 
     @cached_property
     def sliding_table(self) -> pd.DataFrame | None:
+        """The specific sliding along the active line of action at 11 points: λ₁ = 1 − ρ₂/(ρ₁u),
+        λ₂ = 1 − ρ₁u/ρ₂, and the sliding speed v_s = (ω₁ ± ω₂)·|PK| per unit ω₁ (in m/s too when
+        ω₁ is given) (domain.md § 1.7)."""
         g = self.geo
         if g is None:
             return None
@@ -278,6 +287,8 @@ class Gears:
     def tables(self) -> dict[str, pd.DataFrame]:
         # exported per wheel: a quantity that does not apply (one wheel measured, a ring's chord
         # and span) is absent, never a blank cell
+        """Export tables: ``gears_geometry`` (a row per quantity and wheel, absent where it does not
+        apply) and ``gears_sliding``."""
         rows = self.wheel_rows()
         geo = rows.melt(id_vars=["key", "name", "symbol", "unit"], value_vars=["wheel1", "wheel2"],
                         var_name="wheel", value_name="value").dropna(subset=["value"])
@@ -290,6 +301,8 @@ class Gears:
 
     @property
     def scalars(self) -> dict:
+        """Named results: m, x₁, x₂, α_w, a, a_w, y, Δy, p = πm, p_b = p cos α, ε_α (by the angles
+        and by the line of action), the undercut and interference flags (domain.md § 1.7)."""
         out = {"m": self.m, "x1": self.x1}
         g = self.geo
         if g is not None:

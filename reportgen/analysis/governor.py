@@ -56,6 +56,9 @@ class Governor(PrintedResults):
         self.main = self.cases[SENSE[self.speeding]]
 
     def results(self) -> dict:
+        """The named results of the governor: the friction circle ρ = r sin φ_тр, the rod's turn α,
+        the reactions, the centrifugal force F_и = m x_D ω² and ω when speeding up, without
+        friction and slowing down."""
         r = self.main
         out = {"rho": self.rho, "phi_f": self.phi_f, "alpha": r["alpha"], "R": r["R"],
                "P": math.hypot(*r["P"]), "F_i": r["F_i"], "R76": math.hypot(*r["R76"]),
@@ -65,6 +68,8 @@ class Governor(PrintedResults):
         return out
 
     def tables(self) -> dict[str, pd.DataFrame]:
+        """Export table ``governor``: the reactions, F_и and ω when speeding up, without friction
+        and slowing down."""
         rows = []
         for s, name in ((1, "разгон"), (0, "без трения"), (-1, "торможение")):
             r = self.cases[s]

@@ -26,6 +26,9 @@ LOW_TRANSMISSION = math.radians(40.0)
 
 @dataclass
 class SolverModel:
+    """The linkage as the numba kernel takes it: solver bodies (the actuator's rod merged into its
+    cylinder), joints as arrays (kind, bodies, local points), the groups in the order of solution
+    with their kinds and branches, and the points to report."""
     mech: Mechanism
     structure: Structure
     bodies: list[str]                       # solver body names, index 0 = frame
@@ -51,6 +54,7 @@ class SolverModel:
     _body_index: dict[str, int] = field(default_factory=dict, repr=False)
 
     def body(self, link: str) -> int:
+        """The index of the solver body that carries ``link``."""
         b = self._body_index.get(link)
         if b is None:
             b = self._body_index[link] = self.bodies.index(solver_bodies(self.mech)[link])
@@ -71,6 +75,8 @@ class SolverModel:
 
 
 def assemble(mech: Mechanism, st: Structure) -> SolverModel:
+    """The kernel's model of a mechanism: its bodies, joints and Assur groups (in the order of the
+    structure) laid out as arrays for core.kinematics."""
     body_of = solver_bodies(mech)
     bodies = [FRAME] + [b for b in dict.fromkeys(body_of[l.name] for l in mech.moving)]
     bidx = {b: i for i, b in enumerate(bodies)}
@@ -259,6 +265,8 @@ def has_newton(model: SolverModel) -> bool:
 
 
 def describe_position(model: SolverModel, q: float, index: int | None) -> str:
+    """The position q in the note's words: «q = 40°» for a turning input, «q = 0,45 м» for an
+    actuator, with its number when it is a report position."""
     if model.mech.driver.rotary:
         s = f"q = {math.degrees(q):.4g}°".replace(".", ",")
     else:
@@ -267,6 +275,9 @@ def describe_position(model: SolverModel, q: float, index: int | None) -> str:
 
 
 def check_failure(model: SolverModel, q: np.ndarray, fail: np.ndarray, labels=None) -> None:
+    """Raise AssemblyError for the first failure the kernel reports: a group that cannot be
+    assembled (by how much), a closure with no exact solution, or a singular group (the
+    transmission angle μ or the matrix's conditioning)."""
     kind = int(fail[0])
     if kind == K.F_OK:
         return
@@ -326,11 +337,16 @@ def choose_branches(model: SolverModel) -> None:
 
 
 def default_q0(mech: Mechanism) -> float:
+    """The generalised coordinate where the cycle starts: 0 for a crank, the lower end of the range
+    for a rocker or an actuator."""
     return 0.0 if mech.driver.periodic else mech.driver.q_range[0]
 
 
 @dataclass
 class KinematicsResult:
+    """The kernel's result at positions q: the poses of the bodies with their first and second
+    analogs, the quality of each group's system, and the points' positions and analogs (N,
+    npoints, 6)."""
     q: np.ndarray
     pose: np.ndarray
     d1: np.ndarray
@@ -340,6 +356,9 @@ class KinematicsResult:
 
 
 def solve(model: SolverModel, q, labels=None, ngroups: int | None = None) -> KinematicsResult:
+    """Positions, first and second analogs of every body and point at the positions ``q`` (closed
+    form for class II groups, Newton for class III; numerics.md), AssemblyError at the first
+    failure."""
     q = np.atleast_1d(np.asarray(q, dtype=np.float64))
     pose, d1, d2, qual, fail = run_kernel(model, q, ngroups)
     check_failure(model, q, fail, labels)

@@ -284,9 +284,12 @@ class Condition:
         self.strict = op in (">", "<")
 
     def g(self, cols) -> np.ndarray:
+        """The switching function sign·(lhs − rhs) of a ``when`` condition: the load acts where it
+        is positive (zero included unless strict)."""
         return self.sign * (self.lhs(cols) - self.rhs(cols))
 
     def holds(self, cols) -> np.ndarray:
+        """Where the condition holds: g > 0 (strict) or g ≥ 0."""
         g = self.g(cols)
         return g > 0 if self.strict else g >= 0
 
@@ -315,9 +318,11 @@ class Table1D:
 
     @property
     def breakpoints(self) -> np.ndarray:
+        """The table's distinct arguments (its corners: breaks of the piecewise-linear law)."""
         return np.unique(self.x)
 
     def outside(self, s) -> float:
+        """How far the arguments ``s`` reach beyond the table's range (0 inside)."""
         s = np.asarray(s, dtype=float)
         if s.size == 0:
             return 0.0
@@ -392,12 +397,14 @@ class Piece:
     node: Node | None = field(default=None, repr=False)
 
     def value(self, cols) -> np.ndarray:
+        """The piece's value at the columns: its table at its argument, or its constant."""
         if self.table is not None:
             return self.table(self.of(cols))
         return np.full(len(cols["q"]), float(self.const))
 
 
 class AppliedForce(NamedTuple):
+    """An applied force over the positions: its name, link, point and components F_x, F_y."""
     name: str
     link: str
     point: str
@@ -406,6 +413,7 @@ class AppliedForce(NamedTuple):
 
 
 class AppliedMoment(NamedTuple):
+    """An applied moment over the positions: its name, link and value M."""
     name: str
     link: str
     M: np.ndarray
@@ -457,6 +465,7 @@ class Load:
         return self.u[0] * cols["vqx_" + self.point] + self.u[1] * cols["vqy_" + self.point]
 
     def mask(self, cols) -> np.ndarray | None:
+        """Where the load acts: all its ``when`` conditions hold (None: everywhere)."""
         if not self.when:
             return None
         m = np.ones(len(cols["q"]), dtype=bool)
@@ -465,6 +474,8 @@ class Load:
         return m
 
     def force(self, cols, phase) -> tuple[np.ndarray, np.ndarray]:
+        """F_x, F_y of the load at the columns: its constant vector, or its value along its
+        direction u; zero where it does not act."""
         n = len(cols["q"])
         if self.vector is not None:
             Fx, Fy = np.full(n, self.vector[0]), np.full(n, self.vector[1])
@@ -477,6 +488,7 @@ class Load:
         return Fx, Fy
 
     def moment(self, cols, phase) -> np.ndarray:
+        """The moment M of the load at the columns, zero where it does not act."""
         M = self.scalar(cols, phase)
         m = self.mask(cols)
         return M if m is None else np.where(m, M, 0.0)
@@ -494,6 +506,9 @@ class Load:
     # switching functions: continuous g(cols) whose sign changes are the points where the law
     # is not smooth, each with the phase interval where it matters (None: everywhere)
     def switching_functions(self) -> list[tuple[Callable, tuple[float, float] | None]]:
+        """The functions whose zeros break the load's law (its conditions, the reversal of motion it
+        resists, the corners of its tables), each with its phase, so that the integrals over the
+        cycle split there."""
         out: list[tuple[Callable, tuple[float, float] | None]] = []
         for c in self.when:
             out.append((c.g, None))
@@ -525,6 +540,8 @@ class Load:
         return list(self.force(cols, phase))
 
     def phase_breaks(self) -> list[float]:
+        """The generalised coordinates where the load's pieces (its strokes or phases) begin and
+        end."""
         out = []
         for p in self.pieces:
             if p.phase is not None:
@@ -556,6 +573,7 @@ class Loads:
 
     @property
     def names(self) -> list[str]:
+        """The loads' names in the case's order."""
         return [ld.name for ld in self.loads]
 
     def forces(self, cols) -> list[AppliedForce]:

@@ -114,6 +114,8 @@ class Machine(PrintedResults):
         self.power = (self.work / self.cycle_time if self.work is not None and self.cycle_time else None)
 
     def results(self) -> dict:
+        """The named results of the machine's flywheel: ΔE_max, δ, ω_ср, ω_max, ω_min, J = ΔE/(δ
+        ω_ср²), the flywheel's J, the mean moment, the work, the cycle time and the power."""
         out = {"dE": self.dE, "delta": self.delta, "omega_m": self.omega_m, "omega_max": self.omega_max,
                "omega_min": self.omega_min, "J": self.J, "J_fly": self.J_fly, "J_O": self.J_O}
         if self.table is not None:
@@ -124,6 +126,8 @@ class Machine(PrintedResults):
         return out
 
     def tables(self) -> dict[str, pd.DataFrame]:
+        """Export table ``machine_energy``: E(φ) of the turning-moment table, or the energy after
+        each loop."""
         if self.table is not None:
             t = self.table
             return {"machine_energy": pd.DataFrame({"phi": t["phi"], "E": t["E"]})}

@@ -125,10 +125,14 @@ class Motion:
         return df
 
     def tables(self) -> dict[str, pd.DataFrame]:
+        """Export table ``motion_time``: φ(t), ω(t) of the integrated equation of motion."""
         return {"motion_time": self.history}
 
     @cached_property
     def scalars(self) -> dict:
+        """Named results ``motion_*``: the end of the integration, ω's extremes, the largest
+        difference between the given dJ/dφ and the central difference of J, and the printed
+        solution's deviation when given."""
         h = self.history
         out = {"motion_t_end": self.t_end, "motion_phi_end": float(h["phi"].iloc[-1]),
                "motion_omega_end": float(h["omega"].iloc[-1]), "motion_omega_max": float(h["omega"].max()),

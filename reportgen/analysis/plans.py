@@ -23,6 +23,8 @@ from ..mechanism.model import FRAME, Mechanism
 
 @dataclass
 class Segment:
+    """One vector of a plan: from the tip ``start`` to the tip ``end`` («p» is the pole), its kind
+    and name (V_BA, aⁿ_BA …), its link and its physical length (m/s or m/s²)."""
     start: str           # plan point label at the start ("p" is the pole)
     end: str
     kind: str            # "abs", "rel", "normal", "tangential", "coriolis", "slide"
@@ -33,6 +35,8 @@ class Segment:
 
 @dataclass
 class Plan:
+    """A velocity or acceleration plan: the tips as vectors from the pole, the segments, and for
+    each tip the mechanism point and the link it belongs to."""
     kind: str                                  # "velocity" or "acceleration"
     tips: dict[str, np.ndarray] = field(default_factory=dict)    # label → vector from the pole
     segments: list[Segment] = field(default_factory=list)
@@ -132,6 +136,9 @@ def _finish(plan: Plan, fixed: set, prefix: str) -> Plan:
 
 
 def velocity_plan(row: pd.Series, mech: Mechanism) -> Plan:
+    """The velocity plan of a row: V_Q = V_R + V_QR for every point Q of a link with reference point
+    R (V_QR ⊥ RQ), V_P(slider) = V_P(guide) + V_rel for a slider on a moving guide
+    (Артоболевский, гл. 3)."""
     plan, fixed = _start("velocity", row, mech)
     for link, ref, p in _relative_points(mech):
         _seg(plan, ref, p, "rel", f"V_{p}{ref}", link.name)
@@ -295,6 +302,8 @@ class Construction:
     ang: dict[str, float]
 
     def point(self, row, link: str, p: str, normal=None) -> np.ndarray:
+        """The vector of point p of ``link`` found by the construction: the link's translation plus
+        its angular term ω × r (plus the normal term when ``normal`` is given)."""
         r = _vec(row, "", p) - _vec(row, "", self.ref[link])
         out = self.lin[link] + self.ang[link] * _rot90(r)
         return out if normal is None else out + normal(link, r)

@@ -21,6 +21,7 @@ class PrintedResults(ABC):
 
     @classmethod
     def dim_of(cls, key: str) -> U.Dim:
+        """The dimension of the result ``key`` (dimensionless unless listed)."""
         return cls.DIMS.get(key, U.DIMENSIONLESS)
 
     @abstractmethod
@@ -28,6 +29,7 @@ class PrintedResults(ABC):
         """The named results of the task as plain numbers (SI)."""
 
     def scalars_raw(self) -> dict:
+        """The results as named scalars ``<prefix>_<key>``, without checking the printed values."""
         return {f"{self.PREFIX}_{k}": float(v) for k, v in self.results().items()}
 
     @cached_property
@@ -38,4 +40,5 @@ class PrintedResults(ABC):
 
     @cached_property
     def printed(self) -> list[dict]:
+        """The values printed in the source (``[<task>.printed]``) beside the exact ones."""
         return read_printed(self.node.table("printed"), self.results(), self.dim_of)

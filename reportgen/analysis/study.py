@@ -34,6 +34,8 @@ from .fitting import FitResult, evaluate_condition, solve_fit, split_condition
 
 @dataclass
 class Grid:
+    """The positions of a Study: the report positions and their labels, the fine cycle grid, the
+    cycle's start and length (2π for a crank, the stroke for an actuator)."""
     q: np.ndarray             # report positions
     labels: list[str]         # their labels ("0", "1", …, extra labels)
     cycle: np.ndarray         # fine grid over one cycle (ends included)
@@ -43,6 +45,8 @@ class Grid:
 
 
 def column_dims(name: str, qdim: U.Dim) -> U.Dim:
+    """The dimension of a kinematics column by its prefix (x_, vqx_, w_, …) for a generalised
+    coordinate of dimension ``qdim``."""
     if name == "q_deg":
         return U.DIMENSIONLESS
     return _dims_by_prefix(qdim).get(name.split("_", 1)[0], U.DIMENSIONLESS)
@@ -118,14 +122,17 @@ class Study:
     # ----------------------------------------------------------------- inputs
     @property
     def name(self) -> str:
+        """The variant's name (the case file's stem)."""
         return self.spec.name
 
     @property
     def root(self) -> Node:
+        """The case file's root table."""
         return self.spec.root
 
     @cached_property
     def meta(self) -> dict:
+        """``[meta]`` of the case (title, student, group …) with the overrides of a batch."""
         from ..case.text import meta_value
         m = self.root.table("meta")
         out = {k: meta_value(v, file=m.file, key=m.key(k)) for k, v in m.data.items()}
@@ -204,6 +211,7 @@ class Study:
 
     @cached_property
     def fits(self) -> list[FitResult]:
+        """The dimensions fitted by ``[[fit]]``."""
         return self._fitted[1]
 
     @cached_property
@@ -235,23 +243,33 @@ class Study:
 
     @property
     def mechanism(self) -> Mechanism:
+        """The mechanism with its fitted dimensions and its deferred points placed."""
         return self._final[1]
 
     @property
     def structure(self) -> Structure:
+        """The structural analysis: Chebyshev's W, the Assur groups in the order of solution, the
+        structural formula (domain.md § 1.2)."""
         self.computed.add("structure")
         return self._final[2]
 
     @property
     def model(self) -> L.SolverModel:
+        """The kernel's model of the linkage (analysis.linkage.SolverModel)."""
         return self._final[3]
 
     @property
     def qdim(self) -> U.Dim:
+        """The dimension of the generalised coordinate: an angle for a crank or a rocker, a length
+        for an actuator."""
         return U.ANGLE if self.mechanism.driver.rotary else U.LENGTH
 
     @cached_property
     def grid(self) -> Grid:
+        """The report positions and the cycle grid from ``[grid]``: n positions equally spaced from
+        the start over a crank's turn (or over a rocker's or an actuator's range, both ends
+        included), the ``extra`` positions added (labelled д1, д2 … unless named), the fine grid
+        of cycle_points + 1 points over the cycle (ends included)."""
         node = self.root.table("grid")
         node.check_keys(["positions", "closed", "extra", "cycle_points", "start", "cycle", "at"])
         names = self.params
@@ -525,6 +543,8 @@ class Study:
 
     @cached_property
     def scalars(self) -> dict[str, float]:
+        """Named results of the linkage: the structure's, the least transmission angle μ over the
+        cycle of each group (``mu_*_min``) and the output's stroke."""
         out = dict(self.structure_scalars)
         if not self.has_cycle:
             return out

@@ -137,23 +137,29 @@ class Synthesis:
 
     @cached_property
     def solved(self) -> tuple[str, dict, list[dict], int]:
+        """The synthesis of ``[synthesis]`` (analysis.synthesis kinds): its kind, its inputs, the
+        variants found and the index of the chosen one."""
         names = dict(self.study.params)
         return SY.solve(self.node, names)
 
     @property
     def kind(self) -> str:
+        """The kind of linkage synthesised."""
         return self.solved[0]
 
     @property
     def inputs(self) -> dict:
+        """The synthesis' given values (SI)."""
         return self.solved[1]
 
     @property
     def variants(self) -> list[dict]:
+        """Every variant of the synthesis (one row each in the export)."""
         return self.solved[2]
 
     @property
     def chosen(self) -> dict:
+        """The variant chosen by ``[synthesis] variant`` (the first by default)."""
         _, _, vs, i = self.solved
         return vs[i]
 
@@ -165,6 +171,7 @@ class Synthesis:
         return output_extremes(self.study)
 
     def tables(self) -> dict[str, pd.DataFrame]:
+        """Export table ``synthesis_variants`` with the chosen variant marked."""
         df = pd.DataFrame(self.variants)
         df.insert(0, "chosen", df["variant"] == self.chosen["variant"])
         return {"synthesis_variants": df}
@@ -183,6 +190,8 @@ class Synthesis:
 
     @cached_property
     def scalars(self) -> dict[str, float]:
+        """Named results: the chosen variant's dimensions and, with a linkage, the stroke and the
+        coefficient of the output's mean speed K measured on it."""
         self.printed
         out = self.position_scalars()
         chk = self.check

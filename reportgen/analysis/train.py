@@ -49,6 +49,8 @@ FRAME = "0"
 
 @dataclass(frozen=True)
 class Wheel:
+    """A toothed wheel of a train: its name, tooth number z, the member it belongs to, its axis,
+    internal or external, module m."""
     name: str
     z: int
     member: str
@@ -59,6 +61,8 @@ class Wheel:
 
 @dataclass
 class TrainModel:
+    """A gear train: its members and their axes (an axis hosted by the frame or by a carrier), the
+    wheels, the meshes, the fixed members, the input and the output."""
     members: dict[str, str]          # member → its rotation axis
     axes: dict[str, str]             # axis → host member (FRAME for the frame)
     wheels: dict[str, Wheel]
@@ -599,6 +603,8 @@ class Train:
 
     @property
     def ratio_direct(self) -> float:
+        """u = ω_in/ω_out by the direct solution (equal speeds of the wheels at each pole), the
+        check of Willis' value."""
         return 1.0 / self.w_direct[self.model.out]
 
     @cached_property
@@ -607,6 +613,8 @@ class Train:
         return Fraction(self.ratio).limit_denominator(10 ** 6)
 
     def tables(self) -> dict[str, pd.DataFrame]:
+        """Export tables: ``train_wheels`` (z, m, d = mz of each wheel), ``train_omegas`` (ω of each
+        member by Willis and directly) and, for a selection, ``train_candidates``."""
         m = self.model
         wheels = pd.DataFrame([{"wheel": w.name, "z": w.z, "m": w.m, "d": w.m * w.z,
                                 "member": w.member, "internal": w.internal}
@@ -625,6 +633,8 @@ class Train:
 
     @property
     def scalars(self) -> dict:
+        """Named results ``train_*``: u by Willis' formula (ω_a − ω_H)/(ω_b − ω_H) = u_ab^(H) and
+        directly, their discrepancy, the target ratio and the error from it (domain.md § 1.8)."""
         out = {"u": self.ratio, "u_direct": self.ratio_direct,
                "u_discrepancy_pct": abs(self.ratio - self.ratio_direct) / abs(self.ratio) * 100}
         if self.opts["target"] is not None:

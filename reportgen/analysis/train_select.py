@@ -288,6 +288,8 @@ def neighbourhood(model: TrainModel, y: dict, z: dict, k, ha: float = 1.0):
 # ------------------------------------------------------------------------------ the enumeration
 @dataclass
 class Candidate:
+    """One set of tooth numbers tried by the selection: the ratio u, the size, the reasons it fails,
+    the exact ratio, and the assembly and neighbourhood conditions with their quantities."""
     z: dict[str, int]
     u: float
     size: float
@@ -298,6 +300,7 @@ class Candidate:
 
     @property
     def ok(self) -> bool:
+        """Whether the tooth set passes every condition."""
         return not self.fails
 
 
@@ -524,6 +527,7 @@ class Selector:
 
     # ---------------------------------------------------------------------------- one candidate
     def model_with(self, zs: dict[str, int]) -> TrainModel:
+        """The train with the tooth numbers ``zs`` in place of its own."""
         m = self.model
         ws = {n: Wheel(n, zs.get(n, w.z), w.member, w.centre, w.internal, w.m) for n, w in m.wheels.items()}
         return TrainModel(m.members, m.axes, ws, m.meshes, m.fixed, m.inp, m.out)

@@ -180,14 +180,17 @@ class PairGeometry:
 
     @property
     def p(self) -> float:
+        """The pitch p = πm (domain.md § 1.7)."""
         return math.pi * self.m
 
     @property
     def pb(self) -> float:
+        """The base pitch p_b = πm cos α (domain.md § 1.7)."""
         return math.pi * self.m * math.cos(self.rack.alpha)
 
     @property
     def u(self) -> float:
+        """The gear ratio u = z₂/z₁."""
         return self.z2 / self.z1
 
 

@@ -48,6 +48,8 @@ SINGULAR_PIVOT = 1e-13
 
 @njit(cache=True)
 def n_unknowns(kind):
+    """The unknowns of a pair of kind ``kind``: 2 for a revolute (R_x, R_y) or a prismatic pair (N,
+    M_p), 3 for an actuator (F, N, M_p), 1 for the driving moment M_ур."""
     if kind == K_REV or kind == K_PRI:
         return 2
     if kind == K_ACT:
