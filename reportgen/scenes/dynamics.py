@@ -9,7 +9,7 @@ from matplotlib.patches import Circle, Rectangle, Wedge
 
 from ..style import mplstyle
 from ..style.numbers import fmt, position_names
-from .draw import INK, NUMBER_GAP_MM, Canvas
+from .draw import INK, NUMBER_GAP_MM, Canvas, legend_rows
 from .labels import LabelPlacer, place_on_chart
 from .forces import math_label
 from .mechanism import Drawing
@@ -137,7 +137,7 @@ class InertiaCurves:
         _marks(ax, study, "J_II")
         _xaxis(ax, study)
         ax.set_ylabel("$J_{II}$, кг·м²")
-        ax.legend(ncols=4, fontsize=9, loc="best")
+        legend_rows(ax, 4, fontsize=9, loc="best")
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 
@@ -161,7 +161,7 @@ class MomentCurves:
         ax.axhline(0, color="0.3", lw=0.6)
         _xaxis(ax, study)
         ax.set_ylabel("$M_{пр}$, Н·м")
-        ax.legend(ncols=4, fontsize=9, loc="best")
+        legend_rows(ax, 4, fontsize=9, loc="best")
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 
@@ -268,7 +268,7 @@ class WittenbauerDiagram:
         ax.set_xlim(-0.04 * jmax, jmax)
         ax.set_xlabel("$J_{II}$, кг·м²")
         ax.set_ylabel("$\\Delta T$, Дж")
-        ax.legend(fontsize=9, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncols=2)
+        legend_rows(ax, 2, fontsize=9, loc="upper center", bbox_to_anchor=(0.5, -0.1))
         place_on_chart(labels)
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
