@@ -1,0 +1,30 @@
+"""A cam's given data inside its formulas and checks as written (cam_rocker_flat printed
+«a_w,ϑу = 10,00 / (tg 30,00° · …)» and «[ϑ_у] = 30,00°» for d = 10 мм and [ϑ] = 30°)."""
+import re
+
+import pytest
+
+from notehelpers import plain
+from test_note_review_i import _formulas, _paragraphs, _section
+
+
+@pytest.mark.parametrize("stem", ["cam_rocker_flat", "cam_rocker_roller", "cam_translating_roller"])
+def test_given_cam_values_are_not_padded(stem):
+    from reportgen.report.sections import cam
+    sec = _section(stem, cam)
+    text = " ".join(plain(p) for p in _paragraphs(sec))
+    allowed = re.findall(r"\[ϑ[ув]\]\s*=\s*([\d,]+)°|при допустимых ([\d,]+)°", text)
+    for got in (g for pair in allowed for g in pair if g):
+        assert not re.fullmatch(r"\d+,0+", got), (stem, got)
+    for f in _formulas(sec):
+        sub = f.substituted or ""
+        assert not re.search(r"\\operatorname\{tg\}\\,\d+\{,\}0+\^\\circ", sub), (stem, sub)
+        assert not re.search(r"\\frac\{10\{,\}0+\}", sub), (stem, sub)
+
+
+def test_flat_rocker_formulas_write_d_and_the_allowed_angle_as_given():
+    from reportgen.report.sections import cam
+    subs = [f.substituted for f in _formulas(_section("cam_rocker_flat", cam)) if f.substituted]
+    assert any(r"\frac{10}{\operatorname{tg}\,30^\circ" in s for s in subs), subs
+    text = " ".join(plain(p) for p in _paragraphs(_section("cam_rocker_flat", cam)))
+    assert "[ϑу] = 30°" in text.replace("\xa0", " ") or "[ϑ у] = 30°" in text.replace("\xa0", " "), text
