@@ -28,3 +28,12 @@ def test_flat_rocker_formulas_write_d_and_the_allowed_angle_as_given():
     assert any(r"\frac{10}{\operatorname{tg}\,30^\circ" in s for s in subs), subs
     text = " ".join(plain(p) for p in _paragraphs(_section("cam_rocker_flat", cam)))
     assert "[ϑу] = 30°" in text.replace("\xa0", " ") or "[ϑ у] = 30°" in text.replace("\xa0", " "), text
+
+
+def test_gear_contact_ratio_told_from_its_given_limit():
+    """gear_pair_shifted printed «плавность: ε_α = 1,200 ≥ 1,200» for ε_α = 1,2004 and [ε_α] = 1,2."""
+    from reportgen.report.sections import gears
+    from reportgen.report.render import render_fragment
+    both = plain(render_fragment(_section("gear_pair_shifted", gears))).replace("\xa0", " ")
+    assert "1,200 ≥ 1,200" not in both
+    assert "1,2004 ≥ 1,2" in both, both[:2000]

@@ -24,6 +24,15 @@ NEEDS = ("gears",)
 TASK = "выполнить синтез эвольвентного зубчатого зацепления"
 
 
+def _eps(eps: float, limit: float) -> str:
+    """ε_α to 0,001, or to as many decimals as tell it from the given limit [ε_α] (1,2004 ≥ 1,2 printed
+    «1,200 ≥ 1,200» read as a tie)."""
+    d = 3
+    while d < 6 and float(fmt(eps, digits=d).replace(",", ".").replace("\u2212", "-")) == limit and eps != limit:
+        d += 1
+    return fmt(eps, digits=d)
+
+
 def present(study) -> bool:
     """The section is built when the case has [gears]."""
     return study.root.has("gears")
@@ -197,7 +206,8 @@ def _geometry(sec: Section, gr) -> Section:
         checks.append(f"заострение: <i>s</i><sub>a{i}</sub> = {fmt(float(sa), sig=4)} мм "
                       f"{'≥' if okk else '<'} {as_written(gr.s_a_min)}<i>m</i> = {fmt(gr.s_a_min * m, sig=4)} мм")
     okε = float(g.eps) >= gr.eps_min
-    checks.append(f"плавность: ε<sub>α</sub> = {fmt(float(g.eps), sig=4)} {'≥' if okε else '<'} {fmt(gr.eps_min)}")
+    checks.append(f"плавность: ε<sub>α</sub> = {_eps(float(g.eps), gr.eps_min)} {'≥' if okε else '<'} "
+                  f"{as_written(gr.eps_min)}")
     interf = float(g.rho_p1) < float(g.rho_l1) or (not gr.internal and float(g.rho_p2) < float(g.rho_l2))
     checks.append(f"интерференция: ρ<sub>p1</sub> = {fmt(float(g.rho_p1), sig=4)} мм, ρ<sub>l1</sub> = "
                   f"{fmt(float(g.rho_l1), sig=4)} мм" + ("" if gr.internal else
@@ -433,10 +443,10 @@ def _judgement(gr, g) -> list[str]:
              + ("— заострения нет" if sa >= gr.s_a_min * gr.m else "— <b>зуб заострён</b>"))
     eps = float(g.eps)
     if eps < gr.eps_min:
-        smooth = (f"<b>ε<sub>α</sub> = {fmt(eps, digits=3)} меньше допустимого {fmt(gr.eps_min, digits=3)}</b>: плавность "
+        smooth = (f"<b>ε<sub>α</sub> = {_eps(eps, gr.eps_min)} меньше допустимого {as_written(gr.eps_min)}</b>: плавность "
                   "зацепления не обеспечена, смещения нужно уменьшить")
     else:
-        smooth = (f"ε<sub>α</sub> = {fmt(eps, digits=3)} ≥ {fmt(gr.eps_min, digits=3)}"
+        smooth = (f"ε<sub>α</sub> = {_eps(eps, gr.eps_min)} ≥ {as_written(gr.eps_min)}"
                   + (" — плавность обеспечена с малым запасом (менее 5 %)" if eps < 1.05 * gr.eps_min else
                      " — плавность обеспечена"))
     out = ["Качество зацепления: " + "; ".join((under, sharp, smooth)) + "."]
