@@ -37,3 +37,14 @@ def test_gear_contact_ratio_told_from_its_given_limit():
     both = plain(render_fragment(_section("gear_pair_shifted", gears))).replace("\xa0", " ")
     assert "1,200 ≥ 1,200" not in both
     assert "1,2004 ≥ 1,2" in both, both[:2000]
+
+
+def test_gear_limits_and_ratio_not_padded():
+    """The blocking-contour choice printed «ε_α ≥ 1,200» and the sliding formula «u = 2,5000»."""
+    from reportgen.report.render import render_fragment
+    from reportgen.report.sections import gears
+    sec = _section("gear_pair_shifted", gears)
+    text = plain(render_fragment(sec)).replace("\xa0", " ")
+    assert "≥ 1,200)" not in text and "ε α ≥ 1,2)" in text.replace("εα", "ε α"), text[:3000]
+    subs = [f.substituted or f.symbolic for f in _formulas(sec)]
+    assert any(r"u = \frac{z_2}{z_1} = 2{,}5" in s and "2{,}5000" not in s for s in subs), subs

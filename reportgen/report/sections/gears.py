@@ -282,7 +282,7 @@ def _internal_checks(checks: list, gr, g) -> None:
     if dz is not None:
         okz = gr.z2 - gr.z1 >= dz
         checks.append(f"наименьшая разность чисел зубьев при данных смещениях (все проверки и ε<sub>α</sub> ≥ "
-                      f"{fmt(gr.eps_min)}): <i>z</i><sub>2</sub> − <i>z</i><sub>1</sub> ≥ {dz}; принято "
+                      f"{as_written(gr.eps_min)}): <i>z</i><sub>2</sub> − <i>z</i><sub>1</sub> ≥ {dz}; принято "
                       f"{gr.z2 - gr.z1} — {'выполнено' if okz else 'не выполнено'}")
 
 
@@ -333,7 +333,7 @@ def _contour(sec: Section, gr) -> None:
              "на сетке с шагом 0,01")
     rule = (f"Смещения выбраны так: из точек {where} внутри блокирующего "
             "контура (нет подрезания, нет интерференции, <i>s</i><sub>a</sub> ≥ "
-            f"{as_written(gr.s_a_min)}<i>m</i>, ε<sub>α</sub> ≥ {fmt(gr.eps_min)}) взята точка с наименьшим "
+            f"{as_written(gr.s_a_min)}<i>m</i>, ε<sub>α</sub> ≥ {as_written(gr.eps_min)}) взята точка с наименьшим "
             "наибольшим удельным скольжением у ножек зубьев, т. е. с выравненным износом "
             + ("(λ<sub>1max</sub> ≈ λ<sub>2max</sub>)." if _wear_equal(gr) else
                "там, где это позволяет контур: изолиния λ<sub>1max</sub> = λ<sub>2max</sub> проходит вне "
@@ -341,7 +341,7 @@ def _contour(sec: Section, gr) -> None:
             if gr.chosen else
             "Заданная точка (<i>x</i><sub>1</sub>, <i>x</i><sub>2</sub>) показана на блокирующем контуре; она лежит "
             + ("внутри контура: подрезания, интерференции и заострения нет, ε<sub>α</sub> ≥ "
-               f"{fmt(gr.eps_min)}." if bool(np.all(admissible(gr.geo, gr.s_a_min, gr.eps_min))) else
+               f"{as_written(gr.eps_min)}." if bool(np.all(admissible(gr.geo, gr.s_a_min, gr.eps_min))) else
                "<b>вне контура</b>: одно из ограничений нарушено (см. проверки в разделе "
                f"{ref('sec-gears-geo')})."))
     s.paragraph(f"Блокирующий контур передачи <i>z</i><sub>1</sub> = {gr.z1}, <i>z</i><sub>2</sub> = {gr.z2} "
@@ -376,7 +376,7 @@ def _sliding(sec: Section, gr) -> None:
                 f"{ref('tab-gears-sliding')}, диаграммы — на рисунке {ref('fig-gears-sliding')}) вычислены по "
                 "радиусам кривизны профилей ρ<sub>1</sub> и ρ<sub>2</sub> в точке контакта:")
     s.formula(Formula(r"\lambda_1 = 1 - \frac{\rho_2}{u\,\rho_1},\quad \lambda_2 = 1 - \frac{u\,\rho_1}{\rho_2},"
-                      rf"\quad u = \frac{{z_2}}{{z_1}} = {_t(g.u, 5)}"))
+                      rf"\quad u = \frac{{z_2}}{{z_1}} = {tex_given(round(float(g.u), 4))}"))
     s.figure("Диаграммы удельного скольжения", S.sliding_diagram(gr), 160, id="fig-gears-sliding")
     t = gr.sliding_table
     cols = [Column("rho1", "ρ<sub>1</sub>", "мм", sig=5), Column("rho2", "ρ<sub>2</sub>", "мм", sig=5),
@@ -416,7 +416,7 @@ def _binding(gr) -> str:
     g, m = gr.geo, gr.m
     out = []
     if float(g.eps) - gr.eps_min < 0.02:
-        out.append(f"ε<sub>α</sub> = {fmt(float(g.eps))} ≈ {fmt(gr.eps_min)}")
+        out.append(f"ε<sub>α</sub> = {_eps(float(g.eps), gr.eps_min)} ≈ {as_written(gr.eps_min)}")
     for i, sa in ((1, float(g.sa1)), (2, float(g.sa2))):
         if sa - gr.s_a_min * m < 0.02 * m:
             out.append(f"<i>s</i><sub>a{i}</sub> = {fmt(sa, sig=4)} мм ≈ {as_written(gr.s_a_min)}<i>m</i>")
