@@ -1,4 +1,4 @@
-"""A cam's given data inside its formulas and checks as written (cam_rocker_flat printed
+"""Given data and exact results written as they are, not padded (cam_rocker_flat printed
 «a_w,ϑу = 10,00 / (tg 30,00° · …)» and «[ϑ_у] = 30,00°» for d = 10 мм and [ϑ] = 30°)."""
 import re
 
@@ -48,3 +48,17 @@ def test_gear_limits_and_ratio_not_padded():
     assert "≥ 1,200)" not in text and "ε α ≥ 1,2)" in text.replace("εα", "ε α"), text[:3000]
     subs = [f.substituted or f.symbolic for f in _formulas(sec)]
     assert any(r"u = \frac{z_2}{z_1} = 2{,}5" in s and "2{,}5000" not in s for s in subs), subs
+
+
+def test_train_whole_ratios_not_padded_and_wheels_subscripted():
+    """train_2kh_three_planets: u₁H = (17 + 85)/17 printed «6,000000», the sets' column «6,00000», the
+    rejected sets' verdict «z1 = 11 < 17: подрезание» (a plain «z1»)."""
+    from reportgen.report.render import render_fragment
+    from reportgen.report.sections import train
+    import html
+    sec = _section("train_2kh_three_planets", train)
+    text = html.unescape(plain(render_fragment(sec))).replace("\xa0", " ")
+    assert "z₁ = 11 < 17: подрезание" in text and "z1 = 11" not in text
+    assert "6,00000" not in text.replace("6,000000000", "")      # the direct check to 10 digits stays
+    tex = " ".join((f.substituted or "") + " " + (f.result or "") for f in _formulas(sec))
+    assert "6{,}000000" not in tex and "6,000000" not in tex, tex
