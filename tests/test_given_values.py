@@ -62,3 +62,18 @@ def test_train_whole_ratios_not_padded_and_wheels_subscripted():
     assert "6,00000" not in text.replace("6,000000000", "")      # the direct check to 10 digits stays
     tex = " ".join((f.substituted or "") + " " + (f.result or "") for f in _formulas(sec))
     assert "6{,}000000" not in tex and "6,000000" not in tex, tex
+
+
+@pytest.mark.parametrize("stem, module", [("cam_rocker_flat", "cam"), ("cam_translating_roller", "cam"),
+                                          ("synth_crank_rocker", "synthesis")])
+def test_scale_factors_written_round(stem, module):
+    """«μ_φ = 3,00 град/мм; μ_ψ′ = 0,0500 ед./мм», «в масштабе μ_l = 0,0150 м/мм»: a round scale factor is
+    written as such, as under every other drawing (0,015 м/мм)."""
+    import importlib
+    import html
+    from reportgen.report.render import render_fragment
+    sec = _section(stem, importlib.import_module(f"reportgen.report.sections.{module}"))
+    text = html.unescape(plain(render_fragment(sec))).replace("\xa0", " ")
+    scales = re.findall(r"μ\w*′*\s*=\s*([\d,]+)\s*(?:град|ед\.|°|м)/мм", text)
+    assert scales, text[:1500]
+    assert not any(re.search(r",\d*0$", v) for v in scales), scales

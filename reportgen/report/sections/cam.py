@@ -12,6 +12,7 @@ from ...analysis.cam import LAWS
 from ...core import cams as K
 from ...scenes.cam import (FlatRockerSize, LawDiagrams, PhasePortrait, PressureAngleGraph, ProfileDrawing,
                            follower_positions)
+from ...scenes.draw import mu_text
 from ...style.numbers import fmt, fmt_given, tex_num
 from .common import as_written, tex_given
 from ..russian import plural
@@ -206,10 +207,10 @@ def _laws(sec, study, cam) -> None:
                     "<b>мягкие удары</b>.")
     sc = LawDiagrams()
     fig = sc.draw(study)
-    scales = "; ".join(f"μ<sub>{lab}</sub>&nbsp;=&nbsp;{fmt(mu, sig=3)}&nbsp;{u or 'ед.'}/мм"
+    scales = "; ".join(f"μ<sub>{lab}</sub>&nbsp;=&nbsp;{mu_text(mu)}&nbsp;{u or 'ед.'}/мм"
                        for lab, mu, u in sc.scales)
     s.paragraph(f"Диаграммы аналогов ускорения, скорости и перемещения построены на рисунке {ref('fig-cam-laws')} "
-                f"в масштабах μ<sub>φ</sub>&nbsp;=&nbsp;{fmt(sc.mu_phi, sig=3)}&nbsp;град/мм; {scales}.")
+                f"в масштабах μ<sub>φ</sub>&nbsp;=&nbsp;{mu_text(sc.mu_phi)}&nbsp;град/мм; {scales}.")
     s.figure("Диаграммы аналогов ускорения, скорости и " + ("угла поворота коромысла" if rocker else
                                                             "перемещения толкателя"), fig.svg, fig.width_mm,
              id="fig-cam-laws")
