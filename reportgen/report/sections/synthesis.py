@@ -252,7 +252,7 @@ def _variants(sec, kind, x, v, vs, tr) -> None:
     if tr is not None:
         df["mu"] = [math.degrees(m) for m in tr["mu"]]
         cols.append(Column("mu", "μ<sub>min</sub>", "°", digits=1, sig=None))
-    sec.table("Варианты решения", cols + [Column("mark", "")], df, id="tab-syn-var")
+    sec.table("Варианты решения", cols + [Column("mark", "Примечание")], df, id="tab-syn-var")
 
 
 def _transmission(sec, kind, x, v, tr) -> None:
