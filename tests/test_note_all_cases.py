@@ -85,7 +85,7 @@ def notes(tmp_path_factory):
 
         with pytest.MonkeyPatch.context() as mp:
             mp.setattr(mplstyle, "to_svg", checked)
-            assert main(["build", str(path), "-o", str(out), "--format", "pdf", "--jobs", "2"]) == 0, path.stem
+            assert main(["build", str(path), "-o", str(out), "--format", "pdf,html", "--jobs", "2"]) == 0, path.stem
         pdf = out / f"{path.stem}.pdf"
         text = subprocess.run(["pdftotext", "-layout", str(pdf), "-"], capture_output=True, text=True,
                               check=True).stdout
@@ -145,6 +145,14 @@ def test_numerals_agree_with_nouns(path, notes):
             if word in forms and word != plural_form(int(n), *forms):
                 bad.append((n, word))
     assert bad == []
+
+
+@pytest.mark.parametrize("path", ALL)
+def test_every_table_column_has_a_header(path, notes):
+    """synth_crank_rocker's table of solutions had a last column «принят» with an empty header."""
+    pdf, _, _ = notes(path)
+    html = pdf.with_suffix(".html").read_text(encoding="utf-8")
+    assert re.findall(r"<th[^>]*>\s*</th>", html) == []
 
 
 @pytest.mark.parametrize("path", ALL)

@@ -560,14 +560,14 @@ class Selector:
                 fails.append(f"не выполнено условие соседства при k = {k_of(self.k, h)}: {_dec(s)} ≤ {_dec(rhs)}")
         for w in model.wheels.values():
             if not w.internal and w.z < self.z_min:
-                fails.append(f"z{w.name} = {w.z} < {self.z_min}: подрезание")
+                fails.append(f"z{_sub(w.name)} = {w.z} < {self.z_min}: подрезание")
         for a, b in model.meshes:
             wa, wb = model.wheels[a], model.wheels[b]
             if not (wa.internal or wb.internal):
                 continue
             ring, small = (wa, wb) if wa.internal else (wb, wa)
             if ring.z - small.z < self.dz_int:
-                fails.append(f"z{ring.name} − z{small.name} = {ring.z - small.z} < {self.dz_int}: "
+                fails.append(f"z{_sub(ring.name)} − z{_sub(small.name)} = {ring.z - small.z} < {self.dz_int}: "
                              f"интерференция во внутреннем зацеплении")
             elif small.z >= 5:
                 worst = [NAMES[c] for c, v in _internal_margins(small.z, ring.z).items() if v < -1e-9]
@@ -575,6 +575,14 @@ class Selector:
                     fails.append(f"зацепление {small.name}–{ring.name} (ГОСТ 19274-73): " + ", ".join(worst))
         size = float(self._size(z, 1)[0])
         return Candidate(dict(zs), float(u), size, fails, u, asm, nb)
+
+
+_SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def _sub(name: str) -> str:
+    """A wheel's number as a subscript of z in a plain-text verdict: «z₁₁», not «z11» (letters as they are)."""
+    return name.translate(_SUBSCRIPT)
 
 
 def _dec(x: float, spec: str = ".4f") -> str:

@@ -8,7 +8,7 @@ import numpy as np
 from ..analysis.plans import output_quantity
 from ..style import mplstyle
 from ..mechanism.model import FRAME
-from .draw import SUBSCRIPT
+from .draw import SUBSCRIPT, legend_rows
 from .mechanism import Drawing
 
 
@@ -140,7 +140,7 @@ class AnalogCurves:
         ax.axhline(0, color="0.3", lw=0.6)
         ax.set_xlabel(xlabel)
         ax.set_ylabel("аналог угловой скорости φ′" + ("" if d.rotary else ", 1/м"))   # dφ/dS has 1/м
-        ax.legend(ncols=4, fontsize=9, loc="best")
+        legend_rows(ax, 4, fontsize=9, loc="best")
         if step:
             angle_ticks(ax, x, step)
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)

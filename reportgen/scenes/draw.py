@@ -548,6 +548,20 @@ def _draw_actuator_part(cv, mech, row, link, color, lw, alpha, zorder):
         cv.ax.plot([ex, ex - ux * part], [ey, ey - uy * part], color=color, lw=lw, alpha=alpha, zorder=zorder - 0.2)
 
 
+def legend_rows(ax, most: int, **kw):
+    """A legend of at most ``most`` entries a row, read row by row (matplotlib fills a legend of
+    several columns column by column: the pairs of a reactions chart read «R₀₁, R₂₃, R₀₃…, R₁₂»
+    with R₁₂ alone in a second row); the rows balanced: 7 entries in rows of 4 and 3, not 6 and 1."""
+    handles, labels = ax.get_legend_handles_labels()
+    n = len(handles)
+    rows = max(1, math.ceil(n / most))
+    ncols = math.ceil(n / rows)
+    # matplotlib splits n entries into ncols columns of ⌈n/ncols⌉ or ⌊n/ncols⌋ (the longer first)
+    # and fills them in order: hand it the entries column by column of the row-wise table
+    order = [r * ncols + c for c in range(ncols) for r in range(rows) if r * ncols + c < n]
+    return ax.legend([handles[i] for i in order], [labels[i] for i in order], ncols=ncols, **kw)
+
+
 def arrow(ax, x0, y0, x1, y1, *, color=INK, lw=1.2, ls="-", head_mm=2.2, mu=1.0, zorder=3):
     """An arrow from (x0, y0) to (x1, y1) with a head of fixed printed size."""
     from matplotlib.patches import FancyArrowPatch

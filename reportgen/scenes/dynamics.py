@@ -9,7 +9,7 @@ from matplotlib.patches import Circle, Rectangle, Wedge
 
 from ..style import mplstyle
 from ..style.numbers import fmt, position_names
-from .draw import INK, NUMBER_GAP_MM, Canvas
+from .draw import INK, NUMBER_GAP_MM, Canvas, legend_rows
 from .labels import LabelPlacer, place_on_chart
 from .forces import math_label
 from .mechanism import Drawing
@@ -41,11 +41,12 @@ def _cycle_axes(study, height_mm: float):
     return cyc, _x(study, cyc["q"]), fig, fig.add_subplot()
 
 
-def _cycle_drawing(fig, ax, study, ylabel: str, ncols: int = 1) -> Drawing:
-    """The curves over the cycle finished: the φ axis, the value axis' label, the legend."""
+def _cycle_drawing(fig, ax, study, ylabel: str, per_row: int = 1) -> Drawing:
+    """The curves over the cycle finished: the φ axis, the value axis' label, the legend (at most
+    ``per_row`` entries a row, read row by row)."""
     _xaxis(ax, study)
     ax.set_ylabel(ylabel)
-    ax.legend(ncols=ncols, fontsize=9, loc="best")
+    legend_rows(ax, per_row, fontsize=9, loc="best")
     return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 
@@ -147,7 +148,7 @@ class InertiaCurves:
         for il in study.dynamics.model.links:
             ax.plot(x, cyc["J_II_" + il.name], lw=1.0, label=f"звено {il.name}")
         _marks(ax, study, "J_II")
-        return _cycle_drawing(fig, ax, study, "$J_{II}$, кг·м²", ncols=4)
+        return _cycle_drawing(fig, ax, study, "$J_{II}$, кг·м²", per_row=4)
 
 
 class MomentCurves:
@@ -165,7 +166,7 @@ class MomentCurves:
         ax.plot(x, cyc["M_d"], lw=1.6, ls="--", color=INK, label="$M_{д}$")
         ax.plot(x, cyc["M_sum"], lw=1.0, ls=":", color=INK, label="$M_{\\Sigma}$")
         ax.axhline(0, color="0.3", lw=0.6)
-        return _cycle_drawing(fig, ax, study, "$M_{пр}$, Н·м", ncols=4)
+        return _cycle_drawing(fig, ax, study, "$M_{пр}$, Н·м", per_row=4)
 
 
 class WorkCurves:
@@ -261,7 +262,7 @@ class WittenbauerDiagram:
         ax.set_xlim(-0.04 * jmax, jmax)
         ax.set_xlabel("$J_{II}$, кг·м²")
         ax.set_ylabel("$\\Delta T$, Дж")
-        ax.legend(fontsize=9, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncols=2)
+        legend_rows(ax, 2, fontsize=9, loc="upper center", bbox_to_anchor=(0.5, -0.1))
         place_on_chart(labels)
         return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 

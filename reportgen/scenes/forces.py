@@ -24,7 +24,7 @@ from ..analysis.plans import READ_MM, Plan, drawn, velocity_plan
 from ..core import kinetostatics as KS
 from ..style import mplstyle
 from ..style.numbers import fmt, shared_decimals
-from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow, draw_mechanism, gost_scale, nice_scale
+from .draw import GREY, INK, SUBSCRIPT, Canvas, arrow, draw_mechanism, gost_scale, legend_rows, nice_scale
 from .mechanism import LANDSCAPE_GAIN, LANDSCAPE_H, LANDSCAPE_W, Drawing
 from .plans import INSET_MARKS, SAME_MM, PlanScene, coincident, find_insets, joint_label
 
@@ -1280,7 +1280,7 @@ class ReactionCurves:
                      label=pair_label(*key.split("_")[:2]))
             n += 1
         ax1.set_ylabel("$R$, кН")
-        ax1.legend(ncols=6, fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), frameon=False)
+        legend_rows(ax1, 7, fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), frameon=False)
         m_bal = math_label("Mур")            # $M_{\mathrm{ур}}$: the symbol of the text, not a plain «Mур»
         main, lab = ("M_bal", f"{m_bal}, Н·м") if f.rotary else ("F_act", "$F$, кН")
         k = 1.0 if f.rotary else 1e-3

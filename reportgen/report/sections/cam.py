@@ -12,6 +12,7 @@ from ...analysis.cam import LAWS
 from ...core import cams as K
 from ...scenes.cam import (FlatRockerSize, LawDiagrams, PhasePortrait, PressureAngleGraph, ProfileDrawing,
                            follower_positions)
+from ...scenes.draw import mu_text
 from ...style.numbers import fmt, fmt_given, tex_num
 from .common import as_written, tex_given
 from ..russian import plural
@@ -206,10 +207,10 @@ def _laws(sec, study, cam) -> None:
                     "<b>мягкие удары</b>.")
     sc = LawDiagrams()
     fig = sc.draw(study)
-    scales = "; ".join(f"μ<sub>{lab}</sub>&nbsp;=&nbsp;{fmt(mu, sig=3)}&nbsp;{u or 'ед.'}/мм"
+    scales = "; ".join(f"μ<sub>{lab}</sub>&nbsp;=&nbsp;{mu_text(mu)}&nbsp;{u or 'ед.'}/мм"
                        for lab, mu, u in sc.scales)
     s.paragraph(f"Диаграммы аналогов ускорения, скорости и перемещения построены на рисунке {ref('fig-cam-laws')} "
-                f"в масштабах μ<sub>φ</sub>&nbsp;=&nbsp;{fmt(sc.mu_phi, sig=3)}&nbsp;град/мм; {scales}.")
+                f"в масштабах μ<sub>φ</sub>&nbsp;=&nbsp;{mu_text(sc.mu_phi)}&nbsp;град/мм; {scales}.")
     s.figure("Диаграммы аналогов ускорения, скорости и " + ("угла поворота коромысла" if rocker else
                                                             "перемещения толкателя"), fig.svg, fig.width_mm,
              id="fig-cam-laws")
@@ -239,7 +240,7 @@ def _size(sec, study, cam) -> None:
                     "ограничивается условием выпуклости профиля: радиус кривизны профиля")
         s.formula(Formula(r"\rho = r_0 + s + s^{\prime\prime} \ge \rho_{min}", label="eq-cam-rho"),
                   Formula(r"r_0 \ge \rho_{min} - (s + s^{\prime\prime})_{min}",
-                          rf"{_t(cam.rho_min * 1000)} - \left({_t(m * 1000)}\right)",
+                          rf"{tex_given(cam.rho_min * 1000)} - \left({_t(m * 1000)}\right)",
                           _t(need * 1000, unit="мм")))
         s.paragraph(f"Наименьшее значение (s&nbsp;+&nbsp;s″) достигается при φ&nbsp;=&nbsp;{_deg(p)}. "
                     + (f"Принят заданный радиус r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}"
@@ -410,14 +411,14 @@ def _size_flat_rocker(s, study, cam) -> None:
     s.paragraph(f"Наименьшее значение G при ψ<sub>0</sub>&nbsp;=&nbsp;{_deg(psi0, 3)} найдено из условия "
                 f"dG/dφ&nbsp;=&nbsp;0 (с аналогом ψ‴): G<sub>min</sub>&nbsp;=&nbsp;{fmt(G, sig=5)} при "
                 f"φ&nbsp;=&nbsp;{_deg(pG, 3)}.")
-    fs = [Formula(r"a_{w,\rho}", rf"\frac{{{_t(cam.rho_min * 1000)} + {_t(d * 1000)}}}{{{_t(G, sig=5)}}}",
+    fs = [Formula(r"a_{w,\rho}", rf"\frac{{{tex_given(cam.rho_min * 1000)} + {tex_given(d * 1000)}}}{{{_t(G, sig=5)}}}",
                   _t(fr["a_conv"] * 1000, unit="мм"))]
     if fr["a_press"] > 0:
         for nm, ph in (("rise", cam.rise), ("return", cam.ret)):
             if ph.allowed > 0:
                 sym = "у" if nm == "rise" else "в"
                 fs.append(Formula(rf"a_{{w,\vartheta {sym}}}",
-                                  rf"\frac{{{_t(d * 1000)}}}{{\operatorname{{tg}}\,{_t(math.degrees(ph.allowed), sig=4)}^\circ"
+                                  rf"\frac{{{tex_given(d * 1000)}}}{{\operatorname{{tg}}\,{tex_given(round(math.degrees(ph.allowed), 6))}^\circ"
                                   rf"\cdot {_t(fr['m_' + nm], sig=5)}}}",
                                   _t(d / (math.tan(ph.allowed) * fr["m_" + nm]) * 1000, unit="мм")))
     s.formula(*fs)
@@ -448,7 +449,7 @@ def _size_flat_rocker(s, study, cam) -> None:
     s.formula(Formula("a_w", None, _t(syn.a_w * 1000, unit="мм")),
               Formula(r"\psi_0", None, _t(math.degrees(psi0), sig=5, unit="°")),
               Formula(r"r_0 = a_w \sin\psi_0 - d",
-                      rf"{_t(syn.a_w * 1000)} \sin {_t(math.degrees(psi0), sig=5)}^\circ - {_t(d * 1000)}",
+                      rf"{_t(syn.a_w * 1000)} \sin {_t(math.degrees(psi0), sig=5)}^\circ - {tex_given(d * 1000)}",
                       _t(syn.r0 * 1000, unit="мм")))
     lo, hi = cam.face
     s.paragraph(f"Точка касания перемещается по тарелке от μ<sub>min</sub>&nbsp;=&nbsp;{_mm(lo)} до "
@@ -469,7 +470,7 @@ def _pressure(sec, study, cam) -> None:
         s.paragraph(f"Угол давления ϑ&nbsp;=&nbsp;arctg(d/μ) на всём цикле построен на рисунке {ref('fig-cam-theta')}. "
                     "Он наибольший там, где точка касания ближе всего к оси качания: на удалении "
                     f"ϑ<sub>max</sub>&nbsp;=&nbsp;{_deg(t1, 3)}, на возвращении ϑ<sub>max</sub>&nbsp;=&nbsp;{_deg(t2, 3)}"
-                    + ("".join(f", [ϑ<sub>{sym}</sub>]&nbsp;=&nbsp;{_deg(ph.allowed)}" for sym, ph in
+                    + ("".join(f", [ϑ<sub>{sym}</sub>]&nbsp;=&nbsp;{_dg(ph.allowed)}" for sym, ph in
                                (("у", cam.rise), ("в", cam.ret)) if ph.allowed > 0))
                     + ". " + ("" if not any(ph.allowed > 0 for ph in (cam.rise, cam.ret)) else
                               "Угол давления нигде не превышает допустимого." if ok else
@@ -478,8 +479,8 @@ def _pressure(sec, study, cam) -> None:
         s.figure("Угол давления за цикл", fig.svg, fig.width_mm, id="fig-cam-theta")
         return
     s.paragraph(f"Угол давления на всём цикле построен на рисунке {ref('fig-cam-theta')}. Наибольшие значения: "
-                f"на удалении ϑ<sub>max</sub>&nbsp;=&nbsp;{_deg(t1)} при [ϑ<sub>у</sub>]&nbsp;=&nbsp;{_deg(cam.rise.allowed)}, "
-                f"на возвращении <span class=\"nobr\">|ϑ|<sub>max</sub></span>&nbsp;=&nbsp;{_deg(t2)} при [ϑ<sub>в</sub>]&nbsp;=&nbsp;{_deg(cam.ret.allowed)}. "
+                f"на удалении ϑ<sub>max</sub>&nbsp;=&nbsp;{_deg(t1)} при [ϑ<sub>у</sub>]&nbsp;=&nbsp;{_dg(cam.rise.allowed)}, "
+                f"на возвращении <span class=\"nobr\">|ϑ|<sub>max</sub></span>&nbsp;=&nbsp;{_deg(t2)} при [ϑ<sub>в</sub>]&nbsp;=&nbsp;{_dg(cam.ret.allowed)}. "
                 + ("Угол давления нигде не превышает допустимого."
                    if t1 <= cam.rise.allowed + 1e-9 and t2 <= cam.ret.allowed + 1e-9
                    else f"<b>Угол давления превышает допустимый</b>: {_required_words(cam)}."))
@@ -610,13 +611,13 @@ def conclusion_lines(study) -> list[str]:
 
 
 def _theta_phrase(cam) -> str:
-    """«наибольший угол давления 30,00° на удалении и 40,00° на возвращении при допустимых 30,00° и
-    40,00° — не превышает допустимых» (the exact maxima of :attr:`Cam.theta_max`)."""
+    """«наибольший угол давления 30,00° на удалении и 40,00° на возвращении при допустимых 30° и
+    40° — не превышает допустимых» (the allowed angles as given) (the exact maxima of :attr:`Cam.theta_max`)."""
     t1, t2 = cam.theta_max
     a1, a2 = cam.rise.allowed, cam.ret.allowed
     ok = t1 <= a1 + 1e-9 and t2 <= a2 + 1e-9
     return (f"наибольший угол давления {_deg(t1)} на удалении и {_deg(t2)} на возвращении при допустимых "
-            f"{_deg(a1)} и {_deg(a2)} — " + ("не превышает допустимых" if ok else
+            f"{_dg(a1)} и {_dg(a2)} — " + ("не превышает допустимых" if ok else
                                               f"<b>превышает допустимый</b>: {_required_words(cam)}"))
 
 

@@ -24,6 +24,15 @@ NEEDS = ("gears",)
 TASK = "выполнить синтез эвольвентного зубчатого зацепления"
 
 
+def _eps(eps: float, limit: float) -> str:
+    """ε_α to 0,001, or to as many decimals as tell it from the given limit [ε_α] (1,2004 ≥ 1,2 printed
+    «1,200 ≥ 1,200» read as a tie)."""
+    d = 3
+    while d < 6 and float(fmt(eps, digits=d).replace(",", ".").replace("\u2212", "-")) == limit and eps != limit:
+        d += 1
+    return fmt(eps, digits=d)
+
+
 def present(study) -> bool:
     """The section is built when the case has [gears]."""
     return study.root.has("gears")
@@ -197,7 +206,8 @@ def _geometry(sec: Section, gr) -> Section:
         checks.append(f"заострение: <i>s</i><sub>a{i}</sub> = {fmt(float(sa), sig=4)} мм "
                       f"{'≥' if okk else '<'} {as_written(gr.s_a_min)}<i>m</i> = {fmt(gr.s_a_min * m, sig=4)} мм")
     okε = float(g.eps) >= gr.eps_min
-    checks.append(f"плавность: ε<sub>α</sub> = {fmt(float(g.eps), sig=4)} {'≥' if okε else '<'} {fmt(gr.eps_min)}")
+    checks.append(f"плавность: ε<sub>α</sub> = {_eps(float(g.eps), gr.eps_min)} {'≥' if okε else '<'} "
+                  f"{as_written(gr.eps_min)}")
     interf = float(g.rho_p1) < float(g.rho_l1) or (not gr.internal and float(g.rho_p2) < float(g.rho_l2))
     checks.append(f"интерференция: ρ<sub>p1</sub> = {fmt(float(g.rho_p1), sig=4)} мм, ρ<sub>l1</sub> = "
                   f"{fmt(float(g.rho_l1), sig=4)} мм" + ("" if gr.internal else
@@ -272,7 +282,7 @@ def _internal_checks(checks: list, gr, g) -> None:
     if dz is not None:
         okz = gr.z2 - gr.z1 >= dz
         checks.append(f"наименьшая разность чисел зубьев при данных смещениях (все проверки и ε<sub>α</sub> ≥ "
-                      f"{fmt(gr.eps_min)}): <i>z</i><sub>2</sub> − <i>z</i><sub>1</sub> ≥ {dz}; принято "
+                      f"{as_written(gr.eps_min)}): <i>z</i><sub>2</sub> − <i>z</i><sub>1</sub> ≥ {dz}; принято "
                       f"{gr.z2 - gr.z1} — {'выполнено' if okz else 'не выполнено'}")
 
 
@@ -323,7 +333,7 @@ def _contour(sec: Section, gr) -> None:
              "на сетке с шагом 0,01")
     rule = (f"Смещения выбраны так: из точек {where} внутри блокирующего "
             "контура (нет подрезания, нет интерференции, <i>s</i><sub>a</sub> ≥ "
-            f"{as_written(gr.s_a_min)}<i>m</i>, ε<sub>α</sub> ≥ {fmt(gr.eps_min)}) взята точка с наименьшим "
+            f"{as_written(gr.s_a_min)}<i>m</i>, ε<sub>α</sub> ≥ {as_written(gr.eps_min)}) взята точка с наименьшим "
             "наибольшим удельным скольжением у ножек зубьев, т. е. с выравненным износом "
             + ("(λ<sub>1max</sub> ≈ λ<sub>2max</sub>)." if _wear_equal(gr) else
                "там, где это позволяет контур: изолиния λ<sub>1max</sub> = λ<sub>2max</sub> проходит вне "
@@ -331,7 +341,7 @@ def _contour(sec: Section, gr) -> None:
             if gr.chosen else
             "Заданная точка (<i>x</i><sub>1</sub>, <i>x</i><sub>2</sub>) показана на блокирующем контуре; она лежит "
             + ("внутри контура: подрезания, интерференции и заострения нет, ε<sub>α</sub> ≥ "
-               f"{fmt(gr.eps_min)}." if bool(np.all(admissible(gr.geo, gr.s_a_min, gr.eps_min))) else
+               f"{as_written(gr.eps_min)}." if bool(np.all(admissible(gr.geo, gr.s_a_min, gr.eps_min))) else
                "<b>вне контура</b>: одно из ограничений нарушено (см. проверки в разделе "
                f"{ref('sec-gears-geo')})."))
     s.paragraph(f"Блокирующий контур передачи <i>z</i><sub>1</sub> = {gr.z1}, <i>z</i><sub>2</sub> = {gr.z2} "
@@ -366,7 +376,7 @@ def _sliding(sec: Section, gr) -> None:
                 f"{ref('tab-gears-sliding')}, диаграммы — на рисунке {ref('fig-gears-sliding')}) вычислены по "
                 "радиусам кривизны профилей ρ<sub>1</sub> и ρ<sub>2</sub> в точке контакта:")
     s.formula(Formula(r"\lambda_1 = 1 - \frac{\rho_2}{u\,\rho_1},\quad \lambda_2 = 1 - \frac{u\,\rho_1}{\rho_2},"
-                      rf"\quad u = \frac{{z_2}}{{z_1}} = {_t(g.u, 5)}"))
+                      rf"\quad u = \frac{{z_2}}{{z_1}} = {tex_given(round(float(g.u), 4))}"))
     s.figure("Диаграммы удельного скольжения", S.sliding_diagram(gr), 160, id="fig-gears-sliding")
     t = gr.sliding_table
     cols = [Column("rho1", "ρ<sub>1</sub>", "мм", sig=5), Column("rho2", "ρ<sub>2</sub>", "мм", sig=5),
@@ -406,7 +416,7 @@ def _binding(gr) -> str:
     g, m = gr.geo, gr.m
     out = []
     if float(g.eps) - gr.eps_min < 0.02:
-        out.append(f"ε<sub>α</sub> = {fmt(float(g.eps))} ≈ {fmt(gr.eps_min)}")
+        out.append(f"ε<sub>α</sub> = {_eps(float(g.eps), gr.eps_min)} ≈ {as_written(gr.eps_min)}")
     for i, sa in ((1, float(g.sa1)), (2, float(g.sa2))):
         if sa - gr.s_a_min * m < 0.02 * m:
             out.append(f"<i>s</i><sub>a{i}</sub> = {fmt(sa, sig=4)} мм ≈ {as_written(gr.s_a_min)}<i>m</i>")
@@ -433,10 +443,10 @@ def _judgement(gr, g) -> list[str]:
              + ("— заострения нет" if sa >= gr.s_a_min * gr.m else "— <b>зуб заострён</b>"))
     eps = float(g.eps)
     if eps < gr.eps_min:
-        smooth = (f"<b>ε<sub>α</sub> = {fmt(eps, digits=3)} меньше допустимого {fmt(gr.eps_min, digits=3)}</b>: плавность "
+        smooth = (f"<b>ε<sub>α</sub> = {_eps(eps, gr.eps_min)} меньше допустимого {as_written(gr.eps_min)}</b>: плавность "
                   "зацепления не обеспечена, смещения нужно уменьшить")
     else:
-        smooth = (f"ε<sub>α</sub> = {fmt(eps, digits=3)} ≥ {fmt(gr.eps_min, digits=3)}"
+        smooth = (f"ε<sub>α</sub> = {_eps(eps, gr.eps_min)} ≥ {as_written(gr.eps_min)}"
                   + (" — плавность обеспечена с малым запасом (менее 5 %)" if eps < 1.05 * gr.eps_min else
                      " — плавность обеспечена"))
     out = ["Качество зацепления: " + "; ".join((under, sharp, smooth)) + "."]

@@ -528,7 +528,30 @@ def build(study) -> Section:
             Column("q", qhead + " (μ<sub>min</sub>)", qunit,
                    fmt=(lambda x: "—" if x is None or x != x else (_turn1(x) if rotary else fmt(x, digits=3))))],
             mdf, id="tab-mu", note=guide_note or None)
+        low = [r for r in rows if r["mu"] is not None and r["mu"] == r["mu"] and math.degrees(r["mu"]) < MU_MIN_DEG]
+        if low:
+            s5.paragraph(_low_mu_sentence(low, qhead, rotary))
     return sec
+
+
+MU_MIN_DEG = 40.0    # the recommended least transmission angle of a linkage [1, 3]
+
+
+def _low_mu_sentence(low: list[dict], qhead: str, rotary: bool) -> str:
+    """Under the table of least transmission angles, where one is below 40°: «Наименьший угол передачи в
+    группе (2,3) — 35,7° (при φ = 219,1°) — меньше рекомендуемого 40°: …» — the reader is told at once,
+    not only in the conclusion (which says how to raise it)."""
+    def where(r):
+        if r["q"] is None or r["q"] != r["q"]:
+            return ""
+        at = f"{_turn1(r['q'])}°" if rotary else f"{fmt(r['q'], digits=3)}&nbsp;м"
+        return f" (при {qhead}&nbsp;=&nbsp;{at})"
+    one = len(low) == 1
+    parts = ", ".join(f"{r['g']} — {_deg1(r['mu'])}°{where(r)}" for r in low)
+    return (f"{'Наименьший угол передачи в группе' if one else 'Наименьшие углы передачи в группах'} {parts} — "
+            f"меньше рекомендуемого {fmt(MU_MIN_DEG, digits=0)}°: {'в этом положении' if one else 'в этих положениях'} "
+            "растут реакции в парах группы и возможно заклинивание; как увеличить угол передачи, сказано в "
+            "заключении.")
 
 
 ZERO_REL = 1e-12     # a column of a kinematic table this small against the table's largest value is zero

@@ -12,6 +12,7 @@ import pandas as pd
 from markupsafe import Markup, escape
 
 from ...case import synthesis as SY
+from ...scenes.draw import mu_text
 from ...scenes.synthesis import SynthesisConstruction
 from ...style.numbers import fmt, tex_num
 from ..document import Column, Formula, Section, ref
@@ -180,7 +181,7 @@ def _construction(sec, study, kind, x, v) -> None:
         sec.formula(rf"b = \frac{{|O{P}_{{дальн}}| + |O{P}_{{ближн}}|}}{{2}}", rf"\frac{{{_t(far)} + {_t(near)}}}{{2}}",
                     tex_num(v["b"], sig=5, unit="м"), label="eq-syn-b")
     sec.figure("Построение при синтезе механизма", d.svg, d.width_mm, id="fig-syn")
-    sec.paragraph(f"Построение выполнено в масштабе {mu}&nbsp;=&nbsp;{fmt(d.mu, sig=3)}&nbsp;м/мм "
+    sec.paragraph(f"Построение выполнено в масштабе {mu}&nbsp;=&nbsp;{mu_text(d.mu)}&nbsp;м/мм "
                   f"(рисунок {ref('fig-syn')}); длины найдены аналитически, без измерений на чертеже.")
 
 
@@ -251,7 +252,7 @@ def _variants(sec, kind, x, v, vs, tr) -> None:
     if tr is not None:
         df["mu"] = [math.degrees(m) for m in tr["mu"]]
         cols.append(Column("mu", "μ<sub>min</sub>", "°", digits=1, sig=None))
-    sec.table("Варианты решения", cols + [Column("mark", "")], df, id="tab-syn-var")
+    sec.table("Варианты решения", cols + [Column("mark", "Примечание")], df, id="tab-syn-var")
 
 
 def _transmission(sec, kind, x, v, tr) -> None:

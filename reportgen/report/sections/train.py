@@ -33,6 +33,22 @@ def _pct(x: float) -> str:
     return "0" if abs(x) < 1e-9 else fmt(x, sig=2)
 
 
+def _exact_tex(q: Fraction) -> str:
+    """An exact ratio's value in a formula: an integer as it is («6», not «6,000000»), else to 7 digits."""
+    return str(q.numerator) if q.denominator == 1 else tex_num(float(q), sig=7)
+
+
+def _exact_text(q: Fraction) -> str:
+    """An exact ratio's value in prose: an integer as it is, else to 7 digits."""
+    return str(q.numerator).replace("-", "−") if q.denominator == 1 else fmt(float(q), sig=7)
+
+
+def _ratio_column(rows) -> dict:
+    """The format of the ratios' column: whole numbers when every set gives a whole ratio, else 6 digits."""
+    whole = rows and all(abs(r["u"] - round(r["u"])) < 1e-12 for r in rows)
+    return {"digits": 0, "sig": None} if whole else {"sig": 6}
+
+
 def _z(name: str) -> str:
     return rf"z_{{{name}}}"
 
@@ -128,7 +144,7 @@ def _selection(sec: Section, tr) -> None:
                      "verdict": "годится" if c.ok else "; ".join(c.fails)})
     s.table("Наборы чисел зубьев и проверка условий", [
         Column("set", "/".join(f"<i>z</i><sub>{w}</sub>" for w in sel.unknown), fmt=str),
-        Column("u", f"<i>u</i><sub>{m.inp}{m.out}</sub>", sig=6), Column("du", "Δ<i>u</i>", "%", sig=2),
+        Column("u", f"<i>u</i><sub>{m.inp}{m.out}</sub>", **_ratio_column(rows)), Column("du", "Δ<i>u</i>", "%", sig=2),
         Column("size", "Габарит, модулей", digits=0, sig=None), Column("asm", "Сборка", fmt=str),
         Column("nb", "Соседство, sin(π/<i>k</i>)", fmt=str), Column("verdict", "Заключение", fmt=str)],
         pd.DataFrame(rows), id="tab-train-select", highlight_rows=[0])
@@ -139,7 +155,7 @@ def _selection(sec: Section, tr) -> None:
     forms = [Formula(rf"u_{{{m.inp}\,{m.out}}}",
                      rf"\frac{{{poly_tex(sel.num, sel.order, z)}}}{{{poly_tex(sel.den, sel.order, z)}}}",
                      (rf"\frac{{{fr.numerator}}}{{{fr.denominator}}} = " if fr.denominator != 1 else "")
-                     + tex_num(float(fr), sig=7))]
+                     + _exact_tex(fr))]
     for (_, p, c) in sel.equations:
         forms.append(Formula(rf"{_form(p, sel.order)} = {_form(c, sel.order)}", rf"{_value(p, z)} = {_value(c, z)}"))
     for pl, (_, ok, qs) in zip(sel.planets, acc.assembly):
@@ -336,13 +352,13 @@ def _willis(sec: Section, tr) -> None:
         m.inp, _fixed_text(m.fixed).replace("неподвижное звено", "неподвижном звене")
         .replace("неподвижные звенья", "неподвижных звеньях")))
     s.formula(rf"u_{{{m.inp}\,{m.out}}} = \frac{{\omega_{{{m.inp}}}}}{{\omega_{{{m.out}}}}}", frac,
-              tex_num(tr.ratio, sig=7))
+              _exact_tex(fr))
     _willis_whole(s, tr)
     pr = tr.opts.get("printed", {})
     if "u" in pr:
         s.paragraph(f"В опубликованном решении напечатано <i>u</i> = {fmt(pr['u'], sig=6)}: там перемножены "
                     f"округлённые множители ступеней (например, 1 + 74/22 = 4,364), точное значение "
-                    f"{fr.numerator}/{fr.denominator} = {fmt(tr.ratio, sig=7)}, расхождение "
+                    f"{fr.numerator}/{fr.denominator} = {_exact_text(fr)}, расхождение "
                     f"{fmt((pr['u'] - tr.ratio) / tr.ratio * 100, sig=2)} %.")
     if tr.opts["target"] is not None:
         s.paragraph(f"Отклонение от заданного <i>u</i> = {as_written(tr.opts['target'])}: "
@@ -380,11 +396,11 @@ def _willis_whole(s: Section, tr) -> None:
                        "механизм становится рядовым, его передаточное отношение от {} к {} — произведение "
                        "отношений зацеплений со знаками, а при остановленном колесе {}:").format(h, a, b, b))
     s.formula(Formula(rf"u_{{{a}\,{b}}}^{{({h})}} = \frac{{\omega_{{{a}}} - \omega_{{{h}}}}}{{\omega_{{{b}}} - \omega_{{{h}}}}}",
-                      rf"{sign}{frac(u)}", tex_num(float(u), sig=7)),
+                      rf"{sign}{frac(u)}", _exact_tex(u)),
               Formula(rf"u_{{{a}\,{h}}}^{{({b})}} = 1 - u_{{{a}\,{b}}}^{{({h})}}",
                       rf"1 {'+' if u < 0 else '-'} {frac(u)}",
                       (rf"\frac{{{tr.ratio_fraction.numerator}}}{{{tr.ratio_fraction.denominator}}} = " if
-                       tr.ratio_fraction.denominator != 1 else "") + tex_num(tr.ratio, sig=7)))
+                       tr.ratio_fraction.denominator != 1 else "") + _exact_tex(tr.ratio_fraction)))
 
 
 def _picture(sec: Section, tr) -> None:
@@ -438,7 +454,7 @@ def conclusion_lines(study) -> list[str]:
     zs = ", ".join(f"z<sub>{w.name}</sub> = {w.z}" for w in m.wheels.values())
     frac = f"{fr.numerator}/{fr.denominator}".replace("-", "−") if fr.denominator != 1 else None
     out = [f"Передаточное отношение планетарного механизма <i>u</i><sub>{m.inp}{m.out}</sub> = "
-           + (f"{frac} = " if frac else "") + f"{fmt(tr.ratio, sig=7)} ({zs})."]
+           + (f"{frac} = " if frac else "") + f"{_exact_text(fr)} ({zs})."]
     if tr.candidates:
         acc = tr.candidates[0]
         out.append(f"Числа зубьев подобраны перебором под <i>u</i> = {as_written(tr.opts['target'])} (отклонение "
