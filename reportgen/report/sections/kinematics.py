@@ -20,7 +20,7 @@ from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import expr_html
 from . import vectors
-from .common import (chosen_position, chunked_tables, html_point, input_word, pos_fmt, pos_no, q_degrees, q_header, sub,
+from .common import (chosen_position, chunked_tables, fit_condition, html_point, input_word, pos_fmt, pos_no, q_degrees, q_header, sub,
                      swing_text, tex_point)
 
 NEEDS = ("kinematics", "cycle")
@@ -333,10 +333,12 @@ def build(study) -> Section:
         s1.children.remove(fig)
     if study.fits:
         s1.paragraph("Неизвестные размеры подобраны из условий задания (решение уравнений с точностью 10⁻¹²):")
-        fdf = pd.DataFrame([{"name": f.name, "cond": f.condition, "at": f.at, "value": f.value} for f in study.fits])
+        rows = [(f, *fit_condition(study, f)) for f in study.fits]
+        fdf = pd.DataFrame([{"name": f.name, "cond": Markup("{} ({})").format(c, t) if t else c, "at": at,
+                             "value": f.value} for f, c, t, at in rows])
         s1.table("Подобранные размеры", [Column("name", "Величина", fmt=expr_html),
-                                          Column("cond", "Условие", fmt=expr_html),
-                                          Column("at", "Положение", fmt=expr_html),
+                                          Column("cond", "Условие", fmt=Markup),
+                                          Column("at", "Положение", fmt=Markup),
                                           Column("value", "Значение", "м", digits=4)],
                  fdf, id="tab-fits")
     cols = []

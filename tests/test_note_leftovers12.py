@@ -1,0 +1,52 @@
+"""Defects session 11 saw and left (#9, session 12 «leftovers3»), each test failing on the defect.
+
+* ws002's conclusion and table of fitted sizes wrote the conditions in the case's own names
+  («y₅₆ = Y_P56», «φ₆ = φ_P6»).
+"""
+import re
+
+from markupsafe import Markup
+
+from conftest import CASES
+
+_STUDIES: dict = {}
+
+
+def _study(stem):
+    from reportgen import load_case
+    if stem not in _STUDIES:
+        _STUDIES[stem] = load_case(CASES / f"{stem}.toml")
+    return _STUDIES[stem]
+
+
+# ------------------------------------------------------------------ 1. fitted sizes
+def test_fit_conditions_by_title_and_value():
+    """S_p is fitted so that y₅₆ = Y_P56 and l₇ so that φ₆ = φ_P6: the conclusion writes «высота
+    шарнира 56 в рабочем положении y₅₆ = 0,4 м», «угол навесной машины … φ₆ = 90°» — the
+    parameter's title and value as the given-data table writes them, not the case's name."""
+    from reportgen.report.sections.structure import conclusion_lines
+    study = _study("ws002_tractor_hitch")
+    text = Markup(conclusion_lines(study)[1]).striptags().replace("\xa0", " ")
+    assert "P56" not in text and "P6" not in text
+    assert "высота шарнира 56 в рабочем положении y56 = 0,4 м" in text
+    assert "угол навесной машины в рабочем положении φ6 = 90°" in text
+    assert "(условие y56 = 0,2 м при Smin)" in text
+
+
+def test_fit_table_by_value():
+    """The table «Подобранные размеры» writes the same conditions with values (y₅₆ = 0,4 м)."""
+    from reportgen.report.sections.common import fit_condition
+    study = _study("ws002_tractor_hitch")
+    cells = [Markup(c).striptags().replace("\xa0", " ") for f in study.fits for c in fit_condition(study, f)[:1]]
+    assert cells == ["y56 = 0,2 м", "y56 = 0,4 м", "φ6 = 90°"]
+
+
+def test_case_notation_found_in_text():
+    """The PDF-identifier test of every case also catches a case's name rendered with a
+    subscript («yP56» in pdftotext's text) outside its row of the given data."""
+    from test_note_all_cases import case_notation, notation_hits
+    path = CASES / "ws002_tractor_hitch.toml"
+    assert set(case_notation(path)) == {"yP56", "φP6"}
+    given = "высота шарнира 56 в рабочем положении                       yP56              0,4 м"
+    assert notation_hits(path, given) == []
+    assert notation_hits(path, given + "\nSp = 0,4694 м (условие y56 = yP56 при Sp)") != []
