@@ -50,3 +50,14 @@ def test_case_notation_found_in_text():
     given = "высота шарнира 56 в рабочем положении                       yP56              0,4 м"
     assert notation_hits(path, given) == []
     assert notation_hits(path, given + "\nSp = 0,4694 м (условие y56 = yP56 при Sp)") != []
+
+
+# ------------------------------------------------------------------ 8. CLI messages
+def test_check_names_groups_as_the_note(capsys):
+    """`check` warned «угол передачи в группе 4_5» (the program's key of the flag): the group is
+    named as the note names it, «в группе (4,5)», and numbers have a decimal comma."""
+    from reportgen.cli import main
+    assert main(["check", str(CASES / "rocker_slider_lever.toml")]) == 0
+    out = capsys.readouterr()
+    assert "угол передачи в группе (4,5) падает до 33,6°" in out.err
+    assert re.findall(r"\b\w+_\w+\b", out.err) == []

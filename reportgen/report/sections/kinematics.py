@@ -18,7 +18,7 @@ from ...scenes.draw import gost_ratio, mu_text
 from ...style.numbers import fmt, fmt_given, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
-from ..russian import expr_html
+from ..russian import expr_html, flag_group, flag_where
 from . import vectors
 from .common import (chosen_position, chunked_tables, fit_condition, html_point, input_word, pos_fmt, pos_no, q_degrees, q_header, sub,
                      swing_text, tex_point)
@@ -67,17 +67,6 @@ def _links(study):
     cyc = study.cycle if study.has_cycle else study.kinematics
     return [l for l in study.mechanism.moving if not (d.kind == "actuator" and l.name == d.rod)
             and float(np.abs(cyc["wq_" + l.name]).max()) > 1e-12]
-
-
-def _flag_group(study, key: str) -> str:
-    """The structural group a transmission-angle flag ``mu_2_3`` belongs to, as chapter 1 names it:
-    «(2,3)», or «(1,2,3)» for the dyad of an actuator's initial mechanism."""
-    from .structure import decomposition
-    links = set(key[3:].split("_"))
-    for row in decomposition(study)[0]:
-        if links <= set(row["g"].strip("()").split(",")):
-            return row["g"]
-    return "(" + ",".join(key[3:].split("_")) + ")"
 
 
 def _turning_link(study, key: str) -> str | None:
@@ -133,15 +122,6 @@ def _slider_advice(study, key: str) -> str | None:
                 f"к направлению направляющей звена {guide}, по которой скользит ползун {slider} (повторить "
                 "синтез с ограничением μ ≥ 40°)")
     return None
-
-
-def _flag_where(study, key: str) -> str:
-    """«в группе (4,5)», or «в начальном механизме (1,2,3)» where the flagged dyad lies in an
-    actuator's initial mechanism (chapter 1 calls it so, not a group)."""
-    from .structure import decomposition
-    g = _flag_group(study, key)
-    initial = study.mechanism.driver.kind == "actuator" and g == decomposition(study)[0][0]["g"]
-    return ("в начальном механизме " if initial else "в группе ") + g
 
 
 def _strokes(study, s, exact: bool = True) -> tuple[float, float, float, float]:
@@ -512,7 +492,7 @@ def build(study) -> Section:
     guides, guide_note = _guide_transmission(study)
     if flags or guides:
         # the input's coordinate as the other tables count it (a crank's angle from the cycle's start)
-        rows = [{"g": _flag_group(study, c), "mu": v["min"],
+        rows = [{"g": flag_group(study, c), "mu": v["min"],
                  "q": q_degrees(study, v["q_min"]) % 360.0 if rotary else v["q_min"]} for c, v in flags.items()]
         for r in guides:
             if r["q"] is not None:
@@ -595,7 +575,7 @@ def _guide_transmission(study) -> tuple[list[dict], str]:
         px, py = mech.link(pri.links[0]).points[pivot]
         dx, dy = math.cos(pri.angle), math.sin(pri.angle)
         e = abs(pri.offset - (dx * (py - pri.line_point[1]) - dy * (px - pri.line_point[0])))
-        label = _flag_group(study, 'mu_' + key)
+        label = flag_group(study, 'mu_' + key)
         name = f"{label} {g.kind_ru}".strip()
         if e <= 1e-9 * mech.size() or fl["min"] <= e:
             if e <= 1e-9 * mech.size():
@@ -1057,7 +1037,7 @@ def conclusion_lines(study) -> list[str]:
     for c, v in study.flags.items():
         mu = math.degrees(v["min"])
         if mu >= 40:
-            fine.append(f"{_flag_where(study, c)} {fmt(mu, digits=1)}°")
+            fine.append(f"{flag_where(study, c)} {fmt(mu, digits=1)}°")
             continue
         low.append(c)
         crank = _turning_link(study, c)
@@ -1072,7 +1052,7 @@ def conclusion_lines(study) -> list[str]:
                     "Угол передачи можно увеличить, удлинив шатун группы или сместив опору выходного звена "
                     "так, чтобы в крайних положениях шатун был ближе к перпендикуляру к выходному звену "
                     "(повторить синтез с ограничением μ ≥ 40°)"))
-        out.append(f"Наименьший угол передачи {_flag_where(study, c)} — {fmt(mu, digits=1)}°{note}.")
+        out.append(f"Наименьший угол передачи {flag_where(study, c)} — {fmt(mu, digits=1)}°{note}.")
     if fine:
         # «работоспособен» only of a mechanism no group of which is below 40°
         out.append(("Наименьший угол передачи (" if len(fine) == 1 else "Наименьшие углы передачи (")
