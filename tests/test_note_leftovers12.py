@@ -61,3 +61,16 @@ def test_check_names_groups_as_the_note(capsys):
     out = capsys.readouterr()
     assert "угол передачи в группе (4,5) падает до 33,6°" in out.err
     assert re.findall(r"\b\w+_\w+\b", out.err) == []
+
+
+# ------------------------------------------------------------------ 9. train: decimals
+def test_train_direct_ratio_as_the_rest_of_the_note():
+    """The direct check of the ratio printed «u = −28,58333333» (ten significant digits) while the
+    note writes the ratio −343/12 = −28,58333 everywhere else (seven)."""
+    from notehelpers import paragraph_text, plain
+    from reportgen.report.sections import train
+    study = _study("train_2kh_external_select")
+    text = plain(paragraph_text(train.build(study)))
+    direct = re.search(r"Прямой расчёт по равенству скоростей в полюсах даёт u = (−?[\d,]+)", text)
+    assert direct and direct.group(1) == "−28,58333"
+    assert len(re.sub(r"\D", "", direct.group(1))) <= 7
