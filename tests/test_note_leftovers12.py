@@ -74,3 +74,59 @@ def test_train_direct_ratio_as_the_rest_of_the_note():
     direct = re.search(r"Прямой расчёт по равенству скоростей в полюсах даёт u = (−?\d+(?:,\d+)?)", text)
     assert direct and direct.group(1) == "−28,58333"
     assert len(re.sub(r"\D", "", direct.group(1))) <= 7
+
+
+# ------------------------------------------------------------------ 7. the key
+def _key_tables(stem):
+    from notehelpers import blocks
+    from reportgen.report.document import Table
+    from reportgen.report.key import build_key
+    out = {}
+    for sec in build_key(_study(stem)).sections:
+        for b in blocks(sec):
+            if isinstance(b, Table):
+                out[b.id] = b
+    return out
+
+
+def test_key_rocker_mean_speed_is_angular():
+    """The loom beater's output is a rocker: its mean speed of the working stroke is in рад/с and
+    is called an angular velocity ω, not «средняя скорость … v»."""
+    from reportgen.report.key import result_rows
+    study = _study("loom_beater")
+    rows = [r for g in result_rows(study, "kinematics", study.scalars).values() for r in g]
+    speed = {str(r["name"]): (str(r["sym"]), r["unit"]) for r in rows if "рабочего хода" in str(r["name"])}
+    assert speed == {"Средняя угловая скорость рабочего хода": ("ω<sub>р.х</sub>", "рад/с")}
+    back = [r for r in rows if "обратного хода" in str(r["name"])]
+    assert [str(r["sym"]) for r in back] == ["ω<sub>х.х</sub>"]
+
+
+def test_key_slider_mean_speed_stays_linear():
+    from reportgen.report.key import result_rows
+    study = _study("ws000_six_bar")
+    rows = [r for g in result_rows(study, "kinematics", study.scalars).values() for r in g]
+    assert [(str(r["sym"]), r["unit"]) for r in rows if "рабочего хода" in str(r["name"])] == \
+        [("<i>v</i><sub>р.х</sub>", "м/с")]
+
+
+def test_key_reactions_at_the_chosen_position():
+    """The key holds the reactions at the position the note analyses group by group (the rows a
+    teacher compares with a student's tables), to the decimals of the note's tables."""
+    from reportgen.report.sections.common import chosen_position, pos_no
+    study = _study("ws000_six_bar")
+    tab = _key_tables("ws000_six_bar")["key-react-chosen"]
+    lab = chosen_position(study)
+    assert f"(положение {pos_no(study, lab)})" in tab.caption
+    f = study.forces
+    row = f.table[f.table["pos"].astype(str) == lab].iloc[0]
+    assert [Markup(p).striptags() for p in tab.data["pair"]] == ["R01", "R12", "R23", "R03", "R34", "R45", "R05"]
+    assert list(tab.data["R"]) == [row["R_" + k] for k in ("0_1", "1_2", "2_3", "0_3", "3_4", "4_5", "0_5")]
+
+
+def test_key_printed_values_by_position_number():
+    """ws000's printed-values table kept the worksheet's «ω(f)»: the key names the position by the
+    note's number, «ω (положение 12)»."""
+    tab = _key_tables("ws000_six_bar")["tab-dyn-printed"]
+    names = [Markup(n).striptags().replace("\xa0", " ") for n in tab.data["name"]]
+    assert not [n for n in names if "(f)" in n]
+    assert "ω (положение 12)" in names and "J2пр (положение 12)" in names
