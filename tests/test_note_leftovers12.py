@@ -130,3 +130,27 @@ def test_key_printed_values_by_position_number():
     names = [Markup(n).striptags().replace("\xa0", " ") for n in tab.data["name"]]
     assert not [n for n in names if "(f)" in n]
     assert "ω (положение 12)" in names and "J2пр (положение 12)" in names
+
+
+# ------------------------------------------------------------------ 6. the advice to reverse the crank
+def test_short_end_of_stroke_load_gets_no_reversing_advice():
+    """The loom's beat-up force acts over the last 23 % of the fast stroke: the note advised turning
+    the crank the other way (a slow working stroke), which gains nothing for a short load; now it
+    says why the direction is kept, in the section and not in the conclusion."""
+    from notehelpers import paragraph_text, plain
+    from reportgen.report.sections import kinematics as K
+    study = _study("loom_beater")
+    assert 0 < K._working_share(study) < K.SHORT_LOAD_SHARE
+    text = plain(paragraph_text(K.build(study)))
+    assert "целесообразно вращать" not in text
+    assert "лишь на 23\u00a0% его (36° поворота кривошипа из 154,6°)" in text
+    assert not [l for l in K.conclusion_lines(study) if "предпочтительнее" in str(l)]
+
+
+def test_load_over_the_whole_stroke_keeps_the_advice():
+    """A slotting machine's cutting force acts over its whole (fast) working stroke: the advice stays."""
+    from notehelpers import paragraph_text, plain
+    from reportgen.report.sections import kinematics as K
+    study = _study("slotting_machine")
+    assert K._working_share(study) > 0.99
+    assert "целесообразно вращать" in plain(paragraph_text(K.build(study)))
