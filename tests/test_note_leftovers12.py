@@ -154,3 +154,29 @@ def test_load_over_the_whole_stroke_keeps_the_advice():
     study = _study("slotting_machine")
     assert K._working_share(study) > 0.99
     assert "целесообразно вращать" in plain(paragraph_text(K.build(study)))
+
+
+# ------------------------------------------------------------------ 2. a guide's reaction at its arm
+def test_guide_reaction_drawn_where_the_text_puts_it(monkeypatch):
+    """The hacksaw's table gives R₀₃ with «h = M/N = −0,1665 м — смещение точки приложения от
+    точки B вдоль направляющей», but the group's scheme drew R₀₃ at B: it is drawn at B + h·u
+    (u along the guide), with the guide's line from B to it marked h."""
+    import numpy as np
+    from notehelpers import record_labels
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.forces import GroupForces, group_vectors
+    study = _study("power_hacksaw")
+    f = study.forces
+    lab = chosen_position(study)
+    row = f.table[f.table["pos"].astype(str) == lab].iloc[0]
+    pri = [p for p in f.model.pairs if p.name == "0_3"]
+    assert pri, [p.name for p in f.model.pairs]
+    ext, _, _ = group_vectors(study, lab, 0)
+    r03 = next(v for v in ext if v.label == "R₀₃")
+    assert abs(row["hN_0_3"]) > 0.1
+    assert np.allclose(r03.at, (row["xN_0_3"], row["yN_0_3"]), atol=1e-12)
+    assert np.allclose(r03.base, (study.kinematics.set_index("pos").loc[lab, ["x_B", "y_B"]]
+                                  .to_numpy(float)), atol=1e-12)
+    seen = record_labels(monkeypatch)
+    GroupForces(lab, 0, landscape=True).draw(study)
+    assert "$h$" in seen
