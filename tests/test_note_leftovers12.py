@@ -180,3 +180,19 @@ def test_guide_reaction_drawn_where_the_text_puts_it(monkeypatch):
     seen = record_labels(monkeypatch)
     GroupForces(lab, 0, landscape=True).draw(study)
     assert "$h$" in seen
+
+
+# ------------------------------------------------------------------ 4. the rocker cam's drawing
+def test_rocker_cam_arm_whole_in_both_extreme_positions():
+    """The roller rocker's arm was drawn whole (with its pivot) in position 0 only: it is drawn so
+    in both extreme positions (0: ψ = 0, 2: the far dwell, ψ_max), with the arc of the pivot's
+    positions in the inverted motion; a piece at the roller in the middle positions."""
+    from reportgen.scenes.cam import ProfileDrawing
+    study = _study("cam_rocker_roller")
+    d = ProfileDrawing()
+    d.draw(study)
+    assert [len(seg["circles"]) for seg in d.followers] == [2, 1, 2, 1]      # pivot + roller, or roller
+    import math
+    a_w = math.hypot(*study.cam.synthesis.O)
+    pivots = [seg["circles"][0][0] for seg in d.followers if len(seg["circles"]) == 2]
+    assert all(abs(math.hypot(*p) - a_w) < 1e-12 for p in pivots)
