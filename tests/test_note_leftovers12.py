@@ -196,3 +196,37 @@ def test_rocker_cam_arm_whole_in_both_extreme_positions():
     a_w = math.hypot(*study.cam.synthesis.O)
     pivots = [seg["circles"][0][0] for seg in d.followers if len(seg["circles"]) == 2]
     assert all(abs(math.hypot(*p) - a_w) < 1e-12 for p in pivots)
+
+
+# ------------------------------------------------------------------ 5. the train scheme's bearings
+def test_train_scheme_draws_the_frame_bearings(monkeypatch):
+    """The train's scheme had no supports: every moving member on the central axis (the central
+    wheel 1, the carrier H) runs in a bearing of the frame (ГОСТ 2.770), the fixed wheel 3 has none."""
+    from reportgen.scenes import train as T
+    study = _study("train_2kh_external_select")
+    m = study.train.model
+    colors = {T.COLORS[i % len(T.COLORS)]: n for i, n in enumerate(m.members)}
+    seen = []
+    orig = T._bearing
+
+    def rec(ax, x, dx, R, color):
+        seen.append(colors[color])
+        return orig(ax, x, dx, R, color)
+    monkeypatch.setattr(T, "_bearing", rec)
+    T.train_picture(study.train)
+    assert sorted(seen) == ["1", "H"]
+
+
+def test_nested_carriers_one_frame_bearing(monkeypatch):
+    """Two carriers one inside the other: the outer one runs in the frame, the inner in it."""
+    from reportgen.scenes import train as T
+    study = _study("train_two_carrier_select")
+    m = study.train.model
+    colors = {T.COLORS[i % len(T.COLORS)]: n for i, n in enumerate(m.members)}
+    seen = []
+    orig = T._bearing
+    monkeypatch.setattr(T, "_bearing", lambda ax, x, dx, R, color: (seen.append(colors[color]),
+                                                                    orig(ax, x, dx, R, color)))
+    T.train_picture(study.train)
+    carriers = [n for n in seen if n in set(m.axes.values())]
+    assert len(carriers) == 1 and len(seen) == len(set(seen))

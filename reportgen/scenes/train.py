@@ -115,10 +115,28 @@ def _images(m, y, axis) -> tuple[int, ...]:
     return (1, -1)
 
 
+def _bearing(ax, x: float, dx: float, R: float, color) -> None:
+    """A shaft's support in the frame on the central axis (ГОСТ 2.770-68, подшипник радиальный,
+    simplified): two short bars along the shaft on both sides of it, a post down from the lower one
+    to the frame's hatched line."""
+    b, half, e = 0.03 * R, 0.1 * dx, 0.07 * R
+    for yb in (b, -b):
+        ax.plot([x - half, x + half], [yb, yb], color=color, lw=1.4)
+    ax.plot([x, x], [-b, -b - e], color=INK, lw=1.0)
+    y0, w = -b - e, 0.15 * dx
+    ax.plot([x - w, x + w], [y0, y0], color=INK, lw=1.0)
+    for k in range(3):
+        x1 = x - w + 0.1 * dx * k
+        ax.plot([x1, x1 + 0.1 * dx], [y0, y0 - 0.1 * dx], color=INK, lw=0.8)
+
+
 def _scheme(ax, m, y, col, colors, dx, labels):
     """The scheme in the plane of the axes: every element on a carried axis off the central axis
-    (y = 0) is drawn at y and mirrored at −y (``_images``); labels on the upper image only."""
+    (y = 0) is drawn at y and mirrored at −y (``_images``); labels on the upper image only.  The
+    shafts of the moving members on the central axis (central wheels, carriers) run in the frame's
+    bearings (:func:`_bearing`)."""
     tick = 0.15 * dx
+    R = max(abs(y[wh.centre]) + wh.m * wh.z / 2 for wh in m.wheels.values())
     for name, wh in m.wheels.items():
         x, r, c = col[name] * dx, wh.m * wh.z / 2, colors[wh.member]
         for s in _images(m, y, wh.centre):
@@ -154,9 +172,15 @@ def _scheme(ax, m, y, col, colors, dx, labels):
             for s in sides:
                 ax.plot([x0 - 0.5 * dx, x0], [s * y[axis]] * 2, color=c, lw=1.6)
             labels.add(x0, y[axis], _name(mem), prefer=(-14, 3), color=c)
+            outer = [h for h in order[order.index(mem) + 1:] if any(v == h for v in m.axes.values())]
+            if mem not in m.fixed and abs(y[axis]) <= 1e-9 and not outer:
+                # (a carrier inside another's hollow shaft runs in that one, not in the frame)
+                _bearing(ax, x0 - 0.3 * dx, dx, R, c)
         elif xs:
             for s in sides:
                 ax.plot([min(xs) - 0.3 * dx, max(xs) + 0.3 * dx], [s * y[axis]] * 2, color=c, lw=1.6)
+            if mem not in m.fixed and abs(y[axis]) <= 1e-9:
+                _bearing(ax, max(xs) + 0.22 * dx, dx, R, c)
         if mem in m.fixed:
             ws = [wh for wh in m.wheels.values() if wh.member == mem]
             for wh in ws:
