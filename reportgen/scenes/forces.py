@@ -151,6 +151,18 @@ class GroupDrawing(Drawing):
     method: str = ""              # Construction.method ("" where the polygon is drawn, not constructed)
 
 
+def _over_group(study, links: set, cols: dict, pt) -> bool:
+    """Whether point ``pt`` lies within the box of the points of the group's links."""
+    mech = study.mechanism
+    pts = [p for l in links for p in mech.link(l).points]
+    xs = [cols["x_" + p] for p in pts if "x_" + p in cols]
+    ys = [cols["y_" + p] for p in pts if "y_" + p in cols]
+    if not xs:
+        return False
+    tol = 1e-9 * mech.size()
+    return min(xs) - tol <= pt[0] <= max(xs) + tol and min(ys) - tol <= pt[1] <= max(ys) + tol
+
+
 def group_vectors(study, label: str, gi: int) -> tuple[list[Vector], list[dict], list[Vector]]:
     """Forces on group ``gi`` at position ``label``: the external forces (loads and known
     reactions of the groups solved before, then this group's unknown reactions), the moments
@@ -180,9 +192,13 @@ def group_vectors(study, label: str, gi: int) -> tuple[list[Vector], list[dict],
         at, base = (pv["x"], pv["y"]), None
         if p.kind == KS.K_PRI and pv["N"] and abs(pv["Mp"] / pv["N"]) > 1e-9 * study.mechanism.size():
             # a sliding pair's reaction acts h = M/N from the slider's point along the guide (the
-            # arm the note's table gives: analysis.forces xN, yN), not at the slider's point
+            # arm the note's table gives: analysis.forces xN, yN), not at the slider's point —
+            # drawn there when that point lies over the group (a yoke's arm of three mechanism
+            # sizes would shrink the scheme to nothing: drawn at the slider, the table gives h)
             h = pv["Mp"] / pv["N"]
-            at, base = (pv["x"] + h * pv["ux"], pv["y"] + h * pv["uy"]), at
+            off = (pv["x"] + h * pv["ux"], pv["y"] + h * pv["uy"])
+            if _over_group(study, links, cols, off):
+                at, base = off, at
         if p.a in links and p.b in links:
             internal.append(Vector(pair_label(p.a, p.b), F, at, "internal", p.b, p.a, kind=p.kind, base=base))
         elif p.b in links:
