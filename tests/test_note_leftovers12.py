@@ -230,3 +230,10 @@ def test_nested_carriers_one_frame_bearing(monkeypatch):
     T.train_picture(study.train)
     carriers = [n for n in seen if n in set(m.axes.values())]
     assert len(carriers) == 1 and len(seen) == len(set(seen))
+
+
+def test_rocker_cam_text_names_the_whole_arm():
+    from notehelpers import paragraph_text, plain
+    from reportgen.report.sections import cam
+    text = plain(paragraph_text(cam.build(_study("cam_rocker_roller"))))
+    assert "в крайних положениях 0 и 2 — целиком, с опорой" in text
