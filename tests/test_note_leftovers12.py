@@ -1,7 +1,13 @@
 """Defects session 11 saw and left (#9, session 12 «leftovers3»), each test failing on the defect.
 
 * ws002's conclusion and table of fitted sizes wrote the conditions in the case's own names
-  («y₅₆ = Y_P56», «φ₆ = φ_P6»).
+  («y₅₆ = Y_P56», «φ₆ = φ_P6»); the PDF-identifier test now catches such names with a subscript.
+* The hacksaw's guide reaction R₀₃ drawn at B while the table gives its arm h.
+* The rocker cam's arm drawn whole in position 0 only.
+* The train scheme without the frame's bearings.
+* The loom beater advised reversing the crank for a short end-of-stroke load.
+* The key: a rocker's mean speeds called v; no reactions at the chosen position; «ω(f)».
+* `check` printed «в группе 4_5»; the train's direct ratio «−28,58333333».
 """
 import re
 
