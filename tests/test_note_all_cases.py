@@ -124,14 +124,15 @@ def case_notation(path) -> dict[str, str]:
     from reportgen import load_case
     from reportgen.report.russian import param_symbol
     study = load_case(path)
-    mech = getattr(study, "mechanism", None)
+    mech = study.mechanism if study.has_linkage else None
     names = ({p for l in mech.links for p in l.points} | {l.name for l in mech.links}) if mech else set()
-    textbook = re.compile("(?:%s)+" % "|".join(sorted(map(re.escape, names), key=len, reverse=True))) \
-        if names else None
+    if not names:           # no linkage: no points to tell a textbook subscript by
+        return {}
+    textbook = re.compile("(?:%s)+" % "|".join(sorted(map(re.escape, names), key=len, reverse=True)))
     out = {}
     for name, (title, symbol) in study.spec.parameter_texts().items():
         sub = name.partition("_")[2]
-        if title and not symbol and sub and not (textbook and textbook.fullmatch(sub)):
+        if title and not symbol and sub and not textbook.fullmatch(sub):
             out[Markup(param_symbol(name)).striptags()] = Markup(title).striptags()
     return out
 
