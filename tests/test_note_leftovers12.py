@@ -34,8 +34,8 @@ def test_fit_conditions_by_title_and_value():
     study = _study("ws002_tractor_hitch")
     text = Markup(conclusion_lines(study)[1]).striptags().replace("\xa0", " ")
     assert "P56" not in text and "P6" not in text
-    assert "высота шарнира 56 в рабочем положении y56 = 0,4 м" in text
-    assert "угол навесной машины в рабочем положении φ6 = 90°" in text
+    assert "(условие: высота шарнира 56 в рабочем положении y56 = 0,4 м, при Sp)" in text
+    assert "(условие: угол навесной машины в рабочем положении φ6 = 90°, при Sp)" in text
     assert "(условие y56 = 0,2 м при Smin)" in text
 
 

@@ -150,8 +150,9 @@ def conclusion_lines(study) -> list[str]:
     fits = []
     for f in study.fits:
         cond, title, at = fit_condition(study, f)
-        fits.append(Markup("{}&nbsp;=&nbsp;{}&nbsp;м ({} {} при {})").format(
-            expr_html(f.name), fmt(f.value, digits=4), title or "условие", cond, at))
+        said = Markup(": {} {},").format(title, cond) if title else Markup(" {}").format(cond)
+        fits.append(Markup("{}&nbsp;=&nbsp;{}&nbsp;м (условие{} при {})").format(
+            expr_html(f.name), fmt(f.value, digits=4), said, at))
     if len(fits) == 1:
         out.append(Markup("Подобран размер {}.").format(fits[0]))
     elif fits:            # one sentence for all of them, not one each
