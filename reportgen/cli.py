@@ -84,6 +84,7 @@ def _build(args, formats, out: Path, t0: float) -> int:
     from .analysis.study import Study
     from .report.assemble import build_report
     from .report.render import build_outputs
+    from .style.numbers import fmt
     study = Study(args.case)
     report = build_report(study, _sections(args.sections))
     _check_finite(study, partial=args.sections is not None)
@@ -96,7 +97,7 @@ def _build(args, formats, out: Path, t0: float) -> int:
     if args.sheets:
         from .sheets import build_sheets
         print(f"Чертежи (A1): {build_sheets(study, out, study.name)}")
-    print(f"Готово за {time.perf_counter() - t0:.1f} с.")
+    print(f"Готово за {fmt(time.perf_counter() - t0, digits=1)} с.")
     return 0
 
 
@@ -156,6 +157,7 @@ def _out_dir(path: Path) -> Path:
 
 def _check_linkage(study) -> None:
     from .mechanism.structure import decomposition
+    from .style.numbers import fmt
     st = study.structure
     rows, formula = decomposition(st, study.mechanism.driver)   # as the note and the key write it
     print(f"Число степеней свободы (Чебышев): {st.chebyshev}")
@@ -164,24 +166,26 @@ def _check_linkage(study) -> None:
     for r in rows:
         print(f"  {r['title'] if r['g'] in r['title'] else r['g'] + ' — ' + r['title']}")
     for f in study.fits:
-        print(f"Подобран параметр {f.name} = {f.value:.12g} (условие {f.condition} при {f.at})")
+        print(f"Подобран параметр {f.name} = {fmt(f.value, sig=12)} (условие {f.condition} при {f.at})")
     if not study.has_cycle:
         study.kinematics  # [grid] cycle = false: the given positions must assemble
         print("Проверка пройдена: механизм собирается в заданных положениях (цикл не рассчитывается).")
         return
     study.cycle  # the whole cycle must assemble
+    from .report.russian import flag_group, flag_where   # groups named as the note names them
     for name, fl in study.flags.items():
         if fl["singular"]:
-            print(f"Внимание: группа {name[3:]} проходит особое положение", file=sys.stderr)
+            print(f"Внимание: особое положение {flag_where(study, name)}", file=sys.stderr)
         elif fl["low"]:
             import math
-            print(f"Внимание: угол передачи в группе {name[3:]} падает до {math.degrees(fl['min']):.1f}° (< 40°)",
-                  file=sys.stderr)
+            print(f"Внимание: угол передачи {flag_where(study, name)} падает до "
+                  f"{fmt(math.degrees(fl['min']), digits=1)}° (< 40°)", file=sys.stderr)
     for name, fl in study.guide_flags.items():
         if fl["singular"]:
             a, b = fl["points"]
-            print(f"Внимание: группа {name} проходит особое положение: шарнир {b} проходит через ось "
-                  f"кулисы {a} (наименьшее расстояние {fl['min']:.3g} м), аналог угловой скорости кулисы "
+            print(f"Внимание: группа {flag_group(study, 'mu_' + name)} проходит особое положение: шарнир {b} "
+                  "проходит через ось "
+                  f"кулисы {a} (наименьшее расстояние {fmt(fl['min'], sig=3)} м), аналог угловой скорости кулисы "
                   "неограниченно растёт", file=sys.stderr)
     print("Проверка пройдена: механизм собирается во всех положениях цикла.")
 

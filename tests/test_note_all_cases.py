@@ -116,10 +116,39 @@ def test_no_program_or_worksheet_identifiers_in_figures(path, notes):
     assert [p for p in found if p.startswith(FIGURE_TEXT)] == []
 
 
+def case_notation(path) -> dict[str, str]:
+    """The case's own names rendered as a letter with a subscript («Y_P56» → «yP56» in the PDF
+    text): parameters the case titles but gives no symbol, whose subscript is not made of the
+    mechanism's point and link names (l_AB, h_1 are textbook; P56 is not) → their titles."""
+    from markupsafe import Markup
+    from reportgen import load_case
+    from reportgen.report.russian import param_symbol
+    study = load_case(path)
+    mech = study.mechanism if study.has_linkage else None
+    names = ({p for l in mech.links for p in l.points} | {l.name for l in mech.links}) if mech else set()
+    if not names:           # no linkage: no points to tell a textbook subscript by
+        return {}
+    textbook = re.compile("(?:%s)+" % "|".join(sorted(map(re.escape, names), key=len, reverse=True)))
+    out = {}
+    for name, (title, symbol) in study.spec.parameter_texts().items():
+        sub = name.partition("_")[2]
+        if title and not symbol and sub and not textbook.fullmatch(sub):
+            out[Markup(param_symbol(name)).striptags()] = Markup(title).striptags()
+    return out
+
+
+def notation_hits(path, text: str) -> list[str]:
+    """Lines of the note's text writing a case's own name (:func:`case_notation`) anywhere but its
+    row of the given data (the line holding its title)."""
+    return [line.strip() for rendered, title in case_notation(path).items() for line in text.splitlines()
+            if re.search(r"(?<!\w)%s(?!\w)" % re.escape(rendered), line) and title[:24] not in line]
+
+
 @pytest.mark.parametrize("path", ALL)
 def test_no_program_or_worksheet_identifiers(path, notes):
     _, text, _ = notes(path)
-    hits = re.findall(r"\b\w+_\w+\b", text)
+    hits = notation_hits(path, text)
+    hits += re.findall(r"\b\w+_\w+\b", text)
     hits += re.findall(r"\b(?:phi|omega|eps)\w*", text, re.I)
     hits += re.findall(r"\bлист(?!\s+формата)\w*", text, re.I)
     hits += [w for w in ("as printed", "Mathcad", "Совпадает") if w in text]

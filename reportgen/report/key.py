@@ -24,7 +24,7 @@ from ..style.numbers import fmt
 from .assemble import REFERENCES, _given_parameters, _linkage_data
 from .document import Column, Report, Section, ref
 from .key_names import convert, entry, group_title, shown
-from .russian import position_names
+from .russian import flag_group, position_names
 from .sections.common import as_written, pos_fmt, q_degrees
 
 CHECK_COLS = [Column("what", "Проверка", fmt=Markup), Column("value", "Расхождение", fmt=Markup),
@@ -194,11 +194,11 @@ def _results(study) -> Section:
             s.paragraph("Дополнительные положения в записке пронумерованы: " + ", ".join(extra) + ".")
         # the least transmission angles are found over the cycle: none for a case computed at its
         # given positions only (``cycle = false``), whose key failed here
-        flags = [(n[3:], fl) for n, fl in study.flags.items()] if study.has_cycle else []
+        flags = list(study.flags.items()) if study.has_cycle else []
         if flags:
-            rows = [{"g": "(" + g.replace("_", ", ") + ")", "min": math.degrees(fl["min"]),
+            rows = [{"g": flag_group(study, n), "min": math.degrees(fl["min"]),
                      "where": Markup(where_text(study, "kinematics", fl["q_min"])),
-                     "low": "ниже 40° — мал" if fl["low"] else "не ниже 40°"} for g, fl in flags]
+                     "low": "ниже 40° — мал" if fl["low"] else "не ниже 40°"} for n, fl in flags]
             s.table("Наименьшие углы передачи по группам", [
                 Column("g", "Группа"), Column("min", "μ<sub>min</sub>", "град", digits=1),
                 Column("where", "Где (положение)", fmt=Markup), Column("low", "Оценка")],
@@ -223,6 +223,7 @@ def _results(study) -> Section:
             caption = f"{kind.title}: {head[0].lower() + head[1:]}" if head else kind.title
             s.table(caption, cols, pd.DataFrame(rows), id=f"key-tab-{kind.name}" + (f"-{n}" if n else ""))
         if kind.name == "forces":
+            reactions_at_chosen(s, study)
             balance_by_position(s, study)
     return sec
 
@@ -312,6 +313,29 @@ def balance_by_position(sec: Section, study) -> None:
         cols.append(Column("M_bal_linkage", sub("M", "ур") + " без маховика", "Н·м", sig=5))
     sec.table("Уравновешивающий момент по положениям" if f.rotary else "Усилие гидроцилиндра по положениям",
               position_lead(study) + cols, f.table, id="key-bal-by-pos")
+
+
+def reactions_at_chosen(sec: Section, study) -> None:
+    """The reactions in the pairs at the position whose force analysis the note shows group by
+    group (the rows a student's tables by groups hold), by the note's position number, to the
+    decimals of the note's reaction tables (``sections.forces.reaction_digits``)."""
+    from .sections.common import chosen_position, pos_no
+    from .sections.forces import _R, _shown_pairs, reaction_digits
+    f = study.forces
+    lab = chosen_position(study)
+    labels = [str(x) for x in f.table["pos"]]
+    if lab not in labels:
+        return
+    row = f.table.iloc[labels.index(lab)]
+    rows = [{"pair": _R(k), "Rx": row["Rx_" + k], "Ry": row["Ry_" + k], "R": row["R_" + k]}
+            for k in _shown_pairs(f) if "R_" + k in f.table]
+    if not rows:
+        return
+    nd = reaction_digits(f)
+    sec.table(f"Реакции в кинематических парах (положение {pos_no(study, lab)})", [
+        Column("pair", "Реакция", fmt=Markup), Column("Rx", "<i>R</i><sub>x</sub>", "Н", sig=None, digits=nd),
+        Column("Ry", "<i>R</i><sub>y</sub>", "Н", sig=None, digits=nd),
+        Column("R", "<i>R</i>", "Н", sig=None, digits=nd)], pd.DataFrame(rows), id="key-react-chosen")
 
 
 def _groups_text(rows: list[dict]) -> str:
@@ -506,7 +530,7 @@ def _printed(study) -> Section | None:
         from .sections.dynamics import printed_block
         pr = study.dynamics.printed
         if pr is not None and len(pr):
-            printed_block(sec, pr)
+            printed_block(sec, pr, study)
     for kind in KINDS:
         if kind.name not in study.tasks():
             continue

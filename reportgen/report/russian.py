@@ -300,3 +300,24 @@ def expr_html(text: str, symbols: dict[str, Markup] | None = None) -> Markup:
             power = False
         out.append(piece)
     return Markup("").join(out)
+
+
+def flag_group(study, key: str) -> str:
+    """The structural group a transmission-angle flag ``mu_2_3`` belongs to, as chapter 1 names it:
+    «(2,3)», or «(1,2,3)» for the dyad of an actuator's initial mechanism."""
+    from ..mechanism.structure import decomposition
+    links = set(key[3:].split("_"))
+    for row in decomposition(study.structure, study.mechanism.driver)[0]:
+        if links <= set(row["g"].strip("()").split(",")):
+            return row["g"]
+    return "(" + ",".join(key[3:].split("_")) + ")"
+
+
+def flag_where(study, key: str) -> str:
+    """«в группе (4,5)», or «в начальном механизме (1,2,3)» where the flagged dyad lies in an
+    actuator's initial mechanism (chapter 1 calls it so, not a group)."""
+    from ..mechanism.structure import decomposition
+    g = flag_group(study, key)
+    initial = study.mechanism.driver.kind == "actuator" and \
+        g == decomposition(study.structure, study.mechanism.driver)[0][0]["g"]
+    return ("в начальном механизме " if initial else "в группе ") + g

@@ -313,7 +313,10 @@ class ProfileDrawing:
         pr = cam.profile(g)
         W, C = pr["W"], pr["C"]
         k = cam.k
-        fol = [self._follower(cam, p, full=(i == 0)) for i, p in enumerate(follower_positions(cam))]
+        # a rocker's arm whole with its pivot in both extreme positions (ψ = 0 and the far dwell, ψ_max),
+        # as the textbook drawing; a piece of it at the roller in the others
+        whole = (0, 2) if _rocker(cam) else (0,)
+        fol = [self._follower(cam, p, full=(i in whole)) for i, p in enumerate(follower_positions(cam))]
         # the drawing's extent holds the rollers (and pivots) whole, not only their centres
         rims = [np.asarray(c) + rad * np.array([[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]])
                 for seg in fol for c, rad in seg["circles"]]
@@ -336,7 +339,7 @@ class ProfileDrawing:
         if cam.contact != "flat":
             ax.plot(C[:, 0], C[:, 1], color=INK, lw=0.7, ls="-.", zorder=3)
         ax.add_patch(Circle((0, 0), syn.r0, fill=False, color=GREY, lw=0.6, ls="--", zorder=3))
-        if cam.flat_rocker:   # the arc of the pivot's positions in the inverted motion (radius a_w)
+        if _rocker(cam):      # the arc of the pivot's positions in the inverted motion (radius a_w)
             a0 = math.atan2(-syn.O[1], -syn.O[0])
             arc = a0 - k * np.linspace(0.0, max(follower_positions(cam)), 60)
             ax.plot(syn.a_w * np.cos(arc), syn.a_w * np.sin(arc), color=GREY, lw=0.6, ls="-.", zorder=3)

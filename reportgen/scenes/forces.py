@@ -126,6 +126,7 @@ class Vector:
     tex: str = ""          # mathtext label when it is not math_label(label) (components R^n, R^τ)
     back: str = ""         # internal reaction: the label of the opposite force when it is not
                            # pair_label(link, other) (links merged into one body)
+    base: tuple | None = None   # a sliding pair's point when the reaction acts off it (at h = M/N)
 
 
 @dataclass
@@ -148,6 +149,18 @@ class GroupDrawing(Drawing):
     vectors: list[Vector] = field(default_factory=list)
     constructed: list[Constructed] = field(default_factory=list)   # reactions found by construction
     method: str = ""              # Construction.method ("" where the polygon is drawn, not constructed)
+
+
+def _over_group(study, links: set, cols: dict, pt) -> bool:
+    """Whether point ``pt`` lies within the box of the points of the group's links."""
+    mech = study.mechanism
+    pts = [p for l in links for p in mech.link(l).points]
+    xs = [cols["x_" + p] for p in pts if "x_" + p in cols]
+    ys = [cols["y_" + p] for p in pts if "y_" + p in cols]
+    if not xs:
+        return False
+    tol = 1e-9 * mech.size()
+    return min(xs) - tol <= pt[0] <= max(xs) + tol and min(ys) - tol <= pt[1] <= max(ys) + tol
 
 
 def group_vectors(study, label: str, gi: int) -> tuple[list[Vector], list[dict], list[Vector]]:
@@ -176,15 +189,24 @@ def group_vectors(study, label: str, gi: int) -> tuple[list[Vector], list[dict],
                 moments.append(dict(label="Mур", M=pv["M"], link=p.b))
             continue
         F = np.array([pv["Rx"], pv["Ry"]])
-        at = (pv["x"], pv["y"])
+        at, base = (pv["x"], pv["y"]), None
+        if p.kind == KS.K_PRI and pv["N"] and abs(pv["Mp"] / pv["N"]) > 1e-9 * study.mechanism.size():
+            # a sliding pair's reaction acts h = M/N from the slider's point along the guide (the
+            # arm the note's table gives: analysis.forces xN, yN), not at the slider's point —
+            # drawn there when that point lies over the group (a yoke's arm of three mechanism
+            # sizes would shrink the scheme to nothing: drawn at the slider, the table gives h)
+            h = pv["Mp"] / pv["N"]
+            off = (pv["x"] + h * pv["ux"], pv["y"] + h * pv["uy"])
+            if _over_group(study, links, cols, off):
+                at, base = off, at
         if p.a in links and p.b in links:
-            internal.append(Vector(pair_label(p.a, p.b), F, at, "internal", p.b, p.a, kind=p.kind))
+            internal.append(Vector(pair_label(p.a, p.b), F, at, "internal", p.b, p.a, kind=p.kind, base=base))
         elif p.b in links:
             ext.append(Vector(pair_label(p.a, p.b), F, at, "unknown" if k in unknown else "known", p.b,
-                              kind=p.kind))
+                              kind=p.kind, base=base))
         elif p.a in links:
             ext.append(Vector(pair_label(p.b, p.a), -F, at, "unknown" if k in unknown else "known", p.a,
-                              kind=p.kind))
+                              kind=p.kind, base=base))
     order = {"load": 0, "known": 1, "unknown": 2}
     ext.sort(key=lambda v: order[v.role])
     return ext, moments, internal
@@ -367,6 +389,7 @@ class GroupForces:
             along = _along_bar(v, lengths[i] * mu_l, self._bars, NEAR_MM * mu_l)
             L = (lengths[i] + 4.0) * mu_l * (1 if (v.role == "load" and not along) or _opposes_load(v, ext) else -1)
             tips.append((v.at[0] + v.F[0] / n * L, v.at[1] + v.F[1] / n * L))
+            tips.append(v.at)            # a sliding pair's reaction off the slider (at h = M/N)
         allx = np.concatenate([xs, [t[0] for t in tips]])
         ally = np.concatenate([ys, [t[1] for t in tips]])
         # force polygon: the external forces link by link (the link with most forces first), so
@@ -478,6 +501,11 @@ class GroupForces:
             L = lengths[i] * mu_l
             color = {"load": INK, "known": INK, "unknown": BLUE}[v.role]
             ex, ey = v.F[0] / n, v.F[1] / n
+            if v.base is not None:       # the guide's line from the slider to where the reaction acts
+                ax.plot([v.base[0], v.at[0]], [v.base[1], v.at[1]], color=color, lw=0.5, ls=(0, (6, 2, 1, 2)),
+                        zorder=2)
+                cv.labels.add(0.5 * (v.base[0] + v.at[0]), 0.5 * (v.base[1] + v.at[1]), "$h$",
+                              prefer=(-ey, ex), fontsize=10, color=color)
             along = _along_bar(v, L, bars, cv.mm(NEAR_MM))
             # loads start at their point, reactions end at the pair; a reaction opposite to a load
             # at its point (R₀₅ against G₅) starts there too, so that the two do not cover each other

@@ -115,10 +115,28 @@ def _images(m, y, axis) -> tuple[int, ...]:
     return (1, -1)
 
 
+def _bearing(ax, x: float, dx: float, R: float, color) -> None:
+    """A shaft's support in the frame on the central axis (ГОСТ 2.770-68, подшипник радиальный,
+    simplified): two short bars along the shaft on both sides of it, from each a post to the
+    frame's hatched line — symmetric about the axis, as the whole scheme."""
+    b, half, e, w = 0.03 * R, 0.1 * dx, 0.07 * R, 0.15 * dx
+    for s in (1, -1):
+        ax.plot([x - half, x + half], [s * b, s * b], color=color, lw=1.4)
+        y0 = s * (b + e)
+        ax.plot([x, x], [s * b, y0], color=INK, lw=1.0)
+        ax.plot([x - w, x + w], [y0, y0], color=INK, lw=1.0)
+        for k in range(3):
+            x1 = x - w + 0.1 * dx * k
+            ax.plot([x1, x1 + 0.1 * dx], [y0, y0 + s * 0.1 * dx], color=INK, lw=0.8)
+
+
 def _scheme(ax, m, y, col, colors, dx, labels):
     """The scheme in the plane of the axes: every element on a carried axis off the central axis
-    (y = 0) is drawn at y and mirrored at −y (``_images``); labels on the upper image only."""
+    (y = 0) is drawn at y and mirrored at −y (``_images``); labels on the upper image only.  The
+    shafts of the moving members on the central axis (central wheels, carriers) run in the frame's
+    bearings (:func:`_bearing`)."""
     tick = 0.15 * dx
+    R = max(abs(y[wh.centre]) + wh.m * wh.z / 2 for wh in m.wheels.values())
     for name, wh in m.wheels.items():
         x, r, c = col[name] * dx, wh.m * wh.z / 2, colors[wh.member]
         for s in _images(m, y, wh.centre):
@@ -154,9 +172,23 @@ def _scheme(ax, m, y, col, colors, dx, labels):
             for s in sides:
                 ax.plot([x0 - 0.5 * dx, x0], [s * y[axis]] * 2, color=c, lw=1.6)
             labels.add(x0, y[axis], _name(mem), prefer=(-14, 3), color=c)
+            outer = [h for h in order[order.index(mem) + 1:] if any(v == h for v in m.axes.values())
+                     and abs(y[m.members[h]]) <= 1e-9]
+            if mem not in m.fixed and abs(y[axis]) <= 1e-9 and not outer:
+                # (a carrier inside another's hollow shaft runs in that one, not in the frame)
+                _bearing(ax, x0 - 0.3 * dx, dx, R, c)
         elif xs:
             for s in sides:
                 ax.plot([min(xs) - 0.3 * dx, max(xs) + 0.3 * dx], [s * y[axis]] * 2, color=c, lw=1.6)
+            if mem not in m.fixed and abs(y[axis]) <= 1e-9:
+                # at the end of the shaft farther from the other members' wheels
+                near = 0.1 * R + 0.1 * dx        # the symbol's reach from the axis (:func:`_bearing`)
+                others = [col[n] * dx for n, wh in m.wheels.items() if wh.member != mem
+                          and abs(y[wh.centre]) - wh.m * wh.z / 2 < near] or [math.inf]
+                room = {xb: min(abs(xb - xo) for xo in others) for xb in (max(xs) + 0.22 * dx, min(xs) - 0.22 * dx)}
+                xb = max(room, key=room.get)
+                if room[xb] >= 0.45 * dx:       # (no room between the columns: the symbol left out)
+                    _bearing(ax, xb, dx, R, c)
         if mem in m.fixed:
             ws = [wh for wh in m.wheels.values() if wh.member == mem]
             for wh in ws:

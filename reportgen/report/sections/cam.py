@@ -532,8 +532,10 @@ def _profile(sec, study, cam) -> None:
     if fig.refused:
         s.paragraph(f"В заданном масштабе {fig.refused} профиль не помещается на лист формата А4, поэтому принят "
                     f"наибольший помещающийся стандартный масштаб {fig.scale} (ГОСТ 2.302).")
+    arm = (" (в крайних положениях 0 и 2 — целиком, с опорой; штрихпунктирная дуга — положения опоры при "
+           "обращении движения)" if cam.follower == "rocker" and not cam.flat_rocker else "")
     s.paragraph(f"Профиль кулачка вычерчен на рисунке {ref('fig-cam-profile')} в масштабе {fig.scale}; толкатель "
-                f"показан в положениях {pos}. Координаты профиля приведены в таблице {ref('tab-cam-coords')}.")
+                f"показан в положениях {pos}{arm}. Координаты профиля приведены в таблице {ref('tab-cam-coords')}.")
     s.figure(f"Профиль кулачка (М {fig.scale})", d.svg, d.width_mm, id="fig-cam-profile")
     df = cam.profile_table().copy()
     for c in ("s", "x_c", "y_c", "r_c", "x", "y", "r", "rho_c", "rho"):

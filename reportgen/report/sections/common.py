@@ -5,11 +5,12 @@ import math
 from itertools import accumulate
 
 import pandas as pd
+from markupsafe import Markup
 
 from ...case import units as U
 from ...style.numbers import fmt
 from ..document import Column, Section
-from ..russian import position_names
+from ..russian import column_html, expr_html, position_names
 
 MAX_COLS = 8
 
@@ -142,6 +143,26 @@ def as_written(x) -> str:
     t = f"{float(x):.10g}"
     return fmt(float(t), digits=len(t.split(".")[1]) if "." in t and "e" not in t else 0, sig=None,
                exp_from=1e10 if "e" not in t else 1e6)
+
+
+def fit_condition(study, fit) -> tuple[Markup, Markup | None, Markup]:
+    """A fitted dimension's condition as the assignment table writes its data, its title, the position:
+    the left side in textbook symbols (:func:`russian.column_html`), a right side that is one
+    parameter of the case by its value and unit, and that parameter's Russian title when the case
+    gives one («высота шарнира 56 в рабочем положении», «y<sub>56</sub> = 0,4 м», not the case's
+    own name «Y_P56»; else None); the position ``at`` in the symbols the case gives (S_min → S<sub>min</sub>)."""
+    texts = study.spec.parameter_texts()
+    symbols = {k: sym for k, (_, sym) in texts.items() if sym}
+    lhs, _, rhs = (x.strip() for x in fit.condition.partition("="))
+    title = None
+    left = column_html(lhs) or expr_html(lhs, symbols)
+    cond = Markup("{}&nbsp;=&nbsp;{}").format(left, expr_html(rhs, symbols))
+    if rhs in study.params:
+        v, unit = value_with_unit(study.params[rhs])
+        unit = "" if unit == "—" else unit if unit == "°" else "\u00a0" + unit
+        cond = Markup("{}&nbsp;=&nbsp;{}{}").format(left, as_written(v), unit)
+        title = texts.get(rhs, (None, None))[0]
+    return cond, title, expr_html(fit.at, symbols)
 
 
 def tex_given(x) -> str:

@@ -750,14 +750,29 @@ def _flywheel(sec, study, d) -> None:
         s.paragraph("J<sub>доп</sub>&nbsp;≤&nbsp;0: собственной инерции машины достаточно, маховик не нужен.")
 
 
-def printed_block(s, pr: pd.DataFrame) -> None:
-    """The comparison with the values printed in the worksheet (the answer key, report/key.py)."""
+def printed_name(study, key: str, title: str) -> Markup:
+    """The name of a printed value ``column@label`` at the note's position number: the source's
+    own mark of the position («ω(f)») written «ω (положение 13)» — the key's tables speak of the
+    note's positions; a scalar's title as it is."""
+    name = Markup(title) if title else Markup(escape(key))
+    col, _, lab = key.partition("@")
+    if not lab:
+        return name
+    mark = str(Markup("({})").format(lab))
+    if str(name).endswith(mark):
+        name = Markup(str(name)[:-len(mark)].rstrip())
+    return Markup("{}&nbsp;(положение&nbsp;{})").format(name, pos_no(study, lab))
+
+
+def printed_block(s, pr: pd.DataFrame, study) -> None:
+    """The comparison with the values printed in the worksheet (the answer key, report/key.py),
+    positions by the note's numbers (:func:`printed_name`)."""
     bad = pr[~pr["within"]]
     s.paragraph(f"Значения, напечатанные в исходном расчёте, сопоставлены с вычисленными в таблице "
                 f"{ref('tab-dyn-printed')} (допуск — единица последнего напечатанного разряда). Совпадают "
                 f"{int(pr['within'].sum())} из {len(pr)}.")
     df = pr.copy()
-    df["name"] = [Markup(t) if t else k for t, k in zip(df["title"], df["key"])]
+    df["name"] = [printed_name(study, k, t) for t, k in zip(df["title"], df["key"])]
     df["ok"] = ["да" if w else "нет" for w in df["within"]]
     # each exact value to two digits more than printed, so the row compares digit by digit
     df["exact"] = [fmt(c, sig=_printed_sig(t) + 2, exp_from=1e9) for t, c in zip(df["printed"], df["computed"])]
@@ -769,7 +784,7 @@ def printed_block(s, pr: pd.DataFrame) -> None:
         Column("ok", "Совпадает")], df, id="tab-dyn-printed",
         highlight_rows=[int(i) for i in np.flatnonzero(~pr["within"].to_numpy())])
     for _, r in bad.iterrows():
-        title = r["title"] or r["key"]
+        title = printed_name(study, r["key"], r["title"])
         note = r["note"] or "расхождение превышает единицу последнего напечатанного разряда."
         s.paragraph(Markup(f"Примечание — {title}: напечатано {_as_printed(r['printed'], r['value'])}, точное значение "
                            f"{fmt(r['computed'], sig=6)}. ") + Markup(note))

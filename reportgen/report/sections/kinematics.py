@@ -18,9 +18,9 @@ from ...scenes.draw import gost_ratio, mu_text
 from ...style.numbers import fmt, fmt_given, fmt_pct, tex_num
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
-from ..russian import expr_html
+from ..russian import expr_html, flag_group, flag_where
 from . import vectors
-from .common import (chosen_position, chunked_tables, html_point, input_word, pos_fmt, pos_no, q_degrees, q_header, sub,
+from .common import (chosen_position, chunked_tables, fit_condition, html_point, input_word, pos_fmt, pos_no, q_degrees, q_header, sub,
                      swing_text, tex_point)
 
 NEEDS = ("kinematics", "cycle")
@@ -67,17 +67,6 @@ def _links(study):
     cyc = study.cycle if study.has_cycle else study.kinematics
     return [l for l in study.mechanism.moving if not (d.kind == "actuator" and l.name == d.rod)
             and float(np.abs(cyc["wq_" + l.name]).max()) > 1e-12]
-
-
-def _flag_group(study, key: str) -> str:
-    """The structural group a transmission-angle flag ``mu_2_3`` belongs to, as chapter 1 names it:
-    «(2,3)», or «(1,2,3)» for the dyad of an actuator's initial mechanism."""
-    from .structure import decomposition
-    links = set(key[3:].split("_"))
-    for row in decomposition(study)[0]:
-        if links <= set(row["g"].strip("()").split(",")):
-            return row["g"]
-    return "(" + ",".join(key[3:].split("_")) + ")"
 
 
 def _turning_link(study, key: str) -> str | None:
@@ -135,15 +124,6 @@ def _slider_advice(study, key: str) -> str | None:
     return None
 
 
-def _flag_where(study, key: str) -> str:
-    """«в группе (4,5)», or «в начальном механизме (1,2,3)» where the flagged dyad lies in an
-    actuator's initial mechanism (chapter 1 calls it so, not a group)."""
-    from .structure import decomposition
-    g = _flag_group(study, key)
-    initial = study.mechanism.driver.kind == "actuator" and g == decomposition(study)[0][0]["g"]
-    return ("в начальном механизме " if initial else "в группе ") + g
-
-
 def _strokes(study, s, exact: bool = True) -> tuple[float, float, float, float]:
     """Crank coordinates of the output's extreme positions (lowest, highest), the crank angle of
     the shorter stroke (°) and the coefficient of change of the mean speed K = (360° − that
@@ -166,7 +146,8 @@ def _strokes(study, s, exact: bool = True) -> tuple[float, float, float, float]:
 QUICK_RETURN_K = 1.05     # below it the strokes take practically the same time: no slow and fast stroke
 
 
-def _quick_return(fast: float, K: float, working: str | None = None, direction: int = 1, idle: bool = True) -> str:
+def _quick_return(fast: float, K: float, working: str | None = None, direction: int = 1, idle: bool = True,
+                  share: float | None = None) -> str:
     """Engineering reading of K > 1 (Артоболевский, гл. «Синтез»): the slow stroke is the working one.
     ``working`` — which stroke the case's loads resist (:func:`_working_stroke`): where it is the
     fast one the note says so and what to change: the crank turned the other way (``direction``:
@@ -175,11 +156,20 @@ def _quick_return(fast: float, K: float, working: str | None = None, direction: 
     stroke becomes the slow one. ``idle`` — whether the other stroke is idle (:func:`_return_idle`):
     only then is the fast return said to shorten the cycle (at the working stroke's speed, the
     productivity argument of a shaper); otherwise it is the return stroke (обратный), whose
-    resistance the case gives too (a compressor's suction stroke)."""
+    resistance the case gives too (a compressor's suction stroke). ``share`` — the part of the
+    working stroke over which the loads act (:func:`_working_share`): under :data:`SHORT_LOAD_SHARE`
+    (a loom's beat-up at the end of the swing) a slow stroke gains nothing, its mean speed does not
+    set the speed at which the short load is overcome, and no other direction is advised."""
     if not K > QUICK_RETURN_K:
         return ""
     head = (f" Один ход выходного звена занимает {fmt(360 - fast, digits=1)}°, другой — {fmt(fast, digits=1)}° "
             f"поворота кривошипа: ")
+    if working == "fast" and share is not None and share < SHORT_LOAD_SHARE:
+        return head + (f"силы сопротивления действуют на быстром ходе, но лишь на {fmt(100 * share, digits=0)}&nbsp;% "
+                       f"его ({fmt(share * fast, digits=0)}° поворота кривошипа из {fmt(fast, digits=1)}°); такая кратковременная нагрузка преодолевается со скоростью, "
+                       "которую выходное звено имеет в этих положениях, а не со средней скоростью хода, поэтому "
+                       "медленный рабочий ход выигрыша не дал бы и направление вращения кривошипа оставлено "
+                       "заданным.")
     if working == "fast":
         other = "по часовой стрелке" if direction > 0 else "против часовой стрелки"
         return head + (f"силы сопротивления действуют на быстром ходе, т. е. при заданном направлении вращения "
@@ -224,6 +214,37 @@ def _stroke_resistances(study) -> tuple[float, float, bool] | None:
     a = float(np.interp(q1, q, R) - np.interp(q2, q, R))      # the stroke from q₁ to q₂ (≥ 0)
     b = float(R[0] - R[-1]) - a
     return a, b, (q2 - q1) > period / 2
+
+
+SHORT_LOAD_SHARE = 1 / 3   # a resistance acting over less than this share of its stroke is a short load
+
+
+def _working_share(study) -> float | None:
+    """The share of the working stroke's crank turn over which the case's loads resist (the
+    reduced moment of the loads, weights left out, below zero; :func:`_stroke_resistances`): 1
+    for a cutting force over the whole stroke, ≈ 0,1 for a beat-up force at its end.  None where
+    the working stroke is not told."""
+    res = _stroke_resistances(study)
+    if res is None or _working_stroke(study) is None:
+        return None
+    a, b, _ = res
+    cyc = study.dynamics.cycle
+    q = cyc["q"].to_numpy()
+    cols = ["M_" + ld.name for ld in study.dynamics.loads.loads if ld.kind != "weight"]
+    total = sum(cyc[c].to_numpy() for c in cols)
+    m = np.minimum(total, 0.0)
+    resisting = m < -1e-9 * max(float(np.abs(total).max()), 1e-300)
+    q1, q2 = sorted((study.scalars["output_q1"], study.scalars["output_q2"]))
+    inside = (q >= q1) & (q <= q2)
+    stroke = inside if a >= b else ~inside
+    dq = np.diff(q)
+    mid = 0.5 * (q[1:] + q[:-1])
+    inner = (mid >= q1) & (mid <= q2)
+    on = (stroke[1:] & stroke[:-1]) & (inner if a >= b else ~inner)
+    length = float(dq[on].sum())
+    if length <= 0:
+        return None
+    return float(dq[on & resisting[1:] & resisting[:-1]].sum()) / length
 
 
 def _working_stroke(study) -> str | None:
@@ -333,10 +354,12 @@ def build(study) -> Section:
         s1.children.remove(fig)
     if study.fits:
         s1.paragraph("Неизвестные размеры подобраны из условий задания (решение уравнений с точностью 10⁻¹²):")
-        fdf = pd.DataFrame([{"name": f.name, "cond": f.condition, "at": f.at, "value": f.value} for f in study.fits])
+        rows = [(f, *fit_condition(study, f)) for f in study.fits]
+        fdf = pd.DataFrame([{"name": f.name, "cond": Markup("{} ({})").format(c, t) if t else c, "at": at,
+                             "value": f.value} for f, c, t, at in rows])
         s1.table("Подобранные размеры", [Column("name", "Величина", fmt=expr_html),
-                                          Column("cond", "Условие", fmt=expr_html),
-                                          Column("at", "Положение", fmt=expr_html),
+                                          Column("cond", "Условие", fmt=Markup),
+                                          Column("at", "Положение", fmt=Markup),
                                           Column("value", "Значение", "м", digits=4)],
                  fdf, id="tab-fits")
     cols = []
@@ -510,7 +533,7 @@ def build(study) -> Section:
     guides, guide_note = _guide_transmission(study)
     if flags or guides:
         # the input's coordinate as the other tables count it (a crank's angle from the cycle's start)
-        rows = [{"g": _flag_group(study, c), "mu": v["min"],
+        rows = [{"g": flag_group(study, c), "mu": v["min"],
                  "q": q_degrees(study, v["q_min"]) % 360.0 if rotary else v["q_min"]} for c, v in flags.items()]
         for r in guides:
             if r["q"] is not None:
@@ -616,7 +639,7 @@ def _guide_transmission(study) -> tuple[list[dict], str]:
         px, py = mech.link(pri.links[0]).points[pivot]
         dx, dy = math.cos(pri.angle), math.sin(pri.angle)
         e = abs(pri.offset - (dx * (py - pri.line_point[1]) - dy * (px - pri.line_point[0])))
-        label = _flag_group(study, 'mu_' + key)
+        label = flag_group(study, 'mu_' + key)
         name = f"{label} {g.kind_ru}".strip()
         if e <= 1e-9 * mech.size() or fl["min"] <= e:
             if e <= 1e-9 * mech.size():
@@ -959,7 +982,7 @@ def _output_diagrams(s5: Section, study, out: tuple, fig_id: str, several: bool,
                      f"θ&nbsp;=&nbsp;{fmt(abs(180 - work), digits=1)}°, коэффициент изменения средней скорости "
                      f"<i>K</i>&nbsp;=&nbsp;{fmt(K, digits=3)}."
                      + _quick_return(work, K, _working_stroke(study) if main else None, mech.driver.direction,
-                                     _return_idle(study) if main else True))
+                                     _return_idle(study) if main else True, _working_share(study) if main else None))
     s5.paragraph(origin)
     s5.figure(f"Кинематические диаграммы выходного звена: {title}" if several else
               "Кинематические диаграммы выходного звена", diag.svg, diag.width_mm, id=fig_id)
@@ -1022,7 +1045,8 @@ def _speed_lines(study) -> list[str]:
         else:
             out.append(f"{what} на медленном ходе (больший угол поворота {input_word(d, 'gen')}) "
                        f"{slow}&nbsp;{unit}, на быстром — {fast}&nbsp;{unit} {K}.")
-            if _working_stroke(study) == "fast":
+            share = _working_share(study)
+            if _working_stroke(study) == "fast" and not (share is not None and share < SHORT_LOAD_SHARE):
                 other = "по часовой стрелке" if d.direction > 0 else "против часовой стрелки"
                 out.append(f"При заданном направлении вращения {input_word(d, 'gen')} рабочий ход выходного звена — "
                            f"быстрый (подраздел {ref('sec-diagrams')}); при вращении {other} рабочим станет "
@@ -1083,7 +1107,7 @@ def conclusion_lines(study) -> list[str]:
     for c, v in study.flags.items():
         mu = math.degrees(v["min"])
         if mu >= 40:
-            fine.append(f"{_flag_where(study, c)} {fmt(mu, digits=1)}°")
+            fine.append(f"{flag_where(study, c)} {fmt(mu, digits=1)}°")
             continue
         low.append(c)
         crank = _turning_link(study, c)
@@ -1098,7 +1122,7 @@ def conclusion_lines(study) -> list[str]:
                     "Угол передачи можно увеличить, удлинив шатун группы или сместив опору выходного звена "
                     "так, чтобы в крайних положениях шатун был ближе к перпендикуляру к выходному звену "
                     "(повторить синтез с ограничением μ ≥ 40°)"))
-        out.append(f"Наименьший угол передачи {_flag_where(study, c)} — {fmt(mu, digits=1)}°{note}.")
+        out.append(f"Наименьший угол передачи {flag_where(study, c)} — {fmt(mu, digits=1)}°{note}.")
     if fine:
         # «работоспособен» only of a mechanism no group of which is below 40°
         out.append(("Наименьший угол передачи (" if len(fine) == 1 else "Наименьшие углы передачи (")

@@ -11,7 +11,7 @@ from ...scenes.mechanism import AssurGroups, KinematicScheme
 from ..document import Column, Section, ref
 from ..formulas import inline_math
 from ..russian import expr_html, plural
-from .common import html_point, input_word, pair_label
+from .common import fit_condition, html_point, input_word, pair_label
 
 NEEDS = ("structure", "kinematics")
 
@@ -147,8 +147,12 @@ def conclusion_lines(study) -> list[str]:
     st = study.structure
     out = [f"Механизм имеет одну степень свободы (W&nbsp;=&nbsp;{st.W}), структурная формула "
            f"{decomposition(study)[1]}, механизм {_roman(st.mech_class)} класса."]
-    fits = [Markup("{}&nbsp;=&nbsp;{}&nbsp;м (условие {} при {})").format(
-        expr_html(f.name), fmt(f.value, digits=4), expr_html(f.condition), expr_html(f.at)) for f in study.fits]
+    fits = []
+    for f in study.fits:
+        cond, title, at = fit_condition(study, f)
+        said = Markup(": {} {},").format(title, cond) if title else Markup(" {}").format(cond)
+        fits.append(Markup("{}&nbsp;=&nbsp;{}&nbsp;м (условие{} при {})").format(
+            expr_html(f.name), fmt(f.value, digits=4), said, at))
     if len(fits) == 1:
         out.append(Markup("Подобран размер {}.").format(fits[0]))
     elif fits:            # one sentence for all of them, not one each
