@@ -43,6 +43,14 @@ def _exact_text(q: Fraction) -> str:
     return str(q.numerator).replace("-", "−") if q.denominator == 1 else fmt(float(q), sig=7)
 
 
+def _direct_text(u: float, exact: Fraction) -> str:
+    """The ratio by the poles' velocities (floating point) in prose: whole, as the exact ratio, where it
+    agrees with a whole exact ratio to 10⁻⁹; else to 7 digits as the rest of the note."""
+    if exact.denominator == 1 and abs(u - exact.numerator) <= 1e-9 * max(1.0, abs(u)):
+        return _exact_text(exact)
+    return fmt(u, sig=7)
+
+
 def _ratio_column(rows) -> dict:
     """The format of the ratios' column: whole numbers when every set gives a whole ratio, else 6 digits."""
     whole = rows and all(abs(r["u"] - round(r["u"])) < 1e-12 for r in rows)
@@ -443,7 +451,7 @@ def _picture(sec: Section, tr) -> None:
     s.formula(rf"u^{{граф}}_{{{m.inp}\,{m.out}}} = {prod}", tex_num(st.u_graph, sig=5))
     s.paragraph(f"Расхождение графического и аналитического значений: {_pct(d)} % (отрезки планов "
                 f"измерены с точностью 0,5 мм). Прямой расчёт по равенству скоростей в полюсах даёт "
-                f"<i>u</i> = {fmt(tr.ratio_direct, sig=7)}, отличие от формулы Виллиса "
+                f"<i>u</i> = {_direct_text(tr.ratio_direct, tr.ratio_fraction)}, отличие от формулы Виллиса "
                 f"{_pct(tr.scalars['train_u_discrepancy_pct'])} %.")
 
 
