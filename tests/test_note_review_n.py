@@ -1,0 +1,65 @@
+"""Linkage notes reviewed as a ТММ teacher grades them, on mechanisms new to cases/ (issue 9,
+session 12, helper review8): a sewing machine's needle bar and thread take-up (two groups on one
+crank), a slider driving a slotted rocker through a stone on its pin (ВВП + ВПВ attached to the
+slider), a slotted bell-crank driving a vertical plunger (ВВВ + ПВП). Each test fails without its fix."""
+import re
+from pathlib import Path
+
+import pytest
+
+CASES = Path(__file__).resolve().parents[1] / "cases"
+
+
+def _load(name):
+    from reportgen import load_case
+    return load_case(CASES / f"{name}.toml")
+
+
+@pytest.fixture(scope="module")
+def stone_rocker():
+    return _load("slider_stone_rocker")
+
+
+@pytest.fixture(scope="module")
+def plunger():
+    return _load("rocker_plunger_pvp")
+
+
+def _notes(study, group_index=-1):
+    """The «где» explanations of a group's velocity and acceleration equations as plain text."""
+    from reportgen.analysis.plans import read_velocities
+    from reportgen.report.sections import vectors
+    from reportgen.report.sections.common import chosen_position
+    k = study.kinematics
+    row = k[k["pos"] == chosen_position(study)].iloc[0]
+    vrow = read_velocities(row, study, 0.01)
+    vf, vn, af, an = vectors.group_equations(study, vrow, study.structure.groups[group_index])
+    plain = lambda xs: [" ".join(re.sub(r"<[^>]+>", "", str(x)).split()) for x in xs]
+    return plain(vn), plain(an)
+
+
+def test_stone_on_translating_slider_says_why_known(stone_rocker):
+    """The stone 4 sits on the pin E of the slider 3. The note wrote «V̄_E4 = V̄_E3 — известна» and
+    never said where V̄_E3 is on the plan: the slider translates, so V̄_E3 = V̄_B (the plan's b,
+    drawn with the group (2,3)). Now the equality and the reason are written, for a as well."""
+    vn, an = _notes(stone_rocker)
+    v = next(n for n in vn if "соединяет звено 4 со звеном 3" in n)
+    assert "VE4 = VE3 = VB" in v and "движется поступательно" in v, v
+    a = next(n for n in an if n.startswith("aE4 = aE3"))
+    assert a.startswith("aE4 = aE3 = aB") and "поступательно" in a, a
+
+
+def test_pvp_equations_joined_by_inner_joint(plunger):
+    """ПВП group (stone 4 in the slot of the rocker 3, plunger 5 on the frame's guide): the two
+    equations are written for V̄_E4 (on link 3's slot) and V̄_E (on the frame's guide) and nothing
+    said they are one point, so the plan's intersection had no stated reason. Now the inner joint
+    is named: V̄_E4 = V̄_E5 = V̄_E — звенья 4 и 5 соединены шарниром E; likewise for a."""
+    vn, an = _notes(plunger)
+    assert any("VE4 = VE5 = VE — звенья 4 и 5 соединены шарниром E" in n in n for n in vn), vn
+    assert any("aE4 = aE5 = aE" in n for n in an), an
+
+
+def test_other_groups_have_no_inner_joint_sentence(stone_rocker):
+    """The joining sentence belongs to ПВП only: a ВВП on the frame's guide has none."""
+    vn, an = _notes(stone_rocker, group_index=1)
+    assert not any("соединены шарниром" in n for n in vn), vn
