@@ -63,3 +63,41 @@ def test_other_groups_have_no_inner_joint_sentence(stone_rocker):
     """The joining sentence belongs to ПВП only: a ВВП on the frame's guide has none."""
     vn, an = _notes(stone_rocker, group_index=1)
     assert not any("соединены шарниром" in n for n in vn), vn
+
+
+def _guide_stub_lines(fig, study, joint_name):
+    """Lines of the groups figure through the slider point of a pair and along its guide."""
+    import numpy as np
+    from reportgen.report.sections.common import chosen_position
+    k = study.kinematics
+    row = k[k["pos"] == chosen_position(study)].iloc[0]
+    j = next(j for j in study.mechanism.prismatic if j.name == joint_name)
+    a = j.angle + float(row[f"phi_{j.links[0]}"])
+    x, y = float(row[f"x_{j.point}"]), float(row[f"y_{j.point}"])
+    out = []
+    for ax in fig.axes:
+        for ln in ax.lines:
+            xs, ys = ln.get_data()
+            if len(xs) != 2:
+                continue
+            dx, dy = xs[1] - xs[0], ys[1] - ys[0]
+            n = np.hypot(dx, dy)
+            if n == 0:
+                continue
+            along = abs(dx * np.sin(a) - dy * np.cos(a)) / n < 1e-6
+            through = abs((x - xs[0]) * dy - (y - ys[0]) * dx) / n < 1e-9
+            mid = np.hypot((xs[0] + xs[1]) / 2 - x, (ys[0] + ys[1]) / 2 - y) < 1e-9
+            if along and through and mid:
+                out.append(ln)
+    return out
+
+
+def test_pvp_group_drawn_with_its_slot(plunger, captured):
+    """Figure 1.2 of the plunger drive: the ПВП group (4,5) showed the plunger on its hatched
+    guide and the stone 4 hanging in the air — the slot of the rocker 3, the element of the pair
+    by which the group is attached, was not drawn. Now a piece of the slot's line runs through
+    the stone (centred on E, along the slot)."""
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.mechanism import AssurGroups
+    AssurGroups(chosen_position(plunger)).draw(plunger)
+    assert len(_guide_stub_lines(captured[-1], plunger, "43")) == 1
