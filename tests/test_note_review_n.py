@@ -101,3 +101,20 @@ def test_pvp_group_drawn_with_its_slot(plunger, captured):
     from reportgen.scenes.mechanism import AssurGroups
     AssurGroups(chosen_position(plunger)).draw(plunger)
     assert len(_guide_stub_lines(captured[-1], plunger, "43")) == 1
+
+
+@pytest.fixture(scope="module")
+def sewing():
+    return _load("sewing_needle_takeup")
+
+
+def test_repeating_delta_written_as_fraction(sewing):
+    """The sewing machine's δ is given as «1/15»: the note printed «δ = 0,06666666667» (eleven
+    digits, in the data, the flywheel's formulas, the conclusion and the key). A given value that
+    is a repeating fraction is written as the fraction the case gives; terminating ones stay
+    decimals (1/25 → 0,04)."""
+    from reportgen.report.sections.common import as_written
+    from reportgen.report.sections.dynamics import conclusion_lines
+    text = " ".join(conclusion_lines(sewing))
+    assert "δ&nbsp;=&nbsp;1/15 " in text and "0,0666666" not in text, text
+    assert as_written(1 / 25) == "0,04" and as_written(2 / 3) == "2/3" and as_written(0.123456789) == "0,123456789"

@@ -658,7 +658,7 @@ def _flywheel(sec, study, d) -> None:
     w, dl = st.omega_m, st.delta
     # a given δ substituted as the case writes it (0,04, not 0,04000); a found one to 4 digits
     dl_w = as_written(dl)
-    dl_tex = (_t(dl, sig=4) if d.inverse is not None
+    dl_tex = (_t(dl, sig=4) if d.inverse is not None else dl_w if "/" in dl_w
               else _t(dl, sig=None, digits=len(dl_w.split(",")[1]) if "," in dl_w else 0))
     if d.inverse is not None:
         inv, u = d.inverse, st.ratio
