@@ -118,3 +118,17 @@ def test_repeating_delta_written_as_fraction(sewing):
     text = " ".join(conclusion_lines(sewing))
     assert "δ&nbsp;=&nbsp;1/15 " in text and "0,0666666" not in text, text
     assert as_written(1 / 25) == "0,04" and as_written(2 / 3) == "2/3" and as_written(0.123456789) == "0,123456789"
+
+
+def test_small_flywheel_judged(sewing, stone_rocker):
+    """The sewing machine needs J_доп = 5,7·10⁻⁶ кг·м² — 1,8 % of J_I: the note proposed a rim of
+    D₂ = 0,027 м and 9 g without a word. A teacher expects the judgement: without it δ would be
+    δ·J_I/(J_I − J_доп) ≈ 0,0679, so a pulley on the motor shaft does the flywheel's work. A
+    machine whose flywheel is most of J_I gets no such sentence."""
+    from reportgen.report.sections.dynamics import conclusion_lines
+    text = " ".join(conclusion_lines(sewing))
+    r = sewing.dynamics.result
+    d0 = sewing.dynamics.settings.delta * r.J_I / (r.J_I - r.J_flywheel)
+    assert "Маховик мал" in text and "можно не ставить" in text and "J<sub>м</sub>." in text, text
+    assert f"{d0:.3g}".replace(".", ",") in text, (d0, text)
+    assert "Маховик мал" not in " ".join(conclusion_lines(stone_rocker))
