@@ -450,6 +450,12 @@ def _centre(study, rows):
     return float(rows[0][f"x_{p}"]), float(rows[0][f"y_{p}"])
 
 
+def _guide_angle(row, j) -> float:
+    """Direction of a prismatic pair's guide line at a position: the line's angle in the guide
+    link's own axes plus the link's angle (0 for the frame)."""
+    return j.angle + (float(row[f"phi_{j.links[0]}"]) if j.links[0] != FRAME else 0.0)
+
+
 @dataclass
 class GroupsDrawing(Drawing):
     """The Assur groups drawn apart: per panel (the initial mechanism, then each group) its title,
@@ -471,6 +477,7 @@ class AssurGroups:
     GUIDE_MM = 34.0      # a fixed guide reaches 14 mm past its slider each side (draw._guide), and hatch
     CAPTION_MM = 11.0    # two lines under each drawing: the group and its scale
     CAPTION_W = 32.0     # «μl = 0,0025 м/мм» at 9 pt, with a gap to the next
+    STUB_MM = 12.0       # the element of a moving guide reaches this far each side of its slider
 
     def __init__(self, label: str):
         self.label = label
@@ -500,6 +507,20 @@ class AssurGroups:
                 units = [merged] + [u for i, u in enumerate(units) if i not in (ic, ir)]
         return units
 
+    def _guide_elements(self, pn, mech, row, links: set) -> None:
+        """An external prismatic pair whose guide is a moving link of an earlier group (a stone in
+        the slot of a rocker): the group is drawn with that pair's element, a piece of the guide's
+        line through the slider (as a frame guide is drawn with its hatched piece); without it the
+        stone hung in the air and the pair by which the group is attached was not shown."""
+        for j in mech.prismatic:
+            if j.links[1] not in links or j.links[0] in links or j.links[0] == FRAME or j.driving:
+                continue
+            a = _guide_angle(row, j)
+            x, y = float(row[f"x_{j.point}"]), float(row[f"y_{j.point}"])
+            r = pn.mm(self.STUB_MM)
+            pn.ax.plot([x - r * np.cos(a), x + r * np.cos(a)], [y - r * np.sin(a), y + r * np.sin(a)],
+                       color=INK, lw=1.0, zorder=1, solid_capstyle="butt")
+
     def draw(self, study) -> GroupsDrawing:
         from ..style import mplstyle
         from .draw import Panel, mu_text, panel_scales
@@ -520,6 +541,10 @@ class AssurGroups:
                 if j.links[0] == FRAME and j.links[1] in links:
                     pw = max(pw, self.GUIDE_MM * abs(np.cos(j.angle)))
                     ph = max(ph, self.GUIDE_MM * abs(np.sin(j.angle)))
+                elif j.links[1] in links and j.links[0] not in links:      # the element of a moving guide
+                    a = _guide_angle(row, j)
+                    pw = max(pw, 2 * self.STUB_MM * abs(np.cos(a)) + 4)
+                    ph = max(ph, 2 * self.STUB_MM * abs(np.sin(a)) + 4)
             centre = ((min(xs) + max(xs)) / 2, (min(ys) + max(ys)) / 2)
             parts.append((g, links, centre, max(np.ptp(xs), floor), max(np.ptp(ys), floor), pw, ph))
         mus = panel_scales([p[3:] for p in parts], self.PAGE_W, self.MAX_H, self.CAPTION_W)
@@ -531,6 +556,7 @@ class AssurGroups:
         for (g, links, centre, w, h, pw, ph), mu, wi in zip(parts, mus, widths):
             pn = Panel(fig, (x0, self.CAPTION_MM, wi, height), centre, mu)
             draw_mechanism(pn, mech, row, only=links, lw=1.4)
+            self._guide_elements(pn, mech, row, links)
             for j in mech.joints:
                 if j.kind == "R" and set(j.links) & links and not set(j.links) <= links | {FRAME}:
                     x, y = float(row[f"x_{j.point}"]), float(row[f"y_{j.point}"])

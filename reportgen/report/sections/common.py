@@ -139,8 +139,15 @@ def value_with_unit(q) -> tuple[float, str]:
 
 def as_written(x) -> str:
     """A given value as the case writes it (shortest representation, no padding zeros):
-    0.11 → «0,11», 8.0 → «8», 20.0000001 → «20»."""
+    0.11 → «0,11», 8.0 → «8», 20.0000001 → «20»; a value no one writes as a decimal (a case's
+    «1/15», a repeating fraction of 8 or more significant digits) as the simple fraction it is:
+    «1/15», not «0,06666666667»."""
     t = f"{float(x):.10g}"
+    if "e" not in t and len(t.lstrip("-0.").replace(".", "")) >= 8:
+        from fractions import Fraction
+        f = Fraction(float(x)).limit_denominator(1000)
+        if f.denominator > 1 and abs(float(f) - float(x)) <= 1e-12 * abs(float(x)):
+            return f"{'−' if f < 0 else ''}{abs(f.numerator)}/{f.denominator}"
     return fmt(float(t), digits=len(t.split(".")[1]) if "." in t and "e" not in t else 0, sig=None,
                exp_from=1e10 if "e" not in t else 1e6)
 

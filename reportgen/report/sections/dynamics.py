@@ -658,7 +658,7 @@ def _flywheel(sec, study, d) -> None:
     w, dl = st.omega_m, st.delta
     # a given δ substituted as the case writes it (0,04, not 0,04000); a found one to 4 digits
     dl_w = as_written(dl)
-    dl_tex = (_t(dl, sig=4) if d.inverse is not None
+    dl_tex = (_t(dl, sig=4) if d.inverse is not None else dl_w if "/" in dl_w
               else _t(dl, sig=None, digits=len(dl_w.split(",")[1]) if "," in dl_w else 0))
     if d.inverse is not None:
         inv, u = d.inverse, st.ratio
@@ -974,6 +974,25 @@ def _delta_judgement(st) -> list[str]:
     return [f"Коэффициент неравномерности хода δ&nbsp;=&nbsp;{as_written(d)}: {rng}; {verdict}."]
 
 
+SMALL_FLYWHEEL = 0.05     # J_доп below this share of J_I: the machine's own rotating masses nearly suffice
+
+
+def _small_flywheel(r, delta: float, u: float) -> list[str]:
+    """Engineering judgement on a flywheel that is a small part of the required J_I (a sewing
+    machine's crank and motor rotor already give nearly all of it): without it, by J_I·δ ≈ const
+    (J_I = ΔT_нб/(ω_ср²·δ), Мерцалов [2]), δ₀ ≈ δ·J_I/(J_I − J_доп) — a few per cent above the
+    given δ, so no separate flywheel is needed when the shaft's rotating parts give J_доп."""
+    if not 0 < r.J_flywheel < SMALL_FLYWHEEL * r.J_I:
+        return []
+    d0 = delta * r.J_I / (r.J_I - r.J_flywheel)
+    share = fmt(100 * r.J_flywheel / r.J_I, sig=2)
+    need = "J<sub>м</sub>" if u != 1.0 else "J<sub>доп</sub>"
+    return [f"Маховик мал: J<sub>доп</sub> составляет {share}&nbsp;% требуемого J<sub>I</sub>, заданную неравномерность "
+            f"почти полностью обеспечивают звенья и вращающиеся массы привода; без маховика δ&nbsp;≈&nbsp;δ·J<sub>I</sub>/"
+            f"(J<sub>I</sub>&nbsp;−&nbsp;J<sub>доп</sub>)&nbsp;=&nbsp;{fmt(d0, sig=3)}. Отдельный маховик можно не ставить, "
+            f"если детали, вращающиеся на этом валу (шкив, муфта), имеют момент инерции не менее {need}."]
+
+
 def conclusion_lines(study) -> list[str]:
     """HTML lines about the dynamics for the ЗАКЛЮЧЕНИЕ (assemble._conclusion)."""
     d = study.dynamics
@@ -1012,6 +1031,7 @@ def conclusion_lines(study) -> list[str]:
                    f"m&nbsp;=&nbsp;{fmt(fw.rim.m, sig=4)}&nbsp;кг или диск D&nbsp;=&nbsp;{fmt(fw.disk.D, digits=3)}&nbsp;м, "
                    f"m&nbsp;=&nbsp;{fmt(fw.disk.m, sig=4)}&nbsp;кг"
                    + ".")
+        out += _small_flywheel(r, st.delta, u)
         v = max(fw.rim.v_rim, fw.disk.v_rim)
         if math.isfinite(v):
             formula = "u·ω<sub>max</sub>·D/2" if u != 1.0 else "ω<sub>max</sub>·D/2"

@@ -91,6 +91,7 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
     # own equations (the stone's) have given the link's ω: its equations come after them
     before = _solved_before(study, g) | links | {FRAME}
     late: tuple[list, list, list, list] = ([], [], [], [])
+    span = study.cycle if study.has_cycle else study.kinematics
     for name in [l for l in g.links] + ([d.link] if g.klass == 1 and d.link not in g.links else []):
         link = mech.link(name)
         if d.kind == "actuator" and name == d.rod:
@@ -98,7 +99,6 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
         ref = _attach(mech, link, links)
         w = float(row.get(f"w_{name}", 0.0))
         e = float(row.get(f"e_{name}", 0.0))
-        span = study.cycle if study.has_cycle else study.kinematics
         sliding_only = float(span["wq_" + name].abs().max()) < 1e-12    # a slider on the frame
         for p in link.points:
             if p == ref or p not in joint_pts or sliding_only:
@@ -144,11 +144,12 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
         Ps, Pg = _pt(j.point, slider), _pt(j.point, guide)
         if guide == FRAME:
             P0 = _pt(j.point, "0")
+            v_in, a_in = _inner_pin(mech, g, j, links)
             vf.append(Formula(rf"\bar{{V}}_{{{P}}} = \bar{{V}}_{{{P0}}} + \bar{{V}}_{{{P}{P0}}}"))
-            vn.append(Markup("{}, {} направляющей — скорость ползуна направлена вдоль направляющей").format(
+            vn.append(v_in + Markup("{}, {} направляющей — скорость ползуна направлена вдоль направляющей").format(
                 _m(rf"\bar{{V}}_{{{P0}}} = 0"), _m(rf"\bar{{V}}_{{{P}{P0}}} \;\parallel")))
             af.append(Formula(rf"\bar{{a}}_{{{P}}} = \bar{{a}}_{{{P0}}} + \bar{{a}}^{{r}}_{{{P}{P0}}}"))
-            an.append(Markup("{} (направляющая неподвижна, поэтому кориолисова ускорения нет), {} направляющей").format(
+            an.append(a_in + Markup("{} (направляющая неподвижна, поэтому кориолисова ускорения нет), {} направляющей").format(
                 _m(rf"\bar{{a}}_{{{P0}}} = 0"), _m(rf"\bar{{a}}^{{r}}_{{{P}{P0}}} \;\parallel")))
             continue
         vf.append(Formula(rf"\bar{{V}}_{{{Ps}}} = \bar{{V}}_{{{Pg}}} + \bar{{V}}_{{{Ps}{Pg}}}"))
@@ -178,9 +179,21 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
         v_pin = a_pin = Markup("")
         if pin is not None:     # the slider's pin on a link solved before: its velocity is known
             Pp = _pt(j.point, pin)
-            v_pin = Markup("{} — известна: шарнир {} соединяет звено {} со звеном {}; ").format(
-                _m(rf"\bar{{V}}_{{{Ps}}} = \bar{{V}}_{{{Pp}}}"), _m(P), slider, pin)
-            a_pin = Markup("{} — известно; ").format(_m(rf"\bar{{a}}_{{{Ps}}} = \bar{{a}}_{{{Pp}}}"))
+            # a pin on a translating link (a pin E on a slider): every point of that link has the
+            # velocity and acceleration of the point of its own prismatic pair, already on the plans
+            moving = float(span["wq_" + pin].abs().max()) >= 1e-12 if pin != FRAME else True
+            own = None if moving else next((o.point for o in mech.prismatic if pin in o.links and o is not j), None)
+            if own is not None and own != j.point:
+                Q = tex_point(own)
+                v_pin = Markup("{} — известна: шарнир {} соединяет звено {} со звеном {}, а звено {} движется "
+                               "поступательно, все его точки имеют скорость точки {}; ").format(
+                    _m(rf"\bar{{V}}_{{{Ps}}} = \bar{{V}}_{{{Pp}}} = \bar{{V}}_{{{Q}}}"), _m(P), slider, pin, pin, _m(Q))
+                a_pin = Markup("{} — известно (звено {} движется поступательно); ").format(
+                    _m(rf"\bar{{a}}_{{{Ps}}} = \bar{{a}}_{{{Pp}}} = \bar{{a}}_{{{Q}}}"), pin)
+            else:
+                v_pin = Markup("{} — известна: шарнир {} соединяет звено {} со звеном {}; ").format(
+                    _m(rf"\bar{{V}}_{{{Ps}}} = \bar{{V}}_{{{Pp}}}"), _m(P), slider, pin)
+                a_pin = Markup("{} — известно; ").format(_m(rf"\bar{{a}}_{{{Ps}}} = \bar{{a}}_{{{Pp}}}"))
         wg = abs(float(row.get(f"w_{guide}", 0.0)))
         lg = _len(row, j.point, gref)
         base = "" if gref in mech.link(FRAME).points else rf"\bar{{V}}_{{{G}}} + "
@@ -221,6 +234,24 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
             _m(rf"\bar{{V}}_{{{Ps}{Pg}}}"), guide,
             _m(rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}} \;\parallel") + Markup(" направляющей")))
     return vf + late[0], vn + late[1], af + late[2], an + late[3]
+
+
+def _inner_pin(mech, g, j, links: set) -> tuple[Markup, Markup]:
+    """A ПВП group's second slider equation is written for the inner joint P (V̄_P = V̄_P0 + V̄_PP0),
+    the first for the slider's point P_s on the moving guide: the inner revolute makes them one
+    point, V̄_Ps = V̄_Pt = V̄_P (a student joins the two equations by it). Empty for other groups."""
+    slider = j.links[1]
+    inner = next((jt for jt in mech.joints if jt.kind == "R" and jt.point == j.point and slider in jt.links
+                  and set(jt.links) <= links), None)
+    if g.kind != "PRP" or inner is None:
+        return Markup(""), Markup("")
+    other = next(o for o in inner.links if o != slider)
+    P = tex_point(j.point)
+    P_o, P_s = _pt(j.point, other), _pt(j.point, slider)
+    v = Markup("{} — звенья {} и {} соединены шарниром {}; ").format(
+        _m(rf"\bar{{V}}_{{{P_o}}} = \bar{{V}}_{{{P_s}}} = \bar{{V}}_{{{P}}}"), other, slider, _m(P))
+    a = Markup("{}; ").format(_m(rf"\bar{{a}}_{{{P_o}}} = \bar{{a}}_{{{P_s}}} = \bar{{a}}_{{{P}}}"))
+    return v, a
 
 
 def _where(sec, notes: list) -> None:
