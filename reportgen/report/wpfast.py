@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import contextlib
 
-__all__ = ["cell_borders", "line_struts", "nowrap_widths", "text_layouts"]
+__all__ = ["cell_borders", "line_struts", "nowrap_widths", "text_layouts", "writing"]
 
 _ORDER = (2, 3, 1, 0)  # bottom, left, right, top: WeasyPrint's order of the sides
 
@@ -289,3 +289,14 @@ def line_struts():
     from weasyprint.layout import inline
 
     return _replaced(inline, "strut", _struts)
+
+
+@contextlib.contextmanager
+def writing():
+    """While a laid-out document is written (``write_pdf``): the shortcuts of the drawing —
+    :func:`cell_borders`, :func:`text_layouts` and ``wptext.drawn_lines`` (a line of text
+    shaped once and replayed)."""
+    from .wptext import drawn_lines
+
+    with cell_borders(), text_layouts(), drawn_lines():
+        yield
