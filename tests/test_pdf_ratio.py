@@ -348,10 +348,12 @@ def test_cell_borders_written_directly_are_weasyprints_bytes(report, tmp_path, m
     document = render._html_class()(string=html).render()
     with render._fixed_font_timestamp():
         plain = document.write_pdf()
+        tagged = document.write_pdf(pdf_tags=True)  # each side marked as an artifact
         drawn.clear()
         with borders():
             assert document.write_pdf() == plain
-    assert drawn == ["td", "td"]  # .a and .f; the others went to WeasyPrint
+            assert document.write_pdf(pdf_tags=True) == tagged
+    assert drawn == ["td", "td"] * 2  # .a and .f; the others went to WeasyPrint
 
 
 def test_nowrap_widths_measured_once_same_bytes(report, tmp_path, monkeypatch):
