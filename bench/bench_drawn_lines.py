@@ -10,13 +10,14 @@ rounds, the whole set is written three ways in turn: WeasyPrint's ``draw_text`` 
 remembered lines forgotten before the note (``cold``: a note whose texts this process has not
 drawn yet) and kept from the round before (``warm``: the same note again). ``--other`` first
 writes another case's note, so that ``cold`` starts from what a batch worker keeps from a
-neighbour (``neighbour``). Minimums of the CPU of this process (``time.process_time``) per way,
-lines shaped and replayed, and the bytes compared with ``off``.
+neighbour (``neighbour``). Minimums of the CPU of this process (``time.process_time``) per way (each
+after a full garbage collection), lines shaped and replayed, and the bytes compared with ``off``.
 """
 from __future__ import annotations
 
 import argparse
 import contextlib
+import gc
 import os
 import sys
 import time
@@ -60,6 +61,7 @@ def main(argv: list[str]) -> None:
                 for d in others if way == "neighbour" else []:
                     d.write_pdf()
         counts["shaped"] = 0
+        gc.collect()  # every way starts without garbage of the one before
         c0 = time.process_time()
         with render._fixed_font_timestamp(), parallel_writing(way != "off"):
             out = [d.write_pdf() for d in docs]
