@@ -28,14 +28,30 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 
-def part_htmls(case: str = "cases/ws000_six_bar.toml") -> dict[int, str]:
-    """The print HTML of every document of ``case``'s note as the workers of ``write_pdf`` get it
-    (the second write in this process: the split points known), by task index."""
+def study_of(case: str):
+    """The study of ``case``: a case file, or ``TABLE.csv:N`` — variant N (from 1) of a batch table
+    over ``cases/ws000_six_bar.toml`` as a batch worker builds it."""
     from reportgen.analysis.study import Study
+
+    if ".csv:" not in case:
+        return Study(ROOT / case)
+    from reportgen import batch
+    from reportgen.case.load import load_spec
+
+    table, n = case.rsplit(":", 1)
+    v = batch.read_variants(ROOT / table, ROOT / "cases/ws000_six_bar.toml")[int(n) - 1]
+    spec = load_spec(v.base, v.params)
+    spec.meta_overrides = dict(v.meta)
+    return Study(spec)
+
+
+def part_htmls(case: str = "cases/ws000_six_bar.toml") -> dict[int, str]:
+    """The print HTML of every document of ``case``'s note (:func:`study_of`) as the workers of
+    ``write_pdf`` get it (the second write in this process: the split points known), by task index."""
     from reportgen.report import parallel, render
     from reportgen.report.assemble import build_report
 
-    report = build_report(Study(ROOT / case))
+    report = build_report(study_of(case))
     htmls: dict[int, str] = {}
     original = parallel.lay_out_part
 
@@ -95,7 +111,7 @@ def main(argv: list[str]) -> None:
     parallel.lay_out_part = timed_part
     if a.profile:
         Path(a.profile).mkdir(parents=True, exist_ok=True)
-    report = build_report(Study(ROOT / a.case))
+    report = build_report(study_of(a.case))
     walls, cpus = [], []
     with tempfile.TemporaryDirectory() as d:
         for run in range(a.runs + 1):  # run 0: warm-up (split points found)

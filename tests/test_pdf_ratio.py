@@ -348,10 +348,12 @@ def test_cell_borders_written_directly_are_weasyprints_bytes(report, tmp_path, m
     document = render._html_class()(string=html).render()
     with render._fixed_font_timestamp():
         plain = document.write_pdf()
+        tagged = document.write_pdf(pdf_tags=True)  # each side marked as an artifact
         drawn.clear()
         with borders():
             assert document.write_pdf() == plain
-    assert drawn == ["td", "td"]  # .a and .f; the others went to WeasyPrint
+            assert document.write_pdf(pdf_tags=True) == tagged
+    assert drawn == ["td", "td"] * 2  # .a and .f; the others went to WeasyPrint
 
 
 def test_nowrap_widths_measured_once_same_bytes(report, tmp_path, monkeypatch):
@@ -490,3 +492,82 @@ def test_line_struts_once_per_style_same_bytes(report, tmp_path, monkeypatch):
     assert len(asked) > 500 and len(computed) < len(asked) / 4, (len(asked), len(computed))
     monkeypatch.setattr(wpfast, "line_struts", contextlib.nullcontext)
     assert render.write_pdf(report, tmp_path / "weasyprint.pdf", jobs=1).read_bytes() == fast
+
+
+def test_drawn_lines_shaped_once_same_bytes(report, tmp_path, monkeypatch):
+    """A line of text is shaped when drawn once per process (``wptext._shape``) and its
+    operators replayed for every box that draws the same line (``wptext.drawn_lines``): far
+    fewer lines are shaped than boxes drawn, none the second time the note is written, and the
+    note is the same bytes as with WeasyPrint's ``draw_text`` shaping every box again."""
+    import contextlib
+
+    from reportgen.report import wptext
+
+    shaped, drawn = [], []
+    real_shape, real_draw = wptext._shape, wptext._draw_text
+
+    def counting_shape(*args):
+        shaped.append(1)
+        return real_shape(*args)
+
+    def counting_draw(general):
+        fast = real_draw(general)
+
+        def draw_text(*args, **kw):
+            drawn.append(1)
+            return fast(*args, **kw)
+        return draw_text
+
+    render._font_config().__dict__.pop("_reportgen_lines", None)  # made by earlier tests of this process
+    monkeypatch.setattr(wptext, "_shape", counting_shape)
+    monkeypatch.setattr(wptext, "_draw_text", counting_draw)
+    fast = render.write_pdf(report, tmp_path / "fast.pdf", jobs=1).read_bytes()
+    assert len(drawn) > 1000 and 0 < len(shaped) < len(drawn) * 3 / 4, (len(drawn), len(shaped))
+    shaped.clear()
+    assert render.write_pdf(report, tmp_path / "again.pdf", jobs=1).read_bytes() == fast
+    assert not shaped  # every line of the same note replayed
+    monkeypatch.setattr(wptext, "drawn_lines", contextlib.nullcontext)
+    assert render.write_pdf(report, tmp_path / "weasyprint.pdf", jobs=1).read_bytes() == fast
+
+
+def test_drawn_lines_same_bytes_on_other_text():
+    """Text the note never has — justified lines (word spacing per line), letter and word
+    spacing, a ligature, right to left, a tab, a glyph missing from every font, a superscript
+    feature, small caps, an underline, an ellipsis, hidden text, spaces only, one text drawn
+    again after the document's fonts learnt its glyphs from another document — is the same bytes
+    with ``wptext.drawn_lines`` as with WeasyPrint's ``draw_text``, and what it must leave to
+    WeasyPrint (the underline, the ellipsis, the tab, the missing glyph) goes there."""
+    from weasyprint import HTML, draw
+
+    from reportgen.report import wptext
+
+    html = ('<html lang="ru"><body style="width: 60mm"><p style="text-align: justify">Обычный текст, который '
+            'переносится на несколько строк и выравнивается по ширине, 1,234 м/с и ещё раз 1,234 м/с.</p>'
+            '<p style="letter-spacing: 1pt">разрядка</p><p style="word-spacing: 3pt">слова через пробел</p>'
+            '<p lang="en">fi ffl office</p><p dir="rtl">שלום abc</p><pre>a\tb</pre><p>\u4e2d\u6587 ☃</p>'
+            '<p style="font-variant-position: super">x2</p><p style="font-variant: small-caps">Капитель</p>'
+            '<p style="text-decoration: underline">подчёркнуто</p>'
+            '<p style="white-space: nowrap; overflow: hidden; text-overflow: ellipsis; width: 10mm">'
+            'очень длинная строка</p><p style="visibility: hidden">скрыто</p><p><span> </span> <b>x</b></p>'
+            '<p>1,234 м/с</p></body></html>')
+    general = draw.draw_text
+    fallbacks = []
+
+    def counted(stream, box, *args):
+        fallbacks.append(box.text)
+        return general(stream, box, *args)
+
+    config = render._font_config()
+    with render._fixed_font_timestamp():
+        own = [HTML(string=html).render(font_config=config).write_pdf()] * 2
+        config.__dict__.pop("_reportgen_lines", None)
+        draw.draw_text = counted
+        try:
+            with wptext.drawn_lines():
+                fast = [HTML(string=h).render(font_config=config).write_pdf() for h in (html, html)]
+        finally:
+            draw.draw_text = general
+    assert fast == own
+    assert {"подчёркнуто", "очень длинная строка", "a\tb", "скрыто"} <= set(fallbacks), fallbacks
+    assert any("\u4e2d" in t for t in fallbacks), fallbacks
+    assert not any("1,234" in t or t == "разрядка" for t in fallbacks), fallbacks

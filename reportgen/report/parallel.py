@@ -237,9 +237,9 @@ def _lay_out(html: str):
 
 def _write(document) -> bytes:
     from .render import _fixed_font_timestamp
-    from .wpfast import cell_borders, text_layouts
+    from .wpfast import writing
 
-    with _fixed_font_timestamp(), cell_borders(), text_layouts():
+    with _fixed_font_timestamp(), writing():
         return document.write_pdf()
 
 

@@ -2597,8 +2597,8 @@ def write_pdf(report: Report, path, *, jobs: int | None = None) -> Path:
         return _finish_parts(job, path)
     document, stats = _layout(report, _font_config())
     t0 = time.perf_counter()
-    from .wpfast import cell_borders, text_layouts
-    with _fixed_font_timestamp(), cell_borders(), text_layouts():
+    from .wpfast import writing
+    with _fixed_font_timestamp(), writing():
         pdf = document.write_pdf()
     stats.seconds_pdf = time.perf_counter() - t0
     last_stats = stats

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import contextlib
 
-__all__ = ["cell_borders", "line_struts", "nowrap_widths", "text_layouts"]
+__all__ = ["cell_borders", "line_struts", "nowrap_widths", "text_layouts", "writing"]
 
 _ORDER = (2, 3, 1, 0)  # bottom, left, right, top: WeasyPrint's order of the sides
 
@@ -65,41 +65,46 @@ def _draw_border(stream, box, general):
     if not all(0 in corner for corner in pradii):
         return general(stream, box)
     bt, br, bb, bl = widths
+    if stream._tags is not None:  # a tagged PDF: each side marked as an artifact
+        for index in _ORDER:
+            if widths[index]:
+                with stream.artifact(), stream.stacked():
+                    _side(stream.stream, stream, index, x, y, w, h, bt, br, bb, bl, px, py, pw, ph, color)
+        return None
+    data = stream.stream
     for index in _ORDER:
-        if widths[index] == 0:
-            continue
-        with stream.artifact(), stream.stacked():
-            # clip_border_segment, solid, no rounded corner: each transition point is the
-            # inner corner of the border box, (±width of one side, ±width of the other)
-            if index == 0:  # top
-                stream.move_to(x + w, y)
-                stream.line_to(x, y)
-                stream.line_to(x + bl, y + bt)
-                stream.line_to(x + w + -br, y + bt)
-            elif index == 1:  # right
-                main = x + w
-                stream.move_to(main, y + h)
-                stream.line_to(main, y)
-                stream.line_to(main + -br, y + bt)
-                stream.line_to(main + -br, y + h + -bb)
-            elif index == 2:  # bottom
-                main = y + h
-                stream.move_to(x + w, main)
-                stream.line_to(x, main)
-                stream.line_to(x + bl, main + -bb)
-                stream.line_to(x + w + -br, main + -bb)
-            else:  # left
-                stream.move_to(x, y + h)
-                stream.line_to(x, y)
-                stream.line_to(x + bl, y + bt)
-                stream.line_to(x + bl, y + h + -bb)
-            stream.clip(even_odd=True)
-            stream.end()
-            # draw_rounded_border, solid, no rounded corner
-            stream.set_color(color)
-            stream.rectangle(px, py, pw, ph)
-            stream.rectangle(x, y, w, h)
-            stream.fill(even_odd=True)
+        if widths[index]:
+            stream.push_state()
+            _side(data, stream, index, x, y, w, h, bt, br, bb, bl, px, py, pw, ph, color)
+            stream.pop_state()
+    return None
+
+
+def _side(data: list, stream, index: int, x, y, w, h, bt, br, bb, bl, px, py, pw, ph, color) -> None:
+    """One side's operators as WeasyPrint writes them inside its ``q``…``Q``, appended to the
+    stream's list ``data`` as pydyf's ``move_to``, ``line_to``, ``clip``, ``end``, ``rectangle`` and
+    ``fill`` append them (the same bytes: pydyf's ``_to_bytes`` of the same floats); the colour
+    by the stream's ``set_color`` (it remembers the colour set)."""
+    from pydyf import _to_bytes as b
+
+    # clip_border_segment, solid, no rounded corner: each transition point is the inner
+    # corner of the border box, (±width of one side, ±width of the other)
+    if index == 0:  # top
+        points = ((x + w, y), (x, y), (x + bl, y + bt), (x + w + -br, y + bt))
+    elif index == 1:  # right
+        main = x + w
+        points = ((main, y + h), (main, y), (main + -br, y + bt), (main + -br, y + h + -bb))
+    elif index == 2:  # bottom
+        main = y + h
+        points = ((x + w, main), (x, main), (x + bl, main + -bb), (x + w + -br, main + -bb))
+    else:  # left
+        points = ((x, y + h), (x, y), (x + bl, y + bt), (x + bl, y + h + -bb))
+    (x0, y0), (x1, y1), (x2, y2), (x3, y3) = points
+    data += (b" ".join((b(x0), b(y0), b"m")), b" ".join((b(x1), b(y1), b"l")), b" ".join((b(x2), b(y2), b"l")),
+             b" ".join((b(x3), b(y3), b"l")), b"W*", b"n")
+    # draw_rounded_border, solid, no rounded corner
+    stream.set_color(color)
+    data += (b" ".join((b(px), b(py), b(pw), b(ph), b"re")), b" ".join((b(x), b(y), b(w), b(h), b"re")), b"f*")
 
 
 @contextlib.contextmanager
@@ -289,3 +294,14 @@ def line_struts():
     from weasyprint.layout import inline
 
     return _replaced(inline, "strut", _struts)
+
+
+@contextlib.contextmanager
+def writing():
+    """While a laid-out document is written (``write_pdf``): the shortcuts of the drawing —
+    :func:`cell_borders`, :func:`text_layouts` and ``wptext.drawn_lines`` (a line of text
+    shaped once and replayed)."""
+    from .wptext import drawn_lines
+
+    with cell_borders(), text_layouts(), drawn_lines():
+        yield
