@@ -427,7 +427,7 @@ def _picture(sec: Section, tr) -> None:
     s.formula(rf"u^{{граф}}_{{{m.inp}\,{m.out}}} = {prod}", tex_num(st.u_graph, sig=5))
     s.paragraph(f"Расхождение графического и аналитического значений: {_pct(d)} % (отрезки планов "
                 f"измерены с точностью 0,5 мм). Прямой расчёт по равенству скоростей в полюсах даёт "
-                f"<i>u</i> = {fmt(tr.ratio_direct, sig=10)}, отличие от формулы Виллиса "
+                f"<i>u</i> = {fmt(tr.ratio_direct, sig=7)}, отличие от формулы Виллиса "
                 f"{_pct(tr.scalars['train_u_discrepancy_pct'])} %.")
 
 
