@@ -118,3 +118,19 @@ def test_two_internal_meshes_ratio_by_hand():
     assert tr.ratio == pytest.approx(z["1"] * z["2'"] / (z["1"] * z["2'"] - z["2"] * z["3"]), rel=1e-12)
     assert z["1"] - z["2"] == z["3"] - z["2'"]
     assert (z["2'"] * z["1"] - z["2"] * z["3"]) % (2 * math.gcd(z["2"], z["2'"])) == 0
+
+
+@pytest.mark.parametrize("stem", ("gear_pair_large_ratio", "gear_pair_alpha25", "gear_pair_internal"))
+def test_sliding_legend_clear_of_the_curves(stem):
+    """The legend of the sliding diagram covers no point of λ₁, λ₂ (at u = 5,08 the steep λ₂ ran
+    through a legend fixed at the lower centre)."""
+    import numpy as np
+    from reportgen.scenes.gears import sliding_diagram
+    fig = sliding_diagram(_study(stem).gears)
+    fig.canvas.draw()
+    ax = fig.axes[0]
+    box = ax.get_legend().get_window_extent()
+    for line in ax.get_lines()[:2]:
+        pts = ax.transData.transform(line.get_xydata())
+        inside = (pts[:, 0] > box.x0) & (pts[:, 0] < box.x1) & (pts[:, 1] > box.y0) & (pts[:, 1] < box.y1)
+        assert not inside.any(), (stem, line.get_label(), int(inside.sum()))

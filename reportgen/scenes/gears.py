@@ -332,7 +332,8 @@ def sliding_diagram(gears):
     ax.set_xlim(0, hi)
     ax.set_xlabel("расстояние от $N_1$ вдоль линии зацепления, мм")
     ax.set_ylabel("$\\lambda$")
-    legend = ax.legend(loc="lower center")
+    # where the curves leave room: a large ratio sends λ₂ steeply down through the lower centre
+    legend = ax.legend(loc="best")
     place_on_chart(labels, avoid=[legend])
     return fig
 
