@@ -134,3 +134,15 @@ def test_sliding_legend_clear_of_the_curves(stem):
         pts = ax.transData.transform(line.get_xydata())
         inside = (pts[:, 0] > box.x0) & (pts[:, 0] < box.x1) & (pts[:, 1] > box.y0) & (pts[:, 1] < box.y1)
         assert not inside.any(), (stem, line.get_label(), int(inside.sum()))
+
+
+@pytest.mark.parametrize("stem", ("cam_translating_flat", "cam_rocker_flat", "ws001_cam_2013_2", "cam_translating_roller"))
+def test_key_curvature_check_holds_at_a_knot(stem):
+    """The key's independent ρ_min (circles through three neighbouring profile points, 0,02° apart)
+    agrees with the formula to 1e-3 also when ρ_min falls at a knot of s″ (the asymmetric parabolic
+    return: ρ = 6 мм at 173,75°, the nearest circle one step before gave 6,007 — «НЕ выполнена»)."""
+    from reportgen.report.key import cam_rho_by_points
+    cam = _study(stem).cam
+    key = "cam_rho_min" if cam.contact == "flat" else "cam_rho_c_min"
+    ref = cam.scalars[key]
+    assert abs(cam_rho_by_points(cam) - ref) / ref < 1e-4, (stem, cam_rho_by_points(cam), ref)
