@@ -146,3 +146,15 @@ def test_key_curvature_check_holds_at_a_knot(stem):
     key = "cam_rho_min" if cam.contact == "flat" else "cam_rho_c_min"
     ref = cam.scalars[key]
     assert abs(cam_rho_by_points(cam) - ref) / ref < 1e-4, (stem, cam_rho_by_points(cam), ref)
+
+
+def test_key_prints_a_computed_shift_to_its_digits():
+    """x₂ = x_Σ − x₁ (shifts chosen under a given a_w) is computed: «−0,221», not «−0,2209500964»
+    (the glossary marks the shifts «as written» for the cases that give them); a given shift stays
+    as written."""
+    from reportgen.report.key import value_text
+    from reportgen.report.key_names import GEARS
+    gr = _study("gear_pair_large_ratio").gears
+    assert value_text(GEARS["gears_x2"], gr.x2)[0] == "−0,221", value_text(GEARS["gears_x2"], gr.x2)
+    assert value_text(GEARS["gears_x1"], gr.x1)[0] == "0,53"
+    assert value_text(GEARS["gears_x1"], 0.25)[0] == "0,25"

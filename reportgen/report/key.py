@@ -115,7 +115,13 @@ def value_text(e, value, study=None, kind: str = "") -> tuple[str, str] | None:
     if not math.isfinite(x):
         return "—", ""
     x, unit = convert(e, x, study, kind)
-    return (as_written(x) if e.given else fmt(x, digits=e.digits, sig=e.sig)), unit
+    return (as_written(x) if e.given and _short(x) else fmt(x, digits=e.digits, sig=e.sig)), unit
+
+
+def _short(x: float) -> bool:
+    """A value as a case writes it has at most six significant digits; one with more (x₂ = x_Σ − x₁ =
+    −0,2209500964 of shifts chosen under a given a_w) was computed, and prints to its entry's digits."""
+    return abs(float(f"{x:.6g}") - x) <= 1e-9 * abs(x)
 
 
 def where_text(study, kind: str, q: float) -> str:
