@@ -158,3 +158,12 @@ def test_key_prints_a_computed_shift_to_its_digits():
     assert value_text(GEARS["gears_x2"], gr.x2)[0] == "−0,221", value_text(GEARS["gears_x2"], gr.x2)
     assert value_text(GEARS["gears_x1"], gr.x1)[0] == "0,53"
     assert value_text(GEARS["gears_x1"], 0.25)[0] == "0,25"
+
+
+@pytest.mark.parametrize("stem, want", (("cam_translating_flat", "16"), ("cam_rocker_flat", "20")))
+def test_key_writes_the_given_stroke_as_written(stem, want):
+    """The key's stroke h (swing ψ_max of a rocker) is a datum: «16 мм», not «16,00 мм»."""
+    from reportgen.report.key import value_text
+    from reportgen.report.key_names import CAM
+    st = _study(stem)
+    assert value_text(CAM["cam_stroke"], st.cam.scalars["cam_stroke"], st, "cam")[0] == want
