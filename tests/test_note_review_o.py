@@ -167,3 +167,17 @@ def test_key_writes_the_given_stroke_as_written(stem, want):
     from reportgen.report.key_names import CAM
     st = _study(stem)
     assert value_text(CAM["cam_stroke"], st.cam.scalars["cam_stroke"], st, "cam")[0] == want
+
+
+@pytest.mark.parametrize("stem", ("gear_pair_large_ratio", "gear_pair_shifted"))
+def test_rack_shift_label_reads_as_the_text(stem):
+    """The generating-rack drawing labels the shift x₁m as the text of 1.5 writes it (1,325 мм, not a
+    label «1,33 мм» beside «1,325 мм» in the text)."""
+    from reportgen.report.sections import gears
+    from reportgen.scenes.gears import rack_drawing
+    gr = _study(stem).gears
+    fig = rack_drawing(gr)[0]
+    labels = [t.get_text() for ax in fig.axes for t in ax.texts if "xm" in t.get_text()]
+    text = next(p for p in _paragraphs(_section(stem, gears)) if "нарезается рейкой" in p)
+    value = re.search(r"x1m = ([−\d,]+) мм", text).group(1)
+    assert labels and labels[0].endswith(f"= {value} мм"), (labels, value)
