@@ -50,8 +50,9 @@ def test_synthesis_angles_without_padding_zeros(stem):
     from reportgen.report.document import FormulaBlock
     from reportgen.report.sections import synthesis as S
     sec = S.build(_study(stem))
+    # the construction's angles; the transmission angles μ are results to 0,1° (μ₁ = 63,0° is not padding)
     tex = " ".join(f"{f.substituted} {f.result}" for b in blocks(sec) if isinstance(b, FormulaBlock)
-                   for f in b.formulas)
+                   for f in b.formulas if r"\mu" not in f.symbolic)
     angles = re.findall(r"(\d+(?:\{,\}\d+)?)\^\{\\circ\}", tex)
     assert angles, stem
     padded = [a for a in angles if "{,}" in a and a.endswith("0")]
@@ -73,8 +74,8 @@ def test_synthesis_check_and_given_data_to_the_datas_own_decimals(stem):
     text = " ".join(paras)
     m = re.search(r"Получены (?:размах|ход) ([−\d,]+)\s*(?:°|м) \(задан ([−\d,]+)\s*(?:°|м)\) и "
                   r"K = ([\d,]+) \(задан ([\d,]+)\); расхождение менее", text)
-    assert m, text[-400:]
-    assert m.group(1) == m.group(2) and m.group(3) == m.group(4), m.group(0)
+    assert bool(m) == st.has_linkage, text[-400:]     # a synthesis alone has no mechanism to measure on
+    assert not m or (m.group(1) == m.group(2) and m.group(3) == m.group(4)), m.group(0)
     x = st.synthesis.inputs
     for k, v in x.items():
         if SY.dim_of(k) != SY.U.LENGTH:

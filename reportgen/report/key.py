@@ -115,7 +115,13 @@ def value_text(e, value, study=None, kind: str = "") -> tuple[str, str] | None:
     if not math.isfinite(x):
         return "—", ""
     x, unit = convert(e, x, study, kind)
-    return (as_written(x) if e.given else fmt(x, digits=e.digits, sig=e.sig)), unit
+    return (as_written(x) if e.given and _short(x) else fmt(x, digits=e.digits, sig=e.sig)), unit
+
+
+def _short(x: float) -> bool:
+    """A value as a case writes it has at most six significant digits; one with more (x₂ = x_Σ − x₁ =
+    −0,2209500964 of shifts chosen under a given a_w) was computed, and prints to its entry's digits."""
+    return abs(float(f"{x:.6g}") - x) <= 1e-9 * abs(x)
 
 
 def where_text(study, kind: str, q: float) -> str:
@@ -501,7 +507,8 @@ def cam_rho_by_points(cam, step_deg: float = 0.02) -> float:
     |C₃ − C₁|) (the circumscribed circle of a triangle, R = abc/4S); ρ = −k/κ with the sign of the
     analytic formula ρ = −k|C′|³/(C′×C″) (> 0 convex).  The profile is sampled every ``step_deg``
     inside each smooth piece of the cycle (phases, knots, inflections), so no triple straddles a
-    kink of the law.  An independent formulation of the key's ρ_min, which the analysis finds
+    kink of the law; ρ at a piece's ends is extrapolated from its two nearest circles.  An
+    independent formulation of the key's ρ_min, which the analysis finds
     from the derivatives C′, C″ of the inversion."""
     pts = "W" if cam.contact == "flat" else "C"
     ends = sorted({x for ph in cam.phases for x in (cam.breaks(ph) if ph.law else (ph.start, ph.start + ph.length))})
@@ -513,6 +520,9 @@ def cam_rho_by_points(cam, step_deg: float = 0.02) -> float:
         cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
         with np.errstate(divide="ignore", invalid="ignore"):
             rho = -cam.k * np.hypot(*d1.T) * np.hypot(*d2.T) * np.hypot(*d3.T) / (2 * cross)
+        if rho.size >= 2:   # a piece's least ρ often lies at its end (a knot of s″): the circles give ρ
+            # at the inner nodes only, so extend linearly by one step to both ends (error O(h²), not O(h))
+            rho = np.concatenate(([2 * rho[0] - rho[1]], rho, [2 * rho[-1] - rho[-2]]))
         convex = rho[np.isfinite(rho) & (rho > 0)]
         if convex.size:
             best = min(best, float(convex.min()))

@@ -198,7 +198,7 @@ _PAIR = re.compile(r"(q_)?R_([^_]+)_([^_]+)_max")
 _MM = dict(unit="мм", conv="mm", sig=4)
 _ANG = dict(unit="°", conv="deg", sig=None, digits=2)     # degrees to 0,01° (a zero stays 0,00)
 CAM = {
-    "cam_stroke": _e("Ход толкателя", _i("h"), conv="stroke", sig=4,
+    "cam_stroke": _e("Ход толкателя", _i("h"), conv="stroke", sig=4, given=True,
                      swing=("Угол размаха коромысла", "ψ<sub>max</sub>")),
     "cam_r0": _e("Радиус основной шайбы (центрового профиля)", _i("r", "0"), **_MM),
     "cam_r0_min": _e("Наименьший радиус основной шайбы по условию выпуклости профиля", _i("r", "0 min"), **_MM),

@@ -12,6 +12,7 @@ from matplotlib.path import Path
 
 from ..core import gears as G
 from ..style import mplstyle
+from ..style.numbers import fmt
 from .draw import GREY, INK, Canvas, gost_scale
 from .labels import LabelPlacer, label_contours, line_problems, place_on_chart
 
@@ -304,7 +305,8 @@ def rack_drawing(gears):
     for pt, lab in ((N, "$N$"), (Pp, "$P_0$")):
         ax.plot(*pt, "o", ms=2.5, color=INK)
         cv.labels.add(*pt, lab, prefer=(-1, 0.2), point=True, fontsize=9)
-    cv.labels.add(half * 0.4, (r + yd) / 2, f"$xm$ = {x * m:.2f} мм".replace(".", ","), prefer=(1, 0), fontsize=8)
+    # the shift as the note writes it (x₁m = 1,325 мм, not a label of 1,33 мм beside it)
+    cv.labels.add(half * 0.4, (r + yd) / 2, f"$xm$ = {fmt(x * m, sig=4)} мм", prefer=(1, 0), fontsize=8)
     cv.labels.place()
     return cv.fig, cv.width_mm, cv.mu
 
@@ -332,7 +334,8 @@ def sliding_diagram(gears):
     ax.set_xlim(0, hi)
     ax.set_xlabel("расстояние от $N_1$ вдоль линии зацепления, мм")
     ax.set_ylabel("$\\lambda$")
-    legend = ax.legend(loc="lower center")
+    # where the curves leave room: a large ratio sends λ₂ steeply down through the lower centre
+    legend = ax.legend(loc="best")
     place_on_chart(labels, avoid=[legend])
     return fig
 

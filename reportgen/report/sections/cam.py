@@ -20,7 +20,17 @@ from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 
 NEEDS = ("cam",)
-TASK = "спроектировать кулачковый механизм: определить основные размеры по допустимым углам давления и построить профиль кулачка"
+def TASK(study) -> str:
+    """The assignment's clause: what sizes the cam by — the allowed pressure angles, or, for a flat
+    face (ϑ ≡ 0 on a translating follower), the convexity of the profile ρ ≥ ρ_min (Артоболевский §26)."""
+    cam = study.cam
+    if cam.contact != "flat":
+        by = "по допустимым углам давления"
+    elif cam.flat_rocker and cam.face_offset > 0 and any(ph.allowed > 0 for ph in (cam.rise, cam.ret)):
+        by = "по условию выпуклости профиля и допустимым углам давления"
+    else:
+        by = "по условию выпуклости профиля"
+    return f"спроектировать кулачковый механизм: определить основные размеры {by} и построить профиль кулачка"
 
 NORM_TEX = {  # normalised law f(x), x = φ/β
     "uniform": r"f = x",
@@ -77,6 +87,18 @@ def _dg(x) -> str:
 
 def _deg(x, digits=2) -> str:
     return fmt(math.degrees(x), digits=digits) + "°"
+
+
+def _tmm(x) -> str:
+    """A given length (m) in a TeX formula, in mm as the case writes it: «6», not «6{,}000»."""
+    return tex_given(round(x * 1000, 6))
+
+
+def _at(x) -> str:
+    """A cam angle where something happens (an impact, an extremum): at most two decimals and no
+    padding zeros, the float noise of ν/(1 + ν)·β rounded off first — 140°, 173,75° (not 173,7° in one
+    sentence and 173,75° in the next), 177,06°."""
+    return as_written(round(math.degrees(x), 2)) + "°"
 
 
 def _t(x, sig=4, digits=None, unit=None) -> str:
@@ -199,11 +221,11 @@ def _laws(sec, study, cam) -> None:
         s.paragraph("Аналоги скорости и ускорения непрерывны на всём цикле: удары отсутствуют.")
     if hard:
         s.paragraph("Аналог скорости терпит разрыв (ускорение бесконечно велико) при φ&nbsp;=&nbsp;"
-                    + ", ".join(_deg(i["phi"], 1) for i in hard) + ": в этих положениях возникают "
+                    + ", ".join(_at(i["phi"]) for i in hard) + ": в этих положениях возникают "
                     "<b>жёсткие удары</b>.")
     if soft:
         s.paragraph("Аналог ускорения терпит конечный разрыв при φ&nbsp;=&nbsp;"
-                    + ", ".join(_deg(i["phi"], 1) for i in soft) + ": в этих положениях возникают "
+                    + ", ".join(_at(i["phi"]) for i in soft) + ": в этих положениях возникают "
                     "<b>мягкие удары</b>.")
     sc = LawDiagrams()
     fig = sc.draw(study)
@@ -240,16 +262,16 @@ def _size(sec, study, cam) -> None:
                     "ограничивается условием выпуклости профиля: радиус кривизны профиля")
         s.formula(Formula(r"\rho = r_0 + s + s^{\prime\prime} \ge \rho_{min}", label="eq-cam-rho"),
                   Formula(r"r_0 \ge \rho_{min} - (s + s^{\prime\prime})_{min}",
-                          rf"{tex_given(cam.rho_min * 1000)} - \left({_t(m * 1000)}\right)",
+                          rf"{_tmm(cam.rho_min)} - \left({_t(m * 1000)}\right)",
                           _t(need * 1000, unit="мм")))
-        s.paragraph(f"Наименьшее значение (s&nbsp;+&nbsp;s″) достигается при φ&nbsp;=&nbsp;{_deg(p)}. "
+        s.paragraph(f"Наименьшее значение (s&nbsp;+&nbsp;s″) достигается при φ&nbsp;=&nbsp;{_at(p)}. "
                     + (f"Принят заданный радиус r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}"
                        + (" — условие выпуклости выполнено." if syn.r0 >= need - 1e-12 else
                           " — условие выпуклости <b>не выполнено</b>.")
                        if syn.governing == "fixed" else f"Принят r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}."))
         hard = [i for i in cam.impacts if i["kind"] == "hard"]
         if hard:
-            s.paragraph("В положениях жёсткого удара (φ&nbsp;=&nbsp;" + ", ".join(_deg(i["phi"], 1) for i in hard)
+            s.paragraph("В положениях жёсткого удара (φ&nbsp;=&nbsp;" + ", ".join(_at(i["phi"]) for i in hard)
                         + ") аналог скорости терпит разрыв: точка касания перескакивает по тарелке, и профиль имеет "
                           "там прямолинейный участок или излом; условие выпуклости проверено между ними.")
         lo, hi = cam.s1_extremes
@@ -411,14 +433,14 @@ def _size_flat_rocker(s, study, cam) -> None:
     s.paragraph(f"Наименьшее значение G при ψ<sub>0</sub>&nbsp;=&nbsp;{_deg(psi0, 3)} найдено из условия "
                 f"dG/dφ&nbsp;=&nbsp;0 (с аналогом ψ‴): G<sub>min</sub>&nbsp;=&nbsp;{fmt(G, sig=5)} при "
                 f"φ&nbsp;=&nbsp;{_deg(pG, 3)}.")
-    fs = [Formula(r"a_{w,\rho}", rf"\frac{{{tex_given(cam.rho_min * 1000)} + {tex_given(d * 1000)}}}{{{_t(G, sig=5)}}}",
+    fs = [Formula(r"a_{w,\rho}", rf"\frac{{{_tmm(cam.rho_min)} + {_tmm(d)}}}{{{_t(G, sig=5)}}}",
                   _t(fr["a_conv"] * 1000, unit="мм"))]
     if fr["a_press"] > 0:
         for nm, ph in (("rise", cam.rise), ("return", cam.ret)):
             if ph.allowed > 0:
                 sym = "у" if nm == "rise" else "в"
                 fs.append(Formula(rf"a_{{w,\vartheta {sym}}}",
-                                  rf"\frac{{{tex_given(d * 1000)}}}{{\operatorname{{tg}}\,{tex_given(round(math.degrees(ph.allowed), 6))}^\circ"
+                                  rf"\frac{{{_tmm(d)}}}{{\operatorname{{tg}}\,{tex_given(round(math.degrees(ph.allowed), 6))}^\circ"
                                   rf"\cdot {_t(fr['m_' + nm], sig=5)}}}",
                                   _t(d / (math.tan(ph.allowed) * fr["m_" + nm]) * 1000, unit="мм")))
     s.formula(*fs)
@@ -449,7 +471,7 @@ def _size_flat_rocker(s, study, cam) -> None:
     s.formula(Formula("a_w", None, _t(syn.a_w * 1000, unit="мм")),
               Formula(r"\psi_0", None, _t(math.degrees(psi0), sig=5, unit="°")),
               Formula(r"r_0 = a_w \sin\psi_0 - d",
-                      rf"{_t(syn.a_w * 1000)} \sin {_t(math.degrees(psi0), sig=5)}^\circ - {tex_given(d * 1000)}",
+                      rf"{_t(syn.a_w * 1000)} \sin {_t(math.degrees(psi0), sig=5)}^\circ - {_tmm(d)}",
                       _t(syn.r0 * 1000, unit="мм")))
     lo, hi = cam.face
     s.paragraph(f"Точка касания перемещается по тарелке от μ<sub>min</sub>&nbsp;=&nbsp;{_mm(lo)} до "
@@ -631,7 +653,7 @@ def _impacts_sentence(cam) -> str:
         phis = [i["phi"] for i in cam.impacts if i["kind"] == kind]
         parts.append(f"{adj_gen} ударов нет" if not phis else
                      f"{adj} удары — в&nbsp;{plural(len(phis), 'положении', 'положениях', 'положениях')} "
-                     f"(φ&nbsp;=&nbsp;" + ", ".join(_deg(p, 1) for p in phis) + ")")
+                     f"(φ&nbsp;=&nbsp;" + ", ".join(_at(p) for p in phis) + ")")
     if not cam.impacts:
         return "Аналоги скорости и ускорения толкателя непрерывны: ударов в кулачковом механизме нет."
     # Попов, Тимофеев, гл. 6: laws with hard impacts only at low speeds, with soft ones at moderate speeds

@@ -47,6 +47,15 @@ def _w(x) -> str:
     return tex_given(x)
 
 
+def _term(op: str, x, sig=3) -> str:
+    """A substituted term after a binary «+»/«−» with its sign folded into the operator:
+    «1 − 0,221», not «1 + −0,221» (``op`` is "+" or "-")."""
+    x = float(x)
+    if x < 0:
+        op, x = ("-" if op == "+" else "+"), -x
+    return f"{op} {_t(x, sig)}"
+
+
 def _adeg(rad) -> str:
     """The given profile angle α in a formula as written (25°, not 25,0000°)."""
     return tex_given(round(math.degrees(float(rad)), 6)) + r"^{\circ}"
@@ -168,7 +177,7 @@ def _geometry(sec: Section, gr) -> Section:
         _given_centre_distance(s, gr, pm)
     s.formula(
         Formula(rf"\mathrm{{inv}}\,\alpha_w = \frac{{2(x_2 {pm} x_1)\,\mathrm{{tg}}\,\alpha}}{{z_2 {pm} z_1}} + \mathrm{{inv}}\,\alpha",
-                rf"\frac{{2({_t(x2, 3)} {pm} {_t(x1, 3)}) \cdot {_t(math.tan(al), 5)}}}{{{z2} {pm} {z1}}} + {_t(G.inv(al), 5)}",
+                rf"\frac{{2({_t(x2, 3)} {_term(pm, x1)}) \cdot {_t(math.tan(al), 5)}}}{{{z2} {pm} {z1}}} + {_t(G.inv(al), 5)}",
                 _t(G.inv(g.alpha_w), 6)),
         Formula(r"\alpha_w", None, _deg(g.alpha_w)),
         Formula(rf"a = \frac{{m(z_2 {pm} z_1)}}{{2}}", rf"\frac{{{_w(m)}({z2} {pm} {z1})}}{{2}}", rf"{_t(g.a)}\ \text{{мм}}"),
@@ -178,11 +187,11 @@ def _geometry(sec: Section, gr) -> Section:
         Formula(r"\Delta y = x_1 + x_2 - y", None, _t(g.dy, 4)) if not gr.internal else
         Formula(r"\Delta y", None, "0"),
         Formula(r"d_{a1} = d_1 + 2(h_a^* + x_1 - \Delta y)m",
-                rf"{_t(g.d1)} + 2({_w(gr.rack.ha)} + {_t(x1, 3)} - {_t(g.dy, 4)}) \cdot {_w(m)}",
+                rf"{_t(g.d1)} + 2({_w(gr.rack.ha)} {_term('+', x1)} {_term('-', g.dy, 4)}) \cdot {_w(m)}",
                 rf"{_t(g.da1, 6)}\ \text{{мм}}"),
         *([] if gr.internal else [
             Formula(r"d_{a2} = d_2 + 2(h_a^* + x_2 - \Delta y)m",
-                    rf"{_t(g.d2)} + 2({_w(gr.rack.ha)} + {_t(x2, 3)} - {_t(g.dy, 4)}) \cdot {_w(m)}",
+                    rf"{_t(g.d2)} + 2({_w(gr.rack.ha)} {_term('+', x2)} {_term('-', g.dy, 4)}) \cdot {_w(m)}",
                     rf"{_t(g.da2, 6)}\ \text{{мм}}")]),
     )
     s.paragraph("Толщина зуба на окружности вершин (α<sub>a</sub> — угол профиля на окружности вершин, "
@@ -230,11 +239,11 @@ def _given_centre_distance(s, gr, pm: str) -> None:
     aw = gr.a_w_required
     alw = math.acos(a * math.cos(al) / aw)
     xs = G.xsum_from_centre_distance(m, z1, z2, al, aw, gr.internal)
-    s.paragraph(f"Задано межосевое расстояние <i>a</i><sub>w</sub> = {fmt(aw, sig=6)} мм; по нему находятся угол "
+    s.paragraph(f"Задано межосевое расстояние <i>a</i><sub>w</sub> = {as_written(aw)} мм; по нему находятся угол "
                 "зацепления и сумма коэффициентов смещения:")
     s.formula(
         Formula(r"\cos\alpha_w = \frac{a\cos\alpha}{a_w}",
-                rf"\frac{{{_t(a)} \cdot \cos{_adeg(al)}}}{{{_t(aw, 6)}}}",
+                rf"\frac{{{_t(a)} \cdot \cos{_adeg(al)}}}{{{_w(aw)}}}",
                 rf"{_t(math.cos(alw), 6)};\quad \alpha_w = {_deg(alw)}"),
         Formula(rf"x_\Sigma = \frac{{(\mathrm{{inv}}\,\alpha_w - \mathrm{{inv}}\,\alpha)(z_2 {pm} z_1)}}{{2\,\mathrm{{tg}}\,\alpha}}",
                 rf"\frac{{({_t(G.inv(alw), 6)} - {_t(G.inv(al), 5)})({z2} {pm} {z1})}}{{2 \cdot {_t(math.tan(al), 5)}}}",
@@ -469,8 +478,9 @@ def conclusion_lines(study) -> list[str]:
     if gr.geo is not None:
         g = gr.geo
         out.append(f"Спроектирована зубчатая передача <i>z</i><sub>1</sub> = {gr.z1}, <i>z</i><sub>2</sub> = {gr.z2}, "
-                   f"<i>m</i> = {fmt(gr.m)} мм, <i>x</i><sub>1</sub> = {fmt(gr.x1, sig=3)}, <i>x</i><sub>2</sub> = "
-                   f"{fmt(gr.x2, sig=3)}: <i>a</i><sub>w</sub> = {fmt(float(g.a_w), sig=6)} мм, α<sub>w</sub> = "
+                   f"<i>m</i> = {as_written(gr.m)} мм, <i>x</i><sub>1</sub> = {fmt(gr.x1, sig=3)}, <i>x</i><sub>2</sub> = "
+                   f"{fmt(gr.x2, sig=3)}: <i>a</i><sub>w</sub> = "
+                   f"{as_written(gr.a_w_required) if gr.a_w_required is not None else fmt(float(g.a_w), sig=6)} мм, α<sub>w</sub> = "
                    f"{fmt(math.degrees(float(g.alpha_w)), sig=5)}°, ε<sub>α</sub> = {fmt(float(g.eps), sig=4)}.")
         out += _judgement(gr, g)
     if "x_chord" in gr.inverse:
