@@ -289,3 +289,21 @@ def test_guessed_figure_entry_after_a_landscape_page_is_dropped_in_one_pass():
     assert "figure:fig-frc-group-2" in neighbour and "figure:fig-frc-group-2" not in got
     assert got == _reference(part)
     assert passes <= 3
+
+
+def test_passes_after_the_first_take_over_the_pages_before_the_change(monkeypatch):
+    """A pass after the first lays out anew only the pages from the one before the first page
+    its changed HTML reaches (report/relayout.py: WeasyPrint remakes pages from its page states);
+    the pages before are the previous layout's. The PDF of the part is byte for byte the PDF of
+    its final HTML laid out from nothing. Before session 12 every pass laid out every page."""
+    from reportgen.report import relayout
+
+    report = _note()
+    monkeypatch.setattr(parallel, "_REPORT", report)
+    taken = relayout.PAGES_TAKEN[0]
+    laid = parallel.lay_out_part(parallel._Task(FRC, parallel._part_html(report, FRC, {}), {}))
+    assert laid.passes > 1
+    assert relayout.PAGES_TAKEN[0] > taken
+    alone = parallel._lay_out(parallel._part_html(report, FRC, laid.splits))
+    assert laid.pdf == parallel._write(alone)
+    assert laid.heights == [p.height for p in alone.pages]
