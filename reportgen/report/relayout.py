@@ -39,6 +39,7 @@ class Laid:
     children: list  # each page box's children as made (layout_document replaces them)
     page_maker: list  # context.page_maker after the layout
     reused: int = 0  # pages taken over from the layout before
+    reusable: bool = False  # its pages may be taken over (nothing page-based reaches across pages)
 
 
 def _signature(el) -> tuple:
@@ -94,6 +95,7 @@ def incremental(prev: Laid | None, record: list):
     """Within it, WeasyPrint's ``layout_document`` takes over from ``prev`` the pages before the
     first one its new HTML may change, and every layout appends its :class:`Laid` to ``record``."""
     import weasyprint.layout as wl
+    from weasyprint.layout.page import set_page_type_computed_styles
 
     original = wl.make_all_pages
 
@@ -101,7 +103,7 @@ def incremental(prev: Laid | None, record: list):
         elements = list(html.etree_element.iter())
         signatures = [_signature(el) for el in elements]
         laid = Laid(elements, signatures, [], [], [])
-        if not pages and prev is not None and len(prev.page_maker) > 1:
+        if not pages and prev is not None and prev.reusable and len(prev.page_maker) > 1:
             change = _first_change(prev.signatures, signatures)
             first = _first_page_to_make(prev, change) if change < len(signatures) else 0
             if first > 0:
@@ -111,6 +113,9 @@ def incremental(prev: Laid | None, record: list):
                     page = prev.pages[i]
                     page.children = prev.children[i]
                     _remap(page, mapping)
+                    # what remake_page does for a page besides laying it out: the styles of its
+                    # page type and margin boxes (its page number) in this document's cascade
+                    set_page_type_computed_styles(page.page_type, html, context.style_for)
                     pages.append(page)
                 maker = [copy.deepcopy(item[:4]) + ({**item[4], "content_changed": False},)
                          for item in prev.page_maker[:first + 1]]
@@ -123,6 +128,12 @@ def incremental(prev: Laid | None, record: list):
             laid.children.append(page.children)
             yield page
         laid.page_maker = context.page_maker
+        # what a page taken over would not give the later pages of a new layout: running
+        # elements (a margin box showing an element of an earlier page), page counters looked
+        # up from elsewhere (target-counter, a contents), named strings
+        laid.reusable = not (any(any(v.values()) for v in context.running_elements.values())
+                             or context.target_collector.counter_lookup_items
+                             or any(any(v.values()) for v in context.string_set.values()))
         record.append(laid)
 
     wl.make_all_pages = make_all_pages
