@@ -14,9 +14,13 @@ to fit a block on the page before the one it lands on; a kept-together run such 
 and the block after it is laid out on one page). A page before those ends on a block before
 the element and resumes after it, so it is laid out from the same HTML and the same state:
 the same page. The pages taken over are those boxes as laid out before (their elements
-mapped to the new document's, so that the split rules read one tree), and every page from
-the first remade one on is laid out as WeasyPrint would: the PDF is the same, byte for byte,
-as a layout from nothing (``tests/test_split_greedy.py`` compares them).
+mapped to the new document's, so that the split rules read one tree; their page type's
+styles set in the new cascade, as ``remake_page`` does), and every page from the first
+remade one on is laid out as WeasyPrint would: the PDF is the same, byte for byte, as a
+layout from nothing (``tests/test_split_greedy.py`` compares them). Only a layout where
+nothing page-based reaches across pages is taken over (no running elements, no
+``target-counter`` lookups such as a contents, no named strings): a part of the note; the
+note as one document (with its contents) is laid out in full.
 """
 
 from __future__ import annotations
