@@ -248,6 +248,9 @@ def _write(document) -> bytes:
         return document.write_pdf()
 
 
+_RESPLIT_FROM: dict = {}  # part index -> this process's last layout of it, sent back for a resplit
+
+
 def _lay_out_in_worker(task: _Task) -> _Laid | None:
     """:func:`lay_out_part` in a worker; ``None`` when it failed (the parent lays the part out
     again itself, so the error is raised there as in a build in one process)."""
@@ -272,7 +275,11 @@ def lay_out_part(task: _Task) -> _Laid:
     t0 = time.perf_counter()
     passes = task.passes
     state = dict(task.state)  # of the fast passes (render._settle_step), carried by a resplit
-    laid: list = []  # each pass's layout, whose pages before the first change the next one takes over
+    # each pass's layout, whose pages before the first change the next one takes over; a resplit
+    # (the next pass of a part sent back by the parent) takes this process's layout of that part
+    # when it made it (any earlier layout is safe: the pages are compared, relayout.incremental)
+    laid: list = [_RESPLIT_FROM.pop(index)] if task.passes and index in _RESPLIT_FROM else []
+    _RESPLIT_FROM.clear()
     while True:
         document = _lay_out(html, laid[-1] if laid else None, laid)
         del laid[:-1]
@@ -284,6 +291,7 @@ def lay_out_part(task: _Task) -> _Laid:
         if new is None or passes >= MAX_PASSES:
             break
         if _REPORT is None:
+            _RESPLIT_FROM[index] = laid[-1]
             return _Laid(index, b"", [], {}, [], [], {}, passes, time.perf_counter() - t0, 0.0,
                          task.key, start, resplit=new, shape=task.shape, state=state)
         splits = new
