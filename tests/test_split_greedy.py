@@ -289,3 +289,51 @@ def test_guessed_figure_entry_after_a_landscape_page_is_dropped_in_one_pass():
     assert "figure:fig-frc-group-2" in neighbour and "figure:fig-frc-group-2" not in got
     assert got == _reference(part)
     assert passes <= 3
+
+
+def test_passes_after_the_first_take_over_the_pages_before_the_change(monkeypatch):
+    """A pass after the first lays out anew only the pages from the one before the first page
+    its changed HTML reaches (report/relayout.py: WeasyPrint remakes pages from its page states);
+    the pages before are the previous layout's. The PDF of the part is byte for byte the PDF of
+    its final HTML laid out from nothing. Before session 12 every pass laid out every page."""
+    from reportgen.report import relayout
+
+    report = _note()
+    monkeypatch.setattr(parallel, "_REPORT", report)
+    taken = relayout.PAGES_TAKEN[0]
+    laid = parallel.lay_out_part(parallel._Task(FRC, parallel._part_html(report, FRC, {}), {}))
+    assert laid.passes > 1
+    assert relayout.PAGES_TAKEN[0] > taken
+    alone = parallel._lay_out(parallel._part_html(report, FRC, laid.splits))
+    assert laid.pdf == parallel._write(alone)
+    assert laid.heights == [p.height for p in alone.pages]
+
+
+def test_a_resplit_in_the_same_worker_takes_over_its_pages(monkeypatch):
+    """An early worker (no report in the process) sends a part needing another pass back to the
+    parent (``resplit``); when the next pass of that part comes to the same process, it takes
+    over the pages of the layout it made (report/relayout.py). Same bytes as a layout from nothing."""
+    from reportgen.report import relayout
+
+    report = _note()
+    html = parallel._part_html(report, FRC, {})
+    monkeypatch.setattr(parallel, "_REPORT", None)
+    first = parallel.lay_out_part(parallel._Task(FRC, html, {}))
+    assert first.resplit is not None
+    taken = relayout.PAGES_TAKEN[0]
+    again = parallel._Task(FRC, parallel._part_html(report, FRC, first.resplit), first.resplit,
+                           passes=first.passes, state=first.state)
+    monkeypatch.setattr(parallel, "_REPORT", report)
+    prevs, lay_out = [], parallel._lay_out
+
+    def recorded(html, prev=None, record=None):
+        prevs.append(prev)
+        return lay_out(html, prev, record)
+
+    monkeypatch.setattr(parallel, "_lay_out", recorded)
+    laid = parallel.lay_out_part(again)
+    assert prevs[0] is not None  # its first layout here started from the one sent back
+    assert relayout.PAGES_TAKEN[0] > taken
+    monkeypatch.setattr(parallel, "_lay_out", lay_out)
+    alone = parallel._lay_out(parallel._part_html(report, FRC, laid.splits))
+    assert laid.pdf == parallel._write(alone)

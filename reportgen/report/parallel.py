@@ -223,16 +223,21 @@ def _part_html(report, index: int, splits: dict, views=None) -> str:
     return views.html(front=False, body=[views.ctx["body"][index]], chunk=True)
 
 
-def _lay_out(html: str):
+def _lay_out(html: str, prev=None, record=None):
+    """The WeasyPrint document of ``html``; with ``prev`` (a :class:`~.relayout.Laid` of the same
+    part's layout before) its pages before the first one the changed HTML may read are taken
+    over (:func:`~.relayout.incremental`: the same pages); ``record`` gets this layout's."""
     from . import svgops
+    from .relayout import incremental
     from .render import TEMPLATES_DIR, _font_config, _html_class, _image_cache, _quiet_weasyprint
     from .safety import url_fetcher
 
     _quiet_weasyprint()
     cache = _image_cache()
     svgops.prime(cache, html)  # figures drawn from precompiled PDF operators
-    return _html_class()(string=html, base_url=str(TEMPLATES_DIR), url_fetcher=url_fetcher()).render(
-        font_config=_font_config(), cache=cache)
+    with incremental(prev, record if record is not None else []):
+        return _html_class()(string=html, base_url=str(TEMPLATES_DIR), url_fetcher=url_fetcher()).render(
+            font_config=_font_config(), cache=cache)
 
 
 def _write(document) -> bytes:
@@ -241,6 +246,9 @@ def _write(document) -> bytes:
 
     with _fixed_font_timestamp(), writing():
         return document.write_pdf()
+
+
+_RESPLIT_FROM: dict = {}  # part index -> this process's last layout of it, sent back for a resplit
 
 
 def _lay_out_in_worker(task: _Task) -> _Laid | None:
@@ -267,8 +275,14 @@ def lay_out_part(task: _Task) -> _Laid:
     t0 = time.perf_counter()
     passes = task.passes
     state = dict(task.state)  # of the fast passes (render._settle_step), carried by a resplit
+    # each pass's layout, whose pages before the first change the next one takes over; a resplit
+    # (the next pass of a part sent back by the parent) takes this process's layout of that part
+    # when it made it (any earlier layout is safe: the pages are compared, relayout.incremental)
+    laid: list = [_RESPLIT_FROM.pop(index)] if task.passes and index in _RESPLIT_FROM else []
+    _RESPLIT_FROM.clear()
     while True:
-        document = _lay_out(html)
+        document = _lay_out(html, laid[-1] if laid else None, laid)
+        del laid[:-1]
         passes += 1
         if index < 0:
             new = None
@@ -277,6 +291,7 @@ def lay_out_part(task: _Task) -> _Laid:
         if new is None or passes >= MAX_PASSES:
             break
         if _REPORT is None:
+            _RESPLIT_FROM[index] = laid[-1]
             return _Laid(index, b"", [], {}, [], [], {}, passes, time.perf_counter() - t0, 0.0,
                          task.key, start, resplit=new, shape=task.shape, state=state)
         splits = new

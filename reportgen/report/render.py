@@ -2486,6 +2486,7 @@ def _shared_sheets(html, font_config) -> list:
 def _layout(report: Report, font_config):
     """Lay out the print HTML, splitting tables until stable. Returns the document."""
     from . import svgops
+    from .relayout import incremental
     from .safety import url_fetcher
 
     HTML = _html_class()
@@ -2500,6 +2501,7 @@ def _layout(report: Report, font_config):
     start = ""
     views = _views(report, for_print=True, splits=splits)
     state: dict = {}  # of the fast passes (_settle_step)
+    laid: list = []  # the last pass's layout (relayout.Laid)
     for i in range(MAX_PASSES):
         t0 = time.perf_counter()
         views.builder.resplit(splits)  # (numbering and rows do not depend on the split points)
@@ -2514,8 +2516,10 @@ def _layout(report: Report, font_config):
                 html = _checked_html(views)
         t1 = time.perf_counter()
         svgops.prime(image_cache, html)  # figures drawn from precompiled PDF operators
-        document = HTML(string=html, base_url=str(TEMPLATES_DIR), url_fetcher=fetcher).render(
-            font_config=font_config, cache=image_cache)
+        with incremental(laid[-1] if laid else None, laid):  # the pages before the change taken over
+            document = HTML(string=html, base_url=str(TEMPLATES_DIR), url_fetcher=fetcher).render(
+                font_config=font_config, cache=image_cache)
+        del laid[:-1]
         t2 = time.perf_counter()
         stats.passes += 1
         stats.seconds_html += t1 - t0
