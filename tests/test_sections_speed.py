@@ -371,3 +371,38 @@ def test_cache_keys_read_the_settings_without_rcparams_getitem(monkeypatch):
     monkeypatch.setattr(matplotlib.RcParams, "__getitem__", lambda self, k: reads.append(k) or getitem(self, k))
     assert mplstyle._rc_key() == expected
     assert reads == []
+
+
+def test_crank_view_passes_the_traced_paths_as_the_per_point_segments(monkeypatch):
+    """The enlarged crank view looks for its free place among the drawing's segments, the traced
+    paths of the centres of mass among them (≈ 10 000 point pairs): stacked as arrays now, not a
+    Python tuple of numpy scalars per pair; the segments are the same float64 numbers."""
+    from pathlib import Path
+
+    from reportgen import batch
+    from reportgen.analysis.study import Study
+    from reportgen.case.load import load_spec
+    from reportgen.report import assemble
+    from reportgen.scenes import mechanism, plans
+
+    root = Path(__file__).resolve().parents[1]
+    seen, args = [], []
+    place, view = plans.free_place, mechanism.crank_view
+    monkeypatch.setattr(plans, "free_place", lambda c, h, segs, *a: seen.append(segs) or place(c, h, segs, *a))
+    monkeypatch.setattr(mechanism, "crank_view", lambda *a: args.append((a, len(seen))) or view(*a))
+    v = batch.read_variants(root / "cases/class_six_bar.csv", root / "cases/ws000_six_bar.toml")[0]
+    spec = load_spec(v.base, v.params)
+    spec.meta_overrides = dict(v.meta)
+    assemble.build_report(Study(spec), sections=["kinematics"])
+    (study, rows, cv, _, _, coms), first = args[0]
+    assert coms and len(seen) > first                 # the view is drawn (this variant needs it)
+    segs = []
+    for row in rows:
+        for link in study.mechanism.moving:
+            xy = [(float(row[f"x_{p}"]) / cv.mu, float(row[f"y_{p}"]) / cv.mu) for p in link.points]
+            segs += [(*xy[i], *xy[j]) for i in range(len(xy)) for j in range(i + 1, len(xy))]
+    for p in coms:
+        path = np.column_stack([study.cycle[f"x_{p}"], study.cycle[f"y_{p}"]]) / cv.mu
+        segs += [(*path[i], *path[i + 1]) for i in range(len(path) - 1)]
+    expected = np.array(segs).reshape(-1, 4)
+    assert seen[first].dtype == expected.dtype and np.array_equal(seen[first], expected)
