@@ -258,3 +258,151 @@ def test_label_placer_reads_the_axes_and_figure_boxes_once():
     where, reads = placed(True)
     assert reads <= 2
     assert where == placed(False)[0]
+
+
+def _aligned_charts():
+    """Two charts over one shared axis, their y labels aligned (the label alignment asks every
+    sibling axis for its ticks), a legend and mathtext: what the note's diagrams have."""
+    fig = mplstyle.figure(120, 90)
+    a1, a2 = fig.subplots(2, 1, sharex=True)
+    x = np.linspace(0, 360, 73)
+    a1.plot(x, 120 * np.sin(np.radians(x)), label=r"$M_{д}$")
+    a2.plot(x, np.cos(np.radians(x)), label="ω, рад/с")
+    a1.legend(loc="best")
+    a2.set_xlabel("φ, град")
+    a1.set_ylabel(r"$M$, Н·м")
+    a2.set_ylabel("ω, рад/с")
+    fig.align_ylabels([a1, a2])
+    return fig
+
+
+def test_ticks_are_updated_once_per_tight_box_and_axis_draw(monkeypatch):
+    """``Axis._update_ticks`` (locate, format, place every tick) ran about 13 times per axis and
+    figure — for the axis, each of its four spines and each aligned sibling, inside every tight box
+    of the layout's two passes and in the drawing; inside one ``Axes.get_tightbbox`` or one
+    ``Axis.draw`` nothing it reads changes, so it now runs once per axis there
+    (``style.mplreuse``), and the figure is the same."""
+    from matplotlib import axis as maxis
+
+    from reportgen.style import mplreuse
+
+    runs = []
+    locs = maxis.Axis.get_majorticklocs
+    monkeypatch.setattr(maxis.Axis, "get_majorticklocs", lambda self: runs.append(self) or locs(self))
+    svg = mplstyle.to_svg(_aligned_charts())
+    shared = len(runs)
+    runs.clear()
+    with mplreuse.unshared():
+        assert mplstyle.to_svg(_aligned_charts()) == svg
+    assert shared <= 5 * 4 and 3 * shared <= len(runs)      # 4 axes; 18 and 58 when written
+
+
+def test_glyph_layouts_of_text_drawn_as_paths_are_made_once_per_string(monkeypatch):
+    """Every text of an SVG figure is drawn as glyph paths (``svg.fonttype = path``): HarfBuzz
+    shaping and FreeType outlines for every tick label of every figure. The layout of a string in
+    a font is now kept (``style.mplreuse``): a second figure with the same texts shapes none of
+    them again, and the SVG is byte for byte matplotlib's."""
+    from matplotlib import _text_helpers
+
+    from reportgen.style import mplreuse
+
+    shaped = []
+    layout = _text_helpers.layout
+    monkeypatch.setattr(_text_helpers, "layout", lambda s, *a, **k: shaped.append(s) or layout(s, *a, **k))
+    first = mplstyle.to_svg(_aligned_charts())
+    shaped.clear()
+    assert mplstyle.to_svg(_aligned_charts()) == first
+    assert shaped == []
+    with mplreuse.unshared():
+        assert mplstyle.to_svg(_aligned_charts()) == first
+    assert len(shaped) > 10                   # matplotlib's own path shapes every tick label again
+
+
+def test_kept_glyph_layouts_answer_as_matplotlib():
+    """The kept layout gives the glyph ids, positions and outlines matplotlib computes — also for a
+    glyph from a fallback font and for a map the caller fills (``return_new_glyphs_only=False``) —
+    and hands out outlines a caller may change without changing the kept ones."""
+    from matplotlib import textpath
+
+    mplstyle.apply_style()
+    own = textpath.TextToPath.get_glyphs_with_font.__wrapped__
+    prop = FontProperties(family="serif", size=10)
+    for s in ["0,5", "−12,25", "φ, град", "ω₁ → ∞", "0,5"]:
+        t2p = textpath.TextToPath()
+        ours = t2p.get_glyphs_with_font(t2p._get_font(prop), s, glyph_map={}, return_new_glyphs_only=True)
+        theirs = own(t2p, t2p._get_font(prop), s, glyph_map={}, return_new_glyphs_only=True)
+        assert ours[0] == theirs[0] and list(ours[1]) == list(theirs[1]) and ours[2] == theirs[2] == []
+        for (v1, c1), (v2, c2) in zip(ours[1].values(), theirs[1].values()):
+            assert np.array_equal(v1, v2) and np.array_equal(c1, c2)
+            v1 += 1.0                               # a copy: the kept outline is not changed
+        filled = {}
+        t2p.get_glyphs_with_font(t2p._get_font(prop), s, glyph_map=filled)
+        assert list(filled) == list(theirs[1])
+    again = textpath.TextToPath()
+    info, outlines, _ = again.get_glyphs_with_font(again._get_font(prop), "0,5", return_new_glyphs_only=True)
+    plain = own(again, again._get_font(prop), "0,5", return_new_glyphs_only=True)[1]
+    assert all(np.array_equal(outlines[k][0], plain[k][0]) for k in plain)
+
+
+def test_text_drawn_as_paths_finds_its_font_through_the_kept_lookups(monkeypatch):
+    """``TextToPath._get_font`` searched the font files (``_find_fonts_by_props``) for every text
+    drawn as paths; it now uses the lookups kept for the text layout: a figure of known fonts
+    searches nothing."""
+    from matplotlib import font_manager
+
+    mplstyle.to_svg(_aligned_charts())
+    searches = []
+    manager = font_manager.fontManager
+    find = manager._find_fonts_by_props
+    monkeypatch.setattr(manager, "_find_fonts_by_props", lambda *a, **k: searches.append(a) or find(*a, **k))
+    mplstyle.to_svg(_aligned_charts())
+    assert searches == []
+
+
+def test_cache_keys_read_the_settings_without_rcparams_getitem(monkeypatch):
+    """The text caches key every measure and parse by ~20 ``rcParams`` settings; they are read as
+    ``RcParams._get`` reads them (no ``__getitem__`` with its deprecation checks per key) and are
+    the same values."""
+    mplstyle.apply_style()
+    rc = matplotlib.rcParams
+    expected = tuple(tuple(v) if isinstance(v, list) else v for v in (rc[k] for k in mplstyle._MATHTEXT_RC))
+    reads = []
+    getitem = matplotlib.RcParams.__getitem__
+    monkeypatch.setattr(matplotlib.RcParams, "__getitem__", lambda self, k: reads.append(k) or getitem(self, k))
+    assert mplstyle._rc_key() == expected
+    assert reads == []
+
+
+def test_crank_view_passes_the_traced_paths_as_the_per_point_segments(monkeypatch):
+    """The enlarged crank view looks for its free place among the drawing's segments, the traced
+    paths of the centres of mass among them (≈ 10 000 point pairs): stacked as arrays now, not a
+    Python tuple of numpy scalars per pair; the segments are the same float64 numbers."""
+    from pathlib import Path
+
+    from reportgen import batch
+    from reportgen.analysis.study import Study
+    from reportgen.case.load import load_spec
+    from reportgen.report import assemble
+    from reportgen.scenes import mechanism, plans
+
+    root = Path(__file__).resolve().parents[1]
+    seen, args = [], []
+    place, view = plans.free_place, mechanism.crank_view
+    monkeypatch.setattr(plans, "free_place", lambda c, h, segs, *a: seen.append(segs) or place(c, h, segs, *a))
+    monkeypatch.setattr(mechanism, "crank_view", lambda *a: args.append((a, len(seen))) or view(*a))
+    v = batch.read_variants(root / "cases/class_six_bar.csv", root / "cases/ws000_six_bar.toml")[0]
+    spec = load_spec(v.base, v.params)
+    spec.meta_overrides = dict(v.meta)
+    assemble.build_report(Study(spec), sections=["kinematics"])
+    (study, rows, cv, _, _, coms), first = args[0]
+    assert coms and len(seen) > first                 # the view is drawn (this variant needs it)
+    segs = []
+    for row in rows:
+        for link in study.mechanism.moving:
+            xy = [(float(row[f"x_{p}"]) / cv.mu, float(row[f"y_{p}"]) / cv.mu) for p in link.points]
+            segs += [(*xy[i], *xy[j]) for i in range(len(xy)) for j in range(i + 1, len(xy))]
+    for p in coms:
+        path = np.column_stack([study.cycle[f"x_{p}"], study.cycle[f"y_{p}"]]) / cv.mu
+        segs += [(*path[i], *path[i + 1]) for i in range(len(path) - 1)]
+    expected = np.array(segs).reshape(-1, 4)
+    assert seen[first].dtype == expected.dtype and np.array_equal(seen[first], expected)

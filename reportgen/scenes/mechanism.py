@@ -365,14 +365,15 @@ def crank_view(study, rows, cv: Canvas, centre, tip: str, coms) -> CrankView | N
             pts += xy
             segs += [(*xy[i], *xy[j]) for i in range(len(xy)) for j in range(i + 1, len(xy))]
     cyc = study.cycle if coms else None
-    for p in coms:
+    segs = [np.array(segs, dtype=float).reshape(-1, 4)]
+    for p in coms:     # the traced path's consecutive points as segments (x₀, y₀, x₁, y₁)
         v = np.column_stack([cyc[f"x_{p}"], cyc[f"y_{p}"]]) / cv.mu
-        segs += [(*v[i], *v[i + 1]) for i in range(len(v) - 1)]
+        segs.append(np.column_stack([v[:-1], v[1:]]))
     pts = np.array(pts)
     r_mm, c_mm = radius / cv.mu, c / cv.mu
     h = r_view / cv.mu + VIEW_PAD_MM
     circle = (c_mm[0] - r_mm - 2, c_mm[1] - r_mm - 2, c_mm[0] + r_mm + 2, c_mm[1] + r_mm + 2)
-    at = free_place(c_mm, h, np.array(segs).reshape(-1, 4), pts, pts.min(axis=0), pts.max(axis=0), [], circle,
+    at = free_place(c_mm, h, np.concatenate(segs), pts, pts.min(axis=0), pts.max(axis=0), [], circle,
                     cv.width_mm - 2 * cv.margin)
     # the first view letter that cannot be read as a point of the mechanism (not А beside a point A)
     names = {p for link in mech.links for p in link.points}

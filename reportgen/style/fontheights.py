@@ -19,6 +19,17 @@ _FONT_RC = ("font.family", "font.serif", "font.sans-serif", "font.monospace", "f
             "font.fantasy")
 
 
+def rc_values(keys: tuple[str, ...]) -> tuple:
+    """The settings ``keys`` of ``matplotlib.rcParams`` as a hashable tuple (lists as tuples).
+
+    Read as ``RcParams._get`` reads them (``dict.__getitem__``): these keys are neither
+    deprecated nor the backend, for which alone ``RcParams.__getitem__`` does more; a cache key
+    is built from them for every text measured, so the plain read matters."""
+    rc = matplotlib.rcParams
+    get = dict.__getitem__
+    return tuple(tuple(v) if type(v) is list else v for v in [get(rc, k) for k in keys])
+
+
 class _Tables:
     """A font's SFNT tables as ``get_sfnt_table`` returns them, each read once."""
 
@@ -50,9 +61,7 @@ class _Lookups:
     def _find_fonts_by_props(self, prop, *args, **kw):
         if args or kw or not hasattr(prop, "get_family"):
             return self._manager._find_fonts_by_props(prop, *args, **kw)
-        rc = matplotlib.rcParams
-        key = (hash(prop), tuple(tuple(rc[k]) if isinstance(rc[k], list) else rc[k] for k in _FONT_RC),
-               len(self._manager.ttflist))
+        key = (hash(prop), rc_values(_FONT_RC), len(self._manager.ttflist))
         found = self._found.get(key)
         if found is None:
             self.searches += 1

@@ -29,8 +29,8 @@ from matplotlib import font_manager
 from matplotlib.figure import Figure
 from matplotlib.ticker import ScalarFormatter
 
-from . import fonts, svgslim
-from .fontheights import share_font_heights
+from . import fonts, mplreuse, svgslim
+from .fontheights import rc_values, share_font_heights
 from .numbers import mpl_formatter
 
 __all__ = ["MM", "style_rc", "apply_style", "style", "figure", "localize_axes", "to_svg"]
@@ -136,6 +136,7 @@ def apply_style() -> None:
     share_mathtext()
     share_svg_text_metrics()
     share_font_heights()
+    mplreuse.share_all()
 
 
 MATHTEXT_CACHE = 4096  # parsed mathtext strings kept by a process (ws000's four sections: about 170)
@@ -216,8 +217,7 @@ def share_svg_text_metrics() -> None:
 
 
 def _rc_key() -> tuple:
-    rc = matplotlib.rcParams
-    return tuple(tuple(v) if isinstance(v, list) else v for v in map(rc.__getitem__, _MATHTEXT_RC))
+    return rc_values(_MATHTEXT_RC)
 
 
 # the settings a parse reads besides its arguments (the fonts of the custom set, fallback, hinting)

@@ -1,0 +1,228 @@
+"""Work that matplotlib repeats while one figure is laid out and saved, done once.
+
+Every figure of a note is laid out (constrained layout: two passes, each asking every axes for
+its tight box) and drawn into SVG with its text as glyph paths. Three things were computed over
+and over with the same inputs and the same results:
+
+* ``Axis._update_ticks`` (tick locations, labels, positions): called by the axis itself, by
+  each of its four spines (``Spine.get_window_extent``) and by the label alignment
+  (``_get_tick_boxes_siblings``) inside one ``Axes.get_tightbbox`` or one ``Axis.draw``
+  — about 13 times per axis and figure instead of 3;
+* the glyph layout of a text drawn as paths (``TextToPath.get_glyphs_with_font``: HarfBuzz
+  shaping and FreeType outlines of every glyph), for every tick label of every figure — the
+  same strings («0,5», «−10», «φ, град») in the same font;
+* the font search of ``TextToPath._get_font`` for each drawn text (``textpath`` keeps its own
+  reference to the font manager, so the lookups :mod:`.fontheights` keeps were not used there).
+
+Here each is kept for as long as its inputs cannot change, so a figure is laid out and written
+from the same numbers as before (``tests/test_sections_speed.py``: the same SVG bytes, and the
+counts of the work done).
+"""
+from __future__ import annotations
+
+import contextlib
+import functools
+from collections import OrderedDict
+
+GLYPH_CACHE = 4096  # (font, string) glyph layouts kept by a process (three class variants: 131)
+
+
+def share_all() -> None:
+    """Install every reuse of this module (idempotent)."""
+    share_tick_updates()
+    share_glyph_layouts()
+    share_font_search()
+
+
+# (owner, attribute, matplotlib's own, ours) for every attribute replaced here
+_PATCHES: list[tuple] = []
+
+
+_DONE: set[str] = set()
+
+
+def _installed(what: str) -> bool:
+    """Whether ``what`` was installed already (then True); marks it installed otherwise. Not
+    read from the methods themselves: inside :func:`unshared` they are matplotlib's again."""
+    if what in _DONE:
+        return True
+    _DONE.add(what)
+    return False
+
+
+def _patch(owner, name: str, new) -> None:
+    _PATCHES.append((owner, name, getattr(owner, name), new))
+    setattr(owner, name, new)
+
+
+@contextlib.contextmanager
+def unshared():
+    """matplotlib's own methods for the duration of the block (a test and a bench compare
+    the figures and the time with and without the reuse in one process)."""
+    for owner, name, own, _ in _PATCHES:
+        setattr(owner, name, own)
+    try:
+        yield
+    finally:
+        for owner, name, _, ours in _PATCHES:
+            setattr(owner, name, ours)
+
+
+# --- tick updates ---------------------------------------------------------------------------------
+
+class _TickScope:
+    """The axes whose tight box or axis drawing is in progress, and the ticks their axes gave.
+
+    Inside ``Axes.get_tightbbox`` and ``Axis.draw`` nothing but the axes' ``apply_aspect`` (run
+    first by ``get_tightbbox``) changes an axis's limits, box, locator or formatter: the result
+    of ``_update_ticks`` is kept per axis for the scope and reused while those are the same."""
+
+    def __init__(self):
+        self.depth = 0
+        self.kept: dict = {}
+        self.updates = 0          # real ``_update_ticks`` runs (a test reads them)
+        self.reused = 0
+
+    def enter(self) -> None:
+        self.depth += 1
+
+    def leave(self) -> None:
+        self.depth -= 1
+        if not self.depth:
+            self.kept.clear()
+
+
+TICKS = _TickScope()
+
+
+def _axis_state(axis) -> tuple:
+    """What ``_update_ticks`` reads that may differ between two calls: the view interval, the
+    axes' box in pixels, the locator and formatter objects and the number of ticks made."""
+    return (tuple(axis.get_view_interval()), axis.axes.bbox.bounds, id(axis.major.locator),
+            id(axis.major.formatter), id(axis.minor.locator), id(axis.minor.formatter),
+            len(axis.majorTicks), len(axis.minorTicks))
+
+
+def share_tick_updates() -> None:
+    """Keep ``Axis._update_ticks`` within one tight box or one axis drawing (idempotent)."""
+    from matplotlib import axis as maxis
+    from matplotlib.axes import _base
+
+    if _installed("ticks"):
+        return
+    update = maxis.Axis._update_ticks
+
+    def _update_ticks(self):
+        if not TICKS.depth:
+            TICKS.updates += 1
+            return update(self)
+        state = _axis_state(self)
+        kept = TICKS.kept.get(self)
+        if kept is not None and kept[0] == state:
+            TICKS.reused += 1
+            return list(kept[1])
+        TICKS.updates += 1
+        ticks = update(self)
+        TICKS.kept[self] = (_axis_state(self), list(ticks))   # after: the update may add ticks
+        return ticks
+
+    def scoped(fn):
+        @functools.wraps(fn)
+        def run(*args, **kw):
+            TICKS.enter()
+            try:
+                return fn(*args, **kw)
+            finally:
+                TICKS.leave()
+        return run
+
+    _update_ticks.__wrapped__ = update
+    _patch(maxis.Axis, "_update_ticks", _update_ticks)
+    _patch(maxis.Axis, "draw", scoped(maxis.Axis.draw))
+    _patch(_base._AxesBase, "get_tightbbox", scoped(_base._AxesBase.get_tightbbox))
+
+
+# --- font search of the text drawn as paths -------------------------------------------------------
+
+def share_font_search() -> None:
+    """``TextToPath._get_font`` (a text drawn as glyph paths) finds its font files through the
+    lookups that :func:`.fontheights.share_font_heights` keeps for the text layout (the same
+    ``_find_fonts_by_props`` answers, searched once per font instead of once per text)."""
+    from matplotlib import text as mtext
+    from matplotlib import textpath
+
+    from .fontheights import share_font_heights
+
+    if _installed("fonts"):
+        return
+    share_font_heights()
+    _patch(textpath, "_fontManager", mtext.fontManager)
+
+
+# --- glyph layouts --------------------------------------------------------------------------------
+
+class _Glyphs:
+    """Counts of the glyph layouts made and asked for (a test reads them)."""
+    made = 0
+    asked = 0
+
+
+GLYPHS = _Glyphs()
+
+
+def share_glyph_layouts() -> None:
+    """Keep ``TextToPath.get_glyphs_with_font``'s layout of a string per font (idempotent).
+
+    The layout (glyph ids and positions, from HarfBuzz) and the outlines (``FT2Font.get_path``
+    of each glyph) depend on the font file, its size and the string (and the text's features
+    and language); ``TextToPath`` always sets the size itself (``_get_font``: ``FONT_SCALE``
+    at 72 dpi) just before, so a font it has just returned is keyed by itself. Which of the
+    glyphs are new to a figure (``return_new_glyphs_only``) is decided per call, as matplotlib
+    does; the outlines are handed out as copies."""
+    from matplotlib import textpath
+
+    if _installed("glyphs"):
+        return
+    get_glyphs = textpath.TextToPath.get_glyphs_with_font
+    get_font = textpath.TextToPath._get_font
+    sized: dict = {}   # id(font) -> (font, size) for fonts that _get_font has just sized
+
+    def _get_font(self, prop):
+        font = get_font(self, prop)
+        sized[id(font)] = (font, (self.FONT_SCALE, self.DPI))
+        return font
+
+    @functools.lru_cache(GLYPH_CACHE)
+    def layout(font, size, s, features, language):
+        GLYPHS.made += 1
+        glyph_info, glyph_map, _ = get_glyphs(textpath.text_to_path, font, s, features=features, language=language)
+        for verts, codes in glyph_map.values():
+            verts.setflags(write=False)
+            codes.setflags(write=False)
+        return tuple(glyph_info), dict(glyph_map)
+
+    def get_glyphs_with_font(self, font, s, glyph_map=None, return_new_glyphs_only=False, *,
+                             features=None, language=None):
+        known = sized.get(id(font))
+        if (known is None or known[0] is not font or known[1] != (self.FONT_SCALE, self.DPI)
+                or type(self) is not textpath.TextToPath):
+            return get_glyphs(self, font, s, glyph_map, return_new_glyphs_only,
+                              features=features, language=language)
+        sized.pop(id(font))      # sized again by the next _get_font; someone else may resize it
+        GLYPHS.asked += 1
+        info, outlines = layout(font, known[1], s,
+                                None if features is None else tuple(features),
+                                language if language is None or isinstance(language, str) else tuple(language))
+        if glyph_map is None:
+            glyph_map = OrderedDict()
+        new = OrderedDict() if return_new_glyphs_only else glyph_map
+        for repr_, *_ in info:
+            if repr_ not in glyph_map and repr_ not in new:
+                verts, codes = outlines[repr_]
+                new[repr_] = (verts.copy(), codes.copy())
+        return list(info), new, []
+
+    get_glyphs_with_font.__wrapped__ = get_glyphs
+    get_glyphs_with_font.cache_info = layout.cache_info
+    _patch(textpath.TextToPath, "get_glyphs_with_font", get_glyphs_with_font)
+    _patch(textpath.TextToPath, "_get_font", _get_font)
