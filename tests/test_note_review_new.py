@@ -223,7 +223,7 @@ def test_two_prismatic_pairs_at_one_point_told_apart(shaper):
 
 def test_transmission_angle_group_named_as_in_chapter_1(ws002):
     """Table 2.9 of ws002 named the dyad of the initial mechanism «2,3»; chapter 1 calls it (1,2,3)."""
-    from reportgen.report.sections.kinematics import _flag_group
+    from reportgen.report.russian import flag_group as _flag_group
     assert _flag_group(ws002, "mu_2_3") == "(1,2,3)"
     assert _flag_group(ws002, "mu_4_5") == "(4,5)"
 

@@ -266,6 +266,7 @@ def position_gap_mm(groups, mu: float) -> float:
 
 POSITION_GAP_MM = 2.5   # crank pin positions closer than this on paper are numbered in an enlarged view
 VIEW_R_MM = 12.0        # the crank circle's radius in the enlarged view at least, mm
+CRANK_R_MIN_MM = 10.0   # a crank circle smaller than this on paper is numbered in an enlarged view
 VIEW_LABELS_MM = 7.0    # room for the position labels around the crank circle in the view, mm
 HINGE_MM = 3.5          # the region circled on the main view: the crank circle and its joints' symbols
 VIEW_PAD_MM = 7.0       # around the view, for its title
@@ -338,8 +339,6 @@ def crank_view(study, rows, cv: Canvas, centre, tip: str, coms) -> CrankView | N
     mech = study.mechanism
     groups = _position_groups(study.kinematics, rows, tip, cv.mm(0.5))
     gap = position_gap_mm(groups, cv.mu)
-    if gap >= POSITION_GAP_MM:
-        return None
     tr = study.cycle if study.has_cycle else study.kinematics
     path = None if mech.driver.periodic else np.column_stack([tr[f"x_{tip}"], tr[f"y_{tip}"]]).astype(float)
     if mech.driver.rotary:
@@ -348,6 +347,10 @@ def crank_view(study, rows, cv: Canvas, centre, tip: str, coms) -> CrankView | N
     else:
         c = (path.min(axis=0) + path.max(axis=0)) / 2
         r_m = float(np.hypot(*(path - c).T).max())
+    # a crank circle under CRANK_R_MIN_MM on paper has no room around it for its numbers even when its
+    # positions are far enough apart (the sewing machine's 7,5 mm circle put A₅ 23 mm off on a leader)
+    if gap >= POSITION_GAP_MM and not (mech.driver.rotary and r_m / cv.mu < CRANK_R_MIN_MM):
+        return None
     fine = [q / 1000.0 for q in GOST_K if q / 1000.0 < cv.mu * (1 - 1e-9)
             and r_m / (q / 1000.0) >= VIEW_R_MM and gap * cv.mu / (q / 1000.0) >= 2 * POSITION_GAP_MM]
     if not fine:
