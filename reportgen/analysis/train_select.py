@@ -46,6 +46,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from ..style.numbers import SUBSCRIPT
 from ..core.gears import Rack, internal_checks, pair_geometry
 from .train import FRAME, TrainModel, Wheel, coaxiality_equations, place_axes
 
@@ -577,12 +578,9 @@ class Selector:
         return Candidate(dict(zs), float(u), size, fails, u, asm, nb)
 
 
-_SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
-
-
 def _sub(name: str) -> str:
     """A wheel's number as a subscript of z in a plain-text verdict: «z₁₁», not «z11» (letters as they are)."""
-    return name.translate(_SUBSCRIPT)
+    return name.translate(SUBSCRIPT)
 
 
 def _dec(x: float, spec: str = ".4f") -> str:

@@ -13,6 +13,7 @@ from matplotlib.transforms import Affine2D
 
 from ..mechanism.model import FRAME, Mechanism
 from ..style import mplstyle
+from ..style.numbers import SUBSCRIPT  # noqa: F401  (the scenes import it from here)
 from .labels import LabelPlacer, tex_point
 
 NICE = (1.0, 1.5, 2.0, 2.5, 4.0, 5.0)
@@ -348,9 +349,6 @@ def draw_mechanism(cv: Canvas, mech: Mechanism, row, *, color=INK, lw=1.4, label
                 x, y = _point(row, p)
                 cv.labels.add(x, y, tex_point(p), prefer=_label_offset(mech, row, p), color=color, fontsize=10,
                               point=True, reach_mm=BLOCK_REACH_MM if p in blocks else 0.0)
-
-
-SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 
 def _label_offset(mech: Mechanism, row, p: str) -> tuple[float, float]:

@@ -49,6 +49,7 @@ DASH = "\u2014"  # em dash: "no value"
 MIDDOT = "\u00b7"
 
 _SUPERSCRIPT = str.maketrans("0123456789-+", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺")
+SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")     # digits as subscripts in plain text (z₁, R₀₁)
 _TINY = Decimal("1e-4")
 # Units written right after the number without a space.
 _ATTACHED_UNITS = ("°", "′", "″")

@@ -786,8 +786,8 @@ def printed_block(s, pr: pd.DataFrame, study) -> None:
     for _, r in bad.iterrows():
         title = printed_name(study, r["key"], r["title"])
         note = r["note"] or "расхождение превышает единицу последнего напечатанного разряда."
-        s.paragraph(Markup(f"Примечание — {title}: напечатано {_as_printed(r['printed'], r['value'])}, точное значение "
-                           f"{fmt(r['computed'], sig=6)}. ") + Markup(note))
+        s.paragraph(Markup("Примечание — {}: напечатано {}, точное значение {}. ").format(
+            title, _as_printed(r["printed"], r["value"]), fmt(r["computed"], sig=6)) + Markup(note))
 
 
 def _printed_sig(text: str) -> int:

@@ -28,7 +28,7 @@ def _eps(eps: float, limit: float) -> str:
     """ε_α to 0,001, or to as many decimals as tell it from the given limit [ε_α] (1,2004 ≥ 1,2 printed
     «1,200 ≥ 1,200» read as a tie)."""
     d = 3
-    while d < 6 and float(fmt(eps, digits=d).replace(",", ".").replace("\u2212", "-")) == limit and eps != limit:
+    while d < 6 and round(eps, d) == limit and eps != limit:
         d += 1
     return fmt(eps, digits=d)
 
