@@ -59,21 +59,21 @@ def machine() -> dict:
             "platform": platform.platform(), "weasyprint": weasyprint.__version__}
 
 
-def _env(**extra) -> dict:
-    env = dict(os.environ, PYTHONPATH=str(ROOT), CI="1")
+def _env(root: Path = ROOT, **extra) -> dict:
+    env = dict(os.environ, PYTHONPATH=str(root), CI="1")
     env.pop("PYTHONDONTWRITEBYTECODE", None)  # a user's Python keeps the bytecode of reportgen
     env.update(extra)
     return env
 
 
-def run(args: list[str], **env) -> float:
-    """Wall seconds of ``python -m reportgen.cli ARGS`` (exit code 0 or 1 accepted: a batch
-    with a failing variant exits 1); its CPU seconds (user + sys of the command and of the
-    worker processes it waited for) are appended to :data:`CPU`."""
+def run(args: list[str], root: Path = ROOT, **env) -> float:
+    """Wall seconds of ``python -m reportgen.cli ARGS`` in the checkout ``root`` (exit code 0 or 1
+    accepted: a batch with a failing variant exits 1); its CPU seconds (user + sys of the command
+    and of the worker processes it waited for) are appended to :data:`CPU`."""
     import resource
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
-    p = subprocess.run([sys.executable, "-m", "reportgen.cli", *args], cwd=ROOT, env=_env(**env),
+    p = subprocess.run([sys.executable, "-m", "reportgen.cli", *args], cwd=root, env=_env(root, **env),
                        capture_output=True, text=True)
     dt = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -96,9 +96,9 @@ def median_of(n: int, args: list[str], **env) -> dict:
             "load_average": [round(x, 2) for x in os.getloadavg()]}
 
 
-def _batch_run(args: list[str], out: Path, n: int, **env) -> dict:
+def _batch_run(args: list[str], out: Path, n: int, root: Path = ROOT, **env) -> dict:
     load = os.getloadavg()[0]
-    dt = run(args, **env)
+    dt = run(args, root, **env)
     m = json.loads((out / "manifest.json").read_text(encoding="utf-8"))
     # The workers are children of multiprocessing's fork server, not counted in RUSAGE_CHILDREN
     # of the command: their CPU time per variant is in the manifest (cpu_seconds).
@@ -119,10 +119,8 @@ def _batch_run(args: list[str], out: Path, n: int, **env) -> dict:
             "workers": m.get("workers", [])}
 
 
-def bench_batch(tmp: Path, n: int) -> dict:
-    """The class of ``n`` variants twice: first as a teacher builds a class never built before (a
-    new cache folder with only what `reportgen warmup` and one build of the base case put in it:
-    no split points of any variant), then again (every variant's split points remembered)."""
+def class_table(tmp: Path, n: int) -> tuple[Path, int]:
+    """The first ``n`` assembling rows of :data:`CLASS` written to ``tmp/class.csv``; (path, rows)."""
     with open(ROOT / CLASS, encoding="utf-8", newline="") as f:
         rows = list(csv.DictReader(f))
     good = [r for r in rows if r.get("variant", r.get("name")) != "31"][:n]  # 31 cannot assemble
@@ -131,6 +129,14 @@ def bench_batch(tmp: Path, n: int) -> dict:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(good)
+    return table, len(good)
+
+
+def bench_batch(tmp: Path, n: int) -> dict:
+    """The class of ``n`` variants twice: first as a teacher builds a class never built before (a
+    new cache folder with only what `reportgen warmup` and one build of the base case put in it:
+    no split points of any variant), then again (every variant's split points remembered)."""
+    table, n = class_table(tmp, n)
     cache = tmp / "class-cache"
     cache.mkdir()
     env = {"XDG_CACHE_HOME": str(cache), "REPORTGEN_CACHE": str(cache / "reportgen")}
@@ -138,9 +144,9 @@ def bench_batch(tmp: Path, n: int) -> dict:
     run(["build", CASE, "--format", "pdf,html", "-o", str(tmp / "base")], **env)
     out = tmp / "batch"
     args = ["batch", str(table), "--base", str(ROOT / CASE), "-o", str(out), "--jobs", "2"]
-    new = _batch_run(args, out, len(good), **env)
-    again = _batch_run(args, out, len(good), **env)
-    command = f"reportgen batch <первые {len(good)} строк {CLASS}> --base {CASE} -o out --jobs 2"
+    new = _batch_run(args, out, n, **env)
+    again = _batch_run(args, out, n, **env)
+    command = f"reportgen batch <первые {n} строк {CLASS}> --base {CASE} -o out --jobs 2"
     return again | {"command": command, "new_class": new | {
         "command": "XDG_CACHE_HOME=$(mktemp -d) (reportgen warmup; reportgen build " + CASE + "; " + command + ")"}}
 
