@@ -56,21 +56,23 @@ def _installed(what: str) -> bool:
     return False
 
 
-def _patch(owner, name: str, new) -> None:
-    _PATCHES.append((owner, name, getattr(owner, name), new))
+def _patch(group: str, owner, name: str, new) -> None:
+    _PATCHES.append((group, owner, name, getattr(owner, name), new))
     setattr(owner, name, new)
 
 
 @contextlib.contextmanager
-def unshared():
+def unshared(*groups: str):
     """matplotlib's own methods for the duration of the block (a test and a bench compare
-    the figures and the time with and without the reuse in one process)."""
-    for owner, name, own, _ in reversed(_PATCHES):     # an attribute replaced twice: the first own last
+    the figures and the time with and without the reuse in one process); ``groups``: only those
+    reuses (``"ticks"``, ``"glyphs"``, ``"fonts"``, ``"layouts"``, ``"legends"``), else all."""
+    chosen = [p for p in _PATCHES if not groups or p[0] in groups]
+    for _, owner, name, own, _ in reversed(chosen):     # an attribute replaced twice: the first own last
         setattr(owner, name, own)
     try:
         yield
     finally:
-        for owner, name, _, ours in _PATCHES:
+        for _, owner, name, _, ours in chosen:
             setattr(owner, name, ours)
 
 
@@ -143,9 +145,9 @@ def share_tick_updates() -> None:
         return run
 
     _update_ticks.__wrapped__ = update
-    _patch(maxis.Axis, "_update_ticks", _update_ticks)
-    _patch(maxis.Axis, "draw", scoped(maxis.Axis.draw))
-    _patch(_base._AxesBase, "get_tightbbox", scoped(_base._AxesBase.get_tightbbox))
+    _patch("ticks", maxis.Axis, "_update_ticks", _update_ticks)
+    _patch("ticks", maxis.Axis, "draw", scoped(maxis.Axis.draw))
+    _patch("ticks", _base._AxesBase, "get_tightbbox", scoped(_base._AxesBase.get_tightbbox))
 
 
 # --- font search of the text drawn as paths -------------------------------------------------------
@@ -162,7 +164,7 @@ def share_font_search() -> None:
     if _installed("fonts"):
         return
     share_font_heights()
-    _patch(textpath, "_fontManager", mtext.fontManager)
+    _patch("fonts", textpath, "_fontManager", mtext.fontManager)
 
 
 # --- glyph layouts --------------------------------------------------------------------------------
@@ -230,8 +232,8 @@ def share_glyph_layouts() -> None:
 
     get_glyphs_with_font.__wrapped__ = get_glyphs
     get_glyphs_with_font.cache_info = layout.cache_info
-    _patch(textpath.TextToPath, "get_glyphs_with_font", get_glyphs_with_font)
-    _patch(textpath.TextToPath, "_get_font", _get_font)
+    _patch("glyphs", textpath.TextToPath, "get_glyphs_with_font", get_glyphs_with_font)
+    _patch("glyphs", textpath.TextToPath, "_get_font", _get_font)
 
 
 # --- text layouts ---------------------------------------------------------------------------------
@@ -314,7 +316,7 @@ def share_text_layouts() -> None:
 
     _get_layout.__wrapped__ = get_layout
     _get_layout.kept = kept
-    _patch(mtext.Text, "_get_layout", _get_layout)
+    _patch("layouts", mtext.Text, "_get_layout", _get_layout)
 
 
 # --- the «best» place of a legend -----------------------------------------------------------------
@@ -409,6 +411,6 @@ def share_legend_search() -> None:
             LEGENDS.layout_axes.pop()
 
     _find_best_position.__wrapped__ = find
-    _patch(mlegend.Legend, "_find_best_position", _find_best_position)
-    _patch(mlegend.Legend, "draw", legend_draw)
-    _patch(_base._AxesBase, "get_tightbbox", get_tightbbox)
+    _patch("legends", mlegend.Legend, "_find_best_position", _find_best_position)
+    _patch("legends", mlegend.Legend, "draw", legend_draw)
+    _patch("legends", _base._AxesBase, "get_tightbbox", get_tightbbox)
