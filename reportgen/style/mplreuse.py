@@ -339,14 +339,15 @@ LEGENDS = _LegendSearch()
 
 def _candidates_inside(legend, width: float, height: float, renderer) -> bool:
     """Every place the «best» search can choose for a legend box of ``width`` × ``height``
-    lies strictly inside its axes' box: the places are the box anchored at the nine codes in
-    the anchor box less ``borderaxespad`` (``offsetbox._get_anchored_bbox``), so when the box
-    fits that padded box and the padded box is strictly inside the axes', all of them are."""
+    lies strictly inside its axes' box (``get_window_extent``, as ``Axes.get_tightbbox`` reads
+    it): the places are the box anchored at the nine codes in the anchor box less
+    ``borderaxespad`` (``offsetbox._get_anchored_bbox``), so when the box fits that padded box
+    and the padded box is strictly inside the axes', all of them are."""
     pad = legend.borderaxespad * renderer.points_to_pixels(legend._fontsize)
     if not pad > 0:
         return False
     inner = legend.get_bbox_to_anchor().padded(-pad)
-    ax = legend.parent.bbox
+    ax = legend.parent.get_window_extent(renderer)      # the box the axes' tight box is united with
     return (width <= inner.width and height <= inner.height and inner.x0 > ax.x0 and inner.y0 > ax.y0
             and inner.x1 < ax.x1 and inner.y1 < ax.y1)
 
