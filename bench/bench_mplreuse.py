@@ -3,8 +3,9 @@ worker (``batch._init_worker``) builds variants 02… of ``cases/class_six_bar.c
 warm-up both ways), each once with the reuse and once with matplotlib's own methods
 (``mplreuse.unshared``), the order alternating; ``time.process_time`` around ``build_report``.
 
-Usage: ``python bench/bench_mplreuse.py [N]`` (N variants, default 6). Prints seconds per variant,
-the medians, the ratio of the sums and the load; writes nothing.
+Usage: ``python bench/bench_mplreuse.py [N] [GROUP...]`` (N variants, default 6; GROUP: only those
+reuses switched off, e.g. ``layouts legends`` — see ``mplreuse.unshared``). Prints seconds per
+variant, the medians, the ratio of the sums and the load; writes nothing.
 """
 import os
 import statistics
@@ -39,17 +40,18 @@ def main() -> None:
     B._init_worker()
     variants = B.read_variants(ROOT / "cases/class_six_bar.csv", ROOT / "cases/ws000_six_bar.toml")
     n = int(sys.argv[1]) if len(sys.argv) > 1 else 6
+    groups = sys.argv[2:]
     run(variants[0])
-    with mplreuse.unshared():
+    with mplreuse.unshared(*groups):
         run(variants[0])
     on, off = [], []
     for i, v in enumerate(variants[1:1 + n]):
         if i % 2:
             on.append(run(v))
-            with mplreuse.unshared():
+            with mplreuse.unshared(*groups):
                 off.append(run(v))
         else:
-            with mplreuse.unshared():
+            with mplreuse.unshared(*groups):
                 off.append(run(v))
             on.append(run(v))
     print("без  ", " ".join(f"{t:.3f}" for t in off), "медиана %.3f" % statistics.median(off))

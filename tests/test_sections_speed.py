@@ -406,3 +406,84 @@ def test_crank_view_passes_the_traced_paths_as_the_per_point_segments(monkeypatc
         segs += [(*path[i], *path[i + 1]) for i in range(len(path) - 1)]
     expected = np.array(segs).reshape(-1, 4)
     assert seen[first].dtype == expected.dtype and np.array_equal(seen[first], expected)
+
+
+def test_text_layouts_are_made_once_per_text_and_style():
+    """``Text._get_layout`` laid out every tick label, legend entry and axis label again in each
+    pass of the constrained layout, for the label alignment, in the drawing and in the next
+    figure; its answer depends on the text and its style only, never on the position, and is now
+    kept (``style.mplreuse``): a second figure with the same texts lays out none of them again,
+    and the SVG is byte for byte matplotlib's."""
+    from reportgen.style import mplreuse
+
+    first = mplstyle.to_svg(_aligned_charts())
+    made, asked = mplreuse.LAYOUTS.made, mplreuse.LAYOUTS.asked
+    assert mplstyle.to_svg(_aligned_charts()) == first
+    assert mplreuse.LAYOUTS.made == made and mplreuse.LAYOUTS.asked > asked + 50
+    with mplreuse.unshared():
+        assert mplstyle.to_svg(_aligned_charts()) == first
+
+
+def test_kept_text_layouts_answer_as_matplotlib():
+    """The kept layout is matplotlib's — for rotated, anchored, multi-line, mathtext and
+    differently spaced texts, through the SVG, savefig's mixed-mode and the label placer's Agg
+    renderers, after a text's style changes — and the box handed out may be changed by the
+    caller without changing the kept one."""
+    from matplotlib import text as mtext
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    mplstyle.apply_style()
+    own = mtext.Text._get_layout.__wrapped__
+    fig = mplstyle.figure(80, 60)
+    ax = fig.add_subplot()
+    texts = [ax.text(0.5, 0.5, "φ, град"), ax.text(0.1, 0.2, "−0,25", rotation=90, va="top"),
+             ax.text(0.3, 0.3, "ω₁ →\nε₂, рад/с²", ha="right", multialignment="right", linespacing=1.6),
+             ax.text(0.2, 0.7, r"$J_{II}$, кг·м²", rotation=30, rotation_mode="anchor", va="baseline"),
+             ax.text(0.6, 0.1, "12,5", fontsize=7, ha="left", va="center_baseline")]
+    svg = RendererSVG(100, 100, io.StringIO())
+    renderers = [svg, MixedModeRenderer(fig, 1, 1, 72, svg), FigureCanvasAgg(fig).get_renderer()]
+    for _ in range(2):
+        for t in texts:
+            for r in renderers:
+                ours, theirs = mtext.Text._get_layout(t, r), own(t, r)
+                assert np.array_equal(ours[0].get_points(), theirs[0].get_points())
+                assert ours[1:] == theirs[1:]
+                ours[0].set_points(np.zeros((2, 2)))         # the caller's copy
+        for t in texts:
+            t.set_rotation((t.get_rotation() + 45) % 360)   # a new style: laid out anew
+            t.set_fontsize(t.get_fontsize() + 1)
+
+
+def _crowded_legend_chart():
+    """A small chart whose legend is taller than its axes (every «best» place reaches out)."""
+    fig = mplstyle.figure(70, 40)
+    ax = fig.add_subplot()
+    x = np.linspace(0, 360, 37)
+    for k in range(7):
+        ax.plot(x, np.sin(np.radians(x + 40 * k)), label=f"кривая {k + 1}")
+    ax.legend(loc="best")
+    return fig
+
+
+def test_legend_best_place_is_searched_once_per_drawing(monkeypatch):
+    """A legend at ``loc="best"`` was searched its place four times per figure: in both passes
+    of the constrained layout and twice in its drawing. In a layout pass its box, wherever placed
+    inside its axes, does not change the axes' tight box, so the search is left out when every
+    place it may choose lies inside the axes; in the drawing the place found is kept
+    (``style.mplreuse``). A legend that does not fit its axes is still searched in the layout.
+    The figures are byte for byte matplotlib's."""
+    from matplotlib import legend as mlegend
+
+    from reportgen.style import mplreuse
+
+    searches = []
+    data = mlegend.Legend._auto_legend_data
+    monkeypatch.setattr(mlegend.Legend, "_auto_legend_data", lambda self, r: searches.append(self) or data(self, r))
+    for chart, shared, own in ((_aligned_charts, 1, 4), (_crowded_legend_chart, 3, 4)):
+        searches.clear()
+        svg = mplstyle.to_svg(chart())
+        assert len(searches) == shared
+        searches.clear()
+        with mplreuse.unshared():
+            assert mplstyle.to_svg(chart()) == svg
+        assert len(searches) == own

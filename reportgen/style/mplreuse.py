@@ -12,7 +12,11 @@ and over with the same inputs and the same results:
   shaping and FreeType outlines of every glyph), for every tick label of every figure — the
   same strings («0,5», «−10», «φ, град») in the same font;
 * the font search of ``TextToPath._get_font`` for each drawn text (``textpath`` keeps its own
-  reference to the font manager, so the lookups :mod:`.fontheights` keeps were not used there).
+  reference to the font manager, so the lookups :mod:`.fontheights` keeps were not used there);
+* the layout of a text (``Text._get_layout``: its box relative to its position and its lines),
+  made for every tick label in each layout pass, the label alignment and the drawing, and again
+  in the next figure for the same strings;
+* the «best» place of a legend, searched in both layout passes and twice in its drawing.
 
 Here each is kept for as long as its inputs cannot change, so a figure is laid out and written
 from the same numbers as before (``tests/test_sections_speed.py``: the same SVG bytes, and the
@@ -32,6 +36,8 @@ def share_all() -> None:
     share_tick_updates()
     share_glyph_layouts()
     share_font_search()
+    share_text_layouts()
+    share_legend_search()
 
 
 # (owner, attribute, matplotlib's own, ours) for every attribute replaced here
@@ -50,21 +56,23 @@ def _installed(what: str) -> bool:
     return False
 
 
-def _patch(owner, name: str, new) -> None:
-    _PATCHES.append((owner, name, getattr(owner, name), new))
+def _patch(group: str, owner, name: str, new) -> None:
+    _PATCHES.append((group, owner, name, getattr(owner, name), new))
     setattr(owner, name, new)
 
 
 @contextlib.contextmanager
-def unshared():
+def unshared(*groups: str):
     """matplotlib's own methods for the duration of the block (a test and a bench compare
-    the figures and the time with and without the reuse in one process)."""
-    for owner, name, own, _ in _PATCHES:
+    the figures and the time with and without the reuse in one process); ``groups``: only those
+    reuses (``"ticks"``, ``"glyphs"``, ``"fonts"``, ``"layouts"``, ``"legends"``), else all."""
+    chosen = [p for p in _PATCHES if not groups or p[0] in groups]
+    for _, owner, name, own, _ in reversed(chosen):     # an attribute replaced twice: the first own last
         setattr(owner, name, own)
     try:
         yield
     finally:
-        for owner, name, _, ours in _PATCHES:
+        for _, owner, name, _, ours in chosen:
             setattr(owner, name, ours)
 
 
@@ -137,9 +145,9 @@ def share_tick_updates() -> None:
         return run
 
     _update_ticks.__wrapped__ = update
-    _patch(maxis.Axis, "_update_ticks", _update_ticks)
-    _patch(maxis.Axis, "draw", scoped(maxis.Axis.draw))
-    _patch(_base._AxesBase, "get_tightbbox", scoped(_base._AxesBase.get_tightbbox))
+    _patch("ticks", maxis.Axis, "_update_ticks", _update_ticks)
+    _patch("ticks", maxis.Axis, "draw", scoped(maxis.Axis.draw))
+    _patch("ticks", _base._AxesBase, "get_tightbbox", scoped(_base._AxesBase.get_tightbbox))
 
 
 # --- font search of the text drawn as paths -------------------------------------------------------
@@ -156,7 +164,7 @@ def share_font_search() -> None:
     if _installed("fonts"):
         return
     share_font_heights()
-    _patch(textpath, "_fontManager", mtext.fontManager)
+    _patch("fonts", textpath, "_fontManager", mtext.fontManager)
 
 
 # --- glyph layouts --------------------------------------------------------------------------------
@@ -224,5 +232,186 @@ def share_glyph_layouts() -> None:
 
     get_glyphs_with_font.__wrapped__ = get_glyphs
     get_glyphs_with_font.cache_info = layout.cache_info
-    _patch(textpath.TextToPath, "get_glyphs_with_font", get_glyphs_with_font)
-    _patch(textpath.TextToPath, "_get_font", _get_font)
+    _patch("glyphs", textpath.TextToPath, "get_glyphs_with_font", get_glyphs_with_font)
+    _patch("glyphs", textpath.TextToPath, "_get_font", _get_font)
+
+
+# --- text layouts ---------------------------------------------------------------------------------
+
+TEXT_LAYOUT_CACHE = 8192   # text layouts kept by a process (a class variant lays out about 400 distinct)
+
+
+class _Layouts:
+    """Counts of the text layouts made and asked for (a test reads them)."""
+    made = 0
+    asked = 0
+
+
+LAYOUTS = _Layouts()
+
+
+def _layout_renderer(renderer, svg, agg, mixed):
+    """What of a renderer a text layout depends on: ``"svg"`` for an SVG renderer (``svg``; and
+    savefig's mixed-mode one, ``mixed``, while it draws vectors: their extents come from the
+    shared ``TextToPath``, :func:`.mplstyle.share_svg_text_metrics`), ``("agg", dpi)`` for an
+    Agg renderer (``agg``: the label placer's); ``None`` for any other, whose layouts are not
+    kept."""
+    kind = type(renderer)
+    if kind is mixed and renderer._renderer is renderer._vector_renderer:
+        renderer = renderer._renderer
+        kind = type(renderer)
+    if kind is svg:
+        return "svg"
+    if kind is agg:
+        return ("agg", renderer.dpi)
+    return None
+
+
+def share_text_layouts() -> None:
+    """Keep ``Text._get_layout``'s answer per text content and style (idempotent).
+
+    The layout of a text (its box relative to the text's position, each line's width, ascent,
+    descent and offset) is made from the string, the font properties, the line spacing, the
+    alignments, the angle and rotation mode, the figure's dpi, the renderer's text extents and
+    the font's height metrics — never from the position. A figure lays out each tick label and
+    legend entry in both passes of the constrained layout, again for the label alignment and
+    for the drawing, and the next figure has the same «0,5», «φ, град»; here the answer is
+    computed once for those inputs (plus the ``mathtext``/``font`` settings the extents read)
+    and handed out as a new ``Bbox`` with the same lines. Wrapped text (its lines depend on the
+    position), TeX and renderers other than SVG and Agg are laid out by matplotlib each time."""
+    from matplotlib import text as mtext
+    from matplotlib.backends.backend_agg import RendererAgg
+    from matplotlib.backends.backend_mixed import MixedModeRenderer
+    from matplotlib.backends.backend_svg import RendererSVG
+    from matplotlib.transforms import Bbox
+
+    from .mplstyle import _rc_key
+
+    if _installed("layouts"):
+        return
+    get_layout = mtext.Text._get_layout
+
+    kept: dict = {}     # key -> (box corners, lines, text-aligned box); the oldest dropped first
+
+    def _get_layout(self, renderer):
+        kind = _layout_renderer(renderer, RendererSVG, RendererAgg, MixedModeRenderer)
+        fig = self.get_figure(root=True)
+        if kind is None or fig is None or self.get_wrap() or self.get_usetex():
+            return get_layout(self, renderer)
+        LAYOUTS.asked += 1
+        key = (kind, fig.dpi, self.get_text(), hash(self._fontproperties), self.get_parse_math(),
+               self._linespacing, self._multialignment, self._horizontalalignment,
+               self._verticalalignment, self.get_rotation(), self._rotation_mode, _rc_key())
+        got = kept.get(key)
+        if got is None:
+            LAYOUTS.made += 1
+            bbox, info, corner = get_layout(self, renderer)
+            points = bbox.get_points().copy()
+            points.setflags(write=False)
+            if len(kept) >= TEXT_LAYOUT_CACHE:
+                del kept[next(iter(kept))]
+            got = kept[key] = (points, tuple(info), corner)
+        points, info, corner = got
+        return Bbox(points.copy()), list(info), corner
+
+    _get_layout.__wrapped__ = get_layout
+    _get_layout.kept = kept
+    _patch("layouts", mtext.Text, "_get_layout", _get_layout)
+
+
+# --- the «best» place of a legend -----------------------------------------------------------------
+
+class _LegendSearch:
+    """The state of the legends' «best» place search: the axes whose tight box for a layout
+    engine is being computed (innermost last), the places found within each ``Legend.draw``,
+    and counts of the searches made, kept and left out (a test reads them)."""
+
+    def __init__(self):
+        self.layout_axes: list = []
+        self.drawing: dict = {}
+        self.searched = 0
+        self.kept = 0
+        self.skipped = 0
+
+
+LEGENDS = _LegendSearch()
+
+
+def _candidates_inside(legend, width: float, height: float, renderer) -> bool:
+    """Every place the «best» search can choose for a legend box of ``width`` × ``height``
+    lies strictly inside its axes' box (``get_window_extent``, as ``Axes.get_tightbbox`` reads
+    it): the places are the box anchored at the nine codes in the anchor box less
+    ``borderaxespad`` (``offsetbox._get_anchored_bbox``), so when the box fits that padded box
+    and the padded box is strictly inside the axes', all of them are."""
+    pad = legend.borderaxespad * renderer.points_to_pixels(legend._fontsize)
+    if not pad > 0:
+        return False
+    inner = legend.get_bbox_to_anchor().padded(-pad)
+    ax = legend.parent.get_window_extent(renderer)      # the box the axes' tight box is united with
+    return (width <= inner.width and height <= inner.height and inner.x0 > ax.x0 and inner.y0 > ax.y0
+            and inner.x1 < ax.x1 and inner.y1 < ax.y1)
+
+
+def share_legend_search() -> None:
+    """Search the «best» place of a legend (``loc="best"``) once per drawing (idempotent).
+
+    matplotlib searches it (``Legend._find_best_position``: the count of the axes' line
+    vertices, offsets and boxes under each of nine places) whenever the legend's box is asked
+    for: in both passes of the constrained layout (``Axes.get_tightbbox(for_layout_only=True)``)
+    and twice in ``Legend.draw`` (its frame, then its contents). Here
+
+    * inside a layout's tight box of the legend's own axes, when every place it could choose lies
+      strictly inside the axes' box (:func:`_candidates_inside`), the first place is given
+      without a search: the tight box is the union with the axes' box, which holds any of them,
+      so the layout is the same;
+    * within one ``Legend.draw`` the place found first is given again for the same box size and
+      renderer (nothing the search reads changes while the legend draws itself)."""
+    from matplotlib import legend as mlegend
+    from matplotlib.axes import _base
+    from matplotlib.transforms import Bbox
+
+    if _installed("legends"):
+        return
+    find = mlegend.Legend._find_best_position
+    draw = mlegend.Legend.draw
+    tight = _base._AxesBase.get_tightbbox
+
+    def _find_best_position(self, width, height, renderer):
+        axes = LEGENDS.layout_axes
+        if axes and self.parent is axes[-1] and _candidates_inside(self, width, height, renderer):
+            LEGENDS.skipped += 1
+            return self._get_anchored_bbox(1, Bbox.from_bounds(0, 0, width, height),
+                                           self.get_bbox_to_anchor(), renderer)
+        found = LEGENDS.drawing.get(self)
+        key = (width, height, id(renderer))
+        if found is not None and key in found:
+            LEGENDS.kept += 1
+            return found[key]
+        LEGENDS.searched += 1
+        place = find(self, width, height, renderer)
+        if found is not None:
+            found[key] = place
+        return place
+
+    @functools.wraps(draw)
+    def legend_draw(self, renderer):
+        LEGENDS.drawing[self] = {}
+        try:
+            return draw(self, renderer)
+        finally:
+            LEGENDS.drawing.pop(self, None)
+
+    @functools.wraps(tight)
+    def get_tightbbox(self, *args, **kw):
+        if not kw.get("for_layout_only"):
+            return tight(self, *args, **kw)
+        LEGENDS.layout_axes.append(self)
+        try:
+            return tight(self, *args, **kw)
+        finally:
+            LEGENDS.layout_axes.pop()
+
+    _find_best_position.__wrapped__ = find
+    _patch("legends", mlegend.Legend, "_find_best_position", _find_best_position)
+    _patch("legends", mlegend.Legend, "draw", legend_draw)
+    _patch("legends", _base._AxesBase, "get_tightbbox", get_tightbbox)
