@@ -50,3 +50,42 @@ def test_key_prints_given_synthesis_values_as_given():
 
 def test_key_prints_given_rocker_arm_as_given():
     assert _key_rows("cam_rocker_roller", "cam")["Длина коромысла"] == "100"
+
+
+def _contour_figure(stem):
+    from reportgen.scenes.gears import blocking_contour
+    return blocking_contour(_study(stem).gears)
+
+
+@pytest.mark.parametrize("stem", ["gear_pair_large_ratio", "gear_pair_shifted"])
+def test_blocking_contour_each_shift_over_its_own_range(stem):
+    """One range was drawn for both shifts: gear_pair_large_ratio (z₁ = 12, z₂ = 61) drew x₁ from
+    −2,6 (the wheel's undercut limit) though no x₁ < x₁min = 0,30 is admissible."""
+    import matplotlib.pyplot as plt
+    gr = _study(stem).gears
+    fig = _contour_figure(stem)
+    ax = fig.axes[0]
+    x1min = 1 - gr.z1 * 0.11697777844051097 / 2         # h_a* − z sin²20°/2
+    x2min = 1 - gr.z2 * 0.11697777844051097 / 2
+    assert ax.get_xlim()[0] >= min(-0.6, x1min - 0.2) and ax.get_xlim()[0] <= x1min
+    assert ax.get_ylim()[0] <= x2min
+    plt.close(fig)
+
+
+def test_blocking_contour_limits_labelled_on_their_curves_with_textbook_values():
+    """Each limit of the contour named on its curve (s_a = 0 and s_a,min·m of each wheel, ε_α = 1 and
+    ε_min, interference, the undercut limits with their values); x_min = (17 − z)/17 for α = 20°,
+    h_a* = 1 (textbook, ± 0,02: the exact h_a* − z sin²α/2): z₁ = 12 → 0,29…0,30, z₂ = 30 → −0,75…−0,76."""
+    import matplotlib.pyplot as plt
+    fig = _contour_figure("gear_pair_shifted")
+    texts = [t.get_text() for t in fig.axes[0].texts]
+    for want in ("s_{a1}=0$", "s_{a1}=0{,}25m", "s_{a2}=0{,}25m", r"\varepsilon_\alpha=1$",
+                 r"\varepsilon_\alpha=1{,}2", "интерф. 1", "интерф. 2"):
+        assert any(want in t for t in texts), (want, texts)
+    got = {}
+    for t in texts:
+        m = re.search(r"x_\{(\d)min\}=(-?[\d{},]+)", t)
+        if m:
+            got[m.group(1)] = float(m.group(2).replace("{,}", "."))
+    assert abs(got["1"] - (17 - 12) / 17) <= 0.02 and abs(got["2"] - (17 - 30) / 17) <= 0.02, got
+    plt.close(fig)
