@@ -89,3 +89,46 @@ def test_blocking_contour_limits_labelled_on_their_curves_with_textbook_values()
             got[m.group(1)] = float(m.group(2).replace("{,}", "."))
     assert abs(got["1"] - (17 - 12) / 17) <= 0.02 and abs(got["2"] - (17 - 30) / 17) <= 0.02, got
     plt.close(fig)
+
+
+def test_cam_base_radius_taken_up_to_a_whole_millimetre_and_used():
+    """cam_translating_roller: the least r₀ = 28,62 мм was printed and used as it is; the textbook
+    takes r₀ = 29 мм and builds everything with it.  Hand check: e = 4,739 мм kept, s₀ = √(29² −
+    4,739²) = √818,54 = 28,61 мм; at φ = 0 (s = 0) the centre profile's radius is r₀ = 29 мм; the
+    pressure angles fall below [ϑ_у] = 30°, [ϑ_в] = 45° (the least size reaches them)."""
+    import math
+    from reportgen.report.render import render_fragment
+    from reportgen.report.sections import cam as S
+    st = _study("cam_translating_roller")
+    c = st.cam
+    syn = c.synthesis
+    assert syn.r0 == pytest.approx(0.029, abs=1e-12) and syn.exact.r0 == pytest.approx(0.028622, abs=1e-6)
+    assert syn.e == syn.exact.e and syn.s0 * 1000 == pytest.approx(math.sqrt(29 ** 2 - 4.7391 ** 2), abs=1e-3)
+    assert float(np.hypot(*c._O_synth)) == pytest.approx(0.029, abs=1e-12)
+    t1, t2 = c.theta_max
+    assert t1 < c.rise.allowed - 1e-3 and t2 < c.ret.allowed - 1e-3
+    assert c.scalars["cam_r0"] == pytest.approx(0.029, abs=1e-12)
+    text = html.unescape(re.sub("<[^>]+>", "", render_fragment(S.build(st)))).replace("\xa0", " ")
+    assert "Принимаем r0 = 29 мм (наименьший 28,62 мм" in text, text[:500]
+    assert "по допустимым углам давления r<sub>0</sub>&nbsp;=&nbsp;29&nbsp;мм" in " ".join(S.conclusion_lines(st))
+
+
+@pytest.mark.parametrize("stem", ["cam_rocker_roller", "cam_rocker_flat", "cam_translating_flat",
+                                  "cam_translating_knife_trapezoid"])
+def test_every_cam_kind_takes_a_whole_millimetre_and_stays_admissible(stem):
+    """Each kind keeps its centre admissible with the accepted r₀: a rocker moves O along B₀O, a
+    flat rocker keeps ψ₀ (a_w = (r₀ + d)/sin ψ₀: cam_rocker_flat 70,10 → 71 мм, a_w = 81/sin 58,783° =
+    94,71 мм), a flat translating follower takes r₀ = s₀."""
+    import math
+    c = _study(stem).cam
+    syn = c.synthesis
+    assert syn.exact is not None and syn.exact.r0 < syn.r0 < syn.exact.r0 + 0.001
+    assert abs(syn.r0 * 1000 - round(syn.r0 * 1000)) < 1e-9
+    for t, ph in zip(c.theta_max, (c.rise, c.ret)):
+        assert ph.allowed == 0 or t <= ph.allowed + 1e-9
+    if c.flat_rocker:
+        assert syn.psi0 == syn.exact.psi0
+        assert syn.a_w * math.sin(syn.psi0) - c.face_offset == pytest.approx(syn.r0, abs=1e-12)
+        assert c.scalars["cam_rho_min"] >= c.rho_min - 1e-12
+    elif c.follower == "rocker":
+        assert float(math.hypot(c.arm - syn.O[0], syn.O[1])) == pytest.approx(syn.r0, abs=1e-12)
