@@ -132,3 +132,48 @@ def test_every_cam_kind_takes_a_whole_millimetre_and_stays_admissible(stem):
         assert c.scalars["cam_rho_min"] >= c.rho_min - 1e-12
     elif c.follower == "rocker":
         assert float(math.hypot(c.arm - syn.O[0], syn.O[1])) == pytest.approx(syn.r0, abs=1e-12)
+
+
+def _crossings(fig):
+    """Where a wheel's (or a carrier arm's) vertical line crosses a horizontal line of another
+    member in the scheme (the lines' colours are the members'): none may, except a wheel on its
+    own axle at its centre (the middle of its line)."""
+    import matplotlib.colors as mc
+    from reportgen.scenes.train import COLORS
+    members = {mc.to_hex(c) for c in COLORS}
+    ax = fig.axes[0]
+    vert, hor = [], []
+    for ln in ax.get_lines():
+        col = mc.to_hex(ln.get_color())
+        if col not in members:
+            continue
+        xs, ys = (list(map(float, v)) for v in ln.get_data())
+        if len(xs) != 2:
+            continue
+        if abs(xs[0] - xs[1]) < 1e-9 and abs(ys[0] - ys[1]) > 1e-9:
+            vert.append((col, xs[0], min(ys), max(ys)))
+        elif abs(ys[0] - ys[1]) < 1e-9 and abs(xs[0] - xs[1]) > 1e-9:
+            hor.append((col, min(xs), max(xs), ys[0]))
+    out = []
+    for cv, x, y0, y1 in vert:
+        tol = 1e-6 * (y1 - y0)
+        for ch, x0, x1, y in hor:
+            if ch == cv or not (x0 + tol < x < x1 - tol and y0 + tol < y < y1 - tol):
+                continue
+            if abs(y - (y0 + y1) / 2) <= tol:
+                continue            # a wheel on its axle
+            out.append((cv, x, ch, y))
+    return out
+
+
+@pytest.mark.parametrize("stem", ["train_2kh_two_internal", "train_2kh_three_planets", "train_2kh_double_select",
+                                  "train_3k_select", "train_2kh_four_planets", "train_2kh_external_select"])
+def test_train_scheme_no_wheel_crosses_a_shaft_it_does_not_sit_on(stem):
+    """train_2kh_two_internal: ring 1's disc (drawn on the side of the satellites) crossed the
+    satellites' axle; now the ring opens towards them, the carrier's arm rises inside it and its
+    shaft runs out through the ring's hollow shaft."""
+    import matplotlib.pyplot as plt
+    from reportgen.scenes.train import train_picture
+    pic = train_picture(_study(stem).train)
+    assert _crossings(pic.fig) == []
+    plt.close(pic.fig)
