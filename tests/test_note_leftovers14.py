@@ -177,3 +177,29 @@ def test_train_scheme_no_wheel_crosses_a_shaft_it_does_not_sit_on(stem):
     pic = train_picture(_study(stem).train)
     assert _crossings(pic.fig) == []
     plt.close(pic.fig)
+
+
+def _gear_text(stem):
+    from reportgen.report.render import render_fragment
+    from reportgen.report.sections import gears as S
+    st = _study(stem)
+    body = render_fragment(S.build(st)) + " ".join(S.conclusion_lines(st))
+    return html.unescape(re.sub("<[^>]+>", "", body)).replace("\xa0", " ")
+
+
+@pytest.mark.parametrize("stem", ["gear_pair_internal", "gear_pair_shifted"])
+def test_gear_note_prints_one_quantity_alike_everywhere(stem):
+    """gear_pair_internal: x₁min printed −0,1698 in the checks and −0,170 in the table and the
+    conclusion; α_w 20,0000° in the formula and 20,000° in the conclusion; the sliding table's λ₁
+    to 3 decimals beside λ₂ to 4."""
+    text = _gear_text(stem)
+    xs = set(re.findall(r"x1min = (−?\d+,\d+)", text))
+    assert len(xs) == 1, xs
+    aw = set(re.findall(r"αw = (\d+,\d+)°", text))
+    assert len(aw) == 1, aw
+    from reportgen.report.sections import gears as S
+    from reportgen.report.document import Table
+    from notehelpers import blocks
+    tab = next(b for b in blocks(S.build(_study(stem))) if isinstance(b, Table) and "lambda1" in b.data)
+    digits = {c.key: c.digits for c in tab.columns if c.key in ("lambda1", "lambda2")}
+    assert digits["lambda1"] == digits["lambda2"] is not None, digits
