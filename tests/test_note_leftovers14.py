@@ -97,6 +97,7 @@ def test_cam_base_radius_taken_up_to_a_whole_millimetre_and_used():
     4,739²) = √818,54 = 28,61 мм; at φ = 0 (s = 0) the centre profile's radius is r₀ = 29 мм; the
     pressure angles fall below [ϑ_у] = 30°, [ϑ_в] = 45° (the least size reaches them)."""
     import math
+    import numpy as np
     from reportgen.report.render import render_fragment
     from reportgen.report.sections import cam as S
     st = _study("cam_translating_roller")
@@ -203,3 +204,23 @@ def test_gear_note_prints_one_quantity_alike_everywhere(stem):
     tab = next(b for b in blocks(S.build(_study(stem))) if isinstance(b, Table) and "lambda1" in b.data)
     digits = {c.key: c.digits for c in tab.columns if c.key in ("lambda1", "lambda2")}
     assert digits["lambda1"] == digits["lambda2"] is not None, digits
+
+
+def test_train_wheel_names_with_a_prime_not_an_apostrophe():
+    """train_2kh_two_internal: the text and tables wrote «z2'», «2'» (the case's ASCII apostrophe)
+    while the formulas set z₂′; the conclusion wrote an upright z."""
+    import matplotlib.pyplot as plt
+    from reportgen.report.render import render_fragment
+    from reportgen.report.sections import train as S
+    from reportgen.scenes.train import train_picture
+    st = _study("train_2kh_two_internal")
+    body = render_fragment(S.build(st))
+    concl = " ".join(S.conclusion_lines(st))
+    text = html.unescape(re.sub("<[^>]+>", "", body + concl))
+    assert "'" not in text and "2′" in text
+    assert "<i>z</i><sub>2′</sub> = 18" in concl
+    pic = train_picture(st.train)
+    labels = [t.get_text() for ax in pic.fig.axes for t in ax.texts]
+    # (mathtext sets «'» as a prime itself: $P_{2'3}$)
+    assert "2′" in labels and not any("'" in t for t in labels if not t.startswith("$")), labels
+    plt.close(pic.fig)

@@ -104,8 +104,8 @@ def declutter(fig, texts, pad_pt: float = 1.0) -> None:
 
 def _name(member: str) -> str:
     """A member's label in textbook notation: H1 → H₁ (a letter with its index as a subscript);
-    names of another shape (1, 2′, sun) as written."""
-    return tex_point(member) if re.fullmatch(r"[A-Za-z]+\d+", member) else member
+    names of another shape (1, 2′, sun) as written, the case's «2'» with the prime «2′»."""
+    return tex_point(member) if re.fullmatch(r"[A-Za-z]+\d+", member) else member.replace("'", "′")
 
 
 def _images(m, y, axis) -> tuple[int, ...]:
