@@ -224,3 +224,17 @@ def test_train_wheel_names_with_a_prime_not_an_apostrophe():
     # (mathtext sets «'» as a prime itself: $P_{2'3}$)
     assert "2′" in labels and not any("'" in t for t in labels if not t.startswith("$")), labels
     plt.close(pic.fig)
+
+
+@pytest.mark.parametrize("stem, given", [("synth_slider_crank", "0{,}05"), ("synth_crank_rocker", "0{,}5"),
+                                         ("synth_crank_rocker_wide", "0{,}28")])
+def test_synthesis_transmission_formula_writes_given_data_as_given(stem, given):
+    """The least transmission angle's substitution padded the given offset and rocker length:
+    «0,14314 + 0,050000», «0,5000²», «2 · 0,2514 · 0,2800»."""
+    from notehelpers import blocks
+    from reportgen.report.document import FormulaBlock
+    from reportgen.report.sections import synthesis as S
+    subs = [f.substituted for b in blocks(S.build(_study(stem))) if isinstance(b, FormulaBlock)
+            for f in b.formulas if f.substituted and r"\mu" in (f.symbolic or "")]
+    assert subs and all(re.search(re.escape(given) + r"(?![\d])", t) for t in subs), subs
+    assert not any(re.search(re.escape(given) + r"0+(?![\d])", t) for t in subs), subs

@@ -376,7 +376,7 @@ def _accept(s, cam) -> None:
         return
     r0 = tex_given(round(syn.r0 * 1000, 6))
     if cam.flat_rocker:
-        s.paragraph(_accepted_words(cam) + f"; при том же ψ<sub>0</sub> межосевое расстояние увеличивается (оба "
+        s.paragraph(_accepted_words(cam) + "; при том же ψ<sub>0</sub> межосевое расстояние увеличивается (оба "
                     "условия ограничивают a<sub>w</sub> снизу):")
         s.formula(Formula(r"a_w = \frac{r_0 + d}{\sin\psi_0}",
                           rf"\frac{{{r0} + {_tmm(cam.face_offset)}}}{{\sin {_t(math.degrees(syn.psi0), sig=5)}^\circ}}",
