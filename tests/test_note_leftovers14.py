@@ -109,6 +109,9 @@ def test_cam_base_radius_taken_up_to_a_whole_millimetre_and_used():
     t1, t2 = c.theta_max
     assert t1 < c.rise.allowed - 1e-3 and t2 < c.ret.allowed - 1e-3
     assert c.scalars["cam_r0"] == pytest.approx(0.029, abs=1e-12)
+    rows = _key_rows("cam_translating_roller", "cam")       # the key: the accepted and the least
+    assert rows["Радиус основной шайбы (центрового профиля)"] == "29"
+    assert rows["Наименьший радиус основной шайбы по допустимым углам давления"] == "28,62"
     text = html.unescape(re.sub("<[^>]+>", "", render_fragment(S.build(st)))).replace("\xa0", " ")
     assert "Принимаем r0 = 29 мм (наименьший 28,62 мм" in text, text[:500]
     assert "по допустимым углам давления r<sub>0</sub>&nbsp;=&nbsp;29&nbsp;мм" in " ".join(S.conclusion_lines(st))

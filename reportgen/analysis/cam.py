@@ -1044,6 +1044,8 @@ class Cam:
         soft impacts (domain.md § 1.6)."""
         syn = self.synthesis
         out = {"cam_r0": syn.r0, "cam_stroke": self.h}
+        if self.contact != "flat" and syn.exact is not None:
+            out["cam_r0_least"] = syn.exact.r0       # before it was taken up to a whole millimetre
         if self.follower == "translating" and self.contact != "flat":
             out.update(cam_e=syn.e, cam_s0=syn.s0, cam_r0_approx=syn.r0_approx, cam_e_approx=syn.e_approx)
         if self.flat_rocker:

@@ -203,9 +203,11 @@ CAM = {
                      swing=("Угол размаха коромысла", "ψ<sub>max</sub>")),
     # a roller's base circle belongs to the centre (theoretical) profile; a knife's or a flat face's
     # centre profile is the working profile itself (Артоболевский, гл. 24)
-    "cam_r0": _e("Радиус основной шайбы (центрового профиля)", _i("r", "0"), **_MM,
+    # accepted (a whole millimetre) or given: printed as taken, «29», not «29,00»
+    "cam_r0": _e("Радиус основной шайбы (центрового профиля)", _i("r", "0"), **_MM, given=True,
                  contact={"knife": "Радиус основной шайбы (рабочего профиля)",
                           "flat": "Радиус основной шайбы (рабочего профиля)"}),
+    "cam_r0_least": _e("Наименьший радиус основной шайбы по допустимым углам давления", _i("r", "0 min"), **_MM),
     "cam_r0_min": _e("Наименьший радиус основной шайбы по условию выпуклости профиля", _i("r", "0 min"), **_MM),
     "cam_r0_approx": _e("Радиус основной шайбы приближённым способом", _i("r", "0"), **_MM),
     "cam_e": _e("Эксцентриситет (смещение оси толкателя)", _i("e"), **_MM),
