@@ -24,6 +24,7 @@ def trans(law_rise="sine", law_ret="sine", extra_rise="", extra_ret="", head="",
 [cam]
 follower = "translating"
 contact = "{contact}"
+r0_round = "0 mm"
 stroke = "30 mm"
 far_dwell = "30 deg"
 {head}
@@ -172,7 +173,7 @@ def test_translating_fixed_e_central(tmp_path):
 @pytest.mark.parametrize("rot", ["cw", "ccw"])
 def test_rocker_synthesis(tmp_path, rot):
     src = (ROOT / "cases/cam_rocker_roller.toml").read_text(encoding="utf-8").replace(
-        'rotation = "cw"', f'rotation = "{rot}"')
+        'rotation = "cw"', f'rotation = "{rot}"').replace("[cam]", '[cam]\nr0_round = "0 mm"', 1)
     (tmp_path / "r.toml").write_text(src, encoding="utf-8")
     st = Study(tmp_path / "r.toml")
     c = st.cam
@@ -265,7 +266,9 @@ def test_cli_check_and_export(tmp_path, capsys):
     assert {"cam.csv", "cam_profile.csv", "scalars.json"} <= names
     import json
     sc = json.loads(next(tmp_path.rglob("scalars.json")).read_text())
-    assert sc["cam_theta_rise_max"] == pytest.approx(math.radians(30), abs=1e-9)
+    # r₀ taken up to 29 мм: the pressure angle stays below the allowed 30° (28,62 мм reaches it)
+    assert sc["cam_r0"] == pytest.approx(0.029, abs=1e-12)
+    assert math.radians(29) < sc["cam_theta_rise_max"] < math.radians(30)
     bad = tmp_path / "bad.toml"
     bad.write_text((ROOT / "cases/cam_translating_roller.toml").read_text(encoding="utf-8")
                    .replace('law = "sine"', 'law = "sinus"'), encoding="utf-8")

@@ -30,6 +30,7 @@ def flat(head="", rot="ccw", rise="sine", ret="cosine", allowed=("30 deg", "30 d
 [cam]
 follower = "rocker"
 contact = "flat"
+r0_round = "0 mm"
 rotation = "{rot}"
 swing = "20 deg"
 far_dwell = "20 deg"
@@ -54,8 +55,11 @@ def _rot(phi, k, V, back=False):
 
 
 @pytest.fixture(scope="module")
-def case_cam():
-    return Study(CASE).cam
+def case_cam(tmp_path_factory):
+    """The case's cam with its least sizes (r₀ not rounded up: the synthesis under test)."""
+    p = tmp_path_factory.mktemp("case") / "c.toml"
+    p.write_text(CASE.read_text(encoding="utf-8").replace("[cam]", '[cam]\nr0_round = "0 mm"', 1), encoding="utf-8")
+    return Study(p).cam
 
 
 @pytest.fixture(scope="module", params=[("ccw", "10 mm"), ("cw", "10 mm"), ("ccw", "0 mm")])
@@ -294,7 +298,7 @@ def test_note_section_and_export(tmp_path, case_cam):
     ids = [c.id for c in sec.children]
     assert ids == ["sec-cam-data", "sec-cam-laws", "sec-cam-size", "sec-cam-theta", "sec-cam-profile"]
     lines = " ".join(S.conclusion_lines(st))
-    assert "70,10" in lines and "93,66" in lines
+    assert "71&nbsp;мм (наименьший 70,10" in lines and "94,71" in lines     # r₀ taken up to a whole mm
     tabs = case_cam.tables()
     for df in tabs.values():
         assert np.isfinite(df.to_numpy(dtype=float)).all()

@@ -370,12 +370,14 @@ def test_cam_conclusion_judges_against_the_limits(stem):
     """The conclusion compares ϑ_max with [ϑ] on both phases and, for a roller, r_р with 0,7ρ_min
     (it printed the numbers alone)."""
     from reportgen.report.sections import cam
-    from reportgen.style.numbers import fmt
+    from reportgen.report.sections.common import as_written
     st = _study(stem)
     c = st.cam
     text = plain(" ".join(cam.conclusion_lines(st)))
     for a in (c.rise.allowed, c.ret.allowed):
-        assert "допустимых " in text and fmt(math.degrees(a), digits=2) + "°" in text
+        # the allowed angle as given («30°»): «30,00°» was found only because ϑ_max reached it
+        # exactly at the least r₀ (now taken up to a whole millimetre, ϑ_max < [ϑ])
+        assert "допустимых " in text and as_written(math.degrees(a)) + "°" in text
     ok = all(t <= a + 1e-9 for t, a in zip(c.theta_max, (c.rise.allowed, c.ret.allowed)))
     assert ("не превышает допустимых" in text) is ok
     if c.contact == "roller":

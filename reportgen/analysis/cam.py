@@ -28,7 +28,7 @@ Method (Артоболевский И. И., «Теория механизмов 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import Any
 
@@ -107,6 +107,7 @@ class Synthesis:
     r0_approx: float = math.nan
     e_approx: float = math.nan
     a_w_approx: float = math.nan
+    exact: "Synthesis | None" = None   # the least sizes before r₀ was rounded up (None: not rounded)
 
 
 def _piece_knots(name: str, nu: float, ramp: float, table) -> tuple:
@@ -147,7 +148,7 @@ class Cam:
     def _read(self, node, names) -> None:
         node.check_keys(["follower", "contact", "rotation", "speed", "stroke", "swing", "arm",
                          "far_dwell", "rise", "return", "r0", "e", "a_w", "psi0", "roller",
-                         "rho_min", "step", "scale", "title", "face_offset"], required=["rise", "return"])
+                         "rho_min", "step", "scale", "title", "face_offset", "r0_round"], required=["rise", "return"])
         self.follower = node.string("follower", "translating", choices=["translating", "rocker"])
         self.contact = node.string("contact", "roller", choices=["knife", "roller", "flat"])
         self.k = 1 if node.string("rotation", "ccw", choices=["ccw", "cw"]) == "ccw" else -1
@@ -210,6 +211,9 @@ class Cam:
         if self.follower == "rocker" and node.has("r0"):
             raise node.error("r0", "для коромысла задайте a_w и psi0, а не r0")
         self.roller_fixed = node.quantity("roller", U.LENGTH, names, positive=True)
+        # the least r₀ of the synthesis is rounded up to a multiple of this (a whole millimetre, as
+        # the textbook takes it); 0 keeps the exact least size
+        self.r0_round = node.quantity("r0_round", U.LENGTH, names, default="1 mm", nonnegative=True)
         self.rho_min = node.quantity("rho_min", U.LENGTH, names, default="5 mm", nonnegative=True)
         self.step = node.quantity("step", U.ANGLE, names, default="10 deg", positive=True)
         self.scale = node.string("scale", None, choices=["10:1", "5:1", "4:1", "2,5:1", "2:1", "1:1", "1:2",
@@ -451,6 +455,42 @@ class Cam:
 
     @cached_property
     def synthesis(self) -> Synthesis:
+        """The accepted cam size: the least one (:meth:`least_size`) with r₀ rounded up to a whole
+        millimetre (``r0_round``), as the textbook takes it before building the profile (Попов С. А.,
+        Тимофеев Г. А., гл. 6: «принимаем r₀ = … мм»); every later quantity — the profile, the
+        pressure angles, the drawings — uses it.  The other sizes follow r₀ so that the centre stays
+        in the admissible region: a translating follower keeps its offset e (s₀ = √(r₀² − e²)
+        grows, and every ray's condition s₀ ≥ M − e/tg[ϑ] holds with margin); a flat-faced rocker
+        keeps ψ₀ (a_w = (r₀ + d)/sin ψ₀ grows, and both conditions are lower bounds on a_w); a
+        rocker moves O away from B₀ along the line B₀O (checked against both phases' rays).
+        Given sizes are used as given."""
+        syn = self.least_size
+        step = self.r0_round
+        if syn.governing == "fixed" or not step > 0 or (self.flat_rocker and self.aw_fixed is not None):
+            return syn
+        r0 = math.ceil(syn.r0 / step * (1 - 1e-12)) * step
+        if r0 <= syn.r0:
+            return syn
+        acc = replace(syn, r0=r0, exact=syn)
+        if self.flat_rocker:
+            acc.a_w = (r0 + self.face_offset) / math.sin(syn.psi0)
+            acc.O = self._rocker_O(acc.a_w, syn.psi0)
+        elif self.contact == "flat":
+            acc.s0 = r0
+        elif self.follower == "translating":
+            acc.s0 = math.sqrt(r0 * r0 - syn.e * syn.e)
+        else:
+            B0 = np.array([self.arm, 0.0])
+            O = B0 + (syn.O - B0) * (r0 / syn.r0)
+            if max(self._hmax(1, O)[0], self._hmax(2, O)[0]) > 1e-9 * self.arm:
+                return syn          # the line B₀O leaves the region: the least size stays
+            acc.O = O
+            acc.a_w = float(np.hypot(*O))
+            acc.psi0 = math.atan2(-O[1], O[0])
+        return acc
+
+    @cached_property
+    def least_size(self) -> Synthesis:
         """The least cam size by the allowed pressure angle (the phase portrait s(s′) and its
         tangent rays, domain.md § 1.6), or by convexity ρ = r₀ + s + s″ > 0 for a flat-faced
         follower; the size given by the case when it gives one."""
@@ -1004,6 +1044,8 @@ class Cam:
         soft impacts (domain.md § 1.6)."""
         syn = self.synthesis
         out = {"cam_r0": syn.r0, "cam_stroke": self.h}
+        if self.contact != "flat" and syn.exact is not None:
+            out["cam_r0_least"] = syn.exact.r0       # before it was taken up to a whole millimetre
         if self.follower == "translating" and self.contact != "flat":
             out.update(cam_e=syn.e, cam_s0=syn.s0, cam_r0_approx=syn.r0_approx, cam_e_approx=syn.e_approx)
         if self.flat_rocker:

@@ -28,10 +28,12 @@ KEYS = ["module", "z1", "z2", "x1", "x2", "internal", "alpha", "ha", "c", "rho_f
 CHOOSE = "choose"
 
 
-def blocking_grid(m, z1, z2, rack: G.Rack, internal=False, lo=-0.6, hi=1.6, step=0.01):
-    """The (x₁, x₂) grid of the blocking contour with the quality functions on it."""
+def blocking_grid(m, z1, z2, rack: G.Rack, internal=False, lo=-0.6, hi=1.6, step=0.01, lo2=None):
+    """The (x₁, x₂) grid of the blocking contour with the quality functions on it; ``lo2`` — the
+    lower end of x₂ when it differs from x₁'s (each wheel's shift from its own undercut limit)."""
     xs = np.round(np.arange(lo, hi + step / 2, step), 10)
-    X1, X2 = np.meshgrid(xs, xs)
+    ys = xs if lo2 is None else np.round(np.arange(lo2, hi + step / 2, step), 10)
+    X1, X2 = np.meshgrid(xs, ys)
     with np.errstate(invalid="ignore", divide="ignore"):
         geo = G.pair_geometry(m, z1, z2, X1, X2, rack, internal)
         lam1, _, _ = G.sliding(geo, geo.rho_p1)
@@ -110,6 +112,7 @@ class Gears:
         self.omega1 = node.quantity("omega1", U.ANGULAR_VELOCITY, names, positive=True) if node.has("omega1") else None
         ext = (self.z1,) if self.internal or not self.z2 else (self.z1, self.z2)
         lo = math.floor(10 * min(-0.6, *(float(G.x_min_undercut(z, self.rack)) - 0.1 for z in ext))) / 10
+        self.x_range_given = node.has("x_range")
         rng = node.raw("x_range", [lo, 1.6])
         if not (isinstance(rng, list) and len(rng) == 2 and all(isinstance(v, (int, float)) for v in rng)
                 and rng[0] < rng[1]):
@@ -225,7 +228,13 @@ class Gears:
         """The blocking contour's grid over (x₁, x₂) in steps of 0,01 (Болотовский, Кудрявцев;
         domain.md § 1.7)."""
         lo, hi = self.x_range
-        return blocking_grid(self.m, self.z1, self.z2, self.rack, self.internal, lo, hi, 0.01)
+        if self.x_range_given:
+            return blocking_grid(self.m, self.z1, self.z2, self.rack, self.internal, lo, hi, 0.01)
+        # each shift from its own wheel's undercut limit x_min = h_a* − z sin²α/2 (a ring: the
+        # common range): one range for both drew x₁ down to the wheel's −2,6, far from any x₁ ≥ x₁min
+        own = [math.floor(10 * min(-0.6, float(G.x_min_undercut(z, self.rack)) - 0.1)) / 10 for z in (self.z1, self.z2)]
+        return blocking_grid(self.m, self.z1, self.z2, self.rack, self.internal, own[0], hi, 0.01,
+                             lo2=lo if self.internal else own[1])
 
     def wheel_rows(self) -> pd.DataFrame:
         """The geometry table: one row per quantity, a column per wheel."""

@@ -579,8 +579,9 @@ class Selector:
 
 
 def _sub(name: str) -> str:
-    """A wheel's number as a subscript of z in a plain-text verdict: «z₁₁», not «z11» (letters as they are)."""
-    return name.translate(SUBSCRIPT)
+    """A wheel's number as a subscript of z in a plain-text verdict: «z₁₁», not «z11» (letters as they
+    are, the case's «2'» as the prime «₂′»)."""
+    return name.translate(SUBSCRIPT).replace("'", "′")
 
 
 def _dec(x: float, spec: str = ".4f") -> str:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import importlib
 import math
 import re
+from dataclasses import replace
 
 import numpy as np
 import pandas as pd
@@ -166,6 +167,8 @@ def result_rows(study, kind: str, scalars: dict) -> dict[str, list[dict]]:
             continue                  # the chosen method's value: the row of the result itself
         if isinstance(e.words, dict) and e.words.get(value) == "":
             continue                  # a switch whose value another row already says
+        if not e.given and _is_input(study, kind, key, value):
+            e = replace(e, given=True)
         cell = value_text(e, value, study, kind)
         if cell is None:
             continue
@@ -176,6 +179,19 @@ def result_rows(study, kind: str, scalars: dict) -> dict[str, list[dict]]:
             "name": Markup(name), "sym": Markup(sym), "value": Markup(cell[0]), "unit": cell[1],
             "where": Markup(where_text(study, kind, where)) if where is not None and where is not False else ""})
     return groups
+
+
+def _is_input(study, kind: str, key: str, value) -> bool:
+    """Whether the scalar ``key`` repeats a value the case gives its task (a synthesis' ψ, d, l_CB
+    among the results: «ψ 55°» as written, not «55,00°»): the task's ``inputs`` (SI) hold it under
+    the key's name without the task prefix («syn_psi» → «psi»)."""
+    if study is None or kind not in study.tasks():
+        return False
+    inputs = getattr(study.analysis(kind), "inputs", None)
+    if not isinstance(inputs, dict) or isinstance(value, (str, bool, np.bool_)):
+        return False
+    name = key.split("_", 1)[-1]
+    return name in inputs and isinstance(inputs[name], (int, float)) and _same(inputs[name], value)
 
 
 def _same(a, b) -> bool:

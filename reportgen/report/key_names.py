@@ -38,6 +38,7 @@ class Entry:
     swing: tuple | None = None   # (name, symbol) when a "stroke" is a swing (a rocker's angle)
     given: bool = False          # a value of the case: printed as the case writes it (0,11, not 0,1100)
     actuator: tuple | None = None  # (name, symbol) when the input is an actuator's length (F, not M_ур)
+    contact: dict | None = None  # a cam's follower contact → name, when the name depends on it
 
 
 def _e(name, sym="", unit="", **kw) -> Entry:
@@ -200,7 +201,13 @@ _ANG = dict(unit="°", conv="deg", sig=None, digits=2)     # degrees to 0,01° (
 CAM = {
     "cam_stroke": _e("Ход толкателя", _i("h"), conv="stroke", sig=4, given=True,
                      swing=("Угол размаха коромысла", "ψ<sub>max</sub>")),
-    "cam_r0": _e("Радиус основной шайбы (центрового профиля)", _i("r", "0"), **_MM),
+    # a roller's base circle belongs to the centre (theoretical) profile; a knife's or a flat face's
+    # centre profile is the working profile itself (Артоболевский, гл. 24)
+    # accepted (a whole millimetre) or given: printed as taken, «29», not «29,00»
+    "cam_r0": _e("Радиус основной шайбы (центрового профиля)", _i("r", "0"), **_MM, given=True,
+                 contact={"knife": "Радиус основной шайбы (рабочего профиля)",
+                          "flat": "Радиус основной шайбы (рабочего профиля)"}),
+    "cam_r0_least": _e("Наименьший радиус основной шайбы по допустимым углам давления", _i("r", "0 min"), **_MM),
     "cam_r0_min": _e("Наименьший радиус основной шайбы по условию выпуклости профиля", _i("r", "0 min"), **_MM),
     "cam_r0_approx": _e("Радиус основной шайбы приближённым способом", _i("r", "0"), **_MM),
     "cam_e": _e("Эксцентриситет (смещение оси толкателя)", _i("e"), **_MM),
@@ -209,7 +216,7 @@ CAM = {
     "cam_a_w": _e("Межосевое расстояние", _i("a", "w"), **_MM),
     "cam_a_w_min": _e("Наименьшее допустимое межосевое расстояние", _i("a", "w min"), **_MM),
     "cam_a_w_approx": _e("Межосевое расстояние приближённым способом", _i("a", "w"), **_MM),
-    "cam_arm": _e("Длина коромысла", _i("l"), **_MM),
+    "cam_arm": _e("Длина коромысла", _i("l"), **_MM, given=True),
     "cam_psi0": _e("Начальный угол коромысла", "ψ<sub>0</sub>", **_ANG),
     "cam_roller": _e("Радиус ролика", _i("r", "р"), **_MM, given=True),
     "cam_rho_c_min": _e("Наименьший радиус кривизны центрового профиля", "ρ<sub>ц min</sub>", **_MM),
@@ -457,6 +464,8 @@ def shown(e: Entry, study=None, kind: str = "") -> tuple[str, str]:
         return e.swing
     if e.actuator is not None and _actuated(study, kind):
         return e.actuator
+    if e.contact is not None and kind == "cam" and study is not None:
+        return e.contact.get(study.cam.contact, e.name), e.sym
     return e.name, e.sym
 
 

@@ -353,30 +353,38 @@ def blocking_contour(gears):
         ok = admissible(geo, gears.s_a_min, gears.eps_min)
     ax.contourf(X1, X2, ok.astype(float), levels=[0.5, 1.5], colors=["#dcebd5"])
     handles = []
+    limits = []          # (contour, its short label on the curve): each limit named where it runs
 
-    def iso(Z, level, color, ls, label):
+    def iso(Z, level, color, ls, label, short=None):
         Zm = np.where(np.isfinite(Z), Z, np.nan)
         cs = ax.contour(X1, X2, Zm, levels=[level], colors=[color], linestyles=[ls], linewidths=1.1)
         if cs.allsegs and any(len(s) for s in cs.allsegs[0]):
-            handles.append(ax.plot([], [], color=color, ls=ls, lw=1.1, label=label)[0])
+            if label is not None:
+                handles.append(ax.plot([], [], color=color, ls=ls, lw=1.1, label=label)[0])
+            if short is not None:
+                limits.append((cs, short))
 
-    iso(geo.sa1 / m, 0.0, RED, "-", "$s_{a1} = 0$")
-    iso(geo.sa1 / m, gears.s_a_min, RED, "--", f"$s_{{a1}} = {gears.s_a_min:g}m$".replace(".", "{,}"))
-    iso(geo.sa2 / m, 0.0, BLUE, "-", "$s_{a2} = 0$")
-    iso(geo.sa2 / m, gears.s_a_min, BLUE, "--", f"$s_{{a2}} = {gears.s_a_min:g}m$".replace(".", "{,}"))
-    iso(geo.eps, 1.0, INK, "-", "$\\varepsilon_\\alpha = 1$")
-    iso(geo.eps, gears.eps_min, INK, "--", f"$\\varepsilon_\\alpha = {gears.eps_min:g}$".replace(".", "{,}"))
-    iso(geo.rho_p1 - geo.rho_l1, 0.0, "#7b3294", ":", "интерференция (колесо 1)")
+    sa = f"{gears.s_a_min:g}".replace(".", "{,}")
+    em = f"{gears.eps_min:g}".replace(".", "{,}")
+    iso(geo.sa1 / m, 0.0, RED, "-", "$s_{a1} = 0$", "$s_{a1}=0$")
+    iso(geo.sa1 / m, gears.s_a_min, RED, "--", f"$s_{{a1}} = {sa}m$", f"$s_{{a1}}={sa}m$")
+    iso(geo.sa2 / m, 0.0, BLUE, "-", "$s_{a2} = 0$", "$s_{a2}=0$")
+    iso(geo.sa2 / m, gears.s_a_min, BLUE, "--", f"$s_{{a2}} = {sa}m$", f"$s_{{a2}}={sa}m$")
+    iso(geo.eps, 1.0, INK, "-", "$\\varepsilon_\\alpha = 1$", "$\\varepsilon_\\alpha=1$")
+    iso(geo.eps, gears.eps_min, INK, "--", f"$\\varepsilon_\\alpha = {em}$", f"$\\varepsilon_\\alpha={em}$")
+    iso(geo.rho_p1 - geo.rho_l1, 0.0, "#7b3294", ":", "интерференция (колесо 1)", "интерф. 1")
     if not geo.internal:
-        iso(geo.rho_p2 - geo.rho_l2, 0.0, "#008837", ":", "интерференция (колесо 2)")
-    iso(L1 - L2, 0.0, "#e08214", "-.", "$\\lambda_{1max} = \\lambda_{2max}$")
+        iso(geo.rho_p2 - geo.rho_l2, 0.0, "#008837", ":", "интерференция (колесо 2)", "интерф. 2")
+    iso(L1 - L2, 0.0, "#e08214", "-.", "$\\lambda_{1max} = \\lambda_{2max}$", "$\\lambda_{1max}=\\lambda_{2max}$")
     cs = ax.contour(X1, X2, np.where(np.isfinite(geo.eps), geo.eps, np.nan), levels=[1.3, 1.4, 1.5, 1.6],
                     colors=[GREY], linewidths=0.5)
-    x1m = float(G.x_min_undercut(gears.z1, gears.rack))
-    ax.axvline(x1m, color=GREY, lw=1.0)
-    handles.append(ax.plot([], [], color=GREY, lw=1.0, label="$x_{min}$ (подрезание)")[0])
-    if not geo.internal:
-        ax.axhline(float(G.x_min_undercut(gears.z2, gears.rack)), color=GREY, lw=1.0)
+    # the undercut limits x_min = h_a* − z sin²α/2 of each wheel (a ring has none): lines of the grid
+    # so that they are labelled like the other limits
+    wheels = ((1, gears.z1, X1),) if geo.internal else ((1, gears.z1, X1), (2, gears.z2, X2))
+    for i, z, X in wheels:
+        xm = float(G.x_min_undercut(z, gears.rack))
+        iso(X, xm, GREY, "-", "$x_{min}$ (подрезание)" if i == 1 else None,
+            f"$x_{{{i}min}}={fmt(xm, digits=2)}$".replace(",", "{,}").replace("−", "-"))
     if gears.a_w_required is not None:     # a required a_w: the shifts lie on x₁ + x₂ = x_Σ
         xs = float(gears.xsum_required)
         xx = np.array([float(X1.min()), float(X1.max())])
@@ -403,4 +411,12 @@ def blocking_contour(gears):
         place_on_chart(chosen, avoid=[legend])
     # the isolines' values where no other line crosses them (ax.clabel's own places were crossed)
     label_contours(ax, cs, lambda v: f"ε={v:.1f}".replace(".", ","), fontsize=6)
+    for lim, text in limits:
+        kept = list(lim._paths)
+        placed = label_contours(ax, lim, lambda v, t=text: t, fontsize=7)
+        if any(repr(text) in p for p in line_problems(fig, every=True)):
+            for t in placed:      # no clear place on a short piece in a corner: the legend names it
+                t.remove()
+                lim.labelTexts.remove(t)
+            lim._paths[:] = kept
     return fig

@@ -6,11 +6,14 @@ at its own scale, u = product of the stage ratios read off the drawings).  They 
 ``study.train`` results only."""
 from __future__ import annotations
 
+import itertools
 import math
 import re
 from dataclasses import dataclass
 
 import numpy as np
+from matplotlib.colors import to_hex
+from matplotlib.figure import Figure
 
 from ..analysis.train import FRAME, pitch_points, ratio_chain
 from ..style import mplstyle
@@ -101,8 +104,8 @@ def declutter(fig, texts, pad_pt: float = 1.0) -> None:
 
 def _name(member: str) -> str:
     """A member's label in textbook notation: H1 → H₁ (a letter with its index as a subscript);
-    names of another shape (1, 2′, sun) as written."""
-    return tex_point(member) if re.fullmatch(r"[A-Za-z]+\d+", member) else member
+    names of another shape (1, 2′, sun) as written, the case's «2'» with the prime «2′»."""
+    return tex_point(member) if re.fullmatch(r"[A-Za-z]+\d+", member) else member.replace("'", "′")
 
 
 def _images(m, y, axis) -> tuple[int, ...]:
@@ -130,38 +133,101 @@ def _bearing(ax, x: float, dx: float, R: float, color) -> None:
             ax.plot([x1, x1 + 0.1 * dx], [y0, y0 + s * 0.1 * dx], color=INK, lw=0.8)
 
 
-def _scheme(ax, m, y, col, colors, dx, labels):
+def scheme_crossings(ax, colors) -> list[tuple]:
+    """Where a vertical line of a member (a wheel, a ring's disc, a carrier's arm) crosses a
+    horizontal line of another member (a shaft, an axle, a rim) in the scheme, except a wheel on
+    its own axle at its centre (the middle of its line): (x, y) of each crossing."""
+    own = {to_hex(c): mem for mem, c in colors.items()}
+    vert, hor = [], []
+    for ln in ax.get_lines():
+        mem = own.get(to_hex(ln.get_color()))
+        xs, ys = ln.get_data()
+        if mem is None or len(xs) != 2:
+            continue
+        (x0, x1), (y0, y1) = map(float, xs), map(float, ys)
+        if x0 == x1 and y0 != y1:
+            vert.append((mem, x0, min(y0, y1), max(y0, y1)))
+        elif y0 == y1 and x0 != x1:
+            hor.append((mem, min(x0, x1), max(x0, x1), y0))
+    out = []
+    for mv, x, y0, y1 in vert:
+        tol = 1e-6 * (y1 - y0)
+        out += [(x, y) for mh, x0, x1, y in hor if mh != mv and x0 + tol < x < x1 - tol
+                and y0 + tol < y < y1 - tol and abs(y - (y0 + y1) / 2) > tol]
+    return out
+
+
+def disc_sides(m, y, col, colors, dx) -> dict[str, int]:
+    """The side (+1 right, −1 left) of each internal wheel's disc: on the right, except a ring in
+    the first column whose disc there would be crossed (:func:`scheme_crossings`) and is not on the
+    left (a ring whose disc faced the satellites was crossed by their axle: train_2kh_two_internal);
+    the scheme with the fewest crossings, all on the right when that is as good."""
+    rings = [n for n, wh in m.wheels.items() if wh.internal and col[n] == 0]   # the first column may open right
+    best, fewest = None, math.inf
+    for signs in itertools.product((1, -1), repeat=len(rings)):
+        side = {n: 1 for n, wh in m.wheels.items() if wh.internal} | dict(zip(rings, signs))
+        fig = Figure()
+        ax = fig.add_subplot()
+        _scheme(ax, m, y, col, colors, dx, LabelPlacer(ax, fontsize=9), side)
+        n = len(scheme_crossings(ax, colors))
+        if n < fewest:
+            best, fewest = side, n
+        if n == 0:
+            break
+    return best
+
+
+def _scheme(ax, m, y, col, colors, dx, labels, side):
     """The scheme in the plane of the axes: every element on a carried axis off the central axis
     (y = 0) is drawn at y and mirrored at −y (``_images``); labels on the upper image only.  The
     shafts of the moving members on the central axis (central wheels, carriers) run in the frame's
     bearings (:func:`_bearing`)."""
     tick = 0.15 * dx
     R = max(abs(y[wh.centre]) + wh.m * wh.z / 2 for wh in m.wheels.values())
+    hub = 0.03 * R          # a ring's disc stops at its hub: the shafts inside it pass along the axis
     for name, wh in m.wheels.items():
         x, r, c = col[name] * dx, wh.m * wh.z / 2, colors[wh.member]
         for s in _images(m, y, wh.centre):
             yc = s * y[wh.centre]
             if wh.internal:
+                xd = x + side[name] * 0.4 * dx
                 for sg in (1, -1):
                     ax.plot([x - tick, x + tick], [yc + sg * r] * 2, color=c, lw=1.2)
-                    ax.plot([x, x + 0.4 * dx], [yc + sg * r] * 2, color=c, lw=1.6)
-                ax.plot([x + 0.4 * dx] * 2, [yc - r, yc + r], color=c, lw=1.0)
+                    ax.plot([x, xd], [yc + sg * r] * 2, color=c, lw=1.6)
+                if abs(yc) <= 1e-9:
+                    for sg in (1, -1):
+                        ax.plot([xd] * 2, [sg * hub, sg * r], color=c, lw=1.0)
+                else:
+                    ax.plot([xd] * 2, [yc - r, yc + r], color=c, lw=1.0)
             else:
                 ax.plot([x, x], [yc - r, yc + r], color=c, lw=2.2)
                 for sg in (1, -1):
                     ax.plot([x - tick, x + tick], [yc + sg * r] * 2, color=c, lw=1.2)
             if s == 1 and wh.internal:          # beside the rim's back line, inside the ring
-                labels.add(x + 0.4 * dx, yc + r, _name(name), prefer=(3, -11), color=c)
+                labels.add(x + side[name] * 0.4 * dx, yc + r, _name(name), prefer=(3 * side[name], -11), color=c)
             elif s == 1:
                 labels.add(x, yc + r, _name(name), prefer=(-9, 2), color=c)
     order = list(m.members)
     for mem, axis in m.members.items():
         c = colors[mem]
         carried = [a for a, h in m.axes.items() if h == mem]
-        xs = [col[n] * dx for n, wh in m.wheels.items() if wh.member == mem and wh.centre == axis]
+        # a member's wheels are held at their hubs: a ring by its disc
+        xs = [(col[n] + (side[n] * 0.4 if wh.internal else 0.0)) * dx for n, wh in m.wheels.items()
+              if wh.member == mem and wh.centre == axis]
         sides = _images(m, y, axis)
         if carried:
             x0 = -(0.7 + 0.35 * order.index(mem)) * dx
+            # a ring opening towards the carried wheels (its disc on the left) holds the carrier's arm
+            # inside it: the arm rises between the disc and the wheels, never through the disc
+            inner = [(col[n] - 0.4) * dx for n, wh in m.wheels.items() if wh.internal and side[n] < 0
+                     and abs(y[wh.centre]) <= 1e-9 and any(wh.m * wh.z / 2 > abs(y[a]) for a in carried)]
+            if inner:
+                x0 = max(inner) + (0.15 + 0.1 * order.index(mem)) * dx
+                # its shaft runs out through the ring's hollow shaft, in a bearing beyond it
+                for sd in sides:
+                    ax.plot([max(inner) - 1.0 * dx, x0], [sd * y[axis]] * 2, color=c, lw=1.6)
+                if mem not in m.fixed:
+                    _bearing(ax, max(inner) - 0.85 * dx, dx, R, c)
             for a in carried:
                 xa = [col[n] * dx for n, wh in m.wheels.items() if wh.centre == a]
                 if not xa:
@@ -174,9 +240,17 @@ def _scheme(ax, m, y, col, colors, dx, labels):
             labels.add(x0, y[axis], _name(mem), prefer=(-14, 3), color=c)
             outer = [h for h in order[order.index(mem) + 1:] if any(v == h for v in m.axes.values())
                      and abs(y[m.members[h]]) <= 1e-9]
-            if mem not in m.fixed and abs(y[axis]) <= 1e-9 and not outer:
+            if mem not in m.fixed and abs(y[axis]) <= 1e-9 and not outer and not inner:
                 # (a carrier inside another's hollow shaft runs in that one, not in the frame)
                 _bearing(ax, x0 - 0.3 * dx, dx, R, c)
+        elif xs and any(wh.internal and side[n] < 0 and abs(y[wh.centre]) <= 1e-9
+                        for n, wh in m.wheels.items() if wh.member == mem):
+            # a ring opening to the right: a hollow shaft from its disc to the left (the carrier's
+            # shaft inside it), in a bearing of the frame; a fixed ring is held at its rim
+            if mem not in m.fixed:
+                for sg in (1, -1):
+                    ax.plot([min(xs) - 0.45 * dx, min(xs)], [sg * hub] * 2, color=c, lw=1.6)
+                _bearing(ax, min(xs) - 0.3 * dx, dx, R, c)
         elif xs:
             for s in sides:
                 ax.plot([min(xs) - 0.3 * dx, max(xs) + 0.3 * dx], [s * y[axis]] * 2, color=c, lw=1.6)
@@ -221,7 +295,7 @@ def train_picture(train) -> TrainPicture:
     ax = fig.add_axes((0.09, bottom, 0.44, top - bottom))
     ylo, yhi = -1.12 * R, 1.2 * R
     labels = LabelPlacer(ax, fontsize=9)        # placed clear of the lines once all is drawn
-    _scheme(ax, m, y, col, colors, dx, labels)
+    _scheme(ax, m, y, col, colors, dx, labels, disc_sides(m, y, col, colors, dx))
     ax.set_xlim(-(1.4 + 0.35 * len(m.members)) * dx, (ncol + 0.2) * dx)
     ax.set_ylim(ylo, yhi)
     ax.set_xticks([])

@@ -268,7 +268,7 @@ def _size(sec, study, cam) -> None:
                     + (f"Принят заданный радиус r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}"
                        + (" — условие выпуклости выполнено." if syn.r0 >= need - 1e-12 else
                           " — условие выпуклости <b>не выполнено</b>.")
-                       if syn.governing == "fixed" else f"Принят r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}."))
+                       if syn.governing == "fixed" else _accepted_words(cam) + "."))
         hard = [i for i in cam.impacts if i["kind"] == "hard"]
         if hard:
             s.paragraph("В положениях жёсткого удара (φ&nbsp;=&nbsp;" + ", ".join(_at(i["phi"]) for i in hard)
@@ -306,14 +306,16 @@ def _size(sec, study, cam) -> None:
                    "both": "точка пересечения лучей удаления и возвращения"}[syn.governing]
             s.paragraph(f"Наименьший радиус r<sub>0</sub> даёт ближайшая к точке B<sub>0</sub> точка допустимой "
                         f"области ({gov}), рисунок {ref('fig-cam-portrait')}:")
-        s.formula(Formula("e", None, _t(syn.e * 1000, unit="мм")),
-                  Formula("s_0", None, _t(syn.s0 * 1000, unit="мм")),
-                  Formula(r"r_0 = \sqrt{s_0^2 + e^2}", rf"\sqrt{{{_t(syn.s0 * 1000)}^2 + {_t(syn.e * 1000)}^2}}",
-                          _t(syn.r0 * 1000, unit="мм")))
+        ex = syn.exact or syn
+        s.formula(Formula("e", None, _t(ex.e * 1000, unit="мм")),
+                  Formula("s_0", None, _t(ex.s0 * 1000, unit="мм")),
+                  Formula(r"r_0 = \sqrt{s_0^2 + e^2}", rf"\sqrt{{{_t(ex.s0 * 1000)}^2 + {_t(ex.e * 1000)}^2}}",
+                          _t(ex.r0 * 1000, unit="мм")))
         s.paragraph(f"Приближённый способ (лучи через точки наибольшего аналога скорости) даёт "
                     f"r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0_approx)}, e&nbsp;=&nbsp;{_mm(syn.e_approx)}; отличие от точного "
-                    f"решения {fmt((syn.r0_approx / syn.r0 - 1) * 100, digits=2, sign=True)}&nbsp;%: при этих размерах "
+                    f"решения {fmt((syn.r0_approx / ex.r0 - 1) * 100, digits=2, sign=True)}&nbsp;%: при этих размерах "
                     "угол давления превысил бы допустимый.")
+        _accept(s, cam)
     else:
         s.paragraph("Для коромысла точки фазового портрета D строятся на линии коромысла: от точки B откладывается "
                     "отрезок, равный аналогу скорости lψ′. Через каждую точку D проводится луч под углом (90° − [ϑ]) "
@@ -331,25 +333,65 @@ def _size(sec, study, cam) -> None:
             s.paragraph("Определяющие лучи касаются портрета; точки касания найдены из условия стационарности "
                         f"ограничения по углу поворота кулачка, центр O выбран как ближайшая к B<sub>0</sub> точка "
                         f"допустимой области (рисунок {ref('fig-cam-portrait')}):")
-        aw = tex_given(round(syn.a_w * 1000, 6)) if fixed else _t(syn.a_w * 1000)
-        p0 = tex_given(round(math.degrees(syn.psi0), 6)) if fixed else _t(math.degrees(syn.psi0), sig=5)
+        ex = syn.exact or syn
+        aw = tex_given(round(ex.a_w * 1000, 6)) if fixed else _t(ex.a_w * 1000)
+        p0 = tex_given(round(math.degrees(ex.psi0), 6)) if fixed else _t(math.degrees(ex.psi0), sig=5)
         l_ = tex_given(round(cam.arm * 1000, 6))
-        s.formula(*([] if fixed else [Formula("a_w", None, _t(syn.a_w * 1000, unit="мм")),
-                                      Formula(r"\psi_0", None, _t(math.degrees(syn.psi0), sig=5, unit="°"))]),
+        s.formula(*([] if fixed else [Formula("a_w", None, _t(ex.a_w * 1000, unit="мм")),
+                                      Formula(r"\psi_0", None, _t(math.degrees(ex.psi0), sig=5, unit="°"))]),
                   Formula(r"r_0 = \sqrt{a_w^2 + l^2 - 2 a_w l \cos\psi_0}",
                           rf"\sqrt{{{aw}^2 + {l_}^2 - 2 \cdot {aw} \cdot {l_} \cos {p0}^\circ}}",
-                          _t(syn.r0 * 1000, unit="мм")))
+                          _t(ex.r0 * 1000, unit="мм")))
         s.paragraph(f"Точки касания: на удалении φ&nbsp;=&nbsp;{_deg(syn.phi_rise, 3)}, на возвращении "
                     f"φ&nbsp;=&nbsp;{_deg(syn.phi_return, 3)}.")
         if syn.governing != "fixed":
             s.paragraph(f"Приближённый способ (лучи через точки наибольшего аналога скорости, штриховые линии) даёт "
                         f"r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0_approx)}, a<sub>w</sub>&nbsp;=&nbsp;{_mm(syn.a_w_approx)}; "
                         f"отличие r<sub>0</sub> от точного решения "
-                        f"{fmt((syn.r0_approx / syn.r0 - 1) * 100, digits=2, sign=True)}&nbsp;%.")
+                        f"{fmt((syn.r0_approx / ex.r0 - 1) * 100, digits=2, sign=True)}&nbsp;%.")
+        _accept(s, cam)
     sc = PhasePortrait()
     fig = sc.draw(study)
     s.figure(f"Фазовый портрет, определяющие лучи и область допустимого расположения центра кулачка "
              f"(μ&nbsp;=&nbsp;{fmt(fig.mu * 1000, sig=3)}&nbsp;мм/мм)", fig.svg, fig.width_mm, id="fig-cam-portrait")
+
+
+def _accepted_words(cam) -> str:
+    """«Принимаем r₀ = 29 мм (наименьший 28,62 мм, округлён в бо́льшую сторону до целого
+    миллиметра)»: the size the profile is built with (analysis.cam.Cam.synthesis)."""
+    syn = cam.synthesis
+    if syn.exact is None:
+        return f"Принят r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}"
+    step = ("целого миллиметра" if abs(cam.r0_round - 0.001) < 1e-12 else
+            f"значения, кратного {_mg(cam.r0_round)}")
+    return (f"Принимаем r<sub>0</sub>&nbsp;=&nbsp;{_mg(syn.r0)} (наименьший {_mm(syn.exact.r0)}, округлён в "
+            f"бо́льшую сторону до {step})")
+
+
+def _accept(s, cam) -> None:
+    """The accepted r₀ and the sizes that follow it (analysis.cam.Cam.synthesis says how each
+    kind keeps its centre in the admissible region); nothing when r₀ is the least one."""
+    syn = cam.synthesis
+    if syn.exact is None:
+        return
+    r0 = tex_given(round(syn.r0 * 1000, 6))
+    if cam.flat_rocker:
+        s.paragraph(_accepted_words(cam) + "; при том же ψ<sub>0</sub> межосевое расстояние увеличивается (оба "
+                    "условия ограничивают a<sub>w</sub> снизу):")
+        s.formula(Formula(r"a_w = \frac{r_0 + d}{\sin\psi_0}",
+                          rf"\frac{{{r0} + {_tmm(cam.face_offset)}}}{{\sin {_t(math.degrees(syn.psi0), sig=5)}^\circ}}",
+                          _t(syn.a_w * 1000, unit="мм")))
+    elif cam.follower == "translating":
+        s.paragraph(_accepted_words(cam) + f"; при том же e&nbsp;=&nbsp;{_mm(syn.e)} центр кулачка отодвигается "
+                    "вдоль оси толкателя вглубь допустимой области:")
+        s.formula(Formula(r"s_0 = \sqrt{r_0^2 - e^2}", rf"\sqrt{{{r0}^2 - {_t(syn.e * 1000)}^2}}",
+                          _t(syn.s0 * 1000, unit="мм")))
+    else:
+        s.paragraph(_accepted_words(cam) + "; центр O отодвигается от B<sub>0</sub> по прямой B<sub>0</sub>O "
+                    "вглубь допустимой области:")
+        s.formula(Formula("a_w", None, _t(syn.a_w * 1000, unit="мм")),
+                  Formula(r"\psi_0", None, _t(math.degrees(syn.psi0), sig=5, unit="°")))
+    s.paragraph("С принятыми размерами построены профиль кулачка, углы давления и чертёж механизма.")
 
 
 def _fixed_sizes(cam, what: str) -> str:
@@ -468,11 +510,13 @@ def _size_flat_rocker(s, study, cam) -> None:
     else:
         s.paragraph(f"При заданном ψ<sub>0</sub> принято a<sub>w</sub>&nbsp;=&nbsp;a<sub>w,ρ</sub> (рисунок "
                     f"{ref('fig-cam-flat-size')}).")
-    s.formula(Formula("a_w", None, _t(syn.a_w * 1000, unit="мм")),
+    ex = syn.exact or syn
+    s.formula(Formula("a_w", None, _t(ex.a_w * 1000, unit="мм")),
               Formula(r"\psi_0", None, _t(math.degrees(psi0), sig=5, unit="°")),
               Formula(r"r_0 = a_w \sin\psi_0 - d",
-                      rf"{_t(syn.a_w * 1000)} \sin {_t(math.degrees(psi0), sig=5)}^\circ - {_tmm(d)}",
-                      _t(syn.r0 * 1000, unit="мм")))
+                      rf"{_t(ex.a_w * 1000)} \sin {_t(math.degrees(psi0), sig=5)}^\circ - {_tmm(d)}",
+                      _t(ex.r0 * 1000, unit="мм")))
+    _accept(s, cam)
     lo, hi = cam.face
     s.paragraph(f"Точка касания перемещается по тарелке от μ<sub>min</sub>&nbsp;=&nbsp;{_mm(lo)} до "
                 f"μ<sub>max</sub>&nbsp;=&nbsp;{_mm(hi)} (точные экстремумы μ за цикл); рабочая длина тарелки не меньше "
@@ -591,13 +635,22 @@ def _inversion_tex(cam, lateral: str, base: str) -> str:
     return rf"x = {x},\quad y = -{lateral}\sin\varphi + ({base} + s)\cos\varphi"
 
 
+def _r0_text(cam, least: bool = True) -> str:
+    """The accepted r₀ as taken (a whole millimetre) with the least one beside it, «29 мм
+    (наименьший 28,62 мм)»; the least alone when it was not rounded."""
+    syn = cam.synthesis
+    if syn.exact is None:
+        return _mm(syn.r0)
+    return _mg(syn.r0) + (f" (наименьший {_mm(syn.exact.r0)})" if least else "")
+
+
 def conclusion_lines(study) -> list[str]:
     cam = study.cam
     syn = cam.synthesis
     out = []
     if cam.flat_rocker:
         out.append(f"Кулачковый механизм с коромыслом с плоской тарелкой: a<sub>w</sub>&nbsp;=&nbsp;{_mm(syn.a_w)}, "
-                   f"ψ<sub>0</sub>&nbsp;=&nbsp;{_deg(syn.psi0)}, r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}; рабочая длина "
+                   f"ψ<sub>0</sub>&nbsp;=&nbsp;{_deg(syn.psi0)}, r<sub>0</sub>&nbsp;=&nbsp;{_r0_text(cam)}; рабочая длина "
                    f"тарелки не менее {_mm(cam.face[1] - cam.face[0])}"
                    + (f"; наибольший угол давления {_deg(cam.theta_max[0], 2)} на удалении и "
                       f"{_deg(cam.theta_max[1], 2)} на возвращении." if cam.face_offset > 0 else
@@ -606,19 +659,19 @@ def conclusion_lines(study) -> list[str]:
         if bad:
             out.append("При заданных размерах " + " и ".join(bad) + ": межосевое расстояние нужно увеличить.")
     elif cam.contact == "flat":
-        out.append(f"Кулачковый механизм с плоским толкателем: радиус основной шайбы r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)} "
+        out.append(f"Кулачковый механизм с плоским толкателем: радиус основной шайбы r<sub>0</sub>&nbsp;=&nbsp;{_r0_text(cam, least=False)} "
                    f"(по выпуклости профиля требуется не менее {_mm(cam.flat_min[2])}), ширина тарелки не менее "
                    f"{_mm(cam.scalars['cam_face_width'])}.")
     elif cam.follower == "translating":
         fixed = syn.governing == "fixed"
         out.append(("Кулачковый механизм: заданы r<sub>0</sub>&nbsp;=&nbsp;" + _mg(syn.r0) if fixed else
-                    f"Кулачковый механизм: по допустимым углам давления r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}")
+                    f"Кулачковый механизм: по допустимым углам давления r<sub>0</sub>&nbsp;=&nbsp;{_r0_text(cam)}")
                    + f", e&nbsp;=&nbsp;{_mg(syn.e) if fixed else _mm(syn.e)}; {_theta_phrase(cam)}.")
     else:
         fixed = syn.governing == "fixed"
         out.append(f"Кулачковый механизм с коромыслом: {'заданы ' if fixed else ''}a<sub>w</sub>&nbsp;=&nbsp;"
                    f"{_mg(syn.a_w) if fixed else _mm(syn.a_w)}, ψ<sub>0</sub>&nbsp;=&nbsp;"
-                   f"{_dg(syn.psi0) if fixed else _deg(syn.psi0)}, r<sub>0</sub>&nbsp;=&nbsp;{_mm(syn.r0)}; "
+                   f"{_dg(syn.psi0) if fixed else _deg(syn.psi0)}, r<sub>0</sub>&nbsp;=&nbsp;{_r0_text(cam)}; "
                    f"{_theta_phrase(cam)}.")
     if cam.contact == "roller":
         ok = cam.roller <= 0.7 * cam.rho_min_centre + 1e-12

@@ -208,7 +208,7 @@ def _geometry(sec: Section, gr) -> Section:
     checks = []
     xm1 = float(G.x_min_undercut(z1, gr.rack))
     checks.append(f"подрезание шестерни: <i>x</i><sub>1</sub> = {fmt(x1, sig=3)} "
-                  f"{'≥' if x1 >= xm1 - 1e-12 else '<'} <i>x</i><sub>1min</sub> = {fmt(xm1, sig=4)} — "
+                  f"{'≥' if x1 >= xm1 - 1e-12 else '<'} <i>x</i><sub>1min</sub> = {fmt(xm1, digits=3)} — "
                   f"{'подрезания нет' if x1 >= xm1 - 1e-12 else 'зуб подрезан'}")
     for i, sa in ((1, g.sa1), (2, g.sa2)):
         okk = float(sa) >= gr.s_a_min * m
@@ -389,7 +389,7 @@ def _sliding(sec: Section, gr) -> None:
     s.figure("Диаграммы удельного скольжения", S.sliding_diagram(gr), 160, id="fig-gears-sliding")
     t = gr.sliding_table
     cols = [Column("rho1", "ρ<sub>1</sub>", "мм", sig=5), Column("rho2", "ρ<sub>2</sub>", "мм", sig=5),
-            Column("lambda1", "λ<sub>1</sub>", sig=4), Column("lambda2", "λ<sub>2</sub>", sig=4)]
+            Column("lambda1", "λ<sub>1</sub>", digits=3), Column("lambda2", "λ<sub>2</sub>", digits=3)]
     if "vs" in t:
         cols.append(Column("vs", "<i>v</i><sub>ск</sub>", "м/с", sig=4))
     s.table("Удельное скольжение на активной части линии зацепления", cols, t, id="tab-gears-sliding")
@@ -402,7 +402,7 @@ def _rack(sec: Section, gr) -> None:
     s.paragraph(f"Колесо 1 нарезается рейкой, смещённой на <i>x</i><sub>1</sub><i>m</i> = {fmt(gr.x1 * gr.m, sig=4)} мм "
                 f"(рисунок {ref('fig-gears-rack')}). Граница подрезания: прямая головок рейки не должна "
                 f"пересекать линию станочного зацепления ниже точки <i>N</i>, что даёт "
-                f"<i>x</i><sub>min</sub> = <i>h</i><sub>a</sub><sup>*</sup> − <i>z</i> sin²α/2 = {fmt(xm, sig=4)}.")
+                f"<i>x</i><sub>min</sub> = <i>h</i><sub>a</sub><sup>*</sup> − <i>z</i> sin²α/2 = {fmt(xm, digits=3)}.")
     s.figure("Станочное зацепление колеса 1 с производящей рейкой", fig, w, id="fig-gears-rack")
 
 
@@ -444,9 +444,9 @@ def _judgement(gr, g) -> list[str]:
     feet by the specific sliding at B₁ (λ₁) and B₂ (λ₂)."""
     xm1 = float(G.x_min_undercut(gr.z1, gr.rack))
     under = (f"подрезания зубьев шестерни нет (<i>x</i><sub>1</sub> = {fmt(gr.x1, sig=3)} ≥ <i>x</i><sub>1min</sub> = "
-             f"{fmt(xm1, sig=3)})" if gr.x1 >= xm1 - 1e-12 else
+             f"{fmt(xm1, digits=3)})" if gr.x1 >= xm1 - 1e-12 else
              f"<b>зубья шестерни подрезаны</b> (<i>x</i><sub>1</sub> = {fmt(gr.x1, sig=3)} &lt; <i>x</i><sub>1min</sub> = "
-             f"{fmt(xm1, sig=3)}): смещение шестерни нужно увеличить")
+             f"{fmt(xm1, digits=3)}): смещение шестерни нужно увеличить")
     sa = min(float(g.sa1), float(g.sa2))
     sharp = (f"наименьшая толщина зуба на вершине {fmt(sa, sig=3)} мм = {fmt(sa / gr.m, sig=2)}<i>m</i> "
              + ("— заострения нет" if sa >= gr.s_a_min * gr.m else "— <b>зуб заострён</b>"))
@@ -481,7 +481,7 @@ def conclusion_lines(study) -> list[str]:
                    f"<i>m</i> = {as_written(gr.m)} мм, <i>x</i><sub>1</sub> = {fmt(gr.x1, sig=3)}, <i>x</i><sub>2</sub> = "
                    f"{fmt(gr.x2, sig=3)}: <i>a</i><sub>w</sub> = "
                    f"{as_written(gr.a_w_required) if gr.a_w_required is not None else fmt(float(g.a_w), sig=6)} мм, α<sub>w</sub> = "
-                   f"{fmt(math.degrees(float(g.alpha_w)), sig=5)}°, ε<sub>α</sub> = {fmt(float(g.eps), sig=4)}.")
+                   f"{fmt(math.degrees(float(g.alpha_w)), digits=4)}°, ε<sub>α</sub> = {fmt(float(g.eps), sig=4)}.")
         out += _judgement(gr, g)
     if "x_chord" in gr.inverse:
         out.append(f"По измерениям зубомером коэффициент смещения <i>x</i> = {fmt(gr.inverse['x_chord'], sig=3)}, "

@@ -95,9 +95,10 @@ def _datum(x: dict, key: str, value: float) -> str:
     return as_written(x[key]) if key in x else fmt(value, sig=5)
 
 
-def _g(x: dict, key: str, value: float) -> str:
-    """A datum in a substituted formula: as written when it is a given input, else to 5 digits."""
-    return _w(x[key]) if key in x else _t(value)
+def _g(x: dict, key: str, value: float, sig: int = 5) -> str:
+    """A datum in a substituted formula: as written when it is a given input (its magnitude, as
+    ``value`` is), else to ``sig`` digits."""
+    return _w(abs(x[key]) if value >= 0 else x[key]) if key in x else _t(value, sig)
 
 
 def _t(x, sig=5) -> str:
@@ -268,8 +269,9 @@ def _transmission(sec, kind, x, v, tr) -> None:
         forms = [Formula(r"\cos\mu_{1,2} = \frac{b^2 + l_{CB}^2 - (d \mp a)^2}{2 b\, l_{CB}}")]
         for i, s_ in ((1, v["d"] - v["a"]), (2, v["d"] + v["a"])):
             cg = (v["b"] ** 2 + v["c"] ** 2 - s_ * s_) / (2 * v["b"] * v["c"])
-            forms.append(Formula(rf"\cos\mu_{i}", rf"\frac{{{_t(v['b'], 4)}^2 + {_t(v['c'], 4)}^2 - {_t(s_, 4)}^2}}"
-                                 rf"{{2 \cdot {_t(v['b'], 4)} \cdot {_t(v['c'], 4)}}}",
+            c_ = _g(x, "c", v["c"], 4)
+            forms.append(Formula(rf"\cos\mu_{i}", rf"\frac{{{_t(v['b'], 4)}^2 + {c_}^2 - {_t(s_, 4)}^2}}"
+                                 rf"{{2 \cdot {_t(v['b'], 4)} \cdot {c_}}}",
                                  rf"{tex_num(cg, sig=4)},\quad \mu_{i} = "
                                  rf"{tex_num(math.degrees(math.acos(max(-1.0, min(1.0, cg)))), digits=1)}^{{\circ}}"))
         sec.formula(*forms)
@@ -280,7 +282,7 @@ def _transmission(sec, kind, x, v, tr) -> None:
         sec.paragraph("Угол передачи μ между шатуном и нормалью к направляющей наименьший, когда кривошип "
                       "перпендикулярен направляющей со стороны смещения [2]:")
         sec.formula(r"\cos\mu_{\min} = \frac{a + e}{b}",
-                    rf"\frac{{{_t(v['a'])} + {_t(abs(v['e']))}}}{{{_t(v['b'])}}}",
+                    rf"\frac{{{_t(v['a'])} + {_g(x, 'e', abs(v['e']))}}}{{{_t(v['b'])}}}",
                     rf"{tex_num((v['a'] + abs(v['e'])) / v['b'], sig=4)};\ \mu_{{\min}} = "
                     rf"{tex_num(mu, digits=1)}^{{\circ}}")
         change = "отношение λ&nbsp;=&nbsp;a/b"

@@ -61,6 +61,17 @@ def _z(name: str) -> str:
     return rf"z_{{{name}}}"
 
 
+def prime(name: str) -> str:
+    """A wheel's name in text as the textbook writes it: the case's «2'» as «2′» (TeX sets its
+    own prime in the formulas)."""
+    return name.replace("'", "′")
+
+
+def _zh(name: str) -> str:
+    """z with the wheel's name as a subscript in the note's text: <i>z</i><sub>2′</sub>."""
+    return f"<i>z</i><sub>{prime(name)}</sub>"
+
+
 def given(study) -> str:
     """The planetary train's data in one sentence for the assignment page."""
     tr = study.train
@@ -113,7 +124,7 @@ def _selection(sec: Section, tr) -> None:
     opt = tr.opts["select"]
     acc = tr.candidates[0]
     z = {w.name: w.z for w in m.wheels.values()}
-    chosen = ", ".join(f"<i>z</i><sub>{w}</sub>" for w in sel.unknown)
+    chosen = ", ".join(_zh(w) for w in sel.unknown)
     s.paragraph(
         f"Числа зубьев {chosen} подбираются перебором под передаточное отношение "
         f"<i>u</i><sub>{m.inp}{m.out}</sub> = {as_written(tr.opts['target'])} (допуск "
@@ -126,7 +137,7 @@ def _selection(sec: Section, tr) -> None:
                     "(модуль сокращён):")
         s.formula(*[Formula(rf"{_form(p, sel.order)} = {_form(c, sel.order)}") for _, p, c in sel.equations])
     if sel.dependent:
-        s.paragraph("Из них выражаются числа зубьев " + ", ".join(f"<i>z</i><sub>{d}</sub>" for d in sel.dependent)
+        s.paragraph("Из них выражаются числа зубьев " + ", ".join(_zh(d) for d in sel.dependent)
                     + "; остальные перебираются от " + f"{sel.z_from} до {sel.z_max}:")
         s.formula(*[Formula(rf"z_{{{d}}} = {_affine(c0, cf, sel.order)}") for d, (c0, cf) in sel.dependent.items()])
     _assembly_text(s, tr, k)
@@ -151,12 +162,12 @@ def _selection(sec: Section, tr) -> None:
                                       for *_, sv, r, ok in c.neighbours) or "—"),
                      "verdict": "годится" if c.ok else "; ".join(c.fails)})
     s.table("Наборы чисел зубьев и проверка условий", [
-        Column("set", "/".join(f"<i>z</i><sub>{w}</sub>" for w in sel.unknown), fmt=str),
+        Column("set", "/".join(_zh(w) for w in sel.unknown), fmt=str),
         Column("u", f"<i>u</i><sub>{m.inp}{m.out}</sub>", **_ratio_column(rows)), Column("du", "Δ<i>u</i>", "%", sig=2),
         Column("size", "Габарит, модулей", digits=0, sig=None), Column("asm", "Сборка", fmt=str),
         Column("nb", "Соседство, sin(π/<i>k</i>)", fmt=str), Column("verdict", "Заключение", fmt=str)],
         pd.DataFrame(rows), id="tab-train-select", highlight_rows=[0])
-    s.paragraph("Проверка принятого набора (" + ", ".join(f"<i>z</i><sub>{w}</sub> = {acc.z[w]}" for w in sel.unknown)
+    s.paragraph("Проверка принятого набора (" + ", ".join(f"{_zh(w)} = {acc.z[w]}" for w in sel.unknown)
                 + "):")
     fr = acc.u_exact
     # the ratio with the numbers of teeth substituted into the closed form (1.1), then as a fraction
@@ -261,7 +272,7 @@ def _assembly_text(s: Section, tr, k) -> None:
 
 def _wheels(sec: Section, tr) -> None:
     m = tr.model
-    df = pd.DataFrame([{"wheel": w.name, "z": w.z, "m": w.m, "d": w.m * w.z, "member": w.member,
+    df = pd.DataFrame([{"wheel": prime(w.name), "z": w.z, "m": w.m, "d": w.m * w.z, "member": w.member,
                         "kind": "внутреннее" if w.internal else "внешнее"} for w in m.wheels.values()])
     sec.table("Колёса механизма", [Column("wheel", "Колесо", fmt=str), Column("z", "<i>z</i>", sig=4),
                                      Column("m", "<i>m</i>", "мм", sig=3), Column("d", "<i>d</i>", "мм", sig=5),
@@ -329,7 +340,7 @@ def _printed_coaxiality(sec: Section, tr) -> None:
             tail = ""
             if same:
                 nums = " − ".join(str(tr.model.wheels[w].z) for w, c in sorted(path.items(), key=lambda wc: wc[1] < 0))
-                tail = (" Напечатанные в решении " + ", ".join(f"z<sub>{w}</sub> = {tr.model.wheels[w].z}" for w in same)
+                tail = (" Напечатанные в решении " + ", ".join(f"{_zh(w)} = {tr.model.wheels[w].z}" for w in same)
                         + f" совпадают с найденными: в численной подстановке ({nums}) части взяты в верном порядке, "
                           "ошибка только в буквенной записи.")
             sec.paragraph(f"При найденных числах зубьев обе части равны {_num(v)}." + tail)
@@ -459,7 +470,7 @@ def conclusion_lines(study) -> list[str]:
     tr = study.train
     m = tr.model
     fr = tr.ratio_fraction
-    zs = ", ".join(f"z<sub>{w.name}</sub> = {w.z}" for w in m.wheels.values())
+    zs = ", ".join(f"{_zh(w.name)} = {w.z}" for w in m.wheels.values())
     frac = f"{fr.numerator}/{fr.denominator}".replace("-", "−") if fr.denominator != 1 else None
     out = [f"Передаточное отношение планетарного механизма <i>u</i><sub>{m.inp}{m.out}</sub> = "
            + (f"{frac} = " if frac else "") + f"{_exact_text(fr)} ({zs})."]
