@@ -78,3 +78,62 @@ def test_structure_text_names_the_common_scale():
     html = plain(paragraph_text(structure.build(_study("slider_crank"))))
     assert "все группы вычерчены в одном масштабе" in html and "1:5" in html
     assert "в своём масштабе" not in html
+
+
+# --- 3. the transmission angles of groups with sliding pairs judged -------------------------------
+
+def _plain(html) -> str:
+    from notehelpers import plain
+    return plain(html)
+
+
+def test_pvp_transmission_angle_from_the_guides():
+    """rocker_plunger_pvp's ПВП group (4,5): the stone 4 presses on the plunger 5 along the normal
+    to the slot CK of the rocker 3, the plunger moves along its vertical guide, so μ is the acute
+    angle between CK and the vertical — computed here from the points over the cycle."""
+    import numpy as np
+    st = _study("rocker_plunger_pvp")
+    fl = st.slide_flags["4_5"]
+    cyc = st.cycle
+    slot = np.arctan2(cyc["y_K"] - cyc["y_C"], cyc["x_K"] - cyc["x_C"]).to_numpy()
+    mu = np.arcsin(np.abs(np.sin(np.pi / 2 - slot)))
+    assert fl["min"] == pytest.approx(mu.min(), abs=1e-9)
+    assert not fl["const"]
+
+
+def test_pvp_group_in_table_and_conclusion():
+    """The ПВП group's μ_min was neither in the table of transmission angles nor in the conclusion
+    (only the ВВВ group (2,3) was judged). Now both, with the same rule μ_min ≥ 40°."""
+    import math
+    from notehelpers import blocks
+    from reportgen.report.document import Table
+    from reportgen.report.sections import kinematics as K
+    st = _study("rocker_plunger_pvp")
+    mu45 = math.degrees(st.slide_flags["4_5"]["min"])
+    txt = " ".join(_plain(l) for l in K.conclusion_lines(st))
+    assert f"в группе (4,5) {mu45:.1f}°".replace(".", ",") in txt
+    assert "в группе (2,3)" in txt and "не меньше допускаемого 40°" in txt
+    sec = K.build(st)
+    tab = next(b for b in blocks(sec) if isinstance(b, Table) and b.id == "tab-mu")
+    assert "(4,5)" in list(tab.data["g"])
+    assert "ПВП" in (_plain(tab.note) if tab.note else "")
+
+
+def test_vpv_group_judged_in_conclusion():
+    """ws004's ВПВ group (2,3) (a stone on the кулиса's axis: μ = 90° always) is judged too."""
+    from reportgen.report.sections import kinematics as K
+    txt = " ".join(_plain(l) for l in K.conclusion_lines(_study("ws004_slotted_lever")))
+    assert "в группе (2,3) 90,0°, в группе (4,5)" in txt
+
+
+def test_low_sliding_group_angle_gets_advice():
+    """A ПВП group below 40° is told so, with what to change, and the mechanism is not called
+    «работоспособен»."""
+    from reportgen.report.sections import kinematics as K
+    st = _study("rocker_plunger_pvp")
+    fl = dict(st.slide_flags["4_5"], min=0.5)        # 28,6°
+    st.__dict__["slide_flags"] = {"4_5": fl}
+    txt = " ".join(_plain(l) for l in K.conclusion_lines(st))
+    assert "Наименьший угол передачи в группе (4,5) — 28,6° — меньше допускаемого 40°" in txt
+    assert "изменив наклон направляющей пары 3–4 или неподвижной направляющей звена 5" in txt
+    assert "работоспособен" not in txt
