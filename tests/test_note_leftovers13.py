@@ -137,3 +137,38 @@ def test_low_sliding_group_angle_gets_advice():
     assert "Наименьший угол передачи в группе (4,5) — 28,6° — меньше допускаемого 40°" in txt
     assert "изменив наклон направляющей пары 3–4 или неподвижной направляющей звена 5" in txt
     assert "работоспособен" not in txt
+
+
+# --- 4. the conclusion's symbols set as the text sets them ------------------------------------------
+
+# a Latin letter typed by hand before a subscript or «=» (upright), not inside <i>…</i>
+UPRIGHT = r"(?<![\w>/;])[A-Za-z](?:<sub>|&nbsp;=)"
+
+
+@pytest.mark.parametrize("name", ["ws000_six_bar", "sewing_needle_takeup", "engine_four_stroke",
+                                  "ws002_tractor_hitch"])
+def test_conclusion_symbols_italic(name):
+    """The conclusion set M<sub>д</sub>, J<sub>I</sub>, A<sub>с</sub>, J<sub>доп</sub>, D<sub>2</sub>, b, m,
+    u, v, S, W upright while the text sets them italic (inline math): now by inline_math too. ws000:
+    a big flywheel; sewing: a small flywheel on a motor shaft (u); engine: A<sub>д</sub>, M<sub>с</sub>;
+    ws002: a cylinder's length S."""
+    import re
+    from reportgen.report.assemble import _conclusion, chosen_sections
+    st = _study(name)
+    lines = [p.html for p in _conclusion(st, chosen_sections(st, None))]
+    text = " ".join(str(h) for h in lines)
+    bad = [text[max(0, m.start() - 40):m.end() + 10] for m in re.finditer(UPRIGHT, text)]
+    assert bad == []
+    assert 'class="mx math-inline"><i>W</i>' in text
+
+
+# --- 5. the conclusions read through ---------------------------------------------------------------
+
+def test_inverse_task_delta_printed_as_found():
+    """crank_press_inverse (a given flywheel, δ found) said «Для δ = 0,09751300009 … требуется J_I»: a
+    found δ printed with 11 digits as if given, and «требуется» of a flywheel that is given. Now δ to
+    4 significant digits, as the text prints it, and what the given flywheel gives."""
+    from reportgen.report.sections.dynamics import conclusion_lines
+    text = _plain(" ".join(conclusion_lines(_study("crank_press_inverse"))))
+    assert "С заданным маховиком коэффициент неравномерности хода δ\u00a0=\u00a00,09751 при" in text, text
+    assert "0,097513" not in text and "требуется" not in text

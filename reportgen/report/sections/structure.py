@@ -102,7 +102,7 @@ def build(study) -> Section:
                       ("p_4", "число высших пар")], label="eq-chebyshev")
     driver = (input_word(mech.driver, "gen") + " " + mech.driver.link) if mech.driver.rotary else \
         f"гидроцилиндра (звенья {mech.driver.link} и {mech.driver.rod}, поступательная ведущая пара)"
-    s2.paragraph(f"W&nbsp;=&nbsp;{st.W}: для определённости движения достаточно одного ведущего звена — {driver}. "
+    s2.paragraph(f"{inline_math('W')}&nbsp;=&nbsp;{st.W}: для определённости движения достаточно одного ведущего звена — {driver}. "
                  "Пассивных связей и лишних степеней свободы нет.")
 
     s3 = sec.subsection("Группы Ассура и структурная формула", "sec-groups")
@@ -147,7 +147,7 @@ def conclusion_lines(study) -> list[str]:
     """Structure and fitted dimensions for the ЗАКЛЮЧЕНИЕ."""
     from ...style.numbers import fmt
     st = study.structure
-    out = [f"Механизм имеет одну степень свободы (W&nbsp;=&nbsp;{st.W}), структурная формула "
+    out = [f"Механизм имеет одну степень свободы ({inline_math('W')}&nbsp;=&nbsp;{st.W}), структурная формула "
            f"{decomposition(study)[1]}, механизм {_roman(st.mech_class)} класса."]
     fits = []
     for f in study.fits:
