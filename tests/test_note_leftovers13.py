@@ -3,6 +3,7 @@ the plan of positions of a small crank, the transmission angles of groups with a
 the conclusion, the conclusion's symbols set as the text sets them."""
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from reportgen.scenes import labels as L
@@ -172,3 +173,31 @@ def test_inverse_task_delta_printed_as_found():
     text = _plain(" ".join(conclusion_lines(_study("crank_press_inverse"))))
     assert "С заданным маховиком коэффициент неравномерности хода δ\u00a0=\u00a00,09751 при" in text, text
     assert "0,097513" not in text and "требуется" not in text
+
+
+# --- 2. the plan of positions of a small crank ------------------------------------------------------
+
+@pytest.mark.parametrize("name", ["sewing_needle_takeup", "screen_shaker", "class3_triad"])
+def test_small_crank_numbered_in_view_readably(name, figures):
+    """The sewing machine's 7,5 mm crank circle at 1:2 crowded A₀…A₁₁ on the main drawing (A₅ went
+    23 mm off on a leader). No larger ГОСТ scale fits the page (the mechanism is 0,23 m tall), so
+    the positions are numbered in the enlarged view only: no two labels overlap and the numbers
+    stand ≥ 5 mm apart on paper."""
+    import itertools
+    import re
+    from reportgen.scenes.mechanism import PositionsPlan
+    st = _study(name)
+    d = PositionsPlan().draw(st)
+    assert d.detail_mu is not None and d.detail_mu < d.mu
+    fig = figures[-1]
+    assert L.check_figure(fig) == []
+    ax, r = fig.axes[0], fig.canvas.get_renderer()
+    mm = 25.4 / fig.dpi
+    nums = []
+    for t in ax.texts:
+        if re.fullmatch(r"\$[A-Z]_\{\d+(?:,\s*\d+)*\}\$", t.get_text()):
+            bb = t.get_window_extent(r)
+            nums.append(np.array([(bb.x0 + bb.x1) / 2, (bb.y0 + bb.y1) / 2]) * mm)
+    assert len(nums) >= 8
+    gaps = [float(np.hypot(*(a - b))) for a, b in itertools.combinations(nums, 2)]
+    assert min(gaps) >= 5.0, min(gaps)
