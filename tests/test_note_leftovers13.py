@@ -8,7 +8,6 @@ import pytest
 
 from reportgen.scenes import labels as L
 from reportgen.scenes.draw import GOST_K
-from reportgen.style import mplstyle
 
 CASES = Path(__file__).resolve().parents[1] / "cases"
 
@@ -16,19 +15,6 @@ CASES = Path(__file__).resolve().parents[1] / "cases"
 def _study(name):
     from reportgen import load_case
     return load_case(CASES / f"{name}.toml")
-
-
-@pytest.fixture
-def figures(monkeypatch):
-    """The matplotlib figures the scenes write."""
-    figs = []
-    orig = mplstyle.to_svg
-
-    def keep(fig):
-        figs.append(fig)
-        return orig(fig)
-    monkeypatch.setattr(mplstyle, "to_svg", keep)
-    return figs
 
 
 def _groups(name):
@@ -41,7 +27,7 @@ def _groups(name):
 # --- 1. the Assur groups at one common scale ----------------------------------------------------
 
 @pytest.mark.parametrize("name", ["slider_crank", "ws004_slotted_lever", "slider_stone_rocker"])
-def test_groups_at_one_common_scale(name, figures):
+def test_groups_at_one_common_scale(name, captured):
     """slider_crank's crank (0,1) was drawn at 0,002 м/мм and its coupler group at 0,01 м/мм: the
     0,1 m crank looked longer than the 0,4 m coupler. Where one ГОСТ 2.302 scale keeps every
     group's joints ≥ 10 mm apart and the row fits the text width, all groups are drawn at it,
@@ -51,7 +37,7 @@ def test_groups_at_one_common_scale(name, figures):
     assert len(mus) == 1, d.panels
     assert any(abs(min(mus) * 1000 - k) < 1e-9 for k in GOST_K)
     assert d.width_mm <= 165.0 + 1e-9
-    fig = figures[-1]
+    fig = captured[-1]
     assert L.check_figure(fig) == []
     assert len([t for t in fig.texts if "м/мм" in t.get_text()]) == 1
 
@@ -64,12 +50,12 @@ def test_slider_crank_crank_shorter_than_coupler():
 
 
 @pytest.mark.parametrize("name", ["ws002_tractor_hitch", "ws000_six_bar"])
-def test_groups_fall_back_to_own_scales(name, figures):
+def test_groups_fall_back_to_own_scales(name, captured):
     """ws002's cylinder group (1,2,3) and ws000's crank would be under 10 mm at any scale the
     whole row fits: each group keeps its own scale, written under it."""
     _, d = _groups(name)
     assert len({mu for _, mu, _ in d.panels}) > 1
-    assert len([t for t in figures[-1].texts if "м/мм" in t.get_text()]) == len(d.panels)
+    assert len([t for t in captured[-1].texts if "м/мм" in t.get_text()]) == len(d.panels)
 
 
 def test_structure_text_names_the_common_scale():
@@ -178,7 +164,7 @@ def test_inverse_task_delta_printed_as_found():
 # --- 2. the plan of positions of a small crank ------------------------------------------------------
 
 @pytest.mark.parametrize("name", ["sewing_needle_takeup", "screen_shaker", "class3_triad"])
-def test_small_crank_numbered_in_view_readably(name, figures):
+def test_small_crank_numbered_in_view_readably(name, captured):
     """The sewing machine's 7,5 mm crank circle at 1:2 crowded A₀…A₁₁ on the main drawing (A₅ went
     23 mm off on a leader). No larger ГОСТ scale fits the page (the mechanism is 0,23 m tall), so
     the positions are numbered in the enlarged view only: no two labels overlap and the numbers
@@ -189,7 +175,7 @@ def test_small_crank_numbered_in_view_readably(name, figures):
     st = _study(name)
     d = PositionsPlan().draw(st)
     assert d.detail_mu is not None and d.detail_mu < d.mu
-    fig = figures[-1]
+    fig = captured[-1]
     assert L.check_figure(fig) == []
     ax, r = fig.axes[0], fig.canvas.get_renderer()
     mm = 25.4 / fig.dpi

@@ -681,7 +681,7 @@ def _slide_transmission(study) -> tuple[list[dict], str]:
         rows.append({"g": label, "mu": fl["min"], "q": None if const else fl["q_min"], "key": key})
         told.append(f"В группе {name} звено {pusher} давит на звено {driven} по нормали к направляющей "
                     f"поступательной пары {other.links[0]}–{other.links[1]}, а звено {driven} движется вдоль "
-                    "неподвижной направляющей: угол передачи равен острому углу между этими направляющими"
+                    "неподвижной направляющей: угол передачи равен углу между этими направляющими"
                     + (f", {_deg1(fl['min'])}° во всех положениях." if const else "."))
     return rows, " ".join(told)
 
