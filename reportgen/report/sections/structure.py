@@ -108,8 +108,8 @@ def build(study) -> Section:
     s3 = sec.subsection("Группы Ассура и структурная формула", "sec-groups")
     groups = AssurGroups(pos).draw(study)
     mus = {mu for _, mu, _ in groups.panels}
-    scales = (f"все группы вычерчены в одном масштабе {mu_l}&nbsp;=&nbsp;{mu_text(min(mus))}&nbsp;м/мм "
-              f"({gost_ratio(min(mus))})") if len(mus) == 1 else "каждая группа вычерчена в своём масштабе, указанном под ней"
+    scales = (f"все группы вычерчены в одном масштабе {gost_ratio(min(mus))}, "
+              f"{mu_l}&nbsp;=&nbsp;{mu_text(min(mus))}&nbsp;м/мм") if len(mus) == 1 else "каждая группа вычерчена в своём масштабе, указанном под ней"
     s3.paragraph(f"Механизм раскладывается на начальный механизм и группы Ассура, начиная с группы, "
                  f"наиболее удалённой от ведущего звена (рисунок {ref('fig-groups')}; {scales}). Для каждой группы Ассура "
                  f"{inline_math('W = 3n - 2p_5 = 0')}, для начального механизма {inline_math('W = 1')}:")
