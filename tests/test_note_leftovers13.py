@@ -187,3 +187,15 @@ def test_small_crank_numbered_in_view_readably(name, captured):
     assert len(nums) >= 8
     gaps = [float(np.hypot(*(a - b))) for a, b in itertools.combinations(nums, 2)]
     assert min(gaps) >= 5.0, min(gaps)
+
+
+def test_low_vpv_angle_gets_advice(monkeypatch):
+    """A ВПВ group below 40° (the stone's line far from the кулиса's pivot) is told what to change."""
+    from reportgen.report.sections import kinematics as K
+    st = _study("ws004_slotted_lever")
+    monkeypatch.setattr(K, "_guide_transmission", lambda s: ([{"g": "(2,3)", "mu": 0.5, "q": 0.0, "key": "2_3"}], ""))
+    txt = " ".join(_plain(l) for l in K.conclusion_lines(st))
+    pivot, pin = st.guide_flags["2_3"]["points"]
+    assert "Наименьший угол передачи в группе (2,3) — 28,6° — меньше допускаемого 40°" in txt
+    assert f"уменьшив расстояние e от опоры {pivot} кулисы до линии движения шарнира {pin}" in txt
+    assert "работоспособен" not in txt
