@@ -542,6 +542,35 @@ class Study:
         return out
 
     @cached_property
+    def slide_flags(self) -> dict:
+        """ПВП and ВПП groups with one sliding pair on a fixed guide (the driven link slides along it):
+        the transmission angle over the cycle. The group's other link presses on the driven one along
+        the normal to the guide of the group's other sliding pair (through the hinge in ПВП, in the
+        pair itself in ВПП; friction and the links' inertia neglected), the driven link moves along
+        its fixed guide, so the pressure angle is 90° less the angle between the two guides and
+        μ = arcsin|sin(θ₀ − θ)|, the acute angle between them (Артоболевский, гл. 4, угол давления).
+        ``guides``: the sliding pairs (fixed, other); ``const``: μ the same in every position."""
+        from ..mechanism.model import FRAME
+        out = {}
+        mech = self.mechanism
+        for g in self.structure.groups:
+            if g.kind not in ("PRP", "RPP"):
+                continue
+            pri = [mech.joints[j] for j in g.joints if mech.joints[j].kind == "P"]
+            fixed = [j for j in pri if j.links[0] == FRAME and j.links[1] in g.links]
+            if len(pri) != 2 or len(fixed) != 1:
+                continue
+            other = next(j for j in pri if j is not fixed[0])
+            cyc = self.cycle
+            th = other.angle + (cyc["phi_" + other.links[0]].to_numpy() if other.links[0] != FRAME else 0.0)
+            mu = np.arcsin(np.clip(np.abs(np.sin(fixed[0].angle - th)), 0.0, 1.0)) * np.ones(len(cyc))
+            i = int(np.argmin(mu))
+            out["_".join(g.links)] = dict(min=float(mu[i]), q_min=float(cyc["q"].iloc[i]), guides=(fixed[0], other),
+                                          const=bool(np.ptp(mu) < 1e-9), singular=bool(np.sin(mu[i]) < L.SINGULAR_SIN),
+                                          low=bool(mu[i] < L.LOW_TRANSMISSION))
+        return out
+
+    @cached_property
     def scalars(self) -> dict[str, float]:
         """Named results of the linkage: the structure's, the least transmission angle μ over the
         cycle of each group (``mu_*_min``) and the output's stroke."""

@@ -78,6 +78,18 @@ def panel_scales(sizes, avail_w: float, max_h: float, min_w: float = 0.0) -> lis
     return [ks[j] / 1000.0 for j in best[1]]
 
 
+def common_panel_scale(sizes, avail_w: float, max_h: float, min_w: float = 0.0) -> float | None:
+    """The largest ГОСТ 2.302 scale μ_l (m/mm) at which all the drawings ``sizes`` ([(w, h, pad_w,
+    pad_h)] as for :func:`panel_scales`) fit side by side in one row at one common scale:
+    Σ max(w/μ + pad_w, min_w) ≤ ``avail_w`` and every h/μ + pad_h ≤ ``max_h``; None if none does."""
+    for k in GOST_K:
+        mu = k / 1000.0
+        if (sum(max(w / mu + pw, min_w) for w, h, pw, ph in sizes) <= avail_w
+                and all(h / mu + ph <= max_h for w, h, pw, ph in sizes)):
+            return mu
+    return None
+
+
 def gost_ratio(mu_m_per_mm: float) -> str:
     """The scale as ГОСТ 2.302 writes it: μ = 0,04 м/мм → «1:40», μ = 0,0025 → «1:2,5»,
     μ = 0,0005 → «2:1»."""

@@ -468,11 +468,13 @@ class GroupsDrawing(Drawing):
 
 
 class AssurGroups:
-    """The initial mechanism and each Assur group drawn apart at one position, side by side, each
-    at its own ГОСТ 2.302 scale written under it (so that each fills a comparable area and its
-    labels are as readable as the others': a short crank or a small cylinder group is not
-    dwarfed by a long group), with the mechanism symbols (supports hatched, sliders and guides),
-    the external pairs shown black and every label placed clear."""
+    """The initial mechanism and each Assur group drawn apart at one position, side by side, with
+    the mechanism symbols (supports hatched, sliders and guides), the external pairs shown black
+    and every label placed clear. All at one common ГОСТ 2.302 scale written under the row (the
+    links keep their proportions: a crank is not drawn longer than its coupler) when at that scale
+    every group's joints stand at least JOINT_MM apart; else each at its own scale written under
+    it (so that each fills a comparable area and its labels are as readable as the others': a
+    short crank or a small cylinder group is not dwarfed by a long group)."""
 
     needs = ("kinematics", "structure")
     PAGE_W = 165.0       # the text width, mm
@@ -482,6 +484,7 @@ class AssurGroups:
     CAPTION_MM = 11.0    # two lines under each drawing: the group and its scale
     CAPTION_W = 32.0     # «μl = 0,0025 м/мм» at 9 pt, with a gap to the next
     STUB_MM = 12.0       # the element of a moving guide reaches this far each side of its slider
+    JOINT_MM = 10.0      # two joints of a group closer than this on paper: their labels and symbols crowd
 
     def __init__(self, label: str):
         self.label = label
@@ -511,6 +514,15 @@ class AssurGroups:
                 units = [merged] + [u for i, u in enumerate(units) if i not in (ic, ir)]
         return units
 
+    @staticmethod
+    def _joint_gap(mech, row, links: set) -> float:
+        """The least distance (m) between two joints of the group that do not coincide."""
+        pts = sorted({j.point for j in mech.joints if set(j.links) & links})
+        xy = np.array([(float(row[f"x_{p}"]), float(row[f"y_{p}"])) for p in pts])
+        d = np.hypot(*(xy[:, None, :] - xy[None, :, :]).transpose(2, 0, 1))
+        d = d[d > 1e-6]
+        return float(d.min()) if d.size else np.inf
+
     def _guide_elements(self, pn, mech, row, links: set) -> None:
         """An external prismatic pair whose guide is a moving link of an earlier group (a stone in
         the slot of a rocker): the group is drawn with that pair's element, a piece of the guide's
@@ -527,7 +539,7 @@ class AssurGroups:
 
     def draw(self, study) -> GroupsDrawing:
         from ..style import mplstyle
-        from .draw import Panel, mu_text, panel_scales
+        from .draw import Panel, common_panel_scale, mu_text, panel_scales
         mech = study.mechanism
         row = _row(study, self.label)
         allp = sorted({p for l in mech.moving for p in l.points})
@@ -551,7 +563,10 @@ class AssurGroups:
                     ph = max(ph, 2 * self.STUB_MM * abs(np.sin(a)) + 4)
             centre = ((min(xs) + max(xs)) / 2, (min(ys) + max(ys)) / 2)
             parts.append((g, links, centre, max(np.ptp(xs), floor), max(np.ptp(ys), floor), pw, ph))
-        mus = panel_scales([p[3:] for p in parts], self.PAGE_W, self.MAX_H, self.CAPTION_W)
+        mu = common_panel_scale([p[3:] for p in parts], self.PAGE_W, self.MAX_H, self.CAPTION_W)
+        common = mu is not None and all(self._joint_gap(mech, row, p[1]) / mu >= self.JOINT_MM for p in parts)
+        mus = [mu] * len(parts) if common else \
+            panel_scales([p[3:] for p in parts], self.PAGE_W, self.MAX_H, self.CAPTION_W)
         widths = [max(w / mu + pw, self.CAPTION_W) for (*_, w, h, pw, ph), mu in zip(parts, mus)]
         height = max(h / mu + ph for (*_, w, h, pw, ph), mu in zip(parts, mus))
         total_w, total_h = sum(widths), height + self.CAPTION_MM
@@ -567,11 +582,15 @@ class AssurGroups:
                     pn.ax.add_patch(Circle((x, y), pn.mm(1.3), facecolor=INK, edgecolor=INK, zorder=6))
             xc = (x0 + wi / 2) / total_w
             fig.text(xc, (self.CAPTION_MM - 1.0) / total_h, g, ha="center", va="top", fontsize=10)
-            fig.text(xc, (self.CAPTION_MM - 6.0) / total_h, rf"$\mu_l$ = {mu_text(mu)} м/мм", ha="center",
-                     va="top", fontsize=9)
+            if not common:
+                fig.text(xc, (self.CAPTION_MM - 6.0) / total_h, rf"$\mu_l$ = {mu_text(mu)} м/мм", ha="center",
+                         va="top", fontsize=9)
             panels.append(pn)
             info.append((g, mu, max(w, h) / mu))
             x0 += wi
+        if common:      # the one scale under the whole row
+            fig.text(0.5, (self.CAPTION_MM - 6.0) / total_h, rf"$\mu_l$ = {mu_text(mus[0])} м/мм", ha="center",
+                     va="top", fontsize=9)
         for pn in panels:
             pn.labels.place()
         return GroupsDrawing(mplstyle.to_svg(fig), total_w, max(mus), panels=info)

@@ -720,12 +720,12 @@ def _flywheel(sec, study, d) -> None:
                 f"уравнение движения {ref('eq-dyn-energy')} интегрируется точно:")
     s.formula(Formula(r"\omega(\varphi) = \sqrt{\frac{2\left(T_0 + A_{\Sigma}(\varphi)\right)}{J_I + J_{II}(\varphi)}}",
                       label="eq-omega-exact"))
-    s.paragraph(f"Постоянная T<sub>0</sub> и момент инерции J<sub>I</sub> подобраны (метод Ньютона) так, чтобы "
+    s.paragraph(f"Постоянная {_s('T_0')} и момент инерции {_s('J_I')} подобраны (метод Ньютона) так, чтобы "
                 f"(ω<sub>max</sub>&nbsp;+&nbsp;ω<sub>min</sub>)/2&nbsp;=&nbsp;ω<sub>ср</sub> и "
                 f"(ω<sub>max</sub>&nbsp;−&nbsp;ω<sub>min</sub>)/ω<sub>ср</sub>&nbsp;=&nbsp;δ; экстремумы ω "
                 f"найдены из уравнения {_im('exact_ext')}: "
-                f"J<sub>I</sub>&nbsp;=&nbsp;{fmt(ex.J_I, sig=6, unit='кг·м²')}, "
-                f"T<sub>0</sub>&nbsp;=&nbsp;{fmt(ex.T0, sig=6, unit='Дж')}.")
+                f"{_s('J_I')}&nbsp;=&nbsp;{fmt(ex.J_I, sig=6, unit='кг·м²')}, "
+                f"{_s('T_0')}&nbsp;=&nbsp;{fmt(ex.T0, sig=6, unit='Дж')}.")
     rows = [{"m": "точное решение", "J": r.J_I_exact, "dev": 0.0, "delta": sc["delta_achieved_exact"]},
             {"m": "Мерцалов", "J": r.J_I_mertsalov, "dev": r.dev_mertsalov_pct,
              "delta": sc["delta_achieved_mertsalov"]},
@@ -965,7 +965,7 @@ def _delta_judgement(st) -> list[str]:
     if d > hi * (1 + 1e-9):
         verdict = ("заданный δ больше: ход машины менее равномерен, чем обычно для таких машин; "
                    "при δ из этого диапазона маховик был бы в "
-                   f"{fmt(d / hi, sig=2)} раза больше (J<sub>I</sub> обратно пропорционален δ)")
+                   f"{fmt(d / hi, sig=2)} раза больше ({_s('J_I')} обратно пропорционален δ)")
     elif d < lo * (1 - 1e-9):
         verdict = ("заданный δ меньше: маховик больше, чем обычно требуется для таких машин; "
                    f"при δ&nbsp;=&nbsp;{fmt(lo, sig=2)} он был бы в {fmt(lo / d, sig=2)} раза меньше")
@@ -986,11 +986,26 @@ def _small_flywheel(r, delta: float, u: float) -> list[str]:
         return []
     d0 = delta * r.J_I / (r.J_I - r.J_flywheel)
     share = fmt(100 * r.J_flywheel / r.J_I, sig=2)
-    need = "J<sub>м</sub>" if u != 1.0 else "J<sub>доп</sub>"
-    return [f"Маховик мал: J<sub>доп</sub> составляет {share}&nbsp;% требуемого J<sub>I</sub>, заданную неравномерность "
-            f"почти полностью обеспечивают звенья и вращающиеся массы привода; без маховика δ&nbsp;≈&nbsp;δ·J<sub>I</sub>/"
-            f"(J<sub>I</sub>&nbsp;−&nbsp;J<sub>доп</sub>)&nbsp;=&nbsp;{fmt(d0, sig=3)}. Отдельный маховик можно не ставить, "
+    need = _s("J_m") if u != 1.0 else _s("J_dop")
+    return [f"Маховик мал: {_s('J_dop')} составляет {share}&nbsp;% требуемого {_s('J_I')}, заданную неравномерность "
+            f"почти полностью обеспечивают звенья и вращающиеся массы привода; без маховика δ&nbsp;≈&nbsp;{_s('d0')}"
+            f"&nbsp;=&nbsp;{fmt(d0, sig=3)}. Отдельный маховик можно не ставить, "
             f"если детали, вращающиеся на этом валу (шкив, муфта), имеют момент инерции не менее {need}."]
+
+
+# the symbols of the conclusion in TeX, set by inline_math as the text sets them (italic letters,
+# upright word subscripts): «J<sub>I</sub>» typed by hand came out upright beside the text's italic
+SYM = {"A_c": r"A_{\text{с}}", "A_d": r"A_{\text{д}}", "M_d": r"M_{\text{д}}", "M_c": r"M_{\text{с}}", "J_I": "J_I",
+       "J_dop": r"J_{\text{доп}}", "J_m": r"J_{\text{м}}", "J_dv": r"J_{\text{дв}}", "u": "u", "D_2": "D_2",
+       "b": "b", "m": "m", "D": "D", "v": "v", "[v]": "[v]", "T_0": "T_0",
+       "J_m=": r"J_{\text{м}} = J_{\text{доп}}/u^2", "J_dv=": r"J_{\text{дв}} = J_{\text{доп}}/u^2",
+       "v=u": r"v = u\,\omega_{\max} D/2", "v=": r"v = \omega_{\max} D/2",
+       "d0": r"\delta \cdot J_I/(J_I - J_{\text{доп}})"}
+
+
+def _s(key: str) -> str:
+    """The conclusion's symbol ``key`` of :data:`SYM` as inline math (HTML)."""
+    return str(inline_math(SYM[key]))
 
 
 def conclusion_lines(study) -> list[str]:
@@ -1001,14 +1016,18 @@ def conclusion_lines(study) -> list[str]:
     st = d.settings
     out = []
     if d.balance == "drive":
-        out.append(f"Работа сил сопротивления за цикл A<sub>с</sub>&nbsp;=&nbsp;{fmt(sc['A_c'], sig=5)}&nbsp;Дж; "
+        out.append(f"Работа сил сопротивления за цикл {_s('A_c')}&nbsp;=&nbsp;{fmt(sc['A_c'], sig=5)}&nbsp;Дж; "
                    f"{'постоянный ' if st.drive is None else 'средний '}приведённый движущий момент "
-                   f"M<sub>д</sub>&nbsp;=&nbsp;{fmt(sc['M_d'], sig=5)}&nbsp;Н·м.")
+                   f"{_s('M_d')}&nbsp;=&nbsp;{fmt(sc['M_d'], sig=5)}&nbsp;Н·м.")
     else:
-        out.append(f"Работа движущих сил за цикл A<sub>д</sub>&nbsp;=&nbsp;{fmt(sc['A_d'], sig=5)}&nbsp;Дж; "
-                   f"постоянный приведённый момент сопротивления M<sub>с</sub>&nbsp;=&nbsp;{fmt(sc['M_c'], sig=5)}&nbsp;Н·м.")
-    out.append(f"Для δ&nbsp;=&nbsp;{as_written(st.delta)} при ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(st.omega_m, digits=3)}&nbsp;рад/с "
-               f"требуется J<sub>I</sub>&nbsp;=&nbsp;{fmt(r.J_I, sig=5)}&nbsp;кг·м² ({METHOD_RU[st.method]}); "
+        out.append(f"Работа движущих сил за цикл {_s('A_d')}&nbsp;=&nbsp;{fmt(sc['A_d'], sig=5)}&nbsp;Дж; "
+                   f"постоянный приведённый момент сопротивления {_s('M_c')}&nbsp;=&nbsp;{fmt(sc['M_c'], sig=5)}&nbsp;Н·м.")
+    # the inverse task (a given flywheel): δ is found, printed as the text prints it (4 digits), not as given
+    head = (f"Для δ&nbsp;=&nbsp;{as_written(st.delta)} при ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(st.omega_m, digits=3)}&nbsp;рад/с "
+            "требуется " if d.inverse is None else
+            f"С заданным маховиком коэффициент неравномерности хода δ&nbsp;=&nbsp;{fmt(st.delta, sig=4)} при "
+            f"ω<sub>ср</sub>&nbsp;=&nbsp;{fmt(st.omega_m, digits=3)}&nbsp;рад/с; ему соответствует ")
+    out.append(f"{head}{_s('J_I')}&nbsp;=&nbsp;{fmt(r.J_I, sig=5)}&nbsp;кг·м² ({METHOD_RU[st.method]}); "
                + ("" if st.method == "exact" else
                   f"точное значение {fmt(r.J_I_exact, sig=6)}&nbsp;кг·м², ")
                + "относительно точного решения метод Мерцалова даёт отклонение "
@@ -1024,31 +1043,31 @@ def conclusion_lines(study) -> list[str]:
     fw = r.flywheel
     if fw.needed:
         u = d.settings.ratio
-        shaft = ("" if u == 1.0 else f"; на валу маховика (u&nbsp;=&nbsp;{_ratio(u)} к кривошипу) "
-                 f"J<sub>м</sub>&nbsp;=&nbsp;J<sub>доп</sub>/u²&nbsp;=&nbsp;{fmt(r.J_flywheel / u ** 2, sig=5)}&nbsp;кг·м²")
-        out.append(f"Момент инерции маховика J<sub>доп</sub>&nbsp;=&nbsp;{fmt(r.J_flywheel, sig=5)}&nbsp;кг·м²{shaft}: обод "
-                   f"D<sub>2</sub>&nbsp;=&nbsp;{fmt(fw.rim.D2, digits=3)}&nbsp;м, b&nbsp;=&nbsp;{fmt(fw.rim.b, digits=3)}&nbsp;м, "
-                   f"m&nbsp;=&nbsp;{fmt(fw.rim.m, sig=4)}&nbsp;кг или диск D&nbsp;=&nbsp;{fmt(fw.disk.D, digits=3)}&nbsp;м, "
-                   f"m&nbsp;=&nbsp;{fmt(fw.disk.m, sig=4)}&nbsp;кг"
+        shaft = ("" if u == 1.0 else f"; на валу маховика ({_s('u')}&nbsp;=&nbsp;{_ratio(u)} к кривошипу) "
+                 f"{_s('J_m=')}&nbsp;=&nbsp;{fmt(r.J_flywheel / u ** 2, sig=5)}&nbsp;кг·м²")
+        out.append(f"Момент инерции маховика {_s('J_dop')}&nbsp;=&nbsp;{fmt(r.J_flywheel, sig=5)}&nbsp;кг·м²{shaft}: обод "
+                   f"{_s('D_2')}&nbsp;=&nbsp;{fmt(fw.rim.D2, digits=3)}&nbsp;м, {_s('b')}&nbsp;=&nbsp;{fmt(fw.rim.b, digits=3)}&nbsp;м, "
+                   f"{_s('m')}&nbsp;=&nbsp;{fmt(fw.rim.m, sig=4)}&nbsp;кг или диск {_s('D')}&nbsp;=&nbsp;{fmt(fw.disk.D, digits=3)}&nbsp;м, "
+                   f"{_s('m')}&nbsp;=&nbsp;{fmt(fw.disk.m, sig=4)}&nbsp;кг"
                    + ".")
         out += _small_flywheel(r, st.delta, u)
         v = max(fw.rim.v_rim, fw.disk.v_rim)
         if math.isfinite(v):
-            formula = "u·ω<sub>max</sub>·D/2" if u != 1.0 else "ω<sub>max</sub>·D/2"
+            formula = _s("v=u") if u != 1.0 else _s("v=")
             # the advice of §3.6 («на более медленный вал или из более прочного материала»), not another one
-            verdict = (f"превышает допускаемую [v]&nbsp;=&nbsp;{fmt_given(fw.v_limit)}&nbsp;м/с: маховик следует "
+            verdict = (f"превышает допускаемую {_s('[v]')}&nbsp;=&nbsp;{fmt_given(fw.v_limit)}&nbsp;м/с: маховик следует "
                        "установить на более медленный вал или выполнить из более прочного материала (либо сделать "
                        "обод меньшего диаметра и большей ширины)" if fw.any_exceeds else
-                       f"не превышает допускаемой [v]&nbsp;=&nbsp;{fmt_given(fw.v_limit)}&nbsp;м/с")
-            where = " (маховик на валу, вращающемся в u раз быстрее кривошипа)" if u != 1.0 else ""
-            out.append(f"Наибольшая окружная скорость обода{where} v&nbsp;=&nbsp;{formula}&nbsp;=&nbsp;"
+                       f"не превышает допускаемой {_s('[v]')}&nbsp;=&nbsp;{fmt_given(fw.v_limit)}&nbsp;м/с")
+            where = f" (маховик на валу, вращающемся в {_s('u')} раз быстрее кривошипа)" if u != 1.0 else ""
+            out.append(f"Наибольшая окружная скорость обода{where} {formula}&nbsp;=&nbsp;"
                        f"{fmt(v, sig=3)}&nbsp;м/с {verdict}.")
         if u == 1.0 and min(fw.rim.m, fw.disk.m) > 500:
             out.append(f"Маховик массой {fmt(min(fw.rim.m, fw.disk.m) / 1000, digits=1)}&nbsp;т на валу кривошипа "
                        "громоздок. Его целесообразно установить на быстроходный вал (вал двигателя): при "
-                       "передаточном отношении u от этого вала к кривошипу требуемый момент инерции "
-                       "уменьшается в u² раз, J<sub>дв</sub>&nbsp;=&nbsp;J<sub>доп</sub>/u² (кинетическая энергия "
-                       "маховика та же), а масса при том же диаметре — примерно в u² раз.")
+                       f"передаточном отношении {_s('u')} от этого вала к кривошипу требуемый момент инерции "
+                       f"уменьшается в {_s('u')}² раз, {_s('J_dv=')} (кинетическая энергия "
+                       f"маховика та же), а масса при том же диаметре — примерно в {_s('u')}² раз.")
     else:
         out.append("Собственной инерции машины достаточно для заданного δ: маховик не нужен.")
     out.append(f"Угловая скорость кривошипа изменяется от {fmt(sc['omega_min'], sig=5)} до "

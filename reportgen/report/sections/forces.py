@@ -995,22 +995,25 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
 # --------------------------------------------------------------------------------------------
 # conclusion
 # --------------------------------------------------------------------------------------------
+BAL_DYN_TEX = r"M_{\text{д}} - J_I \varepsilon"     # the balancing moment by the equation of motion
+
+
 def conclusion_lines(study) -> list[str]:
-    """Lines of the ЗАКЛЮЧЕНИЕ about the force analysis (HTML)."""
+    """Lines of the ЗАКЛЮЧЕНИЕ about the force analysis (HTML); symbols as inline math, as the text sets them."""
     f = study.forces
     sc = f.scalars
     out = []
     big = max((p for p in f.model.pairs if p.kind != KS.K_MOM), key=lambda p: sc[f"R_{p.name}_max"])
     q = sc[f"q_R_{big.name}_max"]
     where = (f"φ&nbsp;=&nbsp;{fmt(q_degrees(study, q), digits=1)}°" if f.rotary
-             else f"S&nbsp;=&nbsp;{fmt(q, digits=3)}&nbsp;м")
+             else f"{inline_math('S')}&nbsp;=&nbsp;{fmt(q, digits=3)}&nbsp;м")
     out.append(f"Силовой расчёт выполнен по группам Ассура; наибольшая реакция — в паре {big.a}–{big.b}: "
                f"{fmt(sc[f'R_{big.name}_max'], sig=5)}&nbsp;Н при {where}.")
     if f.rotary:
         line = (f"Наибольший по модулю уравновешивающий момент — {fmt(sc['M_bal_absmax'], sig=5)}&nbsp;Н·м; "
                 "проверки рычагом Жуковского и по балансу мощностей его подтверждают")
         if "dev_M_bal_dyn_max" in sc:
-            line += (", он совпадает с моментом M<sub>д</sub>&nbsp;−&nbsp;J<sub>I</sub>ε, найденным из уравнения "
+            line += (f", он совпадает с моментом {inline_math(BAL_DYN_TEX)}, найденным из уравнения "
                      "движения машины")
         out.append(line + ".")
     else:
@@ -1020,7 +1023,7 @@ def conclusion_lines(study) -> list[str]:
     if s.capacity is not None:
         if sc["pressure_exceeded"]:
             out.append(f"Требуемое давление в гидроцилиндрах достигает {fmt(sc['p_act_max'] / 1e6, sig=5)}&nbsp;МПа при "
-                       f"S&nbsp;=&nbsp;{fmt(sc['q_p_act_max'], digits=3)}&nbsp;м и превышает давление в гидросистеме "
+                       f"{inline_math('S')}&nbsp;=&nbsp;{fmt(sc['q_p_act_max'], digits=3)}&nbsp;м и превышает давление в гидросистеме "
                        f"{_fin(s.actuator.pressure / 1e6)}&nbsp;МПа: запас грузоподъёмности "
                        f"{fmt(sc['reserve_min_pct'], digits=1)}&nbsp;%, в начале подъёма груз не поднимается.")
             # what to change: the bore that gives the largest force at the system's pressure,

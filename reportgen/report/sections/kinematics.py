@@ -531,6 +531,8 @@ def build(study) -> Section:
         _output_diagrams(s5, study, out, fig_id, several, out[0] == main)
     flags = study.flags
     guides, guide_note = _guide_transmission(study)
+    slides, slide_note = _slide_transmission(study)
+    guides, guide_note = guides + slides, " ".join(t for t in (guide_note, slide_note) if t)
     if flags or guides:
         # the input's coordinate as the other tables count it (a crank's angle from the cycle's start)
         rows = [{"g": flag_group(study, c), "mu": v["min"],
@@ -541,7 +543,7 @@ def build(study) -> Section:
         from .structure import decomposition
         order = [r["g"] for r in decomposition(study)[0]]
         rows = sorted(rows + guides, key=lambda r: order.index(r["g"]) if r["g"] in order else len(order))
-        mdf = pd.DataFrame(rows)
+        mdf = pd.DataFrame([{k: r[k] for k in ("g", "mu", "q")} for r in rows])
         triad = (" (у группы III класса — эквивалентный угол по её матрице Якоби)"
                  if any(g.klass >= 3 for g in study.structure.groups) else "")
         s5.paragraph(f"Наименьшие {'за цикл' if rotary else 'по ходу гидроцилиндра'} углы передачи движения в группах{triad} приведены в таблице {ref('tab-mu')}; "
@@ -643,7 +645,7 @@ def _guide_transmission(study) -> tuple[list[dict], str]:
         name = f"{label} {g.kind_ru}".strip()
         if e <= 1e-9 * mech.size() or fl["min"] <= e:
             if e <= 1e-9 * mech.size():
-                rows.append({"g": label, "mu": math.pi / 2, "q": None})
+                rows.append({"g": label, "mu": math.pi / 2, "q": None, "key": key})
                 if vectors.is_stone(mech, pri):
                     told.append(f"В группе {name} давление камня на кулису направлено по нормали к кулисе, а "
                                 f"точка кулисы под камнем движется перпендикулярно её радиусу {pivot}{pin}, "
@@ -655,12 +657,53 @@ def _guide_transmission(study) -> tuple[list[dict], str]:
                                 f"точкой {pin}, движется перпендикулярно радиусу {pivot}{pin}, лежащему на оси "
                                 f"направляющей: угол передачи равен 90° во всех положениях.")
             continue
-        rows.append({"g": label, "mu": math.pi / 2 - math.asin(e / fl["min"]), "q": fl["q_min"]})
+        rows.append({"g": label, "mu": math.pi / 2 - math.asin(e / fl["min"]), "q": fl["q_min"], "key": key})
         told.append(f"В группе {name} угол передачи μ&nbsp;=&nbsp;90°&nbsp;−&nbsp;arcsin(<i>e</i>/ρ), где "
                     f"<i>e</i>&nbsp;=&nbsp;{fmt(e, sig=4)}&nbsp;м — расстояние от опоры {pivot} кулисы до линии "
                     f"движения шарнира {pin} по кулисе, ρ&nbsp;=&nbsp;{pivot}{pin}; наименьший — при "
                     f"наименьшем ρ&nbsp;=&nbsp;{fmt(fl['min'], sig=4)}&nbsp;м.")
     return rows, " ".join(told)
+
+
+def _slide_transmission(study) -> tuple[list[dict], str]:
+    """Rows of the transmission-angle table for the ПВП and ВПП groups (``study.slide_flags``:
+    μ, the acute angle between the fixed guide of the driven slider and the guide of the group's
+    other sliding pair) and the note that explains them."""
+    rows, told = [], []
+    for key, fl in study.slide_flags.items():
+        g = next(g for g in study.structure.groups if "_".join(g.links) == key)
+        fixed, other = fl["guides"]
+        driven = fixed.links[1]
+        pusher = next((l for l in other.links if l in g.links and l != driven), other.links[1])
+        label = flag_group(study, "mu_" + key)
+        name = f"{label} {g.kind_ru}".strip()
+        const = fl["const"]
+        rows.append({"g": label, "mu": fl["min"], "q": None if const else fl["q_min"], "key": key})
+        told.append(f"В группе {name} звено {pusher} давит на звено {driven} по нормали к направляющей "
+                    f"поступательной пары {other.links[0]}–{other.links[1]}, а звено {driven} движется вдоль "
+                    "неподвижной направляющей: угол передачи равен углу между этими направляющими"
+                    + (f", {_deg1(fl['min'])}° во всех положениях." if const else "."))
+    return rows, " ".join(told)
+
+
+def _sliding_transmission(study) -> list[tuple[str, float, str]]:
+    """(«в группе (4,5)», μ_min in degrees, how to raise it) of each group with a sliding pair whose
+    transmission angle is not a flag of the cycle (ВПВ: :func:`_guide_transmission`; ПВП, ВПП:
+    :func:`_slide_transmission`), judged in the conclusion by the same rule μ_min ≥ 40°."""
+    out = []
+    for r in _guide_transmission(study)[0]:
+        pivot, pin = study.guide_flags[r["key"]]["points"]
+        out.append((flag_where(study, "mu_" + r["key"]), math.degrees(r["mu"]),
+                    f"Угол передачи можно увеличить, уменьшив расстояние <i>e</i> от опоры {pivot} кулисы до линии "
+                    f"движения шарнира {pin} или увеличив наименьшее расстояние {pivot}{pin} (повторить синтез с "
+                    "ограничением μ ≥ 40°)"))
+    for r in _slide_transmission(study)[0]:
+        fixed, other = study.slide_flags[r["key"]]["guides"]
+        out.append((flag_where(study, "mu_" + r["key"]), math.degrees(r["mu"]),
+                    f"Угол передачи можно увеличить, изменив наклон направляющей пары {other.links[0]}–"
+                    f"{other.links[1]} или неподвижной направляющей звена {fixed.links[1]} так, чтобы в этих "
+                    "положениях угол между ними был ближе к прямому (повторить синтез с ограничением μ ≥ 40°)"))
+    return out
 
 
 def _turn(q: float) -> str:
@@ -1123,7 +1166,17 @@ def conclusion_lines(study) -> list[str]:
                     "так, чтобы в крайних положениях шатун был ближе к перпендикуляру к выходному звену "
                     "(повторить синтез с ограничением μ ≥ 40°)"))
         out.append(f"Наименьший угол передачи {flag_where(study, c)} — {fmt(mu, digits=1)}°{note}.")
+    for where, mu, advice in _sliding_transmission(study):
+        if mu >= 40:
+            fine.append(f"{where} {fmt(mu, digits=1)}°")
+            continue
+        low.append(where)
+        out.append(f"Наименьший угол передачи {where} — {fmt(mu, digits=1)}° — меньше допускаемого 40°: в этих "
+                   f"положениях растут реакции в парах группы и опасно заклинивание. {advice}.")
     if fine:
+        from .structure import decomposition       # the groups in the order of chapter 1
+        order = [r["g"] for r in decomposition(study)[0]]
+        fine.sort(key=lambda t: next((i for i, g in enumerate(order) if f"{g} " in t), len(order)))
         # «работоспособен» only of a mechanism no group of which is below 40°
         out.append(("Наименьший угол передачи (" if len(fine) == 1 else "Наименьшие углы передачи (")
                    + ", ".join(fine) + ") не меньше допускаемого 40°"

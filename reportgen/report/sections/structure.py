@@ -102,14 +102,16 @@ def build(study) -> Section:
                       ("p_4", "число высших пар")], label="eq-chebyshev")
     driver = (input_word(mech.driver, "gen") + " " + mech.driver.link) if mech.driver.rotary else \
         f"гидроцилиндра (звенья {mech.driver.link} и {mech.driver.rod}, поступательная ведущая пара)"
-    s2.paragraph(f"W&nbsp;=&nbsp;{st.W}: для определённости движения достаточно одного ведущего звена — {driver}. "
+    s2.paragraph(f"{inline_math('W')}&nbsp;=&nbsp;{st.W}: для определённости движения достаточно одного ведущего звена — {driver}. "
                  "Пассивных связей и лишних степеней свободы нет.")
 
     s3 = sec.subsection("Группы Ассура и структурная формула", "sec-groups")
     groups = AssurGroups(pos).draw(study)
+    mus = {mu for _, mu, _ in groups.panels}
+    scales = (f"все группы вычерчены в одном масштабе {gost_ratio(min(mus))}, "
+              f"{mu_l}&nbsp;=&nbsp;{mu_text(min(mus))}&nbsp;м/мм") if len(mus) == 1 else "каждая группа вычерчена в своём масштабе, указанном под ней"
     s3.paragraph(f"Механизм раскладывается на начальный механизм и группы Ассура, начиная с группы, "
-                 f"наиболее удалённой от ведущего звена (рисунок {ref('fig-groups')}; каждая группа вычерчена в своём "
-                 f"масштабе, указанном под ней). Для каждой группы Ассура "
+                 f"наиболее удалённой от ведущего звена (рисунок {ref('fig-groups')}; {scales}). Для каждой группы Ассура "
                  f"{inline_math('W = 3n - 2p_5 = 0')}, для начального механизма {inline_math('W = 1')}:")
     rows, formula = decomposition(study)
     gdf = pd.DataFrame(rows)
@@ -145,7 +147,7 @@ def conclusion_lines(study) -> list[str]:
     """Structure and fitted dimensions for the ЗАКЛЮЧЕНИЕ."""
     from ...style.numbers import fmt
     st = study.structure
-    out = [f"Механизм имеет одну степень свободы (W&nbsp;=&nbsp;{st.W}), структурная формула "
+    out = [f"Механизм имеет одну степень свободы ({inline_math('W')}&nbsp;=&nbsp;{st.W}), структурная формула "
            f"{decomposition(study)[1]}, механизм {_roman(st.mech_class)} класса."]
     fits = []
     for f in study.fits:
