@@ -13,6 +13,8 @@ from ...scenes.dof import DofGraphs, ZeroSpeedScene
 from ...scenes.draw import gost_ratio
 from ...style.numbers import fmt
 from ..document import Column, Section, ref
+from ..formulas import inline_math
+from ..russian import plural, plural_form
 from .common import swing_text
 
 NEEDS = ("dof",)
@@ -54,8 +56,9 @@ def build(study) -> Section:
                 label="eq-dof-before")
     if d.rollers:
         sec.paragraph(Markup("Вращение ролика ({}) вокруг своей оси не влияет на движение остальных звеньев — "
-                             "пассивная (местная) степень свободы, q = {}; механизм имеет W − q = {} степень свободы.")
-                      .format(", ".join(Markup("звено {}").format(r) for r in d.rollers), b["q"], b["W_true"]))
+                             "пассивная (местная) степень свободы, q = {}; механизм имеет W − q = {} {} свободы.")
+                      .format(", ".join(Markup("звено {}").format(r) for r in d.rollers), b["q"], b["W_true"],
+                              plural_form(b["W_true"], "степень", "степени", "степеней")))
     sec.paragraph("При замене высшая пара заменяется звеном с двумя вращательными парами в центрах кривизны "
                   "соприкасающихся профилей. Центр кривизны ролика — его ось, поэтому ролик сам становится "
                   "заменяющим звеном (его вращательная пара сохраняется, высшая заменяется вращательной), и "
@@ -128,12 +131,14 @@ def _zero_speed(sec: Section, study) -> None:
 
 def conclusion_lines(study) -> list[str]:
     d = study.dof
-    out = [f"Механизм с высшей парой: W&nbsp;=&nbsp;{d.before['W']} по формуле Чебышева (в том числе "
-           f"{d.before['q']} пассивная), после замены высшей пары W&nbsp;=&nbsp;{d.after['W']}."]
+    passive = (f" (в том числе {plural(d.before['q'], 'пассивная', 'пассивные', 'пассивных')})"
+               if d.before["q"] else "")
+    out = [Markup("Механизм с высшей парой: {} по формуле Чебышева{}, после замены высшей пары {}.").format(
+        inline_math(f"W = {d.before['W']}"), passive, inline_math(f"W = {d.after['W']}"))]
     if d.zero is not None and len(d.zero):
         zs, r = d.zero_spec, d.zero.iloc[0]
         out.append(f"Выходное звено останавливается при движущемся звене {zs['link']}, когда "
                    f"{zs['point']}{zs['line']}&nbsp;⊥&nbsp;{zs['point']}{zs['pivot']} "
                    f"(φ<sub>{zs['link']}</sub>&nbsp;=&nbsp;{fmt(r['q_deg'], digits=3)}°; угол "
-                   f"{fmt(math.degrees(r['angle_OML']), digits=9)}°).")
+                   f"{zs['pivot']}{zs['point']}{zs['line']}&nbsp;=&nbsp;{fmt(math.degrees(r['angle_OML']), digits=3)}°).")
     return out
