@@ -6,8 +6,8 @@ Usage (from the repository root)::
     python bench/bench_first_lines.py [--case CASE] [--rounds N] [--other CASE]
 
 Every document of the note (as the workers of ``write_pdf`` get it) is laid out, N rounds, three
-ways in turn: WeasyPrint's ``split_first_line`` with only ``wpfast.nowrap_widths`` (``off``: main
-before this change), the remembered lines forgotten before the note (``cold``: a note whose texts
+ways in turn: WeasyPrint's ``split_first_line`` (``off``; main before this change remembered only
+the widths of a text that does not wrap, per document), the remembered lines forgotten before the note (``cold``: a note whose texts
 this process has not laid out yet) and kept from the round before (``warm``: the same note again).
 ``--other`` first lays out another case's note, so that the memory is what a batch worker keeps
 from a neighbour (``neighbour``). Minimums of the CPU of this process (``time.process_time``) of the
@@ -17,6 +17,7 @@ and the written PDFs compared with ``off``'s.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import gc
 import os
 import sys
@@ -37,7 +38,7 @@ def main(argv: list[str]) -> None:
     a = ap.parse_args(argv)
     from bench_pdf_parts import part_htmls
 
-    from reportgen.report import parallel, render, wpfast, wpsplit
+    from reportgen.report import parallel, render, wpsplit
 
     htmls = [h for _, h in sorted(part_htmls(a.case).items())]
     others = [h for _, h in sorted(part_htmls(a.other).items())] if a.other else []
@@ -45,7 +46,7 @@ def main(argv: list[str]) -> None:
     on = wpsplit.first_lines
 
     def lay_out(way):
-        wpsplit.first_lines = wpfast.nowrap_widths if way == "off" else on
+        wpsplit.first_lines = contextlib.nullcontext if way == "off" else on
         if way in ("cold", "neighbour"):
             config.__dict__.pop("_reportgen_splits", None)
             for h in others if way == "neighbour" else []:

@@ -11,8 +11,9 @@ configuration and the style's values that the function and ``Layout`` read (font
 spacing, breaking and hyphenation: :data:`_READ`). A note measures the same texts again and again:
 a column of numbers for its min- and max-content widths and then in its cells, the same units,
 symbols and headers in every table, and a batch worker the same note of the next variant with
-other numbers but the same words (each document with new style objects, which is why
-``wpfast.nowrap_widths`` — keyed by the style object — could not share between documents).
+other numbers but the same words (each document with new style objects: the memory of session 10,
+``wpfast.nowrap_widths``, which this replaces, was keyed by the style object and kept only the
+widths of a text that does not wrap within one document).
 
 :func:`first_lines` puts in WeasyPrint's place, while a document is laid out, a routine that keeps
 each answer on the font configuration (like ``wptext``'s shaped lines) under the text, the values
