@@ -356,37 +356,72 @@ def test_cell_borders_written_directly_are_weasyprints_bytes(report, tmp_path, m
     assert drawn == ["td", "td"] * 2  # .a and .f; the others went to WeasyPrint
 
 
-def test_nowrap_widths_measured_once_same_bytes(report, tmp_path, monkeypatch):
-    """While a document is laid out, a text that does not wrap (a number cell) has its
-    min- and max-content widths measured by one Pango layout (``wpfast.nowrap_widths``): many
-    answers are reused, and the note is the same bytes as with WeasyPrint measuring each."""
+def test_first_lines_measured_once_same_bytes(report, tmp_path, monkeypatch):
+    """While a document is laid out, a text's first line in a width is measured once per process
+    (``wpsplit.first_lines``: the inline layout and the min- and max-content widths ask the same
+    texts again and again): most calls are answered from memory, all of them when the same note is
+    laid out again (as a batch worker lays out the next variant's same words), and the note is the
+    same bytes as with WeasyPrint measuring each."""
     import contextlib
 
-    from reportgen.report import wpfast
+    from reportgen.report import wpsplit
 
-    reused = []
-    real = wpfast._line_widths
-
-    def counting(general):
-        calls = []
-
-        def spy(*args, **kw):
-            calls.append(1)
-            return split(*args, **kw)
-
-        def general_counted(*args, **kw):
-            calls.pop()
-            return general(*args, **kw)
-
-        split = real(general_counted)
-        reused.append(calls)
-        return spy
-
-    monkeypatch.setattr(wpfast, "_line_widths", counting)
+    render._font_config().__dict__.pop("_reportgen_splits", None)  # made by earlier tests of this process
+    for key in wpsplit.STATS:
+        monkeypatch.setitem(wpsplit.STATS, key, 0)
     fast = render.write_pdf(report, tmp_path / "fast.pdf", jobs=1).read_bytes()
-    assert sum(len(c) for c in reused) > 100  # calls answered from the memo (never reaching WeasyPrint)
-    monkeypatch.setattr(wpfast, "nowrap_widths", contextlib.nullcontext)
+    hits, misses = wpsplit.STATS["hits"], wpsplit.STATS["misses"]
+    assert hits > 1000 and hits > misses > 0, wpsplit.STATS
+    assert render.write_pdf(report, tmp_path / "again.pdf", jobs=1).read_bytes() == fast
+    assert wpsplit.STATS["misses"] == misses and wpsplit.STATS["hits"] > 2 * hits  # nothing measured again
+    monkeypatch.setattr(wpsplit, "first_lines", contextlib.nullcontext)
     assert render.write_pdf(report, tmp_path / "weasyprint.pdf", jobs=1).read_bytes() == fast
+
+
+def test_first_lines_same_bytes_on_other_text():
+    """Text the note never has — automatic and soft hyphens in a narrow column, a long word broken
+    (``overflow-wrap: break-word``, ``anywhere``, ``word-break: break-all``), preserved white space and
+    tabs, text that does not wrap, letter and word spacing, justified lines, an underline, right to
+    left, small caps, table cells and inline blocks measured for their widths, the same words with
+    other spacing or hyphenation — is the same bytes with ``wpsplit.first_lines`` as with WeasyPrint's
+    own ``split_first_line``, the second document entirely from memory."""
+    from weasyprint import HTML
+
+    from reportgen.report import wpsplit
+
+    words = "Теория механизмов и машин: кинематический анализ рычажного механизма, 1,234 м/с"
+    html = ('<html lang="ru"><body style="width: 40mm">'
+            f'<p style="hyphens: auto">{words}</p><p style="hyphens: manual">сверх\u00adпрочный '
+            'электро\u00adмеханический</p><p>{0}</p>'
+            '<p style="overflow-wrap: break-word; width: 15mm">Непереносимоедлинноеслово и ещё</p>'
+            '<p style="overflow-wrap: anywhere; width: 15mm">Непереносимоедлинноеслово и ещё</p>'
+            '<p style="word-break: break-all; width: 15mm">Непереносимоедлинноеслово и ещё</p>'
+            '<table><tr><td style="overflow-wrap: break-word">Непереносимоедлинноеслово</td><td>{0}</td></tr></table>'
+            '<pre>a\tb  c\nвторая   строка</pre><p style="white-space: pre-wrap">a  b\tc   d e f g h i j k</p>'
+            '<p style="white-space: pre-line">одна\nдве   три</p><p style="white-space: pre-wrap">{0}</p><p style="white-space: nowrap">не переносится никогда '
+            'эта строка</p><p style="letter-spacing: 1pt">{0}</p><p style="word-spacing: 3pt">{0}</p>'
+            '<p style="text-align: justify">{0} {0}</p><p style="text-decoration: underline">{0}</p>'
+            '<p dir="rtl">שלום עולם abc</p><p style="font-variant: small-caps">{0}</p>'
+            '<table><tr><td>12,5</td><td>текст ячейки подлиннее</td><td style="white-space: nowrap">1 234,5</td></tr>'
+            '<tr><td>12,5</td><td style="hyphens: auto">механизм</td><td>м/с</td></tr></table>'
+            '<p>a <span style="display: inline-block">блок в строке</span> b <span style="letter-spacing: 2pt">'
+            'разрядка</span> c</p></body></html>').format(words)
+    config = render._font_config()
+    with render._fixed_font_timestamp():
+        own = HTML(string=html).render(font_config=config).write_pdf()
+        config.__dict__.pop("_reportgen_splits", None)
+        for key in wpsplit.STATS:
+            wpsplit.STATS[key] = 0
+        fast = []
+        for _ in range(2):
+            with wpsplit.first_lines():
+                document = HTML(string=html).render(font_config=config)
+            fast.append(document.write_pdf())
+            if not _:
+                first = dict(wpsplit.STATS)
+    assert fast == [own, own]
+    assert first["misses"] > 20 and wpsplit.STATS["misses"] == first["misses"], (first, wpsplit.STATS)
+    assert wpsplit.STATS["hits"] > 2 * first["hits"], (first, wpsplit.STATS)
 
 
 def test_text_layouts_share_pango_context_same_bytes(report, tmp_path, monkeypatch):

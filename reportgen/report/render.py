@@ -2410,7 +2410,7 @@ def _html_class():
         from weasyprint import html as _wp_html
         from weasyprint.css.counters import CounterStyle
 
-        from . import fasthtml, wpfast
+        from . import fasthtml, wpfast, wpsplit
 
         ua = _wp_html.UA.replace("\n::marker {", "\nli::marker {")
         ua = "\n".join(line for line in ua.splitlines()
@@ -2433,9 +2433,9 @@ def _html_class():
                 shared = _shared_sheets(self, font_config)
                 if shared:
                     options["stylesheets"] = [*(options.get("stylesheets") or []), *shared]
-                # a number cell's min- and max-content width measured once; Pango settings made once per
+                # a text's first line in a width measured once per process; Pango settings made once per
                 # font; a style's strut computed once
-                with wpfast.nowrap_widths(), wpfast.text_layouts(), wpfast.line_struts():
+                with wpsplit.first_lines(), wpfast.text_layouts(), wpfast.line_struts():
                     return super().render(font_config, counter_style, color_profiles, **options)
 
         _HTML_CLASS = _HTML

@@ -21,10 +21,10 @@ written alternately with and without it (one process, 3 rounds, load 9,5): sum o
 minimums 1,194 → 1,028 s CPU, heavy parts 0,367/0,349/0,272 → 0,287/0,305/0,249 s; ws004's
 kinematics 0,334 → 0,270 s; every part the same bytes.
 
-:func:`nowrap_widths` does the same for the layout: see :func:`_line_widths`. Two more for the
-text (layout and drawing): :func:`text_layouts` (the Pango context, font description and
-feature string of a piece of text made once per font, not per piece: :func:`_layout_setup`)
-and :func:`line_struts` (a style's strut computed once: :func:`_struts`). ws000, ``python
+Two more for the text (layout and drawing; the min- and max-content widths of a text that does
+not wrap, measured once here since session 10, are now ``wpsplit.first_lines``'s):
+:func:`text_layouts` (the Pango context, font description and feature string of a piece of text
+made once per font, not per piece: :func:`_layout_setup`) and :func:`line_struts` (a style's strut computed once: :func:`_struts`). ws000, ``python
 bench/bench_wpfast.py``: 23 635 set-ups 16,2 → 7,0 µs, 14 467 struts 8,2 → 0,2 µs; about
 0,34 s CPU less per note, the same bytes.
 """
@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import contextlib
 
-__all__ = ["cell_borders", "line_struts", "nowrap_widths", "text_layouts", "writing"]
+__all__ = ["cell_borders", "line_struts", "text_layouts", "writing"]
 
 _ORDER = (2, 3, 1, 0)  # bottom, left, right, top: WeasyPrint's order of the sides
 
@@ -132,44 +132,6 @@ def cell_borders():
     from weasyprint import draw
 
     return _replaced(draw, "draw_border", lambda general: lambda stream, box: _draw_border(stream, box, general))
-
-
-def _line_widths(general):
-    """``split_first_line`` as ``weasyprint.layout.preferred.inline_line_widths`` calls it (for the
-    min- and max-content widths of a text), remembering its answer for a text that may not wrap
-    (``white-space: nowrap``/``pre``): WeasyPrint then lays it out unconstrained whatever the
-    width asked (``max_width`` becomes ``None`` in ``split_first_line``, and ``create_layout``
-    sets no width on a text that does not wrap), so the min-content call (width 0) and the
-    max-content call (no width) of a table cell's number get the same answer, which is
-    computed once. The caller keeps only the resume index and the width; the layout object
-    is not handed out twice. ws000's parts laid out alternately with and without it (one
-    process, 3 rounds, load 5,9): sum of minimums 3,106 → 2,908 s CPU, heavy parts
-    0,854/1,086/0,759 → 0,842/0,973/0,681 s; the same PDF bytes."""
-    memo: dict = {}
-
-    def split(text, style, context, max_width, justification_spacing, is_line_start=True, minimum=False):
-        if style["white_space"] in ("normal", "pre-wrap", "pre-line"):
-            return general(text, style, context, max_width, justification_spacing, is_line_start, minimum)
-        key = (text, id(style), id(context), justification_spacing, is_line_start, minimum)
-        kept = memo.get(key)
-        if kept is not None and kept[0] is style and kept[1] is context:
-            return kept[2]
-        got = general(text, style, context, max_width, justification_spacing, is_line_start, minimum)
-        if len(memo) > 4096:
-            memo.clear()
-        memo[key] = (style, context, (None, got[1], got[2], got[3], got[4], got[5]))
-        return got
-
-    return split
-
-
-def nowrap_widths():
-    """While a document is laid out (``render``): the min- and max-content widths of a text
-    that does not wrap measured once (:func:`_line_widths`) instead of twice; the widths, so
-    the layout and the PDF, are the same."""
-    from weasyprint.layout import preferred
-
-    return _replaced(preferred, "split_first_line", _line_widths)
 
 
 _FONT = ("direction", "font_language_override", "lang", "font_style", "font_stretch", "font_weight", "font_size",
