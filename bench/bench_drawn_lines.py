@@ -15,7 +15,6 @@ after a full garbage collection), lines shaped and replayed, and the bytes compa
 """
 from __future__ import annotations
 
-import argparse
 import contextlib
 import gc
 import os
@@ -30,12 +29,8 @@ os.environ.setdefault("REPORTGEN_JOBS", "1")
 
 
 def main(argv: list[str]) -> None:
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--case", default="cases/ws000_six_bar.toml")
-    ap.add_argument("--other", default="")
-    ap.add_argument("--rounds", type=int, default=3)
-    a = ap.parse_args(argv)
-    from bench_pdf_parts import part_htmls
+    from bench_pdf_parts import case_args, part_htmls
+    a = case_args(argv)
 
     from reportgen.report import parallel, render, wptext
 

@@ -45,6 +45,16 @@ def study_of(case: str):
     return Study(spec)
 
 
+def case_args(argv: list[str]):
+    """``--case`` (the note laid out), ``--other`` (a neighbour's note laid out first, as a batch
+    worker has) and ``--rounds`` of the benches that compare two ways of laying out a note."""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--case", default="cases/ws000_six_bar.toml")
+    ap.add_argument("--other", default="")
+    ap.add_argument("--rounds", type=int, default=3)
+    return ap.parse_args(argv)
+
+
 def part_htmls(case: str = "cases/ws000_six_bar.toml") -> dict[int, str]:
     """The print HTML of every document of ``case``'s note (:func:`study_of`) as the workers of
     ``write_pdf`` get it (the second write in this process: the split points known), by task index."""
