@@ -196,6 +196,7 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
                 a_pin = Markup("{} — известно; ").format(_m(rf"\bar{{a}}_{{{Ps}}} = \bar{{a}}_{{{Pp}}}"))
         wg = abs(float(row.get(f"w_{guide}", 0.0)))
         lg = _len(row, j.point, gref)
+        input_guide = d.rotary and guide == d.link
         base = "" if gref in mech.link(FRAME).points else rf"\bar{{V}}_{{{G}}} + "
         if earlier is None:
             vn.append(v_pin + Markup("{} — скорость точки звена {}, совпадающей в данный момент с точкой {} звена {}: "
@@ -203,10 +204,14 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
                 _m(rf"\bar{{V}}_{{{Pg}}}"), guide, _m(P), slider, _m(rf"\bar{{V}}_{{{Pg}}} = {base}\bar{{V}}_{{{Pg}{G}}}"),
                 _m(rf"\bar{{V}}_{{{Pg}{G}}} \;\perp\; {G}{P}"), _m(rf"\bar{{V}}_{{{Ps}{Pg}}} \;\parallel"), guide))
         else:
+            # the guide is the input link itself (a driving slotted link, a tangent lever): its ω₁ is
+            # given, not found with a group
+            whence = Markup("звено {} — ведущее, его угловая скорость задана").format(guide) if input_guide \
+                else Markup("звено {} рассчитано с группой ({})").format(guide, ",".join(earlier.links))
             vn.append(v_pin + Markup("{} — скорость точки звена {}, совпадающей в данный момент с точкой {} звена {}, "
-                             "известна (звено {} рассчитано с группой ({})): {}, {}, {}; {} направляющей звена {} — "
+                             "известна ({}): {}, {}, {}; {} направляющей звена {} — "
                              "величина находится построением").format(
-                _m(rf"\bar{{V}}_{{{Pg}}}"), guide, _m(P), slider, guide, ",".join(earlier.links),
+                _m(rf"\bar{{V}}_{{{Pg}}}"), guide, _m(P), slider, whence,
                 _m(rf"\bar{{V}}_{{{Pg}}} = {base}\bar{{V}}_{{{Pg}{G}}}"), _m(rf"\bar{{V}}_{{{Pg}{G}}} \;\perp\; {G}{P}"),
                 _m(rf"V_{{{Pg}{G}}} = \omega_{{{_ang(guide)}}} l_{{{G}{P}}} = {tex_num(wg, sig=4)} \cdot {tex_num(lg, sig=4)} = "
                    rf"{tex_num(wg * lg, sig=4, unit='м/с')}"),
@@ -215,7 +220,12 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
                           rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}}"))
         vr = abs(float(row.get(f"vs_{j.name}", 0.0)))
         base = "" if gref in mech.link(FRAME).points else rf"\bar{{a}}_{{{G}}} + "
-        tau = Markup("") if earlier is None else Markup(", {} — по найденному {}: точка {} плана — по теореме подобия").format(
+        eg = float(row.get(f"e_{guide}", 0.0))
+        tau = Markup("") if earlier is None else Markup(", {}{}").format(
+            _m(rf"a^{{\tau}}_{{{Pg}{G}}} = \varepsilon_{{{_ang(guide)}}} l_{{{G}{P}}} = {tex_num(abs(eg), sig=4)} \cdot "
+               rf"{tex_num(lg, sig=4)} = {tex_num(abs(eg) * lg, sig=4, unit='м/с²')}"),
+            Markup(" (угловая скорость ведущего звена постоянна)") if abs(eg) < 1e-12 else "") if input_guide \
+            else Markup(", {} — по найденному {}: точка {} плана — по теореме подобия").format(
             _m(rf"a^{{\tau}}_{{{Pg}{G}}} = \varepsilon_{{{_ang(guide)}}} l_{{{G}{P}}}"),
             _m(rf"\varepsilon_{{{_ang(guide)}}}"), _m(rf"{P.lower()}'_{{{guide}}}"))
         an.append(a_pin + Markup("{}: {}, {} (направлено от точки {} к точке {}), {}{}").format(
