@@ -95,3 +95,34 @@ def test_guide_found_with_a_group_keeps_its_wording():
     vn, an = _notes(study, -1)
     assert any("рассчитано с группой (2,3)" in n for n in vn), vn
     assert any("по теореме подобия" in n for n in an), an
+
+
+
+def _tex_value(t: str) -> float:
+    """The value of a substituted or result part of a printed formula: «15\\,000 \\cdot 2{,}3505 +
+    4914{,}9», «\\frac{1 \\cdot 16 \\cdot 10^{6} …}{2{,}3505}», «40\\,171{,}8\\ \\text{Н}»."""
+    import re
+    t = re.sub(r"\\ \\text\{[^}]*\}$", "", t.strip()).replace("\\,", "").replace("{,}", ".")
+    t = t.replace("\\cdot", "*").replace("^{", "**{")
+    t = re.sub(r"\\frac\{(.*)\}\{(.*)\}", r"(\1)/(\2)", t)
+    return float(eval(t.replace("{", "(").replace("}", ")"), {}))
+
+
+def test_capacity_formulas_add_up_with_link_weights(lift):
+    """Capacity of an actuator-driven lift whose links have weights: the note printed
+    «F = Q·i₄₅ = 15 000 · 2,3505 = 40 171,8 Н» (15 000 · 2,3505 = 35 257,5: the result holds the
+    weights' share, the formula does not) and «G₄₅ = k·p·η·A/i₄₅ = … = 28 704 Н» (the numbers give
+    30 794), and «(в точке 45 и на оси )» with nothing after «оси». Now F = Q·i + F_ост and
+    G = (k·p·η·A − F_ост)/i with F_ост's value, and no empty «на оси»."""
+    from reportgen.report.document import FormulaBlock, Paragraph
+    from reportgen.report.sections import forces
+    from notehelpers import blocks, plain
+    sec = forces.build(lift)
+    cap = next(b for b in blocks(sec) if isinstance(b, Paragraph) and "грузоподъёмность (" in plain(b.html))
+    assert "на оси" not in plain(cap.html), plain(cap.html)
+    fb = next(b for b in blocks(sec) if isinstance(b, FormulaBlock)
+              and any(f.symbolic.startswith("F = ") for f in b.formulas))
+    for f in fb.formulas:
+        if f.symbolic.startswith(("F = ", "G_")):      # in Н (p is printed in МПа)
+            got, printed = _tex_value(f.substituted), _tex_value(f.result)
+            assert abs(got - printed) <= 1e-4 * abs(printed), (f.symbolic, f.substituted, f.result)
