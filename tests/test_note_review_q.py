@@ -126,3 +126,15 @@ def test_capacity_formulas_add_up_with_link_weights(lift):
         if f.symbolic.startswith(("F = ", "G_")):      # in Н (p is printed in МПа)
             got, printed = _tex_value(f.substituted), _tex_value(f.result)
             assert abs(got - printed) <= 1e-4 * abs(printed), (f.symbolic, f.substituted, f.result)
+
+
+def test_no_toggle_remark_for_a_cutting_force_over_the_stroke(planer):
+    """A constant cutting force over the working stroke of the planer: the note claimed «эффект
+    колена … выигрыш в силе не менее чем в 3,79 раза» (the «gain» was only the 400 mm slotted link
+    against the cutter's 105 mm per radian, mid-stroke, far from any dead position). The remark is
+    kept for a force near a dead position (knuckle press, jaw crusher)."""
+    from reportgen.report.sections import dynamics as D
+    assert D.toggle_gain(planer) is None
+    assert not any("выигрыш в силе" in str(x) for x in D.conclusion_lines(planer))
+    for stem in ("knuckle_press", "jaw_crusher"):
+        assert D.toggle_gain(_load(stem)) is not None, stem
