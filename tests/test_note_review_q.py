@@ -138,3 +138,33 @@ def test_no_toggle_remark_for_a_cutting_force_over_the_stroke(planer):
     assert not any("выигрыш в силе" in str(x) for x in D.conclusion_lines(planer))
     for stem in ("knuckle_press", "jaw_crusher"):
         assert D.toggle_gain(_load(stem)) is not None, stem
+
+
+def test_actuator_initial_mechanism_equations_hold_the_driving_pair(lift):
+    """The actuator-driven lift: §2.4 wrote «Скорости, группа Ассура II класса 1-го вида (2,3) ВВВ:
+    V̄₂₃ = V̄₂₃₀₃» — chapter 1 calls (1,2,3) the initial mechanism with the driving pair 1–2, and the
+    rod's given speed along the swinging cylinder (and its Coriolis acceleration 2·ω₁·v₂₁) never
+    appeared, so the plan's intersection had no second line. Now the initial mechanism is named as
+    in chapter 1 and its first equations are V̄_23₂ = V̄_23₁ + V̄_23₂23₁ (v₂₁ given) and
+    ā_23₂ = āⁿ + ā^τ + ā^k + ā^r with the Coriolis term's value."""
+    from reportgen.analysis.plans import read_velocities
+    from reportgen.report.document import Section
+    from reportgen.report.sections import vectors
+    from reportgen.report.sections.common import chosen_position
+    from notehelpers import paragraph_text, plain
+    k = lift.kinematics
+    row = k[k["pos"] == chosen_position(lift)].iloc[0]
+    vrow = read_velocities(row, lift, 0.001)
+    sec = Section("x", "x")
+    vectors.add_velocities(sec, lift, vrow)
+    vectors.add_accelerations(sec, lift, vrow)
+    text = " ".join(plain(paragraph_text(sec)).split())
+    assert "группа Ассура II класса 1-го вида (2,3)" not in text, text
+    assert "начальный механизм (1,2,3) с ведущей поступательной парой 1–2" in text, text
+    vn, an = _notes(lift, 1)
+    assert vn[0].startswith("V231 — скорость точки цилиндра 1") and "v21 = 0,04 м/с — задана" in vn[0], vn[0]
+    w, v = abs(vrow["w_1"]), abs(row["vs_21"])
+    assert "кориолисово ускорение (цилиндр вращается)" in an[0], an[0]
+    assert "ar232231 = a21 = 0 м/с² (шток выдвигается с постоянной скоростью)" in an[0], an[0]
+    from reportgen.style.numbers import fmt
+    assert fmt(2 * w * v, sig=4).replace("\u00a0", " ") in an[0].replace("\u00a0", " "), (an[0], 2 * w * v)
