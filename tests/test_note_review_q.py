@@ -168,3 +168,14 @@ def test_actuator_initial_mechanism_equations_hold_the_driving_pair(lift):
     assert "ar232231 = a21 = 0 м/с² (шток выдвигается с постоянной скоростью)" in an[0], an[0]
     from reportgen.style.numbers import fmt
     assert fmt(2 * w * v, sig=4).replace("\u00a0", " ") in an[0].replace("\u00a0", " "), (an[0], 2 * w * v)
+
+
+def test_plan_reading_names_only_what_it_finds(tangent):
+    """The tangent pump: the stone turns with the input lever and the plunger translates, so the
+    velocity plan gives only the stone's relative velocity; the note announced «найдены угловые
+    скорости звеньев и относительная скорость камня:» above that single formula."""
+    from reportgen.report.sections import kinematics
+    from notehelpers import paragraph_text, plain
+    text = " ".join(plain(paragraph_text(kinematics.build(tangent))).split())
+    assert "(рисунок ) найдена относительная скорость камня:" in text, text      # refs resolve at render
+    assert "найдены угловые скорости звеньев" not in text

@@ -475,9 +475,13 @@ def build(study) -> Section:
             slides = sum(f.symbolic.startswith("V") for f in ws)
             word = ("камня", "камней") if all(vectors.is_stone(study.mechanism, j)
                                               for j in study.mechanism.prismatic) else ("в поступательной паре", "в поступательных парах")
-            s4.paragraph(f"По отрезкам плана скоростей (рисунок {ref('fig-vplan')}) найдены угловые скорости звеньев"
-                         + (" и относительная скорость " + word[0] if slides == 1 else
-                            " и относительные скорости " + word[1] if slides else "") + ":")
+            rel = ("относительная скорость " + word[0] if slides == 1 else "относительные скорости " + word[1]) \
+                if slides else ""
+            # only relative velocities read (a tangent mechanism: the stone turns with the input link,
+            # no other link turns): no «угловые скорости» announced that the formulas do not give
+            found = (("найдена " if slides == 1 else "найдены ") + rel) if slides == len(ws) else \
+                "найдены угловые скорости звеньев" + (" и " + rel if slides else "")
+            s4.paragraph(f"По отрезкам плана скоростей (рисунок {ref('fig-vplan')}) {found}:")
             s4.formula(*ws)
         else:
             s4.paragraph(f"План скоростей построен на рисунке {ref('fig-vplan')}.")
