@@ -179,3 +179,20 @@ def test_plan_reading_names_only_what_it_finds(tangent):
     text = " ".join(plain(paragraph_text(kinematics.build(tangent))).split())
     assert "(рисунок ) найдена относительная скорость камня:" in text, text      # refs resolve at render
     assert "найдены угловые скорости звеньев" not in text
+
+
+def test_actuator_plans_show_the_driving_pair(lift):
+    """The plans of the actuator-driven lift: the rod's relative velocity along the cylinder
+    (V̄_23₂23₁, the rod's given speed) and, on the acceleration plan, the Coriolis and relative
+    terms of the rod on the swinging cylinder are drawn from the cylinder's point 23₁ — before,
+    the plans held only the lever's and the coupler's vectors, so the equation V̄_23₂ = V̄_23₁ +
+    V̄_23₂23₁ printed above them had no lines on the drawing."""
+    from reportgen.report.sections.common import chosen_position
+    from reportgen.scenes.plans import PlanScene
+    lab = chosen_position(lift)
+    v = PlanScene(lab, "velocity", landscape=True).draw(lift).plan
+    a = PlanScene(lab, "acceleration", landscape=True).draw(lift).plan
+    slide = next(s for s in v.segments if s.kind == "slide")
+    assert (slide.start, slide.end) == ("231", "23")
+    assert abs(slide.length - float(lift.kinematics.iloc[0]["vs_21"])) < 1e-12
+    assert {s.kind for s in a.segments if s.link == "2"} >= {"coriolis", "slide"}

@@ -96,8 +96,10 @@ def _relative_points(mech: Mechanism):
 def _guide_points(plan: Plan, row, mech: Mechanism, accel: bool = False):
     """For every prismatic joint on a moving guide: the joint, the guide, the slider, the label of
     the tip of the guide's point under the slider (set on the plan to that point's velocity, or
-    acceleration when ``accel``) and the velocity of that point."""
-    for j in mech.prismatic:
+    acceleration when ``accel``) and the velocity of that point; the actuator's driving pair
+    (the rod on the swinging cylinder) among them."""
+    drive = mech.driving_pair()
+    for j in mech.prismatic + ([drive] if drive is not None else []):
         guide, slider = j.links
         if guide == FRAME:
             continue
