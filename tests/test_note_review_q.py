@@ -196,3 +196,14 @@ def test_actuator_plans_show_the_driving_pair(lift):
     assert (slide.start, slide.end) == ("231", "23")
     assert abs(slide.length - float(lift.kinematics.iloc[0]["vs_21"])) < 1e-12
     assert {s.kind for s in a.segments if s.link == "2"} >= {"coriolis", "slide"}
+
+
+def test_conclusion_calls_a_slot_end_a_point_not_a_joint(planer):
+    """The driving slotted link's end K is no joint; the conclusion said «Окружная скорость шарнира K».
+    A crank pin that is a joint keeps «шарнира»."""
+    from reportgen.report.sections import kinematics
+    from notehelpers import plain
+    lines = " ".join(plain(x) for x in kinematics.conclusion_lines(planer))
+    assert "Окружная скорость точки K" in lines and "шарнира K" not in lines, lines
+    crank = " ".join(plain(x) for x in kinematics.conclusion_lines(_load("slider_crank")))
+    assert "Окружная скорость шарнира A" in crank, crank

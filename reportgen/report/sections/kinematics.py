@@ -1062,9 +1062,12 @@ def _speed_lines(study) -> list[str]:
     pin = study.mechanism.crank_pin()
     col = "v_" + str(pin)
     if pin and col in study.cycle:
-        out.append(Markup("Окружная скорость шарнира {0} {1} <i>v</i><sub>{0}</sub>&nbsp;=&nbsp;ω<sub>1</sub>"
+        # a pin that is a joint is a «шарнир»; the end of a driving slotted link (no joint there) a point
+        joint = any(j.point == pin and j.kind == "R" for j in study.mechanism.joints)
+        out.append(Markup("Окружная скорость {4} {0} {1} <i>v</i><sub>{0}</sub>&nbsp;=&nbsp;ω<sub>1</sub>"
                           "<i>l</i><sub>{2}{0}</sub>&nbsp;=&nbsp;{3}&nbsp;м/с.").format(
-            pin, input_word(d, "gen"), d.center, fmt(float(study.cycle[col].abs().max()), sig=3)))
+            pin, input_word(d, "gen"), d.center, fmt(float(study.cycle[col].abs().max()), sig=3),
+            "шарнира" if joint else "точки"))
     return out
 
 
