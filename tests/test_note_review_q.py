@@ -207,3 +207,16 @@ def test_conclusion_calls_a_slot_end_a_point_not_a_joint(planer):
     assert "Окружная скорость точки K" in lines and "шарнира K" not in lines, lines
     crank = " ".join(plain(x) for x in kinematics.conclusion_lines(_load("slider_crank")))
     assert "Окружная скорость шарнира A" in crank, crank
+
+
+def test_assignment_says_which_link_the_note_calls_the_crank(planer):
+    """The planer's input link is «кулиса» in the case and table 1.1 (its link 3 is «кривошип
+    BCD»), yet the assignment said «Ведущее звено — кривошип 1» and every chapter «кривошип 1»
+    without a word: now the assignment names it and says it serves as the crank. A link titled
+    «кривошип» keeps the short sentence."""
+    from reportgen.report.assemble import _linkage_data
+    from notehelpers import plain
+    text = " ".join(plain(getattr(b, "html", "")) for b in _linkage_data(planer))
+    assert "Ведущее звено 1 — кулиса; совершая полный оборот, оно служит кривошипом (далее — кривошип 1)" in text, text
+    other = " ".join(plain(getattr(b, "html", "")) for b in _linkage_data(_load("slider_crank")))
+    assert "Ведущее звено — кривошип 1;" in other, other
