@@ -220,3 +220,24 @@ def test_assignment_says_which_link_the_note_calls_the_crank(planer):
     assert "Ведущее звено 1 — кулиса; совершая полный оборот, оно служит кривошипом (далее — кривошип 1)" in text, text
     other = " ".join(plain(getattr(b, "html", "")) for b in _linkage_data(_load("slider_crank")))
     assert "Ведущее звено — кривошип 1;" in other, other
+
+
+@pytest.mark.parametrize("name", ["tangent_lever_pump", "driving_slot_planer"])
+def test_stone_turning_with_the_input_link_has_no_columns_of_constants(name):
+    """The stone in the input link's own slot turns with it: the note printed a table of φ′₂ =
+    1,0000 and one of φ″₂ = 0,0000 in every row (the tangent pump's only angular tables), ω₂ =
+    1,500 and ε₂ = 0 columns, and for the pump «…» nothing said why. Now one sentence says it turns
+    with link 1 (φ′₂ = 1, φ″₂ = 0, ω₂ = ω₁, ε₂ = ε₁) and no table repeats it; with no other turning
+    link, «Остальные звенья движутся поступательно»."""
+    from reportgen.report.document import Table
+    from reportgen.report.sections import kinematics
+    from notehelpers import blocks, paragraph_text, plain
+    study = _load(name)
+    sec = kinematics.build(study)
+    keys = {c.key for b in blocks(sec) if isinstance(b, Table) for c in b.columns}
+    assert not keys & {"wq_2", "eq_2", "w_2", "e_2", "phi_2"}, keys
+    text = " ".join(plain(paragraph_text(sec)).split())
+    assert "Звено 2 (камень) поворачивается вместе с ведущим звеном 1: φ′2 = 1, φ″2 = 0, ω2 = ω1, ε2 = ε1" in text, text
+    if name == "tangent_lever_pump":
+        assert "Остальные звенья движутся поступательно" in text
+        assert not any(isinstance(b, Table) and b.id and b.id.startswith(("tab-wq", "tab-eq")) for b in blocks(sec))
