@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from reportgen import load_case
+from test_note_review_n import _load, _notes      # a case by stem; a group's «где» notes as plain text
 
 CASES = Path(__file__).resolve().parents[1] / "cases"
 
@@ -45,10 +46,6 @@ def test_actuator_plans_are_constructed(lift):
         assert len(t) > 0 and (t["delta"] < 5.0).all(), t
 
 
-def _load(name):
-    return load_case(CASES / f"{name}.toml")
-
-
 @pytest.fixture(scope="module")
 def planer():
     return _load("driving_slot_planer")
@@ -57,20 +54,6 @@ def planer():
 @pytest.fixture(scope="module")
 def tangent():
     return _load("tangent_lever_pump")
-
-
-def _notes(study, group_index=-1):
-    """The «где» explanations of a group's velocity and acceleration equations as plain text."""
-    import re
-    from reportgen.analysis.plans import read_velocities
-    from reportgen.report.sections import vectors
-    from reportgen.report.sections.common import chosen_position
-    k = study.kinematics
-    row = k[k["pos"] == chosen_position(study)].iloc[0]
-    vrow = read_velocities(row, study, 0.01)
-    vf, vn, af, an = vectors.group_equations(study, vrow, study.structure.groups[group_index])
-    plain = lambda xs: [" ".join(re.sub(r"<[^>]+>", "", str(x)).split()) for x in xs]
-    return plain(vn), plain(an)
 
 
 @pytest.mark.parametrize("name,group", [("driving_slot_planer", 1), ("tangent_lever_pump", 1)])
