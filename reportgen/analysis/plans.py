@@ -96,8 +96,10 @@ def _relative_points(mech: Mechanism):
 def _guide_points(plan: Plan, row, mech: Mechanism, accel: bool = False):
     """For every prismatic joint on a moving guide: the joint, the guide, the slider, the label of
     the tip of the guide's point under the slider (set on the plan to that point's velocity, or
-    acceleration when ``accel``) and the velocity of that point."""
-    for j in mech.prismatic:
+    acceleration when ``accel``) and the velocity of that point; the actuator's driving pair
+    (the rod on the swinging cylinder) among them."""
+    drive = mech.driving_pair()
+    for j in mech.prismatic + ([drive] if drive is not None else []):
         guide, slider = j.links
         if guide == FRAME:
             continue
@@ -281,6 +283,9 @@ def _guide_dir(row, mech: Mechanism, j) -> np.ndarray:
     guide, slider = j.links
     if guide == FRAME:
         return np.array([np.cos(j.angle), np.sin(j.angle)])
+    if j.driving:       # the actuator's axis: from the cylinder's base pivot to the rod's end
+        axis = _vec(row, "", j.point) - _vec(row, "", mech.driver.center)
+        return axis / np.hypot(*axis)
     for name in (guide, slider):
         pts = list(mech.link(name).points.items())
         if len(pts) >= 2:
@@ -318,10 +323,15 @@ def _solve_groups(study, row, known_ang, rhs_terms) -> Construction:
     con = Construction(ref, {FRAME: np.zeros(2)}, {FRAME: 0.0})
     ref[FRAME] = next(iter(mech.link(FRAME).points), "")
     d = mech.driver
+    drive = mech.driving_pair()
+    joints = mech.joints + ([drive] if drive is not None else [])
     for g in study.structure.groups:
         links = list(g.links)
-        if d.kind == "actuator" and (d.link in links or d.rod in links):
-            links = list(dict.fromkeys(links + [d.link, d.rod]))
+        if drive is not None and set(drive.links) & set(links):
+            # the initial mechanism of an actuator: the cylinder's and the rod's groups together
+            # (the rod's drives the link it is pinned to), the driving pair between them
+            links = list(dict.fromkeys(links + [l for h in study.structure.groups
+                                                if set(drive.links) & set(h.links) for l in h.links]))
         links = [l for l in links if l not in con.lin]
         if not links:
             continue
@@ -341,7 +351,7 @@ def _solve_groups(study, row, known_ang, rhs_terms) -> Construction:
             val = con.lin[link] + con.ang[link] * rot + extra
             return -sign * val[comp]
 
-        for j in mech.joints:
+        for j in joints:
             a, b = j.links
             if not ({a, b} & set(links)) or not ({a, b} <= set(links) | set(con.lin)):
                 continue

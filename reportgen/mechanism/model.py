@@ -132,6 +132,15 @@ class Mechanism:
     def prismatic(self) -> list[Joint]:
         return [j for j in self.joints if j.kind == "P"]
 
+    def driving_pair(self) -> Joint | None:
+        """The actuator's own prismatic pair cylinder–rod (not among ``joints``: the kinematics
+        drives it through q = S): the rod slides along the cylinder's x axis, its end ``end`` on
+        that line, relative rate vs_<rod><cylinder>. None for a crank or a rocker."""
+        d = self.driver
+        if d.kind != "actuator":
+            return None
+        return Joint("P", (d.link, d.rod), d.end, f"{d.rod}{d.link}", driving=True)
+
     def size(self) -> float:
         """A length scale of the mechanism (for tolerances and drawing)."""
         import math

@@ -337,7 +337,13 @@ def _linkage_data(study) -> list:
             text += f"; угловая скорость по модулю постоянна, ω<sub>1</sub>&nbsp;=&nbsp;{fmt(d.omega, digits=3)}&nbsp;рад/с"
         out.append(Paragraph(text + "."))
     elif d.rotary:
-        text = (f"Ведущее звено — кривошип {d.link}; начальный угол φ<sub>0</sub>&nbsp;=&nbsp;"
+        # an input link the case names otherwise (a driving slotted link «кулиса», an eccentric
+        # shaft): the note calls it «кривошип» by its role, said once here
+        title = Markup(mech.link(d.link).title or "").striptags()
+        named = title and not any(w in title.lower() for w in ("кривош", "ведущ"))
+        head = Markup("Ведущее звено {0} — {1}; совершая полный оборот, оно служит кривошипом (далее — кривошип "
+                      "{0})").format(d.link, title) if named else f"Ведущее звено — кривошип {d.link}"
+        text = (f"{head}; начальный угол φ<sub>0</sub>&nbsp;=&nbsp;"
                 f"{fmt_given(math.degrees(d.phi0) % 360.0)}°, вращение "
                 f"{'по часовой стрелке' if d.direction < 0 else 'против часовой стрелки'}")
         if d.omega:

@@ -548,6 +548,7 @@ def _moments(sec, study, d, tab, lab, row, kv, lead) -> None:
 
 TOGGLE_GAIN = 3.0         # a force this many times the crank pin's tangential force balancing it: the toggle effect
 TOGGLE_ZONE = 0.005       # the share of the cycle the force keeps its largest value at least (not a spike at a dead point)
+TOGGLE_NEAR_DEAD = 0.3    # the force point's speed along the force over that stretch, at most this share of its cycle's largest
 
 
 def toggle_gain(study) -> dict | None:
@@ -559,7 +560,8 @@ def toggle_gain(study) -> dict | None:
     that balances F there is F_t = M_max/r (r — the crank's length) and the gain F_max/F_t =
     F_max·r/M_max — the least over that stretch: it grows without bound towards the dead position,
     where the output's analog is zero. None for a mechanism without a crank or without such a force
-    (gain under TOGGLE_GAIN)."""
+    (gain under TOGGLE_GAIN, or a stretch away from a dead position: the point's speed along the
+    force there over TOGGLE_NEAR_DEAD of its largest over the cycle)."""
     mech = study.mechanism
     d = study.dynamics
     if mech.driver.kind != "crank":
@@ -584,6 +586,14 @@ def toggle_gain(study) -> dict | None:
         if zone.mean() < TOGGLE_ZONE or (M[zone] > 0).any():      # a spike, or a force that drives
             continue
         M_max = float(np.abs(M[zone]).max())
+        # near a dead position: over the stretch the point's analog along the force (|M|/F by the
+        # power balance) is a small share of its largest over the cycle — not a constant working
+        # force over a whole stroke (a cutting force), whose «gain» is only a long input link
+        u = np.array([Fx[:n][zone].mean(), Fy[:n][zone].mean()])
+        u = u / np.hypot(*u)
+        along = np.abs(cols["vqx_" + ld.point][:n] * u[0] + cols["vqy_" + ld.point][:n] * u[1])
+        if M_max / float(F.max()) > TOGGLE_NEAR_DEAD * float(along.max()):
+            continue
         gain = float(F.max()) * r / M_max if M_max > 0 else math.inf
         if math.isfinite(gain) and gain >= TOGGLE_GAIN and (best is None or gain > best["gain"]):
             best = dict(load=ld, F=float(F.max()), M=M_max, r=r, gain=gain, pin=pin, centre=cen)

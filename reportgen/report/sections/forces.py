@@ -889,32 +889,39 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
     row = f.row(lab)
     P = float(-[ld for ld in f.solution.loads if ld.name == c.load][0].Fy[0])
     pt = tex_point(c.point)
-    s.paragraph(f"Усилие на штоке находится из силового расчёта по группам; по принципу возможных перемещений "
-                f"для единственной вертикальной нагрузки {html_label(c.load)} оно равно произведению нагрузки на передаточное "
-                f"число {inline_math(rf'i_{{{pt}}} = dy_{{{pt}}}/dS')} её точки приложения. Площадь поршня, "
-                f"давление {_in_cylinders(a.count)} и грузоподъёмность (в точке {html_point(c.point)} и на оси "
-                + ", ".join(c.points) + f") для положения {pos_no(study, lab)} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м; "
-                f"по всем положениям — таблица {ref('tab-frc-capacity')} и рисунок {ref('fig-frc-capacity')}):")
     ip = row["i_" + c.point]
+    # the actuator force of the other loads (the links' weights): F = Q·i + F_ост, G = (kpηA − F_ост)/i
+    # (analysis.forces: rest = F_act − Q·i); without them F = Q·i exactly
+    rest = float(row["F_act"]) - P * float(ip)
+    others = any(ld.name != c.load for ld in f.solution.loads) and abs(rest) > 1e-9 * max(abs(float(row["F_act"])), 1.0)
+    where = f"в точке {html_point(c.point)}" + (" и на оси " + ", ".join(c.points) if c.points else "")
+    s.paragraph(f"Усилие на штоке находится из силового расчёта по группам; по принципу возможных перемещений "
+                + (f"оно равно произведению нагрузки {html_label(c.load)} на передаточное число "
+                   f"{inline_math(rf'i_{{{pt}}} = dy_{{{pt}}}/dS')} её точки приложения и доли усилия "
+                   f"{inline_math('F_{ост}')}, приходящейся на остальные нагрузки (силы тяжести звеньев). "
+                   if others else
+                   f"для единственной вертикальной нагрузки {html_label(c.load)} оно равно произведению нагрузки на передаточное "
+                   f"число {inline_math(rf'i_{{{pt}}} = dy_{{{pt}}}/dS')} её точки приложения. ")
+                + f"Площадь поршня, давление {_in_cylinders(a.count)} и грузоподъёмность ({where}"
+                f") для положения {pos_no(study, lab)} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м; "
+                f"по всем положениям — таблица {ref('tab-frc-capacity')} и рисунок {ref('fig-frc-capacity')}):")
     L_ = _name_tex(c.load)
-    fs = [Formula(rf"F = {L_} \cdot i_{{{pt}}}", rf"{_in(P)} \cdot {_t(ip, sig=5)}", _t(row["F_act"], sig=6, unit="Н"),
-                  label="eq-frc-F"),
+    fs = [Formula(rf"F = {L_} \cdot i_{{{pt}}}" + (r" + F_{ост}" if others else ""),
+                  rf"{_in(P)} \cdot {_t(ip, sig=5)}" + (rf" + {_t(rest, sig=5)}" if others else ""),
+                  _t(row["F_act"], sig=6, unit="Н"), label="eq-frc-F"),
           Formula(r"A = \frac{\pi D^2}{4}", rf"\frac{{\pi \cdot {_in(a.diameter)}^2}}{{4}}", _t(a.area, sig=5, unit="м²")),
           Formula(r"p = \frac{F}{k A \eta}", rf"\frac{{{_t(row['F_act'], sig=6)}}}{{{a.count} \cdot {_t(a.area, sig=5)} \cdot {_in(a.efficiency)}}}",
                   _t(row["p_act"] / 1e6, sig=6, unit="МПа"), label="eq-frc-p")]
     for q in list(c.points) + [c.point]:
         Q = tex_point(q)
-        fs.append(Formula(rf"G_{{{Q}}} = \frac{{k p_{{max}} \eta A}}{{i_{{{Q}}}}}",
-                          rf"\frac{{{a.count} \cdot {_in(a.pressure / 1e6)} \cdot 10^{{6}} \cdot {_in(a.efficiency)} \cdot {_t(a.area, sig=5)}}}{{{_t(row['i_' + q], sig=5)}}}",
+        fs.append(Formula(rf"G_{{{Q}}} = \frac{{k p_{{max}} \eta A" + (r" - F_{ост}" if others else "") + rf"}}{{i_{{{Q}}}}}",
+                          rf"\frac{{{a.count} \cdot {_in(a.pressure / 1e6)} \cdot 10^{{6}} \cdot {_in(a.efficiency)} \cdot {_t(a.area, sig=5)}"
+                          + (rf" - {_t(rest, sig=5)}" if others else "") + rf"}}{{{_t(row['i_' + q], sig=5)}}}",
                           _t(row["Gcap_" + q], sig=5, unit="Н")))
     fs.append(Formula(rf"\Delta G = \frac{{G_{{{pt}}} - {L_}}}{{{L_}}} \cdot 100\%",
                       rf"\frac{{{_t(row['Gcap_' + c.point], sig=5)} - {_in(P)}}}{{{_in(P)}}} \cdot 100\%",
                       _t(row["reserve_pct"], digits=1, unit="%")))
     s.formula(*fs)
-    if any(ld.name != c.load for ld in f.solution.loads):
-        rest = inline_math(r"G = (k p_{max} \eta A - F_{ост})/i")
-        s.paragraph("Если механизм нагружен и другими силами (силы тяжести звеньев), их доля усилия "
-                    f"{inline_math('F_{ост}')} вычитается: {rest}.")
     cols = [Column("F_act", "<i>F</i>", "Н", digits=0, sig=None),
             Column("p_act", "<i>p</i>", "МПа", fmt=lambda v: fmt(v / 1e6, digits=3, sig=None))]
     cols += [Column("Gcap_" + q, sub("G", q), "Н", digits=0, sig=None) for q in list(c.points) + [c.point]]

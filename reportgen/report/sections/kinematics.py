@@ -62,11 +62,41 @@ def motion_points(study) -> tuple[list[str], str]:
 
 
 def _links(study):
-    """Links whose angle changes (a slider on a fixed guide only translates)."""
+    """Links whose angle changes (a slider on a fixed guide only translates), except those turning
+    with a rotating input link (:func:`_with_input`: their columns would repeat φ₁, 1, 0, ω₁, ε₁)."""
     d = study.mechanism.driver
     cyc = study.cycle if study.has_cycle else study.kinematics
+    twins = set(_with_input(study))
     return [l for l in study.mechanism.moving if not (d.kind == "actuator" and l.name == d.rod)
-            and float(np.abs(cyc["wq_" + l.name]).max()) > 1e-12]
+            and float(np.abs(cyc["wq_" + l.name]).max()) > 1e-12 and l.name not in twins]
+
+
+def _with_input(study) -> list[str]:
+    """Links other than a rotating input link that turn with it (φ′ = 1, φ″ = 0 everywhere: a stone
+    sliding in the input link's own slot)."""
+    d = study.mechanism.driver
+    if not d.rotary:
+        return []
+    cyc = study.cycle if study.has_cycle else study.kinematics
+    return [l.name for l in study.mechanism.moving if l.name != d.link
+            and float(np.abs(cyc["wq_" + l.name] - 1.0).max()) <= 1e-12
+            and float(np.abs(cyc["eq_" + l.name]).max()) <= 1e-12]
+
+
+def _with_input_text(study) -> str:
+    """«Звено 2 (камень) поворачивается вместе с ведущим звеном 1: φ₂ = φ₁ + const, φ′₂ = 1, φ″₂ = 0,
+    ω₂ = ω₁, ε₂ = ε₁ (в таблицы не включены).» — empty without such links."""
+    twins = _with_input(study)
+    if not twins:
+        return ""
+    mech, d = study.mechanism, study.mechanism.driver
+    one = len(twins) == 1
+    named = ", ".join(str(Markup("{} ({})").format(n, Markup(mech.link(n).title).striptags()) if mech.link(n).title
+                          else n) for n in twins)
+    eqs = "; ".join(f"{sub('φ′', n)}&nbsp;=&nbsp;1, {sub('φ″', n)}&nbsp;=&nbsp;0, {sub('ω', n)}&nbsp;=&nbsp;"
+                    f"{sub('ω', d.link)}, {sub('ε', n)}&nbsp;=&nbsp;{sub('ε', d.link)}" for n in twins)
+    return (f"{'Звено' if one else 'Звенья'} {named} {'поворачивается' if one else 'поворачиваются'} вместе с "
+            f"ведущим звеном {d.link}: {eqs} во всех положениях (в таблицы не {'включено' if one else 'включены'}).")
 
 
 def _turning_link(study, key: str) -> str | None:
@@ -412,9 +442,13 @@ def build(study) -> Section:
         # the curves named before them (ГОСТ 7.32), in this paragraph: a line of its own just before
         # the figure was left alone at a page foot (ws004)
         + (f" Графики аналогов угловых скоростей звеньев — на рисунке {ref('fig-analogs')}." if curves_named else ""))
+    if _with_input_text(study):
+        s2.paragraph(_with_input_text(study))
     if angular:
         chunked_tables(s2, "Аналоги угловых скоростей звеньев", k, wcols, lead, "tab-wq", note=_zero_note(wzero))
         chunked_tables(s2, "Аналоги угловых ускорений звеньев", k, ecols, lead, "tab-eq", note=_zero_note(ezero))
+    elif _with_input(study):
+        s2.paragraph("Остальные звенья движутся поступательно: их угловые скорости и ускорения равны нулю.")
     else:
         s2.paragraph("Все звенья механизма, кроме ведущего, движутся поступательно: их угловые скорости "
                      "и ускорения равны нулю.")
@@ -475,9 +509,13 @@ def build(study) -> Section:
             slides = sum(f.symbolic.startswith("V") for f in ws)
             word = ("камня", "камней") if all(vectors.is_stone(study.mechanism, j)
                                               for j in study.mechanism.prismatic) else ("в поступательной паре", "в поступательных парах")
-            s4.paragraph(f"По отрезкам плана скоростей (рисунок {ref('fig-vplan')}) найдены угловые скорости звеньев"
-                         + (" и относительная скорость " + word[0] if slides == 1 else
-                            " и относительные скорости " + word[1] if slides else "") + ":")
+            rel = ("относительная скорость " + word[0] if slides == 1 else "относительные скорости " + word[1]) \
+                if slides else ""
+            # only relative velocities read (a tangent mechanism: the stone turns with the input link,
+            # no other link turns): no «угловые скорости» announced that the formulas do not give
+            found = (("найдена " if slides == 1 else "найдены ") + rel) if slides == len(ws) else \
+                "найдены угловые скорости звеньев" + (" и " + rel if slides else "")
+            s4.paragraph(f"По отрезкам плана скоростей (рисунок {ref('fig-vplan')}) {found}:")
             s4.formula(*ws)
         else:
             s4.paragraph(f"План скоростей построен на рисунке {ref('fig-vplan')}.")
@@ -918,6 +956,9 @@ def _plan_formulas(sec: Section, study, row, vrow, vplan, aplan,
                                                                      if _rotates(study, j.links[0]))
                       else "для звена, скользящего по вращающейся направляющей,")
                      + " — переносное и относительное движение с кориолисовым ускорением")
+    if mech.driving_pair() is not None:
+        kinds.append("для штока гидроцилиндра — переносное движение вместе с качающимся цилиндром и "
+                     "относительное вдоль его оси с заданной скоростью, с кориолисовым ускорением")
     if any(not _rotates(study, j.links[0]) for j in moving):
         kinds.append("для ползуна на поступательно движущейся направляющей — переносное и относительное "
                      "движение без кориолисова ускорения")
@@ -1098,9 +1139,12 @@ def _speed_lines(study) -> list[str]:
     pin = study.mechanism.crank_pin()
     col = "v_" + str(pin)
     if pin and col in study.cycle:
-        out.append(Markup("Окружная скорость шарнира {0} {1} <i>v</i><sub>{0}</sub>&nbsp;=&nbsp;ω<sub>1</sub>"
+        # a pin that is a joint is a «шарнир»; the end of a driving slotted link (no joint there) a point
+        joint = any(j.point == pin and j.kind == "R" for j in study.mechanism.joints)
+        out.append(Markup("Окружная скорость {4} {0} {1} <i>v</i><sub>{0}</sub>&nbsp;=&nbsp;ω<sub>1</sub>"
                           "<i>l</i><sub>{2}{0}</sub>&nbsp;=&nbsp;{3}&nbsp;м/с.").format(
-            pin, input_word(d, "gen"), d.center, fmt(float(study.cycle[col].abs().max()), sig=3)))
+            pin, input_word(d, "gen"), d.center, fmt(float(study.cycle[col].abs().max()), sig=3),
+            "шарнира" if joint else "точки"))
     return out
 
 

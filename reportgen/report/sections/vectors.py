@@ -26,7 +26,7 @@ import math
 from markupsafe import Markup
 
 from ...mechanism.model import FRAME
-from ...style.numbers import tex_num
+from ...style.numbers import fmt_given, tex_num
 from ..formulas import Formula, inline_math
 from .common import tex_point
 
@@ -133,6 +133,9 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
                 _m(rf"a^{{\tau}}_{{{P}{R}}} = \varepsilon_{{{_ang(name)}}} l_{{{R}{P}}}"
                    + (rf" = {tex_num(abs(e) * l, sig=4, unit='м/с²')}" if known else "")))
                           + (after_a if similar else ""))
+    drive = mech.driving_pair()
+    if drive is not None and d.rod in g.links:
+        _driving_pair(study, row, drive, (vf, vn, af, an))
     known = _solved_before(study, g) | links
     for j in mech.prismatic:
         guide, slider = j.links
@@ -196,6 +199,7 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
                 a_pin = Markup("{} — известно; ").format(_m(rf"\bar{{a}}_{{{Ps}}} = \bar{{a}}_{{{Pp}}}"))
         wg = abs(float(row.get(f"w_{guide}", 0.0)))
         lg = _len(row, j.point, gref)
+        input_guide = d.rotary and guide == d.link
         base = "" if gref in mech.link(FRAME).points else rf"\bar{{V}}_{{{G}}} + "
         if earlier is None:
             vn.append(v_pin + Markup("{} — скорость точки звена {}, совпадающей в данный момент с точкой {} звена {}: "
@@ -203,10 +207,14 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
                 _m(rf"\bar{{V}}_{{{Pg}}}"), guide, _m(P), slider, _m(rf"\bar{{V}}_{{{Pg}}} = {base}\bar{{V}}_{{{Pg}{G}}}"),
                 _m(rf"\bar{{V}}_{{{Pg}{G}}} \;\perp\; {G}{P}"), _m(rf"\bar{{V}}_{{{Ps}{Pg}}} \;\parallel"), guide))
         else:
+            # the guide is the input link itself (a driving slotted link, a tangent lever): its ω₁ is
+            # given, not found with a group
+            whence = Markup("звено {} — ведущее, его угловая скорость задана").format(guide) if input_guide \
+                else Markup("звено {} рассчитано с группой ({})").format(guide, ",".join(earlier.links))
             vn.append(v_pin + Markup("{} — скорость точки звена {}, совпадающей в данный момент с точкой {} звена {}, "
-                             "известна (звено {} рассчитано с группой ({})): {}, {}, {}; {} направляющей звена {} — "
+                             "известна ({}): {}, {}, {}; {} направляющей звена {} — "
                              "величина находится построением").format(
-                _m(rf"\bar{{V}}_{{{Pg}}}"), guide, _m(P), slider, guide, ",".join(earlier.links),
+                _m(rf"\bar{{V}}_{{{Pg}}}"), guide, _m(P), slider, whence,
                 _m(rf"\bar{{V}}_{{{Pg}}} = {base}\bar{{V}}_{{{Pg}{G}}}"), _m(rf"\bar{{V}}_{{{Pg}{G}}} \;\perp\; {G}{P}"),
                 _m(rf"V_{{{Pg}{G}}} = \omega_{{{_ang(guide)}}} l_{{{G}{P}}} = {tex_num(wg, sig=4)} \cdot {tex_num(lg, sig=4)} = "
                    rf"{tex_num(wg * lg, sig=4, unit='м/с')}"),
@@ -215,7 +223,12 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
                           rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}}"))
         vr = abs(float(row.get(f"vs_{j.name}", 0.0)))
         base = "" if gref in mech.link(FRAME).points else rf"\bar{{a}}_{{{G}}} + "
-        tau = Markup("") if earlier is None else Markup(", {} — по найденному {}: точка {} плана — по теореме подобия").format(
+        eg = float(row.get(f"e_{guide}", 0.0))
+        tau = Markup("") if earlier is None else Markup(", {}{}").format(
+            _m(rf"a^{{\tau}}_{{{Pg}{G}}} = \varepsilon_{{{_ang(guide)}}} l_{{{G}{P}}} = {tex_num(abs(eg), sig=4)} \cdot "
+               rf"{tex_num(lg, sig=4)} = {tex_num(abs(eg) * lg, sig=4, unit='м/с²')}"),
+            Markup(" (угловая скорость ведущего звена постоянна)") if abs(eg) < 1e-12 else "") if input_guide \
+            else Markup(", {} — по найденному {}: точка {} плана — по теореме подобия").format(
             _m(rf"a^{{\tau}}_{{{Pg}{G}}} = \varepsilon_{{{_ang(guide)}}} l_{{{G}{P}}}"),
             _m(rf"\varepsilon_{{{_ang(guide)}}}"), _m(rf"{P.lower()}'_{{{guide}}}"))
         an.append(a_pin + Markup("{}: {}, {} (направлено от точки {} к точке {}), {}{}").format(
@@ -234,6 +247,51 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
             _m(rf"\bar{{V}}_{{{Ps}{Pg}}}"), guide,
             _m(rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}} \;\parallel") + Markup(" направляющей")))
     return vf + late[0], vn + late[1], af + late[2], an + late[3]
+
+
+def _given_tex(x: float) -> str:
+    """A given value in TeX as the assignment states it (fmt_given: 0,04, not 0,04000)."""
+    return fmt_given(x).replace(",", "{,}").replace("\u00a0", r"\,")
+
+
+def _driving_pair(study, row, j, out) -> None:
+    """The equations of the actuator's driving pair, first in its initial mechanism: the rod's end
+    P on the cylinder's axis, V̄_P2 = V̄_P1 + V̄_P2P1 with V̄_P1 ⊥ O₁P (the cylinder's point under
+    the rod end, ω₁ found by the construction) and V̄_P2P1 ∥ the axis, given (the rod's speed v₂₁);
+    ā_P2 = ā^n + ā^τ of P1 about O₁ + ā^k (2·ω₁·v₂₁, the cylinder turns) + ā^r (a₂₁, given)
+    (Попов, Тимофеев, гл. 3: a slider on a rotating guide). ``out`` — (vf, vn, af, an), prepended."""
+    mech, d = study.mechanism, study.mechanism.driver
+    cyl, rod = j.links
+    P, O = tex_point(j.point), tex_point(d.center)
+    Ps, Pg = _pt(j.point, rod), _pt(j.point, cyl)
+    l = _len(row, j.point, d.center)
+    w = abs(float(row.get(f"w_{cyl}", 0.0)))
+    v = abs(float(row.get(f"vs_{j.name}", 0.0)))
+    a = float(row.get(f"as_{j.name}", 0.0))
+    vf, vn, af, an = out
+    vf.insert(0, Formula(rf"\bar{{V}}_{{{Ps}}} = \bar{{V}}_{{{Pg}}} + \bar{{V}}_{{{Ps}{Pg}}}"))
+    vn.insert(0, Markup("{} — скорость точки цилиндра {}, совпадающей в данный момент с точкой {} штока {}: {}, "
+                        "{} — величина находится построением; {} оси гидроцилиндра, {} — задана (скорость "
+                        "выдвижения штока); {} — шток соединён шарниром {} со звеном {}").format(
+        _m(rf"\bar{{V}}_{{{Pg}}}"), cyl, _m(P), rod, _m(rf"\bar{{V}}_{{{Pg}}} \;\perp\; {O}{P}"),
+        _m(rf"V_{{{Pg}}} = \omega_{{{cyl}}} l_{{{O}{P}}}"), _m(rf"\bar{{V}}_{{{Ps}{Pg}}} \;\parallel"),
+        _m(rf"V_{{{Ps}{Pg}}} = v_{{{rod}{cyl}}} = {_given_tex(v)}\ \text{{м/с}}"),
+        _m(rf"\bar{{V}}_{{{Ps}}} = \bar{{V}}_{{{P}}}"), _m(P),
+        next((o for jt in mech.joints if jt.kind == "R" and jt.point == j.point and rod in jt.links
+              for o in jt.links if o != rod), "")))
+    af.insert(0, Formula(rf"\bar{{a}}_{{{Ps}}} = \bar{{a}}^{{n}}_{{{Pg}{O}}} + \bar{{a}}^{{\tau}}_{{{Pg}{O}}} + "
+                         rf"\bar{{a}}^{{k}}_{{{Ps}{Pg}}} + \bar{{a}}^{{r}}_{{{Ps}{Pg}}}"))
+    an.insert(0, Markup("{} (направлено от точки {} к точке {}); {}, {} — величина находится построением; {} — "
+                        "кориолисово ускорение (цилиндр вращается), направление — вектор относительной скорости {}, "
+                        "повёрнутый на 90° в сторону вращения цилиндра {}; {} оси гидроцилиндра, {}{}").format(
+        _m(rf"a^{{n}}_{{{Pg}{O}}} = \omega_{{{cyl}}}^{{2}} l_{{{O}{P}}} = {tex_num(w, sig=4)}^{{2}} \cdot "
+           rf"{tex_num(l, sig=4)} = {tex_num(w * w * l, sig=4, unit='м/с²')}"), _m(P), _m(O),
+        _m(rf"\bar{{a}}^{{\tau}}_{{{Pg}{O}}} \;\perp\; {O}{P}"), _m(rf"a^{{\tau}}_{{{Pg}{O}}} = \varepsilon_{{{cyl}}} l_{{{O}{P}}}"),
+        _m(rf"a^{{k}}_{{{Ps}{Pg}}} = 2 \omega_{{{cyl}}} v_{{{rod}{cyl}}} = 2 \cdot {tex_num(w, sig=4)} \cdot "
+           rf"{tex_num(v, sig=4)} = {tex_num(2 * w * v, sig=4, unit='м/с²')}"),
+        _m(rf"\bar{{V}}_{{{Ps}{Pg}}}"), cyl, _m(rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}} \;\parallel"),
+        _m(rf"a^{{r}}_{{{Ps}{Pg}}} = a_{{{rod}{cyl}}} = {tex_num(abs(a), sig=4, unit='м/с²')}"),
+        Markup(" (шток выдвигается с постоянной скоростью)") if abs(a) < 1e-12 else Markup(" — задано")))
 
 
 def _inner_pin(mech, g, j, links: set) -> tuple[Markup, Markup]:
@@ -279,10 +337,16 @@ def add_accelerations(sec, study, row) -> None:
 
 def _add(sec, study, row, head: str, k: int) -> None:
     """The equations (``k`` = 0: velocities, 2: accelerations) of each group with their «где»."""
+    d = study.mechanism.driver
     for g in study.structure.groups:
         eqs = group_equations(study, row, g)
         if not eqs[0] and not eqs[2]:
             continue
-        sec.paragraph(Markup(head).format(g.title))
+        title = g.title
+        if d.kind == "actuator" and d.rod in g.links:    # the initial mechanism, as chapter 1 names it
+            links = [l for h in study.structure.groups if {d.link, d.rod} & set(h.links) for l in h.links]
+            title = (f"начальный механизм ({','.join(dict.fromkeys([d.link, d.rod] + links))}) с ведущей "
+                     f"поступательной парой {d.link}–{d.rod}")
+        sec.paragraph(Markup(head).format(title))
         sec.formula(*eqs[k])
         _where(sec, eqs[k + 1])
