@@ -34,3 +34,48 @@ def test_plan_scale_sentence_names_the_figure(stem, dashed):
     plan = next(p for p in _paragraphs(_section(stem, kinematics)) if p.startswith("План положений"))
     assert ("линиями показаны" in plan or "линией показана" in plan) == dashed, plan
     assert re.search(r"\(1:\d+\)[,.] ", plan), plan
+
+
+# ------------------------------------------------------------------ printed factors and results
+def _tex_value(tex: str):
+    """The value of a substituted formula of numbers, +, −, ·, powers and brackets, as printed; None
+    for anything else (fractions, roots, words)."""
+    t = tex.replace(r"\left(", "(").replace(r"\right)", ")").replace(r"\left[", "(").replace(r"\right]", ")")
+    t = t.replace("{,}", ".").replace(r"\,", "").replace(r"\cdot", "*").replace("^", "**")
+    t = t.replace("{", "(").replace("}", ")")
+    if not re.fullmatch(r"[\d.\s+\-*()]+", t):
+        return None
+    return eval(t)  # noqa: S307 — digits and operators only (checked above)
+
+
+def _tex_result(tex: str) -> tuple[float, int]:
+    """The printed result of a formula and its decimals («{-6310{,}2}\\ \\text{Н·м}» → (−6310.2, 1))."""
+    m = re.search(r"(-?)([\d\\,]+)(?:\{,\}(\d+))?", tex.replace("{-", "-"))
+    whole = m.group(2).replace(r"\,", "")
+    return float(m.group(1) + whole + ("." + m.group(3) if m.group(3) else "")), len(m.group(3) or "")
+
+
+PRODUCTS = [("ws000_six_bar_corrected", "dynamics", r"^(J_\{II,|M_\{\\text\{[GP])"),
+            ("ws000_six_bar_corrected", "forces", r"^(\\Phi_|M_\{\\Phi|M_\{ур\})")]
+
+
+@pytest.mark.parametrize("stem, module, symbol", PRODUCTS)
+def test_printed_factors_multiply_to_printed_result(stem, module, symbol):
+    """A teacher multiplies out the substituted numbers: G·y′ = 90·0,1047 = 9,423 is not the printed
+    9,426 (ws000 (3.11)); 3,5·14,07 = 49,245 is not 49,26 (Φ₅); (−0,1735)(−6913) − 0,3005·(−17 007) =
+    6310,0 is not the printed M_ур = −6310,2.  The measured factors are printed to as many digits as
+    make them agree (J_II,k, the reduced moments, Φ = m·a, M_Φ = −J·ε, M_ур about the crank's axis)."""
+    import importlib
+    mod = importlib.import_module(f"reportgen.report.sections.{module}")
+    checked, bad = 0, []
+    for f in _formulas(_section(stem, mod)):
+        if not f.substituted or not re.search(symbol, f.symbolic or ""):
+            continue
+        v = _tex_value(f.substituted)
+        if v is None:
+            continue
+        r, nd = _tex_result(f.result)
+        checked += 1
+        if abs(round(v, nd) - r) > 0.4 * 10 ** -nd:
+            bad.append((f.symbolic, f.substituted, f.result, v))
+    assert checked >= 4 and not bad, (checked, bad)

@@ -20,7 +20,7 @@ from ...scenes.draw import gost_ratio
 from ...scenes.forces import html_label
 from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, LoadLaws, MomentCurves,
                                 MotionCurves, WittenbauerDiagram, WorkCurves, law_units, shown_laws)
-from ...style.numbers import fmt, fmt_given, fmt_pct, tex_num
+from ...style.numbers import agreeing_sig, fmt, fmt_given, fmt_pct, tex_num, trimmed_sig, written
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import condition_html, expr_html, plural
@@ -85,6 +85,11 @@ def _t(x, sig=4, digits=None, paren=False, unit=None) -> str:
         t = r"\left(" + t + r"\right)"
     return t
 
+
+
+def _ts(x, sig: int, **kw) -> str:
+    """A measured factor printed to ``sig`` digits from :func:`agreeing_sig`, no padding zeros."""
+    return _t(x, sig=trimmed_sig(x, sig), **kw)
 
 def _tx(text: str) -> str:
     """LaTeX of a load/link name in a subscript."""
@@ -462,13 +467,18 @@ def _inertia(sec, study, d, tab, lab, row, kv, lead) -> None:
     for il in d.model.links:
         terms_s, terms_n = [], []
         k = il.name
+        # the analogues to as many digits as make the printed sum the printed J_II,k
+        m, J = written(il.m or 0.0), written(il.J_S or 0.0)
+        S = il.S
+        an = [kv["vqx_" + S], kv["vqy_" + S]] if il.m else [0.0, 0.0]
+        sg = agreeing_sig(lambda f: m * (f[0] ** 2 + f[1] ** 2) + J * f[2] ** 2,
+                          an + [kv["wq_" + k] if il.J_S else 0.0], row["J_II_" + k], result_sig=5)
         if il.m:
-            S = il.S
             terms_s.append(rf"m_{{{k}}} \left( x_{{{tex_point(S)}}}^{{\prime 2}} + y_{{{tex_point(S)}}}^{{\prime 2}} \right)")
-            terms_n.append(rf"{_t(il.m)} \cdot \left( {_t(kv['vqx_' + S], paren=True)}^2 + {_t(kv['vqy_' + S], paren=True)}^2 \right)")
+            terms_n.append(rf"{_t(il.m)} \cdot \left( {_ts(an[0], sg, paren=True)}^2 + {_ts(an[1], sg, paren=True)}^2 \right)")
         if il.J_S:
             terms_s.append(rf"J_{{S{k}}} \varphi_{{{k}}}^{{\prime 2}}")
-            terms_n.append(rf"{_t(il.J_S)} \cdot {_t(kv['wq_' + k], paren=True)}^2")
+            terms_n.append(rf"{_t(il.J_S)} \cdot {_ts(kv['wq_' + k], sg, paren=True)}^2")
         fs.append(Formula(rf"J_{{II,{k}}} = " + " + ".join(terms_s), " + ".join(terms_n),
                           _t(row["J_II_" + k], sig=5, unit="кг·м²")))
     names = " + ".join(rf"J_{{II,{il.name}}}" for il in d.model.links) or "0"
@@ -509,14 +519,19 @@ def _moments(sec, study, d, tab, lab, row, kv, lead) -> None:
         ph = d.loads.phase({"q": np.array([row["q"]])})
         Fx, Fy = ld.force({k: np.array([v]) for k, v in kv.items()}, ph)
         Fx, Fy = float(Fx[0]), float(Fy[0])
+        # the analogues to as many digits as make the printed product the printed moment
         if ld.kind == "weight":
+            G = written(-ld.vector[1])
+            sg = agreeing_sig(lambda f: -G * f[0], [kv["vqy_" + P]], val)
             fs.append(Formula(rf"M_{{{name}}} = -G_{{{ld.link}}}\, y^{{\prime}}_{{{tex_point(P)}}}",
-                              rf"-{_t(-ld.vector[1])} \cdot {_t(kv['vqy_' + P], paren=True)}",
+                              rf"-{_t(-ld.vector[1])} \cdot {_ts(kv['vqy_' + P], sg, paren=True)}",
                               _t(val, sig=4, unit="Н·м")))
         else:
+            wx, wy = written(Fx), written(Fy)
+            sg = agreeing_sig(lambda f: wx * f[0] + wy * f[1], [kv["vqx_" + P], kv["vqy_" + P]], val)
             fs.append(Formula(rf"M_{{{name}}} = F_x\, x^{{\prime}}_{{{tex_point(P)}}} + F_y\, y^{{\prime}}_{{{tex_point(P)}}}",
-                              rf"{_t(Fx, paren=True)} \cdot {_t(kv['vqx_' + P], paren=True)} + "
-                              rf"{_t(Fy, paren=True)} \cdot {_t(kv['vqy_' + P], paren=True)}",
+                              rf"{_t(Fx, paren=True)} \cdot {_ts(kv['vqx_' + P], sg, paren=True)} + "
+                              rf"{_t(Fy, paren=True)} \cdot {_ts(kv['vqy_' + P], sg, paren=True)}",
                               _t(val, sig=4, unit="Н·м")))
     side = "с" if d.balance == "drive" else "д"
     names = " + ".join(rf"M_{{{_tx(ld.name)}}}" for ld in working) or "0"

@@ -21,7 +21,7 @@ from ...mechanism.model import FRAME
 from ...scenes.forces import (AxleCurves, CapacityCurves, GroupForces, ReactionCurves, ZhukovskyLever, group_name,
                               group_vectors, html_label, is_initial, load_label, shown_key)
 from ...scenes.draw import mu_text
-from ...style.numbers import fmt, shared_decimals, tex_num
+from ...style.numbers import agreeing_sig, fmt, shared_decimals, tex_num, trimmed_sig, written
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import plural
@@ -49,6 +49,11 @@ def _t(x, sig=4, digits=None, unit=None) -> str:
         return tex_num(x, sig=sig, digits=digits) + r"\ \%"
     return tex_num(x, sig=sig, digits=digits, unit=unit, paren=unit is None)
 
+
+
+def _ts(x, sig: int, **kw) -> str:
+    """A measured factor printed to ``sig`` digits from :func:`agreeing_sig`, no padding zeros."""
+    return _t(x, sig=trimmed_sig(x, sig), **kw)
 
 def _R(key: str) -> str:
     """HTML of R_ij for the column key "i_j"."""
@@ -245,13 +250,18 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
                       where=[(r"J_{S_k}", "момент инерции звена относительно центра масс, кг·м²"),
                              (r"\varepsilon_k", "угловое ускорение звена, рад/с²")], label="eq-frc-MPhi")]
         for name, m, J, S in inertial:
+            # a and ε to as many digits as make the printed product the printed load
             if m:
+                wm = written(m)
+                sg = agreeing_sig(lambda f: wm * f[0], [row["aS_" + name]], row["Phi_" + name])
                 fs.append(Formula(rf"\Phi_{{{name}}} = m_{{{name}}} a_{{{tex_point(S)}}}",
-                                  rf"{_t(m)} \cdot {_t(row['aS_' + name])}", _t(row["Phi_" + name], unit="Н")))
+                                  rf"{_t(m)} \cdot {_ts(row['aS_' + name], sg)}", _t(row["Phi_" + name], unit="Н")))
             if J:
                 # signed, as eq. (MPhi) and the table: ε_k and M_Φk counter-clockwise positive
+                wJ = written(J)
+                sg = agreeing_sig(lambda f: -wJ * f[0], [row["eps_" + name]], row["MPhi_" + name])
                 fs.append(Formula(rf"M_{{\Phi {name}}} = -J_{{S{name}}} \varepsilon_{{{name}}}",
-                                  rf"-{_t(J)} \cdot {_t(row['eps_' + name])}",
+                                  rf"-{_t(J)} \cdot {_ts(row['eps_' + name], sg)}",
                                   _t(row["MPhi_" + name], unit="Н·м")))
         if f.settings.flywheel:
             dyn = study.dynamics
@@ -545,19 +555,33 @@ def _crank_moment(s: Section, study, f, lab, g, det) -> None:
         P = tex_point(p.point)
         a_, b_ = key.split("_")[:2]
         terms.append((f"R_{{{a_}{b_}}}", rf"(x_{{{P}}} - x_{{{O}}}) R_{{{a_}{b_}y}} - (y_{{{P}}} - y_{{{O}}}) R_{{{a_}{b_}x}}",
-                      rf"{_t(dx)} \cdot {_t(Fy)} - {_t(dy)} \cdot {_t(Fx)}", dx * Fy - dy * Fx))
+                      (dx, Fy, dy, Fx), dx * Fy - dy * Fx))
     for ld in det["loads"]:
         if ld["link"] != d.link:
             continue
         if ld["M"] is not None:
-            terms.append((None, _load_tex(ld), _t(ld["M"]), float(ld["M"])))
+            terms.append((None, _load_tex(ld), (float(ld["M"]),), float(ld["M"])))
         elif ld["point"] != d.center:
             P = tex_point(ld["point"])
             dx, dy = cols["x_" + ld["point"]] - ox, cols["y_" + ld["point"]] - oy
             terms.append((_load_tex(ld), rf"(x_{{{P}}} - x_{{{O}}}) {_load_tex(ld, 'y')} - (y_{{{P}}} - y_{{{O}}}) {_load_tex(ld, 'x')}",
-                          rf"{_t(dx)} \cdot {_t(ld['Fy'])} - {_t(dy)} \cdot {_t(ld['Fx'])}",
-                          dx * float(ld["Fy"]) - dy * float(ld["Fx"])))
+                          (dx, float(ld["Fy"]), dy, float(ld["Fx"])), dx * float(ld["Fy"]) - dy * float(ld["Fx"])))
     Mb = float(f.row(lab)["M_bal"])
+    # arms and forces to as many digits as make the printed products the printed moment(s)
+    factors = [x for t in terms for x in t[2]]
+
+    def moment(fs):
+        out, i = 0.0, 0
+        for t in terms:
+            if len(t[2]) == 1:
+                out, i = out + fs[i], i + 1
+            else:
+                out, i = out + fs[i] * fs[i + 1] - fs[i + 2] * fs[i + 3], i + 4
+        return -out
+    sg = agreeing_sig(moment, factors, Mb, result_sig=5)
+    terms = [(F, sym, _ts(fs[0], sg) if len(fs) == 1 else
+              rf"{_ts(fs[0], sg)} \cdot {_ts(fs[1], sg)} - {_ts(fs[2], sg)} \cdot {_ts(fs[3], sg)}", v)
+             for F, sym, fs, v in terms]
     s.paragraph(f"Уравновешивающий момент {sub('M', 'ур')} (момент, который нужно приложить к {input_word(d, 'dat')} {d.link}, "
                 f"против часовой стрелки — плюс) — из уравнения моментов сил, действующих на {input_word(d)}, "
                 f"относительно оси {d.center}:")
