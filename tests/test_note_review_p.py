@@ -79,3 +79,33 @@ def test_printed_factors_multiply_to_printed_result(stem, module, symbol):
         if abs(round(v, nd) - r) > 0.4 * 10 ** -nd:
             bad.append((f.symbolic, f.substituted, f.result, v))
     assert checked >= 4 and not bad, (checked, bad)
+
+
+# ------------------------------------------------------------------ charts
+def _covered_points(fig) -> list:
+    """(axes, line label) of the curves with a drawn point under their axes' legend."""
+    fig.canvas.draw()
+    out = []
+    for ax in fig.axes:
+        leg = ax.get_legend()
+        if leg is None:
+            continue
+        bb = leg.get_window_extent()
+        for line in ax.lines:
+            xy = line.get_transform().transform(line.get_xydata())
+            inside = ax.get_window_extent()
+            if any(bb.contains(x, y) and inside.contains(x, y) for x, y in xy):
+                out.append(line.get_label())
+    return out
+
+
+@pytest.mark.parametrize("stem", ["ws000_six_bar_corrected", "crank_press"])
+def test_reduced_moments_legend_hides_no_curve(stem):
+    """Fig. 3.2 of ws000: «best» put the two-row legend of the reduced moments over the bottom of
+    M_с (φ ≈ 150°, −6000…−7000 Н·м); the curves of the cycle charts stay visible."""
+    from reportgen.scenes.dynamics import InertiaCurves, MomentCurves
+    from reportgen.style import mplstyle
+    for scene in (MomentCurves(), InertiaCurves()):
+        with mplstyle.captured() as figs:
+            scene.draw(_study(stem))
+        assert not _covered_points(figs[0]), (type(scene).__name__, _covered_points(figs[0]))
