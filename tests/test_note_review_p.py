@@ -109,3 +109,13 @@ def test_reduced_moments_legend_hides_no_curve(stem):
         with mplstyle.captured() as figs:
             scene.draw(_study(stem))
         assert not _covered_points(figs[0]), (type(scene).__name__, _covered_points(figs[0]))
+
+
+# ------------------------------------------------------------------ given data as given
+def test_flywheel_coefficients_as_given():
+    """«ψ_b = 0,200, ψ_h = 0,800» beside «D₁ = 0,8 D₂», «b = 0,2 D₂» (ws000 p. 30): the course's
+    empirical coefficients are written as given, like the formulas they enter."""
+    from reportgen.report.sections import dynamics
+    text = " ".join(_paragraphs(_section("ws000_six_bar_corrected", dynamics)))
+    m = re.search(r"ψb = ([\d,]+), ψh = ([\d,]+),", text)
+    assert m and m.groups() == ("0,2", "0,8"), (m and m.groups(), text[text.find("ψb") - 80:][:200])

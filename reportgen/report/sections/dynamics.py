@@ -841,7 +841,7 @@ def _dimensions(sec, study, d) -> None:
                           _t(J, sig=5, unit="кг·м²"), label="eq-Jshaft"))
     r5 = rf"\sqrt[5]{{{_t(J, sig=6)}}}"
     s.paragraph(f"Маховик в виде обода со спицами и ступицей (рисунок {ref('fig-dyn-flywheel')}; эмпирические зависимости курсового пособия, "
-                f"ψ<sub>b</sub>&nbsp;=&nbsp;{fmt(kw['psi_b'], sig=3)}, ψ<sub>h</sub>&nbsp;=&nbsp;{fmt(kw['psi_h'], sig=3)}, "
+                f"ψ<sub>b</sub>&nbsp;=&nbsp;{as_written(kw['psi_b'])}, ψ<sub>h</sub>&nbsp;=&nbsp;{as_written(kw['psi_h'])}, "
                 f"ρ&nbsp;=&nbsp;{fmt(kw['rho'], sig=4)}&nbsp;кг/м³):")
     rim, disk = fw.rim, fw.disk
     s.formula(Formula(rf"D_2 = {_c(kw['rim_coef'])} \sqrt[5]{{{sym}}}", rf"{_c(kw['rim_coef'])} \cdot {r5}",
