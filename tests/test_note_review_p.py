@@ -119,3 +119,21 @@ def test_flywheel_coefficients_as_given():
     text = " ".join(_paragraphs(_section("ws000_six_bar_corrected", dynamics)))
     m = re.search(r"ψb = ([\d,]+), ψh = ([\d,]+),", text)
     assert m and m.groups() == ("0,2", "0,8"), (m and m.groups(), text[text.find("ψb") - 80:][:200])
+
+
+# ------------------------------------------------------------------ one value, one spelling
+def test_dynamics_angles_and_energy_pairs_as_the_tables():
+    """ws000: the loads switch «при φ = 193,83°, 357,28°» (§3.1) where §2.5 gives the extreme
+    positions 357,3° and 193,8°; «656,14 Дж при φ = 35,78° и −6799,7 Дж» and «K = 584,61 Дж,
+    L = −6852,4 Дж» mix decimals in one sentence.  Places in the cycle to 0,1° as the tables' φ, a
+    sentence's two energies to the decimals of their column."""
+    from reportgen.report.sections import dynamics, kinematics
+    stem = "ws000_six_bar_corrected"
+    text = " ".join(_paragraphs(_section(stem, dynamics)))
+    assert not re.search(r"φ = −?\d+,\d\d°", text), re.findall(r"φ = −?\d+,\d\d°", text)
+    kin = " ".join(_paragraphs(_section(stem, kinematics)))
+    ext = re.search(r"углам поворота кривошипа (\d+,\d)° и (\d+,\d)°", kin).groups()
+    assert all(f"{a}°" in text for a in ext), (ext, text[:400])
+    for a, b in re.findall(r"(−?\d[\d\u202f]*(?:,\d+)?) Дж при φ = [\d,]+° и (−?\d[\d\u202f]*(?:,\d+)?) Дж", text) + \
+            re.findall(r"K = (−?[\d\u202f,]+) Дж, L = (−?[\d\u202f,]+) Дж", text):
+        assert len(a.partition(",")[2]) == len(b.partition(",")[2]), (a, b)

@@ -20,7 +20,7 @@ from ...scenes.draw import gost_ratio
 from ...scenes.forces import html_label
 from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, LoadLaws, MomentCurves,
                                 MotionCurves, WittenbauerDiagram, WorkCurves, law_units, shown_laws)
-from ...style.numbers import agreeing_sig, fmt, fmt_given, fmt_pct, tex_num, trimmed_sig, written
+from ...style.numbers import agreeing_sig, fmt, fmt_given, fmt_pct, shared_decimals, tex_num, trimmed_sig, written
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import condition_html, expr_html, plural
@@ -201,7 +201,16 @@ def _deg(x) -> str:
 
 
 def _phase_deg(study, q) -> str:
-    return fmt(math.degrees(float(q) - study.dynamics.settings.cycle_start), digits=2) + "°"
+    """A place in the cycle to 0,1° as the tables' φ and the kinematics chapter's extreme positions
+    (one angle, one spelling: not 357,28° in §3.1 beside 357,3° in §2.5)."""
+    return fmt(math.degrees(float(q) - study.dynamics.settings.cycle_start), digits=1) + "°"
+
+
+def _two(a, b, unit: str) -> tuple[str, str]:
+    """Two values of one sentence (the extremes of ΔT, K and L) to one number of decimals, as the
+    column they come from (ГОСТ 7.32: 656,1 and −6799,7 Дж, not 656,14 and −6799,7 Дж)."""
+    nd = shared_decimals([a, b], sig=5)
+    return fmt(a, digits=nd, unit=unit), fmt(b, digits=nd, unit=unit)
 
 
 def mertsalov_extremes_text(study) -> str:
@@ -647,8 +656,9 @@ def _works(sec, study, d, tab, lead) -> None:
     s.paragraph("Изменение кинетической энергии машины равно работе всех сил:")
     s.formula(Formula(r"\Delta T(\varphi) = A_{\Sigma}(\varphi) = A_{\text{д}}(\varphi) + A_{\text{с}}(\varphi)"
                       r" = \int_{0}^{\varphi} \left( M_{\text{д}} + M_{\text{с}} \right) d\varphi", label="eq-dT"))
-    s.paragraph(f"Наибольшее и наименьшее значения ΔT за цикл: {fmt(sc['dT_max'], sig=5, unit='Дж')} при "
-                f"φ&nbsp;=&nbsp;{_phase_deg(study, sc['q_dT_max'])} и {fmt(sc['dT_min'], sig=5, unit='Дж')} при "
+    hi, lo = _two(sc["dT_max"], sc["dT_min"], "Дж")
+    s.paragraph(f"Наибольшее и наименьшее значения ΔT за цикл: {hi} при "
+                f"φ&nbsp;=&nbsp;{_phase_deg(study, sc['q_dT_max'])} и {lo} при "
                 f"φ&nbsp;=&nbsp;{_phase_deg(study, sc['q_dT_min'])} (найдены решением уравнения "
                 f"{_im('Msum0')}).")
     cols = [Column("A_c", _h("A", "с"), "Дж", sig=5), Column("A_d", _h("A", "д"), "Дж", sig=5),
@@ -725,8 +735,8 @@ def _flywheel(sec, study, d) -> None:
     s.figure("Диаграмма энергия–масса (диаграмма Виттенбауэра) с касательными", fig.svg, fig.width_mm,
              id="fig-dyn-witt")
     s.paragraph(f"Точки касания: φ&nbsp;=&nbsp;{_phase_deg(study, wi.tangent_max.phi)} (верхняя) и "
-                f"{_phase_deg(study, wi.tangent_min.phi)} (нижняя); K&nbsp;=&nbsp;{fmt(wi.K, sig=5, unit='Дж')}, "
-                f"L&nbsp;=&nbsp;{fmt(wi.L, sig=5, unit='Дж')}. С точными наклонами (1&nbsp;±&nbsp;δ/2)² метод "
+                f"{_phase_deg(study, wi.tangent_min.phi)} (нижняя); K&nbsp;=&nbsp;{_two(wi.K, wi.L, 'Дж')[0]}, "
+                f"L&nbsp;=&nbsp;{_two(wi.K, wi.L, 'Дж')[1]}. С точными наклонами (1&nbsp;±&nbsp;δ/2)² метод "
                 "Виттенбауэра точен: касание означает, что в этих положениях ω&nbsp;=&nbsp;ω<sub>max</sub> и "
                 "ω<sub>min</sub>. С упрощёнными наклонами ω<sub>ср</sub>²(1&nbsp;±&nbsp;δ)/2 получается "
                 f"J<sub>I</sub>&nbsp;=&nbsp;{fmt(wi.J_I_linear, sig=6, unit='кг·м²')}.")
