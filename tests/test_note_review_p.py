@@ -50,7 +50,7 @@ def _tex_value(tex: str):
 
 def _tex_result(tex: str) -> tuple[float, int]:
     """The printed result of a formula and its decimals («{-6310{,}2}\\ \\text{Н·м}» → (−6310.2, 1))."""
-    m = re.search(r"(-?)([\d\\,]+)(?:\{,\}(\d+))?", tex.replace("{-", "-"))
+    m = re.search(r"(-?)(\d+(?:\\,\d{3})*)(?:\{,\}(\d+))?", tex.replace("{-", "-"))
     whole = m.group(2).replace(r"\,", "")
     return float(m.group(1) + whole + ("." + m.group(3) if m.group(3) else "")), len(m.group(3) or "")
 
@@ -137,3 +137,27 @@ def test_dynamics_angles_and_energy_pairs_as_the_tables():
     for a, b in re.findall(r"(−?\d[\d\u202f]*(?:,\d+)?) Дж при φ = [\d,]+° и (−?\d[\d\u202f]*(?:,\d+)?) Дж", text) + \
             re.findall(r"K = (−?[\d\u202f,]+) Дж, L = (−?[\d\u202f,]+) Дж", text):
         assert len(a.partition(",")[2]) == len(b.partition(",")[2]), (a, b)
+
+
+@pytest.mark.parametrize("stem", ["slider_crank", "ws004_slotted_lever", "ws000_six_bar_corrected"])
+def test_plan_accelerations_multiply_out(stem, monkeypatch):
+    """a^n = ω²l and a^k = 2ωV with ω, V from the plans: slider_crank printed ω₂ = 13,05/0,4 = 32,625
+    as «32,63² · 0,4000 = 425,8» (32,63²·0,4 = 425,9); ws004 «3,033² · 0,4830 = 4,444» (4,443) and
+    «3,033² · 0,9000 = 8,281» (8,279)."""
+    from reportgen.report.sections import kinematics, vectors
+    seen = []
+    monkeypatch.setattr(vectors, "inline_math", lambda tex: seen.append(tex) or tex)
+    kinematics.build(_study(stem))
+    checked, bad = 0, []
+    for tex in seen:
+        parts = tex.split(" = ")
+        if not re.match(r"a\^\{[nk]\}", tex) or len(parts) < 3:
+            continue
+        v = _tex_value(parts[-2].replace("^{2}", "^2"))
+        if v is None:
+            continue
+        r, nd = _tex_result(parts[-1])
+        checked += 1
+        if abs(round(v, nd) - r) > 0.4 * 10 ** -nd:
+            bad.append((tex, v))
+    assert checked >= 2 and not bad, (checked, bad)
