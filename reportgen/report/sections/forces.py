@@ -924,12 +924,18 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
     fs = [Formula(rf"F = {L_} \cdot i_{{{pt}}}", rf"{_in(P)} \cdot {_t(ip, sig=5)}", _t(row["F_act"], sig=6, unit="Н"),
                   label="eq-frc-F"),
           Formula(r"A = \frac{\pi D^2}{4}", rf"\frac{{\pi \cdot {_in(a.diameter)}^2}}{{4}}", _t(a.area, sig=5, unit="м²")),
-          Formula(r"p = \frac{F}{k A \eta}", rf"\frac{{{_t(row['F_act'], sig=6)}}}{{{a.count} \cdot {_t(a.area, sig=5)} \cdot {_in(a.efficiency)}}}",
-                  _t(row["p_act"] / 1e6, sig=6, unit="МПа"), label="eq-frc-p")]
+          # p to the table's 3 decimals; the area and the ratios i to as many digits as make the
+          # printed quotients the printed p and G (2·17,5·10⁶·0,84·0,0050265/3,9840 = 37 093, not 37 094)
+          Formula(r"p = \frac{F}{k A \eta}", rf"\frac{{{_t(row['F_act'], sig=6)}}}{{{a.count} \cdot "
+                  rf"{_ts(a.area, agreeing_sig(lambda f: f[0] / (a.count * f[1] * a.efficiency) / 1e6, [row['F_act'], a.area], row['p_act'] / 1e6, sig=5, result_sig=5))}"
+                  rf" \cdot {_in(a.efficiency)}}}",
+                  _t(row["p_act"] / 1e6, digits=3, unit="МПа"), label="eq-frc-p")]
     for q in list(c.points) + [c.point]:
         Q = tex_point(q)
+        kpe = a.count * a.pressure * a.efficiency
+        sg = agreeing_sig(lambda f: kpe * f[0] / f[1], [a.area, row["i_" + q]], row["Gcap_" + q], sig=5, result_sig=5)
         fs.append(Formula(rf"G_{{{Q}}} = \frac{{k p_{{max}} \eta A}}{{i_{{{Q}}}}}",
-                          rf"\frac{{{a.count} \cdot {_in(a.pressure / 1e6)} \cdot 10^{{6}} \cdot {_in(a.efficiency)} \cdot {_t(a.area, sig=5)}}}{{{_t(row['i_' + q], sig=5)}}}",
+                          rf"\frac{{{a.count} \cdot {_in(a.pressure / 1e6)} \cdot 10^{{6}} \cdot {_in(a.efficiency)} \cdot {_ts(a.area, sg)}}}{{{_ts(row['i_' + q], sg)}}}",
                           _t(row["Gcap_" + q], sig=5, unit="Н")))
     fs.append(Formula(rf"\Delta G = \frac{{G_{{{pt}}} - {L_}}}{{{L_}}} \cdot 100\%",
                       rf"\frac{{{_t(row['Gcap_' + c.point], sig=5)} - {_in(P)}}}{{{_in(P)}}} \cdot 100\%",
@@ -979,10 +985,15 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
                 f"<i>x</i><sub>G</sub> (координата его центра масс) позади задней оси. Для положения {pos_no(study, lab)} "
                 f"(по всем положениям — таблица {ref('tab-frc-carrier')} и рисунок {ref('fig-frc-carrier')}):")
     RA = row["R_front"]
+    m0 = c.ballast * (c.ballast_arm + c.wheelbase) + c.weight * c.weight_arm
+    # x_G to as many digits as make both quotients the printed R_A and G_max
+    w0, wr, wL, wG = written(m0, 6), written(row["R_front_min"], 5), float(c.wheelbase), float(G)
+    sx = max(agreeing_sig(lambda f: (m0 - wG * f[0]) / wL, [x], RA, sig=5, result_sig=5),
+             agreeing_sig(lambda f: (w0 - wr * wL) / f[0], [x], row["Gmax_carrier"], sig=5, result_sig=5))
     s.formula(
         Formula(r"R_A = \frac{P_{гр} (a + L) + P_в b - G x_G}{L}",
                 rf"\frac{{{_in(c.ballast)} \cdot ({_in(c.ballast_arm)} + {_in(c.wheelbase)}) + {_in(c.weight)} \cdot "
-                rf"{_in(c.weight_arm)} - {_in(G)} \cdot {_t(x, sig=5)}}}{{{_in(c.wheelbase)}}}",
+                rf"{_in(c.weight_arm)} - {_in(G)} \cdot {_ts(x, sx)}}}{{{_in(c.wheelbase)}}}",
                 _t(RA, sig=5, unit="Н"), label="eq-frc-RA"),
         Formula(r"R_B = P_{гр} + P_в + G - R_A", None, _t(row["R_rear"], sig=5, unit="Н")),
         Formula(r"\Delta R_A = \frac{R_A}{G + P_в + P_{гр}} \cdot 100\%",
@@ -991,10 +1002,9 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
                 _t(row["R_front_min"], sig=5, unit="Н")))
     s.paragraph("Наибольший груз, при котором на управляемый мост приходится не меньше <i>R</i><sub>A,min</sub> "
                 "(из того же уравнения моментов):")
-    m0 = c.ballast * (c.ballast_arm + c.wheelbase) + c.weight * c.weight_arm
     s.formula(
         Formula(r"G_{max} = \frac{P_в b + P_{гр} (a + L) - R_{A,min} L}{x_G}",
-                rf"\frac{{{_t(m0, sig=6)} - {_t(row['R_front_min'], sig=5)} \cdot {_in(c.wheelbase)}}}{{{_t(x, sig=5)}}}",
+                rf"\frac{{{_t(m0, sig=6)} - {_t(row['R_front_min'], sig=5)} \cdot {_in(c.wheelbase)}}}{{{_ts(x, sx)}}}",
                 _t(row["Gmax_carrier"], sig=5, unit="Н"), label="eq-frc-Gmax"),
         Formula(r"G_{max}^{*} = \frac{P_в b + P_{гр} (a + L) - k_A L (P_в + P_{гр})}{x_G + k_A L}", None,
                 _t(row["Gmax_carrier_consistent"], sig=5, unit="Н")))
