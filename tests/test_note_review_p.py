@@ -4,6 +4,14 @@ Each test fails on what the review found:
 
 * ws004's plan of positions (no centre of mass given, so no dashed paths): «Масштаб μ_l = 0,01 м/мм
   (1:10). (рисунок 2.1).» — a sentence that is only a figure reference;
+* printed factors that do not multiply out to the printed result (the issue's «90·14,5 ≠ 1308,3»,
+  still in the formulas): ws000 M_G2 = −90,00·0,1047 = −9,426, Φ₅ = 3,500·14,07 = 49,26, M_ур =
+  −6310,2 from arms and forces giving −6310,0; slider_crank a^n_BA = 32,63²·0,4 = 425,8; ws002
+  G₅₆ = …·0,0050265/3,9840 = 37 094, G_max = …/2,0180 = 32 227;
+* ws000 Fig. 3.2: the two-row legend of the reduced moments over the bottom of M_с;
+* ws000 «ψ_b = 0,200, ψ_h = 0,800» beside «D₁ = 0,8 D₂»;
+* ws000 «при φ = 193,83°, 357,28°» in §3.1 where §2.5 gives 357,3° and 193,8°; «656,14 Дж … и
+  −6799,7 Дж», «K = 584,61 Дж, L = −6852,4 Дж» with two numbers of decimals in one sentence.
 """
 import re
 
