@@ -43,10 +43,15 @@ def _cycle_axes(study, height_mm: float):
 
 def _cycle_drawing(fig, ax, study, ylabel: str, per_row: int = 1) -> Drawing:
     """The curves over the cycle finished: the φ axis, the value axis' label, the legend (at most
-    ``per_row`` entries a row, read row by row)."""
+    ``per_row`` entries a row, read row by row; of several columns, above the axes)."""
     _xaxis(ax, study)
     ax.set_ylabel(ylabel)
-    legend_rows(ax, per_row, fontsize=9, loc="best")
+    if per_row > 1:
+        # a legend of several columns above the axes, as on the reactions' chart: inside, where «best»
+        # put it, it hid a piece of M_с (every corner of a cycle of reduced moments holds a curve)
+        legend_rows(ax, per_row, fontsize=9, loc="lower center", bbox_to_anchor=(0.5, 1.0), frameon=False)
+    else:
+        legend_rows(ax, per_row, fontsize=9, loc="best")
     return Drawing(mplstyle.to_svg(fig), 160, 0.0)
 
 

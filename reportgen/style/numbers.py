@@ -36,6 +36,9 @@ __all__ = [
     "fmt",
     "fmt_deg",
     "shared_decimals",
+    "written",
+    "agreeing_sig",
+    "trimmed_sig",
     "fmt_pct",
     "tex_num",
     "mpl_formatter",
@@ -113,6 +116,17 @@ def _sig_decimals(d: Decimal, sig: int) -> int:
     return max(0, sig - 1 - d.adjusted())
 
 
+def _sig_round(d: Decimal, sig: int) -> tuple[Decimal, int]:
+    """``d`` rounded to ``sig`` significant digits in fixed form, and its decimals."""
+    decimals = _sig_decimals(d, sig)
+    q = _quantize(d, decimals)
+    # Rounding may carry into a new digit (0,99996 → 1,0000): recompute.
+    if q != 0 and q.adjusted() != d.adjusted():
+        decimals = _sig_decimals(q, sig)
+        q = _quantize(d, decimals)
+    return q, decimals
+
+
 def _parts(x, digits: int | None, sig: int | None, exp_from: float):
     """Split a number into (negative, mantissa text, exponent or None).
 
@@ -156,12 +170,7 @@ def _parts(x, digits: int | None, sig: int | None, exp_from: float):
         decimals = 0
         q = d
     else:
-        decimals = _sig_decimals(d, sig)
-        q = _quantize(d, decimals)
-        # Rounding may carry into a new digit (0,99996 → 1,0000): recompute.
-        if q != 0 and q.adjusted() != d.adjusted():
-            decimals = _sig_decimals(q, sig)
-            q = _quantize(d, decimals)
+        q, decimals = _sig_round(d, sig)
     text, is_zero = _plain(q, decimals)
     return (d < 0 and not is_zero, text, None) if not is_zero else (False, text, None)
 
@@ -228,6 +237,44 @@ def shared_decimals(values, *, sig: int = 4, most: int = 2) -> int:
     if big == 0.0:
         return most
     return max(0, min(most, sig - 1 - math.floor(math.log10(big))))
+
+
+def written(x, sig: int = 4) -> float:
+    """The value a reader sees when ``x`` is printed with ``sig`` significant digits (the rounding of
+    :func:`fmt`; an exact count, an ``int``, is printed whole)."""
+    if isinstance(x, _numbers.Integral):
+        return float(x)
+    d = _to_decimal(x)
+    if d is None or d == 0:
+        return float(x)
+    return float(_sig_round(d, sig)[0])
+
+
+def trimmed_sig(x, sig: int, least: int = 4) -> int:
+    """The fewest significant digits, from ``least`` up to ``sig``, that print the same value as
+    ``sig`` do: an exact 0,1735 among factors printed to 7 digits stays «0,1735», not «0,1735000»."""
+    for s in range(least, sig):
+        if written(x, s) == written(x, sig):
+            return s
+    return sig
+
+
+def agreeing_sig(value, factors, result, *, sig: int = 4, result_sig: int = 4, most: int = 7) -> int:
+    """The fewest significant digits, from ``sig`` up to ``most``, to print the measured factors of
+    a substituted formula with, so that ``value`` of the factors as printed, rounded as the result
+    is printed, is the printed result: a reader who multiplies out the printed numbers gets the
+    printed answer (G·y′ = 90·0,1047 = 9,423 is not the printed 9,426; 90·0,10473 is).  ``value``
+    takes the list of the factors as printed; given data it uses is written once, as given.  When no
+    number of digits up to ``most`` makes them agree, ``sig``."""
+    d = _to_decimal(result)
+    if d is None or d == 0:
+        return sig
+    target, decimals = _sig_round(d, result_sig)
+    for s in range(sig, most + 1):
+        v = _to_decimal(value([written(f, s) for f in factors]))
+        if v is not None and _quantize(v, decimals) == target:
+            return s
+    return sig          # no number of digits makes them agree (not a rounding matter): as before
 
 
 def fmt_deg(rad, digits: int = 1, **kw) -> str:

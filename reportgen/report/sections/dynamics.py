@@ -20,7 +20,7 @@ from ...scenes.draw import gost_ratio
 from ...scenes.forces import html_label
 from ...scenes.dynamics import (EnergyCurves, FlywheelDrawing, InertiaCurves, LoadLaws, MomentCurves,
                                 MotionCurves, WittenbauerDiagram, WorkCurves, law_units, shown_laws)
-from ...style.numbers import fmt, fmt_given, fmt_pct, tex_num
+from ...style.numbers import agreeing_sig, fmt, fmt_given, fmt_pct, shared_decimals, tex_num, trimmed_sig, written
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import condition_html, expr_html, plural
@@ -85,6 +85,11 @@ def _t(x, sig=4, digits=None, paren=False, unit=None) -> str:
         t = r"\left(" + t + r"\right)"
     return t
 
+
+
+def _ts(x, sig: int, **kw) -> str:
+    """A measured factor printed to ``sig`` digits from :func:`agreeing_sig`, no padding zeros."""
+    return _t(x, sig=trimmed_sig(x, sig), **kw)
 
 def _tx(text: str) -> str:
     """LaTeX of a load/link name in a subscript."""
@@ -196,7 +201,16 @@ def _deg(x) -> str:
 
 
 def _phase_deg(study, q) -> str:
-    return fmt(math.degrees(float(q) - study.dynamics.settings.cycle_start), digits=2) + "°"
+    """A place in the cycle to 0,1° as the tables' φ and the kinematics chapter's extreme positions
+    (one angle, one spelling: not 357,28° in §3.1 beside 357,3° in §2.5)."""
+    return fmt(math.degrees(float(q) - study.dynamics.settings.cycle_start), digits=1) + "°"
+
+
+def _two(a, b, unit: str) -> tuple[str, str]:
+    """Two values of one sentence (the extremes of ΔT, K and L) to one number of decimals, as the
+    column they come from (ГОСТ 7.32: 656,1 and −6799,7 Дж, not 656,14 and −6799,7 Дж)."""
+    nd = shared_decimals([a, b], sig=5)
+    return fmt(a, digits=nd, unit=unit), fmt(b, digits=nd, unit=unit)
 
 
 def mertsalov_extremes_text(study) -> str:
@@ -462,13 +476,18 @@ def _inertia(sec, study, d, tab, lab, row, kv, lead) -> None:
     for il in d.model.links:
         terms_s, terms_n = [], []
         k = il.name
+        # the analogues to as many digits as make the printed sum the printed J_II,k
+        m, J = written(il.m or 0.0), written(il.J_S or 0.0)
+        S = il.S
+        an = [kv["vqx_" + S], kv["vqy_" + S]] if il.m else [0.0, 0.0]
+        sg = agreeing_sig(lambda f: m * (f[0] ** 2 + f[1] ** 2) + J * f[2] ** 2,
+                          an + [kv["wq_" + k] if il.J_S else 0.0], row["J_II_" + k], result_sig=5)
         if il.m:
-            S = il.S
             terms_s.append(rf"m_{{{k}}} \left( x_{{{tex_point(S)}}}^{{\prime 2}} + y_{{{tex_point(S)}}}^{{\prime 2}} \right)")
-            terms_n.append(rf"{_t(il.m)} \cdot \left( {_t(kv['vqx_' + S], paren=True)}^2 + {_t(kv['vqy_' + S], paren=True)}^2 \right)")
+            terms_n.append(rf"{_t(il.m)} \cdot \left( {_ts(an[0], sg, paren=True)}^2 + {_ts(an[1], sg, paren=True)}^2 \right)")
         if il.J_S:
             terms_s.append(rf"J_{{S{k}}} \varphi_{{{k}}}^{{\prime 2}}")
-            terms_n.append(rf"{_t(il.J_S)} \cdot {_t(kv['wq_' + k], paren=True)}^2")
+            terms_n.append(rf"{_t(il.J_S)} \cdot {_ts(kv['wq_' + k], sg, paren=True)}^2")
         fs.append(Formula(rf"J_{{II,{k}}} = " + " + ".join(terms_s), " + ".join(terms_n),
                           _t(row["J_II_" + k], sig=5, unit="кг·м²")))
     names = " + ".join(rf"J_{{II,{il.name}}}" for il in d.model.links) or "0"
@@ -509,14 +528,19 @@ def _moments(sec, study, d, tab, lab, row, kv, lead) -> None:
         ph = d.loads.phase({"q": np.array([row["q"]])})
         Fx, Fy = ld.force({k: np.array([v]) for k, v in kv.items()}, ph)
         Fx, Fy = float(Fx[0]), float(Fy[0])
+        # the analogues to as many digits as make the printed product the printed moment
         if ld.kind == "weight":
+            G = written(-ld.vector[1])
+            sg = agreeing_sig(lambda f: -G * f[0], [kv["vqy_" + P]], val)
             fs.append(Formula(rf"M_{{{name}}} = -G_{{{ld.link}}}\, y^{{\prime}}_{{{tex_point(P)}}}",
-                              rf"-{_t(-ld.vector[1])} \cdot {_t(kv['vqy_' + P], paren=True)}",
+                              rf"-{_t(-ld.vector[1])} \cdot {_ts(kv['vqy_' + P], sg, paren=True)}",
                               _t(val, sig=4, unit="Н·м")))
         else:
+            wx, wy = written(Fx), written(Fy)
+            sg = agreeing_sig(lambda f: wx * f[0] + wy * f[1], [kv["vqx_" + P], kv["vqy_" + P]], val)
             fs.append(Formula(rf"M_{{{name}}} = F_x\, x^{{\prime}}_{{{tex_point(P)}}} + F_y\, y^{{\prime}}_{{{tex_point(P)}}}",
-                              rf"{_t(Fx, paren=True)} \cdot {_t(kv['vqx_' + P], paren=True)} + "
-                              rf"{_t(Fy, paren=True)} \cdot {_t(kv['vqy_' + P], paren=True)}",
+                              rf"{_t(Fx, paren=True)} \cdot {_ts(kv['vqx_' + P], sg, paren=True)} + "
+                              rf"{_t(Fy, paren=True)} \cdot {_ts(kv['vqy_' + P], sg, paren=True)}",
                               _t(val, sig=4, unit="Н·м")))
     side = "с" if d.balance == "drive" else "д"
     names = " + ".join(rf"M_{{{_tx(ld.name)}}}" for ld in working) or "0"
@@ -642,8 +666,9 @@ def _works(sec, study, d, tab, lead) -> None:
     s.paragraph("Изменение кинетической энергии машины равно работе всех сил:")
     s.formula(Formula(r"\Delta T(\varphi) = A_{\Sigma}(\varphi) = A_{\text{д}}(\varphi) + A_{\text{с}}(\varphi)"
                       r" = \int_{0}^{\varphi} \left( M_{\text{д}} + M_{\text{с}} \right) d\varphi", label="eq-dT"))
-    s.paragraph(f"Наибольшее и наименьшее значения ΔT за цикл: {fmt(sc['dT_max'], sig=5, unit='Дж')} при "
-                f"φ&nbsp;=&nbsp;{_phase_deg(study, sc['q_dT_max'])} и {fmt(sc['dT_min'], sig=5, unit='Дж')} при "
+    hi, lo = _two(sc["dT_max"], sc["dT_min"], "Дж")
+    s.paragraph(f"Наибольшее и наименьшее значения ΔT за цикл: {hi} при "
+                f"φ&nbsp;=&nbsp;{_phase_deg(study, sc['q_dT_max'])} и {lo} при "
                 f"φ&nbsp;=&nbsp;{_phase_deg(study, sc['q_dT_min'])} (найдены решением уравнения "
                 f"{_im('Msum0')}).")
     cols = [Column("A_c", _h("A", "с"), "Дж", sig=5), Column("A_d", _h("A", "д"), "Дж", sig=5),
@@ -720,8 +745,8 @@ def _flywheel(sec, study, d) -> None:
     s.figure("Диаграмма энергия–масса (диаграмма Виттенбауэра) с касательными", fig.svg, fig.width_mm,
              id="fig-dyn-witt")
     s.paragraph(f"Точки касания: φ&nbsp;=&nbsp;{_phase_deg(study, wi.tangent_max.phi)} (верхняя) и "
-                f"{_phase_deg(study, wi.tangent_min.phi)} (нижняя); K&nbsp;=&nbsp;{fmt(wi.K, sig=5, unit='Дж')}, "
-                f"L&nbsp;=&nbsp;{fmt(wi.L, sig=5, unit='Дж')}. С точными наклонами (1&nbsp;±&nbsp;δ/2)² метод "
+                f"{_phase_deg(study, wi.tangent_min.phi)} (нижняя); K&nbsp;=&nbsp;{_two(wi.K, wi.L, 'Дж')[0]}, "
+                f"L&nbsp;=&nbsp;{_two(wi.K, wi.L, 'Дж')[1]}. С точными наклонами (1&nbsp;±&nbsp;δ/2)² метод "
                 "Виттенбауэра точен: касание означает, что в этих положениях ω&nbsp;=&nbsp;ω<sub>max</sub> и "
                 "ω<sub>min</sub>. С упрощёнными наклонами ω<sub>ср</sub>²(1&nbsp;±&nbsp;δ)/2 получается "
                 f"J<sub>I</sub>&nbsp;=&nbsp;{fmt(wi.J_I_linear, sig=6, unit='кг·м²')}.")
@@ -836,7 +861,7 @@ def _dimensions(sec, study, d) -> None:
                           _t(J, sig=5, unit="кг·м²"), label="eq-Jshaft"))
     r5 = rf"\sqrt[5]{{{_t(J, sig=6)}}}"
     s.paragraph(f"Маховик в виде обода со спицами и ступицей (рисунок {ref('fig-dyn-flywheel')}; эмпирические зависимости курсового пособия, "
-                f"ψ<sub>b</sub>&nbsp;=&nbsp;{fmt(kw['psi_b'], sig=3)}, ψ<sub>h</sub>&nbsp;=&nbsp;{fmt(kw['psi_h'], sig=3)}, "
+                f"ψ<sub>b</sub>&nbsp;=&nbsp;{as_written(kw['psi_b'])}, ψ<sub>h</sub>&nbsp;=&nbsp;{as_written(kw['psi_h'])}, "
                 f"ρ&nbsp;=&nbsp;{fmt(kw['rho'], sig=4)}&nbsp;кг/м³):")
     rim, disk = fw.rim, fw.disk
     s.formula(Formula(rf"D_2 = {_c(kw['rim_coef'])} \sqrt[5]{{{sym}}}", rf"{_c(kw['rim_coef'])} \cdot {r5}",

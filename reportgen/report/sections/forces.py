@@ -21,7 +21,7 @@ from ...mechanism.model import FRAME
 from ...scenes.forces import (AxleCurves, CapacityCurves, GroupForces, ReactionCurves, ZhukovskyLever, group_name,
                               group_vectors, html_label, is_initial, load_label, shown_key)
 from ...scenes.draw import mu_text
-from ...style.numbers import fmt, shared_decimals, tex_num
+from ...style.numbers import agreeing_sig, fmt, shared_decimals, tex_num, trimmed_sig, written
 from ..document import Column, Formula, Section, ref
 from ..formulas import inline_math
 from ..russian import plural
@@ -49,6 +49,11 @@ def _t(x, sig=4, digits=None, unit=None) -> str:
         return tex_num(x, sig=sig, digits=digits) + r"\ \%"
     return tex_num(x, sig=sig, digits=digits, unit=unit, paren=unit is None)
 
+
+
+def _ts(x, sig: int, **kw) -> str:
+    """A measured factor printed to ``sig`` digits from :func:`agreeing_sig`, no padding zeros."""
+    return _t(x, sig=trimmed_sig(x, sig), **kw)
 
 def _R(key: str) -> str:
     """HTML of R_ij for the column key "i_j"."""
@@ -245,13 +250,18 @@ def _loads(sec: Section, study, f, lab: str, static: bool) -> None:
                       where=[(r"J_{S_k}", "момент инерции звена относительно центра масс, кг·м²"),
                              (r"\varepsilon_k", "угловое ускорение звена, рад/с²")], label="eq-frc-MPhi")]
         for name, m, J, S in inertial:
+            # a and ε to as many digits as make the printed product the printed load
             if m:
+                wm = written(m)
+                sg = agreeing_sig(lambda f: wm * f[0], [row["aS_" + name]], row["Phi_" + name])
                 fs.append(Formula(rf"\Phi_{{{name}}} = m_{{{name}}} a_{{{tex_point(S)}}}",
-                                  rf"{_t(m)} \cdot {_t(row['aS_' + name])}", _t(row["Phi_" + name], unit="Н")))
+                                  rf"{_t(m)} \cdot {_ts(row['aS_' + name], sg)}", _t(row["Phi_" + name], unit="Н")))
             if J:
                 # signed, as eq. (MPhi) and the table: ε_k and M_Φk counter-clockwise positive
+                wJ = written(J)
+                sg = agreeing_sig(lambda f: -wJ * f[0], [row["eps_" + name]], row["MPhi_" + name])
                 fs.append(Formula(rf"M_{{\Phi {name}}} = -J_{{S{name}}} \varepsilon_{{{name}}}",
-                                  rf"-{_t(J)} \cdot {_t(row['eps_' + name])}",
+                                  rf"-{_t(J)} \cdot {_ts(row['eps_' + name], sg)}",
                                   _t(row["MPhi_" + name], unit="Н·м")))
         if f.settings.flywheel:
             dyn = study.dynamics
@@ -545,19 +555,33 @@ def _crank_moment(s: Section, study, f, lab, g, det) -> None:
         P = tex_point(p.point)
         a_, b_ = key.split("_")[:2]
         terms.append((f"R_{{{a_}{b_}}}", rf"(x_{{{P}}} - x_{{{O}}}) R_{{{a_}{b_}y}} - (y_{{{P}}} - y_{{{O}}}) R_{{{a_}{b_}x}}",
-                      rf"{_t(dx)} \cdot {_t(Fy)} - {_t(dy)} \cdot {_t(Fx)}", dx * Fy - dy * Fx))
+                      (dx, Fy, dy, Fx), dx * Fy - dy * Fx))
     for ld in det["loads"]:
         if ld["link"] != d.link:
             continue
         if ld["M"] is not None:
-            terms.append((None, _load_tex(ld), _t(ld["M"]), float(ld["M"])))
+            terms.append((None, _load_tex(ld), (float(ld["M"]),), float(ld["M"])))
         elif ld["point"] != d.center:
             P = tex_point(ld["point"])
             dx, dy = cols["x_" + ld["point"]] - ox, cols["y_" + ld["point"]] - oy
             terms.append((_load_tex(ld), rf"(x_{{{P}}} - x_{{{O}}}) {_load_tex(ld, 'y')} - (y_{{{P}}} - y_{{{O}}}) {_load_tex(ld, 'x')}",
-                          rf"{_t(dx)} \cdot {_t(ld['Fy'])} - {_t(dy)} \cdot {_t(ld['Fx'])}",
-                          dx * float(ld["Fy"]) - dy * float(ld["Fx"])))
+                          (dx, float(ld["Fy"]), dy, float(ld["Fx"])), dx * float(ld["Fy"]) - dy * float(ld["Fx"])))
     Mb = float(f.row(lab)["M_bal"])
+    # arms and forces to as many digits as make the printed products the printed moment(s)
+    factors = [x for t in terms for x in t[2]]
+
+    def moment(fs):
+        out, i = 0.0, 0
+        for t in terms:
+            if len(t[2]) == 1:
+                out, i = out + fs[i], i + 1
+            else:
+                out, i = out + fs[i] * fs[i + 1] - fs[i + 2] * fs[i + 3], i + 4
+        return -out
+    sg = agreeing_sig(moment, factors, Mb, result_sig=5)
+    terms = [(F, sym, _ts(fs[0], sg) if len(fs) == 1 else
+              rf"{_ts(fs[0], sg)} \cdot {_ts(fs[1], sg)} - {_ts(fs[2], sg)} \cdot {_ts(fs[3], sg)}", v)
+             for F, sym, fs, v in terms]
     s.paragraph(f"Уравновешивающий момент {sub('M', 'ур')} (момент, который нужно приложить к {input_word(d, 'dat')} {d.link}, "
                 f"против часовой стрелки — плюс) — из уравнения моментов сил, действующих на {input_word(d)}, "
                 f"относительно оси {d.center}:")
@@ -910,13 +934,21 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
                   rf"{_in(P)} \cdot {_t(ip, sig=5)}" + (rf" + {_t(rest, sig=5)}" if others else ""),
                   _t(row["F_act"], sig=6, unit="Н"), label="eq-frc-F"),
           Formula(r"A = \frac{\pi D^2}{4}", rf"\frac{{\pi \cdot {_in(a.diameter)}^2}}{{4}}", _t(a.area, sig=5, unit="м²")),
-          Formula(r"p = \frac{F}{k A \eta}", rf"\frac{{{_t(row['F_act'], sig=6)}}}{{{a.count} \cdot {_t(a.area, sig=5)} \cdot {_in(a.efficiency)}}}",
-                  _t(row["p_act"] / 1e6, sig=6, unit="МПа"), label="eq-frc-p")]
+          # p to the table's 3 decimals; the area and the ratios i to as many digits as make the
+          # printed quotients the printed p and G (2·17,5·10⁶·0,84·0,0050265/3,9840 = 37 093, not 37 094)
+          Formula(r"p = \frac{F}{k A \eta}", rf"\frac{{{_t(row['F_act'], sig=6)}}}{{{a.count} \cdot "
+                  rf"{_ts(a.area, agreeing_sig(lambda f: f[0] / (a.count * f[1] * a.efficiency) / 1e6, [row['F_act'], a.area], row['p_act'] / 1e6, sig=5, result_sig=5))}"
+                  rf" \cdot {_in(a.efficiency)}}}",
+                  _t(row["p_act"] / 1e6, digits=3, unit="МПа"), label="eq-frc-p")]
     for q in list(c.points) + [c.point]:
         Q = tex_point(q)
+        kpe = a.count * a.pressure * a.efficiency
+        # the area, the ratio i (and F_ост) to as many digits as make the printed quotient the printed G
+        sg = agreeing_sig(lambda f: (kpe * f[0] - (f[2] if others else 0.0)) / f[1],
+                          [a.area, row["i_" + q], rest], row["Gcap_" + q], sig=5, result_sig=5)
         fs.append(Formula(rf"G_{{{Q}}} = \frac{{k p_{{max}} \eta A" + (r" - F_{ост}" if others else "") + rf"}}{{i_{{{Q}}}}}",
-                          rf"\frac{{{a.count} \cdot {_in(a.pressure / 1e6)} \cdot 10^{{6}} \cdot {_in(a.efficiency)} \cdot {_t(a.area, sig=5)}"
-                          + (rf" - {_t(rest, sig=5)}" if others else "") + rf"}}{{{_t(row['i_' + q], sig=5)}}}",
+                          rf"\frac{{{a.count} \cdot {_in(a.pressure / 1e6)} \cdot 10^{{6}} \cdot {_in(a.efficiency)} \cdot {_ts(a.area, sg)}"
+                          + (rf" - {_ts(rest, sg)}" if others else "") + rf"}}{{{_ts(row['i_' + q], sg)}}}",
                           _t(row["Gcap_" + q], sig=5, unit="Н")))
     fs.append(Formula(rf"\Delta G = \frac{{G_{{{pt}}} - {L_}}}{{{L_}}} \cdot 100\%",
                       rf"\frac{{{_t(row['Gcap_' + c.point], sig=5)} - {_in(P)}}}{{{_in(P)}}} \cdot 100\%",
@@ -962,10 +994,15 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
                 f"<i>x</i><sub>G</sub> (координата его центра масс) позади задней оси. Для положения {pos_no(study, lab)} "
                 f"(по всем положениям — таблица {ref('tab-frc-carrier')} и рисунок {ref('fig-frc-carrier')}):")
     RA = row["R_front"]
+    m0 = c.ballast * (c.ballast_arm + c.wheelbase) + c.weight * c.weight_arm
+    # x_G to as many digits as make both quotients the printed R_A and G_max
+    w0, wr, wL, wG = written(m0, 6), written(row["R_front_min"], 5), float(c.wheelbase), float(G)
+    sx = max(agreeing_sig(lambda f: (m0 - wG * f[0]) / wL, [x], RA, sig=5, result_sig=5),
+             agreeing_sig(lambda f: (w0 - wr * wL) / f[0], [x], row["Gmax_carrier"], sig=5, result_sig=5))
     s.formula(
         Formula(r"R_A = \frac{P_{гр} (a + L) + P_в b - G x_G}{L}",
                 rf"\frac{{{_in(c.ballast)} \cdot ({_in(c.ballast_arm)} + {_in(c.wheelbase)}) + {_in(c.weight)} \cdot "
-                rf"{_in(c.weight_arm)} - {_in(G)} \cdot {_t(x, sig=5)}}}{{{_in(c.wheelbase)}}}",
+                rf"{_in(c.weight_arm)} - {_in(G)} \cdot {_ts(x, sx)}}}{{{_in(c.wheelbase)}}}",
                 _t(RA, sig=5, unit="Н"), label="eq-frc-RA"),
         Formula(r"R_B = P_{гр} + P_в + G - R_A", None, _t(row["R_rear"], sig=5, unit="Н")),
         Formula(r"\Delta R_A = \frac{R_A}{G + P_в + P_{гр}} \cdot 100\%",
@@ -974,10 +1011,9 @@ def _carrier(sec: Section, study, f, lab: str) -> None:
                 _t(row["R_front_min"], sig=5, unit="Н")))
     s.paragraph("Наибольший груз, при котором на управляемый мост приходится не меньше <i>R</i><sub>A,min</sub> "
                 "(из того же уравнения моментов):")
-    m0 = c.ballast * (c.ballast_arm + c.wheelbase) + c.weight * c.weight_arm
     s.formula(
         Formula(r"G_{max} = \frac{P_в b + P_{гр} (a + L) - R_{A,min} L}{x_G}",
-                rf"\frac{{{_t(m0, sig=6)} - {_t(row['R_front_min'], sig=5)} \cdot {_in(c.wheelbase)}}}{{{_t(x, sig=5)}}}",
+                rf"\frac{{{_t(m0, sig=6)} - {_t(row['R_front_min'], sig=5)} \cdot {_in(c.wheelbase)}}}{{{_ts(x, sx)}}}",
                 _t(row["Gmax_carrier"], sig=5, unit="Н"), label="eq-frc-Gmax"),
         Formula(r"G_{max}^{*} = \frac{P_в b + P_{гр} (a + L) - k_A L (P_в + P_{гр})}{x_G + k_A L}", None,
                 _t(row["Gmax_carrier_consistent"], sig=5, unit="Н")))

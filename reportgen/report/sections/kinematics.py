@@ -347,26 +347,26 @@ def build(study) -> Section:
     v_m = inline_math(r"v = \omega_1 x^{\prime}" if rotary else rf"v = v_{{{rel}}} x^{{\prime}}")
     a_m = inline_math(r"a = \omega_1^2 x^{\prime\prime} + \varepsilon_1 x^{\prime}" if rotary
                       else rf"a = v_{{{rel}}}^2 x^{{\prime\prime}} + a_{{{rel}}} x^{{\prime}}")
+    # the scale, then the dashed lines and the figure; with no dashed lines the figure follows the
+    # scale in the same sentence («(1:10), рисунок 2.1», not «(1:10). (рисунок 2.1).»)
+    scale = f"Масштаб {mu_l}&nbsp;=&nbsp;{mu_text(plan.mu)}&nbsp;м/мм ({gost_ratio(plan.mu)})"
+    scale_tail = (f"{scale}. {shown} (рисунок {ref('fig-positions')})." if paths else
+                  f"{scale}, рисунок {ref('fig-positions')}.")
     if not study.has_cycle:
         s1.paragraph(f"Механизм рассчитан в {ncount} заданных положениях {input_word(mech.driver, 'gen')} "
                      f"(углы φ в таблицах); цикл не рассчитывается — механизм собирается не во всех положениях "
                      f"цикла, поэтому траектории, диаграммы и крайние положения выходного звена не строятся. "
-                     f"Масштаб {mu_l}&nbsp;=&nbsp;{mu_text(plan.mu)}&nbsp;м/мм ({gost_ratio(plan.mu)}), "
-                     f"рисунок {ref('fig-positions')}.")
+                     f"{scale}, рисунок {ref('fig-positions')}.")
     elif mech.driver.swing:
         s1.paragraph(f"План положений построен для {ncount} положений входного коромысла {mech.driver.link} в "
                      f"диапазоне его качания {swing_text(mech.driver)}, от одного крайнего положения до другого; "
                      f"на обратном ходе звенья проходят те же положения в обратном порядке. "
-                     f"Масштаб {mu_l}&nbsp;=&nbsp;{mu_text(plan.mu)}&nbsp;м/мм ({gost_ratio(plan.mu)}). "
-                     + (f"{shown} " if paths else "")
-                     + f"(рисунок {ref('fig-positions')}).")
+                     + scale_tail)
     elif rotary:
         s1.paragraph(f"План положений построен для {ncount} положений кривошипа, начиная с положения "
                      f"{phi0_m}&nbsp;=&nbsp;{fmt(math.degrees(mech.driver.phi0), digits=1)}°, "
                      f"при вращении {'по часовой стрелке' if mech.driver.direction < 0 else 'против часовой стрелки'}. "
-                     f"Масштаб {mu_l}&nbsp;=&nbsp;{mu_text(plan.mu)}&nbsp;м/мм ({gost_ratio(plan.mu)}). "
-                     + (f"{shown} " if paths else "")
-                     + f"(рисунок {ref('fig-positions')})."
+                     + scale_tail
                      # a crank too small for its position numbers: numbered on its enlarged view
                      + (f" Кривошип в этом масштабе мал, поэтому положения шарнира {Markup('<i>{}</i>').format(mech.crank_pin())} "
                         f"пронумерованы на выносном элементе {plan.detail_mark}, вычерченном в масштабе "

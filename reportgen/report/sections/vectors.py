@@ -26,7 +26,7 @@ import math
 from markupsafe import Markup
 
 from ...mechanism.model import FRAME
-from ...style.numbers import fmt_given, tex_num
+from ...style.numbers import agreeing_sig, fmt_given, tex_num, trimmed_sig, written
 from ..formulas import Formula, inline_math
 from .common import tex_point
 
@@ -128,7 +128,8 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
             out[2].append(Formula(rf"\bar{{a}}_{{{P}}} = {base_a}\bar{{a}}^{{n}}_{{{P}{R}}} + \bar{{a}}^{{\tau}}_{{{P}{R}}}"))
             out[3].append(Markup("{} (направлено от точки {} к точке {}); {}, {}").format(
                 _m(rf"a^{{n}}_{{{P}{R}}} = \omega_{{{_ang(name)}}}^{{2}} l_{{{R}{P}}} = "
-                   rf"{tex_num(abs(w), sig=4)}^{{2}} \cdot {tex_num(l, sig=4)} = {tex_num(w * w * l, sig=4, unit='м/с²')}"),
+                   rf"{_factors(lambda f: f[0] ** 2 * written(l), [abs(w)], w * w * l)[0]}^{{2}} \cdot "
+                   rf"{tex_num(l, sig=4)} = {tex_num(w * w * l, sig=4, unit='м/с²')}"),
                 _m(P), _m(R), _m(rf"\bar{{a}}^{{\tau}}_{{{P}{R}}} \;\perp\; {R}{P}"),
                 _m(rf"a^{{\tau}}_{{{P}{R}}} = \varepsilon_{{{_ang(name)}}} l_{{{R}{P}}}"
                    + (rf" = {tex_num(abs(e) * l, sig=4, unit='м/с²')}" if known else "")))
@@ -236,14 +237,16 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
             (Markup("ускорение точки звена {} под ползуном").format(guide) if is_stone(mech, j) else
              Markup("ускорение точки звена {}, совпадающей в данный момент с точкой {} звена {}").format(
                  guide, _m(P), slider)),
-            _m(rf"a^{{n}}_{{{Pg}{G}}} = \omega_{{{_ang(guide)}}}^{{2}} l_{{{G}{P}}} = {tex_num(wg, sig=4)}^{{2}} \cdot "
+            _m(rf"a^{{n}}_{{{Pg}{G}}} = \omega_{{{_ang(guide)}}}^{{2}} l_{{{G}{P}}} = "
+               rf"{_factors(lambda f: f[0] ** 2 * written(lg), [wg], wg * wg * lg)[0]}^{{2}} \cdot "
                rf"{tex_num(lg, sig=4)} = {tex_num(wg * wg * lg, sig=4, unit='м/с²')}"), _m(P), _m(G),
             _m(rf"\bar{{a}}^{{\tau}}_{{{Pg}{G}}} \;\perp\; {G}{P}"), tau))
         an.append(Markup("{} — кориолисово ускорение (направляющая вращается), направление — вектор "
                          "относительной скорости {}, повёрнутый на 90° в сторону вращения звена {}; {} "
                          "— величина находится построением").format(
-            _m(rf"a^{{k}}_{{{Ps}{Pg}}} = 2 \omega_{{{_ang(guide)}}} V_{{{Ps}{Pg}}} = 2 \cdot {tex_num(wg, sig=4)} \cdot "
-               rf"{tex_num(vr, sig=4)} = {tex_num(2 * wg * vr, sig=4, unit='м/с²')}"),
+            _m(rf"a^{{k}}_{{{Ps}{Pg}}} = 2 \omega_{{{_ang(guide)}}} V_{{{Ps}{Pg}}} = 2 \cdot "
+               + r" \cdot ".join(_factors(lambda f: 2 * f[0] * f[1], [wg, vr], 2 * wg * vr))
+               + rf" = {tex_num(2 * wg * vr, sig=4, unit='м/с²')}"),
             _m(rf"\bar{{V}}_{{{Ps}{Pg}}}"), guide,
             _m(rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}} \;\parallel") + Markup(" направляющей")))
     return vf + late[0], vn + late[1], af + late[2], an + late[3]
@@ -284,15 +287,23 @@ def _driving_pair(study, row, j, out) -> None:
     an.insert(0, Markup("{} (направлено от точки {} к точке {}); {}, {} — величина находится построением; {} — "
                         "кориолисово ускорение (цилиндр вращается), направление — вектор относительной скорости {}, "
                         "повёрнутый на 90° в сторону вращения цилиндра {}; {} оси гидроцилиндра, {}{}").format(
-        _m(rf"a^{{n}}_{{{Pg}{O}}} = \omega_{{{cyl}}}^{{2}} l_{{{O}{P}}} = {tex_num(w, sig=4)}^{{2}} \cdot "
+        _m(rf"a^{{n}}_{{{Pg}{O}}} = \omega_{{{cyl}}}^{{2}} l_{{{O}{P}}} = "
+           rf"{_factors(lambda f: f[0] ** 2 * written(l), [w], w * w * l)[0]}^{{2}} \cdot "
            rf"{tex_num(l, sig=4)} = {tex_num(w * w * l, sig=4, unit='м/с²')}"), _m(P), _m(O),
         _m(rf"\bar{{a}}^{{\tau}}_{{{Pg}{O}}} \;\perp\; {O}{P}"), _m(rf"a^{{\tau}}_{{{Pg}{O}}} = \varepsilon_{{{cyl}}} l_{{{O}{P}}}"),
-        _m(rf"a^{{k}}_{{{Ps}{Pg}}} = 2 \omega_{{{cyl}}} v_{{{rod}{cyl}}} = 2 \cdot {tex_num(w, sig=4)} \cdot "
-           rf"{tex_num(v, sig=4)} = {tex_num(2 * w * v, sig=4, unit='м/с²')}"),
+        _m(rf"a^{{k}}_{{{Ps}{Pg}}} = 2 \omega_{{{cyl}}} v_{{{rod}{cyl}}} = 2 \cdot "
+           rf"{_factors(lambda f: 2 * f[0] * v, [w], 2 * w * v)[0]} \cdot "
+           rf"{_given_tex(v)} = {tex_num(2 * w * v, sig=4, unit='м/с²')}"),
         _m(rf"\bar{{V}}_{{{Ps}{Pg}}}"), cyl, _m(rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}} \;\parallel"),
         _m(rf"a^{{r}}_{{{Ps}{Pg}}} = a_{{{rod}{cyl}}} = {tex_num(abs(a), sig=4, unit='м/с²')}"),
         Markup(" (шток выдвигается с постоянной скоростью)") if abs(a) < 1e-12 else Markup(" — задано")))
 
+
+def _factors(value, factors, result) -> list[str]:
+    """The measured factors of ω²l, 2ωV (ω, V from the plans) to as many digits as make the printed
+    product the printed result: 32,625² · 0,4000 = 425,8, not 32,63² · 0,4000 = 425,9."""
+    sg = agreeing_sig(value, factors, result)
+    return [tex_num(x, sig=trimmed_sig(x, sg)) for x in factors]
 
 def _inner_pin(mech, g, j, links: set) -> tuple[Markup, Markup]:
     """A ПВП group's second slider equation is written for the inner joint P (V̄_P = V̄_P0 + V̄_PP0),
