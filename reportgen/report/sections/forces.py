@@ -930,8 +930,10 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
                 f") для положения {pos_no(study, lab)} (S&nbsp;=&nbsp;{fmt(row['q'], digits=3)}&nbsp;м; "
                 f"по всем положениям — таблица {ref('tab-frc-capacity')} и рисунок {ref('fig-frc-capacity')}):")
     L_ = _name_tex(c.load)
+    # i (and F_ост) to as many digits as make Q·i + F_ост as printed the printed F
+    sf = agreeing_sig(lambda f: P * f[0] + (f[1] if others else 0.0), [ip, rest], row["F_act"], sig=5, result_sig=6)
     fs = [Formula(rf"F = {L_} \cdot i_{{{pt}}}" + (r" + F_{ост}" if others else ""),
-                  rf"{_in(P)} \cdot {_t(ip, sig=5)}" + (rf" + {_t(rest, sig=5)}" if others else ""),
+                  rf"{_in(P)} \cdot {_ts(ip, sf)}" + (rf" + {_ts(rest, sf)}" if others else ""),
                   _t(row["F_act"], sig=6, unit="Н"), label="eq-frc-F"),
           Formula(r"A = \frac{\pi D^2}{4}", rf"\frac{{\pi \cdot {_in(a.diameter)}^2}}{{4}}", _t(a.area, sig=5, unit="м²")),
           # p to the table's 3 decimals; the area and the ratios i to as many digits as make the
