@@ -919,7 +919,7 @@ def _capacity(sec: Section, study, f, lab: str) -> None:
     rest = float(row["F_act"]) - P * float(ip)
     others = any(ld.name != c.load for ld in f.solution.loads) and abs(rest) > 1e-9 * max(abs(float(row["F_act"])), 1.0)
     where = f"в точке {html_point(c.point)}" + (" и на оси " + ", ".join(c.points) if c.points else "")
-    s.paragraph(f"Усилие на штоке находится из силового расчёта по группам; по принципу возможных перемещений "
+    s.paragraph("Усилие на штоке находится из силового расчёта по группам; по принципу возможных перемещений "
                 + (f"оно равно произведению нагрузки {html_label(c.load)} на передаточное число "
                    f"{inline_math(rf'i_{{{pt}}} = dy_{{{pt}}}/dS')} её точки приложения и доли усилия "
                    f"{inline_math('F_{ост}')}, приходящейся на остальные нагрузки (силы тяжести звеньев). "
