@@ -240,3 +240,21 @@ def test_output_link_title_reaches_the_output_name_escaped(tmp_path):
     name = str(output_quantity(load_case(case))[3])
     assert name.startswith("ползун ") and "&lt;script&gt;" in name
     assert "<script" not in name and "<img" not in name and "<a " not in name
+
+
+def test_link_titles_of_a_driving_slot_and_its_stone_arrive_escaped(tmp_path):
+    """The assignment names a driving link by its case title («Ведущее звено 1 — …; … служит
+    кривошипом») and the kinematics names a stone turning with it («Звено 2 (…) поворачивается вместе
+    с ведущим звеном 1»): both titles, hostile here, arrive escaped (driving_slot_planer)."""
+    text = (CASES / "driving_slot_planer.toml").read_text(encoding="utf-8")
+    p = _toml_str(PAYLOAD)
+    for old in ('title = "кулиса"', 'title = "камень"'):
+        assert old in text
+        text = text.replace(old, f"title = {p}", 1)
+    path = tmp_path / "hostile_planer.toml"
+    path.write_text(text, encoding="utf-8")
+    html = render.render_html(build_report(Study(path)), for_print=False)
+    assert hostile_markup(html) == []
+    escaped = "&lt;script&gt;alert(1)&lt;/script&gt;"
+    assert "служит кривошипом" in html and "поворачивается вместе" in html
+    assert html.count(escaped) >= 2
