@@ -26,9 +26,9 @@ import math
 from markupsafe import Markup
 
 from ...mechanism.model import FRAME
-from ...style.numbers import agreeing_sig, fmt_given, tex_num, trimmed_sig, written
+from ...style.numbers import agreeing_sig, tex_num, trimmed_sig, written
 from ..formulas import Formula, inline_math
-from .common import tex_point
+from .common import tex_given, tex_point
 
 
 def is_stone(mech, joint) -> bool:
@@ -252,11 +252,6 @@ def group_equations(study, row, g) -> tuple[list[Formula], list[Markup], list[Fo
     return vf + late[0], vn + late[1], af + late[2], an + late[3]
 
 
-def _given_tex(x: float) -> str:
-    """A given value in TeX as the assignment states it (fmt_given: 0,04, not 0,04000)."""
-    return fmt_given(x).replace(",", "{,}").replace("\u00a0", r"\,")
-
-
 def _driving_pair(study, row, j, out) -> None:
     """The equations of the actuator's driving pair, first in its initial mechanism: the rod's end
     P on the cylinder's axis, V̄_P2 = V̄_P1 + V̄_P2P1 with V̄_P1 ⊥ O₁P (the cylinder's point under
@@ -278,7 +273,7 @@ def _driving_pair(study, row, j, out) -> None:
                         "выдвижения штока); {} — шток соединён шарниром {} со звеном {}").format(
         _m(rf"\bar{{V}}_{{{Pg}}}"), cyl, _m(P), rod, _m(rf"\bar{{V}}_{{{Pg}}} \;\perp\; {O}{P}"),
         _m(rf"V_{{{Pg}}} = \omega_{{{cyl}}} l_{{{O}{P}}}"), _m(rf"\bar{{V}}_{{{Ps}{Pg}}} \;\parallel"),
-        _m(rf"V_{{{Ps}{Pg}}} = v_{{{rod}{cyl}}} = {_given_tex(v)}\ \text{{м/с}}"),
+        _m(rf"V_{{{Ps}{Pg}}} = v_{{{rod}{cyl}}} = {tex_given(v)}\ \text{{м/с}}"),
         _m(rf"\bar{{V}}_{{{Ps}}} = \bar{{V}}_{{{P}}}"), _m(P),
         next((o for jt in mech.joints if jt.kind == "R" and jt.point == j.point and rod in jt.links
               for o in jt.links if o != rod), "")))
@@ -293,7 +288,7 @@ def _driving_pair(study, row, j, out) -> None:
         _m(rf"\bar{{a}}^{{\tau}}_{{{Pg}{O}}} \;\perp\; {O}{P}"), _m(rf"a^{{\tau}}_{{{Pg}{O}}} = \varepsilon_{{{cyl}}} l_{{{O}{P}}}"),
         _m(rf"a^{{k}}_{{{Ps}{Pg}}} = 2 \omega_{{{cyl}}} v_{{{rod}{cyl}}} = 2 \cdot "
            rf"{_factors(lambda f: 2 * f[0] * v, [w], 2 * w * v)[0]} \cdot "
-           rf"{_given_tex(v)} = {tex_num(2 * w * v, sig=4, unit='м/с²')}"),
+           rf"{tex_given(v)} = {tex_num(2 * w * v, sig=4, unit='м/с²')}"),
         _m(rf"\bar{{V}}_{{{Ps}{Pg}}}"), cyl, _m(rf"\bar{{a}}^{{r}}_{{{Ps}{Pg}}} \;\parallel"),
         _m(rf"a^{{r}}_{{{Ps}{Pg}}} = a_{{{rod}{cyl}}} = {tex_num(abs(a), sig=4, unit='м/с²')}"),
         Markup(" (шток выдвигается с постоянной скоростью)") if abs(a) < 1e-12 else Markup(" — задано")))
